@@ -1,0 +1,26 @@
+#pragma once
+// Triangle meshes for synthetic scenes: primitives centred at their origin, composed by rigid
+// transforms. Shapes only need to be recognisable, so the primitives are simple.
+
+#include <Eigen/Geometry>
+#include <vector>
+
+namespace lmk {
+
+struct TriangleMesh {
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<Eigen::Vector3i> triangles;  ///< counter-clockwise seen from outside
+
+  /// Appends `other` transformed by T_this_other.
+  void append(const TriangleMesh& other,
+              const Eigen::Isometry3d& T_this_other = Eigen::Isometry3d::Identity());
+};
+
+/// Axis-aligned box of full side lengths `size`, centred at the origin.
+TriangleMesh make_box_mesh(const Eigen::Vector3d& size);
+/// Closed cylinder along z, centred at the origin.
+TriangleMesh make_cylinder_mesh(double radius, double height, int segments = 32);
+/// UV sphere centred at the origin.
+TriangleMesh make_sphere_mesh(double radius, int rings = 16, int segments = 32);
+
+}  // namespace lmk

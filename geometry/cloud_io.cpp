@@ -1,0 +1,113 @@
+#include "geometry/cloud_io.h"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "geometry/atomic_file.h"
+#include "geometry/detail/formats.h"
+#include "geometry/error.h"
+
+namespace lmk {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string read_whole_file(const std::string& path) {
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (!fs::exists(status)) throw Error(path + ": no such file");
+  if (fs::is_directory(status)) throw Error(path + ": is a directory, not a point-cloud file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path + ": cannot open for reading (check permissions)");
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  std::string bytes = std::move(buffer).str();
+  if (bytes.empty()) throw Error(path + ": file is empty");
+  return bytes;
+}
+
+}  // namespace
+
+const char* to_string(CloudFormat format) {
+  switch (format) {
+    case CloudFormat::kPcd:
+      return "pcd";
+    case CloudFormat::kPly:
+      return "ply";
+    case CloudFormat::kXyz:
+      return "xyz";
+  }
+  return "?";
+}
+
+const char* to_string(Encoding encoding) {
+  switch (encoding) {
+    case Encoding::kAscii:
+      return "ascii";
+    case Encoding::kBinary:
+      return "binary";
+    case Encoding::kBinaryCompressed:
+      return "binary_compressed";
+  }
+  return "?";
+}
+
+CloudFormat format_from_path(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (ext == ".pcd") return CloudFormat::kPcd;
+  if (ext == ".ply") return CloudFormat::kPly;
+  if (ext == ".xyz") return CloudFormat::kXyz;
+  throw Error(path + ": unknown extension '" + ext + "' (supported: .pcd, .ply, .xyz)");
+}
+
+CloudFile read_cloud_file(const std::string& path) {
+  const CloudFormat format = format_from_path(path);
+  const std::string bytes = read_whole_file(path);
+  CloudFile file;
+  switch (format) {
+    case CloudFormat::kPcd:
+      file = detail::read_pcd(path, bytes);
+      break;
+    case CloudFormat::kPly:
+      file = detail::read_ply(path, bytes);
+      break;
+    case CloudFormat::kXyz:
+      file = detail::read_xyz(path, bytes);
+      break;
+  }
+  file.format = format;
+  file.cloud.validate(path);
+  if (file.cloud.count_finite() == 0) {
+    throw Error(path + ": holds " + std::to_string(file.cloud.size()) +
+                " points but none with finite x, y and z");
+  }
+  return file;
+}
+
+PointCloud read_cloud(const std::string& path) { return read_cloud_file(path).cloud; }
+
+void write_cloud(const std::string& path, const PointCloud& cloud, const WriteOptions& options) {
+  const CloudFormat format = format_from_path(path);
+  cloud.validate("write " + path);
+  write_file_atomically(path, [&](const fs::path& tmp) {
+    switch (format) {
+      case CloudFormat::kPcd:
+        detail::write_pcd(tmp, cloud, options.encoding);
+        break;
+      case CloudFormat::kPly:
+        detail::write_ply(tmp, cloud, options.encoding);
+        break;
+      case CloudFormat::kXyz:
+        detail::write_xyz(tmp, cloud);
+        break;
+    }
+  });
+}
+
+}  // namespace lmk

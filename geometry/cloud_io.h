@@ -1,0 +1,54 @@
+#pragma once
+// Reading and writing point clouds: PCD (ascii, binary, binary_compressed), PLY (ascii, binary)
+// and plain XYZ text. The format follows the file extension.
+//
+// Every problem with a file is an lmk::Error whose message starts with the file's path and says
+// what is wrong: a missing file, an unknown extension, a truncated or garbage file, a header
+// that disagrees with the data, no x/y/z fields, or no finite point at all. Writes are atomic.
+
+#include <string>
+#include <vector>
+
+#include "geometry/point_cloud.h"
+
+namespace lmk {
+
+enum class CloudFormat { kPcd, kPly, kXyz };
+
+/// How a file stores its data. PLY and XYZ use kAscii / kBinary; kBinaryCompressed is PCD's LZF.
+enum class Encoding { kAscii, kBinary, kBinaryCompressed };
+
+/// A cloud as read from disk, with what the file said about itself.
+struct CloudFile {
+  PointCloud cloud;
+  CloudFormat format = CloudFormat::kPcd;
+  Encoding encoding = Encoding::kBinary;
+  /// The file's field (property) names in file order, without padding fields such as "_".
+  std::vector<std::string> fields;
+};
+
+/// The format for a path's extension (case-insensitive .pcd, .ply, .xyz); throws lmk::Error
+/// naming the supported extensions otherwise.
+CloudFormat format_from_path(const std::string& path);
+
+/// Reads any supported file. Organised clouds keep width x height and their NaN points.
+CloudFile read_cloud_file(const std::string& path);
+/// Reads any supported file and returns the cloud alone.
+PointCloud read_cloud(const std::string& path);
+
+struct WriteOptions {
+  /// PCD: kBinaryCompressed (default), kBinary or kAscii. PLY: kBinary (default) or kAscii;
+  /// kBinaryCompressed means kBinary for PLY. XYZ is always text.
+  Encoding encoding = Encoding::kBinaryCompressed;
+};
+
+/// Writes the cloud in the format of the path's extension, atomically. Normals, colours, labels,
+/// the width x height organisation and the sensor pose are kept where the format can hold them
+/// (XYZ holds coordinates only).
+void write_cloud(const std::string& path, const PointCloud& cloud,
+                 const WriteOptions& options = {});
+
+const char* to_string(CloudFormat format);
+const char* to_string(Encoding encoding);
+
+}  // namespace lmk

@@ -1,0 +1,30 @@
+#pragma once
+// Pose helpers on Eigen::Isometry3d. Names carry frames: T_a_b maps coordinates in frame b to
+// frame a. Angles are radians; roll/pitch/yaw are the URDF convention, R = Rz(yaw) Ry(pitch)
+// Rx(roll).
+
+#include <Eigen/Geometry>
+
+namespace lmk {
+
+Eigen::Isometry3d pose_from_xyz_rpy(const Eigen::Vector3d& xyz, const Eigen::Vector3d& rpy);
+Eigen::Isometry3d pose_from_position_quaternion(const Eigen::Vector3d& position,
+                                                const Eigen::Quaterniond& q);
+/// Roll, pitch, yaw of a rotation, with pitch in [-pi/2, pi/2].
+Eigen::Vector3d rpy_from_rotation(const Eigen::Matrix3d& R);
+/// Angle in [0, pi] of the relative rotation R_a^T R_b.
+double rotation_angle_between(const Eigen::Matrix3d& R_a, const Eigen::Matrix3d& R_b);
+/// True when every coefficient is finite and the linear part is a rotation within `tolerance`.
+bool is_valid_pose(const Eigen::Isometry3d& T, double tolerance = 1e-6);
+
+}  // namespace lmk
+
+namespace lmk {
+
+/// Pose T_world_camera of a camera at `eye` looking at `target`, in the optical convention of depth
+/// sensors: z forward, x right, y down in the image. `up` is the world's up direction; it must not
+/// be parallel to the viewing direction.
+Eigen::Isometry3d camera_look_at(const Eigen::Vector3d& eye, const Eigen::Vector3d& target,
+                                 const Eigen::Vector3d& up);
+
+}  // namespace lmk

@@ -1,0 +1,12 @@
+#pragma once
+// lmk::landmark: landmark model, storage, metrics and search.
+// Its dependency report: the libraries this module is built on, with their compiled-in versions.
+
+#include "geometry/dependencies.h"
+
+namespace lmk {
+
+/// PCL (the paper-faithful reference search runs PCL's ICP).
+std::vector<DependencyVersion> landmark_dependencies();
+
+}  // namespace lmk

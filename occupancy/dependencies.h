@@ -1,0 +1,12 @@
+#pragma once
+// lmk::occupancy: OpenVDB distance fields, empty-space and occupancy grids.
+// Its dependency report: the libraries this module is built on, with their compiled-in versions.
+
+#include "geometry/dependencies.h"
+
+namespace lmk {
+
+/// OpenVDB.
+std::vector<DependencyVersion> occupancy_dependencies();
+
+}  // namespace lmk

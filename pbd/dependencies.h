@@ -1,0 +1,12 @@
+#pragma once
+// lmk::pbd: programs, recording and safe execution through RobotInterface.
+// Its dependency report: the libraries this module is built on, with their compiled-in versions.
+
+#include "geometry/dependencies.h"
+
+namespace lmk {
+
+/// nlohmann-json (program files).
+std::vector<DependencyVersion> pbd_dependencies();
+
+}  // namespace lmk

@@ -1,0 +1,7 @@
+#include "pr2/dependencies.h"
+
+namespace lmk {
+
+std::vector<DependencyVersion> pr2_dependencies() { return {{"urdfdom", LMK_URDFDOM_VERSION}}; }
+
+}  // namespace lmk

@@ -1,0 +1,11 @@
+#include "registration/dependencies.h"
+
+#include <ceres/version.h>
+
+namespace lmk {
+
+std::vector<DependencyVersion> registration_dependencies() {
+  return {{"Ceres", CERES_VERSION_STRING}};
+}
+
+}  // namespace lmk

@@ -1,0 +1,12 @@
+#pragma once
+// lmk::registration: ICP and Ceres robust refinement on SE(3).
+// Its dependency report: the libraries this module is built on, with their compiled-in versions.
+
+#include "geometry/dependencies.h"
+
+namespace lmk {
+
+/// Ceres.
+std::vector<DependencyVersion> registration_dependencies();
+
+}  // namespace lmk

@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Installs every Debian 12 package lmk needs to build, test and benchmark.
+# Idempotent: when every package is already installed it does nothing (no apt-get update).
+set -euo pipefail
+
+packages=(
+  # toolchain
+  build-essential cmake pkg-config git clang-format
+  # libraries named in DESIGN.md
+  libeigen3-dev libopenvdb-dev libceres-dev libpcl-dev libcgal-dev liburdfdom-dev
+  libnanoflann-dev libtbb-dev nlohmann-json3-dev libcli11-dev
+  # Debian's PCL config pulls in VTK, whose config needs MPI's C bindings
+  mpi-default-dev
+  # tests and benchmarks
+  googletest libgtest-dev libgmock-dev libbenchmark-dev
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages already installed"
+  exit 0
+fi
+
+if [ "$(id -u)" -ne 0 ]; then
+  sudo=sudo
+else
+  sudo=
+fi
+echo "install-deps: installing ${#missing[@]} packages: ${missing[*]}"
+$sudo apt-get update -q
+DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends "${missing[@]}"

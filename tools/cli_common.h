@@ -1,0 +1,23 @@
+#pragma once
+// What every lmk subcommand shares: exit codes and the shape of a subcommand.
+
+#include <CLI/CLI.hpp>
+#include <functional>
+
+namespace lmk::cli {
+
+/// Exit codes: 0 success, 1 an unexpected internal failure, 2 bad input (a file, an argument).
+enum ExitCode : int { kOk = 0, kInternalError = 1, kBadInput = 2 };
+
+/// A subcommand: its CLI11 node (options bound to its own state) and what to run when chosen.
+/// `run` may throw lmk::Error for bad input; main turns that into one line and exit code 2.
+struct Subcommand {
+  CLI::App* app;
+  std::function<int()> run;
+};
+
+Subcommand add_info(CLI::App& app);
+Subcommand add_convert(CLI::App& app);
+Subcommand add_gen(CLI::App& app);
+
+}  // namespace lmk::cli

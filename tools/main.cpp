@@ -1,0 +1,76 @@
+// lmk: custom perceptual landmarks for robot programming by demonstration.
+// Dispatches to one subcommand; every error becomes one line on stderr and a non-zero exit.
+
+#include <pcl/console/print.h>
+
+#include <cstdio>
+#include <exception>
+#include <iostream>
+
+#include "eval/dependencies.h"
+#include "geometry/error.h"
+#include "geometry/version.h"
+#include "landmark/dependencies.h"
+#include "occupancy/dependencies.h"
+#include "pbd/dependencies.h"
+#include "pr2/dependencies.h"
+#include "registration/dependencies.h"
+#include "tools/cli_common.h"
+
+namespace {
+
+std::string version_text() {
+  std::string text = std::string("lmk ") + lmk::kVersion + "\n";
+  for (const auto& list :
+       {lmk::geometry_dependencies(), lmk::occupancy_dependencies(),
+        lmk::registration_dependencies(), lmk::landmark_dependencies(), lmk::eval_dependencies(),
+        lmk::pbd_dependencies(), lmk::pr2_dependencies()}) {
+    for (const auto& d : list) {
+      if (text.find("  " + d.name + " ") == std::string::npos) {
+        text += "  " + d.name + " " + d.version + "\n";
+      }
+    }
+  }
+  text.pop_back();
+  return text;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace lmk::cli;
+  // PCL logs its own messages on stderr; lmk reports every problem itself, in one line.
+  pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
+
+  CLI::App app{"lmk: find custom perceptual landmarks in point clouds, with their 6-DoF poses.",
+               "lmk"};
+  app.set_version_flag("--version", version_text());
+  app.require_subcommand(1);
+  app.failure_message([](const CLI::App*, const CLI::Error& e) {
+    return std::string("lmk: error: ") + e.what() + " (see --help)\n";
+  });
+
+  const std::vector<Subcommand> subcommands = {add_info(app), add_convert(app), add_gen(app)};
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::Success& e) {  // --help and --version
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return kBadInput;
+  }
+
+  try {
+    for (const Subcommand& sub : subcommands) {
+      if (sub.app->parsed()) return sub.run();
+    }
+    return kInternalError;  // unreachable: require_subcommand(1) guarantees one was parsed
+  } catch (const lmk::Error& e) {
+    std::fprintf(stderr, "lmk: error: %s\n", e.what());
+    return kBadInput;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "lmk: internal error: %s\n", e.what());
+    return kInternalError;
+  }
+}
