@@ -16,11 +16,14 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string read_whole_file(const std::string& path) {
+void check_is_file(const std::string& path) {
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);
   if (!fs::exists(status)) throw Error(path + ": no such file");
   if (fs::is_directory(status)) throw Error(path + ": is a directory, not a point-cloud file");
+}
+
+std::string read_whole_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path + ": cannot open for reading (check permissions)");
   std::ostringstream buffer;
@@ -67,6 +70,7 @@ CloudFormat format_from_path(const std::string& path) {
 }
 
 CloudFile read_cloud_file(const std::string& path) {
+  check_is_file(path);
   const CloudFormat format = format_from_path(path);
   const std::string bytes = read_whole_file(path);
   CloudFile file;

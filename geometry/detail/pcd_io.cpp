@@ -4,6 +4,7 @@
 
 #include <pcl/io/pcd_io.h>
 
+#include <cstdlib>
 #include <cstring>
 #include <sstream>
 
@@ -27,15 +28,53 @@ std::size_t body_offset(const std::string& bytes) {
   return std::string::npos;
 }
 
-std::size_t count_ascii_rows(const std::string& bytes, std::size_t offset) {
-  std::size_t rows = 0;
+// The WIDTH, HEIGHT and POINTS header values as written, to explain a header PCL rejects.
+struct DeclaredCounts {
+  long long width = -1, height = -1, points = -1;
+};
+
+DeclaredCounts scan_counts(const std::string& bytes, std::size_t header_end) {
+  DeclaredCounts counts;
+  std::istringstream header(bytes.substr(0, header_end));
+  std::string line, key;
+  while (std::getline(header, line)) {
+    std::istringstream words(line);
+    long long value = -1;
+    words >> key >> value;
+    if (key == "WIDTH") counts.width = value;
+    if (key == "HEIGHT") counts.height = value;
+    if (key == "POINTS") counts.points = value;
+  }
+  return counts;
+}
+
+// PCL's ASCII decoder turns a token it cannot parse into 0 without complaint; lmk refuses such a
+// file instead. Each row must hold exactly `tokens_per_row` numbers (nan and inf included).
+void check_ascii_body(const std::string& path, const std::string& bytes, std::size_t offset,
+                      std::size_t tokens_per_row) {
   std::istringstream body(bytes.substr(offset));
-  std::string line;
+  std::string line, token;
+  std::size_t row = 0;
   while (std::getline(body, line)) {
     const std::size_t first = line.find_first_not_of(" \t\r");
-    if (first != std::string::npos && line[first] != '#') ++rows;
+    if (first == std::string::npos || line[first] == '#') continue;
+    ++row;
+    std::istringstream words(line);
+    std::size_t tokens = 0;
+    while (words >> token) {
+      char* end = nullptr;
+      std::strtod(token.c_str(), &end);
+      if (end == token.c_str() || *end != '\0') {
+        throw Error(path + ": data row " + std::to_string(row) + ": '" + token +
+                    "' is not a number");
+      }
+      ++tokens;
+    }
+    if (tokens != tokens_per_row) {
+      throw Error(path + ": data row " + std::to_string(row) + " has " + std::to_string(tokens) +
+                  " values but the header's fields need " + std::to_string(tokens_per_row));
+    }
   }
-  return rows;
 }
 
 [[noreturn]] void count_mismatch(const std::string& path, std::size_t declared, std::size_t held) {
@@ -56,6 +95,12 @@ CloudFile read_pcd(const std::string& path, const std::string& bytes) {
   const std::size_t offset = body_offset(bytes);
   if (offset == std::string::npos ||
       reader.readHeader(header, blob, origin, orientation, version, data_type, pcl_data_idx) < 0) {
+    const DeclaredCounts c =
+        scan_counts(bytes, offset == std::string::npos ? bytes.size() : offset);
+    if (c.width >= 0 && c.height >= 0 && c.points >= 0 && c.width * c.height != c.points) {
+      throw Error(path + ": inconsistent header: WIDTH x HEIGHT = " + std::to_string(c.width) +
+                  " x " + std::to_string(c.height) + " but POINTS " + std::to_string(c.points));
+    }
     throw Error(path + ": not a valid PCD file (its header could not be parsed)");
   }
   CloudFile file;
@@ -70,17 +115,20 @@ CloudFile read_pcd(const std::string& path, const std::string& bytes) {
   int status = 0;
   if (data_type == 0) {
     file.encoding = Encoding::kAscii;
-    const std::size_t rows = count_ascii_rows(bytes, offset);
+    const std::size_t rows = count_data_rows(bytes, offset);
     if (rows != declared) count_mismatch(path, declared, rows);
+    std::size_t tokens_per_row = 0;
+    for (const pcl::PCLPointField& f : blob.fields) tokens_per_row += f.count;
+    check_ascii_body(path, bytes, offset, tokens_per_row);
     std::istringstream body(bytes);
     body.seekg(static_cast<std::streamoff>(offset));
     status = reader.readBodyASCII(body, blob, version);
   } else if (data_type == 1) {
     file.encoding = Encoding::kBinary;
     if (step == 0) throw Error(path + ": header declares fields of zero size");
-    if (available < declared * step || available >= (declared + 1) * step) {
-      count_mismatch(path, declared, available / step);
-    }
+    // Only a shortfall is an error: PCL's writer pads binary files to a page boundary, so
+    // trailing bytes are normal.
+    if (available < declared * step) count_mismatch(path, declared, available / step);
     status = reader.readBodyBinary(data, blob, version, false, static_cast<unsigned>(offset));
   } else {
     file.encoding = Encoding::kBinaryCompressed;

@@ -88,10 +88,14 @@ PlyHeader parse_header(const std::string& path, const std::string& bytes) {
 CloudFile read_ply(const std::string& path, const std::string& bytes) {
   const PlyHeader h = parse_header(path, bytes);
   const std::size_t available = bytes.size() - std::min(h.body_offset, bytes.size());
-  if (h.encoding == Encoding::kBinary && h.vertex_first && h.vertex_stride > 0 &&
-      available < h.vertices * h.vertex_stride) {
-    throw Error(path + ": truncated: header declares " + std::to_string(h.vertices) +
-                " vertices but the data holds " + std::to_string(available / h.vertex_stride));
+  if (h.vertex_first) {
+    const std::size_t held = h.encoding == Encoding::kAscii ? count_data_rows(bytes, h.body_offset)
+                             : h.vertex_stride > 0          ? available / h.vertex_stride
+                                                            : h.vertices;  // size unknown: lists
+    if (held < h.vertices) {
+      throw Error(path + ": truncated: header declares " + std::to_string(h.vertices) +
+                  " vertices but the data holds " + std::to_string(held));
+    }
   }
   pcl::PLYReader reader;
   pcl::PCLPointCloud2 blob;
