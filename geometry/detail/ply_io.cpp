@@ -1,9 +1,14 @@
 // PLY through PCL's reader and writer. lmk parses the header itself first, to reject garbage and
-// truncated files with a clear message before PCL's parser sees them.
+// truncated files with a clear message before PCL's parser sees them, and to read the sensor pose
+// that PCL writes but does not read back.
 
 #include <pcl/io/ply_io.h>
 
+#include <cstring>
+#include <map>
+#include <optional>
 #include <sstream>
+#include <vector>
 
 #include "geometry/detail/formats.h"
 #include "geometry/detail/pcl_conversion.h"
@@ -12,11 +17,21 @@
 namespace lmk::detail {
 namespace {
 
+struct PlyProperty {
+  std::string name, type;
+  bool is_list = false;
+};
+
+struct PlyElement {
+  std::string name;
+  std::size_t count = 0;
+  std::vector<PlyProperty> properties;
+};
+
 struct PlyHeader {
   Encoding encoding = Encoding::kAscii;
-  std::size_t vertices = 0;
-  std::size_t vertex_stride = 0;  // bytes per binary vertex; 0 when a vertex property is a list
-  bool vertex_first = false;      // the vertex element comes first, so its data starts the body
+  bool big_endian = false;
+  std::vector<PlyElement> elements;
   std::size_t body_offset = 0;
 };
 
@@ -30,6 +45,16 @@ std::size_t ply_type_size(const std::string& type) {
   return 0;
 }
 
+// Bytes per binary entry of an element, or 0 when it has a list property (variable size).
+std::size_t element_stride(const PlyElement& e) {
+  std::size_t stride = 0;
+  for (const PlyProperty& p : e.properties) {
+    if (p.is_list) return 0;
+    stride += ply_type_size(p.type);
+  }
+  return stride;
+}
+
 PlyHeader parse_header(const std::string& path, const std::string& bytes) {
   if (bytes.compare(0, 3, "ply") != 0) throw Error(path + ": not a PLY file (no 'ply' magic line)");
   const std::size_t end = bytes.find("end_header");
@@ -39,9 +64,8 @@ PlyHeader parse_header(const std::string& path, const std::string& bytes) {
   h.body_offset = newline == std::string::npos ? bytes.size() : newline + 1;
 
   std::istringstream in(bytes.substr(0, end));
-  std::string line, current_element;
-  bool format_seen = false, vertex_has_list = false;
-  int element_index = 0;
+  std::string line;
+  bool format_seen = false;
   while (std::getline(in, line)) {
     std::istringstream words(line);
     std::string key;
@@ -50,37 +74,109 @@ PlyHeader parse_header(const std::string& path, const std::string& bytes) {
       std::string kind;
       words >> kind;
       format_seen = true;
-      if (kind == "ascii") {
-        h.encoding = Encoding::kAscii;
-      } else if (kind == "binary_little_endian" || kind == "binary_big_endian") {
-        h.encoding = Encoding::kBinary;
-      } else {
+      h.encoding = kind == "ascii" ? Encoding::kAscii : Encoding::kBinary;
+      h.big_endian = kind == "binary_big_endian";
+      if (kind != "ascii" && kind != "binary_little_endian" && !h.big_endian) {
         throw Error(path + ": unknown PLY format '" + kind + "'");
       }
     } else if (key == "element") {
-      std::size_t count = 0;
-      words >> current_element >> count;
+      PlyElement e;
+      words >> e.name >> e.count;
       if (!words) throw Error(path + ": malformed PLY element line: '" + line + "'");
-      if (current_element == "vertex") {
-        h.vertices = count;
-        h.vertex_first = element_index == 0;
+      h.elements.push_back(e);
+    } else if (key == "property" && !h.elements.empty()) {
+      PlyProperty p;
+      words >> p.type;
+      p.is_list = p.type == "list";
+      if (p.is_list) {
+        std::string count_type, item_type;
+        words >> count_type >> item_type;
+      } else if (ply_type_size(p.type) == 0) {
+        throw Error(path + ": unknown PLY property type '" + p.type + "'");
       }
-      ++element_index;
-    } else if (key == "property" && current_element == "vertex") {
-      std::string type;
-      words >> type;
-      if (type == "list") {
-        vertex_has_list = true;
-        continue;
-      }
-      const std::size_t size = ply_type_size(type);
-      if (size == 0) throw Error(path + ": unknown PLY property type '" + type + "'");
-      h.vertex_stride += size;
+      words >> p.name;
+      h.elements.back().properties.push_back(p);
     }
   }
-  if (vertex_has_list) h.vertex_stride = 0;
   if (!format_seen) throw Error(path + ": not a valid PLY file (no format line)");
   return h;
+}
+
+// Reads one scalar property of the given type at `p`, honouring the file's byte order.
+double load_binary(const char* p, const std::string& type, bool big_endian) {
+  char buffer[8];
+  const std::size_t size = ply_type_size(type);
+  for (std::size_t i = 0; i < size; ++i) buffer[i] = p[big_endian ? size - 1 - i : i];
+  const auto as = [&](auto v) {
+    std::memcpy(&v, buffer, sizeof(v));
+    return static_cast<double>(v);
+  };
+  if (type == "float" || type == "float32") return as(float{});
+  if (type == "double" || type == "float64") return as(double{});
+  if (type == "int" || type == "int32") return as(std::int32_t{});
+  if (type == "uint" || type == "uint32") return as(std::uint32_t{});
+  if (type == "short" || type == "int16") return as(std::int16_t{});
+  if (type == "ushort" || type == "uint16") return as(std::uint16_t{});
+  if (type == "char" || type == "int8") return as(std::int8_t{});
+  return as(std::uint8_t{});
+}
+
+// The sensor pose from the "camera" element that PCL's PLY writer adds (view point and axes) but
+// PCL's reader does not return. Read only when every element before it has a fixed size, which is
+// how PCL lays it out; otherwise the pose stays the identity.
+std::optional<Eigen::Isometry3d> read_camera(const PlyHeader& h, const std::string& bytes) {
+  std::size_t offset = h.body_offset, rows_before = 0;
+  const PlyElement* camera = nullptr;
+  for (const PlyElement& e : h.elements) {
+    if (e.name == "camera") {
+      camera = &e;
+      break;
+    }
+    if (e.count == 0) continue;  // PCL writes an empty "face" element with no properties
+    const std::size_t stride = element_stride(e);
+    if (stride == 0) return std::nullopt;
+    offset += e.count * stride;
+    rows_before += e.count;
+  }
+  if (camera == nullptr || camera->count < 1 || element_stride(*camera) == 0) return std::nullopt;
+
+  std::map<std::string, double> values;
+  if (h.encoding == Encoding::kAscii) {
+    std::istringstream body(bytes.substr(h.body_offset));
+    std::string line;
+    for (std::size_t row = 0; row <= rows_before && std::getline(body, line);) {
+      if (line.find_first_not_of(" \t\r") != std::string::npos) ++row;
+    }
+    std::istringstream words(line);
+    for (const PlyProperty& p : camera->properties) words >> values[p.name];
+    if (!words) return std::nullopt;
+  } else {
+    if (offset + element_stride(*camera) > bytes.size()) return std::nullopt;
+    for (const PlyProperty& p : camera->properties) {
+      values[p.name] = load_binary(bytes.data() + offset, p.type, h.big_endian);
+      offset += ply_type_size(p.type);
+    }
+  }
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  Eigen::Matrix3d axes;
+  const char* names[3][3] = {{"x_axisx", "x_axisy", "x_axisz"},
+                             {"y_axisx", "y_axisy", "y_axisz"},
+                             {"z_axisx", "z_axisy", "z_axisz"}};
+  for (int axis = 0; axis < 3; ++axis) {
+    for (int c = 0; c < 3; ++c) {
+      const auto it = values.find(names[axis][c]);
+      if (it == values.end()) return std::nullopt;
+      axes(axis, c) = it->second;  // PCL's writer stores the rotation's rows as "axes"
+    }
+  }
+  T.translation() << values["view_px"], values["view_py"], values["view_pz"];
+  // Stored as floats: re-orthonormalise through a quaternion.
+  const Eigen::Quaterniond q(axes);
+  if (!T.translation().allFinite() || !q.coeffs().allFinite() || q.norm() < 1e-6) {
+    return std::nullopt;
+  }
+  T.linear() = q.normalized().toRotationMatrix();
+  return T;
 }
 
 }  // namespace
@@ -88,28 +184,28 @@ PlyHeader parse_header(const std::string& path, const std::string& bytes) {
 CloudFile read_ply(const std::string& path, const std::string& bytes) {
   const PlyHeader h = parse_header(path, bytes);
   const std::size_t available = bytes.size() - std::min(h.body_offset, bytes.size());
-  if (h.vertex_first) {
+  // Check the data really holds the vertices, when they come first (as every writer puts them).
+  if (!h.elements.empty() && h.elements.front().name == "vertex") {
+    const PlyElement& vertex = h.elements.front();
+    const std::size_t stride = element_stride(vertex);
     const std::size_t held = h.encoding == Encoding::kAscii ? count_data_rows(bytes, h.body_offset)
-                             : h.vertex_stride > 0          ? available / h.vertex_stride
-                                                            : h.vertices;  // size unknown: lists
-    if (held < h.vertices) {
-      throw Error(path + ": truncated: header declares " + std::to_string(h.vertices) +
+                             : stride > 0                   ? available / stride
+                                                            : vertex.count;  // lists: unknown
+    if (held < vertex.count) {
+      throw Error(path + ": truncated: header declares " + std::to_string(vertex.count) +
                   " vertices but the data holds " + std::to_string(held));
     }
   }
   pcl::PLYReader reader;
   pcl::PCLPointCloud2 blob;
-  Eigen::Vector4f origin = Eigen::Vector4f::Zero();
-  Eigen::Quaternionf orientation = Eigen::Quaternionf::Identity();
-  int version = 0;
-  if (reader.read(path, blob, origin, orientation, version) < 0) {
+  if (reader.read(path, blob) < 0) {
     throw Error(path + ": corrupt PLY data (PCL could not decode it)");
   }
   CloudFile file;
   file.encoding = h.encoding;
   file.fields = field_names(blob);
   file.cloud = from_pcl(blob, path);
-  sensor_from_pcl(origin, orientation, file.cloud);
+  if (const auto T = read_camera(h, bytes)) file.cloud.T_cloud_sensor = *T;
   return file;
 }
 
@@ -119,9 +215,11 @@ void write_ply(const std::filesystem::path& file, const PointCloud& cloud, Encod
   Eigen::Quaternionf orientation;
   sensor_to_pcl(cloud, origin, orientation);
   pcl::PLYWriter writer;
-  // use_camera = true stores the sensor pose in PCL's "camera" element, which PLYReader reads back.
-  const int status =
-      writer.write(file.string(), blob, origin, orientation, encoding != Encoding::kAscii, true);
+  // The camera element (use_camera) stores the sensor pose; read_camera() reads it back. ASCII uses
+  // 9 significant digits, which round-trip any float exactly (PCL's default of 8 does not).
+  const int status = encoding == Encoding::kAscii
+                         ? writer.writeASCII(file.string(), blob, origin, orientation, 9, true)
+                         : writer.writeBinary(file.string(), blob, origin, orientation, true);
   if (status < 0) throw Error(file.string() + ": PCL could not write the PLY file");
 }
 

@@ -1,0 +1,132 @@
+// Every kind of bad input file gives an lmk::Error that names the file and the problem.
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "geometry/cloud_io.h"
+#include "geometry/error.h"
+#include "tests/support/test_support.h"
+
+namespace lmk {
+namespace {
+
+std::string pcd_header(const std::string& data, int width, int points,
+                       const std::string& fields = "x y z") {
+  return "VERSION 0.7\nFIELDS " + fields + "\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH " +
+         std::to_string(width) + "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " +
+         std::to_string(points) + "\nDATA " + data + "\n";
+}
+
+// The error from reading `path`; fails the test if reading succeeds.
+std::string read_error(const std::string& path) {
+  try {
+    read_cloud(path);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "reading " << path << " did not fail";
+  return "";
+}
+
+void expect_error(const std::string& path, const std::string& problem) {
+  const std::string message = read_error(path);
+  EXPECT_EQ(message.rfind(path, 0), 0u) << "message does not start with the path: " << message;
+  EXPECT_NE(message.find(problem), std::string::npos) << "'" << problem << "' not in: " << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << "message is not one line: " << message;
+}
+
+std::string truncate(const std::string& path, std::size_t keep) {
+  std::ifstream in(path, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), {});
+  const std::string out =
+      path.substr(0, path.rfind('.')) + "_truncated" + path.substr(path.rfind('.'));
+  test::write_text(out, bytes.substr(0, keep));
+  return out;
+}
+
+class BadInput : public ::testing::Test {
+ protected:
+  test::ScratchDir dir_;
+};
+
+TEST_F(BadInput, MissingFile) { expect_error(dir_.file("absent.pcd"), "no such file"); }
+
+TEST_F(BadInput, Directory) { expect_error(dir_.path().string(), "is a directory"); }
+
+TEST_F(BadInput, UnknownExtension) {
+  test::write_text(dir_.file("cloud.obj"), "v 0 0 0\n");
+  expect_error(dir_.file("cloud.obj"), "unknown extension '.obj'");
+}
+
+TEST_F(BadInput, EmptyFile) {
+  test::write_text(dir_.file("empty.ply"), "");
+  expect_error(dir_.file("empty.ply"), "file is empty");
+}
+
+TEST_F(BadInput, GarbageInEveryFormat) {
+  std::string garbage(4096, '\0');
+  for (std::size_t i = 0; i < garbage.size(); ++i) garbage[i] = static_cast<char>((i * 7919) % 251);
+  for (const std::string ext : {".pcd", ".ply", ".xyz"}) {
+    const std::string path = dir_.file("garbage" + ext);
+    test::write_text(path, garbage);
+    expect_error(path, "not a");
+  }
+}
+
+TEST_F(BadInput, TruncatedBinaryPcdBinaryCompressedPcdAndPly) {
+  const PointCloud cloud = test::random_cloud(1000, 1);
+  for (const auto& [name, encoding] :
+       std::vector<std::pair<std::string, Encoding>>{{"b.pcd", Encoding::kBinary},
+                                                     {"c.pcd", Encoding::kBinaryCompressed},
+                                                     {"b.ply", Encoding::kBinary},
+                                                     {"a.ply", Encoding::kAscii},
+                                                     {"a.pcd", Encoding::kAscii}}) {
+    write_cloud(dir_.file(name), cloud, {encoding});
+    const std::size_t size = std::filesystem::file_size(dir_.file(name));
+    expect_error(truncate(dir_.file(name), size / 2), "truncated");
+  }
+}
+
+TEST_F(BadInput, HeaderDeclaresMorePointsThanTheData) {
+  test::write_text(dir_.file("more.pcd"), pcd_header("ascii", 4, 4) + "1 2 3\n4 5 6\n");
+  expect_error(dir_.file("more.pcd"), "header declares 4 points but the data holds 2");
+}
+
+TEST_F(BadInput, HeaderDeclaresFewerPointsThanTheData) {
+  test::write_text(dir_.file("fewer.pcd"), pcd_header("ascii", 1, 1) + "1 2 3\n4 5 6\n");
+  expect_error(dir_.file("fewer.pcd"), "header declares 1 points but the data holds 2");
+}
+
+TEST_F(BadInput, WidthTimesHeightDisagreesWithPoints) {
+  test::write_text(dir_.file("wh.pcd"), pcd_header("ascii", 5, 2) + "1 2 3\n4 5 6\n");
+  expect_error(dir_.file("wh.pcd"), "WIDTH x HEIGHT = 5 x 1 but POINTS 2");
+}
+
+TEST_F(BadInput, NoXyzFields) {
+  test::write_text(dir_.file("abc.pcd"), pcd_header("ascii", 1, 1, "a b c") + "1 2 3\n");
+  expect_error(dir_.file("abc.pcd"), "no x/y/z fields (the file has: a b c)");
+  test::write_text(dir_.file("abc.ply"),
+                   "ply\nformat ascii 1.0\nelement vertex 1\nproperty float a\nproperty float b\n"
+                   "property float c\nend_header\n1 2 3\n");
+  expect_error(dir_.file("abc.ply"), "no x/y/z fields");
+}
+
+TEST_F(BadInput, ZeroFinitePoints) {
+  test::write_text(dir_.file("nan.pcd"), pcd_header("ascii", 2, 2) + "nan nan nan\nnan 1 2\n");
+  expect_error(dir_.file("nan.pcd"), "none with finite x, y and z");
+  test::write_text(dir_.file("none.xyz"), "# only a comment\n");
+  expect_error(dir_.file("none.xyz"), "none with finite x, y and z");
+}
+
+TEST_F(BadInput, NonNumericAsciiData) {
+  test::write_text(dir_.file("word.pcd"), pcd_header("ascii", 2, 2) + "1 2 3\n4 five 6\n");
+  expect_error(dir_.file("word.pcd"), "data row 2: 'five' is not a number");
+  test::write_text(dir_.file("short.pcd"), pcd_header("ascii", 2, 2) + "1 2 3\n4 5\n");
+  expect_error(dir_.file("short.pcd"), "data row 2 has 2 values");
+  test::write_text(dir_.file("word.xyz"), "1 2 3\n4 x 6\n");
+  expect_error(dir_.file("word.xyz"), "line 2 does not start with three numbers");
+}
+
+}  // namespace
+}  // namespace lmk

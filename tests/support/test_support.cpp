@@ -1,0 +1,57 @@
+#include "tests/support/test_support.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <fstream>
+
+#include "geometry/random.h"
+
+namespace lmk::test {
+
+namespace fs = std::filesystem;
+
+PointCloud random_cloud(std::size_t n, std::uint64_t seed, float half) {
+  SplitMix64 rng(seed);
+  PointCloud cloud;
+  for (std::size_t i = 0; i < n; ++i) {
+    cloud.points.emplace_back(
+        Eigen::Vector3d(rng.uniform01(), rng.uniform01(), rng.uniform01()).cast<float>() *
+            (2.0f * half) -
+        Eigen::Vector3f::Constant(half));
+  }
+  cloud.set_unorganized();
+  return cloud;
+}
+
+ScratchDir::ScratchDir() {
+  static std::atomic<int> counter{0};
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const std::string name = info ? std::string(info->test_suite_name()) + "." + info->name() : "lmk";
+  path_ = fs::temp_directory_path() /
+          ("lmk-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + "-" + name);
+  fs::remove_all(path_);
+  fs::create_directories(path_);
+}
+
+ScratchDir::~ScratchDir() {
+  std::error_code ec;
+  fs::remove_all(path_, ec);
+}
+
+void write_text(const std::string& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+}
+
+std::optional<fs::path> shared_data_dir() {
+  const char* env = std::getenv("LMK_SHARED_DATA");
+  const fs::path dir = env && *env ? fs::path(env) : fs::path(LMK_SHARED_DATA_DIR);
+  std::error_code ec;
+  if (fs::is_directory(dir / "pcl", ec)) return dir;
+  return std::nullopt;
+}
+
+}  // namespace lmk::test

@@ -1,0 +1,41 @@
+#pragma once
+// Helpers for lmk's tests: seeded random clouds, scratch directories and the optional real data.
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "geometry/point_cloud.h"
+
+namespace lmk::test {
+
+/// `n` points uniform in the cube [-half, half]^3, from a fixed seed.
+PointCloud random_cloud(std::size_t n, std::uint64_t seed, float half = 1.0f);
+
+/// A fresh, empty directory for one test, removed when the object is destroyed.
+class ScratchDir {
+ public:
+  ScratchDir();
+  ~ScratchDir();
+  ScratchDir(const ScratchDir&) = delete;
+  ScratchDir& operator=(const ScratchDir&) = delete;
+  std::filesystem::path path() const { return path_; }
+  std::string file(const std::string& name) const { return (path_ / name).string(); }
+
+ private:
+  std::filesystem::path path_;
+};
+
+/// Writes `text` to `path` as is.
+void write_text(const std::string& path, const std::string& text);
+
+/// The real data directory (../shared/data, or $LMK_SHARED_DATA), or nothing when absent.
+std::optional<std::filesystem::path> shared_data_dir();
+
+/// Skips the calling test, with a message, when the real data is absent.
+#define LMK_REQUIRE_SHARED_DATA(var)                                              \
+  const auto var##_opt = ::lmk::test::shared_data_dir();                          \
+  if (!var##_opt) GTEST_SKIP() << "../shared/data is absent; this test needs it"; \
+  const std::filesystem::path var = *var##_opt
+
+}  // namespace lmk::test
