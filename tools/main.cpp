@@ -52,6 +52,21 @@ int main(int argc, char** argv) {
 
   const std::vector<Subcommand> subcommands = {add_info(app), add_convert(app), add_gen(app)};
 
+  // CLI11 reports an unknown first word as a missing subcommand; name it instead.
+  if (argc > 1 && argv[1][0] != '-') {
+    std::string known;
+    bool found = false;
+    for (const Subcommand& sub : subcommands) {
+      found = found || sub.app->get_name() == argv[1];
+      known += (known.empty() ? "" : ", ") + sub.app->get_name();
+    }
+    if (!found) {
+      std::fprintf(stderr, "lmk: error: unknown command '%s' (commands: %s; see --help)\n", argv[1],
+                   known.c_str());
+      return kBadInput;
+    }
+  }
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {  // --help and --version
