@@ -5,7 +5,6 @@
 
 #include <cstdio>
 #include <exception>
-#include <iostream>
 
 #include "eval/dependencies.h"
 #include "geometry/error.h"

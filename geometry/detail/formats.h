@@ -9,10 +9,6 @@
 
 namespace lmk::detail {
 
-/// Data rows of a text body starting at byte `offset`: lines that are neither blank nor comments
-/// ('#'). ASCII PCD and PLY store one point a row, so this is the point count the data holds.
-std::size_t count_data_rows(const std::string& bytes, std::size_t offset);
-
 CloudFile read_pcd(const std::string& path, const std::string& bytes);
 CloudFile read_ply(const std::string& path, const std::string& bytes);
 CloudFile read_xyz(const std::string& path, const std::string& bytes);

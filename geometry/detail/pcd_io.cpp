@@ -48,33 +48,42 @@ DeclaredCounts scan_counts(const std::string& bytes, std::size_t header_end) {
   return counts;
 }
 
-// PCL's ASCII decoder turns a token it cannot parse into 0 without complaint; lmk refuses such a
-// file instead. Each row must hold exactly `tokens_per_row` numbers (nan and inf included).
-void check_ascii_body(const std::string& path, const std::string& bytes, std::size_t offset,
-                      std::size_t tokens_per_row) {
+// One pass over an ASCII body: the number of data rows, and the first row that is not exactly
+// `tokens_per_row` numbers (nan and inf included). PCL's ASCII decoder would read such a token as
+// 0 without complaint; lmk refuses the file instead.
+struct AsciiBodyScan {
+  std::size_t rows = 0;
+  std::string first_problem;  // empty when every row is well formed
+};
+
+AsciiBodyScan scan_ascii_body(const std::string& bytes, std::size_t offset,
+                              std::size_t tokens_per_row) {
+  AsciiBodyScan scan;
   std::istringstream body(bytes.substr(offset));
   std::string line, token;
-  std::size_t row = 0;
   while (std::getline(body, line)) {
     const std::size_t first = line.find_first_not_of(" \t\r");
     if (first == std::string::npos || line[first] == '#') continue;
-    ++row;
+    ++scan.rows;
+    if (!scan.first_problem.empty()) continue;
     std::istringstream words(line);
     std::size_t tokens = 0;
-    while (words >> token) {
+    while (words >> token && scan.first_problem.empty()) {
       char* end = nullptr;
       std::strtod(token.c_str(), &end);
       if (end == token.c_str() || *end != '\0') {
-        throw Error(path + ": data row " + std::to_string(row) + ": '" + token +
-                    "' is not a number");
+        scan.first_problem =
+            "data row " + std::to_string(scan.rows) + ": '" + token + "' is not a number";
       }
       ++tokens;
     }
-    if (tokens != tokens_per_row) {
-      throw Error(path + ": data row " + std::to_string(row) + " has " + std::to_string(tokens) +
-                  " values but the header's fields need " + std::to_string(tokens_per_row));
+    if (scan.first_problem.empty() && tokens != tokens_per_row) {
+      scan.first_problem = "data row " + std::to_string(scan.rows) + " has " +
+                           std::to_string(tokens) + " values but the header's fields need " +
+                           std::to_string(tokens_per_row);
     }
   }
+  return scan;
 }
 
 [[noreturn]] void count_mismatch(const std::string& path, std::size_t declared, std::size_t held) {
@@ -90,7 +99,7 @@ CloudFile read_pcd(const std::string& path, const std::string& bytes) {
   Eigen::Vector4f origin;
   Eigen::Quaternionf orientation;
   int version = 0, data_type = 0;
-  unsigned int pcl_data_idx = 0;
+  unsigned int pcl_data_idx = 0;  // unused: lmk finds the body itself, for its size checks
   std::istringstream header(bytes);
   const std::size_t offset = body_offset(bytes);
   if (offset == std::string::npos ||
@@ -106,7 +115,6 @@ CloudFile read_pcd(const std::string& path, const std::string& bytes) {
   CloudFile file;
   file.fields = field_names(blob);
   require_xyz(blob, path);  // before decoding anything
-  if (blob.width == 0 && blob.height == 0) blob.height = 1;
   const std::size_t declared = static_cast<std::size_t>(blob.width) * blob.height;
   const std::size_t step = blob.point_step;
   const std::size_t available = bytes.size() - std::min(offset, bytes.size());
@@ -115,11 +123,12 @@ CloudFile read_pcd(const std::string& path, const std::string& bytes) {
   int status = 0;
   if (data_type == 0) {
     file.encoding = Encoding::kAscii;
-    const std::size_t rows = count_data_rows(bytes, offset);
-    if (rows != declared) count_mismatch(path, declared, rows);
     std::size_t tokens_per_row = 0;
     for (const pcl::PCLPointField& f : blob.fields) tokens_per_row += f.count;
-    check_ascii_body(path, bytes, offset, tokens_per_row);
+    // A count mismatch is reported first: a file cut mid-row is truncated, not malformed.
+    const AsciiBodyScan scan = scan_ascii_body(bytes, offset, tokens_per_row);
+    if (scan.rows != declared) count_mismatch(path, declared, scan.rows);
+    if (!scan.first_problem.empty()) throw Error(path + ": " + scan.first_problem);
     std::istringstream body(bytes);
     body.seekg(static_cast<std::streamoff>(offset));
     status = reader.readBodyASCII(body, blob, version);
@@ -155,10 +164,7 @@ CloudFile read_pcd(const std::string& path, const std::string& bytes) {
 }
 
 void write_pcd(const std::filesystem::path& file, const PointCloud& cloud, Encoding encoding) {
-  const pcl::PCLPointCloud2 blob = to_pcl(cloud);
-  Eigen::Vector4f origin;
-  Eigen::Quaternionf orientation;
-  sensor_to_pcl(cloud, origin, orientation);
+  const auto [blob, origin, orientation] = to_pcl(cloud);
   pcl::PCDWriter writer;
   int status = 0;
   switch (encoding) {

@@ -141,8 +141,9 @@ PointCloud from_pcl(const pcl::PCLPointCloud2& blob, const std::string& path) {
   return cloud;
 }
 
-pcl::PCLPointCloud2 to_pcl(const PointCloud& cloud) {
-  pcl::PCLPointCloud2 blob;
+PclCloud to_pcl(const PointCloud& cloud) {
+  PclCloud out;
+  pcl::PCLPointCloud2& blob = out.blob;
   blob.width = cloud.width;
   blob.height = cloud.height;
   blob.is_dense = cloud.count_finite() == cloud.size();
@@ -178,13 +179,9 @@ pcl::PCLPointCloud2 to_pcl(const PointCloud& cloud) {
     }
     if (cloud.has_labels()) store(p + blob.fields[f++].offset, cloud.labels[i]);
   }
-  return blob;
-}
-
-void sensor_to_pcl(const PointCloud& cloud, Eigen::Vector4f& origin,
-                   Eigen::Quaternionf& orientation) {
-  origin << cloud.T_cloud_sensor.translation().cast<float>(), 0.0f;
-  orientation = Eigen::Quaternionf(cloud.T_cloud_sensor.linear().cast<float>()).normalized();
+  out.origin << cloud.T_cloud_sensor.translation().cast<float>(), 0.0f;
+  out.orientation = Eigen::Quaternionf(cloud.T_cloud_sensor.linear().cast<float>()).normalized();
+  return out;
 }
 
 void sensor_from_pcl(const Eigen::Vector4f& origin, const Eigen::Quaternionf& orientation,

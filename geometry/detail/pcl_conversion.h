@@ -21,13 +21,18 @@ PointCloud from_pcl(const pcl::PCLPointCloud2& blob, const std::string& path);
 /// The blob's field names in order, without padding fields ("_").
 std::vector<std::string> field_names(const pcl::PCLPointCloud2& blob);
 
-/// Float xyz, float normals, colour as PCL's float-packed "rgb" (or uint32 "rgba" when any alpha
-/// is not 255) and "label" (uint32, or int32 when a label is negative).
-pcl::PCLPointCloud2 to_pcl(const PointCloud& cloud);
+/// What PCL's writers take: the field blob and the sensor pose as (origin, orientation).
+struct PclCloud {
+  pcl::PCLPointCloud2 blob;
+  Eigen::Vector4f origin;
+  Eigen::Quaternionf orientation;
+};
 
-/// The sensor pose in PCL's (origin, orientation) form, and back.
-void sensor_to_pcl(const PointCloud& cloud, Eigen::Vector4f& origin,
-                   Eigen::Quaternionf& orientation);
+/// Float xyz, float normals, colour as PCL's float-packed "rgb" (or uint32 "rgba" when any alpha
+/// is not 255) and "label" (uint32, or int32 when a label is negative), with the sensor pose.
+PclCloud to_pcl(const PointCloud& cloud);
+
+/// Sets cloud.T_cloud_sensor from PCL's (origin, orientation).
 void sensor_from_pcl(const Eigen::Vector4f& origin, const Eigen::Quaternionf& orientation,
                      PointCloud& cloud);
 

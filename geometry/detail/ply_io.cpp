@@ -179,6 +179,22 @@ std::optional<Eigen::Isometry3d> read_camera(const PlyHeader& h, const std::stri
   return T;
 }
 
+// Non-blank lines from byte `offset` on: in an ASCII PLY one vertex a line.
+std::size_t count_data_rows(const std::string& bytes, std::size_t offset) {
+  std::size_t rows = 0;
+  bool at_line_start = true;
+  for (std::size_t i = offset; i < bytes.size(); ++i) {
+    const char c = bytes[i];
+    if (c == '\n') {
+      at_line_start = true;
+    } else if (c != ' ' && c != '\t' && c != '\r') {
+      if (at_line_start) ++rows;
+      at_line_start = false;
+    }
+  }
+  return rows;
+}
+
 }  // namespace
 
 CloudFile read_ply(const std::string& path, const std::string& bytes) {
@@ -210,10 +226,7 @@ CloudFile read_ply(const std::string& path, const std::string& bytes) {
 }
 
 void write_ply(const std::filesystem::path& file, const PointCloud& cloud, Encoding encoding) {
-  const pcl::PCLPointCloud2 blob = to_pcl(cloud);
-  Eigen::Vector4f origin;
-  Eigen::Quaternionf orientation;
-  sensor_to_pcl(cloud, origin, orientation);
+  const auto [blob, origin, orientation] = to_pcl(cloud);
   pcl::PLYWriter writer;
   // The camera element (use_camera) stores the sensor pose; read_camera() reads it back. ASCII uses
   // 9 significant digits, which round-trip any float exactly (PCL's default of 8 does not).
