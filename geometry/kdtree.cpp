@@ -47,11 +47,22 @@ std::size_t KdTree::size() const { return impl_->points.size(); }
 void KdTree::knn(const Eigen::Vector3f& query, std::size_t k, std::vector<Neighbor>& out) const {
   out.clear();
   if (k == 0 || impl_->points.empty()) return;
-  // Small k on the stack would be faster, but k is caller-chosen; two small vectors are cheap
-  // next to the search itself.
-  std::vector<Index> idx(k);
-  std::vector<float> d2(k);
-  const std::size_t found = impl_->tree->knnSearch(query.data(), k, idx.data(), d2.data());
+  // Scratch for nanoflann's result arrays: on the stack for the usual small k, so that repeated
+  // queries into a reused `out` allocate nothing.
+  constexpr std::size_t kStackK = 32;
+  Index idx_stack[kStackK];
+  float d2_stack[kStackK];
+  std::vector<Index> idx_heap;
+  std::vector<float> d2_heap;
+  Index* idx = idx_stack;
+  float* d2 = d2_stack;
+  if (k > kStackK) {
+    idx_heap.resize(k);
+    d2_heap.resize(k);
+    idx = idx_heap.data();
+    d2 = d2_heap.data();
+  }
+  const std::size_t found = impl_->tree->knnSearch(query.data(), k, idx, d2);
   out.resize(found);
   for (std::size_t i = 0; i < found; ++i) out[i] = {impl_->source_index[idx[i]], d2[i]};
 }
