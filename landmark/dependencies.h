@@ -6,7 +6,7 @@
 
 namespace lmk {
 
-/// PCL (the paper-faithful reference search runs PCL's ICP).
+/// PCL (the paper-faithful reference search runs PCL's ICP) and OpenVDB (.lmk files).
 std::vector<DependencyVersion> landmark_dependencies();
 
 }  // namespace lmk

@@ -19,5 +19,8 @@ struct Subcommand {
 Subcommand add_info(CLI::App& app);
 Subcommand add_convert(CLI::App& app);
 Subcommand add_gen(CLI::App& app);
+Subcommand add_capture(CLI::App& app);
+Subcommand add_find(CLI::App& app);
+Subcommand add_landmark(CLI::App& app);
 
 }  // namespace lmk::cli

@@ -49,7 +49,9 @@ int main(int argc, char** argv) {
     return std::string("lmk: error: ") + e.what() + " (see --help)\n";
   });
 
-  const std::vector<Subcommand> subcommands = {add_info(app), add_convert(app), add_gen(app)};
+  const std::vector<Subcommand> subcommands = {add_info(app), add_convert(app),
+                                               add_gen(app),  add_capture(app),
+                                               add_find(app), add_landmark(app)};
 
   // CLI11 reports an unknown first word as a missing subcommand; name it instead.
   if (argc > 1 && argv[1][0] != '-') {

@@ -1,0 +1,78 @@
+#include "landmark/detail/reference_search.h"
+
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+#include <pcl/registration/icp.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+namespace lmk::detail {
+namespace {
+
+using PclCloud = pcl::PointCloud<pcl::PointXYZ>;
+
+PclCloud::Ptr to_pcl_xyz(const PointCloud& cloud) {
+  auto out = std::make_shared<PclCloud>();
+  out->reserve(cloud.size());
+  for (const auto& p : cloud.points) out->push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
+  return out;
+}
+
+// PCL keeps the iteration count protected; this exposes it for the search statistics.
+class CountingIcp : public pcl::IterativeClosestPoint<pcl::PointXYZ, pcl::PointXYZ> {
+ public:
+  int iterations() const { return nr_iterations_; }
+};
+
+// One ICP per worker thread. PCL builds the target k-d tree at the first align() and reuses it
+// while the target is unchanged, so each worker indexes the scene once rather than once per seed as
+// the authors' code did. The alignment itself is unchanged.
+struct Worker {
+  Worker(const PclCloud::Ptr& scene, const PclCloud::Ptr& source, int iterations) {
+    icp.setInputTarget(scene);
+    icp.setInputSource(source);
+    icp.setMaximumIterations(iterations);
+  }
+  CountingIcp icp;
+  PclCloud aligned;
+};
+
+}  // namespace
+
+std::vector<Match> reference_candidates(const SearchInput& in) {
+  const PclCloud::Ptr scene = to_pcl_xyz(in.scene);
+  const PclCloud::Ptr source = to_pcl_xyz(in.landmark.points);
+  const Eigen::Vector3d centroid = [&] {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (const auto& p : in.landmark.points.points) sum += p.cast<double>();
+    return (sum / static_cast<double>(in.landmark.points.size())).eval();
+  }();
+
+  tbb::enumerable_thread_specific<Worker> workers(scene, source, in.settings.icp_iterations);
+  std::vector<Match> candidates(in.seeds.size());
+  std::atomic<std::size_t> done{0};
+
+  tbb::parallel_for(std::size_t{0}, in.seeds.size(), [&](std::size_t s) {
+    Worker& w = workers.local();
+    Match& m = candidates[s];
+    m.seed_index = s;
+    m.seed_point = in.scene.points[in.seeds[s]];
+    // Centre the landmark on the seed, keeping the capture orientation (Algorithm 1, line 6).
+    Eigen::Isometry3d guess = Eigen::Isometry3d::Identity();
+    guess.translation() = m.seed_point.cast<double>() - centroid;
+    w.icp.align(w.aligned, guess.matrix().cast<float>());
+    m.T_scene_capture.matrix() = w.icp.getFinalTransformation().cast<double>();
+    // PCL composes float increments; re-orthonormalise so the pose is a proper rotation.
+    m.T_scene_capture.linear() =
+        Eigen::Quaterniond(m.T_scene_capture.linear()).normalized().toRotationMatrix();
+    m.icp_iterations = w.icp.iterations();
+    m.icp_converged = w.icp.hasConverged();
+    m.terms = in.metric.evaluate(in.scene_view, in.landmark_view, m.T_scene_capture);
+    m.error = m.terms.error;
+    m.box = in.landmark.box.transformed(m.T_scene_capture);
+    if (in.settings.progress) in.settings.progress(++done, in.seeds.size());
+  });
+  return candidates;
+}
+
+}  // namespace lmk::detail

@@ -1,0 +1,26 @@
+#pragma once
+// Step 4 of the reference FindLandmark: one candidate per seed, by PCL's ICP. Internal.
+
+#include <atomic>
+
+#include "landmark/find_landmark.h"
+
+namespace lmk::detail {
+
+/// What every search method gets: the preprocessed scene, the landmark, both indexed, the seeds.
+struct SearchInput {
+  const PointCloud& scene;  ///< cropped and downsampled, finite points only
+  const Landmark& landmark;
+  SceneView scene_view;
+  LandmarkView landmark_view;
+  const Indices& seeds;  ///< indices into `scene`
+  const ErrorMetric& metric;
+  const FindSettings& settings;
+};
+
+/// One candidate per seed, in seed order: the landmark centred on the seed with its capture
+/// orientation, aligned by pcl::IterativeClosestPoint (settings.icp_iterations, no correspondence
+/// distance limit, PCL's default convergence test, as the authors ran it), then scored.
+std::vector<Match> reference_candidates(const SearchInput& input);
+
+}  // namespace lmk::detail

@@ -1,0 +1,67 @@
+#pragma once
+// Candidate error metrics (CandidateError, Algorithm 2 of Huang & Cakmak, and variants), in a
+// registry so that ablations select them by name.
+//
+// A candidate is the landmark moved by T_scene_capture (capture frame -> scene frame). Every metric
+// works in the landmark's capture frame, mapping scene points by the inverse motion, so the
+// landmark's k-d tree is built once per landmark rather than once per candidate as in the authors'
+// code; distances are unchanged because the motion is rigid.
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "geometry/box.h"
+#include "geometry/kdtree.h"
+#include "geometry/point_cloud.h"
+
+namespace lmk {
+
+/// A metric's result with the terms it was made of, so a user can see why a candidate matched.
+struct ErrorTerms {
+  double scene_to_landmark_sum =
+      0.0;  ///< sum of scene-point -> nearest-landmark-point distances, m
+  std::size_t scene_to_landmark_count = 0;
+  double landmark_to_scene_sum =
+      0.0;  ///< sum of landmark-point -> nearest-scene-point distances, m
+  std::size_t landmark_to_scene_count = 0;
+  std::size_t scene_points_in_box = 0;  ///< scene points inside the candidate box
+  /// (sum of both terms) / (count of both terms), m. When no term was counted there is no evidence
+  /// of a match, and the error is +infinity: defined, never NaN.
+  double error = 0.0;
+
+  void finish();  ///< computes `error` from the sums and counts
+};
+
+/// The scene, indexed once per search.
+struct SceneView {
+  const PointCloud& points;
+  const KdTree& tree;
+};
+
+/// The landmark in its capture frame, indexed once per landmark.
+struct LandmarkView {
+  const PointCloud& points;
+  const KdTree& tree;
+  const Box& box;  ///< the capture box, in the capture frame
+};
+
+using ErrorMetricFunction =
+    std::function<ErrorTerms(const SceneView& scene, const LandmarkView& landmark,
+                             const Eigen::Isometry3d& T_scene_capture)>;
+
+struct ErrorMetric {
+  std::string name;
+  std::string description;
+  ErrorMetricFunction evaluate;
+};
+
+/// Every registered metric, in a fixed order: "paper", "rapid".
+const std::vector<ErrorMetric>& error_metrics();
+/// The metric called `name`; throws lmk::Error listing the known names otherwise.
+const ErrorMetric& find_error_metric(const std::string& name);
+
+/// The finite scene indices inside `box` (scene frame), found through the scene tree.
+Indices scene_points_in_box(const SceneView& scene, const Box& box);
+
+}  // namespace lmk

@@ -1,0 +1,76 @@
+#pragma once
+// FindLandmark: every instance of a landmark in a scene, with its 6-DoF pose.
+//
+// Method "reference" is Algorithm 1 of Huang & Cakmak exactly as published, on PCL's ICP as the
+// authors ran it; it is the baseline every other method is measured against.
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "geometry/box.h"
+#include "landmark/error_metrics.h"
+#include "landmark/landmark.h"
+
+namespace lmk {
+
+struct FindSettings {
+  std::string method = "reference";  ///< search method: "reference"
+  std::string metric = "paper";      ///< error metric, by registry name (error_metrics.h)
+  /// Step 1: crop the scene to this box (scene frame) first; nothing means the whole scene.
+  std::optional<Box> work_volume;
+  double leaf_size = 0.005;       ///< step 2: scene voxel leaf, m
+  double sample_fraction = 0.05;  ///< step 3: fraction of the downsampled points used as seeds
+  std::size_t max_seeds = 1000;   ///< step 3: at most this many seeds
+  std::uint64_t seed = 0;         ///< step 3: random seed of the sampling
+  int icp_iterations = 50;        ///< step 4: ICP iterations per seed (PCL's ICP, as the authors)
+  double nms_radius = 0.03;       ///< step 5: non-max suppression radius on box centres, m
+  double threshold = 0.0055;      ///< step 6: matches need an error below this, m
+  bool keep_aligned_points = false;  ///< return each match's landmark points in the scene frame
+  int threads = 0;                   ///< worker threads; 0 uses every core
+  /// Called after each seed with (seeds done, seeds in all), possibly from several threads at once.
+  std::function<void(std::size_t, std::size_t)> progress;
+};
+
+struct Match {
+  /// The matched box in the scene frame: the capture box moved by T_scene_capture.
+  Box box;
+  /// The rigid motion taking the landmark from its capture frame into the scene.
+  Eigen::Isometry3d T_scene_capture = Eigen::Isometry3d::Identity();
+  double error = 0.0;
+  ErrorTerms terms;
+  std::size_t seed_index = 0;  ///< which seed this match came from
+  Eigen::Vector3f seed_point;  ///< that seed's scene point
+  int icp_iterations = 0;
+  bool icp_converged = false;
+  PointCloud aligned_points;  ///< only with keep_aligned_points
+};
+
+struct SearchStats {
+  double seconds_preprocess = 0.0;  ///< crop, downsample, indexing, seeding
+  double seconds_search = 0.0;      ///< ICP and scoring of every seed
+  double seconds_select = 0.0;      ///< non-max suppression and threshold
+  double seconds_total = 0.0;
+  std::size_t scene_points = 0;       ///< finite points in the input scene
+  std::size_t scene_points_used = 0;  ///< after crop and downsampling
+  std::size_t seeds = 0;
+  std::size_t icp_iterations = 0;  ///< summed over seeds
+  std::size_t after_nms = 0;       ///< candidates left by non-max suppression
+};
+
+struct FindResult {
+  std::vector<Match> matches;  ///< sorted by increasing error
+  SearchStats stats;
+};
+
+/// Finds `landmark` in `scene`. Deterministic for a fixed settings.seed whatever the thread count.
+/// Throws lmk::Error for bad settings (unknown method or metric, non-positive sizes) or when the
+/// scene holds no finite point (after the work-volume crop).
+FindResult find_landmark(const PointCloud& scene, const Landmark& landmark,
+                         const FindSettings& settings = {});
+
+/// The search methods find_landmark accepts.
+std::vector<std::string> search_methods();
+
+}  // namespace lmk

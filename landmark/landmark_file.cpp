@@ -1,0 +1,281 @@
+#include "landmark/landmark_file.h"
+
+#include <openvdb/io/File.h>
+#include <openvdb/openvdb.h>
+#include <openvdb/points/PointConversion.h>
+#include <openvdb/points/PointDataGrid.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "geometry/atomic_file.h"
+#include "geometry/cloud_io.h"
+#include "geometry/error.h"
+#include "geometry/filters.h"
+#include "geometry/pose.h"
+
+namespace lmk {
+
+namespace fs = std::filesystem;
+namespace vdb = openvdb;
+
+namespace {
+
+constexpr const char* kPointsGrid = "points";
+constexpr const char* kPositionAttribute = "capture_position";
+
+// The first eight bytes of every OpenVDB file (io::Archive's magic number, little endian).
+bool has_vdb_magic(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  unsigned char magic[8] = {};
+  in.read(reinterpret_cast<char*>(magic), 8);
+  return in.gcount() == 8 && magic[0] == 0x20 && magic[1] == 0x42 && magic[2] == 0x44 &&
+         magic[3] == 0x56;
+}
+
+template <typename MetaT>
+auto require_meta(const vdb::GridBase& grid, const std::string& name, const std::string& path) {
+  const auto meta = grid.getMetadata<MetaT>(name);
+  if (!meta) throw Error(path + ": not an lmk landmark file: metadata '" + name + "' is missing");
+  return meta->value();
+}
+
+vdb::points::PointDataGrid::Ptr make_points_grid(const Landmark& landmark) {
+  std::vector<vdb::Vec3f> positions;
+  positions.reserve(landmark.points.size());
+  for (const auto& p : landmark.points.points) positions.emplace_back(p.x(), p.y(), p.z());
+  const auto transform = vdb::math::Transform::createLinearTransform(landmark.settings.leaf_size);
+  const vdb::points::PointAttributeVector<vdb::Vec3f> wrapper(positions);
+  const auto index_grid =
+      vdb::tools::createPointIndexGrid<vdb::tools::PointIndexGrid>(wrapper, *transform);
+  auto grid = vdb::points::createPointDataGrid<vdb::points::NullCodec, vdb::points::PointDataGrid>(
+      *index_grid, wrapper, *transform);
+  vdb::points::appendAttribute<vdb::Vec3f>(grid->tree(), kPositionAttribute);
+  vdb::points::populateAttribute(grid->tree(), index_grid->tree(), kPositionAttribute, wrapper);
+  grid->setName(kPointsGrid);
+
+  const Eigen::Matrix4d pose = landmark.box.pose.matrix();
+  vdb::Mat4d box_pose;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) box_pose(r, c) = pose(r, c);
+  const auto vec = [](const Eigen::Vector3d& v) { return vdb::Vec3d(v.x(), v.y(), v.z()); };
+  grid->insertMeta("lmk_format_version", vdb::Int32Metadata(landmark.format_version));
+  grid->insertMeta("lmk_name", vdb::StringMetadata(landmark.name));
+  grid->insertMeta("lmk_box_pose", vdb::Mat4DMetadata(box_pose));
+  grid->insertMeta("lmk_box_size", vdb::Vec3DMetadata(vec(landmark.box.size)));
+  grid->insertMeta("lmk_sensor_origin", vdb::Vec3DMetadata(vec(landmark.sensor_origin)));
+  grid->insertMeta("lmk_leaf_size", vdb::DoubleMetadata(landmark.settings.leaf_size));
+  grid->insertMeta("lmk_min_points",
+                   vdb::Int64Metadata(static_cast<std::int64_t>(landmark.settings.min_points)));
+  grid->insertMeta("lmk_max_box_side", vdb::DoubleMetadata(landmark.settings.max_box_side));
+  return grid;
+}
+
+Landmark landmark_from_grid(const vdb::points::PointDataGrid& grid, const std::string& path) {
+  Landmark landmark;
+  landmark.format_version = require_meta<vdb::Int32Metadata>(grid, "lmk_format_version", path);
+  if (landmark.format_version != kLandmarkFormatVersion) {
+    throw Error(path + ": landmark format version " + std::to_string(landmark.format_version) +
+                " is not supported (this lmk reads version " +
+                std::to_string(kLandmarkFormatVersion) + ")");
+  }
+  landmark.name = require_meta<vdb::StringMetadata>(grid, "lmk_name", path);
+  const vdb::Mat4d pose = require_meta<vdb::Mat4DMetadata>(grid, "lmk_box_pose", path);
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) landmark.box.pose.matrix()(r, c) = pose(r, c);
+  const auto eigen = [](const vdb::Vec3d& v) { return Eigen::Vector3d(v.x(), v.y(), v.z()); };
+  landmark.box.size = eigen(require_meta<vdb::Vec3DMetadata>(grid, "lmk_box_size", path));
+  landmark.sensor_origin = eigen(require_meta<vdb::Vec3DMetadata>(grid, "lmk_sensor_origin", path));
+  landmark.settings.leaf_size = require_meta<vdb::DoubleMetadata>(grid, "lmk_leaf_size", path);
+  const std::int64_t min_points = require_meta<vdb::Int64Metadata>(grid, "lmk_min_points", path);
+  if (min_points < 0) throw Error(path + ": negative lmk_min_points");
+  landmark.settings.min_points = static_cast<std::size_t>(min_points);
+  landmark.settings.max_box_side =
+      require_meta<vdb::DoubleMetadata>(grid, "lmk_max_box_side", path);
+
+  for (auto leaf = grid.tree().cbeginLeaf(); leaf; ++leaf) {
+    if (!leaf->hasAttribute(kPositionAttribute)) {
+      throw Error(path + ": not an lmk landmark file: points lack '" +
+                  std::string(kPositionAttribute) + "'");
+    }
+    const vdb::points::AttributeHandle<vdb::Vec3f> handle(
+        leaf->constAttributeArray(kPositionAttribute));
+    for (auto index = leaf->beginIndexOn(); index; ++index) {
+      const vdb::Vec3f p = handle.get(*index);
+      landmark.points.points.emplace_back(p.x(), p.y(), p.z());
+    }
+  }
+  landmark.points.set_unorganized();
+  landmark.points.T_cloud_sensor.translation() = landmark.sensor_origin;
+  landmark.validate(path);
+  return landmark;
+}
+
+nlohmann::json to_json(const Landmark& l) {
+  const Eigen::Quaterniond q(l.box.pose.linear());
+  const Eigen::Vector3d t = l.box.pose.translation();
+  return {{"format_version", l.format_version},
+          {"name", l.name},
+          {"box",
+           {{"position", {t.x(), t.y(), t.z()}},
+            {"quaternion", {q.w(), q.x(), q.y(), q.z()}},
+            {"size", {l.box.size.x(), l.box.size.y(), l.box.size.z()}}}},
+          {"sensor_origin", {l.sensor_origin.x(), l.sensor_origin.y(), l.sensor_origin.z()}},
+          {"capture",
+           {{"leaf_size", l.settings.leaf_size},
+            {"min_points", l.settings.min_points},
+            {"max_box_side", l.settings.max_box_side}}}};
+}
+
+Eigen::Vector3d vector3(const nlohmann::json& j, const std::string& field,
+                        const std::string& path) {
+  if (!j.is_array() || j.size() != 3 || !j[0].is_number() || !j[1].is_number() ||
+      !j[2].is_number()) {
+    throw Error(path + ": '" + field + "' must be an array of 3 numbers");
+  }
+  return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()};
+}
+
+// `prefix` names the object in messages, e.g. "box.".
+Box box_from_json(const nlohmann::json& j, const std::string& path, const std::string& prefix) {
+  const auto& q = j.at("quaternion");
+  if (!q.is_array() || q.size() != 4 || !q[0].is_number() || !q[1].is_number() ||
+      !q[2].is_number() || !q[3].is_number()) {
+    throw Error(path + ": '" + prefix + "quaternion' must be [w, x, y, z]");
+  }
+  const Eigen::Quaterniond quat(q[0].get<double>(), q[1].get<double>(), q[2].get<double>(),
+                                q[3].get<double>());
+  if (!(std::abs(quat.norm() - 1.0) < 1e-3)) {
+    throw Error(path + ": '" + prefix + "quaternion' is not a unit quaternion (norm " +
+                std::to_string(quat.norm()) + ")");
+  }
+  return Box(
+      pose_from_position_quaternion(vector3(j.at("position"), prefix + "position", path), quat),
+      vector3(j.at("size"), prefix + "size", path));
+}
+
+nlohmann::json read_json_file(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw Error(path + ": no such file");
+  try {
+    nlohmann::json j;
+    in >> j;
+    return j;
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(path + ": not valid JSON (" + e.what() + ")");
+  }
+}
+
+Landmark from_json(const nlohmann::json& j, const std::string& path) {
+  Landmark l;
+  try {
+    l.format_version = j.at("format_version").get<int>();
+    l.name = j.at("name").get<std::string>();
+    l.box = box_from_json(j.at("box"), path, "box.");
+    l.sensor_origin = vector3(j.at("sensor_origin"), "sensor_origin", path);
+    const auto& capture = j.at("capture");
+    l.settings.leaf_size = capture.at("leaf_size").get<double>();
+    l.settings.min_points = capture.at("min_points").get<std::size_t>();
+    l.settings.max_box_side = capture.at("max_box_side").get<double>();
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(path + ": " + e.what());
+  }
+  return l;
+}
+
+}  // namespace
+
+Box read_box_json(const std::string& path) {
+  const nlohmann::json j = read_json_file(path);
+  try {
+    return box_from_json(j, path, "");
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(path + ": " + e.what());
+  }
+}
+
+std::vector<std::string> landmark_file_grids(const std::string& path) {
+  load_landmark(path);  // the same checks as loading, so a bad file gives the same message
+  std::vector<std::string> names;
+  try {
+    vdb::io::File file(path);
+    file.open();
+    for (auto it = file.beginName(); it != file.endName(); ++it) names.push_back(*it);
+    file.close();
+  } catch (const vdb::Exception& e) {
+    throw Error(path + ": corrupt or truncated landmark file (" + e.what() + ")");
+  }
+  return names;
+}
+
+void save_landmark(const std::string& path, const Landmark& landmark) {
+  landmark.validate("save " + path);
+  vdb::initialize();  // idempotent: registers OpenVDB's grid and metadata types once per process
+  const auto grid = make_points_grid(landmark);
+  write_file_atomically(path, [&](const fs::path& tmp) {
+    try {
+      vdb::io::File file(tmp.string());
+      file.write({grid});
+      file.close();
+    } catch (const vdb::Exception& e) {
+      throw Error(path + ": cannot write the landmark file: " + e.what());
+    }
+  });
+}
+
+Landmark load_landmark(const std::string& path) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw Error(path + ": no such file");
+  if (fs::is_directory(path, ec)) throw Error(path + ": is a directory, not a landmark file");
+  if (!has_vdb_magic(path)) throw Error(path + ": not an lmk landmark file (not an OpenVDB file)");
+  vdb::initialize();
+  vdb::GridBase::Ptr base;
+  try {
+    vdb::io::File file(path);
+    file.open(/*delayLoad=*/false);
+    if (!file.hasGrid(kPointsGrid)) {
+      throw Error(path + ": not an lmk landmark file: it has no '" + std::string(kPointsGrid) +
+                  "' grid");
+    }
+    base = file.readGrid(kPointsGrid);
+    file.close();
+  } catch (const vdb::Exception& e) {
+    throw Error(path + ": corrupt or truncated landmark file (" + e.what() + ")");
+  } catch (const std::ios_base::failure& e) {
+    throw Error(path + ": corrupt or truncated landmark file (" + e.what() + ")");
+  }
+  const auto grid = vdb::GridBase::grid<vdb::points::PointDataGrid>(base);
+  if (!grid) throw Error(path + ": not an lmk landmark file: 'points' is not a point grid");
+  return landmark_from_grid(*grid, path);
+}
+
+void export_landmark(const Landmark& landmark, const std::string& out_dir) {
+  landmark.validate("export " + landmark.name);
+  std::error_code ec;
+  fs::create_directories(out_dir, ec);
+  if (!fs::is_directory(out_dir)) throw Error(out_dir + ": cannot create the directory");
+  write_cloud((fs::path(out_dir) / "points.pcd").string(), landmark.points, {Encoding::kBinary});
+  const std::string json_path = (fs::path(out_dir) / "landmark.json").string();
+  write_file_atomically(json_path, [&](const fs::path& tmp) {
+    std::ofstream out(tmp);
+    out << to_json(landmark).dump(2) << "\n";
+    if (!out) throw Error(json_path + ": write failed");
+  });
+}
+
+Landmark import_landmark(const std::string& dir) {
+  const std::string json_path = (fs::path(dir) / "landmark.json").string();
+  if (!fs::exists(json_path)) {
+    throw Error(json_path + ": no such file (import expects landmark.json and points.pcd)");
+  }
+  const nlohmann::json j = read_json_file(json_path);
+  Landmark landmark = from_json(j, json_path);
+  landmark.points = remove_non_finite(read_cloud((fs::path(dir) / "points.pcd").string()));
+  landmark.points.T_cloud_sensor = Eigen::Isometry3d::Identity();
+  landmark.points.T_cloud_sensor.translation() = landmark.sensor_origin;
+  landmark.validate(dir);
+  return landmark;
+}
+
+}  // namespace lmk

@@ -1,0 +1,17 @@
+#pragma once
+// Non-max suppression of FindLandmark (Algorithm 1, line 9): "remove all candidates that do not
+// have the lowest error within a certain radius".
+
+#include <Eigen/Core>
+#include <vector>
+
+namespace lmk {
+
+/// Indices of the candidates that have the lowest error among all candidates whose centre lies
+/// within `radius` of theirs, sorted by increasing error. Taken literally, as the paper states it:
+/// a candidate is removed by any better neighbour, even one that is itself removed. Equal errors
+/// are broken by the lower index, so the result is deterministic.
+std::vector<std::size_t> non_max_suppression(const std::vector<Eigen::Vector3d>& centres,
+                                             const std::vector<double>& errors, double radius);
+
+}  // namespace lmk

@@ -1,0 +1,125 @@
+// lmk find SCENE LANDMARK [--method M] [--metric NAME] [--threshold T] [--max-seeds N] [--seed S]
+//          [--threads N] [--json FILE|-]: every instance of a landmark, with its pose and error.
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "geometry/atomic_file.h"
+#include "geometry/cloud_io.h"
+#include "geometry/error.h"
+#include "geometry/pose.h"
+#include "landmark/find_landmark.h"
+#include "landmark/landmark_file.h"
+#include "tools/cli_common.h"
+#include "tools/progress.h"
+
+namespace lmk::cli {
+namespace {
+
+struct FindOptions {
+  std::string scene, landmark, json;
+  FindSettings settings;
+};
+
+nlohmann::json terms_json(const ErrorTerms& t) {
+  return {{"scene_to_landmark_sum", t.scene_to_landmark_sum},
+          {"scene_to_landmark_count", t.scene_to_landmark_count},
+          {"landmark_to_scene_sum", t.landmark_to_scene_sum},
+          {"landmark_to_scene_count", t.landmark_to_scene_count},
+          {"scene_points_in_box", t.scene_points_in_box}};
+}
+
+nlohmann::json result_json(const FindResult& r) {
+  nlohmann::json matches = nlohmann::json::array();
+  for (const Match& m : r.matches) {
+    const Eigen::Vector3d t = m.box.center();
+    const Eigen::Quaterniond q(m.box.pose.linear());
+    matches.push_back({{"position", {t.x(), t.y(), t.z()}},
+                       {"quaternion", {q.w(), q.x(), q.y(), q.z()}},
+                       {"error", m.error},
+                       {"terms", terms_json(m.terms)},
+                       {"seed_index", m.seed_index},
+                       {"icp_iterations", m.icp_iterations}});
+  }
+  const SearchStats& s = r.stats;
+  return {{"matches", matches},
+          {"stats",
+           {{"seconds", s.seconds_total},
+            {"seconds_preprocess", s.seconds_preprocess},
+            {"seconds_search", s.seconds_search},
+            {"seconds_select", s.seconds_select},
+            {"seeds", s.seeds},
+            {"icp_iterations", s.icp_iterations},
+            {"scene_points", s.scene_points},
+            {"scene_points_used", s.scene_points_used},
+            {"after_nms", s.after_nms}}}};
+}
+
+void print_table(const FindResult& r, const std::string& name) {
+  const SearchStats& s = r.stats;
+  std::printf("%zu match%s for '%s' (%zu seeds, %zu scene points, %.2f s)\n", r.matches.size(),
+              r.matches.size() == 1 ? "" : "es", name.c_str(), s.seeds, s.scene_points_used,
+              s.seconds_total);
+  if (r.matches.empty()) return;
+  std::printf("%4s %9s %9s %9s %8s %8s %8s %9s %7s %7s %6s\n", "rank", "x", "y", "z", "roll",
+              "pitch", "yaw", "error_mm", "s->l", "l->s", "inbox");
+  for (std::size_t i = 0; i < r.matches.size(); ++i) {
+    const Match& m = r.matches[i];
+    const Eigen::Vector3d c = m.box.center();
+    const Eigen::Vector3d rpy = rpy_from_rotation(m.box.pose.linear()) * 180.0 / M_PI;
+    std::printf("%4zu %9.4f %9.4f %9.4f %8.2f %8.2f %8.2f %9.3f %7zu %7zu %6zu\n", i + 1, c.x(),
+                c.y(), c.z(), rpy.x(), rpy.y(), rpy.z(), 1000.0 * m.error,
+                m.terms.scene_to_landmark_count, m.terms.landmark_to_scene_count,
+                m.terms.scene_points_in_box);
+  }
+}
+
+int run_find(FindOptions& o) {
+  format_from_path(o.scene);
+  const Landmark landmark = load_landmark(o.landmark);
+  const PointCloud scene = read_cloud(o.scene);
+  ProgressBar bar("find " + landmark.name);
+  o.settings.progress = [&bar](std::size_t done, std::size_t total) { bar.update(done, total); };
+  const FindResult result = find_landmark(scene, landmark, o.settings);
+  o.settings.progress = nullptr;
+  if (o.json == "-") {
+    std::cout << result_json(result).dump(2) << "\n";
+    return kOk;
+  }
+  print_table(result, landmark.name);
+  if (!o.json.empty()) {
+    write_file_atomically(o.json, [&](const std::filesystem::path& tmp) {
+      std::ofstream out(tmp);
+      out << result_json(result).dump(2) << "\n";
+      if (!out) throw Error(o.json + ": write failed");
+    });
+  }
+  return kOk;
+}
+
+}  // namespace
+
+Subcommand add_find(CLI::App& app) {
+  auto o = std::make_shared<FindOptions>();
+  FindSettings& s = o->settings;
+  CLI::App* sub = app.add_subcommand("find", "Find every instance of a landmark in a scene");
+  sub->add_option("scene", o->scene, "Scene cloud (.pcd, .ply, .xyz)")->required();
+  sub->add_option("landmark", o->landmark, "Landmark file (.lmk)")->required();
+  sub->add_option("--method", s.method, "Search method: reference")->capture_default_str();
+  sub->add_option("--metric", s.metric, "Error metric: paper or rapid")->capture_default_str();
+  sub->add_option("--threshold", s.threshold, "Largest error of a match, m")->capture_default_str();
+  sub->add_option("--max-seeds", s.max_seeds, "Most seeds (5% of the scene points below this)")
+      ->capture_default_str();
+  sub->add_option("--seed", s.seed, "Random seed of the seed sampling")->capture_default_str();
+  sub->add_option("--threads", s.threads, "Worker threads; 0 uses every core")
+      ->capture_default_str();
+  sub->add_option("--json", o->json,
+                  "Write the matches and statistics as JSON to FILE, or - for stdout");
+  return {sub, [o] { return run_find(*o); }};
+}
+
+}  // namespace lmk::cli

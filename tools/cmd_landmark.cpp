@@ -1,0 +1,68 @@
+// lmk landmark show FILE | export FILE OUTDIR | import DIR OUT.lmk
+
+#include <cstdio>
+#include <memory>
+
+#include "geometry/pose.h"
+#include "landmark/landmark_file.h"
+#include "tools/cli_common.h"
+
+namespace lmk::cli {
+namespace {
+
+struct LandmarkOptions {
+  std::string file, dir, output;
+};
+
+int run_show(const LandmarkOptions& o) {
+  const Landmark l = load_landmark(o.file);
+  const Eigen::Vector3d c = l.box.center();
+  const Eigen::Vector3d rpy = rpy_from_rotation(l.box.pose.linear()) * 180.0 / M_PI;
+  std::string grids;
+  for (const std::string& g : landmark_file_grids(o.file)) grids += (grids.empty() ? "" : " ") + g;
+  std::printf("name           %s\n", l.name.c_str());
+  std::printf("format         lmk %d\n", l.format_version);
+  std::printf("points         %zu\n", l.points.size());
+  std::printf("box centre     %.4f %.4f %.4f m\n", c.x(), c.y(), c.z());
+  std::printf("box rpy        %.2f %.2f %.2f deg\n", rpy.x(), rpy.y(), rpy.z());
+  std::printf("box size       %.4f %.4f %.4f m\n", l.box.size.x(), l.box.size.y(), l.box.size.z());
+  std::printf("sensor origin  %.4f %.4f %.4f\n", l.sensor_origin.x(), l.sensor_origin.y(),
+              l.sensor_origin.z());
+  std::printf("leaf           %.4f m\n", l.settings.leaf_size);
+  std::printf("grids          %s\n", grids.c_str());
+  return kOk;
+}
+
+}  // namespace
+
+Subcommand add_landmark(CLI::App& app) {
+  auto o = std::make_shared<LandmarkOptions>();
+  CLI::App* sub = app.add_subcommand("landmark", "Inspect, export and import landmark files");
+  sub->require_subcommand(1);
+  CLI::App* show = sub->add_subcommand("show", "Name, box, number of points and grids of a .lmk");
+  show->add_option("file", o->file, "Landmark file (.lmk)")->required();
+  CLI::App* exp = sub->add_subcommand("export", "Write OUTDIR/points.pcd and OUTDIR/landmark.json");
+  exp->add_option("file", o->file, "Landmark file (.lmk)")->required();
+  exp->add_option("outdir", o->dir, "Directory to write (created if needed)")->required();
+  CLI::App* imp =
+      sub->add_subcommand("import", "Build a .lmk from DIR/points.pcd and DIR/landmark.json");
+  imp->add_option("dir", o->dir, "Directory holding points.pcd and landmark.json")->required();
+  imp->add_option("output", o->output, "Landmark file to write (.lmk)")->required();
+  return {sub, [o, show, exp, imp] {
+            if (show->parsed()) return run_show(*o);
+            if (exp->parsed()) {
+              export_landmark(load_landmark(o->file), o->dir);
+              std::printf("wrote %s/points.pcd and %s/landmark.json\n", o->dir.c_str(),
+                          o->dir.c_str());
+              return static_cast<int>(kOk);
+            }
+            (void)imp;
+            const Landmark l = import_landmark(o->dir);
+            save_landmark(o->output, l);
+            std::printf("wrote %s: landmark '%s', %zu points\n", o->output.c_str(), l.name.c_str(),
+                        l.points.size());
+            return static_cast<int>(kOk);
+          }};
+}
+
+}  // namespace lmk::cli
