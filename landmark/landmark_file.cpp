@@ -5,6 +5,7 @@
 #include <openvdb/points/PointConversion.h>
 #include <openvdb/points/PointDataGrid.h>
 
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -32,6 +33,53 @@ bool has_vdb_magic(const std::string& path) {
   in.read(reinterpret_cast<char*>(magic), 8);
   return in.gcount() == 8 && magic[0] == 0x20 && magic[1] == 0x42 && magic[2] == 0x44 &&
          magic[3] == 0x56;
+}
+
+// The lmk trailer, appended after the OpenVDB data: a magic word, the length of the data before it
+// and an FNV-1a hash of that data. OpenVDB ignores trailing bytes, so the file stays a plain VDB
+// file for other tools; lmk checks the trailer before OpenVDB parses anything, because OpenVDB
+// reads some damaged files without error and aborts on others (Debian builds it with assertions).
+constexpr char kTrailerMagic[8] = {'L', 'M', 'K', 'T', 'R', 'A', 'I', 'L'};
+constexpr std::size_t kTrailerSize = 24;
+
+std::uint64_t fnv1a(const char* data, std::size_t size) {
+  std::uint64_t h = 1469598103934665603ULL;
+  for (std::size_t i = 0; i < size; ++i) {
+    h = (h ^ static_cast<unsigned char>(data[i])) * 1099511628211ULL;
+  }
+  return h;
+}
+
+std::string read_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), {});
+}
+
+void append_trailer(const fs::path& file) {
+  const std::string bytes = read_bytes(file.string());
+  const std::uint64_t length = bytes.size(), hash = fnv1a(bytes.data(), bytes.size());
+  std::ofstream out(file, std::ios::binary | std::ios::app);
+  out.write(kTrailerMagic, sizeof(kTrailerMagic));
+  out.write(reinterpret_cast<const char*>(&length), sizeof(length));
+  out.write(reinterpret_cast<const char*>(&hash), sizeof(hash));
+  if (!out) throw Error(file.string() + ": write failed");
+}
+
+void check_trailer(const std::string& path) {
+  const std::string bytes = read_bytes(path);
+  if (bytes.size() < kTrailerSize ||
+      bytes.compare(bytes.size() - kTrailerSize, sizeof(kTrailerMagic),
+                    std::string(kTrailerMagic, sizeof(kTrailerMagic))) != 0) {
+    throw Error(path + ": truncated, or an OpenVDB file that lmk did not write (no lmk trailer)");
+  }
+  std::uint64_t length = 0, hash = 0;
+  std::memcpy(&length, bytes.data() + bytes.size() - 16, sizeof(length));
+  std::memcpy(&hash, bytes.data() + bytes.size() - 8, sizeof(hash));
+  if (length != bytes.size() - kTrailerSize || hash != fnv1a(bytes.data(), length)) {
+    throw Error(path +
+                ": corrupt landmark file: its data does not match the checksum it was "
+                "written with");
+  }
 }
 
 template <typename MetaT>
@@ -221,6 +269,7 @@ void save_landmark(const std::string& path, const Landmark& landmark) {
     } catch (const vdb::Exception& e) {
       throw Error(path + ": cannot write the landmark file: " + e.what());
     }
+    append_trailer(tmp);
   });
 }
 
@@ -229,6 +278,7 @@ Landmark load_landmark(const std::string& path) {
   if (!fs::exists(path, ec)) throw Error(path + ": no such file");
   if (fs::is_directory(path, ec)) throw Error(path + ": is a directory, not a landmark file");
   if (!has_vdb_magic(path)) throw Error(path + ": not an lmk landmark file (not an OpenVDB file)");
+  check_trailer(path);
   vdb::initialize();
   vdb::GridBase::Ptr base;
   try {

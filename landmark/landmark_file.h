@@ -8,6 +8,9 @@
 //   the float attribute "capture_position", from which lmk reads them back losslessly.
 // - metadata on that grid: lmk_format_version, lmk_name, lmk_box_pose (4x4), lmk_box_size,
 //   lmk_sensor_origin, lmk_leaf_size, lmk_min_points, lmk_max_box_side.
+// - after the OpenVDB data, a 24-byte lmk trailer: "LMKTRAIL", the data length and its FNV-1a hash.
+//   OpenVDB ignores it; lmk checks it before OpenVDB reads anything, since OpenVDB reads some
+//   damaged files without error and aborts on others.
 // - later versions add the distance and empty-space grids as further grids in the same file.
 //
 // Writes are atomic. Loading validates the version and every field; a corrupt, truncated or

@@ -1,0 +1,134 @@
+// The paper's CandidateError (Algorithm 2) and the authors' variant on configurations whose errors
+// can be worked out by hand.
+
+#include "landmark/error_metrics.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "geometry/error.h"
+#include "geometry/pose.h"
+#include "tests/support/test_support.h"
+
+namespace lmk {
+namespace {
+
+// A 3 x 3 grid of landmark points, 1 cm apart, in the plane z = 0, in a 10 cm box.
+struct Fixture {
+  PointCloud landmark_points;
+  Box box{Eigen::Isometry3d::Identity(), Eigen::Vector3d(0.1, 0.1, 0.1)};
+  Fixture() {
+    for (int i = -1; i <= 1; ++i)
+      for (int j = -1; j <= 1; ++j) landmark_points.points.emplace_back(0.01f * i, 0.01f * j, 0.0f);
+    landmark_points.set_unorganized();
+  }
+  ErrorTerms evaluate(const std::string& metric, const PointCloud& scene,
+                      const Eigen::Isometry3d& T = Eigen::Isometry3d::Identity()) const {
+    const KdTree scene_tree(scene), landmark_tree(landmark_points);
+    return find_error_metric(metric).evaluate(SceneView{scene, scene_tree},
+                                              LandmarkView{landmark_points, landmark_tree, box}, T);
+  }
+};
+
+TEST(PaperMetric, ZeroForAPerfectMatch) {
+  const Fixture f;
+  const ErrorTerms t = f.evaluate("paper", f.landmark_points);
+  EXPECT_EQ(t.scene_points_in_box, 9u);
+  EXPECT_EQ(t.scene_to_landmark_count, 9u);
+  EXPECT_EQ(t.landmark_to_scene_count, 0u);  // every landmark point was visited
+  EXPECT_DOUBLE_EQ(t.error, 0.0);
+}
+
+TEST(PaperMetric, APointInTheEmptyMarginRaisesTheErrorByExactlyItsDistance) {
+  const Fixture f;
+  PointCloud scene = f.landmark_points;
+  scene.points.emplace_back(0.0f, 0.0f, 0.03f);  // 3 cm above the centre point, inside the box
+  scene.set_unorganized();
+  const ErrorTerms t = f.evaluate("paper", scene);
+  EXPECT_EQ(t.scene_points_in_box, 10u);
+  EXPECT_NEAR(t.scene_to_landmark_sum, 0.03, 1e-7);
+  EXPECT_NEAR(t.error, 0.03 / 10.0, 1e-8);
+  // Outside the box (6 cm up) the same point changes nothing.
+  scene.points.back().z() = 0.06f;
+  EXPECT_DOUBLE_EQ(f.evaluate("paper", scene).error, 0.0);
+}
+
+TEST(PaperMetric, UnvisitedLandmarkPointsAddTheirDistanceToTheWholeScene) {
+  const Fixture f;
+  // One scene point on the centre landmark point, and one far outside the box.
+  const PointCloud scene({{0.0f, 0.0f, 0.0f}, {0.5f, 0.0f, 0.0f}});
+  const ErrorTerms t = f.evaluate("paper", scene);
+  EXPECT_EQ(t.scene_to_landmark_count, 1u);
+  EXPECT_EQ(t.landmark_to_scene_count, 8u);
+  // The 8 others are at 1 cm (4 edge neighbours) and sqrt(2) cm (4 corners) from the centre.
+  const double expected_sum = 4 * 0.01 + 4 * 0.01 * std::sqrt(2.0);
+  EXPECT_NEAR(t.landmark_to_scene_sum, expected_sum, 1e-7);
+  EXPECT_NEAR(t.error, expected_sum / 9.0, 1e-8);
+}
+
+TEST(PaperMetric, EmptyBoxUsesTheWholeSceneAndAllEmptyIsInfinity) {
+  const Fixture f;
+  const PointCloud far({{0.3f, 0.0f, 0.0f}});
+  const ErrorTerms t = f.evaluate("paper", far);
+  EXPECT_EQ(t.scene_points_in_box, 0u);
+  EXPECT_EQ(t.landmark_to_scene_count, 9u);
+  double sum = 0;
+  for (const auto& p : f.landmark_points.points) sum += (p - far.points[0]).norm();
+  EXPECT_NEAR(t.error, sum / 9.0, 1e-7);
+  const ErrorTerms none = f.evaluate("paper", PointCloud());
+  EXPECT_TRUE(std::isinf(none.error));
+  EXPECT_FALSE(std::isnan(none.error));
+}
+
+TEST(RapidMetric, SearchesOnlyTheBoxAndCapsAtFiveCentimetres) {
+  const Fixture f;
+  // In the box: the centre point. Outside: a point right next to a corner landmark point.
+  const PointCloud scene({{0.0f, 0.0f, 0.0f}, {0.011f, 0.011f, 0.051f}});
+  const ErrorTerms t = f.evaluate("rapid", scene);
+  EXPECT_EQ(t.scene_points_in_box, 1u);
+  // The unvisited points look only at the centre point: 1 cm and sqrt(2) cm, all under 5 cm.
+  EXPECT_EQ(t.landmark_to_scene_count, 8u);
+  EXPECT_NEAR(t.landmark_to_scene_sum, 4 * 0.01 + 4 * 0.01 * std::sqrt(2.0), 1e-7);
+  // With nothing in the box there is nothing to count: infinity, not NaN.
+  EXPECT_TRUE(std::isinf(f.evaluate("rapid", PointCloud({{0.3f, 0.0f, 0.0f}})).error));
+}
+
+TEST(RapidMetric, DropsDistancesOfFiveCentimetresOrMore) {
+  Fixture f;
+  f.box.size << 0.2, 0.2, 0.2;
+  // One scene point 6 cm above the centre: every landmark point is at least 6 cm from it.
+  const PointCloud scene({{0.0f, 0.0f, 0.06f}});
+  const ErrorTerms rapid = f.evaluate("rapid", scene);
+  EXPECT_EQ(rapid.scene_to_landmark_count, 1u);
+  EXPECT_EQ(rapid.landmark_to_scene_count, 0u);
+  EXPECT_NEAR(rapid.error, 0.06, 1e-7);
+  EXPECT_EQ(f.evaluate("paper", scene).landmark_to_scene_count, 8u);  // paper counts them all
+}
+
+TEST(Metrics, InvariantUnderARigidMotionOfSceneAndCandidate) {
+  const Fixture f;
+  PointCloud scene = test::random_cloud(500, 5, 0.08f);
+  const Eigen::Isometry3d T = pose_from_xyz_rpy({0.4, -0.3, 1.2}, {0.5, -0.4, 2.0});
+  PointCloud moved = scene;
+  for (auto& p : moved.points) p = (T.cast<float>() * p);
+  for (const char* metric : {"paper", "rapid"}) {
+    const ErrorTerms a = f.evaluate(metric, scene), b = f.evaluate(metric, moved, T);
+    EXPECT_EQ(a.scene_points_in_box, b.scene_points_in_box) << metric;
+    EXPECT_NEAR(a.error, b.error, 1e-6) << metric;
+  }
+}
+
+TEST(Metrics, RegistryFindsByNameAndNamesTheKnownOnes) {
+  EXPECT_EQ(find_error_metric("paper").name, "paper");
+  EXPECT_EQ(find_error_metric("rapid").name, "rapid");
+  try {
+    find_error_metric("nope");
+    ADD_FAILURE();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("known: paper, rapid"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace lmk

@@ -1,0 +1,171 @@
+// The reference FindLandmark on synthetic scenes built here, and on the real milk scene.
+
+#include "landmark/find_landmark.h"
+
+#include <gtest/gtest.h>
+
+#include "eval/depth_sensor.h"
+#include "eval/mesh.h"
+#include "geometry/cloud_io.h"
+#include "geometry/error.h"
+#include "geometry/pose.h"
+#include "geometry/voxel_grid.h"
+#include "tests/support/test_support.h"
+
+namespace lmk {
+namespace {
+
+constexpr double kTable = 0.7;
+
+// An L-shaped block (a post and an arm): no symmetry that ICP could confuse.
+TriangleMesh l_shape() {
+  TriangleMesh mesh;
+  mesh.append(make_box_mesh({0.05, 0.05, 0.12}), pose_from_xyz_rpy({0, 0, 0.06}, {0, 0, 0}));
+  mesh.append(make_box_mesh({0.10, 0.04, 0.04}), pose_from_xyz_rpy({0.075, 0, 0.02}, {0, 0, 0}));
+  return mesh;
+}
+
+// A table seen from above and in front, with L-shapes at `positions` (on the table top) and, when
+// `distractors`, a ball, a can and a flat box.
+PointCloud render_scene(const std::vector<Eigen::Vector2d>& positions, bool distractors) {
+  TriangleMesh world;
+  world.append(make_box_mesh({1.4, 1.0, 0.04}),
+               pose_from_xyz_rpy({0, 0, kTable - 0.02}, {0, 0, 0}));
+  for (const auto& xy : positions) {
+    world.append(l_shape(), pose_from_xyz_rpy({xy.x(), xy.y(), kTable}, {0, 0, 0}));
+  }
+  if (distractors) {
+    world.append(make_sphere_mesh(0.04), pose_from_xyz_rpy({-0.1, 0.25, kTable + 0.04}, {0, 0, 0}));
+    world.append(make_cylinder_mesh(0.035, 0.12),
+                 pose_from_xyz_rpy({0.15, 0.25, kTable + 0.06}, {0, 0, 0}));
+    world.append(make_box_mesh({0.15, 0.1, 0.03}),
+                 pose_from_xyz_rpy({0.4, 0.2, kTable + 0.015}, {0, 0, 0.3}));
+  }
+  DepthSensorSettings sensor;
+  sensor.noise = false;
+  sensor.width = 320;  // a half-resolution sensor keeps the test fast; the geometry is the same
+  sensor.height = 240;
+  sensor.fx = sensor.fy = 262.5;
+  sensor.cx = 159.5;
+  sensor.cy = 119.5;
+  return render_depth(
+      world, camera_look_at({0, -0.8, kTable + 0.9}, {0, 0, kTable}, Eigen::Vector3d::UnitZ()),
+      sensor);
+}
+
+const std::vector<Eigen::Vector2d> kCopies = {{-0.45, -0.1}, {-0.1, -0.15}, {0.3, -0.05}};
+
+// The L-shape's box: 1.5 cm margins on the sides facing free space, its bottom on the table top.
+Box box_at(const Eigen::Vector2d& xy) {
+  const Eigen::Vector3d lo(xy.x() - 0.025 - 0.015, xy.y() - 0.025 - 0.015, kTable + 0.002);
+  const Eigen::Vector3d hi(xy.x() + 0.125 + 0.015, xy.y() + 0.025 + 0.015, kTable + 0.12 + 0.015);
+  return Box(pose_from_xyz_rpy(0.5 * (lo + hi), {0, 0, 0}), hi - lo);
+}
+
+class ReferenceSearch : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    scene_ = new PointCloud(render_scene(kCopies, true));
+    landmark_ = new Landmark(capture(*scene_, box_at(kCopies[0]), "L"));
+  }
+  static void TearDownTestSuite() {
+    delete scene_;
+    delete landmark_;
+  }
+  static PointCloud* scene_;
+  static Landmark* landmark_;
+};
+PointCloud* ReferenceSearch::scene_ = nullptr;
+Landmark* ReferenceSearch::landmark_ = nullptr;
+
+TEST_F(ReferenceSearch, FindsEveryCopyOnceAndNothingElse) {
+  const FindResult r = find_landmark(*scene_, *landmark_);
+  ASSERT_EQ(r.matches.size(), kCopies.size());
+  std::vector<int> found(kCopies.size(), 0);
+  for (const Match& m : r.matches) {
+    for (std::size_t c = 0; c < kCopies.size(); ++c) {
+      if ((m.box.center() - box_at(kCopies[c]).center()).norm() < 0.01) ++found[c];
+    }
+    EXPECT_LT(m.error, 0.0055);
+    // The evaluation protocol's rotation tolerance for a true positive: 15 degrees.
+    EXPECT_LT(rotation_angle_between(m.box.pose.linear(), Eigen::Matrix3d::Identity()), 0.2618);
+  }
+  EXPECT_EQ(found, std::vector<int>(kCopies.size(), 1));
+  EXPECT_TRUE(std::is_sorted(r.matches.begin(), r.matches.end(),
+                             [](const Match& a, const Match& b) { return a.error < b.error; }));
+  EXPECT_EQ(r.stats.seeds, std::min<std::size_t>(1000, (r.stats.scene_points_used * 5 + 99) / 100));
+  EXPECT_GT(r.stats.icp_iterations, 0u);
+}
+
+TEST_F(ReferenceSearch, FindsNothingInASceneWithoutTheShape) {
+  const FindResult r = find_landmark(render_scene({}, true), *landmark_);
+  EXPECT_TRUE(r.matches.empty()) << "best error " << r.matches.front().error;
+  EXPECT_GT(r.stats.after_nms, 0u);  // candidates existed, the threshold refused them
+}
+
+TEST_F(ReferenceSearch, SameResultWhateverTheThreadCount) {
+  FindSettings one, two;
+  one.threads = 1;
+  two.threads = 2;
+  one.max_seeds = two.max_seeds = 150;
+  const FindResult a = find_landmark(*scene_, *landmark_, one);
+  const FindResult b = find_landmark(*scene_, *landmark_, two);
+  ASSERT_EQ(a.matches.size(), b.matches.size());
+  for (std::size_t i = 0; i < a.matches.size(); ++i) {
+    EXPECT_EQ(a.matches[i].seed_index, b.matches[i].seed_index);
+    EXPECT_EQ(a.matches[i].error, b.matches[i].error);
+    EXPECT_TRUE(a.matches[i].box.pose.isApprox(b.matches[i].box.pose, 0.0));
+  }
+  EXPECT_EQ(a.stats.icp_iterations, b.stats.icp_iterations);
+}
+
+TEST_F(ReferenceSearch, WorkVolumeAndAlignedPoints) {
+  FindSettings s;
+  s.work_volume =
+      Box(pose_from_xyz_rpy({kCopies[1].x() + 0.05, kCopies[1].y(), kTable + 0.05}, {0, 0, 0}),
+          {0.4, 0.3, 0.3});
+  s.keep_aligned_points = true;
+  const FindResult r = find_landmark(*scene_, *landmark_, s);
+  ASSERT_EQ(r.matches.size(), 1u);
+  EXPECT_LT((r.matches[0].box.center() - box_at(kCopies[1]).center()).norm(), 0.01);
+  EXPECT_EQ(r.matches[0].aligned_points.size(), landmark_->points.size());
+  EXPECT_LT(r.stats.scene_points_used, voxel_downsample(*scene_, 0.005).size());
+}
+
+TEST_F(ReferenceSearch, BadSettingsAreErrors) {
+  FindSettings s;
+  s.method = "magic";
+  EXPECT_THROW(find_landmark(*scene_, *landmark_, s), Error);
+  s = FindSettings();
+  s.metric = "nope";
+  EXPECT_THROW(find_landmark(*scene_, *landmark_, s), Error);
+  s = FindSettings();
+  s.work_volume = Box(pose_from_xyz_rpy({9, 9, 9}, {0, 0, 0}), {0.1, 0.1, 0.1});
+  EXPECT_THROW(find_landmark(*scene_, *landmark_, s), Error);
+  s = FindSettings();
+  s.threshold = -1;
+  EXPECT_THROW(find_landmark(*scene_, *landmark_, s), Error);
+  EXPECT_THROW(find_landmark(PointCloud(), *landmark_), Error);
+}
+
+TEST(ReferenceSearchRealData, FindsTheMilkCartonWhereItWasCaptured) {
+  LMK_REQUIRE_SHARED_DATA(data);
+  const PointCloud scene = read_cloud((data / "pcl/milk_cartoon_all_small_clorox.pcd").string());
+  // The carton's points are those of milk.pcd; its box adds 2 cm on the sides facing free space
+  // (left, right, top and front; the camera's y points down, z away), none on the table side
+  // and the occluded back.
+  const Eigen::AlignedBox3f carton = read_cloud((data / "pcl/milk.pcd").string()).bounds();
+  Eigen::Vector3d lo = carton.min().cast<double>(), hi = carton.max().cast<double>();
+  lo -= Eigen::Vector3d(0.02, 0.02, 0.02);
+  hi.x() += 0.02;
+  const Box box(pose_from_xyz_rpy(0.5 * (lo + hi), {0, 0, 0}), hi - lo);
+  const Landmark milk = capture(scene, box, "milk");
+  FindSettings s;
+  s.max_seeds = 200;  // 5% would be 1000 seeds, several minutes; 200 still cover the carton
+  const FindResult r = find_landmark(scene, milk, s);
+  ASSERT_FALSE(r.matches.empty());
+  EXPECT_LT((r.matches.front().box.center() - box.center()).norm(), 0.005);
+}
+
+}  // namespace
+}  // namespace lmk

@@ -1,0 +1,154 @@
+#include "landmark/landmark_file.h"
+
+#include <gtest/gtest.h>
+#include <openvdb/openvdb.h>
+#include <openvdb/points/PointCount.h>
+#include <openvdb/points/PointDataGrid.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "geometry/cloud_io.h"
+#include "geometry/error.h"
+#include "geometry/pose.h"
+#include "tests/support/test_support.h"
+
+namespace lmk {
+namespace {
+
+namespace fs = std::filesystem;
+
+Landmark sample_landmark() {
+  PointCloud scene = test::random_cloud(100000, 3, 0.4f);
+  scene.T_cloud_sensor.translation() << 0.1, -0.2, -1.5;
+  CaptureSettings settings;
+  settings.leaf_size = 0.01;
+  settings.min_points = 40;
+  return capture(scene, Box(pose_from_xyz_rpy({0.05, 0.0, 0.1}, {0.3, -0.2, 1.0}), {0.2, 0.3, 0.1}),
+                 "test landmark", settings);
+}
+
+std::vector<Eigen::Vector3f> sorted(std::vector<Eigen::Vector3f> v) {
+  std::sort(v.begin(), v.end(), [](const auto& a, const auto& b) {
+    return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+  });
+  return v;
+}
+
+void expect_same(const Landmark& a, const Landmark& b) {
+  EXPECT_EQ(a.name, b.name);
+  EXPECT_EQ(a.format_version, b.format_version);
+  EXPECT_TRUE(a.box.pose.isApprox(b.box.pose, 1e-12));
+  EXPECT_EQ(a.box.size, b.box.size);
+  EXPECT_EQ(a.sensor_origin, b.sensor_origin);
+  EXPECT_EQ(a.settings.leaf_size, b.settings.leaf_size);
+  EXPECT_EQ(a.settings.min_points, b.settings.min_points);
+  EXPECT_EQ(a.settings.max_box_side, b.settings.max_box_side);
+  // The file may store points in another order, but every coordinate is bit-exact.
+  EXPECT_EQ(sorted(a.points.points), sorted(b.points.points));
+}
+
+TEST(LandmarkFile, RoundTripIsLossless) {
+  test::ScratchDir dir;
+  const Landmark original = sample_landmark();
+  save_landmark(dir.file("a.lmk"), original);
+  expect_same(original, load_landmark(dir.file("a.lmk")));
+  EXPECT_EQ(landmark_file_grids(dir.file("a.lmk")), std::vector<std::string>{"points"});
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir.path()), {}), 1);  // no temporary left
+}
+
+TEST(LandmarkFile, ExportImportRoundTrip) {
+  test::ScratchDir dir;
+  const Landmark original = sample_landmark();
+  export_landmark(original, dir.file("out"));
+  EXPECT_TRUE(fs::exists(dir.file("out/points.pcd")));
+  EXPECT_TRUE(fs::exists(dir.file("out/landmark.json")));
+  expect_same(original, import_landmark(dir.file("out")));
+}
+
+std::string load_error(const std::string& path) {
+  try {
+    load_landmark(path);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "loading " << path << " did not fail";
+  return "";
+}
+
+TEST(LandmarkFile, BadFilesGiveClearErrors) {
+  test::ScratchDir dir;
+  EXPECT_NE(load_error(dir.file("missing.lmk")).find("no such file"), std::string::npos);
+  // A point cloud renamed .lmk: a file of another format.
+  write_cloud(dir.file("cloud.lmk.pcd"), test::random_cloud(10, 1));
+  fs::rename(dir.file("cloud.lmk.pcd"), dir.file("cloud.lmk"));
+  EXPECT_NE(load_error(dir.file("cloud.lmk")).find("not an OpenVDB file"), std::string::npos);
+  // Truncated: every prefix of a real file is refused, never a crash.
+  save_landmark(dir.file("a.lmk"), sample_landmark());
+  std::ifstream in(dir.file("a.lmk"), std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), {});
+  // 40 cut points across the file, and the last byte: each is refused with the file's name.
+  std::vector<std::size_t> cuts = {bytes.size() - 1};
+  for (std::size_t k = 1; k <= 40; ++k) cuts.push_back(bytes.size() * k / 41);
+  for (const std::size_t keep : cuts) {
+    test::write_text(dir.file("cut.lmk"), bytes.substr(0, keep));
+    EXPECT_NE(load_error(dir.file("cut.lmk")).find(dir.file("cut.lmk")), std::string::npos) << keep;
+  }
+}
+
+TEST(LandmarkFile, ForeignOpenVdbFileIsRefused) {
+  test::ScratchDir dir;
+  openvdb::initialize();
+  auto grid = openvdb::FloatGrid::create();
+  grid->setName("density");
+  openvdb::io::File(dir.file("density.lmk")).write({grid});
+  EXPECT_NE(load_error(dir.file("density.lmk")).find("OpenVDB file that lmk did not write"),
+            std::string::npos);
+}
+
+TEST(LandmarkFile, IsStillAPlainOpenVdbFile) {
+  test::ScratchDir dir;
+  save_landmark(dir.file("a.lmk"), sample_landmark());
+  openvdb::initialize();
+  openvdb::io::File file(dir.file("a.lmk"));
+  file.open();
+  const auto grid = openvdb::gridPtrCast<openvdb::points::PointDataGrid>(file.readGrid("points"));
+  ASSERT_TRUE(grid);
+  EXPECT_EQ(openvdb::points::pointCount(grid->tree()), sample_landmark().points.size());
+}
+
+TEST(LandmarkFile, FlippedByteIsCaught) {
+  test::ScratchDir dir;
+  save_landmark(dir.file("a.lmk"), sample_landmark());
+  std::string bytes;
+  {
+    std::ifstream in(dir.file("a.lmk"), std::ios::binary);
+    bytes.assign((std::istreambuf_iterator<char>(in)), {});
+  }
+  bytes[bytes.size() / 2] ^= 0x10;
+  test::write_text(dir.file("a.lmk"), bytes);
+  EXPECT_NE(load_error(dir.file("a.lmk")).find("does not match the checksum"), std::string::npos);
+}
+
+TEST(LandmarkFile, ImportValidates) {
+  test::ScratchDir dir;
+  export_landmark(sample_landmark(), dir.file("out"));
+  std::ifstream in(dir.file("out/landmark.json"));
+  std::string json((std::istreambuf_iterator<char>(in)), {});
+  const std::size_t q = json.find("\"quaternion\"");
+  ASSERT_NE(q, std::string::npos);
+  // Scale the quaternion's first component: no longer a unit quaternion.
+  const std::size_t first = json.find_first_of("-0123456789", json.find('[', q));
+  json.insert(first, "3");
+  test::write_text(dir.file("out/landmark.json"), json);
+  try {
+    import_landmark(dir.file("out"));
+    ADD_FAILURE() << "import accepted a bad quaternion";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("not a unit quaternion"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(import_landmark(dir.file("nowhere")), Error);
+}
+
+}  // namespace
+}  // namespace lmk
