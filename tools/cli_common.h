@@ -2,6 +2,7 @@
 // What every lmk subcommand shares: exit codes and the shape of a subcommand.
 
 #include <CLI/CLI.hpp>
+#include <Eigen/Core>
 #include <functional>
 
 namespace lmk::cli {
@@ -15,6 +16,10 @@ struct Subcommand {
   CLI::App* app;
   std::function<int()> run;
 };
+
+/// Roll, pitch, yaw of a rotation in degrees for printing, with values that would print as "-0.00"
+/// set to 0.
+Eigen::Vector3d rpy_degrees(const Eigen::Matrix3d& R);
 
 Subcommand add_info(CLI::App& app);
 Subcommand add_convert(CLI::App& app);

@@ -70,7 +70,7 @@ void print_table(const FindResult& r, const std::string& name) {
   for (std::size_t i = 0; i < r.matches.size(); ++i) {
     const Match& m = r.matches[i];
     const Eigen::Vector3d c = m.box.center();
-    const Eigen::Vector3d rpy = rpy_from_rotation(m.box.pose.linear()) * 180.0 / M_PI;
+    const Eigen::Vector3d rpy = rpy_degrees(m.box.pose.linear());
     std::printf("%4zu %9.4f %9.4f %9.4f %8.2f %8.2f %8.2f %9.3f %7zu %7zu %6zu\n", i + 1, c.x(),
                 c.y(), c.z(), rpy.x(), rpy.y(), rpy.z(), 1000.0 * m.error,
                 m.terms.scene_to_landmark_count, m.terms.landmark_to_scene_count,

@@ -30,7 +30,7 @@ int run_gen(const GenOptions& options) {
               cloud.width, cloud.height, cloud.count_finite());
   for (const SceneObject& object : scene.objects) {
     const Eigen::Vector3d c = object.box.center();
-    const Eigen::Vector3d rpy = rpy_from_rotation(object.box.pose.linear()) * 180.0 / M_PI;
+    const Eigen::Vector3d rpy = rpy_degrees(object.box.pose.linear());
     std::printf("  %-8s centre %7.3f %7.3f %7.3f  yaw %6.1f deg\n", object.name.c_str(), c.x(),
                 c.y(), c.z(), rpy.z());
   }

@@ -17,7 +17,7 @@ struct LandmarkOptions {
 int run_show(const LandmarkOptions& o) {
   const Landmark l = load_landmark(o.file);
   const Eigen::Vector3d c = l.box.center();
-  const Eigen::Vector3d rpy = rpy_from_rotation(l.box.pose.linear()) * 180.0 / M_PI;
+  const Eigen::Vector3d rpy = rpy_degrees(l.box.pose.linear());
   std::string grids;
   for (const std::string& g : landmark_file_grids(o.file)) grids += (grids.empty() ? "" : " ") + g;
   std::printf("name           %s\n", l.name.c_str());

@@ -52,7 +52,7 @@ class Cli : public ::testing::Test {
 TEST_F(Cli, HelpAndVersion) {
   const CommandResult help = lmk("--help");
   EXPECT_EQ(help.exit_code, 0);
-  for (const char* sub : {"info", "convert", "gen"})
+  for (const char* sub : {"info", "convert", "gen", "capture", "find", "landmark"})
     EXPECT_NE(help.out.find(sub), std::string::npos);
   const CommandResult version = lmk("--version");
   EXPECT_EQ(version.exit_code, 0);
@@ -103,6 +103,84 @@ TEST_F(Cli, GenInfoConvert) {
 
   expect_bad_input("convert " + path("scene.pcd") + " " + path("scene.obj"), "unknown extension");
   EXPECT_FALSE(std::filesystem::exists(dir_.file("scene.obj")));
+}
+
+// A rendered scene and a landmark cut from it: the carton of `lmk gen --seed 1`, whose centre,
+// size and yaw lmk gen prints, with margins above and around it but none below the table top.
+class CliLandmark : public Cli {
+ protected:
+  void SetUp() override {
+    ASSERT_EQ(lmk("gen " + path("scene.pcd") + " --seed 1").exit_code, 0);
+    carton_ = "--box-center -0.301 0.236 0.826 --box-rpy 0 0 -156 --box-size 0.11 0.11 0.21";
+  }
+  std::string carton_;
+};
+
+TEST_F(CliLandmark, CaptureShowExportImportFind) {
+  const CommandResult captured = lmk("capture " + path("scene.pcd") + " " + carton_ +
+                                     " --name carton -o " + path("carton.lmk"));
+  ASSERT_EQ(captured.exit_code, 0) << captured.err;
+  const CommandResult show = lmk("landmark show " + path("carton.lmk"));
+  EXPECT_EQ(show.exit_code, 0);
+  EXPECT_NE(show.out.find("carton"), std::string::npos);
+  EXPECT_NE(show.out.find("grids          points"), std::string::npos);
+  ASSERT_EQ(lmk("landmark export " + path("carton.lmk") + " " + path("exported")).exit_code, 0);
+  ASSERT_EQ(lmk("landmark import " + path("exported") + " " + path("again.lmk")).exit_code, 0);
+  EXPECT_EQ(lmk("landmark show " + path("again.lmk")).out, show.out);
+
+  const CommandResult found =
+      lmk("find " + path("scene.pcd") + " " + path("carton.lmk") + " --max-seeds 150 --json -");
+  ASSERT_EQ(found.exit_code, 0) << found.err;
+  const auto j = nlohmann::json::parse(found.out);
+  ASSERT_GE(j["matches"].size(), 1u);
+  const auto& best = j["matches"][0];
+  EXPECT_NEAR(best["position"][0].get<double>(), -0.301, 0.005);
+  EXPECT_NEAR(best["position"][1].get<double>(), 0.236, 0.005);
+  EXPECT_NEAR(best["position"][2].get<double>(), 0.826, 0.005);
+  EXPECT_EQ(best["quaternion"].size(), 4u);
+  EXPECT_LT(best["error"].get<double>(), 0.0055);
+  for (const char* term :
+       {"scene_to_landmark_sum", "scene_to_landmark_count", "landmark_to_scene_sum",
+        "landmark_to_scene_count", "scene_points_in_box"}) {
+    EXPECT_TRUE(best["terms"].contains(term)) << term;
+  }
+  EXPECT_EQ(j["stats"]["seeds"], 150);
+  EXPECT_GT(j["stats"]["seconds"].get<double>(), 0.0);
+
+  const CommandResult table =
+      lmk("find " + path("scene.pcd") + " " + path("carton.lmk") + " --max-seeds 150");
+  EXPECT_EQ(table.exit_code, 0);
+  EXPECT_NE(table.out.find("rank"), std::string::npos);
+  EXPECT_NE(table.out.find("error_mm"), std::string::npos);
+}
+
+TEST_F(CliLandmark, BadInputToCaptureAndFind) {
+  const std::string scene = path("scene.pcd");
+  expect_bad_input(
+      "capture " + scene + " --box-center 0 0 0 --box-size 0 0.1 0.1 --name x -o " + path("x.lmk"),
+      "sides must be positive");
+  expect_bad_input("capture " + scene + " --box-center 9 9 9 --box-size 0.1 0.1 0.1 --name x -o " +
+                       path("x.lmk"),
+                   "no scene point inside the box");
+  expect_bad_input("capture " + scene + " --name x -o " + path("x.lmk"), "--box-center");
+  expect_bad_input(
+      "capture " + path("missing.pcd") + " " + carton_ + " --name x -o " + path("x.lmk"),
+      "no such file");
+  test::write_text(dir_.file("empty.xyz"), "# nothing\n");
+  expect_bad_input("capture " + path("empty.xyz") + " " + carton_ + " --name x -o " + path("x.lmk"),
+                   "none with finite");
+  EXPECT_FALSE(std::filesystem::exists(dir_.file("x.lmk")));
+
+  ASSERT_EQ(
+      lmk("capture " + scene + " " + carton_ + " --name carton -o " + path("c.lmk")).exit_code, 0);
+  expect_bad_input("find " + path("missing.pcd") + " " + path("c.lmk"), "no such file");
+  expect_bad_input("find " + path("empty.xyz") + " " + path("c.lmk"), "none with finite");
+  expect_bad_input("find " + scene + " " + path("missing.lmk"), "no such file");
+  expect_bad_input("find " + scene + " " + scene, "not an OpenVDB file");  // another format
+  expect_bad_input("find " + scene + " " + path("c.lmk") + " --metric nope",
+                   "unknown error metric");
+  expect_bad_input("find " + scene + " " + path("c.lmk") + " --method magic",
+                   "unknown search method");
 }
 
 TEST_F(Cli, MilkSceneFromRealData) {
