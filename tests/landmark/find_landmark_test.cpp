@@ -6,6 +6,7 @@
 
 #include "eval/depth_sensor.h"
 #include "eval/mesh.h"
+#include "eval/real_data.h"
 #include "geometry/cloud_io.h"
 #include "geometry/error.h"
 #include "geometry/pose.h"
@@ -151,14 +152,7 @@ TEST_F(ReferenceSearch, BadSettingsAreErrors) {
 TEST(ReferenceSearchRealData, FindsTheMilkCartonWhereItWasCaptured) {
   LMK_REQUIRE_SHARED_DATA(data);
   const PointCloud scene = read_cloud((data / "pcl/milk_cartoon_all_small_clorox.pcd").string());
-  // The carton's points are those of milk.pcd; its box adds 2 cm on the sides facing free space
-  // (left, right, top and front; the camera's y points down, z away), none on the table side
-  // and the occluded back.
-  const Eigen::AlignedBox3f carton = read_cloud((data / "pcl/milk.pcd").string()).bounds();
-  Eigen::Vector3d lo = carton.min().cast<double>(), hi = carton.max().cast<double>();
-  lo -= Eigen::Vector3d(0.02, 0.02, 0.02);
-  hi.x() += 0.02;
-  const Box box(pose_from_xyz_rpy(0.5 * (lo + hi), {0, 0, 0}), hi - lo);
+  const Box box = milk_carton_box(read_cloud((data / "pcl/milk.pcd").string()));
   const Landmark milk = capture(scene, box, "milk");
   FindSettings s;
   s.max_seeds = 200;  // 5% would be 1000 seeds, several minutes; 200 still cover the carton

@@ -1,0 +1,20 @@
+#include "eval/real_data.h"
+
+#include "geometry/error.h"
+
+namespace lmk {
+
+Box milk_carton_box(const PointCloud& carton_crop) {
+  const Eigen::AlignedBox3f bounds = carton_crop.bounds();
+  if (bounds.isEmpty()) throw Error("milk_carton_box: the carton crop has no finite point");
+  Eigen::Vector3d lo = bounds.min().cast<double>(), hi = bounds.max().cast<double>();
+  constexpr double kMargin = 0.02;
+  lo -= Eigen::Vector3d::Constant(kMargin);  // left, top (-y) and front (-z)
+  hi.x() += kMargin;                         // right
+  Box box;
+  box.pose.translation() = 0.5 * (lo + hi);
+  box.size = hi - lo;
+  return box;
+}
+
+}  // namespace lmk
