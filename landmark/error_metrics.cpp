@@ -2,72 +2,67 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "geometry/error.h"
 
 namespace lmk {
 namespace {
 
-// Algorithm 2, lines 5-10: each scene point in the candidate box adds its distance to the nearest
-// landmark point, and marks that point visited. Scene points are mapped into the capture frame.
-void add_scene_to_landmark(const SceneView& scene, const LandmarkView& landmark,
-                           const Eigen::Isometry3d& T_capture_scene, const Indices& in_box,
-                           std::vector<char>& visited, ErrorTerms& terms) {
-  const Eigen::Isometry3f T = T_capture_scene.cast<float>();
+// Where Algorithm 2's second loop looks for the nearest scene point of an unvisited landmark point,
+// and the largest distance it may add: the two choices in which the metric variants differ.
+struct LandmarkTermRule {
+  bool in_box_only;  ///< search only the scene points inside the candidate box
+  double cap;        ///< distances at or above this are not counted
+};
+
+// CandidateError (Algorithm 2). Lines 5-10: each scene point in the candidate box adds its distance
+// to the nearest landmark point and marks that point visited; scene points are mapped into the
+// capture frame. Lines 11-17: each unvisited landmark point adds its distance to the nearest scene
+// point, searched as `rule` says.
+ErrorTerms candidate_error(const SceneView& scene, const LandmarkView& landmark,
+                           const Eigen::Isometry3d& T_scene_capture, const LandmarkTermRule& rule) {
+  ErrorTerms terms;
+  const Indices in_box = scene_points_in_box(scene, landmark.box.transformed(T_scene_capture));
+  terms.scene_points_in_box = in_box.size();
+  std::vector<char> visited(landmark.points.size(), 0);
+  const Eigen::Isometry3f T_capture_scene = T_scene_capture.inverse().cast<float>();
   for (Index i : in_box) {
-    const auto nearest = landmark.tree.nearest(T * scene.points.points[i]);
+    const auto nearest = landmark.tree.nearest(T_capture_scene * scene.points.points[i]);
     if (!nearest) continue;
     terms.scene_to_landmark_sum += std::sqrt(nearest->squared_distance);
     ++terms.scene_to_landmark_count;
     visited[nearest->index] = 1;
   }
-}
 
-// Algorithm 2 exactly: unvisited landmark points add their distance to the nearest scene point,
-// searched over the whole scene.
-ErrorTerms paper_metric(const SceneView& scene, const LandmarkView& landmark,
-                        const Eigen::Isometry3d& T_scene_capture) {
-  ErrorTerms terms;
-  const Indices in_box = scene_points_in_box(scene, landmark.box.transformed(T_scene_capture));
-  terms.scene_points_in_box = in_box.size();
-  std::vector<char> visited(landmark.points.size(), 0);
-  add_scene_to_landmark(scene, landmark, T_scene_capture.inverse(), in_box, visited, terms);
+  std::optional<KdTree> box_tree;
+  if (rule.in_box_only) box_tree.emplace(scene.points.select(in_box));
+  const KdTree& target = box_tree ? *box_tree : scene.tree;
   const Eigen::Isometry3f T = T_scene_capture.cast<float>();
   for (std::size_t j = 0; j < landmark.points.size(); ++j) {
     if (visited[j]) continue;
-    const auto nearest = scene.tree.nearest(T * landmark.points.points[j]);
-    if (!nearest) continue;
-    terms.landmark_to_scene_sum += std::sqrt(nearest->squared_distance);
-    ++terms.landmark_to_scene_count;
-  }
-  terms.finish();
-  return terms;
-}
-
-// The authors' code (rapid_perception): the landmark->scene term searches only the scene points
-// inside the box, and counts a distance only when it is under 5 cm.
-constexpr double kRapidCap = 0.05;
-
-ErrorTerms rapid_metric(const SceneView& scene, const LandmarkView& landmark,
-                        const Eigen::Isometry3d& T_scene_capture) {
-  ErrorTerms terms;
-  const Indices in_box = scene_points_in_box(scene, landmark.box.transformed(T_scene_capture));
-  terms.scene_points_in_box = in_box.size();
-  std::vector<char> visited(landmark.points.size(), 0);
-  add_scene_to_landmark(scene, landmark, T_scene_capture.inverse(), in_box, visited, terms);
-  const KdTree box_tree(scene.points.select(in_box));
-  const Eigen::Isometry3f T = T_scene_capture.cast<float>();
-  for (std::size_t j = 0; j < landmark.points.size(); ++j) {
-    if (visited[j]) continue;
-    const auto nearest = box_tree.nearest(T * landmark.points.points[j]);
+    const auto nearest = target.nearest(T * landmark.points.points[j]);
     if (!nearest) continue;
     const double d = std::sqrt(nearest->squared_distance);
-    if (d >= kRapidCap) continue;
+    if (d >= rule.cap) continue;
     terms.landmark_to_scene_sum += d;
     ++terms.landmark_to_scene_count;
   }
   terms.finish();
   return terms;
+}
+
+// Algorithm 2 exactly: the whole scene, no cap.
+ErrorTerms paper_metric(const SceneView& scene, const LandmarkView& landmark,
+                        const Eigen::Isometry3d& T_scene_capture) {
+  return candidate_error(scene, landmark, T_scene_capture,
+                         {false, std::numeric_limits<double>::infinity()});
+}
+
+// The authors' code (rapid_perception): only the scene points inside the box, under 5 cm.
+ErrorTerms rapid_metric(const SceneView& scene, const LandmarkView& landmark,
+                        const Eigen::Isometry3d& T_scene_capture) {
+  return candidate_error(scene, landmark, T_scene_capture, {true, 0.05});
 }
 
 }  // namespace
