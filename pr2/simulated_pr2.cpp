@@ -1,0 +1,177 @@
+#include "pr2/simulated_pr2.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace lmk {
+namespace {
+
+// The joint's travel from a to b: the shorter way round for continuous joints.
+double travel(const JointInfo& j, double a, double b) {
+  return j.continuous() ? std::abs(std::remainder(b - a, 2.0 * M_PI)) : std::abs(b - a);
+}
+
+std::string format(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+}  // namespace
+
+SimulatedPr2::SimulatedPr2(Pr2Kinematics kinematics) : kinematics_(std::move(kinematics)) {}
+
+std::vector<std::string> SimulatedPr2::grippers() { return {"left", "right"}; }
+
+CallResult SimulatedPr2::configure() {
+  if (lifecycle_ == Lifecycle::kActive) return CallResult::error("configure: deactivate first");
+  positions_.clear();
+  // Every joint starts at zero, or at the nearest limit when zero is outside its range.
+  for (const std::string& name : kinematics_.groups()) {
+    const GroupInfo info = *kinematics_.group(name);  // keep the group alive while iterating it
+    for (const JointInfo& j : info.joints) {
+      positions_[j.name] = j.continuous() ? 0.0 : std::clamp(0.0, j.lower, j.upper);
+    }
+  }
+  for (const std::string& g : grippers())
+    grippers_[g] = GripperState{kGripperMaxOpening, false, false};
+  lifecycle_ = Lifecycle::kInactive;
+  return CallResult::success();
+}
+
+CallResult SimulatedPr2::activate() {
+  if (lifecycle_ == Lifecycle::kUnconfigured) return CallResult::error("activate: configure first");
+  lifecycle_ = Lifecycle::kActive;
+  return CallResult::success();
+}
+
+CallResult SimulatedPr2::deactivate() {
+  if (lifecycle_ == Lifecycle::kActive) lifecycle_ = Lifecycle::kInactive;
+  return CallResult::success();
+}
+
+CallResult SimulatedPr2::read_joint_state(JointState& out) const {
+  if (lifecycle_ == Lifecycle::kUnconfigured) return CallResult::error("read: configure first");
+  out = JointState();
+  for (const auto& [name, q] : positions_) {
+    out.names.push_back(name);
+    out.positions.push_back(q);
+    out.velocities.push_back(0.0);  // between trajectories the simulated robot is at rest
+  }
+  out.stamp = time_;
+  return CallResult::success();
+}
+
+std::vector<double> SimulatedPr2::group_positions(const std::string& group) const {
+  std::vector<double> q;
+  if (const auto info = kinematics_.group(group)) {
+    for (const JointInfo& j : info->joints) q.push_back(positions_.at(j.name));
+  }
+  return q;
+}
+
+CallResult SimulatedPr2::check_trajectory(const GroupInfo& group, const JointTrajectory& t) const {
+  const auto& joints = group.joints;
+  if (t.joint_names.size() != joints.size()) {
+    return CallResult::error("trajectory for '" + group.name + "' names " +
+                             std::to_string(t.joint_names.size()) + " joints; the group has " +
+                             std::to_string(joints.size()));
+  }
+  for (std::size_t i = 0; i < joints.size(); ++i) {
+    if (t.joint_names[i] != joints[i].name) {
+      return CallResult::error("trajectory joint " + std::to_string(i) + " is '" +
+                               t.joint_names[i] + "'; group '" + group.name + "' expects '" +
+                               joints[i].name + "'");
+    }
+  }
+  if (t.points.empty()) return CallResult::error("trajectory has no points");
+  std::vector<double> previous = group_positions(group.name);
+  double previous_time = 0.0;
+  for (std::size_t p = 0; p < t.points.size(); ++p) {
+    const auto& point = t.points[p];
+    const std::string where = "point " + std::to_string(p);
+    if (point.positions.size() != joints.size()) {
+      return CallResult::error(where + " has " + std::to_string(point.positions.size()) +
+                               " positions for " + std::to_string(joints.size()) + " joints");
+    }
+    if (!(point.time_from_start > previous_time) || !std::isfinite(point.time_from_start)) {
+      return CallResult::error(where + ": time_from_start must increase, and start above 0");
+    }
+    const double dt = point.time_from_start - previous_time;
+    for (std::size_t i = 0; i < joints.size(); ++i) {
+      const JointInfo& j = joints[i];
+      const double q = point.positions[i];
+      if (!std::isfinite(q)) return CallResult::error(where + ": " + j.name + " is not finite");
+      if (!j.continuous() && (q < j.lower || q > j.upper)) {
+        return CallResult::error(where + ": " + j.name + " = " + format(q) + " is outside [" +
+                                 format(j.lower) + ", " + format(j.upper) + "]");
+      }
+      const double velocity = travel(j, previous[i], q) / dt;
+      if (velocity > j.max_velocity) {
+        return CallResult::error(where + ": " + j.name + " would move at " + format(velocity) +
+                                 " per s, above its limit of " + format(j.max_velocity));
+      }
+    }
+    previous = point.positions;
+    previous_time = point.time_from_start;
+  }
+  return CallResult::success();
+}
+
+CallResult SimulatedPr2::send_trajectory(const std::string& group,
+                                         const JointTrajectory& trajectory) {
+  if (lifecycle_ != Lifecycle::kActive) return CallResult::error("robot is not active");
+  const auto info = kinematics_.group(group);
+  if (!info) return CallResult::error("unknown group '" + group + "'");
+  const CallResult check = check_trajectory(*info, trajectory);
+  if (!check.ok()) return check;  // refused whole: nothing moved
+  const std::vector<double>& final_q = trajectory.points.back().positions;
+  for (std::size_t i = 0; i < info->joints.size(); ++i) {
+    const JointInfo& j = info->joints[i];
+    positions_[j.name] = j.continuous() ? std::remainder(final_q[i], 2.0 * M_PI) : final_q[i];
+  }
+  const double duration = trajectory.points.back().time_from_start;
+  history_.push_back({group, trajectory, time_, time_ + duration});
+  time_ += duration;
+  return CallResult::success();
+}
+
+CallResult SimulatedPr2::command_gripper(const std::string& gripper,
+                                         const GripperCommand& command) {
+  if (lifecycle_ != Lifecycle::kActive) return CallResult::error("robot is not active");
+  const auto it = grippers_.find(gripper);
+  if (it == grippers_.end())
+    return CallResult::error("unknown gripper '" + gripper + "' (left, right)");
+  if (!std::isfinite(command.position) || command.position < 0.0 ||
+      command.position > kGripperMaxOpening) {
+    return CallResult::error("gripper position " + format(command.position) + " m is outside [0, " +
+                             format(kGripperMaxOpening) + "]");
+  }
+  GripperState& s = it->second;
+  const std::optional<double> object =
+      object_between_fingers ? object_between_fingers(gripper) : std::nullopt;
+  if (object && command.position < *object) {
+    s = {*object, true, true};  // the fingers stop on the object
+  } else {
+    s = {command.position, command.position <= 1e-3, false};
+  }
+  time_ += 1.0;  // a gripper motion takes about a second on the PR2
+  return CallResult::success();
+}
+
+CallResult SimulatedPr2::gripper_state(const std::string& gripper, GripperState& out) const {
+  if (lifecycle_ == Lifecycle::kUnconfigured) return CallResult::error("read: configure first");
+  const auto it = grippers_.find(gripper);
+  if (it == grippers_.end())
+    return CallResult::error("unknown gripper '" + gripper + "' (left, right)");
+  out = it->second;
+  return CallResult::success();
+}
+
+CallResult SimulatedPr2::sensor_pose(Eigen::Isometry3d& T_base_sensor) const {
+  if (lifecycle_ == Lifecycle::kUnconfigured) return CallResult::error("read: configure first");
+  return kinematics_.forward("head", group_positions("head"), T_base_sensor);
+}
+
+}  // namespace lmk

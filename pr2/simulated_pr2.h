@@ -1,0 +1,65 @@
+#pragma once
+// A simulated PR2 behind RobotInterface, for tests and for running PbD programs without hardware.
+//
+// - Lifecycle: configure, then activate; motion commands are refused unless active.
+// - Trajectories run in simulated time and are checked first, whole: joint names in the group's
+//   order, increasing times, positions within limits, velocities within each joint's maximum
+//   (including the first step from the current state). A violating trajectory is refused with the
+//   reason and nothing moves.
+// - Grippers open between 0 and 0.09 m. Closing stops at an object's width when the test hook says
+//   an object lies between the fingers; the gripper then reports holding it.
+// - Every executed motion is recorded for inspection.
+
+#include <functional>
+#include <map>
+#include <optional>
+
+#include "pr2/pr2_kinematics.h"
+
+namespace lmk {
+
+struct ExecutedMotion {
+  std::string group;
+  JointTrajectory trajectory;
+  double start_time = 0.0, end_time = 0.0;  ///< simulated seconds
+};
+
+class SimulatedPr2 : public RobotInterface {
+ public:
+  static constexpr double kGripperMaxOpening = 0.09;  ///< m
+
+  explicit SimulatedPr2(Pr2Kinematics kinematics = Pr2Kinematics());
+
+  CallResult configure() override;
+  CallResult activate() override;
+  CallResult deactivate() override;
+  CallResult read_joint_state(JointState& out) const override;
+  CallResult send_trajectory(const std::string& group, const JointTrajectory& trajectory) override;
+  CallResult command_gripper(const std::string& gripper, const GripperCommand& command) override;
+  CallResult gripper_state(const std::string& gripper, GripperState& out) const override;
+  CallResult sensor_pose(Eigen::Isometry3d& T_base_sensor) const override;
+
+  /// Test hook: the width of the object between the named gripper's fingers, if any.
+  std::function<std::optional<double>(const std::string& gripper)> object_between_fingers;
+
+  const Pr2Kinematics& kinematics() const { return kinematics_; }
+  const std::vector<ExecutedMotion>& history() const { return history_; }
+  /// The current joint values of a group, in its order.
+  std::vector<double> group_positions(const std::string& group) const;
+  double time() const { return time_; }
+  /// Names of the grippers: "left", "right".
+  static std::vector<std::string> grippers();
+
+ private:
+  enum class Lifecycle { kUnconfigured, kInactive, kActive };
+  CallResult check_trajectory(const GroupInfo& group, const JointTrajectory& t) const;
+
+  Pr2Kinematics kinematics_;
+  Lifecycle lifecycle_ = Lifecycle::kUnconfigured;
+  std::map<std::string, double> positions_;  // every group joint, by name
+  std::map<std::string, GripperState> grippers_;
+  std::vector<ExecutedMotion> history_;
+  double time_ = 0.0;
+};
+
+}  // namespace lmk
