@@ -27,5 +27,6 @@ Subcommand add_gen(CLI::App& app);
 Subcommand add_capture(CLI::App& app);
 Subcommand add_find(CLI::App& app);
 Subcommand add_landmark(CLI::App& app);
+Subcommand add_robot(CLI::App& app);
 
 }  // namespace lmk::cli

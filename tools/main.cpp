@@ -1,6 +1,7 @@
 // lmk: custom perceptual landmarks for robot programming by demonstration.
 // Dispatches to one subcommand; every error becomes one line on stderr and a non-zero exit.
 
+#include <console_bridge/console.h>
 #include <pcl/console/print.h>
 
 #include <cstdio>
@@ -38,8 +39,10 @@ std::string version_text() {
 
 int main(int argc, char** argv) {
   using namespace lmk::cli;
-  // PCL logs its own messages on stderr; lmk reports every problem itself, in one line.
+  // PCL and urdfdom log their own messages on stderr; lmk reports every problem itself, in one
+  // line.
   pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
+  console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_NONE);  // urdfdom's logging
 
   CLI::App app{"lmk: find custom perceptual landmarks in point clouds, with their 6-DoF poses.",
                "lmk"};
@@ -49,9 +52,9 @@ int main(int argc, char** argv) {
     return std::string("lmk: error: ") + e.what() + " (see --help)\n";
   });
 
-  const std::vector<Subcommand> subcommands = {add_info(app), add_convert(app),
-                                               add_gen(app),  add_capture(app),
-                                               add_find(app), add_landmark(app)};
+  const std::vector<Subcommand> subcommands = {
+      add_info(app), add_convert(app),  add_gen(app),  add_capture(app),
+      add_find(app), add_landmark(app), add_robot(app)};
 
   // CLI11 reports an unknown first word as a missing subcommand; name it instead.
   if (argc > 1 && argv[1][0] != '-') {

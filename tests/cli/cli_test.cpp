@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "geometry/pose.h"
 #include "tests/support/test_support.h"
 
 namespace lmk {
@@ -52,7 +53,7 @@ class Cli : public ::testing::Test {
 TEST_F(Cli, HelpAndVersion) {
   const CommandResult help = lmk("--help");
   EXPECT_EQ(help.exit_code, 0);
-  for (const char* sub : {"info", "convert", "gen", "capture", "find", "landmark"})
+  for (const char* sub : {"info", "convert", "gen", "capture", "find", "landmark", "robot"})
     EXPECT_NE(help.out.find(sub), std::string::npos);
   const CommandResult version = lmk("--version");
   EXPECT_EQ(version.exit_code, 0);
@@ -181,6 +182,41 @@ TEST_F(CliLandmark, BadInputToCaptureAndFind) {
                    "unknown error metric");
   expect_bad_input("find " + scene + " " + path("c.lmk") + " --method magic",
                    "unknown search method");
+}
+
+TEST_F(Cli, RobotFkIkRoundTripAndRefusals) {
+  const CommandResult fk =
+      lmk("robot fk --group left_arm --torso 0.1 --joints 0.3 0.2 1.0 -1.0 0.5 -0.7 0.2 --json");
+  ASSERT_EQ(fk.exit_code, 0) << fk.err;
+  const auto pose = nlohmann::json::parse(fk.out);
+  ASSERT_EQ(pose["position"].size(), 3u);
+  ASSERT_EQ(pose["quaternion"].size(), 4u);
+  // IK of that pose (given back as position and roll/pitch/yaw) lands within 1 mm of it.
+  const Eigen::Quaterniond q(
+      pose["quaternion"][0].get<double>(), pose["quaternion"][1].get<double>(),
+      pose["quaternion"][2].get<double>(), pose["quaternion"][3].get<double>());
+  const Eigen::Vector3d rpy = rpy_from_rotation(q.toRotationMatrix()) * 180.0 / M_PI;
+  char args[256];
+  std::snprintf(args, sizeof(args),
+                "robot ik --group left_arm --torso 0.1 --position %.9f %.9f %.9f --rpy %.9f %.9f "
+                "%.9f --json",
+                pose["position"][0].get<double>(), pose["position"][1].get<double>(),
+                pose["position"][2].get<double>(), rpy.x(), rpy.y(), rpy.z());
+  const CommandResult ik = lmk(args);
+  ASSERT_EQ(ik.exit_code, 0) << ik.err;
+  const auto solution = nlohmann::json::parse(ik.out);
+  EXPECT_EQ(solution["joints"].size(), 7u);
+  EXPECT_LE(solution["position_error_m"].get<double>(), 0.001);
+  EXPECT_LE(solution["rotation_error_rad"].get<double>(), 0.5 * M_PI / 180.0);
+
+  const CommandResult far = lmk("robot ik --position 2.5 0 0.8 --rpy 0 0 0");
+  EXPECT_EQ(far.exit_code, 1);
+  EXPECT_EQ(far.err.rfind("lmk: unreachable: out of the workspace", 0), 0u) << far.err;
+  expect_bad_input("robot fk --group tail --joints 0", "unknown group 'tail'");
+  expect_bad_input("robot fk --joints 1 2", "has 7 joints, got 2");
+  expect_bad_input("robot info --urdf " + path("missing.urdf"), "no such file");
+  expect_bad_input("robot fk --torso 0.5 --joints 0 0 0 0 0 0 0", "torso height");
+  EXPECT_NE(lmk("robot info").out.find("r_wrist_roll_joint"), std::string::npos);
 }
 
 TEST_F(Cli, MilkSceneFromRealData) {
