@@ -13,18 +13,7 @@
 #include "geometry/random.h"
 #include "pr2/ik_solver.h"
 
-namespace {
-
-std::vector<double> random_joints(const lmk::KinematicChain& chain, lmk::SplitMix64& rng) {
-  std::vector<double> q;
-  for (const lmk::JointInfo& j : chain.moving_joints()) {
-    const double lo = j.continuous() ? -M_PI : j.lower, hi = j.continuous() ? M_PI : j.upper;
-    q.push_back(lo + (hi - lo) * rng.uniform01());
-  }
-  return q;
-}
-
-}  // namespace
+namespace {}  // namespace
 
 int main(int argc, char** argv) {
   int targets = 1000;
@@ -36,8 +25,8 @@ int main(int argc, char** argv) {
   for (int t = 0; t < targets; ++t) {
     const lmk::KinematicChain arm =
         pr2.chain("torso_lift_link", t % 2 ? "l_gripper_tool_frame" : "r_gripper_tool_frame");
-    const Eigen::Isometry3d target = arm.forward(random_joints(arm, rng));
-    const std::vector<double> seed = random_joints(arm, rng);
+    const Eigen::Isometry3d target = arm.forward(arm.random_joints(rng));
+    const std::vector<double> seed = arm.random_joints(rng);
     const auto start = std::chrono::steady_clock::now();
     const lmk::IkResult r = lmk::solve_ik(arm, target, seed);
     micros.push_back(

@@ -100,15 +100,6 @@ Attempt descend(const KinematicChain& chain, const std::vector<JointInfo>& joint
   return best;
 }
 
-std::vector<double> random_configuration(const std::vector<JointInfo>& joints, SplitMix64& rng) {
-  std::vector<double> q;
-  for (const JointInfo& j : joints) {
-    const double lo = j.continuous() ? -M_PI : j.lower, hi = j.continuous() ? M_PI : j.upper;
-    q.push_back(lo + (hi - lo) * rng.uniform01());
-  }
-  return q;
-}
-
 double joint_distance(const std::vector<JointInfo>& joints, const std::vector<double>& a,
                       const std::vector<double>& b) {
   double d = 0.0;
@@ -182,7 +173,7 @@ IkResult solve_ik(const KinematicChain& chain, const Eigen::Isometry3d& T_root_t
   for (int attempt = 0;
        attempt < s.max_attempts && static_cast<int>(solutions.size()) < s.solutions_to_compare;
        ++attempt) {
-    const std::vector<double> q0 = attempt == 0 ? start : random_configuration(joints, rng);
+    const std::vector<double> q0 = attempt == 0 ? start : chain.random_joints(rng);
     Attempt a = descend(chain, joints, T_root_target, q0, s, true);
     if (a.position_error <= s.position_tolerance && a.rotation_error <= s.rotation_tolerance) {
       solutions.push_back(std::move(a));
@@ -210,9 +201,8 @@ IkResult solve_ik(const KinematicChain& chain, const Eigen::Isometry3d& T_root_t
   // Without joint limits, can the chain reach the target at all? That tells the two reasons apart.
   SplitMix64 free_rng(s.random_seed + 1);
   for (int attempt = 0; attempt < s.max_attempts / 3; ++attempt) {
-    const Attempt free =
-        descend(chain, joints, T_root_target,
-                attempt == 0 ? start : random_configuration(joints, free_rng), s, false);
+    const Attempt free = descend(chain, joints, T_root_target,
+                                 attempt == 0 ? start : chain.random_joints(free_rng), s, false);
     if (free.position_error <= s.position_tolerance &&
         free.rotation_error <= s.rotation_tolerance) {
       result.failure = IkFailure::kJointLimits;

@@ -3,6 +3,7 @@
 #include <urdf_parser/urdf_parser.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -79,6 +80,17 @@ std::vector<JointInfo> KinematicChain::moving_joints() const {
     if (j.moves()) out.push_back({j.name, j.type, j.lower, j.upper, j.max_velocity});
   }
   return out;
+}
+
+std::vector<double> KinematicChain::random_joints(SplitMix64& rng) const {
+  std::vector<double> q;
+  for (const ChainJoint& j : joints_) {
+    if (!j.moves()) continue;
+    const bool continuous = j.type == "continuous";
+    const double lo = continuous ? -M_PI : j.lower, hi = continuous ? M_PI : j.upper;
+    q.push_back(lo + (hi - lo) * rng.uniform01());
+  }
+  return q;
 }
 
 Eigen::Isometry3d KinematicChain::forward(const std::vector<double>& q) const {

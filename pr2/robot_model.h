@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/random.h"
 #include "pbd/robot_interface.h"
 
 namespace lmk {
@@ -33,6 +34,9 @@ class KinematicChain {
   /// The moving joints, in order, as metadata.
   std::vector<JointInfo> moving_joints() const;
   std::size_t dof() const { return dof_; }
+
+  /// Joint values drawn uniformly within each moving joint's limits ([-pi, pi] when continuous).
+  std::vector<double> random_joints(SplitMix64& rng) const;
 
   /// T_root_tip for the given joint values; throws lmk::Error when the count differs from dof().
   Eigen::Isometry3d forward(const std::vector<double>& q) const;

@@ -8,15 +8,6 @@
 namespace lmk {
 namespace {
 
-std::vector<double> random_joints(const KinematicChain& chain, SplitMix64& rng) {
-  std::vector<double> q;
-  for (const JointInfo& j : chain.moving_joints()) {
-    const double lo = j.continuous() ? -M_PI : j.lower, hi = j.continuous() ? M_PI : j.upper;
-    q.push_back(lo + (hi - lo) * rng.uniform01());
-  }
-  return q;
-}
-
 void expect_within_limits(const KinematicChain& chain, const std::vector<double>& q) {
   const auto joints = chain.moving_joints();
   for (std::size_t i = 0; i < q.size(); ++i) {
@@ -38,8 +29,8 @@ TEST(IkSolver, SolvesRandomReachableTargetsForBothArms) {
     const int trials = 500;
     for (int t = 0; t < trials; ++t) {
       // A reachable target: FK of random joints within limits. IK starts from another random seed.
-      const Eigen::Isometry3d target = arm.forward(random_joints(arm, rng));
-      const IkResult r = solve_ik(arm, target, random_joints(arm, rng));
+      const Eigen::Isometry3d target = arm.forward(arm.random_joints(rng));
+      const IkResult r = solve_ik(arm, target, arm.random_joints(rng));
       if (!r.success) continue;
       ++solved;
       const Eigen::Isometry3d reached = arm.forward(r.joints);

@@ -12,16 +12,6 @@
 namespace lmk {
 namespace {
 
-// Joint values drawn uniformly within each moving joint's limits ([-pi, pi] when continuous).
-std::vector<double> random_joints(const KinematicChain& chain, SplitMix64& rng) {
-  std::vector<double> q;
-  for (const JointInfo& j : chain.moving_joints()) {
-    const double lo = j.continuous() ? -M_PI : j.lower, hi = j.continuous() ? M_PI : j.upper;
-    q.push_back(lo + (hi - lo) * rng.uniform01());
-  }
-  return q;
-}
-
 TEST(RobotModel, ShippedPr2HasTheArmsHeadAndKinect) {
   const RobotModel pr2 = RobotModel::pr2();
   EXPECT_EQ(pr2.name(), "pr2");
@@ -62,7 +52,7 @@ TEST(RobotModel, ShippedModelAgreesWithTheFullPr2Description) {
     const KinematicChain a = ours.chain("base_link", tip), b = full.chain("base_link", tip);
     ASSERT_EQ(a.dof(), b.dof()) << tip;
     for (int trial = 0; trial < 100; ++trial) {
-      const std::vector<double> q = random_joints(b, rng);
+      const std::vector<double> q = b.random_joints(rng);
       const Eigen::Isometry3d Ta = a.forward(q), Tb = b.forward(q);
       EXPECT_LT((Ta.translation() - Tb.translation()).norm(), 1e-6) << tip;
       EXPECT_LT(rotation_angle_between(Ta.linear(), Tb.linear()), 1e-6) << tip;
