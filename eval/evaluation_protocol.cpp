@@ -1,0 +1,114 @@
+#include "eval/evaluation_protocol.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "geometry/pose.h"
+
+namespace lmk {
+
+double rotation_error(const Eigen::Matrix3d& R_truth, const Eigen::Matrix3d& R_found,
+                      const Symmetry& symmetry) {
+  if (!symmetry.revolution_axis) return rotation_angle_between(R_truth, R_found);
+  const Eigen::Vector3d a = symmetry.revolution_axis->normalized();
+  const Eigen::Matrix3d R_rel = R_truth.transpose() * R_found;
+  return std::acos(std::clamp(a.dot(R_rel * a), -1.0, 1.0));
+}
+
+void Counts::add(const Counts& other) {
+  tp += other.tp;
+  fp += other.fp;
+  fn += other.fn;
+  translation_errors.insert(translation_errors.end(), other.translation_errors.begin(),
+                            other.translation_errors.end());
+  rotation_errors.insert(rotation_errors.end(), other.rotation_errors.begin(),
+                         other.rotation_errors.end());
+}
+
+std::optional<double> Counts::precision() const {
+  if (tp + fp == 0) return std::nullopt;
+  return static_cast<double>(tp) / static_cast<double>(tp + fp);
+}
+
+std::optional<double> Counts::recall() const {
+  if (tp + fn == 0) return std::nullopt;
+  return static_cast<double>(tp) / static_cast<double>(tp + fn);
+}
+
+namespace {
+
+// The nearest unmatched ground-truth instance within both tolerances, if any.
+std::optional<std::size_t> match(const PairInput& pair, const Eigen::Isometry3d& found,
+                                 const std::vector<char>& taken, const MatchTolerance& tolerance) {
+  std::optional<std::size_t> best;
+  double best_distance = 0.0;
+  for (std::size_t i = 0; i < pair.truth.size(); ++i) {
+    if (taken[i]) continue;
+    const double d = (pair.truth[i].translation() - found.translation()).norm();
+    if (d > tolerance.translation) continue;
+    if (rotation_error(pair.truth[i].linear(), found.linear(), pair.symmetry) >
+        tolerance.rotation) {
+      continue;
+    }
+    if (!best || d < best_distance) best = i, best_distance = d;
+  }
+  return best;
+}
+
+void record_tp(Counts& c, const Eigen::Isometry3d& truth, const Eigen::Isometry3d& found,
+               const Symmetry& symmetry) {
+  ++c.tp;
+  c.translation_errors.push_back((truth.translation() - found.translation()).norm());
+  c.rotation_errors.push_back(rotation_error(truth.linear(), found.linear(), symmetry));
+}
+
+}  // namespace
+
+Counts count_all_matches(const PairInput& pair, const MatchTolerance& tolerance) {
+  Counts c;
+  std::vector<char> taken(pair.truth.size(), 0);
+  for (const Eigen::Isometry3d& found : pair.found) {
+    if (const auto i = match(pair, found, taken, tolerance)) {
+      taken[*i] = 1;
+      record_tp(c, pair.truth[*i], found, pair.symmetry);
+    } else {
+      ++c.fp;
+    }
+  }
+  c.fn = static_cast<std::size_t>(std::count(taken.begin(), taken.end(), 0));
+  return c;
+}
+
+Counts count_best_match(const PairInput& pair, const MatchTolerance& tolerance) {
+  Counts c;
+  if (pair.truth.empty()) {
+    c.fp = pair.found.empty() ? 0 : 1;
+    return c;
+  }
+  if (pair.found.empty()) {
+    c.fn = 1;
+    return c;
+  }
+  const std::vector<char> none_taken(pair.truth.size(), 0);
+  if (const auto i = match(pair, pair.found.front(), none_taken, tolerance)) {
+    record_tp(c, pair.truth[*i], pair.found.front(), pair.symmetry);
+  } else {
+    c.fp = 1;
+  }
+  return c;
+}
+
+std::array<Counts, 3> count_assumptions(const std::vector<PairInput>& pairs,
+                                        const MatchTolerance& tolerance) {
+  std::array<Counts, 3> out;
+  for (const PairInput& pair : pairs) {
+    const Counts all = count_all_matches(pair, tolerance);
+    out[0].add(all);
+    if (!pair.in_context) continue;
+    out[1].add(all);
+    out[2].add(count_best_match(pair, tolerance));
+  }
+  return out;
+}
+
+}  // namespace lmk

@@ -1,0 +1,64 @@
+#pragma once
+// The evaluation protocol of DESIGN.md ("Evaluation protocol"): matching returned landmark poses
+// to ground truth, and the paper's precision/recall under its three assumptions.
+
+#include <Eigen/Geometry>
+#include <array>
+#include <optional>
+#include <vector>
+
+namespace lmk {
+
+/// A landmark's symmetry: none, or an axis of revolution (in the landmark's box frame) about which
+/// any rotation leaves it unchanged, such as a bowl's or a ball's vertical axis.
+struct Symmetry {
+  std::optional<Eigen::Vector3d> revolution_axis;
+};
+
+struct MatchTolerance {
+  double translation = 0.0254;  ///< m, between box centres (one inch, as the paper)
+  double rotation = 0.2618;     ///< rad (15 degrees), modulo the symmetry
+};
+
+/// Angle of the rotation from R_truth to R_found, modulo the symmetry. With an axis of revolution
+/// a it is the swing angle acos(a . R_rel a), the smallest over every rotation about a
+/// (swing-twist decomposition of R_rel = R_truth^T R_found).
+double rotation_error(const Eigen::Matrix3d& R_truth, const Eigen::Matrix3d& R_found,
+                      const Symmetry& symmetry);
+
+/// One (scene, landmark) pair: its ground-truth instances and what a method returned.
+struct PairInput {
+  std::vector<Eigen::Isometry3d> truth;  ///< ground-truth box poses
+  std::vector<Eigen::Isometry3d> found;  ///< returned box poses, best (lowest error) first
+  Symmetry symmetry;
+  bool in_context = true;
+};
+
+struct Counts {
+  std::size_t tp = 0, fp = 0, fn = 0;
+  std::vector<double> translation_errors;  ///< m, of the true positives
+  std::vector<double> rotation_errors;     ///< rad, of the true positives
+  void add(const Counts& other);
+  /// TP / (TP + FP); nothing when nothing was returned (neither 0 nor 1 would be honest).
+  std::optional<double> precision() const;
+  /// TP / (TP + FN); nothing when there was nothing to find.
+  std::optional<double> recall() const;
+};
+
+/// Assumptions 1 and 2 for one pair: each returned pose, best first, is a true positive when its
+/// centre is within tolerance of a ground-truth instance not already matched (the nearest such) and
+/// its rotation error is within tolerance; otherwise a false positive. Unmatched instances are
+/// false negatives. Duplicates on one instance therefore count once.
+Counts count_all_matches(const PairInput& pair, const MatchTolerance& tolerance = {});
+
+/// Assumption 3 for one pair, the best match only: with ground truth, TP if the best match is
+/// correct, FP if it is wrong, FN if nothing was returned; without ground truth, FP if anything was
+/// returned.
+Counts count_best_match(const PairInput& pair, const MatchTolerance& tolerance = {});
+
+/// The paper's three assumptions over many pairs: 1, all pairs; 2, in-context pairs;
+/// 3, in-context pairs, best match only. Index 0 holds assumption 1.
+std::array<Counts, 3> count_assumptions(const std::vector<PairInput>& pairs,
+                                        const MatchTolerance& tolerance = {});
+
+}  // namespace lmk

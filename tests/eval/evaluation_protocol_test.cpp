@@ -1,0 +1,103 @@
+// The paper's three-assumption precision/recall on hand-made confusion cases.
+
+#include "eval/evaluation_protocol.h"
+
+#include <gtest/gtest.h>
+
+#include "geometry/pose.h"
+
+namespace lmk {
+namespace {
+
+Eigen::Isometry3d at(double x, double y, double yaw_deg = 0.0, double roll_deg = 0.0) {
+  return pose_from_xyz_rpy({x, y, 0.8}, {roll_deg * M_PI / 180.0, 0.0, yaw_deg * M_PI / 180.0});
+}
+
+TEST(RotationError, SymmetryAboutAnAxisIsFree) {
+  const Symmetry bowl{Eigen::Vector3d::UnitZ()};
+  // Any yaw of a bowl about its vertical axis is no error; a tilt is.
+  EXPECT_NEAR(rotation_error(at(0, 0).linear(), at(0, 0, 137).linear(), bowl), 0.0, 1e-9);
+  EXPECT_NEAR(rotation_error(at(0, 0).linear(), at(0, 0, 137, 10).linear(), bowl), 10 * M_PI / 180,
+              1e-9);
+  EXPECT_NEAR(rotation_error(at(0, 0).linear(), at(0, 0, 137).linear(), Symmetry{}),
+              137 * M_PI / 180, 1e-9);
+}
+
+TEST(CountAllMatches, TolerancesDecideTruePositives) {
+  PairInput pair;
+  pair.truth = {at(0, 0)};
+  pair.found = {at(0.02, 0, 10)};  // 2 cm and 10 degrees: within 2.54 cm and 15 degrees
+  Counts c = count_all_matches(pair);
+  EXPECT_EQ(c.tp, 1u);
+  EXPECT_EQ(c.fp, 0u);
+  EXPECT_EQ(c.fn, 0u);
+  EXPECT_NEAR(c.translation_errors[0], 0.02, 1e-12);
+  pair.found = {at(0.03, 0)};  // 3 cm away
+  c = count_all_matches(pair);
+  EXPECT_EQ(c.tp, 0u);
+  EXPECT_EQ(c.fp, 1u);
+  EXPECT_EQ(c.fn, 1u);
+  pair.found = {at(0, 0, 20)};  // 20 degrees off
+  EXPECT_EQ(count_all_matches(pair).fp, 1u);
+  pair.symmetry.revolution_axis = Eigen::Vector3d::UnitZ();  // unless the landmark is symmetric
+  EXPECT_EQ(count_all_matches(pair).tp, 1u);
+}
+
+TEST(CountAllMatches, DuplicatesOnOneInstanceCountOnce) {
+  PairInput pair;
+  pair.truth = {at(0, 0), at(0.5, 0)};
+  pair.found = {at(0.001, 0), at(0.002, 0), at(0.5, 0.01)};
+  const Counts c = count_all_matches(pair);
+  EXPECT_EQ(c.tp, 2u);
+  EXPECT_EQ(c.fp, 1u);  // the second match on the first instance
+  EXPECT_EQ(c.fn, 0u);
+}
+
+TEST(CountBestMatch, OnlyTheBestMatchCounts) {
+  PairInput pair;
+  pair.truth = {at(0, 0), at(0.5, 0)};
+  pair.found = {at(0.5, 0.001), at(9, 9)};  // best is correct (either instance), second is junk
+  Counts c = count_best_match(pair);
+  EXPECT_EQ(c.tp, 1u);
+  EXPECT_EQ(c.fp + c.fn, 0u);
+  pair.found = {at(9, 9), at(0, 0)};  // best is wrong
+  c = count_best_match(pair);
+  EXPECT_EQ(c.fp, 1u);
+  EXPECT_EQ(c.tp + c.fn, 0u);
+  pair.found.clear();  // nothing returned
+  c = count_best_match(pair);
+  EXPECT_EQ(c.fn, 1u);
+  EXPECT_EQ(c.tp + c.fp, 0u);
+}
+
+TEST(CountAssumptions, PairsWithoutGroundTruthAndOutOfContextPairs) {
+  PairInput hit{{at(0, 0)}, {at(0, 0)}, {}, true};
+  PairInput spurious{{}, {at(1, 1), at(2, 2)}, {}, true};  // no instance, two outputs
+  PairInput quiet{{}, {}, {}, true};                       // no instance, no output
+  PairInput out_of_context{{at(0, 0)}, {}, {}, false};     // a miss, counted only under 1
+  const auto counts = count_assumptions({hit, spurious, quiet, out_of_context});
+  // Assumption 1: all pairs. 1 TP, 2 FP (both spurious outputs), 1 FN.
+  EXPECT_EQ(counts[0].tp, 1u);
+  EXPECT_EQ(counts[0].fp, 2u);
+  EXPECT_EQ(counts[0].fn, 1u);
+  // Assumption 2: in context only: the miss is gone.
+  EXPECT_EQ(counts[1].fn, 0u);
+  EXPECT_EQ(counts[1].fp, 2u);
+  // Assumption 3: best match only: the spurious pair is one FP.
+  EXPECT_EQ(counts[2].tp, 1u);
+  EXPECT_EQ(counts[2].fp, 1u);
+  EXPECT_EQ(counts[2].fn, 0u);
+  EXPECT_DOUBLE_EQ(*counts[2].precision(), 0.5);
+  EXPECT_DOUBLE_EQ(*counts[2].recall(), 1.0);
+}
+
+TEST(Counts, EmptyOutputsHaveNoPrecision) {
+  PairInput miss{{at(0, 0)}, {}, {}, true};
+  const auto counts = count_assumptions({miss});
+  EXPECT_FALSE(counts[0].precision().has_value());  // nothing returned: neither 0 nor 1
+  EXPECT_DOUBLE_EQ(*counts[0].recall(), 0.0);
+  EXPECT_FALSE(count_assumptions({}).at(0).recall().has_value());
+}
+
+}  // namespace
+}  // namespace lmk
