@@ -1,0 +1,226 @@
+#include "eval/dataset.h"
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "geometry/atomic_file.h"
+#include "geometry/error.h"
+#include "geometry/pose.h"
+
+namespace lmk {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+// Field paths like scenes[2].pairs[0] make every message point at the offending entry.
+std::string at(const std::string& path, const std::string& field, std::size_t i) {
+  return path + (path.empty() ? "" : ".") + field + "[" + std::to_string(i) + "]";
+}
+
+class Reader {
+ public:
+  explicit Reader(std::string file) : file_(std::move(file)) {}
+
+  [[noreturn]] void fail(const std::string& where, const std::string& problem) const {
+    throw Error(file_ + ": " + (where.empty() ? "" : where + ": ") + problem);
+  }
+
+  const json& field(const json& j, const std::string& where, const std::string& key) const {
+    if (!j.is_object() || !j.contains(key)) fail(where, "missing field '" + key + "'");
+    return j.at(key);
+  }
+
+  std::string text(const json& j, const std::string& where, const std::string& key) const {
+    const json& v = field(j, where, key);
+    if (!v.is_string() || v.get<std::string>().empty())
+      fail(where, "'" + key + "' must be a non-empty string");
+    return v.get<std::string>();
+  }
+
+  Eigen::VectorXd numbers(const json& v, const std::string& where, std::size_t n) const {
+    if (!v.is_array() || v.size() != n)
+      fail(where, "must be an array of " + std::to_string(n) + " numbers");
+    Eigen::VectorXd out(static_cast<Eigen::Index>(n));
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!v[i].is_number()) fail(where, "must be an array of " + std::to_string(n) + " numbers");
+      out[static_cast<Eigen::Index>(i)] = v[i].get<double>();
+    }
+    if (!out.allFinite()) fail(where, "holds a non-finite number");
+    return out;
+  }
+
+  Eigen::Isometry3d pose(const json& j, const std::string& where) const {
+    const Eigen::Vector3d p = numbers(field(j, where, "position"), where + ".position", 3);
+    const Eigen::Vector4d q = numbers(field(j, where, "quaternion"), where + ".quaternion", 4);
+    if (std::abs(q.norm() - 1.0) > 1e-3) {
+      fail(where + ".quaternion",
+           "is not a unit quaternion [w, x, y, z] (norm " + std::to_string(q.norm()) + ")");
+    }
+    return pose_from_position_quaternion(p, Eigen::Quaterniond(q[0], q[1], q[2], q[3]));
+  }
+
+ private:
+  std::string file_;
+};
+
+json pose_json(const Eigen::Isometry3d& T) {
+  const Eigen::Vector3d p = T.translation();
+  const Eigen::Quaterniond q(T.linear());
+  return {{"position", {p.x(), p.y(), p.z()}}, {"quaternion", {q.w(), q.x(), q.y(), q.z()}}};
+}
+
+Dataset parse(const json& j, const Reader& r) {
+  Dataset d;
+  if (!j.is_object()) r.fail("", "must hold a JSON object");
+  const json& version = r.field(j, "", "version");
+  if (!version.is_number_integer() || version.get<int>() != kDatasetFormatVersion) {
+    r.fail("version", "dataset format version " + version.dump() +
+                          " is not supported (this lmk reads " +
+                          std::to_string(kDatasetFormatVersion) + ")");
+  }
+  d.name = r.text(j, "", "name");
+  const json& landmarks = r.field(j, "", "landmarks");
+  if (!landmarks.is_array()) r.fail("landmarks", "must be an array");
+  for (std::size_t i = 0; i < landmarks.size(); ++i) {
+    const std::string where = at("", "landmarks", i);
+    DatasetLandmark l{r.text(landmarks[i], where, "name"), r.text(landmarks[i], where, "file"), {}};
+    if (landmarks[i].contains("symmetry_axis") && !landmarks[i]["symmetry_axis"].is_null()) {
+      const Eigen::Vector3d axis =
+          r.numbers(landmarks[i]["symmetry_axis"], where + ".symmetry_axis", 3);
+      if (!(axis.norm() > 0.0)) r.fail(where + ".symmetry_axis", "must not be zero");
+      l.symmetry.revolution_axis = axis.normalized();
+    }
+    d.landmarks.push_back(l);
+  }
+  const json& scenes = r.field(j, "", "scenes");
+  if (!scenes.is_array()) r.fail("scenes", "must be an array");
+  for (std::size_t i = 0; i < scenes.size(); ++i) {
+    const std::string where = at("", "scenes", i);
+    DatasetScene s;
+    s.name = r.text(scenes[i], where, "name");
+    s.file = r.text(scenes[i], where, "file");
+    s.setting = r.text(scenes[i], where, "setting");
+    s.T_scene_sensor = r.pose(r.field(scenes[i], where, "sensor_pose"), where + ".sensor_pose");
+    const json& pairs = scenes[i].contains("pairs") ? scenes[i]["pairs"] : json::array();
+    if (!pairs.is_array()) r.fail(where + ".pairs", "must be an array");
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+      const std::string pw = at(where, "pairs", k);
+      DatasetPair p;
+      p.landmark = r.text(pairs[k], pw, "landmark");
+      const json& in_context = r.field(pairs[k], pw, "in_context");
+      if (!in_context.is_boolean()) r.fail(pw + ".in_context", "must be true or false");
+      p.in_context = in_context.get<bool>();
+      const json& instances = r.field(pairs[k], pw, "instances");
+      if (!instances.is_array()) r.fail(pw + ".instances", "must be an array of poses");
+      for (std::size_t n = 0; n < instances.size(); ++n) {
+        p.instances.push_back(r.pose(instances[n], at(pw, "instances", n)));
+      }
+      s.pairs.push_back(p);
+    }
+    d.scenes.push_back(s);
+  }
+  return d;
+}
+
+// Names unique, pairs naming known landmarks once per scene, and every file present.
+void check_consistency(const Dataset& d, const std::string& dir, const Reader& r) {
+  std::set<std::string> landmark_names, scene_names;
+  for (std::size_t i = 0; i < d.landmarks.size(); ++i) {
+    const std::string where = at("", "landmarks", i);
+    if (!landmark_names.insert(d.landmarks[i].name).second) {
+      r.fail(where, "duplicate landmark name '" + d.landmarks[i].name + "'");
+    }
+    if (!fs::is_regular_file(fs::path(dir) / d.landmarks[i].file)) {
+      r.fail(where + ".file", "'" + d.landmarks[i].file + "' does not exist in " + dir);
+    }
+  }
+  for (std::size_t i = 0; i < d.scenes.size(); ++i) {
+    const DatasetScene& s = d.scenes[i];
+    const std::string where = at("", "scenes", i);
+    if (!scene_names.insert(s.name).second) r.fail(where, "duplicate scene name '" + s.name + "'");
+    if (!fs::is_regular_file(fs::path(dir) / s.file)) {
+      r.fail(where + ".file", "'" + s.file + "' does not exist in " + dir);
+    }
+    std::set<std::string> paired;
+    for (std::size_t k = 0; k < s.pairs.size(); ++k) {
+      const std::string& name = s.pairs[k].landmark;
+      if (!landmark_names.count(name))
+        r.fail(at(where, "pairs", k), "unknown landmark '" + name + "'");
+      if (!paired.insert(name).second)
+        r.fail(at(where, "pairs", k), "landmark '" + name + "' paired twice");
+    }
+  }
+}
+
+}  // namespace
+
+DatasetPair Dataset::pair(const DatasetScene& scene, const std::string& landmark) const {
+  for (const DatasetPair& p : scene.pairs) {
+    if (p.landmark == landmark) return p;
+  }
+  return {landmark, false, {}};
+}
+
+Dataset load_dataset(const std::string& dir) {
+  const std::string file = (fs::path(dir) / "dataset.json").string();
+  const Reader r(file);
+  std::ifstream in(file);
+  if (!in)
+    r.fail("", fs::is_directory(dir) ? "no such file"
+                                     : "no such file (is '" + dir + "' a dataset directory?)");
+  json j;
+  try {
+    in >> j;
+  } catch (const json::exception& e) {
+    r.fail("", std::string("not valid JSON (") + e.what() + ")");
+  }
+  const Dataset d = parse(j, r);
+  check_consistency(d, dir, r);
+  return d;
+}
+
+void save_dataset(const std::string& dir, const Dataset& d) {
+  const std::string file = (fs::path(dir) / "dataset.json").string();
+  json landmarks = json::array(), scenes = json::array();
+  for (const DatasetLandmark& l : d.landmarks) {
+    json entry = {{"name", l.name}, {"file", l.file}, {"symmetry_axis", nullptr}};
+    if (l.symmetry.revolution_axis) {
+      const Eigen::Vector3d& a = *l.symmetry.revolution_axis;
+      entry["symmetry_axis"] = {a.x(), a.y(), a.z()};
+    }
+    landmarks.push_back(entry);
+  }
+  for (const DatasetScene& s : d.scenes) {
+    json pairs = json::array();
+    for (const DatasetPair& p : s.pairs) {
+      json instances = json::array();
+      for (const auto& T : p.instances) instances.push_back(pose_json(T));
+      pairs.push_back(
+          {{"landmark", p.landmark}, {"in_context", p.in_context}, {"instances", instances}});
+    }
+    scenes.push_back({{"name", s.name},
+                      {"file", s.file},
+                      {"setting", s.setting},
+                      {"sensor_pose", pose_json(s.T_scene_sensor)},
+                      {"pairs", pairs}});
+  }
+  const json j = {{"format", "lmk-dataset"},
+                  {"version", kDatasetFormatVersion},
+                  {"name", d.name},
+                  {"landmarks", landmarks},
+                  {"scenes", scenes}};
+  // Validate what is about to be written exactly as a reader would, before writing it.
+  const Reader r(file);
+  check_consistency(parse(j, r), dir, r);
+  write_file_atomically(file, [&](const fs::path& tmp) {
+    std::ofstream out(tmp);
+    out << j.dump(2) << "\n";
+    if (!out) throw Error(file + ": write failed");
+  });
+}
+
+}  // namespace lmk

@@ -1,0 +1,55 @@
+#pragma once
+// Scene datasets for batch evaluation (docs/datasets.md): a directory holding dataset.json,
+// scene clouds, landmark files and the ground truth of every (scene, landmark) pair.
+
+#include <Eigen/Geometry>
+#include <string>
+#include <vector>
+
+#include "eval/evaluation_protocol.h"
+
+namespace lmk {
+
+inline constexpr int kDatasetFormatVersion = 1;
+
+struct DatasetLandmark {
+  std::string name;
+  std::string file;  ///< .lmk, relative to the dataset directory
+  Symmetry symmetry;
+};
+
+/// The ground truth of one (scene, landmark) pair. Pairs a scene does not list are out of context
+/// and hold no instance.
+struct DatasetPair {
+  std::string landmark;
+  bool in_context = true;
+  std::vector<Eigen::Isometry3d> instances;  ///< box poses in the scene frame
+};
+
+struct DatasetScene {
+  std::string name;
+  std::string file;     ///< point cloud, relative to the dataset directory
+  std::string setting;  ///< "simple", "cluttered", "unconventional", or free text
+  Eigen::Isometry3d T_scene_sensor = Eigen::Isometry3d::Identity();
+  std::vector<DatasetPair> pairs;
+};
+
+struct Dataset {
+  std::string name;
+  std::vector<DatasetLandmark> landmarks;
+  std::vector<DatasetScene> scenes;
+
+  /// The pair of `scene` with `landmark`, or an out-of-context pair without instances.
+  DatasetPair pair(const DatasetScene& scene, const std::string& landmark) const;
+};
+
+/// Reads and validates DIR/dataset.json. Throws lmk::Error naming the file, the field path (e.g.
+/// scenes[2].pairs[0].landmark) and the problem: a wrong version, a missing file, a duplicate or
+/// unknown name, a bad pose (non-finite, or a quaternion that is not unit length).
+Dataset load_dataset(const std::string& dir);
+
+/// Validates `dataset` against `dir` (the files it names must exist there) and writes
+/// DIR/dataset.json atomically.
+void save_dataset(const std::string& dir, const Dataset& dataset);
+
+}  // namespace lmk
