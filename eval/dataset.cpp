@@ -6,8 +6,8 @@
 #include <set>
 
 #include "geometry/atomic_file.h"
+#include "geometry/detail/pose_json.h"
 #include "geometry/error.h"
-#include "geometry/pose.h"
 
 namespace lmk {
 
@@ -29,9 +29,13 @@ class Reader {
     throw Error(file_ + ": " + (where.empty() ? "" : where + ": ") + problem);
   }
 
+  // "file: where", the context the shared JSON readers prefix to their messages.
+  std::string in(const std::string& where) const {
+    return file_ + (where.empty() ? "" : ": " + where);
+  }
+
   const json& field(const json& j, const std::string& where, const std::string& key) const {
-    if (!j.is_object() || !j.contains(key)) fail(where, "missing field '" + key + "'");
-    return j.at(key);
+    return detail::json_field(j, key, in(where));
   }
 
   std::string text(const json& j, const std::string& where, const std::string& key) const {
@@ -42,36 +46,16 @@ class Reader {
   }
 
   Eigen::VectorXd numbers(const json& v, const std::string& where, std::size_t n) const {
-    if (!v.is_array() || v.size() != n)
-      fail(where, "must be an array of " + std::to_string(n) + " numbers");
-    Eigen::VectorXd out(static_cast<Eigen::Index>(n));
-    for (std::size_t i = 0; i < n; ++i) {
-      if (!v[i].is_number()) fail(where, "must be an array of " + std::to_string(n) + " numbers");
-      out[static_cast<Eigen::Index>(i)] = v[i].get<double>();
-    }
-    if (!out.allFinite()) fail(where, "holds a non-finite number");
-    return out;
+    return detail::numbers_from_json(v, n, in(where));
   }
 
   Eigen::Isometry3d pose(const json& j, const std::string& where) const {
-    const Eigen::Vector3d p = numbers(field(j, where, "position"), where + ".position", 3);
-    const Eigen::Vector4d q = numbers(field(j, where, "quaternion"), where + ".quaternion", 4);
-    if (std::abs(q.norm() - 1.0) > 1e-3) {
-      fail(where + ".quaternion",
-           "is not a unit quaternion [w, x, y, z] (norm " + std::to_string(q.norm()) + ")");
-    }
-    return pose_from_position_quaternion(p, Eigen::Quaterniond(q[0], q[1], q[2], q[3]));
+    return detail::pose_from_json(j, in(where));
   }
 
  private:
   std::string file_;
 };
-
-json pose_json(const Eigen::Isometry3d& T) {
-  const Eigen::Vector3d p = T.translation();
-  const Eigen::Quaterniond q(T.linear());
-  return {{"position", {p.x(), p.y(), p.z()}}, {"quaternion", {q.w(), q.x(), q.y(), q.z()}}};
-}
 
 Dataset parse(const json& j, const Reader& r) {
   Dataset d;
@@ -190,7 +174,7 @@ void save_dataset(const std::string& dir, const Dataset& d) {
     json entry = {{"name", l.name}, {"file", l.file}, {"symmetry_axis", nullptr}};
     if (l.symmetry.revolution_axis) {
       const Eigen::Vector3d& a = *l.symmetry.revolution_axis;
-      entry["symmetry_axis"] = {a.x(), a.y(), a.z()};
+      entry["symmetry_axis"] = detail::vector_to_json(a);
     }
     landmarks.push_back(entry);
   }
@@ -198,14 +182,14 @@ void save_dataset(const std::string& dir, const Dataset& d) {
     json pairs = json::array();
     for (const DatasetPair& p : s.pairs) {
       json instances = json::array();
-      for (const auto& T : p.instances) instances.push_back(pose_json(T));
+      for (const auto& T : p.instances) instances.push_back(detail::pose_to_json(T));
       pairs.push_back(
           {{"landmark", p.landmark}, {"in_context", p.in_context}, {"instances", instances}});
     }
     scenes.push_back({{"name", s.name},
                       {"file", s.file},
                       {"setting", s.setting},
-                      {"sensor_pose", pose_json(s.T_scene_sensor)},
+                      {"sensor_pose", detail::pose_to_json(s.T_scene_sensor)},
                       {"pairs", pairs}});
   }
   const json j = {{"format", "lmk-dataset"},

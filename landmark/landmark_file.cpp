@@ -12,6 +12,7 @@
 
 #include "geometry/atomic_file.h"
 #include "geometry/cloud_io.h"
+#include "geometry/detail/pose_json.h"
 #include "geometry/error.h"
 #include "geometry/filters.h"
 #include "geometry/pose.h"
@@ -161,46 +162,24 @@ Landmark landmark_from_grid(const vdb::points::PointDataGrid& grid, const std::s
 }
 
 nlohmann::json to_json(const Landmark& l) {
-  const Eigen::Quaterniond q(l.box.pose.linear());
-  const Eigen::Vector3d t = l.box.pose.translation();
+  nlohmann::json box = detail::pose_to_json(l.box.pose);
+  box["size"] = detail::vector_to_json(l.box.size);
   return {{"format_version", l.format_version},
           {"name", l.name},
-          {"box",
-           {{"position", {t.x(), t.y(), t.z()}},
-            {"quaternion", {q.w(), q.x(), q.y(), q.z()}},
-            {"size", {l.box.size.x(), l.box.size.y(), l.box.size.z()}}}},
-          {"sensor_origin", {l.sensor_origin.x(), l.sensor_origin.y(), l.sensor_origin.z()}},
+          {"box", box},
+          {"sensor_origin", detail::vector_to_json(l.sensor_origin)},
           {"capture",
            {{"leaf_size", l.settings.leaf_size},
             {"min_points", l.settings.min_points},
             {"max_box_side", l.settings.max_box_side}}}};
 }
 
-Eigen::Vector3d vector3(const nlohmann::json& j, const std::string& field,
-                        const std::string& path) {
-  if (!j.is_array() || j.size() != 3 || !j[0].is_number() || !j[1].is_number() ||
-      !j[2].is_number()) {
-    throw Error(path + ": '" + field + "' must be an array of 3 numbers");
-  }
-  return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()};
-}
-
-// `prefix` names the object in messages, e.g. "box.".
-Box box_from_json(const nlohmann::json& j, const std::string& path, const std::string& prefix) {
-  const auto& q = j.at("quaternion");
-  if (!q.is_array() || q.size() != 4 || !q[0].is_number() || !q[1].is_number() ||
-      !q[2].is_number() || !q[3].is_number()) {
-    throw Error(path + ": '" + prefix + "quaternion' must be [w, x, y, z]");
-  }
-  const Eigen::Quaterniond quat(q[0].get<double>(), q[1].get<double>(), q[2].get<double>(),
-                                q[3].get<double>());
-  if (!(std::abs(quat.norm() - 1.0) < 1e-3)) {
-    throw Error(path + ": '" + prefix + "quaternion' is not a unit quaternion (norm " +
-                std::to_string(quat.norm()) + ")");
-  }
-  return Box(
-      pose_from_position_quaternion(vector3(j.at("position"), prefix + "position", path), quat),
-      vector3(j.at("size"), prefix + "size", path));
+// A box: a pose (position, unit quaternion) and a size. `where` names it in messages.
+Box box_from_json(const nlohmann::json& j, const std::string& where) {
+  // Pose first, then size: the first field in file order is the one a message names.
+  const Eigen::Isometry3d pose = detail::pose_from_json(j, where);
+  return Box(pose,
+             detail::numbers_from_json(detail::json_field(j, "size", where), 3, where + ".size"));
 }
 
 nlohmann::json read_json_file(const std::string& path) {
@@ -220,8 +199,9 @@ Landmark from_json(const nlohmann::json& j, const std::string& path) {
   try {
     l.format_version = j.at("format_version").get<int>();
     l.name = j.at("name").get<std::string>();
-    l.box = box_from_json(j.at("box"), path, "box.");
-    l.sensor_origin = vector3(j.at("sensor_origin"), "sensor_origin", path);
+    l.box = box_from_json(detail::json_field(j, "box", path), path + ": box");
+    l.sensor_origin = detail::numbers_from_json(detail::json_field(j, "sensor_origin", path), 3,
+                                                path + ": sensor_origin");
     const auto& capture = j.at("capture");
     l.settings.leaf_size = capture.at("leaf_size").get<double>();
     l.settings.min_points = capture.at("min_points").get<std::size_t>();
@@ -232,19 +212,30 @@ Landmark from_json(const nlohmann::json& j, const std::string& path) {
   return l;
 }
 
+// Everything that must hold before OpenVDB may open the file: it exists, is an OpenVDB file, and
+// its lmk trailer matches its data.
+void check_landmark_file(const std::string& path) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw Error(path + ": no such file");
+  if (fs::is_directory(path, ec)) throw Error(path + ": is a directory, not a landmark file");
+  if (!has_vdb_magic(path)) throw Error(path + ": not an lmk landmark file (not an OpenVDB file)");
+  check_trailer(path);
+}
+
 }  // namespace
 
 Box read_box_json(const std::string& path) {
   const nlohmann::json j = read_json_file(path);
   try {
-    return box_from_json(j, path, "");
+    return box_from_json(j, path + ": box");
   } catch (const nlohmann::json::exception& e) {
     throw Error(path + ": " + e.what());
   }
 }
 
 std::vector<std::string> landmark_file_grids(const std::string& path) {
-  load_landmark(path);  // the same checks as loading, so a bad file gives the same message
+  check_landmark_file(path);  // OpenVDB must never see a damaged file
+  vdb::initialize();
   std::vector<std::string> names;
   try {
     vdb::io::File file(path);
@@ -274,11 +265,7 @@ void save_landmark(const std::string& path, const Landmark& landmark) {
 }
 
 Landmark load_landmark(const std::string& path) {
-  std::error_code ec;
-  if (!fs::exists(path, ec)) throw Error(path + ": no such file");
-  if (fs::is_directory(path, ec)) throw Error(path + ": is a directory, not a landmark file");
-  if (!has_vdb_magic(path)) throw Error(path + ": not an lmk landmark file (not an OpenVDB file)");
-  check_trailer(path);
+  check_landmark_file(path);
   vdb::initialize();
   vdb::GridBase::Ptr base;
   try {

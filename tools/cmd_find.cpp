@@ -10,6 +10,7 @@
 
 #include "geometry/atomic_file.h"
 #include "geometry/cloud_io.h"
+#include "geometry/detail/pose_json.h"
 #include "geometry/error.h"
 #include "geometry/pose.h"
 #include "landmark/find_landmark.h"
@@ -36,14 +37,12 @@ nlohmann::json terms_json(const ErrorTerms& t) {
 nlohmann::json result_json(const FindResult& r) {
   nlohmann::json matches = nlohmann::json::array();
   for (const Match& m : r.matches) {
-    const Eigen::Vector3d t = m.box.center();
-    const Eigen::Quaterniond q(m.box.pose.linear());
-    matches.push_back({{"position", {t.x(), t.y(), t.z()}},
-                       {"quaternion", {q.w(), q.x(), q.y(), q.z()}},
-                       {"error", m.error},
-                       {"terms", terms_json(m.terms)},
-                       {"seed_index", m.seed_index},
-                       {"icp_iterations", m.icp_iterations}});
+    nlohmann::json match = detail::pose_to_json(m.box.pose);
+    match["error"] = m.error;
+    match["terms"] = terms_json(m.terms);
+    match["seed_index"] = m.seed_index;
+    match["icp_iterations"] = m.icp_iterations;
+    matches.push_back(match);
   }
   const SearchStats& s = r.stats;
   return {{"matches", matches},

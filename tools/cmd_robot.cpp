@@ -7,6 +7,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "geometry/detail/pose_json.h"
 #include "geometry/error.h"
 #include "geometry/pose.h"
 #include "pr2/pr2_kinematics.h"
@@ -34,15 +35,12 @@ GroupInfo require_group(const Pr2Kinematics& k, const std::string& name) {
 }
 
 void print_pose(const Eigen::Isometry3d& T, bool json) {
-  const Eigen::Vector3d p = T.translation();
-  const Eigen::Quaterniond q(T.linear());
   if (json) {
-    std::cout << nlohmann::json{{"position", {p.x(), p.y(), p.z()}},
-                                {"quaternion", {q.w(), q.x(), q.y(), q.z()}}}
-                     .dump()
-              << "\n";
+    std::cout << detail::pose_to_json(T).dump() << "\n";
     return;
   }
+  const Eigen::Vector3d p = T.translation();
+  const Eigen::Quaterniond q(T.linear());
   const Eigen::Vector3d rpy = rpy_degrees(T.linear());
   std::printf("position    %.6f %.6f %.6f m\n", p.x(), p.y(), p.z());
   std::printf("quaternion  %.6f %.6f %.6f %.6f (w x y z)\n", q.w(), q.x(), q.y(), q.z());
