@@ -1,0 +1,29 @@
+#pragma once
+// The OpenVDB grids behind the occupancy types, for code that stores or inspects them (the .lmk
+// file). Internal: not installed, since it exposes OpenVDB types.
+
+#include <openvdb/openvdb.h>
+
+#include "occupancy/distance_field.h"
+
+namespace lmk {
+
+struct DistanceField::Grids {
+  openvdb::FloatGrid::Ptr distance;  ///< unsigned distance at voxel centres, background = band
+  openvdb::Int32Grid::Ptr closest;   ///< index of the nearest point, background = -1
+  std::vector<Eigen::Vector3f> points;
+  double band = 0.0;
+};
+
+}  // namespace lmk
+
+#include "occupancy/empty_space.h"
+
+namespace lmk {
+
+struct EmptySpaceGrid::Grid {
+  openvdb::BoolGrid::Ptr grid;           ///< active voxels are observed free
+  std::vector<Eigen::Vector3f> centres;  ///< their centres, in the grid's iteration order
+};
+
+}  // namespace lmk

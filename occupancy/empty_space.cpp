@@ -1,0 +1,133 @@
+#include "occupancy/empty_space.h"
+
+#include <openvdb/math/DDA.h>
+#include <openvdb/math/Ray.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "geometry/error.h"
+#include "occupancy/detail/grids.h"
+#include "occupancy/detail/vdb_support.h"
+
+namespace lmk {
+namespace {
+
+namespace vdb = openvdb;
+
+// The part [t0, t1] of the segment a + t (b - a), t in [0, 1], inside the axis-aligned box of
+// half-sides `half` centred at the origin (slab method). False when they do not meet.
+bool clip_to_box(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& half,
+                 double& t0, double& t1) {
+  t0 = 0.0, t1 = 1.0;
+  const Eigen::Vector3d d = b - a;
+  for (int axis = 0; axis < 3; ++axis) {
+    if (std::abs(d[axis]) < 1e-12) {
+      if (std::abs(a[axis]) > half[axis]) return false;
+      continue;
+    }
+    double near = (-half[axis] - a[axis]) / d[axis], far = (half[axis] - a[axis]) / d[axis];
+    if (near > far) std::swap(near, far);
+    t0 = std::max(t0, near), t1 = std::min(t1, far);
+    if (t0 > t1) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+EmptySpaceGrid::EmptySpaceGrid() {
+  detail::initialize_openvdb();
+  auto g = std::make_shared<Grid>();
+  g->grid = vdb::BoolGrid::create(false);
+  g->grid->setTransform(vdb::math::Transform::createLinearTransform(0.005));
+  grid_ = std::move(g);
+}
+
+EmptySpaceGrid EmptySpaceGrid::observe(const std::vector<Eigen::Vector3f>& scene_points,
+                                       const Eigen::Vector3d& sensor_origin, const Box& box,
+                                       const DistanceField& surface,
+                                       const EmptySpaceSettings& settings) {
+  const double voxel = settings.voxel_size, margin = settings.surface_margin;
+  if (!(voxel > 0.0 && std::isfinite(voxel))) {
+    throw Error("empty space: voxel size must be positive and finite");
+  }
+  if (!(margin >= 0.0 && std::isfinite(margin))) {
+    throw Error("empty space: the surface margin must be finite and non-negative");
+  }
+  if (!box.is_valid()) throw Error("empty space: the box needs a finite pose and positive sides");
+  if (!sensor_origin.allFinite()) throw Error("empty space: the sensor origin is not finite");
+
+  detail::initialize_openvdb();
+  auto free = vdb::BoolGrid::create(false);
+  free->setTransform(vdb::math::Transform::createLinearTransform(voxel));
+  auto access = free->getAccessor();
+  const Eigen::Isometry3d T_box_capture = box.pose.inverse();
+  const Eigen::Vector3d origin_in_box = T_box_capture * sensor_origin;
+  const Eigen::Vector3d half = 0.5 * box.size;
+  const auto surface_sampler = surface.sampler();
+  const vdb::Vec3d eye(sensor_origin.x() / voxel + 0.5, sensor_origin.y() / voxel + 0.5,
+                       sensor_origin.z() / voxel + 0.5);  // DDA cells are [i, i+1): shift by half
+
+  for (const auto& point : scene_points) {
+    if (!point.allFinite()) continue;
+    const Eigen::Vector3d p = point.cast<double>();
+    double t0 = 0.0, t1 = 0.0;
+    if (!clip_to_box(origin_in_box, T_box_capture * p, half, t0, t1)) continue;
+    const double length = (p - sensor_origin).norm();
+    if (length <= margin) continue;
+    // Free space ends `margin` before the surface the ray hit.
+    t1 = std::min(t1, 1.0 - margin / length);
+    if (t0 >= t1) continue;
+    const Eigen::Vector3d d = (p - sensor_origin) / voxel;
+    const vdb::math::Ray<double> ray(eye, vdb::Vec3d(d.x(), d.y(), d.z()), t0, t1);
+    vdb::math::DDA<vdb::math::Ray<double>, 0> dda(ray, t0, t1);
+    do {
+      const vdb::Coord& ijk = dda.voxel();
+      if (access.isValueOn(ijk)) continue;
+      const Eigen::Vector3d centre = Eigen::Vector3d(ijk.x(), ijk.y(), ijk.z()) * voxel;
+      if (!box.contains(centre)) continue;
+      if (surface_sampler.distance(centre.cast<float>()) < margin) continue;
+      access.setValueOn(ijk, true);
+    } while (dda.step());
+  }
+
+  auto g = std::make_shared<Grid>();
+  g->grid = free;
+  g->grid->setName("empty");
+  for (auto it = free->cbeginValueOn(); it; ++it) {
+    const vdb::Coord c = it.getCoord();
+    g->centres.emplace_back(static_cast<float>(c.x() * voxel), static_cast<float>(c.y() * voxel),
+                            static_cast<float>(c.z() * voxel));
+  }
+  EmptySpaceGrid out;
+  out.grid_ = std::move(g);
+  return out;
+}
+
+double EmptySpaceGrid::voxel_size() const { return grid_->grid->voxelSize()[0]; }
+std::size_t EmptySpaceGrid::size() const { return grid_->centres.size(); }
+const std::vector<Eigen::Vector3f>& EmptySpaceGrid::centres() const { return grid_->centres; }
+
+bool EmptySpaceGrid::is_empty(const Eigen::Vector3f& p) const {
+  return p.allFinite() &&
+         grid_->grid->tree().isValueOn(detail::nearest_voxel(p.cast<double>(), voxel_size()));
+}
+
+const EmptySpaceGrid::Grid& EmptySpaceGrid::grid() const { return *grid_; }
+
+EmptySpaceGrid EmptySpaceGrid::from_grid(Grid grid) {
+  if (!grid.grid) throw Error("empty space: missing grid");
+  const double voxel = grid.grid->voxelSize()[0];
+  grid.centres.clear();
+  for (auto it = grid.grid->cbeginValueOn(); it; ++it) {
+    const vdb::Coord c = it.getCoord();
+    grid.centres.emplace_back(static_cast<float>(c.x() * voxel), static_cast<float>(c.y() * voxel),
+                              static_cast<float>(c.z() * voxel));
+  }
+  EmptySpaceGrid out;
+  out.grid_ = std::make_shared<Grid>(std::move(grid));
+  return out;
+}
+
+}  // namespace lmk

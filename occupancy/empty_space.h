@@ -1,0 +1,52 @@
+#pragma once
+// EmptySpaceGrid: the voxels of a landmark's box that the sensor observed to be free at capture.
+//
+// This is the paper's empty-space constraint made explicit. A voxel is observed free when a sensor
+// ray crossed it before hitting a surface. Voxels behind a surface were occluded: they are
+// *unknown*, not empty, and are not stored, so a search never penalises a scene point there.
+// Voxels within a margin of the landmark's own points are left out too: depth noise scatters the
+// surface over a few millimetres, and that must not count as intrusion.
+
+#include <Eigen/Geometry>
+#include <memory>
+#include <vector>
+
+#include "geometry/box.h"
+#include "occupancy/distance_field.h"
+
+namespace lmk {
+
+struct EmptySpaceSettings {
+  double voxel_size = 0.005;     ///< voxel side, m
+  double surface_margin = 0.01;  ///< free space stops this far before each ray's end point, m
+};
+
+class EmptySpaceGrid {
+ public:
+  EmptySpaceGrid();  ///< nothing observed: no voxel is empty
+
+  /// Casts a ray from `sensor_origin` to every point of `scene_points` (the whole capture scene, in
+  /// the capture frame: rays that pass through the box and end behind it count) and keeps the
+  /// voxels inside `box` that a ray crossed up to `surface_margin` before its end point, and that
+  /// lie at least `surface_margin` from every point of `surface`. Throws lmk::Error for a
+  /// non-positive voxel, a negative margin or an invalid box.
+  static EmptySpaceGrid observe(const std::vector<Eigen::Vector3f>& scene_points,
+                                const Eigen::Vector3d& sensor_origin, const Box& box,
+                                const DistanceField& surface, const EmptySpaceSettings& settings);
+
+  double voxel_size() const;
+  std::size_t size() const;  ///< number of empty voxels
+  /// The empty voxels' centres, in a deterministic order (by voxel coordinate).
+  const std::vector<Eigen::Vector3f>& centres() const;
+  /// Whether `p` lies in an empty voxel. Not for hot loops: use centres() or the grid.
+  bool is_empty(const Eigen::Vector3f& p) const;
+
+  struct Grid;  ///< the OpenVDB grid, for storage (occupancy/detail/grids.h)
+  const Grid& grid() const;
+  static EmptySpaceGrid from_grid(Grid grid);
+
+ private:
+  std::shared_ptr<const Grid> grid_;
+};
+
+}  // namespace lmk

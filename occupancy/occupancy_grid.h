@@ -1,0 +1,41 @@
+#pragma once
+// OccupancyGrid: which voxels of a scene hold at least one point. A landmark's empty voxels, moved
+// into a scene, must land on unoccupied voxels; this grid answers that in O(1) per voxel.
+//
+// Thread safety: as DistanceField, build a Sampler per thread.
+
+#include <Eigen/Core>
+#include <memory>
+#include <vector>
+
+namespace lmk {
+
+class OccupancyGrid {
+ public:
+  OccupancyGrid();  ///< nothing occupied
+  /// The voxels (side `voxel_size`, m) holding a finite point of `points`. Throws lmk::Error for a
+  /// non-positive voxel.
+  OccupancyGrid(const std::vector<Eigen::Vector3f>& points, double voxel_size);
+
+  double voxel_size() const;
+  std::size_t occupied_voxels() const;
+
+  class Sampler {
+   public:
+    explicit Sampler(const OccupancyGrid& grid);
+    ~Sampler();
+    Sampler(Sampler&&) noexcept;
+    bool occupied(const Eigen::Vector3f& p) const;
+
+   private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+  };
+  Sampler sampler() const { return Sampler(*this); }
+
+ private:
+  struct Grid;
+  std::shared_ptr<const Grid> grid_;
+};
+
+}  // namespace lmk

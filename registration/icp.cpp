@@ -1,0 +1,123 @@
+#include "registration/icp.h"
+
+#include <Eigen/Cholesky>
+#include <cmath>
+
+#include "geometry/error.h"
+
+namespace lmk {
+
+bool KdTreeTarget::nearest(const Eigen::Vector3f& query, Eigen::Vector3f& point,
+                           Eigen::Vector3f& normal) const {
+  const auto n = tree_.nearest(query);
+  if (!n) return false;
+  point = cloud_.points[n->index];
+  if (cloud_.has_normals()) normal = cloud_.normals[n->index];
+  return true;
+}
+
+bool DistanceFieldTarget::nearest(const Eigen::Vector3f& query, Eigen::Vector3f& point,
+                                  Eigen::Vector3f& normal) const {
+  const int index = sampler_.closest(query);
+  if (index < 0) return false;
+  point = field_.points()[static_cast<std::size_t>(index)];
+  if (normals_) normal = (*normals_)[static_cast<std::size_t>(index)];
+  return true;
+}
+
+namespace {
+
+void check(const IcpSettings& s, const IcpTarget& target) {
+  if (s.max_iterations < 1) throw Error("ICP: at least one iteration is needed");
+  if (!(s.max_correspondence_distance > 0.0)) {
+    throw Error("ICP: the correspondence distance must be positive");
+  }
+  if (!(s.loss.scale > 0.0 && std::isfinite(s.loss.scale))) {
+    throw Error("ICP: the robust loss scale must be positive and finite");
+  }
+  if (s.mode == IcpMode::point_to_plane && !target.has_normals()) {
+    throw Error("ICP: point-to-plane needs target normals");
+  }
+}
+
+// One Gauss-Newton system for a small motion (omega, t) applied on the left: q' = q + omega x q +
+// t.
+struct NormalEquations {
+  Eigen::Matrix<double, 6, 6> JtJ = Eigen::Matrix<double, 6, 6>::Zero();
+  Eigen::Matrix<double, 6, 1> Jtr = Eigen::Matrix<double, 6, 1>::Zero();
+  double abs_residual_sum = 0.0;
+  std::size_t count = 0;
+
+  void add(const Eigen::Matrix<double, 6, 1>& J, double r, double w) {
+    JtJ += w * J * J.transpose();
+    Jtr += w * J * r;
+  }
+};
+
+}  // namespace
+
+IcpResult icp(const std::vector<Eigen::Vector3f>& source, const IcpTarget& target,
+              const Eigen::Isometry3d& T_target_source, const IcpSettings& settings) {
+  check(settings, target);
+  IcpResult result;
+  result.T_target_source = T_target_source;
+  const double max_d2 = settings.max_correspondence_distance * settings.max_correspondence_distance;
+  const bool to_plane = settings.mode == IcpMode::point_to_plane;
+
+  for (int iteration = 0; iteration <= settings.max_iterations; ++iteration) {
+    NormalEquations eq;
+    const Eigen::Isometry3f T = result.T_target_source.cast<float>();
+    Eigen::Vector3f p, n;
+    for (const auto& s : source) {
+      if (!s.allFinite()) continue;
+      const Eigen::Vector3f q = T * s;
+      if (!target.nearest(q, p, n)) continue;
+      const Eigen::Vector3d qd = q.cast<double>(), pd = p.cast<double>();
+      if ((qd - pd).squaredNorm() > max_d2) continue;
+      if (to_plane) {
+        if (!n.allFinite()) continue;
+        const Eigen::Vector3d nd = n.cast<double>();
+        const double r = nd.dot(qd - pd);
+        Eigen::Matrix<double, 6, 1> J;
+        J << qd.cross(nd), nd;
+        eq.add(J, r, settings.loss.weight(r));
+        eq.abs_residual_sum += std::abs(r);
+      } else {
+        const Eigen::Vector3d r = qd - pd;
+        const double w = settings.loss.weight(r.norm());
+        // d(q + omega x q + t)/d(omega, t) = [-[q]x, I], row by row.
+        for (int axis = 0; axis < 3; ++axis) {
+          Eigen::Matrix<double, 6, 1> J = Eigen::Matrix<double, 6, 1>::Zero();
+          J.head<3>() = qd.cross(Eigen::Vector3d::Unit(axis));
+          J(3 + axis) = 1.0;
+          eq.add(J, r[axis], w);
+        }
+        eq.abs_residual_sum += r.norm();
+      }
+      ++eq.count;
+    }
+    result.inliers = eq.count;
+    result.final_error = eq.count > 0 ? eq.abs_residual_sum / static_cast<double>(eq.count)
+                                      : std::numeric_limits<double>::infinity();
+    // The last pass only measures the error at the final pose.
+    if (iteration == settings.max_iterations || result.converged || eq.count < 6) break;
+
+    // Levenberg-style damping keeps planar or linear targets (rank-deficient) from diverging.
+    Eigen::Matrix<double, 6, 6> A = eq.JtJ;
+    A.diagonal().array() += 1e-9 + 1e-6 * A.diagonal().array();
+    const Eigen::Matrix<double, 6, 1> delta = A.ldlt().solve(-eq.Jtr);
+    if (!delta.allFinite()) break;
+    const Eigen::Vector3d omega = delta.head<3>(), t = delta.tail<3>();
+    Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
+    if (omega.norm() > 0.0)
+      step.linear() = Eigen::AngleAxisd(omega.norm(), omega.normalized()).matrix();
+    step.translation() = t;
+    result.T_target_source = step * result.T_target_source;
+    result.iterations = iteration + 1;
+    result.converged =
+        t.norm() < settings.translation_tolerance && omega.norm() < settings.rotation_tolerance;
+  }
+  return result;
+}
+
+}  // namespace lmk

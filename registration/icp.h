@@ -1,0 +1,88 @@
+#pragma once
+// Iterative closest point: the rigid motion that best aligns a source point set to a target, by
+// Gauss-Newton on point-to-point or point-to-plane residuals, reweighted by a robust kernel.
+//
+// The target is found either through a k-d tree (exact nearest neighbours) or through a
+// DistanceField's closest-point grid (O(1) per query, approximate within a voxel). Both are
+// const and thread-safe: any number of ICP runs may share one target.
+
+#include <Eigen/Geometry>
+#include <limits>
+#include <vector>
+
+#include "geometry/kdtree.h"
+#include "geometry/point_cloud.h"
+#include "occupancy/distance_field.h"
+#include "registration/robust_loss.h"
+
+namespace lmk {
+
+enum class IcpMode { point_to_point, point_to_plane };
+
+struct IcpSettings {
+  IcpMode mode = IcpMode::point_to_plane;
+  int max_iterations = 30;
+  /// Correspondences farther apart than this are dropped, m.
+  double max_correspondence_distance = std::numeric_limits<double>::infinity();
+  RobustLoss loss;  ///< none by default
+  /// Converged when an iteration moves the source by less than these.
+  double translation_tolerance = 1e-5;  ///< m
+  double rotation_tolerance = 1e-5;     ///< rad
+};
+
+struct IcpResult {
+  Eigen::Isometry3d T_target_source = Eigen::Isometry3d::Identity();
+  int iterations = 0;
+  bool converged = false;
+  std::size_t inliers = 0;  ///< correspondences used in the last iteration
+  /// Mean absolute residual of those correspondences at the returned pose, m (+inf with none).
+  double final_error = std::numeric_limits<double>::infinity();
+};
+
+/// What ICP aligns to: the nearest target point of a query, with its normal.
+class IcpTarget {
+ public:
+  virtual ~IcpTarget() = default;
+  /// False when there is no target point (empty target, or beyond a distance field's band).
+  virtual bool nearest(const Eigen::Vector3f& query, Eigen::Vector3f& point,
+                       Eigen::Vector3f& normal) const = 0;
+  virtual bool has_normals() const = 0;
+};
+
+/// Exact nearest neighbours. `cloud` and `tree` must outlive the target; normals are optional.
+class KdTreeTarget : public IcpTarget {
+ public:
+  KdTreeTarget(const PointCloud& cloud, const KdTree& tree) : cloud_(cloud), tree_(tree) {}
+  bool nearest(const Eigen::Vector3f& query, Eigen::Vector3f& point,
+               Eigen::Vector3f& normal) const override;
+  bool has_normals() const override { return cloud_.has_normals(); }
+
+ private:
+  const PointCloud& cloud_;
+  const KdTree& tree_;
+};
+
+/// Closest points through a distance field's closest-point grid. `normals`, when given, are those
+/// of field.points(), index for index. Not thread-safe itself (it owns a grid sampler): build one
+/// per thread; the field may be shared.
+class DistanceFieldTarget : public IcpTarget {
+ public:
+  DistanceFieldTarget(const DistanceField& field, const std::vector<Eigen::Vector3f>* normals)
+      : field_(field), sampler_(field), normals_(normals) {}
+  bool nearest(const Eigen::Vector3f& query, Eigen::Vector3f& point,
+               Eigen::Vector3f& normal) const override;
+  bool has_normals() const override { return normals_ != nullptr; }
+
+ private:
+  const DistanceField& field_;
+  DistanceField::Sampler sampler_;
+  const std::vector<Eigen::Vector3f>* normals_;
+};
+
+/// Aligns `source` (points, and for point-to-plane nothing more: the target's normals are used)
+/// to `target`, starting from `T_target_source`. Throws lmk::Error for bad settings, or for
+/// point-to-plane against a target without normals.
+IcpResult icp(const std::vector<Eigen::Vector3f>& source, const IcpTarget& target,
+              const Eigen::Isometry3d& T_target_source, const IcpSettings& settings = {});
+
+}  // namespace lmk
