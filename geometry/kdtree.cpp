@@ -83,14 +83,25 @@ std::optional<Neighbor> KdTree::nearest(const Eigen::Vector3f& query) const {
 
 std::vector<Neighbor> KdTree::radius(const Eigen::Vector3f& query, float radius) const {
   std::vector<Neighbor> out;
-  if (!(radius >= 0.0f) || impl_->points.empty()) return out;
+  radius_search(query, radius, /*sorted=*/true, out);
+  return out;
+}
+
+void KdTree::radius_unsorted(const Eigen::Vector3f& query, float radius,
+                             std::vector<Neighbor>& out) const {
+  radius_search(query, radius, /*sorted=*/false, out);
+}
+
+void KdTree::radius_search(const Eigen::Vector3f& query, float radius, bool sorted,
+                           std::vector<Neighbor>& out) const {
+  out.clear();
+  if (!(radius >= 0.0f) || impl_->points.empty()) return;
   std::vector<std::pair<Index, float>> matches;
   // nanoflann's L2_Simple metric works in squared distances.
   impl_->tree->radiusSearch(query.data(), radius * radius, matches,
-                            nanoflann::SearchParams(32, 0.0f, true));
+                            nanoflann::SearchParams(32, 0.0f, sorted));
   out.reserve(matches.size());
   for (const auto& [i, d2] : matches) out.push_back({impl_->source_index[i], d2});
-  return out;
 }
 
 }  // namespace lmk

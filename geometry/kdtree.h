@@ -40,8 +40,13 @@ class KdTree {
   std::optional<Neighbor> nearest(const Eigen::Vector3f& query) const;
   /// Every point strictly closer than `radius` (metres), closest first.
   std::vector<Neighbor> radius(const Eigen::Vector3f& query, float radius) const;
+  /// The same points in no particular order (faster: no sort), into `out`.
+  void radius_unsorted(const Eigen::Vector3f& query, float radius,
+                       std::vector<Neighbor>& out) const;
 
  private:
+  void radius_search(const Eigen::Vector3f& query, float radius, bool sorted,
+                     std::vector<Neighbor>& out) const;
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

@@ -5,6 +5,8 @@
 #include <optional>
 
 #include "geometry/error.h"
+#include "landmark/detail/grid_metrics.h"
+#include "landmark/scene_index.h"
 
 namespace lmk {
 namespace {
@@ -28,7 +30,7 @@ ErrorTerms candidate_error(const SceneView& scene, const LandmarkView& landmark,
   std::vector<char> visited(landmark.points.size(), 0);
   const Eigen::Isometry3f T_capture_scene = T_scene_capture.inverse().cast<float>();
   for (Index i : in_box) {
-    const auto nearest = landmark.tree.nearest(T_capture_scene * scene.points.points[i]);
+    const auto nearest = landmark.tree.nearest(T_capture_scene * scene.points().points[i]);
     if (!nearest) continue;
     terms.scene_to_landmark_sum += std::sqrt(nearest->squared_distance);
     ++terms.scene_to_landmark_count;
@@ -36,8 +38,8 @@ ErrorTerms candidate_error(const SceneView& scene, const LandmarkView& landmark,
   }
 
   std::optional<KdTree> box_tree;
-  if (rule.in_box_only) box_tree.emplace(scene.points.select(in_box));
-  const KdTree& target = box_tree ? *box_tree : scene.tree;
+  if (rule.in_box_only) box_tree.emplace(scene.points().select(in_box));
+  const KdTree& target = box_tree ? *box_tree : scene.tree();
   const Eigen::Isometry3f T = T_scene_capture.cast<float>();
   for (std::size_t j = 0; j < landmark.points.size(); ++j) {
     if (visited[j]) continue;
@@ -67,6 +69,9 @@ ErrorTerms rapid_metric(const SceneView& scene, const LandmarkView& landmark,
 
 }  // namespace
 
+const PointCloud& SceneView::points() const { return index.fine(); }
+const KdTree& SceneView::tree() const { return index.fine_tree(); }
+
 void ErrorTerms::finish() {
   const std::size_t count = scene_to_landmark_count + landmark_to_scene_count;
   error = count == 0 ? std::numeric_limits<double>::infinity()
@@ -77,8 +82,8 @@ Indices scene_points_in_box(const SceneView& scene, const Box& box) {
   // Every point of the box lies within its half-diagonal of the centre.
   const float radius = static_cast<float>(0.5 * box.size.norm()) * (1.0f + 1e-6f);
   Indices out;
-  for (const Neighbor& n : scene.tree.radius(box.center().cast<float>(), radius)) {
-    if (box.contains(scene.points.points[n.index])) out.push_back(n.index);
+  for (const Neighbor& n : scene.tree().radius(box.center().cast<float>(), radius)) {
+    if (box.contains(scene.points().points[n.index])) out.push_back(n.index);
   }
   std::sort(out.begin(), out.end());
   return out;
@@ -89,11 +94,19 @@ const std::vector<ErrorMetric>& error_metrics() {
       {"paper",
        "Algorithm 2 of Huang & Cakmak: mean of scene->landmark distances over the scene points in "
        "the box and landmark->scene distances (whole scene) over the unvisited landmark points",
-       paper_metric},
+       paper_metric, 0.0055},
       {"rapid",
        "the authors' code: as 'paper', but the landmark->scene term searches only the scene points "
        "in the box and counts only distances under 5 cm",
-       rapid_metric},
+       rapid_metric, 0.0055},
+      {"vdb",
+       "as 'paper', with grid lookups: scene points in the box against the landmark's distance "
+       "field, unvisited landmark points against the scene's, both capped at their bands",
+       vdb_metric, 0.0055},
+      {"visibility",
+       "visibility-aware: every landmark point's distance to the scene surface (capped), plus the "
+       "landmark's observed-empty voxels that the scene occupies; occluded space is not penalised",
+       visibility_metric, 0.006},
   };
   return metrics;
 }

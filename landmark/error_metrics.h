@@ -8,12 +8,14 @@
 // code; distances are unchanged because the motion is rigid.
 
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
 #include "geometry/box.h"
 #include "geometry/kdtree.h"
 #include "geometry/point_cloud.h"
+#include "occupancy/distance_field.h"
 
 namespace lmk {
 
@@ -26,6 +28,13 @@ struct ErrorTerms {
       0.0;  ///< sum of landmark-point -> nearest-scene-point distances, m
   std::size_t landmark_to_scene_count = 0;
   std::size_t scene_points_in_box = 0;  ///< scene points inside the candidate box
+  /// Grid metrics: the fraction of landmark points with a scene surface within the support
+  /// distance (NaN for the paper's metrics, which do not measure it).
+  double coverage = std::numeric_limits<double>::quiet_NaN();
+  std::size_t empty_space_probes = 0;      ///< observed-empty voxels of the landmark tested
+  std::size_t empty_space_violations = 0;  ///< of those, voxels the scene occupies
+  /// Mean distance of the violating voxels to the landmark surface, m (0 without violations).
+  double empty_space_violation_mean = 0.0;
   /// (sum of both terms) / (count of both terms), m. When no term was counted there is no evidence
   /// of a match, and the error is +infinity: defined, never NaN.
   double error = 0.0;
@@ -33,17 +42,22 @@ struct ErrorTerms {
   void finish();  ///< computes `error` from the sums and counts
 };
 
+class SceneIndex;
+struct Landmark;
+
 /// The scene, indexed once per search.
 struct SceneView {
-  const PointCloud& points;
-  const KdTree& tree;
+  const SceneIndex& index;
+  const PointCloud& points() const;  ///< at the paper's leaf (built on first use)
+  const KdTree& tree() const;
 };
 
 /// The landmark in its capture frame, indexed once per landmark.
 struct LandmarkView {
   const PointCloud& points;
   const KdTree& tree;
-  const Box& box;  ///< the capture box, in the capture frame
+  const Box& box;            ///< the capture box, in the capture frame
+  const Landmark& landmark;  ///< its grids
 };
 
 using ErrorMetricFunction =
@@ -54,9 +68,11 @@ struct ErrorMetric {
   std::string name;
   std::string description;
   ErrorMetricFunction evaluate;
+  /// The error threshold used when a search sets none, m: each metric has its own scale.
+  double default_threshold;
 };
 
-/// Every registered metric, in a fixed order: "paper", "rapid".
+/// Every registered metric, in a fixed order: "paper", "rapid", "vdb", "visibility".
 const std::vector<ErrorMetric>& error_metrics();
 /// The metric called `name`; throws lmk::Error listing the known names otherwise.
 const ErrorMetric& find_error_metric(const std::string& name);

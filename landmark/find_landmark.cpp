@@ -8,6 +8,7 @@
 #include "geometry/error.h"
 #include "geometry/filters.h"
 #include "geometry/voxel_grid.h"
+#include "landmark/detail/fast_search.h"
 #include "landmark/detail/reference_search.h"
 #include "landmark/non_max_suppression.h"
 
@@ -28,22 +29,37 @@ void check_settings(const FindSettings& s) {
     for (const auto& m : methods) known += (known.empty() ? "" : ", ") + m;
     throw Error("unknown search method '" + s.method + "' (known: " + known + ")");
   }
-  find_error_metric(s.metric);  // throws for an unknown name
+  if (!s.metric.empty()) find_error_metric(s.metric);  // throws for an unknown name
   if (!positive(s.leaf_size)) throw Error("find: leaf size must be positive and finite");
+  if (!positive(s.coarse_leaf)) throw Error("find: coarse leaf must be positive and finite");
+  if (s.orientations != "upright" && s.orientations != "full") {
+    throw Error("find: orientations must be 'upright' or 'full', not '" + s.orientations + "'");
+  }
+  if (!(s.max_tilt >= 0.0) || !std::isfinite(s.max_tilt)) {
+    throw Error("find: the maximum tilt must be finite and non-negative");
+  }
+  if (!(s.min_coverage >= 0.0 && s.min_coverage <= 1.0)) {
+    throw Error("find: the minimum coverage must be in [0, 1]");
+  }
+  if (s.poses_per_seed < 1 || s.max_candidates == 0 || s.max_refined == 0) {
+    throw Error("find: poses per seed, candidates and refined candidates must be at least 1");
+  }
+  if (!(s.prune_error > 0.0)) throw Error("find: the prune error must be positive");
   if (!(s.sample_fraction > 0.0 && s.sample_fraction <= 1.0)) {
     throw Error("find: sample fraction must be in (0, 1]");
   }
   if (s.max_seeds == 0) throw Error("find: max seeds must be at least 1");
   if (s.icp_iterations < 1) throw Error("find: ICP iterations must be at least 1");
   if (!positive(s.nms_radius)) throw Error("find: NMS radius must be positive and finite");
-  if (!(s.threshold > 0.0)) throw Error("find: threshold must be positive");
+  if (s.threshold && !(*s.threshold > 0.0)) throw Error("find: threshold must be positive");
   if (s.threads < 0) throw Error("find: threads must be 0 (all cores) or more");
   if (s.work_volume && !s.work_volume->is_valid()) {
     throw Error("find: the work volume needs a finite pose and positive sides");
   }
 }
 
-// Steps 5 and 6: non-max suppression on box centres, then the error threshold.
+// Steps 5 and 6: non-max suppression on box centres, then the error threshold (and, for metrics
+// that measure it, the coverage).
 std::vector<Match> select(std::vector<Match> candidates, const FindSettings& s,
                           SearchStats& stats) {
   std::vector<Eigen::Vector3d> centres;
@@ -56,56 +72,89 @@ std::vector<Match> select(std::vector<Match> candidates, const FindSettings& s,
   stats.after_nms = kept.size();
   std::vector<Match> matches;
   for (std::size_t i : kept) {
-    if (candidates[i].error < s.threshold) matches.push_back(std::move(candidates[i]));
+    const Match& m = candidates[i];
+    if (!(m.error < stats.threshold)) continue;
+    if (!std::isnan(m.terms.coverage) && m.terms.coverage < s.min_coverage) continue;
+    matches.push_back(std::move(candidates[i]));
   }
   return matches;
 }
 
 }  // namespace
 
-std::vector<std::string> search_methods() { return {"reference"}; }
+std::vector<std::string> search_methods() { return {"fast", "reference"}; }
+
+SceneSettings scene_settings(const FindSettings& s) {
+  SceneSettings scene;
+  scene.work_volume = s.work_volume;
+  scene.leaf_size = s.leaf_size;
+  scene.coarse_leaf = std::max(s.coarse_leaf, s.leaf_size);
+  scene.field_band = 2.0 * scene.coarse_leaf;
+  scene.up = s.up;
+  scene.base_frame = s.base_frame;
+  return scene;
+}
 
 FindResult find_landmark(const PointCloud& scene, const Landmark& landmark,
+                         const FindSettings& settings) {
+  check_settings(settings);
+  landmark.validate("landmark '" + landmark.name + "'");
+  const SceneIndex index(scene, scene_settings(settings));
+  FindResult result = find_landmark(index, landmark, settings);
+  result.stats.seconds_preprocess += index.seconds_to_build();
+  result.stats.seconds_total += index.seconds_to_build();
+  result.stats.scene_points = scene.count_finite();
+  return result;
+}
+
+FindResult find_landmark(const SceneIndex& index, const Landmark& landmark,
                          const FindSettings& settings) {
   check_settings(settings);
   landmark.validate("landmark '" + landmark.name + "'");
   const auto start = Clock::now();
   FindResult result;
   SearchStats& stats = result.stats;
-  stats.scene_points = scene.count_finite();
+  const bool fast = settings.method == "fast";
+  stats.metric = settings.metric.empty() ? (fast ? "visibility" : "paper") : settings.metric;
+  const ErrorMetric& metric = find_error_metric(stats.metric);
+  stats.threshold = settings.threshold ? *settings.threshold : metric.default_threshold;
+  stats.scene_points = index.input_points();
 
-  // Steps 1-2: crop to the work volume, voxel-downsample.
-  const PointCloud cropped =
-      settings.work_volume ? crop(scene, *settings.work_volume) : remove_non_finite(scene);
-  if (cropped.empty()) {
-    throw Error(settings.work_volume ? "find: the work volume holds no scene point"
-                                     : "find: the scene holds no finite point");
-  }
-  const PointCloud points = voxel_downsample(cropped, settings.leaf_size);
+  // Seeds: a seeded random sample of the points the method starts from (step 3).
+  const PointCloud& points = fast ? index.coarse() : index.fine();
   stats.scene_points_used = points.size();
-  const KdTree scene_tree(points);
-  const KdTree landmark_tree(landmark.points);
-
-  // Step 3: seeded random sample of a fraction of the points, capped.
   const auto wanted = static_cast<std::size_t>(
       std::ceil(settings.sample_fraction * static_cast<double>(points.size())));
   const Indices seeds =
       random_sample_indices(points.size(), std::min(settings.max_seeds, wanted), settings.seed);
   stats.seeds = seeds.size();
+  const KdTree landmark_tree(landmark.points);
   stats.seconds_preprocess = seconds_since(start);
 
   // Step 4, in an arena of the requested size: no process-wide thread setting.
   const auto search_start = Clock::now();
-  const detail::SearchInput input{points,
-                                  landmark,
-                                  SceneView{points, scene_tree},
-                                  LandmarkView{landmark.points, landmark_tree, landmark.box},
-                                  seeds,
-                                  find_error_metric(settings.metric),
-                                  settings};
+  const detail::SearchInput input{
+      index,
+      points,
+      landmark,
+      SceneView{index},
+      LandmarkView{landmark.points, landmark_tree, landmark.box, landmark},
+      seeds,
+      metric,
+      settings};
   std::vector<Match> candidates;
   tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
-  arena.execute([&] { candidates = detail::reference_candidates(input); });
+  arena.execute([&] {
+    if (fast) {
+      detail::FastSearchStats fast_stats;
+      candidates = detail::fast_candidates(input, fast_stats);
+      stats.poses = fast_stats.poses;
+      stats.clusters = fast_stats.clusters;
+      stats.refined = fast_stats.refined;
+    } else {
+      candidates = detail::reference_candidates(input);
+    }
+  });
   for (const Match& m : candidates)
     stats.icp_iterations += static_cast<std::size_t>(m.icp_iterations);
   stats.seconds_search = seconds_since(search_start);
@@ -116,7 +165,8 @@ FindResult find_landmark(const PointCloud& scene, const Landmark& landmark,
     for (Match& m : result.matches) {
       m.aligned_points = landmark.points;
       for (auto& p : m.aligned_points.points) p = (m.T_scene_capture.cast<float>() * p);
-      m.aligned_points.T_cloud_sensor = scene.T_cloud_sensor;
+      m.aligned_points.normals.clear();
+      m.aligned_points.T_cloud_sensor = index.T_scene_sensor();
     }
   }
   stats.seconds_select = seconds_since(select_start);

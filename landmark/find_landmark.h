@@ -1,8 +1,11 @@
 #pragma once
 // FindLandmark: every instance of a landmark in a scene, with its 6-DoF pose.
 //
-// Method "reference" is Algorithm 1 of Huang & Cakmak exactly as published, on PCL's ICP as the
-// authors ran it; it is the baseline every other method is measured against.
+// Method "fast" (the default) seeds full 6-DoF poses by point pair voting, aligns coarse to fine on
+// grids, refines the finalists with Ceres and scores with the visibility-aware metric
+// (detail/fast_search.h). Method "reference" is Algorithm 1 of Huang & Cakmak exactly as
+// published, on PCL's ICP as the authors ran it; it is the baseline every other method is
+// measured against.
 
 #include <functional>
 #include <optional>
@@ -12,21 +15,45 @@
 #include "geometry/box.h"
 #include "landmark/error_metrics.h"
 #include "landmark/landmark.h"
+#include "landmark/scene_index.h"
 
 namespace lmk {
 
 struct FindSettings {
-  std::string method = "reference";  ///< search method: "reference"
-  std::string metric = "paper";      ///< error metric, by registry name (error_metrics.h)
+  std::string method = "fast";  ///< search method: "fast" or "reference"
+  /// Error metric, by registry name (error_metrics.h). Empty: the method's own, "visibility" for
+  /// fast and "paper" for reference.
+  std::string metric;
   /// Step 1: crop the scene to this box (scene frame) first; nothing means the whole scene.
   std::optional<Box> work_volume;
   double leaf_size = 0.005;       ///< step 2: scene voxel leaf, m
+  double coarse_leaf = 0.01;      ///< fast: leaf of the seeds, voting and coarse alignment, m
   double sample_fraction = 0.05;  ///< step 3: fraction of the downsampled points used as seeds
   std::size_t max_seeds = 1000;   ///< step 3: at most this many seeds
   std::uint64_t seed = 0;         ///< step 3: random seed of the sampling
-  int icp_iterations = 50;        ///< step 4: ICP iterations per seed (PCL's ICP, as the authors)
+  int icp_iterations = 50;        ///< reference, step 4: ICP iterations per seed (PCL's ICP)
   double nms_radius = 0.03;       ///< step 5: non-max suppression radius on box centres, m
-  double threshold = 0.0055;      ///< step 6: matches need an error below this, m
+  /// Step 6: matches need an error below this, m. Unset: the metric's default threshold.
+  std::optional<double> threshold;
+  /// Fast: matches need at least this fraction of their points supported by the scene (only for
+  /// metrics that measure coverage).
+  double min_coverage = 0.5;
+
+  // Orientation (fast). "upright": any rotation about the up axis, and tilts of the landmark's
+  // capture up axis up to max_tilt; "full": all of SO(3).
+  std::string orientations = "upright";
+  double max_tilt = 1.0471975511965976;  ///< rad (60 degrees)
+  /// The scene's up axis, scene frame. Unset: default_up() (the sensor's -y, or +z in a base
+  /// frame).
+  std::optional<Eigen::Vector3d> up;
+  bool base_frame = false;  ///< the scene is expressed in a robot base frame
+
+  // Coarse to fine (fast).
+  int poses_per_seed = 3;            ///< best-voted poses kept per seed
+  std::size_t max_candidates = 48;   ///< pose clusters aligned coarsely
+  double prune_error = 0.015;        ///< coarse fit beyond which a candidate is dropped, m
+  std::size_t max_refined = 16;      ///< candidates refined fully
+  bool refine = true;                ///< Ceres robust refinement of the finalists
   bool keep_aligned_points = false;  ///< return each match's landmark points in the scene frame
   int threads = 0;                   ///< worker threads; 0 uses every core
   /// Called after each seed with (seeds done, seeds in all), possibly from several threads at once.
@@ -44,6 +71,7 @@ struct Match {
   Eigen::Vector3f seed_point;  ///< that seed's scene point
   int icp_iterations = 0;
   bool icp_converged = false;
+  double votes = 0.0;         ///< fast: point-pair votes of the pose cluster this match came from
   PointCloud aligned_points;  ///< only with keep_aligned_points
 };
 
@@ -57,6 +85,11 @@ struct SearchStats {
   std::size_t seeds = 0;
   std::size_t icp_iterations = 0;  ///< summed over seeds
   std::size_t after_nms = 0;       ///< candidates left by non-max suppression
+  std::size_t poses = 0;           ///< fast: poses voted by the seeds
+  std::size_t clusters = 0;        ///< fast: pose clusters aligned coarsely
+  std::size_t refined = 0;         ///< fast: candidates refined fully
+  double threshold = 0.0;          ///< the error threshold applied, m
+  std::string metric;              ///< the metric applied
 };
 
 struct FindResult {
@@ -69,6 +102,15 @@ struct FindResult {
 /// scene holds no finite point (after the work-volume crop).
 FindResult find_landmark(const PointCloud& scene, const Landmark& landmark,
                          const FindSettings& settings = {});
+
+/// The same in a scene indexed once (scene_settings(settings) should have built it), so that
+/// several landmarks, or several threads, can share the preprocessing. The index's own settings
+/// (work volume, leaves, up axis) win over those in `settings`.
+FindResult find_landmark(const SceneIndex& scene, const Landmark& landmark,
+                         const FindSettings& settings = {});
+
+/// The scene settings a FindSettings implies.
+SceneSettings scene_settings(const FindSettings& settings);
 
 /// The search methods find_landmark accepts.
 std::vector<std::string> search_methods();

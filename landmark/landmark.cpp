@@ -5,6 +5,8 @@
 
 #include "geometry/error.h"
 #include "geometry/filters.h"
+#include "geometry/kdtree.h"
+#include "geometry/normals.h"
 #include "geometry/pose.h"
 #include "geometry/voxel_grid.h"
 
@@ -20,6 +22,15 @@ std::string format_size(const Eigen::Vector3d& size) {
 void check_settings(const CaptureSettings& s, const std::string& what) {
   if (!(s.leaf_size > 0.0) || !std::isfinite(s.leaf_size)) {
     throw Error(what + ": leaf size must be positive and finite");
+  }
+  if (!(s.distance_band >= s.leaf_size) || !std::isfinite(s.distance_band)) {
+    throw Error(what + ": the distance band must be finite and at least the leaf size");
+  }
+  if (!(s.empty_space_margin >= 0.0) || !std::isfinite(s.empty_space_margin)) {
+    throw Error(what + ": the empty-space margin must be finite and non-negative");
+  }
+  if (s.up && (!s.up->allFinite() || s.up->norm() < 1e-9)) {
+    throw Error(what + ": the up axis must be a finite non-zero vector");
   }
   if (!(s.max_box_side > 0.0) || !std::isfinite(s.max_box_side)) {
     throw Error(what + ": maximum box side must be positive and finite");
@@ -51,6 +62,9 @@ void Landmark::validate(const std::string& what) const {
   check_settings(settings, what);
   check_box(box, settings, what);
   if (!sensor_origin.allFinite()) throw Error(what + ": sensor origin is not finite");
+  if (!up.allFinite() || std::abs(up.norm() - 1.0) > 1e-6) {
+    throw Error(what + ": the up axis must be a finite unit vector");
+  }
   if (points.empty()) throw Error(what + ": landmark has no points");
   if (points.count_finite() != points.size()) {
     throw Error(what + ": landmark points must all be finite");
@@ -84,7 +98,29 @@ Landmark capture(const PointCloud& scene, const Box& box, const std::string& nam
   landmark.box = box;
   landmark.sensor_origin = scene.sensor_origin();
   landmark.settings = settings;
+  landmark.up = settings.up ? settings.up->normalized()
+                            : default_up(scene.T_cloud_sensor, settings.base_frame);
+  const PointCloud finite = remove_non_finite(scene);
+  prepare_landmark(landmark, &finite.points);
   return landmark;
+}
+
+Eigen::Vector3d default_up(const Eigen::Isometry3d& T_cloud_sensor, bool base_frame) {
+  if (base_frame) return Eigen::Vector3d::UnitZ();
+  return (T_cloud_sensor.linear() * -Eigen::Vector3d::UnitY()).normalized();
+}
+
+void prepare_landmark(Landmark& landmark, const std::vector<Eigen::Vector3f>* scene_points) {
+  PointCloud& points = landmark.points;
+  points.T_cloud_sensor.translation() = landmark.sensor_origin;
+  // k = 10 at the 5 mm leaf: a 1.5 cm neighbourhood, enough to average out depth noise while
+  // keeping the carton's edges sharp.
+  points.normals = estimate_normals(points, KdTree(points), NormalSettings{10});
+  const CaptureSettings& s = landmark.settings;
+  landmark.distance = DistanceField(points.points, {s.leaf_size, s.distance_band});
+  landmark.empty_space =
+      EmptySpaceGrid::observe(scene_points ? *scene_points : points.points, landmark.sensor_origin,
+                              landmark.box, landmark.distance, {s.leaf_size, s.empty_space_margin});
 }
 
 }  // namespace lmk

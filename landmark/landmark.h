@@ -3,20 +3,32 @@
 // box, and the box itself. The box's empty margins say where space must stay free.
 
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "geometry/box.h"
 #include "geometry/point_cloud.h"
+#include "occupancy/distance_field.h"
+#include "occupancy/empty_space.h"
 
 namespace lmk {
 
 /// Version of the landmark model and of its .lmk file; bumped whenever either changes.
-inline constexpr int kLandmarkFormatVersion = 1;
+/// Version 2 added the up axis and the distance and empty-space grids.
+inline constexpr int kLandmarkFormatVersion = 2;
 
 struct CaptureSettings {
   double leaf_size = 0.005;     ///< voxel leaf of the captured points, m (the paper's 5 mm)
   std::size_t min_points = 30;  ///< fewer points than this after downsampling is an error
   double max_box_side = 3.0;    ///< a box side longer than this is an error, m
+  double distance_band = 0.02;  ///< band of the landmark's distance field, m (voxel = leaf)
+  /// Observed-free space stops this far from any surface, so that depth noise is not intrusion, m.
+  double empty_space_margin = 0.01;
+  /// The up axis in the capture frame. Unset: default_up() of the scene.
+  std::optional<Eigen::Vector3d> up;
+  /// The scene is expressed in a robot base frame, whose +z is up (else the sensor's -y is).
+  bool base_frame = false;
 };
 
 struct Landmark {
@@ -28,12 +40,33 @@ struct Landmark {
   /// Where the sensor was at capture, in the capture frame: space between it and the surface was
   /// observed free.
   Eigen::Vector3d sensor_origin = Eigen::Vector3d::Zero();
+  /// The up axis at capture, in the capture frame (unit). Searches limit the landmark's tilt
+  /// relative to it unless they search every orientation.
+  Eigen::Vector3d up = -Eigen::Vector3d::UnitY();
   CaptureSettings settings;
   int format_version = kLandmarkFormatVersion;
+
+  // Derived from the above by prepare_landmark(); stored in the .lmk file from version 2.
+  /// Distance to the landmark's points (voxel = settings.leaf_size, band = distance_band).
+  DistanceField distance;
+  /// The voxels of the box observed free at capture.
+  EmptySpaceGrid empty_space;
 
   /// Throws lmk::Error naming the first field that is wrong (used after loading and importing).
   void validate(const std::string& what) const;
 };
+
+/// The up axis of a cloud's frame: +z when it is a robot base frame, otherwise the -y axis of its
+/// sensor (the camera convention: image rows grow downwards), expressed in the cloud's frame.
+Eigen::Vector3d default_up(const Eigen::Isometry3d& T_cloud_sensor, bool base_frame);
+
+/// Computes the derived parts of a landmark: its points' normals (facing the capture sensor), its
+/// distance field and its empty-space grid. Free space is observed along the rays from the
+/// sensor to `scene_points` (the capture scene, capture frame); without them, only the rays to the
+/// landmark's own points are known (upgrading a version-1 file, importing), which marks less space
+/// as empty but never wrongly.
+void prepare_landmark(Landmark& landmark,
+                      const std::vector<Eigen::Vector3f>* scene_points = nullptr);
 
 /// Cuts a landmark out of `scene`: the finite scene points inside the oriented `box` (given in the
 /// scene frame), voxel-downsampled to settings.leaf_size. Throws lmk::Error for an empty name, a

@@ -15,7 +15,10 @@
 #include "geometry/detail/pose_json.h"
 #include "geometry/error.h"
 #include "geometry/filters.h"
+#include "geometry/kdtree.h"
+#include "geometry/normals.h"
 #include "geometry/pose.h"
+#include "occupancy/detail/grids.h"
 
 namespace lmk {
 
@@ -118,15 +121,19 @@ vdb::points::PointDataGrid::Ptr make_points_grid(const Landmark& landmark) {
   grid->insertMeta("lmk_min_points",
                    vdb::Int64Metadata(static_cast<std::int64_t>(landmark.settings.min_points)));
   grid->insertMeta("lmk_max_box_side", vdb::DoubleMetadata(landmark.settings.max_box_side));
+  grid->insertMeta("lmk_up", vdb::Vec3DMetadata(vec(landmark.up)));
+  grid->insertMeta("lmk_distance_band", vdb::DoubleMetadata(landmark.settings.distance_band));
+  grid->insertMeta("lmk_empty_space_margin",
+                   vdb::DoubleMetadata(landmark.settings.empty_space_margin));
   return grid;
 }
 
 Landmark landmark_from_grid(const vdb::points::PointDataGrid& grid, const std::string& path) {
   Landmark landmark;
   landmark.format_version = require_meta<vdb::Int32Metadata>(grid, "lmk_format_version", path);
-  if (landmark.format_version != kLandmarkFormatVersion) {
+  if (landmark.format_version < 1 || landmark.format_version > kLandmarkFormatVersion) {
     throw Error(path + ": landmark format version " + std::to_string(landmark.format_version) +
-                " is not supported (this lmk reads version " +
+                " is not supported (this lmk reads versions 1 to " +
                 std::to_string(kLandmarkFormatVersion) + ")");
   }
   landmark.name = require_meta<vdb::StringMetadata>(grid, "lmk_name", path);
@@ -142,6 +149,13 @@ Landmark landmark_from_grid(const vdb::points::PointDataGrid& grid, const std::s
   landmark.settings.min_points = static_cast<std::size_t>(min_points);
   landmark.settings.max_box_side =
       require_meta<vdb::DoubleMetadata>(grid, "lmk_max_box_side", path);
+  if (landmark.format_version >= 2) {
+    landmark.up = eigen(require_meta<vdb::Vec3DMetadata>(grid, "lmk_up", path));
+    landmark.settings.distance_band =
+        require_meta<vdb::DoubleMetadata>(grid, "lmk_distance_band", path);
+    landmark.settings.empty_space_margin =
+        require_meta<vdb::DoubleMetadata>(grid, "lmk_empty_space_margin", path);
+  }  // version 1 had neither: the defaults apply, and up is the capture camera's -y
 
   for (auto leaf = grid.tree().cbeginLeaf(); leaf; ++leaf) {
     if (!leaf->hasAttribute(kPositionAttribute)) {
@@ -157,8 +171,18 @@ Landmark landmark_from_grid(const vdb::points::PointDataGrid& grid, const std::s
   }
   landmark.points.set_unorganized();
   landmark.points.T_cloud_sensor.translation() = landmark.sensor_origin;
-  landmark.validate(path);
   return landmark;
+}
+
+template <typename GridT>
+typename GridT::Ptr read_grid(vdb::io::File& file, const std::string& name,
+                              const std::string& path) {
+  if (!file.hasGrid(name)) {
+    throw Error(path + ": landmark file of version 2 lacks its '" + name + "' grid");
+  }
+  auto grid = vdb::GridBase::grid<GridT>(file.readGrid(name));
+  if (!grid) throw Error(path + ": the '" + name + "' grid has the wrong type");
+  return grid;
 }
 
 nlohmann::json to_json(const Landmark& l) {
@@ -171,7 +195,10 @@ nlohmann::json to_json(const Landmark& l) {
           {"capture",
            {{"leaf_size", l.settings.leaf_size},
             {"min_points", l.settings.min_points},
-            {"max_box_side", l.settings.max_box_side}}}};
+            {"max_box_side", l.settings.max_box_side},
+            {"distance_band", l.settings.distance_band},
+            {"empty_space_margin", l.settings.empty_space_margin}}},
+          {"up", detail::vector_to_json(l.up)}};
 }
 
 // A box: a pose (position, unit quaternion) and a size. `where` names it in messages.
@@ -206,6 +233,10 @@ Landmark from_json(const nlohmann::json& j, const std::string& path) {
     l.settings.leaf_size = capture.at("leaf_size").get<double>();
     l.settings.min_points = capture.at("min_points").get<std::size_t>();
     l.settings.max_box_side = capture.at("max_box_side").get<double>();
+    l.settings.distance_band = capture.value("distance_band", l.settings.distance_band);
+    l.settings.empty_space_margin =
+        capture.value("empty_space_margin", l.settings.empty_space_margin);
+    if (j.contains("up")) l.up = detail::numbers_from_json(j.at("up"), 3, path + ": up");
   } catch (const nlohmann::json::exception& e) {
     throw Error(path + ": " + e.what());
   }
@@ -252,10 +283,13 @@ void save_landmark(const std::string& path, const Landmark& landmark) {
   landmark.validate("save " + path);
   vdb::initialize();  // idempotent: registers OpenVDB's grid and metadata types once per process
   const auto grid = make_points_grid(landmark);
+  const DistanceField::Grids& field = landmark.distance.grids();
+  const vdb::GridPtrVec grids = {grid, field.distance, field.closest,
+                                 landmark.empty_space.grid().grid};
   write_file_atomically(path, [&](const fs::path& tmp) {
     try {
       vdb::io::File file(tmp.string());
-      file.write({grid});
+      file.write(grids);
       file.close();
     } catch (const vdb::Exception& e) {
       throw Error(path + ": cannot write the landmark file: " + e.what());
@@ -276,15 +310,34 @@ Landmark load_landmark(const std::string& path) {
                   "' grid");
     }
     base = file.readGrid(kPointsGrid);
-    file.close();
+    const auto grid = vdb::GridBase::grid<vdb::points::PointDataGrid>(base);
+    if (!grid) throw Error(path + ": not an lmk landmark file: 'points' is not a point grid");
+    Landmark landmark = landmark_from_grid(*grid, path);
+    if (landmark.format_version >= 2) {
+      DistanceField::Grids field;
+      field.distance = read_grid<vdb::FloatGrid>(file, "distance", path);
+      field.closest = read_grid<vdb::Int32Grid>(file, "closest", path);
+      field.band = landmark.settings.distance_band;
+      EmptySpaceGrid::Grid empty;
+      empty.grid = read_grid<vdb::BoolGrid>(file, "empty", path);
+      file.close();
+      landmark.distance = DistanceField::from_grids(landmark.points.points, std::move(field));
+      landmark.empty_space = EmptySpaceGrid::from_grid(std::move(empty));
+      landmark.points.normals =
+          estimate_normals(landmark.points, KdTree(landmark.points), NormalSettings{10});
+    } else {
+      file.close();
+      // Upgrade: version 1 stored no grids; recompute them from the points alone.
+      landmark.format_version = kLandmarkFormatVersion;
+      prepare_landmark(landmark);
+    }
+    landmark.validate(path);
+    return landmark;
   } catch (const vdb::Exception& e) {
     throw Error(path + ": corrupt or truncated landmark file (" + e.what() + ")");
   } catch (const std::ios_base::failure& e) {
     throw Error(path + ": corrupt or truncated landmark file (" + e.what() + ")");
   }
-  const auto grid = vdb::GridBase::grid<vdb::points::PointDataGrid>(base);
-  if (!grid) throw Error(path + ": not an lmk landmark file: 'points' is not a point grid");
-  return landmark_from_grid(*grid, path);
 }
 
 void export_landmark(const Landmark& landmark, const std::string& out_dir) {
@@ -311,7 +364,9 @@ Landmark import_landmark(const std::string& dir) {
   landmark.points = remove_non_finite(read_cloud((fs::path(dir) / "points.pcd").string()));
   landmark.points.T_cloud_sensor = Eigen::Isometry3d::Identity();
   landmark.points.T_cloud_sensor.translation() = landmark.sensor_origin;
+  if (landmark.format_version == 1) landmark.format_version = kLandmarkFormatVersion;  // upgrade
   landmark.validate(dir);
+  prepare_landmark(landmark);  // the capture scene is not exported: rays to its own points only
   return landmark;
 }
 

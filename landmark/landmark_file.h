@@ -1,7 +1,7 @@
 #pragma once
 // One self-contained file per landmark, NAME.lmk: an OpenVDB file.
 //
-// Layout (format version 1):
+// Layout (format version 2):
 // - grid "points": a PointDataGrid of the landmark points in the capture frame, with the voxel
 //   size of the capture leaf. OpenVDB stores positions relative to voxel centres, which cannot
 //   reproduce float coordinates bit for bit, so each point also carries its exact coordinates in
@@ -11,7 +11,11 @@
 // - after the OpenVDB data, a 24-byte lmk trailer: "LMKTRAIL", the data length and its FNV-1a hash.
 //   OpenVDB ignores it; lmk checks it before OpenVDB reads anything, since OpenVDB reads some
 //   damaged files without error and aborts on others.
-// - later versions add the distance and empty-space grids as further grids in the same file.
+//   Version 2 adds lmk_up, lmk_distance_band and lmk_empty_space_margin.
+// - grids "distance" (FloatGrid) and "closest" (Int32Grid): the landmark's distance field, whose
+//   closest-point indices refer to the points in file order; "empty" (BoolGrid): the voxels of the
+//   box observed free at capture. Version 1 files have none of these: loading upgrades them by
+//   recomputing the grids from the points (rays to the landmark's own points only).
 //
 // Writes are atomic. Loading validates the version and every field; a corrupt, truncated or
 // foreign file is an lmk::Error naming the file and the problem.
@@ -32,8 +36,8 @@ void export_landmark(const Landmark& landmark, const std::string& out_dir);
 /// The inverse of export_landmark: reads DIR/points.pcd and DIR/landmark.json and validates them.
 Landmark import_landmark(const std::string& dir);
 
-/// Names of the grids stored in a .lmk file ("points", and later the distance and empty-space
-/// grids), without loading them.
+/// Names of the grids stored in a .lmk file ("points", "distance", "closest", "empty"), without
+/// loading them.
 std::vector<std::string> landmark_file_grids(const std::string& path);
 
 /// A box from a JSON file {"position":[x,y,z], "quaternion":[w,x,y,z], "size":[sx,sy,sz]}, the

@@ -4,12 +4,14 @@
 #include <atomic>
 
 #include "landmark/find_landmark.h"
+#include "landmark/scene_index.h"
 
 namespace lmk::detail {
 
 /// What every search method gets: the preprocessed scene, the landmark, both indexed, the seeds.
 struct SearchInput {
-  const PointCloud& scene;  ///< cropped and downsampled, finite points only
+  const SceneIndex& index;
+  const PointCloud& scene;  ///< the points the seeds index: fine (reference) or coarse (fast)
   const Landmark& landmark;
   SceneView scene_view;
   LandmarkView landmark_view;

@@ -124,7 +124,7 @@ TEST_F(CliLandmark, CaptureShowExportImportFind) {
   const CommandResult show = lmk("landmark show " + path("carton.lmk"));
   EXPECT_EQ(show.exit_code, 0);
   EXPECT_NE(show.out.find("carton"), std::string::npos);
-  EXPECT_NE(show.out.find("grids          points"), std::string::npos);
+  EXPECT_NE(show.out.find("grids          closest distance empty points"), std::string::npos);
   ASSERT_EQ(lmk("landmark export " + path("carton.lmk") + " " + path("exported")).exit_code, 0);
   ASSERT_EQ(lmk("landmark import " + path("exported") + " " + path("again.lmk")).exit_code, 0);
   EXPECT_EQ(lmk("landmark show " + path("again.lmk")).out, show.out);

@@ -53,7 +53,8 @@ TEST(LandmarkFile, RoundTripIsLossless) {
   const Landmark original = sample_landmark();
   save_landmark(dir.file("a.lmk"), original);
   expect_same(original, load_landmark(dir.file("a.lmk")));
-  EXPECT_EQ(landmark_file_grids(dir.file("a.lmk")), std::vector<std::string>{"points"});
+  EXPECT_EQ(landmark_file_grids(dir.file("a.lmk")),
+            (std::vector<std::string>{"closest", "distance", "empty", "points"}));
   EXPECT_EQ(std::distance(fs::directory_iterator(dir.path()), {}), 1);  // no temporary left
 }
 

@@ -1,0 +1,181 @@
+#include "landmark/detail/fast_search.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <numeric>
+
+#include "geometry/voxel_grid.h"
+#include "landmark/detail/grid_metrics.h"
+#include "landmark/detail/point_pair_voting.h"
+#include "registration/icp.h"
+#include "registration/refine_pose.h"
+
+namespace lmk::detail {
+namespace {
+
+struct Candidate {
+  Eigen::Isometry3d T_scene_capture;
+  Eigen::Vector3d centre;  ///< the landmark box centre under the pose
+  double votes = 0.0;
+  std::size_t seed = 0;
+};
+
+double rotation_angle(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
+  return Eigen::AngleAxisd(a.transpose() * b).angle();
+}
+
+// Every k-th element, so that at most `cap` remain (deterministic).
+std::vector<Eigen::Vector3f> thin(const std::vector<Eigen::Vector3f>& points, std::size_t cap) {
+  if (points.size() <= cap) return points;
+  std::vector<Eigen::Vector3f> out;
+  const double step = static_cast<double>(points.size()) / static_cast<double>(cap);
+  for (std::size_t k = 0; k < cap; ++k) out.push_back(points[static_cast<std::size_t>(k * step)]);
+  return out;
+}
+
+double diameter_of(const PointCloud& points) {
+  Eigen::Vector3f lo = points.points.front(), hi = lo;
+  for (const auto& p : points.points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  return static_cast<double>((hi - lo).norm());
+}
+
+// Step 2: greedy clustering, strongest pose first. A pose joins the first cluster whose centre is
+// within `distance` and whose rotation is within `angle`; clusters are ranked by summed votes.
+std::vector<Candidate> cluster(std::vector<Candidate> poses, double distance, double angle,
+                               std::size_t keep) {
+  std::stable_sort(poses.begin(), poses.end(),
+                   [](const Candidate& a, const Candidate& b) { return a.votes > b.votes; });
+  std::vector<Candidate> clusters;
+  for (const Candidate& p : poses) {
+    bool merged = false;
+    for (Candidate& c : clusters) {
+      if ((c.centre - p.centre).norm() < distance &&
+          rotation_angle(c.T_scene_capture.linear(), p.T_scene_capture.linear()) < angle) {
+        c.votes += p.votes;
+        merged = true;
+        break;
+      }
+    }
+    if (!merged) clusters.push_back(p);
+  }
+  std::stable_sort(clusters.begin(), clusters.end(),
+                   [](const Candidate& a, const Candidate& b) { return a.votes > b.votes; });
+  if (clusters.size() > keep) clusters.resize(keep);
+  return clusters;
+}
+
+}  // namespace
+
+std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats) {
+  const FindSettings& s = in.settings;
+  const Landmark& landmark = in.landmark;
+  const SceneIndex& index = in.index;
+  const PointCloud& coarse = index.coarse();
+  const double leaf = index.settings().coarse_leaf;
+
+  PointCloud model = voxel_downsample(landmark.points, leaf);
+  const double diameter = std::max(diameter_of(landmark.points), 3.0 * leaf);
+  const PointPairModel pairs(model, leaf, diameter);
+
+  // Step 1: poses from every seed, in parallel, each into its own slot.
+  const bool upright = s.orientations == "upright";
+  std::vector<std::vector<PoseVote>> votes(in.seeds.size());
+  std::atomic<std::size_t> done{0};
+  tbb::parallel_for(std::size_t{0}, in.seeds.size(), [&](std::size_t k) {
+    pairs.vote(coarse, index.coarse_tree(), in.seeds[k], s.poses_per_seed, 0.75, votes[k]);
+    if (upright) {
+      const Eigen::Vector3d up = index.up();
+      votes[k].erase(std::remove_if(votes[k].begin(), votes[k].end(),
+                                    [&](const PoseVote& v) {
+                                      const double c =
+                                          (v.T_scene_model.linear() * landmark.up).dot(up);
+                                      return std::acos(std::clamp(c, -1.0, 1.0)) > s.max_tilt;
+                                    }),
+                     votes[k].end());
+    }
+    if (s.progress) s.progress(++done, in.seeds.size());
+  });
+  std::vector<Candidate> poses;
+  for (std::size_t k = 0; k < votes.size(); ++k) {
+    for (const PoseVote& v : votes[k]) {
+      poses.push_back({v.T_scene_model, v.T_scene_model * landmark.box.center(), v.votes, k});
+    }
+  }
+  stats.poses = poses.size();
+
+  // Step 2.
+  const std::vector<Candidate> clusters =
+      cluster(std::move(poses), std::max(2.0 * leaf, 0.1 * diameter), 0.35, s.max_candidates);
+  stats.clusters = clusters.size();
+
+  // Step 3: coarse alignment and a cheap score, in parallel.
+  IcpSettings coarse_icp;
+  coarse_icp.max_iterations = 8;
+  coarse_icp.max_correspondence_distance = index.field().band();
+  coarse_icp.loss = {RobustKernel::huber, leaf};
+  std::vector<Eigen::Isometry3d> aligned(clusters.size());
+  std::vector<double> quick(clusters.size());
+  std::vector<int> iterations(clusters.size(), 0);
+  tbb::parallel_for(std::size_t{0}, clusters.size(), [&](std::size_t c) {
+    const DistanceFieldTarget target(index.field(), &coarse.normals);
+    const IcpResult r = icp(model.points, target, clusters[c].T_scene_capture, coarse_icp);
+    aligned[c] = r.T_target_source;
+    iterations[c] = r.iterations;
+    const DistanceField::Sampler field(index.field());
+    double sum = 0.0;
+    const Eigen::Isometry3f T = aligned[c].cast<float>();
+    for (const auto& p : model.points) sum += scene_surface_distance(index, field, T * p);
+    quick[c] = sum / static_cast<double>(model.size());
+  });
+
+  // Prune: only candidates whose coarse fit could still pass go on, the best first.
+  std::vector<std::size_t> order(clusters.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return quick[a] < quick[b]; });
+  std::vector<std::size_t> survivors;
+  for (std::size_t c : order) {
+    if (quick[c] <= s.prune_error && survivors.size() < s.max_refined) survivors.push_back(c);
+  }
+  std::sort(survivors.begin(), survivors.end());  // back to cluster rank: deterministic order
+  stats.refined = survivors.size();
+
+  // Step 4 and 5, in parallel over the survivors.
+  IcpSettings fine_icp = coarse_icp;
+  fine_icp.max_iterations = 10;
+  fine_icp.max_correspondence_distance = 0.5 * index.field().band();
+  fine_icp.loss = {RobustKernel::huber, 0.5 * leaf};
+  const std::vector<Eigen::Vector3f> refine_points = thin(landmark.points.points, 400);
+  const std::vector<Eigen::Vector3f> empty_probes = thin(landmark.empty_space.centres(), 300);
+  RefineSettings refine;
+  refine.empty_space_weight = s.refine ? 1.0 : 0.0;
+  refine.empty_space_margin = index.settings().leaf_size;
+  std::vector<Match> matches(survivors.size());
+  tbb::parallel_for(std::size_t{0}, survivors.size(), [&](std::size_t k) {
+    const std::size_t c = survivors[k];
+    const DistanceFieldTarget target(index.field(), &coarse.normals);
+    const IcpResult r = icp(landmark.points.points, target, aligned[c], fine_icp);
+    Match& m = matches[k];
+    m.T_scene_capture = r.T_target_source;
+    if (s.refine) {
+      m.T_scene_capture =
+          refine_pose(refine_points, index.field(), m.T_scene_capture, refine, empty_probes)
+              .T_target_source;
+    }
+    m.icp_iterations = iterations[c] + r.iterations;
+    m.icp_converged = r.converged;
+    m.seed_index = clusters[c].seed;
+    m.seed_point = coarse.points[in.seeds[clusters[c].seed]];
+    m.votes = clusters[c].votes;
+    m.terms = in.metric.evaluate(in.scene_view, in.landmark_view, m.T_scene_capture);
+    m.error = m.terms.error;
+    m.box = landmark.box.transformed(m.T_scene_capture);
+  });
+  for (int it : iterations) stats.icp_iterations += static_cast<std::size_t>(it);
+  return matches;
+}
+
+}  // namespace lmk::detail

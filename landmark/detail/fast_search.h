@@ -1,0 +1,31 @@
+#pragma once
+// The fast search (method "fast"), coarse to fine (DESIGN.md, "How the fast search should go
+// beyond the paper"). Internal.
+//
+// 1. Seeds: each seed scene point votes with point pair features for full 6-DoF poses
+//    (point_pair_voting.h), so every orientation is reachable; poses tilted beyond the limit are
+//    dropped unless every orientation is searched.
+// 2. Clustering: nearby poses merge, their votes add up; the best-voted clusters go on.
+// 3. Coarse alignment: a few point-to-plane ICP steps of the landmark's coarse points against the
+//    scene's closest-point grid, then a cheap score; hopeless candidates are pruned.
+// 4. Fine alignment of the survivors: ICP with every landmark point, then Ceres robust refinement
+//    with the empty-space penalty.
+// 5. Scoring with the chosen metric.
+
+#include <vector>
+
+#include "landmark/detail/reference_search.h"
+
+namespace lmk::detail {
+
+struct FastSearchStats {
+  std::size_t poses = 0;     ///< poses voted by the seeds (after the tilt limit)
+  std::size_t clusters = 0;  ///< after merging
+  std::size_t refined = 0;   ///< survivors of the coarse pruning
+  std::size_t icp_iterations = 0;
+};
+
+/// Candidates in a deterministic order (by cluster rank), whatever the thread count.
+std::vector<Match> fast_candidates(const SearchInput& input, FastSearchStats& stats);
+
+}  // namespace lmk::detail

@@ -1,0 +1,29 @@
+#pragma once
+// The metrics that score with grids instead of k-d trees (registered in error_metrics.cpp).
+// Internal.
+
+#include "landmark/error_metrics.h"
+
+namespace lmk {
+
+/// The paper's Algorithm 2 with O(1) grid lookups: scene points in the box against the landmark's
+/// distance field (its closest-point grid marks the visited landmark points), then the unvisited
+/// landmark points against the scene's distance field. Both distances are capped at their bands.
+ErrorTerms vdb_metric(const SceneView& scene, const LandmarkView& landmark,
+                      const Eigen::Isometry3d& T_scene_capture);
+
+/// Visibility-aware error: each landmark point adds its distance to the scene surface (capped at
+/// the scene field's band, which also penalises missing support), and each observed-empty voxel
+/// of the landmark that the scene occupies adds its distance to the landmark surface. Scene
+/// points in space that was occluded at capture add nothing. The error is the mean of all terms.
+ErrorTerms visibility_metric(const SceneView& scene, const LandmarkView& landmark,
+                             const Eigen::Isometry3d& T_scene_capture);
+
+/// Distance from `q` to the scene surface near the coarse point closest to it: along that point's
+/// normal, plus any lateral offset beyond half a coarse voxel diagonal (the coarse points are
+/// voxel centroids, so an on-surface query may sit that far beside its nearest one). The band
+/// value when no scene point is within the band.
+float scene_surface_distance(const SceneIndex& scene, const DistanceField::Sampler& field,
+                             const Eigen::Vector3f& q);
+
+}  // namespace lmk

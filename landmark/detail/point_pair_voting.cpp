@@ -1,0 +1,221 @@
+#include "landmark/detail/point_pair_voting.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "geometry/error.h"
+
+namespace lmk::detail {
+namespace {
+
+constexpr float kPi = 3.14159265358979f;
+constexpr float kAngleStep = kPi / 15.0f;  // 12 degrees, as Drost et al.
+constexpr int kAngleBins = 15;
+constexpr int kAlphaBins = 30;
+constexpr float kCoplanarTolerance = 15.0f * kPi / 180.0f;
+
+// acos to about 7e-5 rad (Abramowitz & Stegun 4.4.45): the voting loop calls it three times per
+// scene pair, and the bins are 12 degrees wide.
+float fast_acos(float x) {
+  x = std::clamp(x, -1.0f, 1.0f);
+  const float a = std::abs(x);
+  const float r =
+      std::sqrt(1.0f - a) * (1.5707288f + a * (-0.2121144f + a * (0.0742610f + a * -0.0187293f)));
+  return x >= 0.0f ? r : kPi - r;
+}
+
+// atan2 to about 1e-4 rad (a minimax polynomial of atan on [0, 1] and octant symmetry).
+float fast_atan2(float y, float x) {
+  const float ax = std::abs(x), ay = std::abs(y);
+  const float big = std::max(ax, ay);
+  if (big == 0.0f) return 0.0f;
+  const float t = std::min(ax, ay) / big, t2 = t * t;
+  float r =
+      t *
+      (0.99997726f +
+       t2 * (-0.33262347f +
+             t2 * (0.19354346f + t2 * (-0.11643287f + t2 * (0.05265332f + t2 * -0.01172120f)))));
+  if (ay > ax) r = 0.5f * kPi - r;
+  if (x < 0.0f) r = kPi - r;
+  return y < 0.0f ? -r : r;
+}
+
+// The rotation taking `n` onto +x, and the angle of a point about +x once so rotated.
+Eigen::Matrix3f rotation_to_x(const Eigen::Vector3f& n) {
+  return Eigen::Quaternionf::FromTwoVectors(n, Eigen::Vector3f::UnitX()).toRotationMatrix();
+}
+float angle_about_x(const Eigen::Matrix3f& R, const Eigen::Vector3f& d) {
+  const Eigen::Vector3f v = R * d;
+  return fast_atan2(v.z(), v.y());
+}
+
+struct Feature {
+  float distance, a1, a2, a3;
+  bool coplanar;
+};
+
+bool feature(const Eigen::Vector3f& p1, const Eigen::Vector3f& n1, const Eigen::Vector3f& p2,
+             const Eigen::Vector3f& n2, Feature& f) {
+  const Eigen::Vector3f d = p2 - p1;
+  f.distance = d.norm();
+  if (!(f.distance > 1e-6f)) return false;
+  const Eigen::Vector3f u = d / f.distance;
+  f.a1 = fast_acos(n1.dot(u));
+  f.a2 = fast_acos(n2.dot(u));
+  f.a3 = fast_acos(n1.dot(n2));
+  const float right = 0.5f * kPi;
+  f.coplanar = f.a3 < kCoplanarTolerance && std::abs(f.a1 - right) < kCoplanarTolerance &&
+               std::abs(f.a2 - right) < kCoplanarTolerance;
+  return true;
+}
+
+}  // namespace
+
+PointPairModel::PointPairModel(const PointCloud& model, double distance_step, double diameter)
+    : distance_step_(distance_step), diameter_(diameter) {
+  if (!model.has_normals()) throw Error("point pair model: the model needs normals");
+  if (!(distance_step > 0.0) || !(diameter > distance_step) || diameter / distance_step > 1000) {
+    throw Error("point pair model: the diameter must exceed a positive distance step");
+  }
+  distance_bins_ = static_cast<int>(std::ceil(diameter / distance_step)) + 2;
+  for (std::size_t i = 0; i < model.size(); ++i) {
+    if (!model.points[i].allFinite() || !model.normals[i].allFinite()) continue;
+    points_.push_back(model.points[i]);
+    normals_.push_back(model.normals[i]);
+    to_x_axis_.push_back(rotation_to_x(model.normals[i]));
+  }
+
+  struct Keyed {
+    std::uint32_t key;
+    Entry entry;
+  };
+  std::vector<Keyed> keyed;
+  std::size_t total = 0, coplanar = 0;
+  const float step = static_cast<float>(distance_step);
+  for (int pass = 0; pass < 2; ++pass) {
+    // Pass 0 counts coplanar pairs to decide whether to skip them; pass 1 builds the table.
+    for (std::size_t i = 0; i < points_.size(); ++i) {
+      for (std::size_t j = 0; j < points_.size(); ++j) {
+        Feature f;
+        if (i == j || !feature(points_[i], normals_[i], points_[j], normals_[j], f)) continue;
+        if (f.distance > diameter) continue;
+        if (pass == 0) {
+          ++total;
+          coplanar += f.coplanar ? 1 : 0;
+          continue;
+        }
+        if (skip_coplanar_ && f.coplanar) continue;
+        const Entry entry{static_cast<std::uint32_t>(i),
+                          angle_about_x(to_x_axis_[i], points_[j] - points_[i])};
+        // Hash into the bin of each quantity and, near a bin edge, into its neighbour too.
+        const float c[4] = {f.distance / step, f.a1 / kAngleStep, f.a2 / kAngleStep,
+                            f.a3 / kAngleStep};
+        int lo[4], hi[4];
+        for (int k = 0; k < 4; ++k) {
+          const int b = static_cast<int>(std::floor(c[k]));
+          const float frac = c[k] - static_cast<float>(b);
+          lo[k] = frac < 0.25f ? b - 1 : b;
+          hi[k] = frac > 0.75f ? b + 1 : b;
+        }
+        for (int b0 = lo[0]; b0 <= hi[0]; ++b0)
+          for (int b1 = lo[1]; b1 <= hi[1]; ++b1)
+            for (int b2 = lo[2]; b2 <= hi[2]; ++b2)
+              for (int b3 = lo[3]; b3 <= hi[3]; ++b3) {
+                if (b0 < 0 || b0 >= distance_bins_ || b1 < 0 || b2 < 0 || b3 < 0 ||
+                    b1 >= kAngleBins || b2 >= kAngleBins || b3 >= kAngleBins) {
+                  continue;
+                }
+                keyed.push_back({key(b0, b1, b2, b3), entry});
+              }
+      }
+    }
+    // A landmark with relief keeps its non-coplanar pairs only, if they are a fifth or more.
+    if (pass == 0) skip_coplanar_ = total > 0 && (total - coplanar) * 5 >= total;
+  }
+  // Counting sort into a dense table: the key space is small (distance bins x 15^3).
+  offsets_.assign(
+      static_cast<std::size_t>(distance_bins_) * kAngleBins * kAngleBins * kAngleBins + 1, 0);
+  for (const Keyed& k : keyed) ++offsets_[k.key + 1];
+  for (std::size_t k = 1; k < offsets_.size(); ++k) offsets_[k] += offsets_[k - 1];
+  entries_.resize(keyed.size());
+  std::vector<std::uint32_t> fill(offsets_.begin(), offsets_.end() - 1);
+  for (const Keyed& k : keyed) entries_[fill[k.key]++] = k.entry;
+}
+
+std::uint32_t PointPairModel::key(int distance_bin, int a1, int a2, int a3) const {
+  return ((static_cast<std::uint32_t>(distance_bin) * kAngleBins + static_cast<std::uint32_t>(a1)) *
+              kAngleBins +
+          static_cast<std::uint32_t>(a2)) *
+             kAngleBins +
+         static_cast<std::uint32_t>(a3);
+}
+
+void PointPairModel::vote(const PointCloud& scene, const KdTree& tree, Index reference,
+                          int max_poses, double min_fraction, std::vector<PoseVote>& out) const {
+  out.clear();
+  const Eigen::Vector3f& sr = scene.points[reference];
+  const Eigen::Vector3f& nr = scene.normals[reference];
+  if (!sr.allFinite() || !nr.allFinite() || points_.empty()) return;
+  const Eigen::Matrix3f Rs = rotation_to_x(nr);
+
+  std::vector<Neighbor> neighbours;
+  tree.radius_unsorted(sr, static_cast<float>(diameter_), neighbours);
+  std::vector<float> votes(points_.size() * kAlphaBins, 0.0f);
+  const float step = static_cast<float>(distance_step_);
+  const float alpha_bin = kAlphaBins / (2.0f * kPi);
+  for (const Neighbor& nb : neighbours) {
+    if (nb.index == reference) continue;
+    const Eigen::Vector3f& si = scene.points[nb.index];
+    const Eigen::Vector3f& ni = scene.normals[nb.index];
+    if (!ni.allFinite()) continue;
+    Feature f;
+    if (!feature(sr, nr, si, ni, f)) continue;
+    if (skip_coplanar_ && f.coplanar) continue;
+    const int a1 = std::min(static_cast<int>(f.a1 / kAngleStep), kAngleBins - 1);
+    const int a2 = std::min(static_cast<int>(f.a2 / kAngleStep), kAngleBins - 1);
+    const int a3 = std::min(static_cast<int>(f.a3 / kAngleStep), kAngleBins - 1);
+    const int db = static_cast<int>(f.distance / step);
+    if (db >= distance_bins_) continue;
+    const std::uint32_t k = key(db, a1, a2, a3);
+    const std::uint32_t begin = offsets_[k], end = offsets_[k + 1];
+    if (begin == end) continue;
+    const float alpha_s = angle_about_x(Rs, si - sr);
+    for (std::uint32_t e = begin; e < end; ++e) {
+      const Entry& entry = entries_[e];
+      // Rotating the model pair by alpha = alpha_s - alpha_m about x aligns it with the scene's.
+      float alpha = alpha_s - entry.alpha;
+      if (alpha < 0.0f) alpha += 2.0f * kPi;
+      const int bin = std::min(static_cast<int>(alpha * alpha_bin), kAlphaBins - 1);
+      votes[entry.model_point * kAlphaBins + bin] += 1.0f;
+    }
+  }
+
+  // The best bins, strongest first; ties go to the lower index, so the result is deterministic.
+  std::vector<std::pair<float, std::uint32_t>> best;
+  for (std::uint32_t k = 0; k < votes.size(); ++k) {
+    if (votes[k] <= 0.0f) continue;
+    if (static_cast<int>(best.size()) < max_poses || votes[k] > best.back().first) {
+      best.emplace_back(votes[k], k);
+      std::stable_sort(best.begin(), best.end(),
+                       [](const auto& a, const auto& b) { return a.first > b.first; });
+      if (static_cast<int>(best.size()) > max_poses) best.pop_back();
+    }
+  }
+  if (best.empty()) return;
+  const float floor_votes = static_cast<float>(min_fraction) * best.front().first;
+  for (const auto& [v, k] : best) {
+    if (v < floor_votes) break;
+    const std::uint32_t m = k / kAlphaBins;
+    const float alpha = (static_cast<float>(k % kAlphaBins) + 0.5f) / alpha_bin;
+    // x_scene = Ts^-1 Rx(alpha) Tm x_model, with Tm x = Rm (x - m), Ts x = Rs (x - s_r).
+    const Eigen::Matrix3f R =
+        Rs.transpose() * Eigen::AngleAxisf(alpha, Eigen::Vector3f::UnitX()) * to_x_axis_[m];
+    PoseVote pv;
+    pv.T_scene_model.linear() = R.cast<double>();
+    pv.T_scene_model.translation() = (sr - R * points_[m]).cast<double>();
+    pv.votes = v;
+    out.push_back(pv);
+  }
+}
+
+}  // namespace lmk::detail

@@ -1,0 +1,64 @@
+#pragma once
+// Pose hypotheses from point pair features (Drost, Ulrich, Navab & Ilic, CVPR 2010): the fast
+// search's seeds, which cover every orientation instead of the paper's identity rotation. Internal.
+//
+// A point pair feature F(m1, m2) = (|d|, angle(n1, d), angle(n2, d), angle(n1, n2)), d = m2 - m1,
+// is invariant to rigid motion. The model's pairs are hashed by quantised F. A scene reference
+// point s_r paired with its neighbours s_i looks up the model pairs with the same feature; each
+// such (m_r, m_i) proposes that s_r is m_r, up to a rotation alpha about the normal, and votes for
+// (m_r, alpha). The best-voted (m_r, alpha) gives a full 6-DoF pose from one reference point.
+//
+// Two departures from the original, both for clutter on large planes (tables, walls): pairs of
+// points on one plane say nothing about a landmark that has relief, so when the landmark has
+// enough non-coplanar pairs, coplanar pairs are left out of the model and skipped in the scene;
+// and model features are also hashed into the neighbouring bin of any quantity that lies near a
+// bin edge, so that noise in the scene's normals does not lose the vote.
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <vector>
+
+#include "geometry/kdtree.h"
+#include "geometry/point_cloud.h"
+
+namespace lmk::detail {
+
+struct PoseVote {
+  Eigen::Isometry3d T_scene_model = Eigen::Isometry3d::Identity();
+  float votes = 0.0f;
+};
+
+class PointPairModel {
+ public:
+  /// `model` needs normals. `distance_step` quantises |d| (m); pairs longer than `diameter` are
+  /// left out.
+  PointPairModel(const PointCloud& model, double distance_step, double diameter);
+
+  /// The best-voted poses for the reference scene point `reference` of `scene` (which needs
+  /// normals), paired with its neighbours within the model diameter found through `tree`. At most
+  /// `max_poses`, each with at least `min_fraction` of the best one's votes.
+  void vote(const PointCloud& scene, const KdTree& tree, Index reference, int max_poses,
+            double min_fraction, std::vector<PoseVote>& out) const;
+
+  std::size_t size() const { return points_.size(); }
+  std::size_t pairs() const { return entries_.size(); }
+  double diameter() const { return diameter_; }
+  bool skips_coplanar() const { return skip_coplanar_; }
+
+ private:
+  struct Entry {
+    std::uint32_t model_point;
+    float alpha;
+  };
+  std::uint32_t key(int distance_bin, int a1, int a2, int a3) const;
+
+  std::vector<Eigen::Vector3f> points_, normals_;
+  std::vector<Eigen::Matrix3f> to_x_axis_;  ///< per model point: rotation taking its normal to +x
+  double distance_step_, diameter_;
+  bool skip_coplanar_ = false;
+  int distance_bins_ = 0;
+  std::vector<std::uint32_t> offsets_;  ///< entries of key k: [offsets_[k], offsets_[k + 1])
+  std::vector<Entry> entries_;
+};
+
+}  // namespace lmk::detail

@@ -1,0 +1,70 @@
+#include "landmark/scene_index.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "geometry/error.h"
+#include "geometry/filters.h"
+#include "geometry/normals.h"
+#include "geometry/voxel_grid.h"
+#include "landmark/landmark.h"
+
+namespace lmk {
+
+SceneIndex::SceneIndex(const PointCloud& scene, const SceneSettings& settings)
+    : settings_(settings), T_scene_sensor_(scene.T_cloud_sensor) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
+  if (!positive(settings.leaf_size)) throw Error("scene: leaf size must be positive and finite");
+  if (!positive(settings.coarse_leaf) || settings.coarse_leaf < settings.leaf_size) {
+    throw Error("scene: the coarse leaf must be finite and at least the leaf size");
+  }
+  if (!(settings.field_band >= settings.coarse_leaf) || !std::isfinite(settings.field_band)) {
+    throw Error("scene: the distance-field band must be finite and at least the coarse leaf");
+  }
+  if (settings.work_volume && !settings.work_volume->is_valid()) {
+    throw Error("scene: the work volume needs a finite pose and positive sides");
+  }
+  if (settings.up && (!settings.up->allFinite() || settings.up->norm() < 1e-9)) {
+    throw Error("scene: the up axis must be a finite non-zero vector");
+  }
+  if (!scene.T_cloud_sensor.matrix().allFinite())
+    throw Error("scene: the sensor pose is not finite");
+  up_ = settings.up ? settings.up->normalized()
+                    : default_up(scene.T_cloud_sensor, settings.base_frame);
+
+  cropped_ = settings.work_volume ? crop(scene, *settings.work_volume) : remove_non_finite(scene);
+  input_points_ = cropped_.size();
+  if (cropped_.empty()) {
+    throw Error(settings.work_volume ? "scene: the work volume holds no scene point"
+                                     : "scene: the scene holds no finite point");
+  }
+  coarse_ = voxel_downsample(cropped_, settings.coarse_leaf);
+  coarse_.T_cloud_sensor = scene.T_cloud_sensor;
+  coarse_tree_ = std::make_unique<KdTree>(coarse_);
+  // k = 10 at 1 cm: a neighbourhood of about 2 cm, fine enough for a carton's edges.
+  coarse_.normals = estimate_normals(coarse_, *coarse_tree_, NormalSettings{10});
+  field_ = DistanceField(coarse_.points, {settings.coarse_leaf, settings.field_band});
+  occupancy_ = OccupancyGrid(cropped_.points, settings.leaf_size);
+  seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void SceneIndex::build_fine() const {
+  std::call_once(fine_once_, [this] {
+    fine_ = voxel_downsample(cropped_, settings_.leaf_size);
+    fine_.T_cloud_sensor = T_scene_sensor_;
+    fine_tree_ = std::make_unique<KdTree>(fine_);
+  });
+}
+
+const PointCloud& SceneIndex::fine() const {
+  build_fine();
+  return fine_;
+}
+
+const KdTree& SceneIndex::fine_tree() const {
+  build_fine();
+  return *fine_tree_;
+}
+
+}  // namespace lmk

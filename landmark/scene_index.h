@@ -1,0 +1,78 @@
+#pragma once
+// SceneIndex: everything the fast search needs from a scene, built once and shared by every
+// landmark searched in it (DESIGN.md, "Build once per scene").
+//
+// - coarse: the scene voxel-downsampled at coarse_leaf, with normals, and its k-d tree: the
+//   candidates' seeds and coarse alignment;
+// - field: the distance field of the coarse points (voxel = coarse_leaf), with its closest-point
+//   grid: ICP correspondences and the Ceres residuals in O(1);
+// - occupancy: the voxels (side leaf_size) that hold a scene point: the empty-space test;
+// - fine: the scene at the paper's leaf and its k-d tree, for the metrics that need every point
+//   inside a box ("paper", "rapid", "vdb"). It is built on first use.
+//
+// Thread safety: const after construction; any number of searches may share one index at once
+// (the lazy fine level is built under std::call_once).
+
+#include <Eigen/Geometry>
+#include <memory>
+#include <mutex>
+#include <optional>
+
+#include "geometry/box.h"
+#include "geometry/kdtree.h"
+#include "geometry/point_cloud.h"
+#include "occupancy/distance_field.h"
+#include "occupancy/occupancy_grid.h"
+
+namespace lmk {
+
+struct SceneSettings {
+  /// Crop the scene to this box (scene frame) first; nothing means the whole scene.
+  std::optional<Box> work_volume;
+  double leaf_size = 0.005;           ///< the paper's leaf: fine points and occupancy voxels, m
+  double coarse_leaf = 0.01;          ///< seeds, voting and coarse alignment, m
+  double field_band = 0.02;           ///< band of the scene distance field, m
+  std::optional<Eigen::Vector3d> up;  ///< up axis in the scene frame; unset: default_up()
+  bool base_frame = false;            ///< the scene is in a robot base frame (+z up)
+};
+
+class SceneIndex {
+ public:
+  /// Throws lmk::Error for bad settings or a scene (after the crop) without a finite point.
+  explicit SceneIndex(const PointCloud& scene, const SceneSettings& settings = {});
+
+  const SceneSettings& settings() const { return settings_; }
+  const Eigen::Vector3d& up() const { return up_; }
+  const Eigen::Isometry3d& T_scene_sensor() const { return T_scene_sensor_; }
+  std::size_t input_points() const { return input_points_; }  ///< finite, after the crop
+
+  const PointCloud& coarse() const { return coarse_; }
+  const KdTree& coarse_tree() const { return *coarse_tree_; }
+  const DistanceField& field() const { return field_; }
+  const OccupancyGrid& occupancy() const { return occupancy_; }
+  /// The scene at leaf_size and its tree; built on the first call.
+  const PointCloud& fine() const;
+  const KdTree& fine_tree() const;
+
+  double seconds_to_build() const { return seconds_; }
+
+ private:
+  void build_fine() const;
+
+  SceneSettings settings_;
+  Eigen::Vector3d up_;
+  Eigen::Isometry3d T_scene_sensor_;
+  std::size_t input_points_ = 0;
+  PointCloud cropped_;
+  PointCloud coarse_;
+  std::unique_ptr<KdTree> coarse_tree_;
+  DistanceField field_;
+  OccupancyGrid occupancy_;
+  double seconds_ = 0.0;
+
+  mutable std::once_flag fine_once_;
+  mutable PointCloud fine_;
+  mutable std::unique_ptr<KdTree> fine_tree_;
+};
+
+}  // namespace lmk
