@@ -49,6 +49,9 @@ struct FindSettings {
   bool base_frame = false;  ///< the scene is expressed in a robot base frame
 
   // Coarse to fine (fast).
+  /// Point-pair voting samples the landmark and the scene at this fraction of the landmark's
+  /// diameter (at least the coarse leaf).
+  double vote_leaf_fraction = 0.05;
   int poses_per_seed = 3;            ///< best-voted poses kept per seed
   std::size_t max_candidates = 48;   ///< pose clusters aligned coarsely
   double prune_error = 0.015;        ///< coarse fit beyond which a candidate is dropped, m

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <memory>
 #include <numeric>
 
 #include "geometry/voxel_grid.h"
@@ -76,16 +77,33 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
   const PointCloud& coarse = index.coarse();
   const double leaf = index.settings().coarse_leaf;
 
-  PointCloud model = voxel_downsample(landmark.points, leaf);
+  // Voting resolution: a fixed fraction of the landmark's size (Drost et al. sample at 5% of the
+  // diameter), never finer than the coarse leaf. It bounds the model to a few hundred points
+  // whatever the landmark's size, and the scene pairs per seed likewise.
   const double diameter = std::max(diameter_of(landmark.points), 3.0 * leaf);
-  const PointPairModel pairs(model, leaf, diameter);
+  const double vote_leaf = std::max(leaf, diameter * s.vote_leaf_fraction);
+  PointCloud model = voxel_downsample(landmark.points, leaf);
+  const PointCloud vote_model = voxel_downsample(landmark.points, vote_leaf);
+  const PointPairModel pairs(vote_model, vote_leaf, diameter);
+  const bool own_vote_cloud = vote_leaf > leaf * 1.01;
+  const PointCloud vote_scene = own_vote_cloud ? voxel_downsample(coarse, vote_leaf) : PointCloud();
+  const PointCloud& voters = own_vote_cloud ? vote_scene : coarse;
+  const std::unique_ptr<KdTree> own_tree =
+      own_vote_cloud ? std::make_unique<KdTree>(vote_scene) : nullptr;
+  const KdTree& voter_tree = own_vote_cloud ? *own_tree : index.coarse_tree();
+  // Each seed votes at the voting point nearest to it.
+  std::vector<Index> references(in.seeds.size());
+  for (std::size_t k = 0; k < in.seeds.size(); ++k) {
+    const auto n = voter_tree.nearest(coarse.points[in.seeds[k]]);
+    references[k] = n ? n->index : 0;
+  }
 
   // Step 1: poses from every seed, in parallel, each into its own slot.
   const bool upright = s.orientations == "upright";
   std::vector<std::vector<PoseVote>> votes(in.seeds.size());
   std::atomic<std::size_t> done{0};
   tbb::parallel_for(std::size_t{0}, in.seeds.size(), [&](std::size_t k) {
-    pairs.vote(coarse, index.coarse_tree(), in.seeds[k], s.poses_per_seed, 0.75, votes[k]);
+    pairs.vote(voters, voter_tree, references[k], s.poses_per_seed, 0.75, votes[k]);
     if (upright) {
       const Eigen::Vector3d up = index.up();
       votes[k].erase(std::remove_if(votes[k].begin(), votes[k].end(),

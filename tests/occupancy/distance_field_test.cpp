@@ -1,0 +1,99 @@
+// The distance field against brute-force nearest-point distances, and its band behaviour.
+
+#include "occupancy/distance_field.h"
+
+#include <gtest/gtest.h>
+
+#include "geometry/error.h"
+#include "geometry/random.h"
+#include "tests/support/test_support.h"
+
+namespace lmk {
+namespace {
+
+float brute_force_distance(const std::vector<Eigen::Vector3f>& points, const Eigen::Vector3f& q) {
+  float best = std::numeric_limits<float>::infinity();
+  for (const auto& p : points) best = std::min(best, (p - q).norm());
+  return best;
+}
+
+TEST(DistanceField, AgreesWithBruteForceWithinHalfAVoxelInsideTheBand) {
+  const PointCloud cloud = test::random_cloud(400, 7, 0.5f);  // in a 1 m cube about the origin
+  const DistanceFieldSettings settings{0.02, 0.08};
+  const DistanceField field(cloud.points, settings);
+  const auto sampler = field.sampler();
+  SplitMix64 rng(3);
+  int inside_band = 0;
+  for (int k = 0; k < 4000; ++k) {
+    const Eigen::Vector3f q = Eigen::Vector3f(rng.uniform01(), rng.uniform01(), rng.uniform01()) -
+                              Eigen::Vector3f::Constant(0.5f);
+    const float truth = brute_force_distance(cloud.points, q);
+    // The band is exact where every corner of the query's cell is within it too.
+    if (truth > settings.band - settings.voxel_size * std::sqrt(3.0f)) continue;
+    ++inside_band;
+    EXPECT_NEAR(sampler.distance(q), truth, 0.5 * settings.voxel_size) << q.transpose();
+  }
+  EXPECT_GT(inside_band, 500);
+}
+
+TEST(DistanceField, ClosestPointIsTheNearestOneForVoxelCentres) {
+  const PointCloud cloud = test::random_cloud(300, 11, 0.5f);
+  const DistanceField field(cloud.points, {0.05, 0.15});
+  const auto sampler = field.sampler();
+  SplitMix64 rng(5);
+  for (int k = 0; k < 500; ++k) {
+    const Eigen::Vector3f q = ((Eigen::Vector3f(rng.uniform01(), rng.uniform01(), rng.uniform01()) -
+                                Eigen::Vector3f::Constant(0.5f)) /
+                               0.05f)
+                                  .array()
+                                  .round()
+                                  .matrix() *
+                              0.05f;
+    const float truth = brute_force_distance(cloud.points, q);
+    const int index = sampler.closest(q);
+    if (truth > 0.15f) {
+      EXPECT_EQ(index, -1);
+      continue;
+    }
+    ASSERT_GE(index, 0);
+    EXPECT_NEAR((cloud.points[static_cast<std::size_t>(index)] - q).norm(), truth, 1e-5);
+  }
+}
+
+TEST(DistanceField, BeyondTheBandIsTheBandValueAndGradientsPointAway) {
+  const std::vector<Eigen::Vector3f> one = {{0.0f, 0.0f, 0.0f}};
+  const DistanceField field(one, {0.01, 0.05});
+  const auto sampler = field.sampler();
+  EXPECT_FLOAT_EQ(sampler.distance({1.0f, 0.0f, 0.0f}), 0.05f);
+  EXPECT_EQ(sampler.closest({1.0f, 0.0f, 0.0f}), -1);
+  Eigen::Vector3f g;
+  const float d = sampler.distance({0.025f, 0.0f, 0.0f}, &g);
+  EXPECT_NEAR(d, 0.025f, 0.005f);
+  EXPECT_GT(g.x(), 0.8f);  // moving away from the point increases the distance
+  EXPECT_NEAR(g.y(), 0.0f, 0.2f);
+}
+
+TEST(DistanceField, SameGridsWhateverTheThreadCount) {
+  // Points spread along x cover many slabs, built in parallel; the result must not depend on it.
+  PointCloud cloud = test::random_cloud(2000, 13, 0.5f);
+  for (auto& p : cloud.points) p.x() *= 5.0f;
+  const DistanceField a(cloud.points, {0.01, 0.03});
+  const DistanceField b(cloud.points, {0.01, 0.03});
+  EXPECT_EQ(a.active_voxels(), b.active_voxels());
+  const auto sa = a.sampler(), sb = b.sampler();
+  SplitMix64 rng(1);
+  for (int k = 0; k < 1000; ++k) {
+    const Eigen::Vector3f q(5 * rng.uniform01() - 2.5f, rng.uniform01() - 0.5f,
+                            rng.uniform01() - 0.5f);
+    EXPECT_EQ(sa.closest(q), sb.closest(q));
+  }
+}
+
+TEST(DistanceField, BadSettingsAreErrors) {
+  EXPECT_THROW(DistanceField({}, {0.0, 0.1}), Error);
+  EXPECT_THROW(DistanceField({}, {0.01, 0.001}), Error);
+  EXPECT_TRUE(DistanceField({}, {0.01, 0.02}).empty());
+}
+
+}  // namespace
+}  // namespace lmk

@@ -1,0 +1,67 @@
+// Free space seen by a sensor in front of a plane: empty in front, unknown behind.
+
+#include "occupancy/empty_space.h"
+
+#include <gtest/gtest.h>
+
+#include "geometry/error.h"
+#include "geometry/pose.h"
+#include "occupancy/occupancy_grid.h"
+
+namespace lmk {
+namespace {
+
+// A wall at z = 1 m seen from the origin, sampled every 5 mm over 40 x 40 cm.
+std::vector<Eigen::Vector3f> wall() {
+  std::vector<Eigen::Vector3f> points;
+  for (int i = -40; i <= 40; ++i)
+    for (int j = -40; j <= 40; ++j) points.emplace_back(0.005f * i, 0.005f * j, 1.0f);
+  return points;
+}
+
+TEST(EmptySpace, SpaceInFrontOfAPlaneIsEmptyAndBehindItUnknown) {
+  const auto points = wall();
+  // A 20 cm box straddling the wall: 10 cm in front of it, 10 cm behind.
+  const Box box(pose_from_xyz_rpy({0, 0, 1.0}, {0, 0, 0}), {0.2, 0.2, 0.2});
+  const DistanceField surface(points, {0.005, 0.02});
+  const EmptySpaceSettings settings{0.005, 0.01};
+  const EmptySpaceGrid empty =
+      EmptySpaceGrid::observe(points, Eigen::Vector3d::Zero(), box, surface, settings);
+  EXPECT_GT(empty.size(), 0u);
+  EXPECT_TRUE(empty.is_empty({0.0f, 0.0f, 0.95f}));
+  EXPECT_TRUE(empty.is_empty({0.05f, -0.05f, 0.92f}));
+  EXPECT_FALSE(empty.is_empty({0.0f, 0.0f, 1.05f}));   // occluded: unknown
+  EXPECT_FALSE(empty.is_empty({0.0f, 0.0f, 0.995f}));  // within the margin of the surface
+  EXPECT_FALSE(empty.is_empty({0.0f, 0.0f, 0.8f}));    // outside the box
+  for (const auto& c : empty.centres()) {
+    EXPECT_LT(c.z(), 1.0f - 0.01f + 0.0026f);  // nothing at or behind the wall
+    EXPECT_TRUE(Box(box.pose, box.size.array() + 1e-5).contains(c));  // float rounding
+  }
+}
+
+TEST(EmptySpace, BadInputIsAnError) {
+  const auto points = wall();
+  const DistanceField surface(points, {0.005, 0.02});
+  const Box box(Eigen::Isometry3d::Identity(), {0.1, 0.1, 0.1});
+  EXPECT_THROW(EmptySpaceGrid::observe(points, Eigen::Vector3d::Zero(), box, surface, {0.0, 0.01}),
+               Error);
+  EXPECT_THROW(
+      EmptySpaceGrid::observe(points, Eigen::Vector3d::Constant(NAN), box, surface, {0.005, 0.01}),
+      Error);
+  EXPECT_THROW(EmptySpaceGrid::observe(points, Eigen::Vector3d::Zero(),
+                                       Box(Eigen::Isometry3d::Identity(), {0, 1, 1}), surface,
+                                       {0.005, 0.01}),
+               Error);
+}
+
+TEST(OccupancyGrid, MarksTheVoxelsHoldingPoints) {
+  const OccupancyGrid grid({{0.0f, 0.0f, 0.0f}, {0.1f, 0.0f, 0.0f}}, 0.01);
+  const auto s = grid.sampler();
+  EXPECT_EQ(grid.occupied_voxels(), 2u);
+  EXPECT_TRUE(s.occupied({0.004f, 0.0f, 0.0f}));
+  EXPECT_FALSE(s.occupied({0.05f, 0.0f, 0.0f}));
+  EXPECT_FALSE(s.occupied({NAN, 0.0f, 0.0f}));
+}
+
+}  // namespace
+}  // namespace lmk

@@ -1,0 +1,64 @@
+// Ceres refinement on the distance field: it converges from small errors and never makes the
+// cost worse.
+
+#include "registration/refine_pose.h"
+
+#include <gtest/gtest.h>
+
+#include "geometry/error.h"
+#include "geometry/pose.h"
+#include "geometry/random.h"
+#include "tests/registration/registration_fixture.h"
+
+namespace lmk {
+namespace {
+
+TEST(RefinePose, ImprovesASmallErrorAndNeverMakesTheCostWorse) {
+  const PointCloud target = test::corner_with_bump();
+  const DistanceField field(target.points, {0.0025, 0.03});
+  SplitMix64 rng(21);
+  for (int trial = 0; trial < 20; ++trial) {
+    Eigen::Isometry3d start = Eigen::Isometry3d::Identity();
+    const Eigen::Vector3d axis =
+        Eigen::Vector3d(rng.normal(), rng.normal(), rng.normal()).normalized();
+    start.linear() = Eigen::AngleAxisd(0.05 * rng.uniform01(), axis).toRotationMatrix();
+    start.translation() = 0.008 * Eigen::Vector3d(rng.normal(), rng.normal(), rng.normal());
+    for (RobustKernel kernel : {RobustKernel::huber, RobustKernel::cauchy, RobustKernel::tukey}) {
+      RefineSettings s;
+      s.loss = {kernel, 0.01};
+      s.max_iterations = 30;
+      const RefineResult r = refine_pose(target.points, field, start, s);
+      EXPECT_LE(r.final_cost, r.initial_cost);
+      if (kernel == RobustKernel::huber) {
+        EXPECT_LT(r.T_target_source.translation().norm(), start.translation().norm());
+      }
+    }
+  }
+}
+
+TEST(RefinePose, EmptySpacePushesAwayFromOccupiedSpace) {
+  // Probes placed on the surface itself: the penalty must raise the cost at the start.
+  const PointCloud target = test::corner_with_bump();
+  const DistanceField field(target.points, {0.0025, 0.03});
+  RefineSettings with;
+  with.empty_space_weight = 1.0;
+  const std::vector<Eigen::Vector3f> probes(target.points.begin(), target.points.begin() + 50);
+  const RefineResult a = refine_pose(target.points, field, Eigen::Isometry3d::Identity(), {});
+  const RefineResult b =
+      refine_pose(target.points, field, Eigen::Isometry3d::Identity(), with, probes);
+  EXPECT_GT(b.initial_cost, a.initial_cost);
+  EXPECT_LE(b.final_cost, b.initial_cost);
+}
+
+TEST(RefinePose, BadSettingsAreErrors) {
+  const DistanceField field({{0, 0, 0}}, {0.01, 0.02});
+  RefineSettings s;
+  s.max_iterations = 0;
+  EXPECT_THROW(refine_pose({{0, 0, 0}}, field, Eigen::Isometry3d::Identity(), s), Error);
+  s = {};
+  s.loss.scale = -1;
+  EXPECT_THROW(refine_pose({{0, 0, 0}}, field, Eigen::Isometry3d::Identity(), s), Error);
+}
+
+}  // namespace
+}  // namespace lmk
