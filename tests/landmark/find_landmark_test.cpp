@@ -1,4 +1,5 @@
-// The reference FindLandmark on synthetic scenes built here, and on the real milk scene.
+// FindLandmark, both methods, on synthetic scenes built here and on the real milk scene; and the
+// fast method on rotated and tilted landmarks, where the paper failed.
 
 #include "landmark/find_landmark.h"
 
@@ -10,6 +11,7 @@
 #include "geometry/cloud_io.h"
 #include "geometry/error.h"
 #include "geometry/pose.h"
+#include "geometry/random.h"
 #include "geometry/voxel_grid.h"
 #include "tests/support/test_support.h"
 
@@ -28,8 +30,16 @@ TriangleMesh l_shape() {
 
 // A table seen from above and in front, with L-shapes at `positions` (on the table top) and, when
 // `distractors`, a ball, a can and a flat box.
-PointCloud render_scene(const std::vector<Eigen::Vector2d>& positions, bool distractors) {
+// The capture camera: above and in front of the table, looking down at about 48 degrees.
+Eigen::Isometry3d capture_camera() {
+  return camera_look_at({0, -0.8, kTable + 0.9}, {0, 0, kTable}, Eigen::Vector3d::UnitZ());
+}
+
+PointCloud render_scene(const std::vector<Eigen::Vector2d>& positions, bool distractors,
+                        const std::vector<Eigen::Isometry3d>& floating = {},
+                        const Eigen::Isometry3d& camera = capture_camera()) {
   TriangleMesh world;
+  for (const auto& pose : floating) world.append(l_shape(), pose);
   world.append(make_box_mesh({1.4, 1.0, 0.04}),
                pose_from_xyz_rpy({0, 0, kTable - 0.02}, {0, 0, 0}));
   for (const auto& xy : positions) {
@@ -49,9 +59,7 @@ PointCloud render_scene(const std::vector<Eigen::Vector2d>& positions, bool dist
   sensor.fx = sensor.fy = 262.5;
   sensor.cx = 159.5;
   sensor.cy = 119.5;
-  return render_depth(
-      world, camera_look_at({0, -0.8, kTable + 0.9}, {0, 0, kTable}, Eigen::Vector3d::UnitZ()),
-      sensor);
+  return render_depth(world, camera, sensor);
 }
 
 const std::vector<Eigen::Vector2d> kCopies = {{-0.45, -0.1}, {-0.1, -0.15}, {0.3, -0.05}};
@@ -63,7 +71,7 @@ Box box_at(const Eigen::Vector2d& xy) {
   return Box(pose_from_xyz_rpy(0.5 * (lo + hi), {0, 0, 0}), hi - lo);
 }
 
-class ReferenceSearch : public ::testing::Test {
+class Search : public ::testing::TestWithParam<std::string> {
  protected:
   static void SetUpTestSuite() {
     scene_ = new PointCloud(render_scene(kCopies, true));
@@ -73,21 +81,26 @@ class ReferenceSearch : public ::testing::Test {
     delete scene_;
     delete landmark_;
   }
+  static FindSettings settings() {
+    FindSettings s;
+    s.method = GetParam();
+    return s;
+  }
   static PointCloud* scene_;
   static Landmark* landmark_;
 };
-PointCloud* ReferenceSearch::scene_ = nullptr;
-Landmark* ReferenceSearch::landmark_ = nullptr;
+PointCloud* Search::scene_ = nullptr;
+Landmark* Search::landmark_ = nullptr;
 
-TEST_F(ReferenceSearch, FindsEveryCopyOnceAndNothingElse) {
-  const FindResult r = find_landmark(*scene_, *landmark_);
+TEST_P(Search, FindsEveryCopyOnceAndNothingElse) {
+  const FindResult r = find_landmark(*scene_, *landmark_, settings());
   ASSERT_EQ(r.matches.size(), kCopies.size());
   std::vector<int> found(kCopies.size(), 0);
   for (const Match& m : r.matches) {
     for (std::size_t c = 0; c < kCopies.size(); ++c) {
       if ((m.box.center() - box_at(kCopies[c]).center()).norm() < 0.01) ++found[c];
     }
-    EXPECT_LT(m.error, 0.0055);
+    EXPECT_LT(m.error, r.stats.threshold);
     // The evaluation protocol's rotation tolerance for a true positive: 15 degrees.
     EXPECT_LT(rotation_angle_between(m.box.pose.linear(), Eigen::Matrix3d::Identity()), 0.2618);
   }
@@ -95,17 +108,18 @@ TEST_F(ReferenceSearch, FindsEveryCopyOnceAndNothingElse) {
   EXPECT_TRUE(std::is_sorted(r.matches.begin(), r.matches.end(),
                              [](const Match& a, const Match& b) { return a.error < b.error; }));
   EXPECT_EQ(r.stats.seeds, std::min<std::size_t>(1000, (r.stats.scene_points_used * 5 + 99) / 100));
+  EXPECT_EQ(r.stats.metric, GetParam() == "fast" ? "visibility" : "paper");
   EXPECT_GT(r.stats.icp_iterations, 0u);
 }
 
-TEST_F(ReferenceSearch, FindsNothingInASceneWithoutTheShape) {
-  const FindResult r = find_landmark(render_scene({}, true), *landmark_);
+TEST_P(Search, FindsNothingInASceneWithoutTheShape) {
+  const FindResult r = find_landmark(render_scene({}, true), *landmark_, settings());
   EXPECT_TRUE(r.matches.empty()) << "best error " << r.matches.front().error;
   EXPECT_GT(r.stats.after_nms, 0u);  // candidates existed, the threshold refused them
 }
 
-TEST_F(ReferenceSearch, SameResultWhateverTheThreadCount) {
-  FindSettings one, two;
+TEST_P(Search, SameResultWhateverTheThreadCount) {
+  FindSettings one = settings(), two = settings();
   one.threads = 1;
   two.threads = 2;
   one.max_seeds = two.max_seeds = 150;
@@ -120,8 +134,8 @@ TEST_F(ReferenceSearch, SameResultWhateverTheThreadCount) {
   EXPECT_EQ(a.stats.icp_iterations, b.stats.icp_iterations);
 }
 
-TEST_F(ReferenceSearch, WorkVolumeAndAlignedPoints) {
-  FindSettings s;
+TEST_P(Search, WorkVolumeAndAlignedPoints) {
+  FindSettings s = settings();
   s.work_volume =
       Box(pose_from_xyz_rpy({kCopies[1].x() + 0.05, kCopies[1].y(), kTable + 0.05}, {0, 0, 0}),
           {0.4, 0.3, 0.3});
@@ -133,8 +147,8 @@ TEST_F(ReferenceSearch, WorkVolumeAndAlignedPoints) {
   EXPECT_LT(r.stats.scene_points_used, voxel_downsample(*scene_, 0.005).size());
 }
 
-TEST_F(ReferenceSearch, BadSettingsAreErrors) {
-  FindSettings s;
+TEST_P(Search, BadSettingsAreErrors) {
+  FindSettings s = settings();
   s.method = "magic";
   EXPECT_THROW(find_landmark(*scene_, *landmark_, s), Error);
   s = FindSettings();
@@ -147,6 +161,59 @@ TEST_F(ReferenceSearch, BadSettingsAreErrors) {
   s.threshold = -1;
   EXPECT_THROW(find_landmark(*scene_, *landmark_, s), Error);
   EXPECT_THROW(find_landmark(PointCloud(), *landmark_), Error);
+}
+
+INSTANTIATE_TEST_SUITE_P(Methods, Search, ::testing::Values("fast", "reference"),
+                         [](const auto& info) { return info.param; });
+
+// Issue acceptance: the L-shape at a random yaw in [0, 360) degrees and a tilt of up to 45 degrees
+// (about gravity, +z of the scenes' base frame), floating above the table among the distractors;
+// the fast method must find it within 1 cm and 5 degrees in at least 95 of 100 seeded trials.
+// The camera turns with the landmark, so that the faces captured are the faces seen: a landmark
+// is a partial view, and a turn that hides every captured face leaves nothing to match. The table
+// and the clutter stay where they were, so the background changes around the landmark.
+TEST(FastSearchRotation, FindsRotatedAndTiltedLandmarks) {
+  const PointCloud capture_scene = render_scene(kCopies, true);
+  const Box box = box_at(kCopies[0]);
+  CaptureSettings in_base_frame;
+  in_base_frame.base_frame = true;
+  const Landmark landmark = capture(capture_scene, box, "L", in_base_frame);
+  FindSettings settings;
+  settings.base_frame = true;
+  SplitMix64 rng(2026);
+  int found = 0;
+  for (int trial = 0; trial < 100; ++trial) {
+    const double yaw = 2.0 * M_PI * rng.uniform01();
+    const double tilt = 0.25 * M_PI * rng.uniform01();
+    const double azimuth = 2.0 * M_PI * rng.uniform01();
+    const Eigen::Vector3d tilt_axis(std::cos(azimuth), std::sin(azimuth), 0.0);
+    // The capture pose of the L-shape's origin, moved to a new place 15 cm above the table and
+    // turned about its own origin.
+    const Eigen::Isometry3d T_world_l0 =
+        pose_from_xyz_rpy({kCopies[0].x(), kCopies[0].y(), kTable}, {0, 0, 0});
+    Eigen::Isometry3d T_world_l = Eigen::Isometry3d::Identity();
+    T_world_l.linear() =
+        (Eigen::AngleAxisd(tilt, tilt_axis) * Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()))
+            .toRotationMatrix();
+    T_world_l.translation() = Eigen::Vector3d(0.1 * rng.uniform01(), 0.05, kTable + 0.15);
+    const Eigen::Isometry3d T_scene_capture = T_world_l * T_world_l0.inverse();
+    const Box truth = box.transformed(T_scene_capture);
+    const PointCloud scene =
+        render_scene({}, true, {T_world_l}, T_scene_capture * capture_camera());
+    const FindResult r = find_landmark(scene, landmark, settings);
+    bool hit = false;
+    for (const Match& m : r.matches) {
+      hit |= (m.box.center() - truth.center()).norm() < 0.01 &&
+             rotation_angle_between(m.box.pose.linear(), truth.pose.linear()) < 5.0 * M_PI / 180;
+    }
+    found += hit ? 1 : 0;
+    if (!hit) {
+      std::printf("trial %d missed: yaw %.0f tilt %.0f deg, %zu matches\n", trial, yaw * 180 / M_PI,
+                  tilt * 180 / M_PI, r.matches.size());
+    }
+  }
+  std::printf("fast found %d of 100 rotated and tilted landmarks\n", found);
+  EXPECT_GE(found, 95);
 }
 
 TEST(ReferenceSearchRealData, FindsTheMilkCartonWhereItWasCaptured) {
