@@ -92,17 +92,8 @@ EmptySpaceGrid EmptySpaceGrid::observe(const std::vector<Eigen::Vector3f>& scene
     } while (dda.step());
   }
 
-  auto g = std::make_shared<Grid>();
-  g->grid = free;
-  g->grid->setName("empty");
-  for (auto it = free->cbeginValueOn(); it; ++it) {
-    const vdb::Coord c = it.getCoord();
-    g->centres.emplace_back(static_cast<float>(c.x() * voxel), static_cast<float>(c.y() * voxel),
-                            static_cast<float>(c.z() * voxel));
-  }
-  EmptySpaceGrid out;
-  out.grid_ = std::move(g);
-  return out;
+  free->setName("empty");
+  return from_grid(Grid{free, {}});
 }
 
 double EmptySpaceGrid::voxel_size() const { return grid_->grid->voxelSize()[0]; }
@@ -118,6 +109,7 @@ const EmptySpaceGrid::Grid& EmptySpaceGrid::grid() const { return *grid_; }
 
 EmptySpaceGrid EmptySpaceGrid::from_grid(Grid grid) {
   if (!grid.grid) throw Error("empty space: missing grid");
+  // The centres, in OpenVDB's iteration order: deterministic for a given set of voxels.
   const double voxel = grid.grid->voxelSize()[0];
   grid.centres.clear();
   for (auto it = grid.grid->cbeginValueOn(); it; ++it) {
