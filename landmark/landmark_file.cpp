@@ -5,10 +5,12 @@
 #include <openvdb/points/PointConversion.h>
 #include <openvdb/points/PointDataGrid.h>
 
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <numeric>
 
 #include "geometry/atomic_file.h"
 #include "geometry/cloud_io.h"
@@ -29,6 +31,9 @@ namespace {
 
 constexpr const char* kPointsGrid = "points";
 constexpr const char* kPositionAttribute = "capture_position";
+// Version 2: each point's index in the landmark. OpenVDB keeps points in its own voxel order, and
+// the stored closest-point grid names points by index, so loading must restore the capture order.
+constexpr const char* kIndexAttribute = "capture_index";
 
 // The first eight bytes of every OpenVDB file (io::Archive's magic number, little endian).
 bool has_vdb_magic(const std::string& path) {
@@ -105,6 +110,11 @@ vdb::points::PointDataGrid::Ptr make_points_grid(const Landmark& landmark) {
       *index_grid, wrapper, *transform);
   vdb::points::appendAttribute<vdb::Vec3f>(grid->tree(), kPositionAttribute);
   vdb::points::populateAttribute(grid->tree(), index_grid->tree(), kPositionAttribute, wrapper);
+  std::vector<std::int32_t> order(positions.size());
+  std::iota(order.begin(), order.end(), 0);
+  vdb::points::appendAttribute<std::int32_t>(grid->tree(), kIndexAttribute);
+  vdb::points::populateAttribute(grid->tree(), index_grid->tree(), kIndexAttribute,
+                                 vdb::points::PointAttributeVector<std::int32_t>(order));
   grid->setName(kPointsGrid);
 
   const Eigen::Matrix4d pose = landmark.box.pose.matrix();
@@ -157,17 +167,38 @@ Landmark landmark_from_grid(const vdb::points::PointDataGrid& grid, const std::s
         require_meta<vdb::DoubleMetadata>(grid, "lmk_empty_space_margin", path);
   }  // version 1 had neither: the defaults apply, and up is the capture camera's -y
 
-  for (auto leaf = grid.tree().cbeginLeaf(); leaf; ++leaf) {
-    if (!leaf->hasAttribute(kPositionAttribute)) {
-      throw Error(path + ": not an lmk landmark file: points lack '" +
-                  std::string(kPositionAttribute) + "'");
+  const bool ordered = landmark.format_version >= 2;
+  const auto require = [&](const auto& leaf, const char* attribute) {
+    if (!leaf->hasAttribute(attribute)) {
+      throw Error(path + ": not an lmk landmark file: points lack '" + std::string(attribute) +
+                  "'");
     }
+  };
+  std::vector<std::int32_t> order;
+  for (auto leaf = grid.tree().cbeginLeaf(); leaf; ++leaf) {
+    require(leaf, kPositionAttribute);
+    if (ordered) require(leaf, kIndexAttribute);
     const vdb::points::AttributeHandle<vdb::Vec3f> handle(
         leaf->constAttributeArray(kPositionAttribute));
     for (auto index = leaf->beginIndexOn(); index; ++index) {
       const vdb::Vec3f p = handle.get(*index);
       landmark.points.points.emplace_back(p.x(), p.y(), p.z());
     }
+    if (!ordered) continue;
+    const vdb::points::AttributeHandle<std::int32_t> indices(
+        leaf->constAttributeArray(kIndexAttribute));
+    for (auto index = leaf->beginIndexOn(); index; ++index) order.push_back(indices.get(*index));
+  }
+  if (ordered) {  // back into capture order, which the closest-point grid refers to
+    std::vector<Eigen::Vector3f> points(order.size(), Eigen::Vector3f::Constant(NAN));
+    for (std::size_t k = 0; k < order.size(); ++k) {
+      const auto i = static_cast<std::size_t>(order[k]);
+      if (order[k] < 0 || i >= points.size() || !std::isnan(points[i].x())) {
+        throw Error(path + ": corrupt landmark file: the point indices are not a permutation");
+      }
+      points[i] = landmark.points.points[k];
+    }
+    landmark.points.points = std::move(points);
   }
   landmark.points.set_unorganized();
   landmark.points.T_cloud_sensor.translation() = landmark.sensor_origin;

@@ -11,7 +11,9 @@
 // - after the OpenVDB data, a 24-byte lmk trailer: "LMKTRAIL", the data length and its FNV-1a hash.
 //   OpenVDB ignores it; lmk checks it before OpenVDB reads anything, since OpenVDB reads some
 //   damaged files without error and aborts on others.
-//   Version 2 adds lmk_up, lmk_distance_band and lmk_empty_space_margin.
+//   Version 2 adds lmk_up, lmk_distance_band and lmk_empty_space_margin, and the int attribute
+//   "capture_index": each point's index in the landmark, which OpenVDB's voxel order loses and
+//   the closest-point grid below refers to.
 // - grids "distance" (FloatGrid) and "closest" (Int32Grid): the landmark's distance field, whose
 //   closest-point indices refer to the points in file order; "empty" (BoolGrid): the voxels of the
 //   box observed free at capture. Version 1 files have none of these: loading upgrades them by

@@ -58,6 +58,26 @@ TEST(LandmarkFile, RoundTripIsLossless) {
   EXPECT_EQ(std::distance(fs::directory_iterator(dir.path()), {}), 1);  // no temporary left
 }
 
+// The stored closest-point grid indexes the points: after loading, for the voxel centre nearest to
+// each landmark point it must name a point at exactly the brute-force nearest distance, whatever
+// order the file keeps the points in.
+TEST(LandmarkFile, LoadedDistanceFieldIndexesTheLoadedPoints) {
+  test::ScratchDir dir;
+  save_landmark(dir.file("a.lmk"), sample_landmark());
+  const Landmark loaded = load_landmark(dir.file("a.lmk"));
+  const auto field = loaded.distance.sampler();
+  const auto& points = loaded.points.points;
+  const float leaf = static_cast<float>(loaded.settings.leaf_size);
+  for (const auto& p : points) {
+    const Eigen::Vector3f centre = (p / leaf).array().round().matrix() * leaf;
+    float nearest = std::numeric_limits<float>::infinity();
+    for (const auto& q : points) nearest = std::min(nearest, (q - centre).norm());
+    const int index = field.closest(p);
+    ASSERT_GE(index, 0);
+    EXPECT_NEAR((points[static_cast<std::size_t>(index)] - centre).norm(), nearest, 1e-6);
+  }
+}
+
 TEST(LandmarkFile, ExportImportRoundTrip) {
   test::ScratchDir dir;
   const Landmark original = sample_landmark();
