@@ -80,37 +80,8 @@ std::vector<Match> select(std::vector<Match> candidates, const FindSettings& s,
   return matches;
 }
 
-}  // namespace
-
-std::vector<std::string> search_methods() { return {"fast", "reference"}; }
-
-SceneSettings scene_settings(const FindSettings& s) {
-  SceneSettings scene;
-  scene.work_volume = s.work_volume;
-  scene.leaf_size = s.leaf_size;
-  scene.coarse_leaf = std::max(s.coarse_leaf, s.leaf_size);
-  scene.field_band = 2.0 * scene.coarse_leaf;
-  scene.up = s.up;
-  scene.base_frame = s.base_frame;
-  return scene;
-}
-
-FindResult find_landmark(const PointCloud& scene, const Landmark& landmark,
-                         const FindSettings& settings) {
-  check_settings(settings);
-  landmark.validate("landmark '" + landmark.name + "'");
-  const SceneIndex index(scene, scene_settings(settings));
-  FindResult result = find_landmark(index, landmark, settings);
-  result.stats.seconds_preprocess += index.seconds_to_build();
-  result.stats.seconds_total += index.seconds_to_build();
-  result.stats.scene_points = scene.count_finite();
-  return result;
-}
-
-FindResult find_landmark(const SceneIndex& index, const Landmark& landmark,
-                         const FindSettings& settings) {
-  check_settings(settings);
-  landmark.validate("landmark '" + landmark.name + "'");
+// Steps 3 to 6 in an indexed scene, for inputs already checked.
+FindResult search(const SceneIndex& index, const Landmark& landmark, const FindSettings& settings) {
   const auto start = Clock::now();
   FindResult result;
   SearchStats& stats = result.stats;
@@ -172,6 +143,43 @@ FindResult find_landmark(const SceneIndex& index, const Landmark& landmark,
   stats.seconds_select = seconds_since(select_start);
   stats.seconds_total = seconds_since(start);
   return result;
+}
+
+void check_inputs(const FindSettings& settings, const Landmark& landmark) {
+  check_settings(settings);
+  landmark.validate("landmark '" + landmark.name + "'");
+}
+
+}  // namespace
+
+std::vector<std::string> search_methods() { return {"fast", "reference"}; }
+
+SceneSettings scene_settings(const FindSettings& s) {
+  SceneSettings scene;
+  scene.work_volume = s.work_volume;
+  scene.leaf_size = s.leaf_size;
+  scene.coarse_leaf = std::max(s.coarse_leaf, s.leaf_size);
+  scene.field_band = 2.0 * scene.coarse_leaf;
+  scene.up = s.up;
+  scene.base_frame = s.base_frame;
+  return scene;
+}
+
+FindResult find_landmark(const PointCloud& scene, const Landmark& landmark,
+                         const FindSettings& settings) {
+  check_inputs(settings, landmark);
+  const SceneIndex index(scene, scene_settings(settings));
+  FindResult result = search(index, landmark, settings);
+  result.stats.seconds_preprocess += index.seconds_to_build();
+  result.stats.seconds_total += index.seconds_to_build();
+  result.stats.scene_points = scene.count_finite();
+  return result;
+}
+
+FindResult find_landmark(const SceneIndex& index, const Landmark& landmark,
+                         const FindSettings& settings) {
+  check_inputs(settings, landmark);
+  return search(index, landmark, settings);
 }
 
 }  // namespace lmk

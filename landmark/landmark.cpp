@@ -100,8 +100,7 @@ Landmark capture(const PointCloud& scene, const Box& box, const std::string& nam
   landmark.settings = settings;
   landmark.up = settings.up ? settings.up->normalized()
                             : default_up(scene.T_cloud_sensor, settings.base_frame);
-  const PointCloud finite = remove_non_finite(scene);
-  prepare_landmark(landmark, &finite.points);
+  prepare_landmark(landmark, &scene.points);  // rays to non-finite points are skipped
   return landmark;
 }
 
@@ -110,12 +109,17 @@ Eigen::Vector3d default_up(const Eigen::Isometry3d& T_cloud_sensor, bool base_fr
   return (T_cloud_sensor.linear() * -Eigen::Vector3d::UnitY()).normalized();
 }
 
-void prepare_landmark(Landmark& landmark, const std::vector<Eigen::Vector3f>* scene_points) {
+void estimate_landmark_normals(Landmark& landmark) {
   PointCloud& points = landmark.points;
   points.T_cloud_sensor.translation() = landmark.sensor_origin;
   // k = 10 at the 5 mm leaf: a 1.5 cm neighbourhood, enough to average out depth noise while
   // keeping the carton's edges sharp.
   points.normals = estimate_normals(points, KdTree(points), NormalSettings{10});
+}
+
+void prepare_landmark(Landmark& landmark, const std::vector<Eigen::Vector3f>* scene_points) {
+  estimate_landmark_normals(landmark);
+  const PointCloud& points = landmark.points;
   const CaptureSettings& s = landmark.settings;
   landmark.distance = DistanceField(points.points, {s.leaf_size, s.distance_band});
   landmark.empty_space =

@@ -60,6 +60,10 @@ struct Landmark {
 /// sensor (the camera convention: image rows grow downwards), expressed in the cloud's frame.
 Eigen::Vector3d default_up(const Eigen::Isometry3d& T_cloud_sensor, bool base_frame);
 
+/// The landmark points' normals (PCA of 10 neighbours, facing the capture sensor), into
+/// landmark.points.normals. They are not stored in the file; loading recomputes them.
+void estimate_landmark_normals(Landmark& landmark);
+
 /// Computes the derived parts of a landmark: its points' normals (facing the capture sensor), its
 /// distance field and its empty-space grid. Free space is observed along the rays from the
 /// sensor to `scene_points` (the capture scene, capture frame); without them, only the rays to the

@@ -17,8 +17,6 @@
 #include "geometry/detail/pose_json.h"
 #include "geometry/error.h"
 #include "geometry/filters.h"
-#include "geometry/kdtree.h"
-#include "geometry/normals.h"
 #include "geometry/pose.h"
 #include "occupancy/detail/grids.h"
 
@@ -354,8 +352,7 @@ Landmark load_landmark(const std::string& path) {
       file.close();
       landmark.distance = DistanceField::from_grids(landmark.points.points, std::move(field));
       landmark.empty_space = EmptySpaceGrid::from_grid(std::move(empty));
-      landmark.points.normals =
-          estimate_normals(landmark.points, KdTree(landmark.points), NormalSettings{10});
+      estimate_landmark_normals(landmark);
     } else {
       file.close();
       // Upgrade: version 1 stored no grids; recompute them from the points alone.

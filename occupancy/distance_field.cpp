@@ -1,5 +1,6 @@
 #include "occupancy/distance_field.h"
 
+#include <openvdb/tools/ValueTransformer.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -198,11 +199,13 @@ struct DistanceField::Sampler::Impl {
       : grids(g),
         distance(g.distance->getConstAccessor()),
         closest(g.closest->getConstAccessor()),
-        inverse_voxel(1.0 / g.distance->voxelSize()[0]),
+        voxel(g.distance->voxelSize()[0]),
+        inverse_voxel(1.0 / voxel),
         band(static_cast<float>(g.band)) {}
   const Grids& grids;
   vdb::FloatGrid::ConstAccessor distance;
   vdb::Int32Grid::ConstAccessor closest;
+  double voxel;
   double inverse_voxel;
   float band;
 };
@@ -259,9 +262,7 @@ float DistanceField::Sampler::distance(const Eigen::Vector3f& p, Eigen::Vector3f
 
 int DistanceField::Sampler::closest(const Eigen::Vector3f& p) const {
   if (!p.allFinite()) return -1;
-  const Eigen::Vector3d q = (p.cast<double>() * impl_->inverse_voxel).array().round();
-  return impl_->closest.getValue(
-      vdb::Coord(static_cast<int>(q.x()), static_cast<int>(q.y()), static_cast<int>(q.z())));
+  return impl_->closest.getValue(detail::nearest_voxel(p.cast<double>(), impl_->voxel));
 }
 
 }  // namespace lmk

@@ -40,8 +40,8 @@ void check(const IcpSettings& s, const IcpTarget& target) {
   }
 }
 
-// One Gauss-Newton system for a small motion (omega, t) applied on the left: q' = q + omega x q +
-// t.
+// One Gauss-Newton system for a small motion (omega, t) applied on the left:
+// q' = q + omega x q + t.
 struct NormalEquations {
   Eigen::Matrix<double, 6, 6> JtJ = Eigen::Matrix<double, 6, 6>::Zero();
   Eigen::Matrix<double, 6, 1> Jtr = Eigen::Matrix<double, 6, 1>::Zero();

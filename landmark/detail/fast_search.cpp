@@ -8,6 +8,7 @@
 #include <memory>
 #include <numeric>
 
+#include "geometry/pose.h"
 #include "geometry/voxel_grid.h"
 #include "landmark/detail/grid_metrics.h"
 #include "landmark/detail/point_pair_voting.h"
@@ -24,10 +25,6 @@ struct Candidate {
   std::size_t seed = 0;
 };
 
-double rotation_angle(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
-  return Eigen::AngleAxisd(a.transpose() * b).angle();
-}
-
 // Every k-th element, so that at most `cap` remain (deterministic).
 std::vector<Eigen::Vector3f> thin(const std::vector<Eigen::Vector3f>& points, std::size_t cap) {
   if (points.size() <= cap) return points;
@@ -35,12 +32,6 @@ std::vector<Eigen::Vector3f> thin(const std::vector<Eigen::Vector3f>& points, st
   const double step = static_cast<double>(points.size()) / static_cast<double>(cap);
   for (std::size_t k = 0; k < cap; ++k) out.push_back(points[static_cast<std::size_t>(k * step)]);
   return out;
-}
-
-double diameter_of(const PointCloud& points) {
-  Eigen::Vector3f lo = points.points.front(), hi = lo;
-  for (const auto& p : points.points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-  return static_cast<double>((hi - lo).norm());
 }
 
 // Step 2: greedy clustering, strongest pose first. A pose joins the first cluster whose centre is
@@ -54,7 +45,7 @@ std::vector<Candidate> cluster(std::vector<Candidate> poses, double distance, do
     bool merged = false;
     for (Candidate& c : clusters) {
       if ((c.centre - p.centre).norm() < distance &&
-          rotation_angle(c.T_scene_capture.linear(), p.T_scene_capture.linear()) < angle) {
+          rotation_angle_between(c.T_scene_capture.linear(), p.T_scene_capture.linear()) < angle) {
         c.votes += p.votes;
         merged = true;
         break;
@@ -80,9 +71,10 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
   // Voting resolution: a fixed fraction of the landmark's size (Drost et al. sample at 5% of the
   // diameter), never finer than the coarse leaf. It bounds the model to a few hundred points
   // whatever the landmark's size, and the scene pairs per seed likewise.
-  const double diameter = std::max(diameter_of(landmark.points), 3.0 * leaf);
+  const double diameter =
+      std::max(static_cast<double>(landmark.points.bounds().diagonal().norm()), 3.0 * leaf);
   const double vote_leaf = std::max(leaf, diameter * s.vote_leaf_fraction);
-  PointCloud model = voxel_downsample(landmark.points, leaf);
+  const PointCloud model = voxel_downsample(landmark.points, leaf);
   const PointCloud vote_model = voxel_downsample(landmark.points, vote_leaf);
   const PointPairModel pairs(vote_model, vote_leaf, diameter);
   const bool own_vote_cloud = vote_leaf > leaf * 1.01;
@@ -169,7 +161,7 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
   const std::vector<Eigen::Vector3f> refine_points = thin(landmark.points.points, 400);
   const std::vector<Eigen::Vector3f> empty_probes = thin(landmark.empty_space.centres(), 300);
   RefineSettings refine;
-  refine.empty_space_weight = s.refine ? 1.0 : 0.0;
+  refine.empty_space_weight = 1.0;
   refine.empty_space_margin = index.settings().leaf_size;
   std::vector<Match> matches(survivors.size());
   tbb::parallel_for(std::size_t{0}, survivors.size(), [&](std::size_t k) {
@@ -192,7 +184,6 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
     m.error = m.terms.error;
     m.box = landmark.box.transformed(m.T_scene_capture);
   });
-  for (int it : iterations) stats.icp_iterations += static_cast<std::size_t>(it);
   return matches;
 }
 

@@ -22,7 +22,6 @@ struct FastSearchStats {
   std::size_t poses = 0;     ///< poses voted by the seeds (after the tilt limit)
   std::size_t clusters = 0;  ///< after merging
   std::size_t refined = 0;   ///< survivors of the coarse pruning
-  std::size_t icp_iterations = 0;
 };
 
 /// Candidates in a deterministic order (by cluster rank), whatever the thread count.

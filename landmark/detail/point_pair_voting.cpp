@@ -78,59 +78,63 @@ PointPairModel::PointPairModel(const PointCloud& model, double distance_step, do
     throw Error("point pair model: the diameter must exceed a positive distance step");
   }
   distance_bins_ = static_cast<int>(std::ceil(diameter / distance_step)) + 2;
+  std::vector<Eigen::Vector3f> normals;
   for (std::size_t i = 0; i < model.size(); ++i) {
     if (!model.points[i].allFinite() || !model.normals[i].allFinite()) continue;
     points_.push_back(model.points[i]);
-    normals_.push_back(model.normals[i]);
+    normals.push_back(model.normals[i]);
     to_x_axis_.push_back(rotation_to_x(model.normals[i]));
   }
+
+  // Every ordered pair within the diameter, with its feature.
+  struct Pair {
+    std::uint32_t i, j;
+    Feature f;
+  };
+  std::vector<Pair> model_pairs;
+  std::size_t coplanar = 0;
+  for (std::size_t i = 0; i < points_.size(); ++i) {
+    for (std::size_t j = 0; j < points_.size(); ++j) {
+      Feature f;
+      if (i == j || !feature(points_[i], normals[i], points_[j], normals[j], f)) continue;
+      if (f.distance > diameter) continue;
+      model_pairs.push_back({static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j), f});
+      coplanar += f.coplanar ? 1 : 0;
+    }
+  }
+  // A landmark with relief keeps its non-coplanar pairs only, if they are a fifth or more.
+  const std::size_t total = model_pairs.size();
+  skip_coplanar_ = total > 0 && (total - coplanar) * 5 >= total;
 
   struct Keyed {
     std::uint32_t key;
     Entry entry;
   };
   std::vector<Keyed> keyed;
-  std::size_t total = 0, coplanar = 0;
   const float step = static_cast<float>(distance_step);
-  for (int pass = 0; pass < 2; ++pass) {
-    // Pass 0 counts coplanar pairs to decide whether to skip them; pass 1 builds the table.
-    for (std::size_t i = 0; i < points_.size(); ++i) {
-      for (std::size_t j = 0; j < points_.size(); ++j) {
-        Feature f;
-        if (i == j || !feature(points_[i], normals_[i], points_[j], normals_[j], f)) continue;
-        if (f.distance > diameter) continue;
-        if (pass == 0) {
-          ++total;
-          coplanar += f.coplanar ? 1 : 0;
-          continue;
-        }
-        if (skip_coplanar_ && f.coplanar) continue;
-        const Entry entry{static_cast<std::uint32_t>(i),
-                          angle_about_x(to_x_axis_[i], points_[j] - points_[i])};
-        // Hash into the bin of each quantity and, near a bin edge, into its neighbour too.
-        const float c[4] = {f.distance / step, f.a1 / kAngleStep, f.a2 / kAngleStep,
-                            f.a3 / kAngleStep};
-        int lo[4], hi[4];
-        for (int k = 0; k < 4; ++k) {
-          const int b = static_cast<int>(std::floor(c[k]));
-          const float frac = c[k] - static_cast<float>(b);
-          lo[k] = frac < 0.25f ? b - 1 : b;
-          hi[k] = frac > 0.75f ? b + 1 : b;
-        }
-        for (int b0 = lo[0]; b0 <= hi[0]; ++b0)
-          for (int b1 = lo[1]; b1 <= hi[1]; ++b1)
-            for (int b2 = lo[2]; b2 <= hi[2]; ++b2)
-              for (int b3 = lo[3]; b3 <= hi[3]; ++b3) {
-                if (b0 < 0 || b0 >= distance_bins_ || b1 < 0 || b2 < 0 || b3 < 0 ||
-                    b1 >= kAngleBins || b2 >= kAngleBins || b3 >= kAngleBins) {
-                  continue;
-                }
-                keyed.push_back({key(b0, b1, b2, b3), entry});
-              }
-      }
+  for (const Pair& pair : model_pairs) {
+    const Feature& f = pair.f;
+    if (skip_coplanar_ && f.coplanar) continue;
+    const Entry entry{pair.i, angle_about_x(to_x_axis_[pair.i], points_[pair.j] - points_[pair.i])};
+    // Hash into the bin of each quantity and, near a bin edge, into its neighbour too.
+    const float c[4] = {f.distance / step, f.a1 / kAngleStep, f.a2 / kAngleStep, f.a3 / kAngleStep};
+    int lo[4], hi[4];
+    for (int k = 0; k < 4; ++k) {
+      const int b = static_cast<int>(std::floor(c[k]));
+      const float frac = c[k] - static_cast<float>(b);
+      lo[k] = frac < 0.25f ? b - 1 : b;
+      hi[k] = frac > 0.75f ? b + 1 : b;
     }
-    // A landmark with relief keeps its non-coplanar pairs only, if they are a fifth or more.
-    if (pass == 0) skip_coplanar_ = total > 0 && (total - coplanar) * 5 >= total;
+    for (int b0 = lo[0]; b0 <= hi[0]; ++b0)
+      for (int b1 = lo[1]; b1 <= hi[1]; ++b1)
+        for (int b2 = lo[2]; b2 <= hi[2]; ++b2)
+          for (int b3 = lo[3]; b3 <= hi[3]; ++b3) {
+            if (b0 < 0 || b0 >= distance_bins_ || b1 < 0 || b2 < 0 || b3 < 0 || b1 >= kAngleBins ||
+                b2 >= kAngleBins || b3 >= kAngleBins) {
+              continue;
+            }
+            keyed.push_back({key(b0, b1, b2, b3), entry});
+          }
   }
   // Counting sort into a dense table: the key space is small (distance bins x 15^3).
   offsets_.assign(

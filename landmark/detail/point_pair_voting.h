@@ -52,7 +52,7 @@ class PointPairModel {
   };
   std::uint32_t key(int distance_bin, int a1, int a2, int a3) const;
 
-  std::vector<Eigen::Vector3f> points_, normals_;
+  std::vector<Eigen::Vector3f> points_;
   std::vector<Eigen::Matrix3f> to_x_axis_;  ///< per model point: rotation taking its normal to +x
   double distance_step_, diameter_;
   bool skip_coplanar_ = false;

@@ -2,9 +2,9 @@
 // OpenVDB set-up shared by the occupancy types. Internal.
 
 #include <openvdb/openvdb.h>
-#include <openvdb/tools/ValueTransformer.h>
 
 #include <Eigen/Core>
+#include <cmath>
 
 namespace lmk::detail {
 
