@@ -41,6 +41,9 @@ void check_settings(const FindSettings& s) {
   if (!(s.min_coverage >= 0.0 && s.min_coverage <= 1.0)) {
     throw Error("find: the minimum coverage must be in [0, 1]");
   }
+  if (!(s.max_empty_space_violation >= 0.0 && s.max_empty_space_violation <= 1.0)) {
+    throw Error("find: the empty-space violation allowance must be in [0, 1]");
+  }
   if (s.poses_per_seed < 1 || s.max_candidates == 0 || s.max_refined == 0) {
     throw Error("find: poses per seed, candidates and refined candidates must be at least 1");
   }
@@ -59,7 +62,7 @@ void check_settings(const FindSettings& s) {
 }
 
 // Steps 5 and 6: non-max suppression on box centres, then the error threshold (and, for metrics
-// that measure it, the coverage).
+// that measure them, the coverage and the empty space).
 std::vector<Match> select(std::vector<Match> candidates, const FindSettings& s,
                           SearchStats& stats) {
   std::vector<Eigen::Vector3d> centres;
@@ -73,8 +76,20 @@ std::vector<Match> select(std::vector<Match> candidates, const FindSettings& s,
   std::vector<Match> matches;
   for (std::size_t i : kept) {
     const Match& m = candidates[i];
-    if (!(m.error < stats.threshold)) continue;
-    if (!std::isnan(m.terms.coverage) && m.terms.coverage < s.min_coverage) continue;
+    if (!(m.error < stats.threshold)) {
+      ++stats.rejected_error;
+      continue;
+    }
+    if (!std::isnan(m.terms.coverage) && m.terms.coverage < s.min_coverage) {
+      ++stats.rejected_coverage;
+      continue;
+    }
+    if (m.terms.empty_space_probes > 0 &&
+        static_cast<double>(m.terms.empty_space_violations) >
+            s.max_empty_space_violation * static_cast<double>(m.terms.empty_space_probes)) {
+      ++stats.rejected_empty_space;
+      continue;
+    }
     matches.push_back(std::move(candidates[i]));
   }
   return matches;

@@ -38,6 +38,12 @@ struct FindSettings {
   /// Fast: matches need at least this fraction of their points supported by the scene (only for
   /// metrics that measure coverage).
   double min_coverage = 0.5;
+  /// Fast: matches may have at most this fraction of the landmark's observed-empty voxels occupied
+  /// by the scene (only for metrics that test empty space). The landmark's empty space keeps a
+  /// margin from its surface that absorbs depth noise and the pose error of a true match, so a true
+  /// instance leaves it empty; the 1% allowance is for the Kinect's isolated flying pixels at depth
+  /// edges, not for surfaces.
+  double max_empty_space_violation = 0.01;
 
   // Orientation (fast). "upright": any rotation about the up axis, and tilts of the landmark's
   // capture up axis up to max_tilt; "full": all of SO(3).
@@ -92,7 +98,11 @@ struct SearchStats {
   std::size_t clusters = 0;        ///< fast: pose clusters aligned coarsely
   std::size_t refined = 0;         ///< fast: candidates refined fully
   double threshold = 0.0;          ///< the error threshold applied, m
-  std::string metric;              ///< the metric applied
+  /// Candidates left by non-max suppression and then rejected, by the first test they failed.
+  std::size_t rejected_error = 0;        ///< error at or above the threshold
+  std::size_t rejected_coverage = 0;     ///< coverage below min_coverage
+  std::size_t rejected_empty_space = 0;  ///< empty space occupied beyond the allowance
+  std::string metric;                    ///< the metric applied
 };
 
 struct FindResult {

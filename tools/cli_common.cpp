@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "geometry/error.h"
 #include "geometry/pose.h"
 
 namespace lmk::cli {
@@ -12,6 +13,21 @@ Eigen::Vector3d rpy_degrees(const Eigen::Matrix3d& R) {
     if (std::abs(rpy[i]) < 0.005) rpy[i] = 0.0;
   }
   return rpy;
+}
+
+std::optional<Eigen::Vector3d> UpOptions::vector() const {
+  if (up.empty()) return std::nullopt;
+  const Eigen::Vector3d v(up[0], up[1], up[2]);
+  if (!v.allFinite() || v.norm() < 1e-9) throw Error("--up must be a finite non-zero vector");
+  return v;
+}
+
+void add_up_options(CLI::App* sub, UpOptions& options) {
+  sub->add_option("--up", options.up,
+                  "Up axis in the scene frame (default: the sensor's -y, or +z with --base-frame)")
+      ->expected(3);
+  sub->add_flag("--base-frame", options.base_frame,
+                "The scene is expressed in a robot base frame, whose +z is up");
 }
 
 }  // namespace lmk::cli

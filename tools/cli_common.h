@@ -4,6 +4,8 @@
 #include <CLI/CLI.hpp>
 #include <Eigen/Core>
 #include <functional>
+#include <optional>
+#include <vector>
 
 namespace lmk::cli {
 
@@ -20,6 +22,15 @@ struct Subcommand {
 /// Roll, pitch, yaw of a rotation in degrees for printing, with values that would print as "-0.00"
 /// set to 0.
 Eigen::Vector3d rpy_degrees(const Eigen::Matrix3d& R);
+
+/// The scene-frame options that say which way is up: --up X Y Z and --base-frame.
+struct UpOptions {
+  std::vector<double> up;
+  bool base_frame = false;
+  /// The --up vector, if given (lmk::Error for a zero or non-finite one).
+  std::optional<Eigen::Vector3d> vector() const;
+};
+void add_up_options(CLI::App* sub, UpOptions& options);
 
 Subcommand add_info(CLI::App& app);
 Subcommand add_convert(CLI::App& app);

@@ -1,5 +1,6 @@
 // lmk capture SCENE (--box-center X Y Z --box-rpy R P Y --box-size SX SY SZ | --box-json FILE)
-//             --name NAME -o OUT.lmk: cut a landmark out of a scene with a box.
+//             --name NAME -o OUT.lmk [--up X Y Z] [--base-frame] [--no-check]: cut a landmark out
+//             of a scene with a box, and check that it is distinctive in that scene.
 
 #include <cmath>
 #include <cstdio>
@@ -8,6 +9,7 @@
 #include "geometry/cloud_io.h"
 #include "geometry/error.h"
 #include "geometry/pose.h"
+#include "landmark/distinctiveness.h"
 #include "landmark/landmark_file.h"
 #include "tools/cli_common.h"
 
@@ -17,6 +19,8 @@ namespace {
 struct CaptureOptions {
   std::string scene, name, output, box_json;
   std::vector<double> center, rpy_deg, size;
+  UpOptions up;
+  bool no_check = false;
   CaptureSettings settings;
 };
 
@@ -38,7 +42,41 @@ Box box_from_options(const CaptureOptions& o) {
              {o.size[0], o.size[1], o.size[2]});
 }
 
-int run_capture(const CaptureOptions& o) {
+// The distinctiveness check: warns on stderr, naming the places, when the landmark also matches
+// somewhere else in its own scene, or when the search misses the captured instance itself.
+void check_in_capture_scene(const PointCloud& scene, const Landmark& landmark) {
+  FindSettings find;
+  find.up = landmark.up;  // the capture frame is the scene frame
+  const DistinctivenessReport report = check_distinctiveness(scene, landmark, find);
+  if (!report.found_itself) {
+    std::fprintf(stderr,
+                 "warning: the search does not find '%s' in its own capture scene; the landmark "
+                 "may have too few points or too little shape to be found reliably\n",
+                 landmark.name.c_str());
+  }
+  if (report.other_instances.empty()) {
+    if (report.found_itself) {
+      std::printf("check: '%s' is distinctive in its capture scene (%.2f s)\n",
+                  landmark.name.c_str(), report.search.stats.seconds_total);
+    }
+    return;
+  }
+  std::fprintf(stderr, "warning: '%s' also matches %zu other place%s in its own capture scene:\n",
+               landmark.name.c_str(), report.other_instances.size(),
+               report.other_instances.size() == 1 ? "" : "s");
+  for (const Match& m : report.other_instances) {
+    const Eigen::Vector3d c = m.box.center();
+    std::fprintf(stderr, "  at %.3f %.3f %.3f m (error %.2f mm, coverage %.2f)\n", c.x(), c.y(),
+                 c.z(), 1000.0 * m.error, m.terms.coverage);
+  }
+  std::fprintf(stderr,
+               "  a robot could take those for the landmark: draw the box with more context or "
+               "more empty margin (--no-check skips this check)\n");
+}
+
+int run_capture(CaptureOptions& o) {
+  o.settings.up = o.up.vector();
+  o.settings.base_frame = o.up.base_frame;
   format_from_path(o.scene);
   const Box box = box_from_options(o);  // bad box arguments fail before the scene is read
   const PointCloud scene = read_cloud(o.scene);
@@ -47,6 +85,7 @@ int run_capture(const CaptureOptions& o) {
   std::printf("wrote %s: landmark '%s', %zu points, box %.3f x %.3f x %.3f m\n", o.output.c_str(),
               landmark.name.c_str(), landmark.points.size(), box.size.x(), box.size.y(),
               box.size.z());
+  if (!o.no_check) check_in_capture_scene(scene, landmark);
   return kOk;
 }
 
@@ -70,6 +109,9 @@ Subcommand add_capture(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--max-box-side", o->settings.max_box_side, "Longest allowed box side, m")
       ->capture_default_str();
+  add_up_options(sub, o->up);
+  sub->add_flag("--no-check", o->no_check,
+                "Skip the distinctiveness check (searching the landmark in its own scene)");
   return {sub, [o] { return run_capture(*o); }};
 }
 

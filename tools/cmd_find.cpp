@@ -23,15 +23,21 @@ namespace {
 
 struct FindOptions {
   std::string scene, landmark, json;
+  UpOptions up;
   FindSettings settings;
 };
 
 nlohmann::json terms_json(const ErrorTerms& t) {
-  return {{"scene_to_landmark_sum", t.scene_to_landmark_sum},
-          {"scene_to_landmark_count", t.scene_to_landmark_count},
-          {"landmark_to_scene_sum", t.landmark_to_scene_sum},
-          {"landmark_to_scene_count", t.landmark_to_scene_count},
-          {"scene_points_in_box", t.scene_points_in_box}};
+  return {
+      {"scene_to_landmark_sum", t.scene_to_landmark_sum},
+      {"scene_to_landmark_count", t.scene_to_landmark_count},
+      {"landmark_to_scene_sum", t.landmark_to_scene_sum},
+      {"landmark_to_scene_count", t.landmark_to_scene_count},
+      {"scene_points_in_box", t.scene_points_in_box},
+      {"coverage", std::isnan(t.coverage) ? nlohmann::json(nullptr) : nlohmann::json(t.coverage)},
+      {"empty_space_probes", t.empty_space_probes},
+      {"empty_space_violations", t.empty_space_violations},
+      {"empty_space_violation_mean", t.empty_space_violation_mean}};
 }
 
 nlohmann::json result_json(const FindResult& r) {
@@ -42,6 +48,7 @@ nlohmann::json result_json(const FindResult& r) {
     match["terms"] = terms_json(m.terms);
     match["seed_index"] = m.seed_index;
     match["icp_iterations"] = m.icp_iterations;
+    match["votes"] = m.votes;
     matches.push_back(match);
   }
   const SearchStats& s = r.stats;
@@ -55,25 +62,61 @@ nlohmann::json result_json(const FindResult& r) {
             {"icp_iterations", s.icp_iterations},
             {"scene_points", s.scene_points},
             {"scene_points_used", s.scene_points_used},
-            {"after_nms", s.after_nms}}}};
+            {"after_nms", s.after_nms},
+            {"poses", s.poses},
+            {"clusters", s.clusters},
+            {"refined", s.refined},
+            {"rejected_error", s.rejected_error},
+            {"rejected_coverage", s.rejected_coverage},
+            {"rejected_empty_space", s.rejected_empty_space},
+            {"threshold", s.threshold},
+            {"metric", s.metric}}}};
+}
+
+// Why candidates were turned down, for the summary line: "" when none was.
+std::string rejections(const SearchStats& s) {
+  std::string out;
+  const auto add = [&out](std::size_t n, const char* why) {
+    if (n == 0) return;
+    out += (out.empty() ? "; rejected: " : ", ") + std::to_string(n) + " " + why;
+  };
+  add(s.rejected_error, "error above threshold");
+  add(s.rejected_coverage, "low coverage");
+  add(s.rejected_empty_space, "empty space occupied");
+  return out;
 }
 
 void print_table(const FindResult& r, const std::string& name) {
   const SearchStats& s = r.stats;
-  std::printf("%zu match%s for '%s' (%zu seeds, %zu scene points, %.2f s)\n", r.matches.size(),
-              r.matches.size() == 1 ? "" : "es", name.c_str(), s.seeds, s.scene_points_used,
-              s.seconds_total);
+  std::printf(
+      "%zu match%s for '%s' (%s, metric %s, threshold %.1f mm, %zu seeds, %zu scene points,"
+      " %.2f s%s)\n",
+      r.matches.size(), r.matches.size() == 1 ? "" : "es", name.c_str(),
+      s.poses > 0 ? "fast" : "reference", s.metric.c_str(), 1000.0 * s.threshold, s.seeds,
+      s.scene_points_used, s.seconds_total, rejections(s).c_str());
   if (r.matches.empty()) return;
-  std::printf("%4s %9s %9s %9s %8s %8s %8s %9s %7s %7s %6s\n", "rank", "x", "y", "z", "roll",
-              "pitch", "yaw", "error_mm", "s->l", "l->s", "inbox");
+  const bool grid_terms = !std::isnan(r.matches.front().terms.coverage);
+  std::printf("%4s %9s %9s %9s %8s %8s %8s %9s", "rank", "x", "y", "z", "roll", "pitch", "yaw",
+              "error_mm");
+  if (grid_terms) {
+    std::printf(" %8s %11s\n", "coverage", "empty_viol");
+  } else {
+    std::printf(" %7s %7s %6s\n", "s->l", "l->s", "inbox");
+  }
   for (std::size_t i = 0; i < r.matches.size(); ++i) {
     const Match& m = r.matches[i];
     const Eigen::Vector3d c = m.box.center();
     const Eigen::Vector3d rpy = rpy_degrees(m.box.pose.linear());
-    std::printf("%4zu %9.4f %9.4f %9.4f %8.2f %8.2f %8.2f %9.3f %7zu %7zu %6zu\n", i + 1, c.x(),
-                c.y(), c.z(), rpy.x(), rpy.y(), rpy.z(), 1000.0 * m.error,
-                m.terms.scene_to_landmark_count, m.terms.landmark_to_scene_count,
-                m.terms.scene_points_in_box);
+    std::printf("%4zu %9.4f %9.4f %9.4f %8.2f %8.2f %8.2f %9.3f", i + 1, c.x(), c.y(), c.z(),
+                rpy.x(), rpy.y(), rpy.z(), 1000.0 * m.error);
+    if (grid_terms) {
+      const std::string viol = std::to_string(m.terms.empty_space_violations) + "/" +
+                               std::to_string(m.terms.empty_space_probes);
+      std::printf(" %8.3f %11s\n", m.terms.coverage, viol.c_str());
+    } else {
+      std::printf(" %7zu %7zu %6zu\n", m.terms.scene_to_landmark_count,
+                  m.terms.landmark_to_scene_count, m.terms.scene_points_in_box);
+    }
   }
 }
 
@@ -81,6 +124,8 @@ int run_find(FindOptions& o) {
   format_from_path(o.scene);
   const Landmark landmark = load_landmark(o.landmark);
   const PointCloud scene = read_cloud(o.scene);
+  o.settings.up = o.up.vector();
+  o.settings.base_frame = o.up.base_frame;
   ProgressBar bar("find " + landmark.name);
   o.settings.progress = [&bar](std::size_t done, std::size_t total) { bar.update(done, total); };
   const FindResult result = find_landmark(scene, landmark, o.settings);
@@ -108,9 +153,28 @@ Subcommand add_find(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("find", "Find every instance of a landmark in a scene");
   sub->add_option("scene", o->scene, "Scene cloud (.pcd, .ply, .xyz)")->required();
   sub->add_option("landmark", o->landmark, "Landmark file (.lmk)")->required();
-  sub->add_option("--method", s.method, "Search method: reference")->capture_default_str();
-  sub->add_option("--metric", s.metric, "Error metric: paper or rapid")->capture_default_str();
-  sub->add_option("--threshold", s.threshold, "Largest error of a match, m")->capture_default_str();
+  sub->add_option("--method", s.method, "Search method: fast or reference")
+      ->check(CLI::IsMember(search_methods()))
+      ->capture_default_str();
+  sub->add_option("--metric", s.metric,
+                  "Error metric: paper, rapid, vdb or visibility (default: visibility for fast, "
+                  "paper for reference)");
+  sub->add_option("--threshold", s.threshold,
+                  "Largest error of a match, m (default: the metric's own)");
+  sub->add_option("--orientations", s.orientations,
+                  "Fast: 'upright' (any yaw, tilt up to --max-tilt) or 'full' (all of SO(3))")
+      ->check(CLI::IsMember({"upright", "full"}))
+      ->capture_default_str();
+  sub->add_option_function<double>(
+      "--max-tilt", [&s](double degrees) { s.max_tilt = degrees * M_PI / 180.0; },
+      "Fast, upright: largest tilt of the landmark's up axis, degrees (default 60)");
+  sub->add_option("--min-coverage", s.min_coverage,
+                  "Fast: least fraction of landmark points with scene support")
+      ->capture_default_str();
+  sub->add_option("--max-empty-violation", s.max_empty_space_violation,
+                  "Fast: largest fraction of the landmark's empty space the scene may occupy")
+      ->capture_default_str();
+  add_up_options(sub, o->up);
   sub->add_option("--max-seeds", s.max_seeds, "Most seeds (5% of the scene points below this)")
       ->capture_default_str();
   sub->add_option("--seed", s.seed, "Random seed of the seed sampling")->capture_default_str();

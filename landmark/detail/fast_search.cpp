@@ -129,6 +129,7 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
   std::vector<Eigen::Isometry3d> aligned(clusters.size());
   std::vector<double> quick(clusters.size());
   std::vector<int> iterations(clusters.size(), 0);
+  const Eigen::Vector3f no_normal = Eigen::Vector3f::Constant(std::nanf(""));
   tbb::parallel_for(std::size_t{0}, clusters.size(), [&](std::size_t c) {
     const DistanceFieldTarget target(index.field(), &coarse.normals);
     const IcpResult r = icp(model.points, target, clusters[c].T_scene_capture, coarse_icp);
@@ -137,7 +138,11 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
     const DistanceField::Sampler field(index.field());
     double sum = 0.0;
     const Eigen::Isometry3f T = aligned[c].cast<float>();
-    for (const auto& p : model.points) sum += scene_surface_distance(index, field, T * p);
+    for (std::size_t j = 0; j < model.size(); ++j) {
+      const Eigen::Vector3f normal =
+          model.has_normals() ? Eigen::Vector3f(T.linear() * model.normals[j]) : no_normal;
+      sum += scene_surface_distance(index, field, T * model.points[j], &normal);
+    }
     quick[c] = sum / static_cast<double>(model.size());
   });
 

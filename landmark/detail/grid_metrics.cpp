@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "landmark/landmark.h"
 #include "landmark/scene_index.h"
@@ -9,13 +10,15 @@
 namespace lmk {
 
 float scene_surface_distance(const SceneIndex& scene, const DistanceField::Sampler& field,
-                             const Eigen::Vector3f& q) {
+                             const Eigen::Vector3f& q, const Eigen::Vector3f* normal) {
+  constexpr float kBackFacing = -0.5f;  // cos(120 degrees)
   const float band = static_cast<float>(scene.field().band());
   const int index = field.closest(q);
   if (index < 0) return band;
   const Eigen::Vector3f delta = q - scene.coarse().points[static_cast<std::size_t>(index)];
   const Eigen::Vector3f& n = scene.coarse().normals[static_cast<std::size_t>(index)];
   if (!n.allFinite()) return std::min(band, delta.norm());
+  if (normal != nullptr && normal->allFinite() && normal->dot(n) < kBackFacing) return band;
   const float along = n.dot(delta);
   const float lateral = std::sqrt(std::max(0.0f, delta.squaredNorm() - along * along));
   const float slack = static_cast<float>(0.5 * std::sqrt(3.0) * scene.settings().coarse_leaf);
@@ -58,8 +61,13 @@ ErrorTerms visibility_metric(const SceneView& scene, const LandmarkView& landmar
   // Support: a scene surface within two paper leaves (1 cm) of the landmark point.
   const float support = static_cast<float>(2.0 * scene.index.settings().leaf_size);
   std::size_t supported = 0;
-  for (const auto& m : landmark.points.points) {
-    const float d = scene_surface_distance(scene.index, scene_field, T * m);
+  const bool with_normals = landmark.points.has_normals();
+  for (std::size_t j = 0; j < landmark.points.size(); ++j) {
+    const Eigen::Vector3f normal =
+        with_normals ? Eigen::Vector3f(T.linear() * landmark.points.normals[j])
+                     : Eigen::Vector3f::Constant(std::numeric_limits<float>::quiet_NaN());
+    const float d =
+        scene_surface_distance(scene.index, scene_field, T * landmark.points.points[j], &normal);
     terms.landmark_to_scene_sum += d;
     ++terms.landmark_to_scene_count;
     if (d < support) ++supported;

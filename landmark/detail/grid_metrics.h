@@ -23,7 +23,13 @@ ErrorTerms visibility_metric(const SceneView& scene, const LandmarkView& landmar
 /// normal, plus any lateral offset beyond half a coarse voxel diagonal (the coarse points are
 /// voxel centroids, so an on-surface query may sit that far beside its nearest one). The band
 /// value when no scene point is within the band.
+///
+/// With `normal` (the query's surface normal, scene frame, facing the sensor that saw it), a query
+/// whose normal turns away from the scene surface's by more than 120 degrees is not supported by
+/// it: it also gets the band value. Both normals face their sensors, and a sensor sees only the
+/// front of a surface, so a landmark face matched back to front (a carton turned half round onto
+/// its own two visible faces) is no match; faces meeting at an edge (90 degrees) still are.
 float scene_surface_distance(const SceneIndex& scene, const DistanceField::Sampler& field,
-                             const Eigen::Vector3f& q);
+                             const Eigen::Vector3f& q, const Eigen::Vector3f* normal = nullptr);
 
 }  // namespace lmk

@@ -1,0 +1,22 @@
+#include "landmark/distinctiveness.h"
+
+namespace lmk {
+
+DistinctivenessReport check_distinctiveness(const PointCloud& capture_scene,
+                                            const Landmark& landmark,
+                                            const FindSettings& settings) {
+  DistinctivenessReport report;
+  report.search = find_landmark(capture_scene, landmark, settings);
+  // The captured instance sits at the identity: the capture frame is the capture scene's frame.
+  const Eigen::Vector3d captured = landmark.box.center();
+  for (const Match& m : report.search.matches) {
+    if ((m.box.center() - captured).norm() <= settings.nms_radius) {
+      report.found_itself = true;
+    } else {
+      report.other_instances.push_back(m);
+    }
+  }
+  return report;
+}
+
+}  // namespace lmk

@@ -1,0 +1,30 @@
+#pragma once
+// The distinctiveness check (DESIGN.md, "Distinctiveness check"): a landmark is searched for in its
+// own capture scene. Any match away from the captured instance means that a robot could mistake
+// that place for the landmark, so the user should hear about it while the scene is still at hand
+// and can draw a better box (more empty margin, more context).
+
+#include <vector>
+
+#include "geometry/point_cloud.h"
+#include "landmark/find_landmark.h"
+#include "landmark/landmark.h"
+
+namespace lmk {
+
+struct DistinctivenessReport {
+  /// Matches whose box centre lies farther than settings.nms_radius from the captured box centre,
+  /// best first. Empty: the landmark is distinctive in its capture scene.
+  std::vector<Match> other_instances;
+  /// Did the search find the captured instance itself? A landmark that its own scene does not
+  /// reproduce is too thin for the search (too few points, a featureless shape).
+  bool found_itself = false;
+  FindResult search;  ///< the whole search, for its statistics
+};
+
+/// Searches `landmark` in `capture_scene` (the scene it was cut from, in its capture frame).
+DistinctivenessReport check_distinctiveness(const PointCloud& capture_scene,
+                                            const Landmark& landmark,
+                                            const FindSettings& settings = {});
+
+}  // namespace lmk
