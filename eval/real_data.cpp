@@ -1,5 +1,6 @@
 #include "eval/real_data.h"
 
+#include "geometry/cloud_io.h"
 #include "geometry/error.h"
 
 namespace lmk {
@@ -15,6 +16,14 @@ Box milk_carton_box(const PointCloud& carton_crop) {
   box.pose.translation() = 0.5 * (lo + hi);
   box.size = hi - lo;
   return box;
+}
+
+MilkWorkload load_milk_workload(const std::filesystem::path& data_dir) {
+  MilkWorkload w;
+  w.scene = read_cloud((data_dir / "pcl/milk_cartoon_all_small_clorox.pcd").string());
+  w.box = milk_carton_box(read_cloud((data_dir / "pcl/milk.pcd").string()));
+  w.landmark = capture(w.scene, w.box, "milk");
+  return w;
 }
 
 }  // namespace lmk

@@ -2,9 +2,8 @@
 
 #include <tbb/parallel_for.h>
 
-#include <Eigen/Eigenvalues>
-
 #include "geometry/error.h"
+#include "geometry/principal_axes.h"
 
 namespace lmk {
 
@@ -23,19 +22,11 @@ std::vector<Eigen::Vector3f> estimate_normals(const PointCloud& cloud, const KdT
       if (!is_finite(p)) continue;
       tree.knn(p, static_cast<std::size_t>(settings.k), neighbors);
       if (neighbors.size() < 3) continue;
-      // Covariance about the neighbourhood mean, in double for conditioning.
-      Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-      for (const Neighbor& n : neighbors) mean += cloud.points[n.index].cast<double>();
-      mean /= static_cast<double>(neighbors.size());
-      Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-      for (const Neighbor& n : neighbors) {
-        const Eigen::Vector3d d = cloud.points[n.index].cast<double>() - mean;
-        cov += d * d.transpose();
-      }
-      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(cov);
-      // Eigenvalues come in increasing order; two near-zero ones mean the points lie on a line.
-      if (solver.eigenvalues()[1] <= 1e-12 * std::max(1.0, solver.eigenvalues()[2])) continue;
-      Eigen::Vector3d n = solver.eigenvectors().col(0);
+      const PrincipalAxes pca = principal_axes(
+          neighbors.size(), [&](std::size_t k) { return cloud.points[neighbors[k].index]; });
+      // Two near-zero spreads mean the points lie on a line.
+      if (pca.spread[1] <= 1e-12 * std::max(1.0, pca.spread[2])) continue;
+      Eigen::Vector3d n = pca.axes.col(0);
       if (n.dot(origin - p.cast<double>()) < 0.0) n = -n;
       normals[i] = n.cast<float>();
     }

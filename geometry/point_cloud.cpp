@@ -50,6 +50,17 @@ PointCloud PointCloud::select(const Indices& indices) const {
   return out;
 }
 
+PointCloud PointCloud::transformed(const Eigen::Isometry3d& T_new_old) const {
+  PointCloud out = *this;
+  const Eigen::Isometry3f T = T_new_old.cast<float>();
+  for (auto& p : out.points) {
+    if (is_finite(p)) p = T * p;
+  }
+  for (auto& n : out.normals) n = T.linear() * n;
+  out.T_cloud_sensor = T_new_old * T_cloud_sensor;
+  return out;
+}
+
 void PointCloud::validate(const std::string& what) const {
   const auto check = [&](std::size_t n, const char* name) {
     if (n != 0 && n != points.size()) {

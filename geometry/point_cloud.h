@@ -61,6 +61,10 @@ class PointCloud {
   /// The points at `indices`, with their attributes, as an unorganised cloud with the same sensor.
   PointCloud select(const Indices& indices) const;
 
+  /// The cloud moved rigidly by T_new_old (points, normals and the sensor pose; the organisation
+  /// and the non-finite points are kept), as if the whole scene had been picked up and put down.
+  PointCloud transformed(const Eigen::Isometry3d& T_new_old) const;
+
   /// Throws lmk::Error if an attribute's length differs from the number of points or the
   /// width x height grid does not hold exactly size() points. `what` names the cloud in the
   /// message.

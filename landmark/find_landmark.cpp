@@ -101,6 +101,7 @@ FindResult search(const SceneIndex& index, const Landmark& landmark, const FindS
   FindResult result;
   SearchStats& stats = result.stats;
   const bool fast = settings.method == "fast";
+  stats.method = settings.method;
   stats.metric = settings.metric.empty() ? (fast ? "visibility" : "paper") : settings.metric;
   const ErrorMetric& metric = find_error_metric(stats.metric);
   stats.threshold = settings.threshold ? *settings.threshold : metric.default_threshold;
@@ -149,9 +150,7 @@ FindResult search(const SceneIndex& index, const Landmark& landmark, const FindS
   result.matches = select(std::move(candidates), settings, stats);
   if (settings.keep_aligned_points) {
     for (Match& m : result.matches) {
-      m.aligned_points = landmark.points;
-      for (auto& p : m.aligned_points.points) p = (m.T_scene_capture.cast<float>() * p);
-      m.aligned_points.normals.clear();
+      m.aligned_points = landmark.points.transformed(m.T_scene_capture);
       m.aligned_points.T_cloud_sensor = index.T_scene_sensor();
     }
   }
@@ -162,12 +161,31 @@ FindResult search(const SceneIndex& index, const Landmark& landmark, const FindS
 
 void check_inputs(const FindSettings& settings, const Landmark& landmark) {
   check_settings(settings);
-  landmark.validate("landmark '" + landmark.name + "'");
+  const std::string what = "landmark '" + landmark.name + "'";
+  landmark.validate(what);
+  if (const auto why = degenerate_shape(landmark.points, landmark.settings.leaf_size, what)) {
+    throw Error(*why);
+  }
 }
 
 }  // namespace
 
 std::vector<std::string> search_methods() { return {"fast", "reference"}; }
+
+std::string describe_rejections(const SearchStats& s) {
+  if (s.after_nms == 0) {
+    return "no candidate pose: nothing in the scene has the landmark's shape";
+  }
+  std::string out;
+  const auto add = [&out](std::size_t n, const char* why) {
+    if (n == 0) return;
+    out += (out.empty() ? "rejected: " : ", ") + std::to_string(n) + " " + why;
+  };
+  add(s.rejected_error, "error above threshold");
+  add(s.rejected_coverage, "coverage too low");
+  add(s.rejected_empty_space, "empty space occupied");
+  return out;
+}
 
 SceneSettings scene_settings(const FindSettings& s) {
   SceneSettings scene;

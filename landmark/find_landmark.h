@@ -102,6 +102,7 @@ struct SearchStats {
   std::size_t rejected_error = 0;        ///< error at or above the threshold
   std::size_t rejected_coverage = 0;     ///< coverage below min_coverage
   std::size_t rejected_empty_space = 0;  ///< empty space occupied beyond the allowance
+  std::string method;                    ///< the search method run
   std::string metric;                    ///< the metric applied
 };
 
@@ -121,6 +122,10 @@ FindResult find_landmark(const PointCloud& scene, const Landmark& landmark,
 /// (work volume, leaves, up axis) win over those in `settings`.
 FindResult find_landmark(const SceneIndex& scene, const Landmark& landmark,
                          const FindSettings& settings = {});
+
+/// One line on what the search turned down and why, for users and logs: "" when nothing was, and
+/// "no candidate pose ..." when the scene offered none.
+std::string describe_rejections(const SearchStats& stats);
 
 /// The scene settings a FindSettings implies.
 SceneSettings scene_settings(const FindSettings& settings);

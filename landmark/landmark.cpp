@@ -8,6 +8,7 @@
 #include "geometry/kdtree.h"
 #include "geometry/normals.h"
 #include "geometry/pose.h"
+#include "geometry/principal_axes.h"
 #include "geometry/voxel_grid.h"
 
 namespace lmk {
@@ -94,6 +95,9 @@ Landmark capture(const PointCloud& scene, const Box& box, const std::string& nam
                 " points in the box after downsampling, fewer than the minimum of " +
                 std::to_string(settings.min_points) + "; draw a larger box or lower min_points");
   }
+  if (const auto why = degenerate_shape(landmark.points, settings.leaf_size, what)) {
+    throw Error(*why);
+  }
   landmark.points.T_cloud_sensor = scene.T_cloud_sensor;
   landmark.box = box;
   landmark.sensor_origin = scene.sensor_origin();
@@ -102,6 +106,39 @@ Landmark capture(const PointCloud& scene, const Box& box, const std::string& nam
                             : default_up(scene.T_cloud_sensor, settings.base_frame);
   prepare_landmark(landmark, &scene.points);  // rays to non-finite points are skipped
   return landmark;
+}
+
+std::optional<std::string> degenerate_shape(const PointCloud& points, double leaf_size,
+                                            const std::string& what) {
+  constexpr double kDegenerateFraction = 0.95;
+  if (points.size() < 3) return what + ": fewer than three points cannot fix a pose";
+  const PrincipalAxes pca =
+      principal_axes(points.size(), [&](std::size_t i) { return points.points[i]; });
+  const Eigen::Vector3d mean = pca.mean, normal = pca.axes.col(0), axis = pca.axes.col(2);
+  const double tolerance = 2.0 * leaf_size;
+  std::size_t near_plane = 0, near_line = 0;
+  for (const auto& p : points.points) {
+    const Eigen::Vector3d d = p.cast<double>() - mean;
+    if (std::abs(d.dot(normal)) <= tolerance) ++near_plane;
+    if ((d - d.dot(axis) * axis).norm() <= tolerance) ++near_line;
+  }
+  const auto share = [&](std::size_t n) {
+    return static_cast<double>(n) / static_cast<double>(points.size());
+  };
+  const auto percent = [&](std::size_t n) { return std::to_string(std::lround(100.0 * share(n))); };
+  const std::string within = " within " + std::to_string(std::lround(1000.0 * tolerance)) + " mm";
+  if (share(near_line) >= kDegenerateFraction) {
+    return what + ": the shape is a thin straight piece (" + percent(near_line) +
+           "% of the points" + within +
+           " of one line), which leaves its turn about that line undetermined; draw the "
+           "box around something with a corner or some width";
+  }
+  if (share(near_plane) >= kDegenerateFraction) {
+    return what + ": the shape is flat (" + percent(near_plane) + "% of the points" + within +
+           " of one plane), so it would match anywhere on any plane; draw the box to include an "
+           "edge, a corner or some relief";
+  }
+  return std::nullopt;
 }
 
 Eigen::Vector3d default_up(const Eigen::Isometry3d& T_cloud_sensor, bool base_frame) {

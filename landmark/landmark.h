@@ -72,10 +72,17 @@ void estimate_landmark_normals(Landmark& landmark);
 void prepare_landmark(Landmark& landmark,
                       const std::vector<Eigen::Vector3f>* scene_points = nullptr);
 
+/// Why a landmark's shape cannot fix a pose, or nothing when it can. A flat landmark (at least 95%
+/// of its points within two leaves of one plane) slides and turns freely in that plane, and a thin
+/// straight one (likewise around one line) turns freely about it: either would match every table
+/// top or every edge in a scene. `what` names the landmark in the message.
+std::optional<std::string> degenerate_shape(const PointCloud& points, double leaf_size,
+                                            const std::string& what);
+
 /// Cuts a landmark out of `scene`: the finite scene points inside the oriented `box` (given in the
 /// scene frame), voxel-downsampled to settings.leaf_size. Throws lmk::Error for an empty name, a
-/// box with a non-positive, non-finite or oversized side, a box with no scene point inside, or too
-/// few points.
+/// box with a non-positive, non-finite or oversized side, a box with no scene point inside, too
+/// few points, or a degenerate (flat or straight) shape.
 Landmark capture(const PointCloud& scene, const Box& box, const std::string& name,
                  const CaptureSettings& settings = {});
 

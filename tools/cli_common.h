@@ -32,6 +32,7 @@ struct UpOptions {
 };
 void add_up_options(CLI::App* sub, UpOptions& options);
 
+Subcommand add_bench(CLI::App& app);
 Subcommand add_info(CLI::App& app);
 Subcommand add_convert(CLI::App& app);
 Subcommand add_gen(CLI::App& app);

@@ -70,30 +70,21 @@ nlohmann::json result_json(const FindResult& r) {
             {"rejected_coverage", s.rejected_coverage},
             {"rejected_empty_space", s.rejected_empty_space},
             {"threshold", s.threshold},
-            {"metric", s.metric}}}};
-}
-
-// Why candidates were turned down, for the summary line: "" when none was.
-std::string rejections(const SearchStats& s) {
-  std::string out;
-  const auto add = [&out](std::size_t n, const char* why) {
-    if (n == 0) return;
-    out += (out.empty() ? "; rejected: " : ", ") + std::to_string(n) + " " + why;
-  };
-  add(s.rejected_error, "error above threshold");
-  add(s.rejected_coverage, "low coverage");
-  add(s.rejected_empty_space, "empty space occupied");
-  return out;
+            {"method", s.method},
+            {"metric", s.metric},
+            {"rejections", describe_rejections(s)}}}};
 }
 
 void print_table(const FindResult& r, const std::string& name) {
   const SearchStats& s = r.stats;
+  const std::string rejected = describe_rejections(s);
+  const std::string why = rejected.empty() ? "" : "; " + rejected;
   std::printf(
       "%zu match%s for '%s' (%s, metric %s, threshold %.1f mm, %zu seeds, %zu scene points,"
       " %.2f s%s)\n",
-      r.matches.size(), r.matches.size() == 1 ? "" : "es", name.c_str(),
-      s.poses > 0 ? "fast" : "reference", s.metric.c_str(), 1000.0 * s.threshold, s.seeds,
-      s.scene_points_used, s.seconds_total, rejections(s).c_str());
+      r.matches.size(), r.matches.size() == 1 ? "" : "es", name.c_str(), s.method.c_str(),
+      s.metric.c_str(), 1000.0 * s.threshold, s.seeds, s.scene_points_used, s.seconds_total,
+      why.c_str());
   if (r.matches.empty()) return;
   const bool grid_terms = !std::isnan(r.matches.front().terms.coverage);
   std::printf("%4s %9s %9s %9s %8s %8s %8s %9s", "rank", "x", "y", "z", "roll", "pitch", "yaw",

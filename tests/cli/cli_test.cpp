@@ -121,6 +121,15 @@ TEST_F(CliLandmark, CaptureShowExportImportFind) {
   const CommandResult captured = lmk("capture " + path("scene.pcd") + " " + carton_ +
                                      " --name carton -o " + path("carton.lmk"));
   ASSERT_EQ(captured.exit_code, 0) << captured.err;
+  // The distinctiveness check: seen from this camera, the table's square leg under the table top
+  // has the carton's visible faces, and capture names the place.
+  EXPECT_NE(captured.err.find("'carton' also matches 1 other place"), std::string::npos)
+      << captured.err;
+  EXPECT_NE(captured.err.find("at -0.00"), std::string::npos) << captured.err;
+  const CommandResult unchecked = lmk("capture " + path("scene.pcd") + " " + carton_ +
+                                      " --name carton -o " + path("unchecked.lmk") + " --no-check");
+  ASSERT_EQ(unchecked.exit_code, 0) << unchecked.err;
+  EXPECT_EQ(unchecked.err.find("also matches"), std::string::npos);
   const CommandResult show = lmk("landmark show " + path("carton.lmk"));
   EXPECT_EQ(show.exit_code, 0);
   EXPECT_NE(show.out.find("carton"), std::string::npos);
@@ -142,9 +151,14 @@ TEST_F(CliLandmark, CaptureShowExportImportFind) {
   EXPECT_LT(best["error"].get<double>(), 0.0055);
   for (const char* term :
        {"scene_to_landmark_sum", "scene_to_landmark_count", "landmark_to_scene_sum",
-        "landmark_to_scene_count", "scene_points_in_box"}) {
+        "landmark_to_scene_count", "scene_points_in_box", "empty_space_probes",
+        "empty_space_violations", "empty_space_violation_mean"}) {
     EXPECT_TRUE(best["terms"].contains(term)) << term;
   }
+  EXPECT_GT(best["terms"]["coverage"].get<double>(), 0.9);
+  EXPECT_EQ(best["terms"]["empty_space_violations"], 0);
+  EXPECT_EQ(j["stats"]["method"], "fast");
+  EXPECT_EQ(j["stats"]["metric"], "visibility");
   EXPECT_EQ(j["stats"]["seeds"], 150);
   EXPECT_GT(j["stats"]["seconds"].get<double>(), 0.0);
 
@@ -153,6 +167,14 @@ TEST_F(CliLandmark, CaptureShowExportImportFind) {
   EXPECT_EQ(table.exit_code, 0);
   EXPECT_NE(table.out.find("rank"), std::string::npos);
   EXPECT_NE(table.out.find("error_mm"), std::string::npos);
+  EXPECT_NE(table.out.find("coverage"), std::string::npos);
+  EXPECT_NE(table.out.find("empty_viol"), std::string::npos);
+
+  // The paper's metric through the reference search prints the paper's terms instead.
+  const CommandResult reference = lmk("find " + path("scene.pcd") + " " + path("carton.lmk") +
+                                      " --method reference --max-seeds 20");
+  EXPECT_EQ(reference.exit_code, 0) << reference.err;
+  EXPECT_NE(reference.out.find("reference, metric paper"), std::string::npos) << reference.out;
 }
 
 TEST_F(CliLandmark, BadInputToCaptureAndFind) {
@@ -181,7 +203,10 @@ TEST_F(CliLandmark, BadInputToCaptureAndFind) {
   expect_bad_input("find " + scene + " " + path("c.lmk") + " --metric nope",
                    "unknown error metric");
   expect_bad_input("find " + scene + " " + path("c.lmk") + " --method magic",
-                   "unknown search method");
+                   "not in {fast,reference}");
+  expect_bad_input("find " + scene + " " + path("c.lmk") + " --up 0 0 0", "--up must be");
+  expect_bad_input("find " + scene + " " + path("c.lmk") + " --orientations sideways",
+                   "not in {upright,full}");
 }
 
 TEST_F(Cli, RobotFkIkRoundTripAndRefusals) {

@@ -5,71 +5,19 @@
 
 #include <gtest/gtest.h>
 
-#include "eval/depth_sensor.h"
-#include "eval/mesh.h"
 #include "eval/real_data.h"
 #include "geometry/cloud_io.h"
 #include "geometry/error.h"
 #include "geometry/pose.h"
 #include "geometry/random.h"
 #include "geometry/voxel_grid.h"
+#include "tests/landmark/l_shape_scene.h"
 #include "tests/support/test_support.h"
 
 namespace lmk {
 namespace {
 
-constexpr double kTable = 0.7;
-
-// An L-shaped block (a post and an arm): no symmetry that ICP could confuse.
-TriangleMesh l_shape() {
-  TriangleMesh mesh;
-  mesh.append(make_box_mesh({0.05, 0.05, 0.12}), pose_from_xyz_rpy({0, 0, 0.06}, {0, 0, 0}));
-  mesh.append(make_box_mesh({0.10, 0.04, 0.04}), pose_from_xyz_rpy({0.075, 0, 0.02}, {0, 0, 0}));
-  return mesh;
-}
-
-// A table seen from above and in front, with L-shapes at `positions` (on the table top) and, when
-// `distractors`, a ball, a can and a flat box.
-// The capture camera: above and in front of the table, looking down at about 48 degrees.
-Eigen::Isometry3d capture_camera() {
-  return camera_look_at({0, -0.8, kTable + 0.9}, {0, 0, kTable}, Eigen::Vector3d::UnitZ());
-}
-
-PointCloud render_scene(const std::vector<Eigen::Vector2d>& positions, bool distractors,
-                        const std::vector<Eigen::Isometry3d>& floating = {},
-                        const Eigen::Isometry3d& camera = capture_camera()) {
-  TriangleMesh world;
-  for (const auto& pose : floating) world.append(l_shape(), pose);
-  world.append(make_box_mesh({1.4, 1.0, 0.04}),
-               pose_from_xyz_rpy({0, 0, kTable - 0.02}, {0, 0, 0}));
-  for (const auto& xy : positions) {
-    world.append(l_shape(), pose_from_xyz_rpy({xy.x(), xy.y(), kTable}, {0, 0, 0}));
-  }
-  if (distractors) {
-    world.append(make_sphere_mesh(0.04), pose_from_xyz_rpy({-0.1, 0.25, kTable + 0.04}, {0, 0, 0}));
-    world.append(make_cylinder_mesh(0.035, 0.12),
-                 pose_from_xyz_rpy({0.15, 0.25, kTable + 0.06}, {0, 0, 0}));
-    world.append(make_box_mesh({0.15, 0.1, 0.03}),
-                 pose_from_xyz_rpy({0.4, 0.2, kTable + 0.015}, {0, 0, 0.3}));
-  }
-  DepthSensorSettings sensor;
-  sensor.noise = false;
-  sensor.width = 320;  // a half-resolution sensor keeps the test fast; the geometry is the same
-  sensor.height = 240;
-  sensor.fx = sensor.fy = 262.5;
-  sensor.cx = 159.5;
-  sensor.cy = 119.5;
-  return render_depth(world, camera, sensor);
-}
-
-const std::vector<Eigen::Vector2d> kCopies = {{-0.45, -0.1}, {-0.1, -0.15}, {0.3, -0.05}};
-
-// The L-shape's box: 1.5 cm margins on the sides facing free space, its bottom on the table top.
-Box box_at(const Eigen::Vector2d& xy) {
-  const Eigen::Vector3d lo(xy.x() - 0.025 - 0.015, xy.y() - 0.025 - 0.015, kTable + 0.002);
-  const Eigen::Vector3d hi(xy.x() + 0.125 + 0.015, xy.y() + 0.025 + 0.015, kTable + 0.12 + 0.015);
-  return Box(pose_from_xyz_rpy(0.5 * (lo + hi), {0, 0, 0}), hi - lo);
-}
+using namespace test_scenes;
 
 class Search : public ::testing::TestWithParam<std::string> {
  protected:

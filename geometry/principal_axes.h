@@ -1,0 +1,40 @@
+#pragma once
+// Principal axes of a point set: its mean and the eigen-decomposition of its covariance. Normals
+// (the axis of least spread of a neighbourhood) and the landmark shape check (is it flat, is it
+// straight) both rest on it.
+
+#include <Eigen/Core>
+#include <Eigen/Eigenvalues>
+#include <cstddef>
+
+namespace lmk {
+
+struct PrincipalAxes {
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  /// Spread along each axis (covariance eigenvalues, not normalised by the count), increasing.
+  Eigen::Vector3d spread = Eigen::Vector3d::Zero();
+  /// Column i is the unit axis of spread[i]: column 0 is a plane's normal, column 2 a line's
+  /// direction.
+  Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();
+};
+
+/// The principal axes of the `count` points point_at(0) ... point_at(count - 1) (each convertible
+/// to Eigen::Vector3d), accumulated in double for conditioning.
+template <typename PointAt>
+PrincipalAxes principal_axes(std::size_t count, PointAt point_at) {
+  PrincipalAxes out;
+  if (count == 0) return out;
+  for (std::size_t i = 0; i < count; ++i) out.mean += point_at(i).template cast<double>();
+  out.mean /= static_cast<double>(count);
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  for (std::size_t i = 0; i < count; ++i) {
+    const Eigen::Vector3d d = point_at(i).template cast<double>() - out.mean;
+    covariance += d * d.transpose();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
+  out.spread = solver.eigenvalues();
+  out.axes = solver.eigenvectors();
+  return out;
+}
+
+}  // namespace lmk

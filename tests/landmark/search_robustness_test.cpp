@@ -1,0 +1,177 @@
+// The search under bad input (NaN poses, empty or tiny scenes, flat landmarks), under concurrent
+// use of one SceneIndex, and the distinctiveness check that capture runs.
+
+#include <gtest/gtest.h>
+
+#include <limits>
+#include <thread>
+
+#include "geometry/error.h"
+#include "geometry/filters.h"
+#include "geometry/pose.h"
+#include "landmark/distinctiveness.h"
+#include "landmark/find_landmark.h"
+#include "tests/landmark/l_shape_scene.h"
+
+namespace lmk {
+namespace {
+
+using namespace test_scenes;
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+class SearchInput : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    scene_ = new PointCloud(render_scene({kCopies[0]}, true));
+    landmark_ = new Landmark(capture(*scene_, box_at(kCopies[0]), "L"));
+  }
+  static void TearDownTestSuite() {
+    delete scene_;
+    delete landmark_;
+  }
+  static PointCloud* scene_;
+  static Landmark* landmark_;
+};
+PointCloud* SearchInput::scene_ = nullptr;
+Landmark* SearchInput::landmark_ = nullptr;
+
+// The error's message, or "" when `f` does not throw lmk::Error.
+template <typename F>
+std::string error_of(F&& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST_F(SearchInput, NanPosesAreClearErrors) {
+  PointCloud scene = *scene_;
+  scene.T_cloud_sensor.translation().x() = kNaN;
+  EXPECT_NE(error_of([&] { find_landmark(scene, *landmark_); }).find("sensor pose"),
+            std::string::npos);
+
+  Landmark landmark = *landmark_;
+  landmark.box.pose.translation().z() = kNaN;
+  EXPECT_NE(error_of([&] { find_landmark(*scene_, landmark); }).find("box pose"),
+            std::string::npos);
+
+  FindSettings s;
+  s.work_volume = Box(pose_from_xyz_rpy({kNaN, 0, 0}, {0, 0, 0}), {1, 1, 1});
+  EXPECT_NE(error_of([&] { find_landmark(*scene_, *landmark_, s); }).find("work volume"),
+            std::string::npos);
+
+  s = FindSettings();
+  s.up = Eigen::Vector3d(0, kNaN, 1);
+  EXPECT_NE(error_of([&] { find_landmark(*scene_, *landmark_, s); }).find("up axis"),
+            std::string::npos);
+}
+
+TEST_F(SearchInput, EmptyScenesAreClearErrors) {
+  EXPECT_NE(error_of([&] { find_landmark(PointCloud(), *landmark_); }).find("no finite point"),
+            std::string::npos);
+  PointCloud no_returns;  // an organised frame in which the sensor saw nothing
+  no_returns.width = 4;
+  no_returns.height = 3;
+  no_returns.points.assign(12, Eigen::Vector3f::Constant(std::nanf("")));
+  EXPECT_NE(error_of([&] { find_landmark(no_returns, *landmark_); }).find("no finite point"),
+            std::string::npos);
+}
+
+// A scene smaller than the landmark (a 6 cm patch of the table, then a handful of points) has
+// nothing that could be the landmark: the result is empty, with the reason, for both methods.
+TEST_F(SearchInput, ScenesSmallerThanTheLandmarkGiveNoMatchAndAReason) {
+  const Box patch(pose_from_xyz_rpy({0.2, 0.2, kTable}, {0, 0, 0}), {0.06, 0.06, 0.02});
+  const PointCloud small = crop(*scene_, patch);
+  ASSERT_GT(small.size(), 20u);
+  for (const std::string method : {"fast", "reference"}) {
+    FindSettings s;
+    s.method = method;
+    for (std::size_t n : {std::size_t{1}, std::size_t{3}, small.size()}) {
+      PointCloud scene = small;
+      scene.points.resize(n);
+      scene.width = static_cast<std::uint32_t>(n);
+      const FindResult r = find_landmark(scene, *landmark_, s);
+      EXPECT_TRUE(r.matches.empty()) << method << ", " << n << " points";
+      EXPECT_FALSE(describe_rejections(r.stats).empty()) << method << ", " << n << " points";
+    }
+  }
+}
+
+TEST_F(SearchInput, FlatLandmarksAreRefusedWithTheReason) {
+  const Box table_patch(pose_from_xyz_rpy({0.2, 0.2, kTable}, {0, 0, 0.4}), {0.2, 0.15, 0.04});
+  const std::string why = error_of([&] { capture(*scene_, table_patch, "patch"); });
+  EXPECT_NE(why.find("flat"), std::string::npos) << why;
+
+  // A landmark made flat after capture (as an imported or hand-built one could be) is refused by
+  // the search as well.
+  Landmark flat = *landmark_;
+  for (auto& p : flat.points.points) p.z() = static_cast<float>(kTable);
+  EXPECT_NE(error_of([&] { find_landmark(*scene_, flat); }).find("flat"), std::string::npos);
+
+  // A thin straight landmark: a single row of points.
+  Landmark straight = *landmark_;
+  for (auto& p : straight.points.points) p.y() = p.z() = 0.0f;
+  EXPECT_NE(error_of([&] { find_landmark(*scene_, straight); }).find("straight"),
+            std::string::npos);
+
+  // The L-shape itself is neither.
+  EXPECT_FALSE(degenerate_shape(landmark_->points, 0.005, "L").has_value());
+}
+
+// Several threads search one SceneIndex at once, each with its own landmark view: every result is
+// the one a lone search gives.
+TEST(SceneIndexSharing, ConcurrentSearchesGiveTheSerialResult) {
+  const PointCloud scene = render_scene(kCopies, true);
+  const Landmark landmark = capture(scene, box_at(kCopies[0]), "L");
+  FindSettings s;
+  s.threads = 1;
+  const SceneIndex index(scene, scene_settings(s));
+  const FindResult serial = find_landmark(index, landmark, s);
+  ASSERT_EQ(serial.matches.size(), kCopies.size());
+
+  constexpr int kThreads = 4, kRepeats = 3;
+  std::vector<std::vector<FindResult>> results(kThreads);
+  std::vector<std::thread> workers;
+  for (int t = 0; t < kThreads; ++t) {
+    workers.emplace_back([&, t] {
+      for (int k = 0; k < kRepeats; ++k) results[t].push_back(find_landmark(index, landmark, s));
+    });
+  }
+  for (std::thread& w : workers) w.join();
+  for (const auto& per_thread : results) {
+    for (const FindResult& r : per_thread) {
+      ASSERT_EQ(r.matches.size(), serial.matches.size());
+      for (std::size_t i = 0; i < r.matches.size(); ++i) {
+        EXPECT_EQ(r.matches[i].error, serial.matches[i].error);
+        EXPECT_TRUE(r.matches[i].box.pose.isApprox(serial.matches[i].box.pose, 0.0));
+      }
+    }
+  }
+}
+
+TEST(Distinctiveness, NamesEveryOtherCopyInTheCaptureScene) {
+  const PointCloud scene = render_scene(kCopies, true);
+  const DistinctivenessReport report =
+      check_distinctiveness(scene, capture(scene, box_at(kCopies[0]), "L"));
+  EXPECT_TRUE(report.found_itself);
+  ASSERT_EQ(report.other_instances.size(), kCopies.size() - 1);
+  for (const Match& m : report.other_instances) {
+    const double to_second = (m.box.center() - box_at(kCopies[1]).center()).norm();
+    const double to_third = (m.box.center() - box_at(kCopies[2]).center()).norm();
+    EXPECT_LT(std::min(to_second, to_third), 0.01);
+  }
+}
+
+TEST(Distinctiveness, ALoneLandmarkAmongDistractorsIsDistinctive) {
+  const PointCloud scene = render_scene({kCopies[1]}, true);
+  const DistinctivenessReport report =
+      check_distinctiveness(scene, capture(scene, box_at(kCopies[1]), "L"));
+  EXPECT_TRUE(report.found_itself);
+  EXPECT_TRUE(report.other_instances.empty());
+}
+
+}  // namespace
+}  // namespace lmk

@@ -1,0 +1,200 @@
+// lmk bench [SCENE LANDMARK] [--repeats N] [--reference-seeds N] [--threads N] [--json FILE]:
+// the fast search and the paper's reference search side by side, on the same scene and landmark
+// in one run: median seconds per search, their ratio, and peak memory.
+//
+// Without SCENE and LANDMARK it uses the real milk-carton frame from the shared data (--data, or
+// $LMK_SHARED_DATA, or ../shared/data beside the source tree), and a rendered tabletop frame with
+// its carton when that is absent. The reference search runs 5% of the points as seeds (at most
+// 1000), each a 50-iteration PCL ICP: minutes per search. It is run on a capped number of seeds and
+// its per-search time is extrapolated from the per-seed time; the output says so.
+
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "eval/depth_sensor.h"
+#include "eval/real_data.h"
+#include "eval/tabletop_scene.h"
+#include "geometry/atomic_file.h"
+#include "geometry/cloud_io.h"
+#include "geometry/error.h"
+#include "landmark/find_landmark.h"
+#include "landmark/landmark_file.h"
+#include "tools/cli_common.h"
+
+namespace lmk::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct BenchOptions {
+  std::string scene, landmark, data, json;
+  int repeats = 10;
+  std::size_t reference_seeds = 20;
+  int threads = 2;
+};
+
+struct Workload {
+  std::string description;
+  PointCloud scene;
+  Landmark landmark;
+};
+
+fs::path shared_data_dir(const std::string& option) {
+  if (!option.empty()) return option;
+  const char* env = std::getenv("LMK_SHARED_DATA");
+  return env != nullptr && *env != '\0' ? fs::path(env) : fs::path(LMK_SHARED_DATA_DIR);
+}
+
+Workload load_workload(const BenchOptions& o) {
+  Workload w;
+  if (!o.scene.empty()) {
+    w.description = o.landmark + " in " + o.scene;
+    w.scene = read_cloud(o.scene);
+    w.landmark = load_landmark(o.landmark);
+    return w;
+  }
+  const fs::path data = shared_data_dir(o.data);
+  if (fs::exists(data / "pcl/milk_cartoon_all_small_clorox.pcd")) {
+    MilkWorkload milk = load_milk_workload(data);
+    w.description = "milk carton in milk_cartoon_all_small_clorox.pcd (real 640x480 Kinect frame)";
+    w.scene = std::move(milk.scene);
+    w.landmark = std::move(milk.landmark);
+    return w;
+  }
+  // No real data: the carton of the rendered tabletop scene, with margins above and around it.
+  const SyntheticScene synthetic = make_tabletop_scene(1);
+  w.description = "carton in a rendered 640x480 tabletop frame (shared data absent)";
+  w.scene = render_depth(synthetic.mesh, synthetic.T_world_sensor);
+  Box box = synthetic.objects.front().box;
+  box.size += Eigen::Vector3d(0.04, 0.04, 0.02);
+  box.pose.translation().z() += 0.011;  // keep the bottom above the table top
+  w.landmark = capture(w.scene, box, "carton");
+  return w;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// The process's peak resident memory so far, MiB (Linux reports ru_maxrss in KiB).
+double peak_memory_mib() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;
+}
+
+int run_bench(const BenchOptions& o) {
+  if (o.scene.empty() != o.landmark.empty()) {
+    throw Error("bench: give both SCENE and LANDMARK, or neither for the built-in workload");
+  }
+  if (o.repeats < 1) throw Error("bench: --repeats must be at least 1");
+  if (o.reference_seeds < 1) throw Error("bench: --reference-seeds must be at least 1");
+  if (o.threads < 0) throw Error("bench: --threads must be 0 (all cores) or more");
+  const Workload w = load_workload(o);
+  std::printf("workload           %s\n", w.description.c_str());
+  std::printf("landmark           '%s', %zu points\n", w.landmark.name.c_str(),
+              w.landmark.points.size());
+  std::printf("threads            %s\n",
+              o.threads > 0 ? std::to_string(o.threads).c_str() : "all cores");
+
+  // Fast: each repeat is a whole search from the raw frame, the scene index built for this one
+  // landmark (preprocessing amortised over one landmark, the worst case).
+  FindSettings fast;
+  fast.threads = o.threads;
+  std::vector<double> total, preprocess, search;
+  std::size_t fast_matches = 0;
+  for (int k = 0; k < o.repeats; ++k) {
+    const FindResult r = find_landmark(w.scene, w.landmark, fast);
+    total.push_back(r.stats.seconds_total);
+    preprocess.push_back(r.stats.seconds_preprocess);
+    search.push_back(r.stats.seconds_total - r.stats.seconds_preprocess);
+    fast_matches = r.matches.size();
+  }
+  const double fast_peak = peak_memory_mib();
+  const double fast_median = median(total);
+  std::printf("\nfast               %d searches\n", o.repeats);
+  std::printf("  median per search %.4f s (scene preprocessing %.4f s + search %.4f s)\n",
+              fast_median, median(preprocess), median(search));
+  std::printf("  matches           %zu\n", fast_matches);
+  std::printf("  peak memory       %.0f MiB (process, after the fast searches)\n", fast_peak);
+
+  // Reference: a capped run, extrapolated to the full seed count.
+  FindSettings reference;
+  reference.method = "reference";
+  reference.threads = o.threads;
+  const FindSettings full = reference;
+  reference.max_seeds = o.reference_seeds;
+  const FindResult r = find_landmark(w.scene, w.landmark, reference);
+  const std::size_t full_seeds = std::min(
+      full.max_seeds, static_cast<std::size_t>(std::ceil(
+                          full.sample_fraction * static_cast<double>(r.stats.scene_points_used))));
+  const double per_seed = r.stats.seconds_search / static_cast<double>(r.stats.seeds);
+  const double reference_search =
+      r.stats.seconds_preprocess + per_seed * static_cast<double>(full_seeds);
+  const double reference_peak = peak_memory_mib();
+  std::printf("\nreference          %zu seeds run (capped; a full search runs %zu)\n",
+              r.stats.seeds, full_seeds);
+  std::printf("  per seed          %.4f s\n", per_seed);
+  std::printf("  per search        %.1f s (extrapolated: preprocessing + %zu seeds x per seed)\n",
+              reference_search, full_seeds);
+  std::printf("  peak memory       %.0f MiB (process, after both)\n", reference_peak);
+  const double ratio = reference_search / fast_median;
+  std::printf("\nspeed-up           %.0fx (reference per search / fast per search)\n", ratio);
+
+  if (!o.json.empty()) {
+    const nlohmann::json out = {{"workload", w.description},
+                                {"threads", o.threads},
+                                {"fast",
+                                 {{"searches", o.repeats},
+                                  {"median_seconds_per_search", fast_median},
+                                  {"median_seconds_preprocess", median(preprocess)},
+                                  {"median_seconds_search", median(search)},
+                                  {"matches", fast_matches},
+                                  {"peak_memory_mib", fast_peak}}},
+                                {"reference",
+                                 {{"seeds_run", r.stats.seeds},
+                                  {"seeds_full_search", full_seeds},
+                                  {"seconds_per_seed", per_seed},
+                                  {"seconds_per_search_extrapolated", reference_search},
+                                  {"peak_memory_mib", reference_peak}}},
+                                {"ratio", ratio}};
+    write_file_atomically(o.json, [&](const fs::path& tmp) {
+      std::ofstream file(tmp);
+      file << out.dump(2) << "\n";
+      if (!file) throw Error(o.json + ": write failed");
+    });
+  }
+  return kOk;
+}
+
+}  // namespace
+
+Subcommand add_bench(CLI::App& app) {
+  auto o = std::make_shared<BenchOptions>();
+  CLI::App* sub =
+      app.add_subcommand("bench", "Time the fast search against the paper's reference search");
+  sub->add_option("scene", o->scene, "Scene cloud (default: the built-in milk-carton workload)");
+  sub->add_option("landmark", o->landmark, "Landmark file (.lmk), with SCENE");
+  sub->add_option("--data", o->data, "Shared data directory (default $LMK_SHARED_DATA)");
+  sub->add_option("--repeats", o->repeats, "Fast searches to time")->capture_default_str();
+  sub->add_option("--reference-seeds", o->reference_seeds,
+                  "Seeds the reference search runs before extrapolating")
+      ->capture_default_str();
+  sub->add_option("--threads", o->threads, "Worker threads; 0 uses every core")
+      ->capture_default_str();
+  sub->add_option("--json", o->json, "Also write the figures as JSON to FILE");
+  return {sub, [o] { return run_bench(*o); }};
+}
+
+}  // namespace lmk::cli
