@@ -52,6 +52,9 @@ void check_settings(const FindSettings& s) {
     throw Error("find: sample fraction must be in (0, 1]");
   }
   if (s.max_seeds == 0) throw Error("find: max seeds must be at least 1");
+  if (!(s.seeds_per_instance >= 1.0) || !std::isfinite(s.seeds_per_instance)) {
+    throw Error("find: seeds per instance must be finite and at least 1");
+  }
   if (s.icp_iterations < 1) throw Error("find: ICP iterations must be at least 1");
   if (!positive(s.nms_radius)) throw Error("find: NMS radius must be positive and finite");
   if (s.threshold && !(*s.threshold > 0.0)) throw Error("find: threshold must be positive");
@@ -110,8 +113,13 @@ FindResult search(const SceneIndex& index, const Landmark& landmark, const FindS
   // Seeds: a seeded random sample of the points the method starts from (step 3).
   const PointCloud& points = fast ? index.coarse() : index.fine();
   stats.scene_points_used = points.size();
-  const auto wanted = static_cast<std::size_t>(
-      std::ceil(settings.sample_fraction * static_cast<double>(points.size())));
+  const double landmark_points =
+      fast ? static_cast<double>(
+                 voxel_downsample(landmark.points, index.settings().coarse_leaf).size())
+           : 0.0;
+  const auto wanted = static_cast<std::size_t>(std::ceil(
+      fast ? settings.seeds_per_instance * static_cast<double>(points.size()) / landmark_points
+           : settings.sample_fraction * static_cast<double>(points.size())));
   const Indices seeds =
       random_sample_indices(points.size(), std::min(settings.max_seeds, wanted), settings.seed);
   stats.seeds = seeds.size();
@@ -128,6 +136,7 @@ FindResult search(const SceneIndex& index, const Landmark& landmark, const FindS
       LandmarkView{landmark.points, landmark_tree, landmark.box, landmark},
       seeds,
       metric,
+      stats.threshold,
       settings};
   std::vector<Match> candidates;
   tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
@@ -138,6 +147,9 @@ FindResult search(const SceneIndex& index, const Landmark& landmark, const FindS
       stats.poses = fast_stats.poses;
       stats.clusters = fast_stats.clusters;
       stats.refined = fast_stats.refined;
+      stats.seconds_vote = fast_stats.seconds_vote;
+      stats.seconds_coarse = fast_stats.seconds_coarse;
+      stats.seconds_fine = fast_stats.seconds_fine;
     } else {
       candidates = detail::reference_candidates(input);
     }

@@ -26,13 +26,19 @@ struct FindSettings {
   std::string metric;
   /// Step 1: crop the scene to this box (scene frame) first; nothing means the whole scene.
   std::optional<Box> work_volume;
-  double leaf_size = 0.005;       ///< step 2: scene voxel leaf, m
-  double coarse_leaf = 0.01;      ///< fast: leaf of the seeds, voting and coarse alignment, m
-  double sample_fraction = 0.05;  ///< step 3: fraction of the downsampled points used as seeds
-  std::size_t max_seeds = 1000;   ///< step 3: at most this many seeds
-  std::uint64_t seed = 0;         ///< step 3: random seed of the sampling
-  int icp_iterations = 50;        ///< reference, step 4: ICP iterations per seed (PCL's ICP)
-  double nms_radius = 0.03;       ///< step 5: non-max suppression radius on box centres, m
+  double leaf_size = 0.005;   ///< step 2: scene voxel leaf, m
+  double coarse_leaf = 0.01;  ///< fast: leaf of the seeds, voting and coarse alignment, m
+  /// Step 3 (reference): fraction of the downsampled points used as seeds.
+  double sample_fraction = 0.05;
+  /// Fast: as many seeds as put about this many on one instance of the landmark (the scene's coarse
+  /// points over the landmark's, times this). Each seed on an instance votes for its pose, so a
+  /// dozen leave room for a half-occluded instance and for seeds on its edges, whose normals are
+  /// poor, while a search costs a few hundred seeds rather than a thousand.
+  double seeds_per_instance = 12.0;
+  std::size_t max_seeds = 1000;  ///< step 3: at most this many seeds
+  std::uint64_t seed = 0;        ///< step 3: random seed of the sampling
+  int icp_iterations = 50;       ///< reference, step 4: ICP iterations per seed (PCL's ICP)
+  double nms_radius = 0.03;      ///< step 5: non-max suppression radius on box centres, m
   /// Step 6: matches need an error below this, m. Unset: the metric's default threshold.
   std::optional<double> threshold;
   /// Fast: matches need at least this fraction of their points supported by the scene (only for
@@ -97,6 +103,9 @@ struct SearchStats {
   std::size_t poses = 0;           ///< fast: poses voted by the seeds
   std::size_t clusters = 0;        ///< fast: pose clusters aligned coarsely
   std::size_t refined = 0;         ///< fast: candidates refined fully
+  double seconds_vote = 0.0;       ///< fast, part of seconds_search: voting and clustering
+  double seconds_coarse = 0.0;     ///< fast, part of seconds_search: coarse alignment and pruning
+  double seconds_fine = 0.0;       ///< fast, part of seconds_search: refinement and scoring
   double threshold = 0.0;          ///< the error threshold applied, m
   /// Candidates left by non-max suppression and then rejected, by the first test they failed.
   std::size_t rejected_error = 0;        ///< error at or above the threshold

@@ -139,7 +139,7 @@ DistanceField::DistanceField(const std::vector<Eigen::Vector3f>& points,
   std::vector<std::pair<int, int>> reach_of(points.size(), {0, -1});
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (!points[i].allFinite()) continue;
-    const int cx = static_cast<int>(std::lround(points[i].x() / voxel));
+    const int cx = detail::round_to_int(points[i].x() / voxel);
     reach_of[i] = {slab_of(cx - reach), slab_of(cx + reach)};
     if (last < first) {
       first = reach_of[i].first, last = reach_of[i].second;

@@ -166,7 +166,12 @@ Subcommand add_find(CLI::App& app) {
                   "Fast: largest fraction of the landmark's empty space the scene may occupy")
       ->capture_default_str();
   add_up_options(sub, o->up);
-  sub->add_option("--max-seeds", s.max_seeds, "Most seeds (5% of the scene points below this)")
+  sub->add_option(
+         "--max-seeds", s.max_seeds,
+         "Most seeds (below this: fast, --seeds-per-instance; reference, 5% of the points)")
+      ->capture_default_str();
+  sub->add_option("--seeds-per-instance", s.seeds_per_instance,
+                  "Fast: seeds expected on one instance of the landmark")
       ->capture_default_str();
   sub->add_option("--seed", s.seed, "Random seed of the seed sampling")->capture_default_str();
   sub->add_option("--threads", s.threads, "Worker threads; 0 uses every core")

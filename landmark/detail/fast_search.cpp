@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <memory>
 #include <numeric>
@@ -17,6 +18,12 @@
 
 namespace lmk::detail {
 namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
 
 struct Candidate {
   Eigen::Isometry3d T_scene_capture;
@@ -62,6 +69,7 @@ std::vector<Candidate> cluster(std::vector<Candidate> poses, double distance, do
 }  // namespace
 
 std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats) {
+  const auto start = Clock::now();
   const FindSettings& s = in.settings;
   const Landmark& landmark = in.landmark;
   const SceneIndex& index = in.index;
@@ -76,7 +84,9 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
   const double vote_leaf = std::max(leaf, diameter * s.vote_leaf_fraction);
   const PointCloud model = voxel_downsample(landmark.points, leaf);
   const PointCloud vote_model = voxel_downsample(landmark.points, vote_leaf);
-  const PointPairModel pairs(vote_model, vote_leaf, diameter);
+  const std::shared_ptr<const PointPairModel> shared_pairs =
+      shared_point_pair_model(vote_model, vote_leaf, diameter);
+  const PointPairModel& pairs = *shared_pairs;
   const bool own_vote_cloud = vote_leaf > leaf * 1.01;
   const PointCloud vote_scene = own_vote_cloud ? voxel_downsample(coarse, vote_leaf) : PointCloud();
   const PointCloud& voters = own_vote_cloud ? vote_scene : coarse;
@@ -120,6 +130,8 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
   const std::vector<Candidate> clusters =
       cluster(std::move(poses), std::max(2.0 * leaf, 0.1 * diameter), 0.35, s.max_candidates);
   stats.clusters = clusters.size();
+  stats.seconds_vote = seconds_since(start);
+  const auto coarse_start = Clock::now();
 
   // Step 3: coarse alignment and a cheap score, in parallel.
   IcpSettings coarse_icp;
@@ -157,38 +169,50 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
   }
   std::sort(survivors.begin(), survivors.end());  // back to cluster rank: deterministic order
   stats.refined = survivors.size();
+  stats.seconds_coarse = seconds_since(coarse_start);
+  const auto fine_start = Clock::now();
 
   // Step 4 and 5, in parallel over the survivors.
   IcpSettings fine_icp = coarse_icp;
   fine_icp.max_iterations = 10;
   fine_icp.max_correspondence_distance = 0.5 * index.field().band();
   fine_icp.loss = {RobustKernel::huber, 0.5 * leaf};
+  const std::vector<Eigen::Vector3f> icp_points = thin(landmark.points.points, 1000);
   const std::vector<Eigen::Vector3f> refine_points = thin(landmark.points.points, 400);
   const std::vector<Eigen::Vector3f> empty_probes = thin(landmark.empty_space.centres(), 300);
   RefineSettings refine;
   refine.empty_space_weight = 1.0;
   refine.empty_space_margin = index.settings().leaf_size;
+  // Ceres polishes the finalists only: candidates whose error after ICP is within half again of
+  // the threshold. Further out, a few millimetres of polish cannot make a match of them.
+  const double worth_refining = 1.5 * in.threshold;
   std::vector<Match> matches(survivors.size());
   tbb::parallel_for(std::size_t{0}, survivors.size(), [&](std::size_t k) {
     const std::size_t c = survivors[k];
     const DistanceFieldTarget target(index.field(), &coarse.normals);
-    const IcpResult r = icp(landmark.points.points, target, aligned[c], fine_icp);
+    const IcpResult r = icp(icp_points, target, aligned[c], fine_icp);
     Match& m = matches[k];
     m.T_scene_capture = r.T_target_source;
-    if (s.refine) {
-      m.T_scene_capture =
+    m.terms = in.metric.evaluate(in.scene_view, in.landmark_view, m.T_scene_capture);
+    if (s.refine && m.terms.error < worth_refining) {
+      const Eigen::Isometry3d polished =
           refine_pose(refine_points, index.field(), m.T_scene_capture, refine, empty_probes)
               .T_target_source;
+      ErrorTerms terms = in.metric.evaluate(in.scene_view, in.landmark_view, polished);
+      if (terms.error <= m.terms.error) {
+        m.T_scene_capture = polished;
+        m.terms = terms;
+      }
     }
     m.icp_iterations = iterations[c] + r.iterations;
     m.icp_converged = r.converged;
     m.seed_index = clusters[c].seed;
     m.seed_point = coarse.points[in.seeds[clusters[c].seed]];
     m.votes = clusters[c].votes;
-    m.terms = in.metric.evaluate(in.scene_view, in.landmark_view, m.T_scene_capture);
     m.error = m.terms.error;
     m.box = landmark.box.transformed(m.T_scene_capture);
   });
+  stats.seconds_fine = seconds_since(fine_start);
   return matches;
 }
 

@@ -19,9 +19,12 @@
 namespace lmk::detail {
 
 struct FastSearchStats {
-  std::size_t poses = 0;     ///< poses voted by the seeds (after the tilt limit)
-  std::size_t clusters = 0;  ///< after merging
-  std::size_t refined = 0;   ///< survivors of the coarse pruning
+  std::size_t poses = 0;        ///< poses voted by the seeds (after the tilt limit)
+  std::size_t clusters = 0;     ///< after merging
+  std::size_t refined = 0;      ///< survivors of the coarse pruning
+  double seconds_vote = 0.0;    ///< steps 1 and 2
+  double seconds_coarse = 0.0;  ///< step 3
+  double seconds_fine = 0.0;    ///< steps 4 and 5
 };
 
 /// Candidates in a deterministic order (by cluster rank), whatever the thread count.

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
+#include <mutex>
 
 #include "geometry/error.h"
 
@@ -86,24 +88,22 @@ PointPairModel::PointPairModel(const PointCloud& model, double distance_step, do
     to_x_axis_.push_back(rotation_to_x(model.normals[i]));
   }
 
-  // Every ordered pair within the diameter, with its feature.
-  struct Pair {
-    std::uint32_t i, j;
-    Feature f;
-  };
-  std::vector<Pair> model_pairs;
-  std::size_t coplanar = 0;
-  for (std::size_t i = 0; i < points_.size(); ++i) {
-    for (std::size_t j = 0; j < points_.size(); ++j) {
-      Feature f;
-      if (i == j || !feature(points_[i], normals[i], points_[j], normals[j], f)) continue;
-      if (f.distance > diameter) continue;
-      model_pairs.push_back({static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j), f});
-      coplanar += f.coplanar ? 1 : 0;
+  // Every ordered pair within the diameter. A first pass counts the coplanar ones: a landmark with
+  // relief keeps its non-coplanar pairs only, if they are a fifth or more.
+  const auto for_each_pair = [&](auto&& visit) {
+    for (std::size_t i = 0; i < points_.size(); ++i) {
+      for (std::size_t j = 0; j < points_.size(); ++j) {
+        Feature f;
+        if (i == j || !feature(points_[i], normals[i], points_[j], normals[j], f)) continue;
+        if (f.distance <= diameter) visit(i, j, f);
+      }
     }
-  }
-  // A landmark with relief keeps its non-coplanar pairs only, if they are a fifth or more.
-  const std::size_t total = model_pairs.size();
+  };
+  std::size_t total = 0, coplanar = 0;
+  for_each_pair([&](std::size_t, std::size_t, const Feature& f) {
+    ++total;
+    coplanar += f.coplanar ? 1 : 0;
+  });
   skip_coplanar_ = total > 0 && (total - coplanar) * 5 >= total;
 
   struct Keyed {
@@ -111,11 +111,12 @@ PointPairModel::PointPairModel(const PointCloud& model, double distance_step, do
     Entry entry;
   };
   std::vector<Keyed> keyed;
+  keyed.reserve(4 * total);  // about 1.5^4 bins per pair with the edge spreading below
   const float step = static_cast<float>(distance_step);
-  for (const Pair& pair : model_pairs) {
-    const Feature& f = pair.f;
-    if (skip_coplanar_ && f.coplanar) continue;
-    const Entry entry{pair.i, angle_about_x(to_x_axis_[pair.i], points_[pair.j] - points_[pair.i])};
+  for_each_pair([&](std::size_t i, std::size_t j, const Feature& f) {
+    if (skip_coplanar_ && f.coplanar) return;
+    const Entry entry{static_cast<std::uint32_t>(i),
+                      angle_about_x(to_x_axis_[i], points_[j] - points_[i])};
     // Hash into the bin of each quantity and, near a bin edge, into its neighbour too.
     const float c[4] = {f.distance / step, f.a1 / kAngleStep, f.a2 / kAngleStep, f.a3 / kAngleStep};
     int lo[4], hi[4];
@@ -135,7 +136,7 @@ PointPairModel::PointPairModel(const PointCloud& model, double distance_step, do
             }
             keyed.push_back({key(b0, b1, b2, b3), entry});
           }
-  }
+  });
   // Counting sort into a dense table: the key space is small (distance bins x 15^3).
   offsets_.assign(
       static_cast<std::size_t>(distance_bins_) * kAngleBins * kAngleBins * kAngleBins + 1, 0);
@@ -162,9 +163,12 @@ void PointPairModel::vote(const PointCloud& scene, const KdTree& tree, Index ref
   if (!sr.allFinite() || !nr.allFinite() || points_.empty()) return;
   const Eigen::Matrix3f Rs = rotation_to_x(nr);
 
-  std::vector<Neighbor> neighbours;
+  // Per-thread scratch: a search votes for a thousand seeds, and fresh buffers for each would cost
+  // more in allocation than the voting itself.
+  thread_local std::vector<Neighbor> neighbours;
+  thread_local std::vector<float> votes;
   tree.radius_unsorted(sr, static_cast<float>(diameter_), neighbours);
-  std::vector<float> votes(points_.size() * kAlphaBins, 0.0f);
+  votes.assign(points_.size() * kAlphaBins, 0.0f);
   const float step = static_cast<float>(distance_step_);
   const float alpha_bin = kAlphaBins / (2.0f * kPi);
   for (const Neighbor& nb : neighbours) {
@@ -196,6 +200,7 @@ void PointPairModel::vote(const PointCloud& scene, const KdTree& tree, Index ref
 
   // The best bins, strongest first; ties go to the lower index, so the result is deterministic.
   std::vector<std::pair<float, std::uint32_t>> best;
+  best.reserve(static_cast<std::size_t>(max_poses) + 1);
   for (std::uint32_t k = 0; k < votes.size(); ++k) {
     if (votes[k] <= 0.0f) continue;
     if (static_cast<int>(best.size()) < max_poses || votes[k] > best.back().first) {
@@ -220,6 +225,34 @@ void PointPairModel::vote(const PointCloud& scene, const KdTree& tree, Index ref
     pv.votes = v;
     out.push_back(pv);
   }
+}
+
+std::shared_ptr<const PointPairModel> shared_point_pair_model(const PointCloud& model,
+                                                              double distance_step,
+                                                              double diameter) {
+  struct Cached {
+    std::vector<Eigen::Vector3f> points, normals;
+    double distance_step, diameter;
+    std::shared_ptr<const PointPairModel> model;
+  };
+  constexpr std::size_t kCapacity = 8;
+  static std::mutex mutex;
+  static std::deque<Cached> cache;  // most recently built last
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    for (const Cached& c : cache) {
+      if (c.distance_step == distance_step && c.diameter == diameter && c.points == model.points &&
+          c.normals == model.normals) {
+        return c.model;
+      }
+    }
+  }
+  // Built outside the lock: two threads may build the same model once each, which is harmless.
+  auto built = std::make_shared<const PointPairModel>(model, distance_step, diameter);
+  const std::lock_guard<std::mutex> lock(mutex);
+  cache.push_back({model.points, model.normals, distance_step, diameter, built});
+  if (cache.size() > kCapacity) cache.pop_front();
+  return built;
 }
 
 }  // namespace lmk::detail

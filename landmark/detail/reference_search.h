@@ -17,6 +17,7 @@ struct SearchInput {
   LandmarkView landmark_view;
   const Indices& seeds;  ///< indices into `scene`
   const ErrorMetric& metric;
+  double threshold;  ///< the error threshold the search applies, m
   const FindSettings& settings;
 };
 
