@@ -123,6 +123,20 @@ TEST_P(Search, BadSettingsAreErrors) {
 INSTANTIATE_TEST_SUITE_P(Methods, Search, ::testing::Values("fast", "reference"),
                          [](const auto& info) { return info.param; });
 
+// The issues' acceptance for one trial: does a match lie within 1 cm and 5 degrees of `truth`?
+// Returns 1 if so; otherwise says which trial missed, and returns 0.
+int count_trial(const FindResult& r, const Box& truth, int trial, double yaw, double tilt) {
+  for (const Match& m : r.matches) {
+    if ((m.box.center() - truth.center()).norm() < 0.01 &&
+        rotation_angle_between(m.box.pose.linear(), truth.pose.linear()) < 5.0 * M_PI / 180) {
+      return 1;
+    }
+  }
+  std::printf("trial %d missed: yaw %.0f tilt %.0f deg, %zu matches\n", trial, yaw * 180 / M_PI,
+              tilt * 180 / M_PI, r.matches.size());
+  return 0;
+}
+
 // Issue acceptance: the L-shape at a random yaw in [0, 360) degrees and a tilt of up to 45 degrees
 // (about gravity, +z of the scenes' base frame), floating above the table among the distractors;
 // the fast method must find it within 1 cm and 5 degrees in at least 95 of 100 seeded trials.
@@ -158,16 +172,7 @@ TEST(FastSearchRotation, FindsRotatedAndTiltedLandmarks) {
     const PointCloud scene =
         render_scene({}, true, {T_world_l}, T_scene_capture * capture_camera());
     const FindResult r = find_landmark(scene, landmark, settings);
-    bool hit = false;
-    for (const Match& m : r.matches) {
-      hit |= (m.box.center() - truth.center()).norm() < 0.01 &&
-             rotation_angle_between(m.box.pose.linear(), truth.pose.linear()) < 5.0 * M_PI / 180;
-    }
-    found += hit ? 1 : 0;
-    if (!hit) {
-      std::printf("trial %d missed: yaw %.0f tilt %.0f deg, %zu matches\n", trial, yaw * 180 / M_PI,
-                  tilt * 180 / M_PI, r.matches.size());
-    }
+    found += count_trial(r, truth, trial, yaw, tilt);
   }
   std::printf("fast found %d of 100 rotated and tilted landmarks\n", found);
   EXPECT_GE(found, 95);
@@ -205,16 +210,7 @@ TEST(RealData, FastFindsTheMilkCartonInTransformedCopiesOfItsFrame) {
     T.translation() = milk.box.center() - T.linear() * milk.box.center() + shift;
     const Box truth = milk.box.transformed(T);
     const FindResult r = find_landmark(milk.scene.transformed(T), milk.landmark);
-    bool hit = false;
-    for (const Match& m : r.matches) {
-      hit |= (m.box.center() - truth.center()).norm() < 0.01 &&
-             rotation_angle_between(m.box.pose.linear(), truth.pose.linear()) < 5.0 * M_PI / 180;
-    }
-    found += hit ? 1 : 0;
-    if (!hit) {
-      std::printf("trial %d missed: yaw %.0f tilt %.0f deg, %zu matches\n", trial, yaw * 180 / M_PI,
-                  tilt * 180 / M_PI, r.matches.size());
-    }
+    found += count_trial(r, truth, trial, yaw, tilt);
   }
   std::printf("fast found the milk carton in %d of 50 transformed frames\n", found);
   EXPECT_GE(found, 48);
