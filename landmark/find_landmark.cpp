@@ -2,7 +2,6 @@
 
 #include <tbb/task_arena.h>
 
-#include <chrono>
 #include <cmath>
 
 #include "geometry/error.h"
@@ -10,16 +9,14 @@
 #include "geometry/voxel_grid.h"
 #include "landmark/detail/fast_search.h"
 #include "landmark/detail/reference_search.h"
+#include "landmark/detail/stopwatch.h"
 #include "landmark/non_max_suppression.h"
 
 namespace lmk {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
+using detail::Clock;
+using detail::seconds_since;
 
 void check_settings(const FindSettings& s) {
   const auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
@@ -113,13 +110,13 @@ FindResult search(const SceneIndex& index, const Landmark& landmark, const FindS
   // Seeds: a seeded random sample of the points the method starts from (step 3).
   const PointCloud& points = fast ? index.coarse() : index.fine();
   stats.scene_points_used = points.size();
-  const double landmark_points =
-      fast ? static_cast<double>(
-                 voxel_downsample(landmark.points, index.settings().coarse_leaf).size())
-           : 0.0;
-  const auto wanted = static_cast<std::size_t>(std::ceil(
-      fast ? settings.seeds_per_instance * static_cast<double>(points.size()) / landmark_points
-           : settings.sample_fraction * static_cast<double>(points.size())));
+  // Fast: the landmark at the scene's coarse leaf, which also sets the seed count.
+  const PointCloud landmark_coarse =
+      fast ? voxel_downsample(landmark.points, index.settings().coarse_leaf) : PointCloud();
+  const auto wanted = static_cast<std::size_t>(
+      std::ceil(fast ? settings.seeds_per_instance * static_cast<double>(points.size()) /
+                           static_cast<double>(landmark_coarse.size())
+                     : settings.sample_fraction * static_cast<double>(points.size())));
   const Indices seeds =
       random_sample_indices(points.size(), std::min(settings.max_seeds, wanted), settings.seed);
   stats.seeds = seeds.size();
@@ -132,6 +129,7 @@ FindResult search(const SceneIndex& index, const Landmark& landmark, const FindS
       index,
       points,
       landmark,
+      landmark_coarse,
       SceneView{index},
       LandmarkView{landmark.points, landmark_tree, landmark.box, landmark},
       seeds,

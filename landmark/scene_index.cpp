@@ -1,19 +1,19 @@
 #include "landmark/scene_index.h"
 
-#include <chrono>
 #include <cmath>
 
 #include "geometry/error.h"
 #include "geometry/filters.h"
 #include "geometry/normals.h"
 #include "geometry/voxel_grid.h"
+#include "landmark/detail/stopwatch.h"
 #include "landmark/landmark.h"
 
 namespace lmk {
 
 SceneIndex::SceneIndex(const PointCloud& scene, const SceneSettings& settings)
     : settings_(settings), T_scene_sensor_(scene.T_cloud_sensor) {
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = detail::Clock::now();
   const auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
   if (!positive(settings.leaf_size)) throw Error("scene: leaf size must be positive and finite");
   if (!positive(settings.coarse_leaf) || settings.coarse_leaf < settings.leaf_size) {
@@ -46,7 +46,7 @@ SceneIndex::SceneIndex(const PointCloud& scene, const SceneSettings& settings)
   coarse_.normals = estimate_normals(coarse_, *coarse_tree_, NormalSettings{10});
   field_ = DistanceField(coarse_.points, {settings.coarse_leaf, settings.field_band});
   occupancy_ = OccupancyGrid(cropped_.points, settings.leaf_size);
-  seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  seconds_ = detail::seconds_since(start);
 }
 
 void SceneIndex::build_fine() const {

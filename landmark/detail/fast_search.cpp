@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <memory>
 #include <numeric>
@@ -13,17 +12,12 @@
 #include "geometry/voxel_grid.h"
 #include "landmark/detail/grid_metrics.h"
 #include "landmark/detail/point_pair_voting.h"
+#include "landmark/detail/stopwatch.h"
 #include "registration/icp.h"
 #include "registration/refine_pose.h"
 
 namespace lmk::detail {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 struct Candidate {
   Eigen::Isometry3d T_scene_capture;
@@ -82,7 +76,7 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
   const double diameter =
       std::max(static_cast<double>(landmark.points.bounds().diagonal().norm()), 3.0 * leaf);
   const double vote_leaf = std::max(leaf, diameter * s.vote_leaf_fraction);
-  const PointCloud model = voxel_downsample(landmark.points, leaf);
+  const PointCloud& model = in.landmark_coarse;
   const PointCloud vote_model = voxel_downsample(landmark.points, vote_leaf);
   const std::shared_ptr<const PointPairModel> shared_pairs =
       shared_point_pair_model(vote_model, vote_leaf, diameter);
@@ -141,7 +135,6 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
   std::vector<Eigen::Isometry3d> aligned(clusters.size());
   std::vector<double> quick(clusters.size());
   std::vector<int> iterations(clusters.size(), 0);
-  const Eigen::Vector3f no_normal = Eigen::Vector3f::Constant(std::nanf(""));
   tbb::parallel_for(std::size_t{0}, clusters.size(), [&](std::size_t c) {
     const DistanceFieldTarget target(index.field(), &coarse.normals);
     const IcpResult r = icp(model.points, target, clusters[c].T_scene_capture, coarse_icp);
@@ -151,9 +144,7 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
     double sum = 0.0;
     const Eigen::Isometry3f T = aligned[c].cast<float>();
     for (std::size_t j = 0; j < model.size(); ++j) {
-      const Eigen::Vector3f normal =
-          model.has_normals() ? Eigen::Vector3f(T.linear() * model.normals[j]) : no_normal;
-      sum += scene_surface_distance(index, field, T * model.points[j], &normal);
+      sum += landmark_point_distance(index, field, T, model, j);
     }
     quick[c] = sum / static_cast<double>(model.size());
   });

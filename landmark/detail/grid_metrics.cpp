@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "landmark/landmark.h"
 #include "landmark/scene_index.h"
@@ -24,6 +23,15 @@ float scene_surface_distance(const SceneIndex& scene, const DistanceField::Sampl
   const float slack = static_cast<float>(0.5 * std::sqrt(3.0) * scene.settings().coarse_leaf);
   const float beside = std::max(0.0f, lateral - slack);
   return std::min(band, std::sqrt(along * along + beside * beside));
+}
+
+float landmark_point_distance(const SceneIndex& scene, const DistanceField::Sampler& field,
+                              const Eigen::Isometry3f& T_scene_capture, const PointCloud& landmark,
+                              std::size_t j) {
+  const Eigen::Vector3f q = T_scene_capture * landmark.points[j];
+  if (!landmark.has_normals()) return scene_surface_distance(scene, field, q);
+  const Eigen::Vector3f normal = T_scene_capture.linear() * landmark.normals[j];
+  return scene_surface_distance(scene, field, q, &normal);
 }
 
 ErrorTerms vdb_metric(const SceneView& scene, const LandmarkView& landmark,
@@ -61,13 +69,8 @@ ErrorTerms visibility_metric(const SceneView& scene, const LandmarkView& landmar
   // Support: a scene surface within two paper leaves (1 cm) of the landmark point.
   const float support = static_cast<float>(2.0 * scene.index.settings().leaf_size);
   std::size_t supported = 0;
-  const bool with_normals = landmark.points.has_normals();
   for (std::size_t j = 0; j < landmark.points.size(); ++j) {
-    const Eigen::Vector3f normal =
-        with_normals ? Eigen::Vector3f(T.linear() * landmark.points.normals[j])
-                     : Eigen::Vector3f::Constant(std::numeric_limits<float>::quiet_NaN());
-    const float d =
-        scene_surface_distance(scene.index, scene_field, T * landmark.points.points[j], &normal);
+    const float d = landmark_point_distance(scene.index, scene_field, T, landmark.points, j);
     terms.landmark_to_scene_sum += d;
     ++terms.landmark_to_scene_count;
     if (d < support) ++supported;

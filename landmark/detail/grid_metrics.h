@@ -32,4 +32,10 @@ ErrorTerms visibility_metric(const SceneView& scene, const LandmarkView& landmar
 float scene_surface_distance(const SceneIndex& scene, const DistanceField::Sampler& field,
                              const Eigen::Vector3f& q, const Eigen::Vector3f* normal = nullptr);
 
+/// scene_surface_distance() of point j of `landmark` (capture frame) moved by T_scene_capture,
+/// with its normal when the landmark has normals.
+float landmark_point_distance(const SceneIndex& scene, const DistanceField::Sampler& field,
+                              const Eigen::Isometry3f& T_scene_capture, const PointCloud& landmark,
+                              std::size_t j);
+
 }  // namespace lmk

@@ -13,6 +13,7 @@ struct SearchInput {
   const SceneIndex& index;
   const PointCloud& scene;  ///< the points the seeds index: fine (reference) or coarse (fast)
   const Landmark& landmark;
+  const PointCloud& landmark_coarse;  ///< fast: the landmark at the scene's coarse leaf
   SceneView scene_view;
   LandmarkView landmark_view;
   const Indices& seeds;  ///< indices into `scene`
