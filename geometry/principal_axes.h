@@ -18,6 +18,35 @@ struct PrincipalAxes {
   Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();
 };
 
+namespace detail {
+// `direct`: Eigen's closed-form 3x3 solver, several times faster than the iterative one but with
+// eigenvalue errors of about 1e-8 of the largest, which hides a perfect line.
+inline void set_axes(const Eigen::Matrix3d& covariance, bool direct, PrincipalAxes& out) {
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
+  if (direct) {
+    solver.computeDirect(covariance);
+  } else {
+    solver.compute(covariance);
+  }
+  out.spread = solver.eigenvalues();
+  out.axes = solver.eigenvectors();
+}
+}  // namespace detail
+
+/// The principal axes of a point set given by its moments about some reference point: the count,
+/// the sum of the points and the sum of their outer products, all relative to that reference (the
+/// mean is then relative to it too). Moments add up, so sets can be pooled without their points.
+/// Uses the closed-form solver: spreads below about 1e-8 of the largest are noise.
+inline PrincipalAxes principal_axes_from_moments(double count, const Eigen::Vector3d& sum,
+                                                 const Eigen::Matrix3d& outer) {
+  PrincipalAxes out;
+  if (!(count > 0.0)) return out;
+  out.mean = sum / count;
+  const Eigen::Matrix3d covariance = outer - count * out.mean * out.mean.transpose();
+  detail::set_axes(covariance, /*direct=*/true, out);
+  return out;
+}
+
 /// The principal axes of the `count` points point_at(0) ... point_at(count - 1) (each convertible
 /// to Eigen::Vector3d), accumulated in double for conditioning.
 template <typename PointAt>
@@ -31,9 +60,7 @@ PrincipalAxes principal_axes(std::size_t count, PointAt point_at) {
     const Eigen::Vector3d d = point_at(i).template cast<double>() - out.mean;
     covariance += d * d.transpose();
   }
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
-  out.spread = solver.eigenvalues();
-  out.axes = solver.eigenvectors();
+  detail::set_axes(covariance, /*direct=*/false, out);
   return out;
 }
 

@@ -7,36 +7,17 @@
 #include <string>
 #include <unordered_map>
 
+#include "geometry/detail/voxel_key.h"
 #include "geometry/error.h"
 
 namespace lmk {
 namespace {
-
-// Voxel coordinates are packed into 21 bits each, offset to be non-negative, so that sorting the
-// packed key sorts voxels lexicographically by (x, y, z).
-constexpr int kBits = 21;
-constexpr std::int64_t kOffset = std::int64_t{1} << (kBits - 1);
-constexpr std::int64_t kLimit = kOffset - 1;
 
 struct KeyedIndex {
   std::uint64_t key;
   Index index;
   bool operator<(const KeyedIndex& o) const { return key != o.key ? key < o.key : index < o.index; }
 };
-
-std::uint64_t pack(const Eigen::Vector3f& p, double inv_leaf) {
-  std::uint64_t key = 0;
-  for (int a = 0; a < 3; ++a) {
-    const auto c = static_cast<std::int64_t>(std::floor(static_cast<double>(p[a]) * inv_leaf));
-    if (c < -kOffset || c > kLimit) {
-      throw Error(
-          "voxel_downsample: the cloud spans more than 2^21 voxels along an axis; use a "
-          "larger leaf size or crop the cloud");
-    }
-    key = (key << kBits) | static_cast<std::uint64_t>(c + kOffset);
-  }
-  return key;
-}
 
 std::int32_t most_frequent_label(const PointCloud& cloud, const KeyedIndex* begin,
                                  const KeyedIndex* end) {
@@ -62,7 +43,8 @@ PointCloud voxel_downsample(const PointCloud& cloud, double leaf_size) {
   std::vector<KeyedIndex> keyed;
   keyed.reserve(cloud.size());
   for (Index i = 0; i < cloud.size(); ++i) {
-    if (is_finite(cloud.points[i])) keyed.push_back({pack(cloud.points[i], inv_leaf), i});
+    if (is_finite(cloud.points[i]))
+      keyed.push_back({detail::pack_voxel(detail::voxel_coord(cloud.points[i], inv_leaf)), i});
   }
   // Sorting by (key, index) is a total order, so the parallel sort is deterministic.
   tbb::parallel_sort(keyed.begin(), keyed.end());

@@ -34,7 +34,7 @@ struct FindSettings {
   /// points over the landmark's, times this). Each seed on an instance votes for its pose, so a
   /// dozen leave room for a half-occluded instance and for seeds on its edges, whose normals are
   /// poor, while a search costs a few hundred seeds rather than a thousand.
-  double seeds_per_instance = 12.0;
+  double seeds_per_instance = 8.0;
   std::size_t max_seeds = 1000;  ///< step 3: at most this many seeds
   std::uint64_t seed = 0;        ///< step 3: random seed of the sampling
   int icp_iterations = 50;       ///< reference, step 4: ICP iterations per seed (PCL's ICP)
@@ -63,9 +63,9 @@ struct FindSettings {
   // Coarse to fine (fast).
   /// Point-pair voting samples the landmark and the scene at this fraction of the landmark's
   /// diameter (at least the coarse leaf).
-  double vote_leaf_fraction = 0.05;
+  double vote_leaf_fraction = 0.07;
   int poses_per_seed = 3;            ///< best-voted poses kept per seed
-  std::size_t max_candidates = 48;   ///< pose clusters aligned coarsely
+  std::size_t max_candidates = 32;   ///< pose clusters aligned coarsely
   double prune_error = 0.015;        ///< coarse fit beyond which a candidate is dropped, m
   std::size_t max_refined = 16;      ///< candidates refined fully
   bool refine = true;                ///< Ceres robust refinement of the finalists

@@ -1,6 +1,6 @@
 #include "occupancy/distance_field.h"
 
-#include <openvdb/tools/ValueTransformer.h>
+#include <openvdb/tree/LeafManager.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -86,12 +86,14 @@ SlabGrids build_slab(const std::vector<Eigen::Vector3f>& points, const std::vect
         const double half = std::sqrt(rest);
         const int z_begin = static_cast<int>(std::ceil(p.z() - half));
         const int z_end = static_cast<int>(std::floor(p.z() + half));
+        const LeafCache::Entry* leaf = nullptr;
         for (int z = z_begin; z <= z_end; ++z) {
           const vdb::Coord ijk(x, y, z);
-          const LeafCache::Entry& leaf = cache.leaf(ijk);
-          float* squared_data = leaf.squared_data;
-          std::int32_t* closest_data = leaf.closest_data;
-          FloatLeaf* squared_leaf = leaf.squared;
+          // A row crosses a leaf boundary at most once: look the leaf up again only there.
+          if (leaf == nullptr || (z & (FloatLeaf::DIM - 1)) == 0) leaf = &cache.leaf(ijk);
+          float* squared_data = leaf->squared_data;
+          std::int32_t* closest_data = leaf->closest_data;
+          FloatLeaf* squared_leaf = leaf->squared;
           const vdb::Index offset = FloatLeaf::coordToOffset(ijk);
           const float d2 = static_cast<float>(
               (ex2 + (y - p.y()) * (y - p.y()) + (z - p.z()) * (z - p.z())) * voxel * voxel);
@@ -161,15 +163,22 @@ DistanceField::DistanceField(const std::vector<Eigen::Vector3f>& points,
   });
 
   const auto transform = vdb::math::Transform::createLinearTransform(voxel);
-  grids->distance = vdb::FloatGrid::create(static_cast<float>(band));
+  // The parts' background, band^2, until the square roots are taken.
+  grids->distance = vdb::FloatGrid::create(static_cast<float>(band * band));
   grids->closest = vdb::Int32Grid::create(-1);
   for (SlabGrids& part : parts) {  // disjoint leaves: merging moves nodes
     grids->distance->tree().merge(part.squared->tree());
     grids->closest->tree().merge(part.closest->tree());
   }
+  // Squared distances to distances, a whole leaf buffer at a time: inactive voxels hold band^2
+  // and become band. Then the background and the inactive tiles above the leaves, still band^2,
+  // become band too (a tile left at band^2 would read as a surface 0.4 mm away).
+  vdb::tree::LeafManager<vdb::FloatTree> leaves(grids->distance->tree());
+  leaves.foreach ([](FloatLeaf& leaf, std::size_t) {
+    float* data = leaf.buffer().data();
+    for (vdb::Index k = 0; k < FloatLeaf::SIZE; ++k) data[k] = std::sqrt(data[k]);
+  });
   grids->distance->tree().root().setBackground(static_cast<float>(band), /*updateChildNodes=*/true);
-  vdb::tools::foreach (grids->distance->beginValueOn(),
-                       [](const vdb::FloatGrid::ValueOnIter& it) { it.setValue(std::sqrt(*it)); });
   grids->distance->setTransform(transform);
   grids->closest->setTransform(transform->copy());
   grids->distance->setName("distance");
@@ -195,14 +204,14 @@ DistanceField DistanceField::from_grids(std::vector<Eigen::Vector3f> points, Gri
 }
 
 struct DistanceField::Sampler::Impl {
-  explicit Impl(const Grids& g)
-      : grids(g),
-        distance(g.distance->getConstAccessor()),
-        closest(g.closest->getConstAccessor()),
-        voxel(g.distance->voxelSize()[0]),
+  explicit Impl(std::shared_ptr<const Grids> g)
+      : grids(std::move(g)),
+        distance(grids->distance->getConstAccessor()),
+        closest(grids->closest->getConstAccessor()),
+        voxel(grids->distance->voxelSize()[0]),
         inverse_voxel(1.0 / voxel),
-        band(static_cast<float>(g.band)) {}
-  const Grids& grids;
+        band(static_cast<float>(grids->band)) {}
+  std::shared_ptr<const Grids> grids;  // a sampler keeps its grids alive
   vdb::FloatGrid::ConstAccessor distance;
   vdb::Int32Grid::ConstAccessor closest;
   double voxel;
@@ -211,7 +220,7 @@ struct DistanceField::Sampler::Impl {
 };
 
 DistanceField::Sampler::Sampler(const DistanceField& field)
-    : impl_(std::make_unique<Impl>(*field.grids_)) {}
+    : impl_(std::make_unique<Impl>(field.grids_)) {}
 DistanceField::Sampler::~Sampler() = default;
 DistanceField::Sampler::Sampler(Sampler&&) noexcept = default;
 

@@ -8,7 +8,7 @@
 //
 // Lifetime: a field is an immutable value; copies share the grids. Thread safety: build a Sampler
 // per thread (it caches tree nodes and is not thread-safe itself); any number of samplers may read
-// one field concurrently.
+// one field concurrently. A sampler keeps the grids alive, so it may outlive its field.
 
 #include <Eigen/Core>
 #include <memory>

@@ -13,10 +13,13 @@
 #include "landmark/detail/grid_metrics.h"
 #include "landmark/detail/point_pair_voting.h"
 #include "landmark/detail/stopwatch.h"
+#include "landmark/non_max_suppression.h"
 #include "registration/icp.h"
 #include "registration/refine_pose.h"
 
 namespace lmk::detail {
+double g_icp = 0, g_metric = 0, g_refine = 0;
+int g_nref = 0;
 namespace {
 
 struct Candidate {
@@ -155,8 +158,17 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t a, std::size_t b) { return quick[a] < quick[b]; });
   std::vector<std::size_t> survivors;
+  const auto same_pose = [&](std::size_t a, std::size_t b) {
+    return (aligned[a] * landmark.box.center() - aligned[b] * landmark.box.center()).norm() <
+               leaf &&
+           rotation_angle_between(aligned[a].linear(), aligned[b].linear()) < 0.2;
+  };
   for (std::size_t c : order) {
-    if (quick[c] <= s.prune_error && survivors.size() < s.max_refined) survivors.push_back(c);
+    if (quick[c] > s.prune_error || survivors.size() >= s.max_refined) continue;
+    if (std::none_of(survivors.begin(), survivors.end(),
+                     [&](std::size_t kept) { return same_pose(kept, c); })) {
+      survivors.push_back(c);
+    }
   }
   std::sort(survivors.begin(), survivors.end());  // back to cluster rank: deterministic order
   stats.refined = survivors.size();
@@ -177,24 +189,18 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
   // Ceres polishes the finalists only: candidates whose error after ICP is within half again of
   // the threshold. Further out, a few millimetres of polish cannot make a match of them.
   const double worth_refining = 1.5 * in.threshold;
-  std::vector<Match> matches(survivors.size());
+  std::vector<Match> aligned_matches(survivors.size());
   tbb::parallel_for(std::size_t{0}, survivors.size(), [&](std::size_t k) {
     const std::size_t c = survivors[k];
     const DistanceFieldTarget target(index.field(), &coarse.normals);
+    auto t0 = Clock::now();
     const IcpResult r = icp(icp_points, target, aligned[c], fine_icp);
-    Match& m = matches[k];
+    g_icp += seconds_since(t0);
+    t0 = Clock::now();
+    Match& m = aligned_matches[k];
     m.T_scene_capture = r.T_target_source;
     m.terms = in.metric.evaluate(in.scene_view, in.landmark_view, m.T_scene_capture);
-    if (s.refine && m.terms.error < worth_refining) {
-      const Eigen::Isometry3d polished =
-          refine_pose(refine_points, index.field(), m.T_scene_capture, refine, empty_probes)
-              .T_target_source;
-      ErrorTerms terms = in.metric.evaluate(in.scene_view, in.landmark_view, polished);
-      if (terms.error <= m.terms.error) {
-        m.T_scene_capture = polished;
-        m.terms = terms;
-      }
-    }
+    g_metric += seconds_since(t0);
     m.icp_iterations = iterations[c] + r.iterations;
     m.icp_converged = r.converged;
     m.seed_index = clusters[c].seed;
@@ -202,6 +208,38 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
     m.votes = clusters[c].votes;
     m.error = m.terms.error;
     m.box = landmark.box.transformed(m.T_scene_capture);
+  });
+
+  // Step 5 comes early for the polish: of candidates within the suppression radius of each other
+  // only the best survives selection, so only it is worth Ceres' time.
+  std::vector<Eigen::Vector3d> centres;
+  std::vector<double> errors;
+  for (const Match& m : aligned_matches) {
+    centres.push_back(m.box.center());
+    errors.push_back(m.error);
+  }
+  std::vector<std::size_t> kept = non_max_suppression(centres, errors, s.nms_radius);
+  std::sort(kept.begin(), kept.end());  // cluster rank again: a deterministic order
+  std::vector<Match> matches;
+  for (std::size_t k : kept) matches.push_back(std::move(aligned_matches[k]));
+  tbb::parallel_for(std::size_t{0}, matches.size(), [&](std::size_t k) {
+    Match& m = matches[k];
+    if (!s.refine || !(m.terms.error < worth_refining)) return;
+    auto t0 = Clock::now();
+    ++g_nref;
+    const Eigen::Isometry3d polished =
+        refine_pose(refine_points, index.field(), m.T_scene_capture, refine, empty_probes)
+            .T_target_source;
+    g_refine += seconds_since(t0);
+    t0 = Clock::now();
+    ErrorTerms terms = in.metric.evaluate(in.scene_view, in.landmark_view, polished);
+    g_metric += seconds_since(t0);
+    if (terms.error <= m.terms.error) {
+      m.T_scene_capture = polished;
+      m.terms = terms;
+      m.error = terms.error;
+      m.box = landmark.box.transformed(polished);
+    }
   });
   stats.seconds_fine = seconds_since(fine_start);
   return matches;

@@ -36,6 +36,22 @@ TEST(DistanceField, AgreesWithBruteForceWithinHalfAVoxelInsideTheBand) {
   EXPECT_GT(inside_band, 500);
 }
 
+TEST(DistanceField, ReadsTheBandAcrossTheBandEdge) {
+  // Cells straddling the band edge mix in-band corners with voxels outside it, which must read as
+  // the band, never nearer. The sampler is taken from a temporary field: it keeps the grids alive.
+  const std::vector<Eigen::Vector3f> one = {{0.0f, 0.0f, 0.0f}};
+  const DistanceFieldSettings settings{0.01, 0.05};
+  const auto sampler = DistanceField(one, settings).sampler();
+  for (const Eigen::Vector3f& direction : {Eigen::Vector3f(1, 0, 0), Eigen::Vector3f(0, -1, 0),
+                                          Eigen::Vector3f(1, 1, 1).normalized()}) {
+    for (float r = 0.0f; r <= 0.08f; r += 0.001f) {
+      const float expected = std::min(r, float(settings.band));
+      EXPECT_NEAR(sampler.distance(r * direction), expected, 0.5 * settings.voxel_size)
+          << "at " << r << " m along " << direction.transpose();
+    }
+  }
+}
+
 TEST(DistanceField, ClosestPointIsTheNearestOneForVoxelCentres) {
   const PointCloud cloud = test::random_cloud(300, 11, 0.5f);
   const DistanceField field(cloud.points, {0.05, 0.15});

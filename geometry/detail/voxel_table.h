@@ -1,0 +1,75 @@
+#pragma once
+// A hash table from packed voxel keys to dense ids, in order of first insertion. Internal.
+//
+// Open addressing with linear probing: the voxel filters insert one key per raw point (300 000 for
+// a Kinect frame), and std::unordered_map's node allocation cost several times more than the rest
+// of the filter.
+
+#include <cstdint>
+#include <vector>
+
+#include "geometry/detail/voxel_key.h"
+
+namespace lmk::detail {
+
+class VoxelTable {
+ public:
+  static constexpr std::uint32_t kAbsent = ~std::uint32_t{0};
+
+  explicit VoxelTable(std::size_t expected_voxels) {
+    std::size_t capacity = 1024;
+    while (capacity < 2 * expected_voxels) capacity *= 2;
+    keys_.assign(capacity, kNoVoxel);
+    ids_.assign(capacity, kAbsent);
+  }
+
+  /// The id of `key`, inserting it with the next id when new.
+  std::uint32_t insert(std::uint64_t key) {
+    std::size_t slot = find_slot(key);
+    if (keys_[slot] == key) return ids_[slot];
+    if (2 * (size_ + 1) > keys_.size()) {
+      grow();
+      slot = find_slot(key);
+    }
+    keys_[slot] = key;
+    ids_[slot] = static_cast<std::uint32_t>(size_);
+    return static_cast<std::uint32_t>(size_++);
+  }
+
+  /// The id of `key`, or kAbsent.
+  std::uint32_t find(std::uint64_t key) const {
+    const std::size_t slot = find_slot(key);
+    return keys_[slot] == key ? ids_[slot] : kAbsent;
+  }
+
+  std::size_t size() const { return size_; }
+
+ private:
+  // The slot holding `key`, or the empty slot where it would go. The table is never more than
+  // half full, so the probe ends.
+  std::size_t find_slot(std::uint64_t key) const {
+    const std::size_t mask = keys_.size() - 1;
+    std::size_t slot = static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> 20) & mask;
+    while (keys_[slot] != key && keys_[slot] != kNoVoxel) slot = (slot + 1) & mask;
+    return slot;
+  }
+
+  void grow() {
+    std::vector<std::uint64_t> keys(2 * keys_.size(), kNoVoxel);
+    std::vector<std::uint32_t> ids(2 * ids_.size(), kAbsent);
+    keys.swap(keys_);
+    ids.swap(ids_);
+    for (std::size_t k = 0; k < keys.size(); ++k) {
+      if (keys[k] == kNoVoxel) continue;
+      const std::size_t slot = find_slot(keys[k]);
+      keys_[slot] = keys[k];
+      ids_[slot] = ids[k];
+    }
+  }
+
+  std::vector<std::uint64_t> keys_;
+  std::vector<std::uint32_t> ids_;
+  std::size_t size_ = 0;
+};
+
+}  // namespace lmk::detail

@@ -1,0 +1,126 @@
+#include "geometry/voxel_normals.h"
+
+#include <tbb/parallel_for.h>
+
+#include <string>
+
+#include "geometry/detail/voxel_table.h"
+#include "geometry/principal_axes.h"
+
+namespace lmk {
+namespace {
+
+// The raw points of one voxel as moments about the voxel's corner: small coordinates keep the
+// sums well conditioned in double. Plain arrays: this is accumulated once per raw point.
+struct VoxelMoments {
+  detail::VoxelCoord coord{};
+  double count = 0.0;
+  double sum[3] = {0.0, 0.0, 0.0};
+  double outer[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};  // xx, xy, xz, yy, yz, zz
+
+  void add(double x, double y, double z) {
+    count += 1.0;
+    sum[0] += x, sum[1] += y, sum[2] += z;
+    outer[0] += x * x, outer[1] += x * y, outer[2] += x * z;
+    outer[3] += y * y, outer[4] += y * z, outer[5] += z * z;
+  }
+
+  // Adds `w`, whose corner lies `d` from this voxel's: for q' = q + d, sum' = sum + n d and
+  // outer' = outer + sum d^T + d sum^T + n d d^T.
+  void pool(const VoxelMoments& w, const double d[3]) {
+    static constexpr int kRow[6] = {0, 0, 0, 1, 1, 2}, kCol[6] = {0, 1, 2, 1, 2, 2};
+    for (int k = 0; k < 6; ++k) {
+      const int a = kRow[k], b = kCol[k];
+      outer[k] += w.outer[k] + w.sum[a] * d[b] + d[a] * w.sum[b] + w.count * d[a] * d[b];
+    }
+    for (int a = 0; a < 3; ++a) sum[a] += w.sum[a] + w.count * d[a];
+    count += w.count;
+  }
+
+  Eigen::Matrix3d outer_matrix() const {
+    Eigen::Matrix3d m;
+    m << outer[0], outer[1], outer[2], outer[1], outer[3], outer[4], outer[2], outer[4], outer[5];
+    return m;
+  }
+};
+
+}  // namespace
+
+PointCloud voxel_downsample_with_normals(const PointCloud& cloud, double leaf_size) {
+  if (!(leaf_size > 0.0) || !std::isfinite(leaf_size)) {
+    throw Error("voxel_downsample_with_normals: leaf size must be positive and finite, got " +
+                std::to_string(leaf_size));
+  }
+  const double inv_leaf = 1.0 / leaf_size;
+  const std::size_t n = cloud.size();
+  std::vector<std::uint64_t> keys(n, detail::kNoVoxel);
+  tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) {
+    if (is_finite(cloud.points[i])) {
+      keys[i] = detail::pack_voxel(detail::voxel_coord(cloud.points[i], inv_leaf));
+    }
+  });
+
+  // One serial pass: ids in order of first appearance, so the output is deterministic.
+  detail::VoxelTable table(n / 8);
+  std::vector<VoxelMoments> voxels;
+  voxels.reserve(n / 4 + 16);                 // untouched capacity costs no memory
+  std::uint64_t last_key = detail::kNoVoxel;  // neighbouring pixels often share a voxel
+  std::uint32_t id = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (keys[i] == detail::kNoVoxel) continue;
+    if (keys[i] != last_key) id = table.insert(keys[i]), last_key = keys[i];
+    if (id == voxels.size()) {
+      voxels.emplace_back();
+      voxels.back().coord = detail::voxel_coord(cloud.points[i], inv_leaf);
+    }
+    VoxelMoments& v = voxels[id];
+    const Eigen::Vector3f& p = cloud.points[i];
+    v.add(p.x() - static_cast<double>(v.coord[0]) * leaf_size,
+          p.y() - static_cast<double>(v.coord[1]) * leaf_size,
+          p.z() - static_cast<double>(v.coord[2]) * leaf_size);
+  }
+
+  PointCloud out;
+  out.T_cloud_sensor = cloud.T_cloud_sensor;
+  out.points.resize(voxels.size());
+  out.normals.assign(voxels.size(), Eigen::Vector3f::Constant(std::nanf("")));
+  const Eigen::Vector3d origin = cloud.sensor_origin();
+  tbb::parallel_for(std::size_t{0}, voxels.size(), [&](std::size_t id) {
+    const VoxelMoments& v = voxels[id];
+    const Eigen::Vector3d corner = Eigen::Vector3d(v.coord[0], v.coord[1], v.coord[2]) * leaf_size;
+    const Eigen::Vector3d local = Eigen::Vector3d(v.sum[0], v.sum[1], v.sum[2]) / v.count;
+    out.points[id] = (corner + local).cast<float>();
+
+    // Pool the block of 2x2x2 voxels whose centre is the voxel corner nearest to the centroid,
+    // with moments moved to this voxel's corner.
+    std::array<int, 3> step;
+    for (int a = 0; a < 3; ++a) step[a] = local[a] < 0.5 * leaf_size ? -1 : 1;
+    VoxelMoments block;
+    for (int corner_bits = 0; corner_bits < 8; ++corner_bits) {
+      detail::VoxelCoord c = v.coord;
+      double d[3];
+      for (int a = 0; a < 3; ++a) {
+        const int offset = ((corner_bits >> a) & 1) ? step[a] : 0;
+        c[a] += offset;
+        d[a] = offset * leaf_size;
+      }
+      const std::uint32_t other = table.find(detail::pack_voxel(c));
+      if (other != detail::VoxelTable::kAbsent) block.pool(voxels[other], d);
+    }
+    const double count = block.count;
+    const Eigen::Vector3d sum(block.sum[0], block.sum[1], block.sum[2]);
+    const Eigen::Matrix3d outer = block.outer_matrix();
+    if (count < 3.0) return;
+    const PrincipalAxes pca = principal_axes_from_moments(count, sum, outer);
+    // Two near-zero spreads mean the points lie on a line; "near zero" allows for the closed-form
+    // solver's error.
+    if (pca.spread[1] <= 1e-6 * pca.spread[2]) return;
+    Eigen::Vector3d normal = pca.axes.col(0);
+    if (normal.dot(origin - (corner + local)) < 0.0) normal = -normal;
+    out.normals[id] = normal.cast<float>();
+  });
+  out.set_unorganized();
+  return out;
+}
+
+}  // namespace lmk
