@@ -45,6 +45,13 @@ bool is_valid_pose(const Eigen::Isometry3d& T, double tolerance) {
          R.determinant() > 0.0;
 }
 
+Eigen::Isometry3d orthonormalized(const Eigen::Isometry3d& T) {
+  Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
+  out.linear() = Eigen::Quaterniond(T.linear()).normalized().toRotationMatrix();
+  out.translation() = T.translation();
+  return out;
+}
+
 }  // namespace lmk
 
 namespace lmk {

@@ -100,9 +100,26 @@ double EmptySpaceGrid::voxel_size() const { return grid_->grid->voxelSize()[0]; 
 std::size_t EmptySpaceGrid::size() const { return grid_->centres.size(); }
 const std::vector<Eigen::Vector3f>& EmptySpaceGrid::centres() const { return grid_->centres; }
 
-bool EmptySpaceGrid::is_empty(const Eigen::Vector3f& p) const {
+bool EmptySpaceGrid::is_empty(const Eigen::Vector3f& p) const { return sampler().is_empty(p); }
+
+struct EmptySpaceGrid::Sampler::Impl {
+  explicit Impl(std::shared_ptr<const Grid> g)
+      : grid(std::move(g)),
+        access(grid->grid->getConstAccessor()),
+        voxel(grid->grid->voxelSize()[0]) {}
+  std::shared_ptr<const Grid> grid;
+  vdb::BoolGrid::ConstAccessor access;
+  double voxel;
+};
+
+EmptySpaceGrid::Sampler::Sampler(const EmptySpaceGrid& grid)
+    : impl_(std::make_unique<Impl>(grid.grid_)) {}
+EmptySpaceGrid::Sampler::~Sampler() = default;
+EmptySpaceGrid::Sampler::Sampler(Sampler&&) noexcept = default;
+
+bool EmptySpaceGrid::Sampler::is_empty(const Eigen::Vector3f& p) const {
   return p.allFinite() &&
-         grid_->grid->tree().isValueOn(detail::nearest_voxel(p.cast<double>(), voxel_size()));
+         impl_->access.isValueOn(detail::nearest_voxel(p.cast<double>(), impl_->voxel));
 }
 
 const EmptySpaceGrid::Grid& EmptySpaceGrid::grid() const { return *grid_; }

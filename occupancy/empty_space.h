@@ -38,8 +38,22 @@ class EmptySpaceGrid {
   std::size_t size() const;  ///< number of empty voxels
   /// The empty voxels' centres, in a deterministic order (by voxel coordinate).
   const std::vector<Eigen::Vector3f>& centres() const;
-  /// Whether `p` lies in an empty voxel. Not for hot loops: use centres() or the grid.
+  /// Whether `p` lies in an empty voxel. Not for hot loops: use a Sampler.
   bool is_empty(const Eigen::Vector3f& p) const;
+
+  /// Cached lookups for one thread (as DistanceField::Sampler); keeps the grid alive.
+  class Sampler {
+   public:
+    explicit Sampler(const EmptySpaceGrid& grid);
+    ~Sampler();
+    Sampler(Sampler&&) noexcept;
+    bool is_empty(const Eigen::Vector3f& p) const;
+
+   private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+  };
+  Sampler sampler() const { return Sampler(*this); }
 
   struct Grid;  ///< the OpenVDB grid, for storage (occupancy/detail/grids.h)
   const Grid& grid() const;

@@ -1,6 +1,7 @@
 #include "occupancy/occupancy_grid.h"
 
 #include <cmath>
+#include <limits>
 
 #include "geometry/error.h"
 #include "occupancy/detail/vdb_support.h"
@@ -33,6 +34,35 @@ OccupancyGrid::OccupancyGrid(const std::vector<Eigen::Vector3f>& points, double 
 double OccupancyGrid::voxel_size() const { return grid_->voxel; }
 std::size_t OccupancyGrid::occupied_voxels() const {
   return static_cast<std::size_t>(grid_->grid->activeVoxelCount());
+}
+
+std::vector<Eigen::Vector3f> OccupancyGrid::occupied_in(const Box& box) const {
+  using Leaf = openvdb::BoolTree::LeafNodeType;
+  std::vector<Eigen::Vector3f> out;
+  // Finite is enough: poses from registration may be a few 1e-6 off orthonormal.
+  if (!box.pose.matrix().allFinite() || !box.size.allFinite()) return out;
+  const double voxel = grid_->voxel;
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector3d hi = -lo;
+  for (const Eigen::Vector3d& c : box.corners()) lo = lo.cwiseMin(c), hi = hi.cwiseMax(c);
+  const openvdb::Coord first = detail::nearest_voxel(lo, voxel);
+  const openvdb::Coord last = detail::nearest_voxel(hi, voxel);
+  const auto leaf_origin = [](int v) { return v & ~static_cast<int>(Leaf::DIM - 1); };
+  const auto access = grid_->grid->getConstAccessor();
+  for (int x = leaf_origin(first.x()); x <= last.x(); x += Leaf::DIM) {
+    for (int y = leaf_origin(first.y()); y <= last.y(); y += Leaf::DIM) {
+      for (int z = leaf_origin(first.z()); z <= last.z(); z += Leaf::DIM) {
+        const Leaf* leaf = access.probeConstLeaf(openvdb::Coord(x, y, z));
+        if (leaf == nullptr) continue;
+        for (auto it = leaf->cbeginValueOn(); it; ++it) {
+          const openvdb::Coord c = it.getCoord();
+          const Eigen::Vector3d centre = Eigen::Vector3d(c.x(), c.y(), c.z()) * voxel;
+          if (box.contains(centre)) out.push_back(centre.cast<float>());
+        }
+      }
+    }
+  }
+  return out;
 }
 
 struct OccupancyGrid::Sampler::Impl {

@@ -8,6 +8,8 @@
 #include <memory>
 #include <vector>
 
+#include "geometry/box.h"
+
 namespace lmk {
 
 class OccupancyGrid {
@@ -19,6 +21,10 @@ class OccupancyGrid {
 
   double voxel_size() const;
   std::size_t occupied_voxels() const;
+  /// The centres of the occupied voxels whose centre lies inside `box`, in a deterministic order.
+  /// Visits only the grid's leaf nodes that the box's bounding box meets: far cheaper than probing
+  /// every voxel of a mostly empty box.
+  std::vector<Eigen::Vector3f> occupied_in(const Box& box) const;
 
   class Sampler {
    public:

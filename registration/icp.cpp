@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "geometry/error.h"
+#include "geometry/pose.h"
 
 namespace lmk {
 
@@ -117,6 +118,7 @@ IcpResult icp(const std::vector<Eigen::Vector3f>& source, const IcpTarget& targe
     result.converged =
         t.norm() < settings.translation_tolerance && omega.norm() < settings.rotation_tolerance;
   }
+  result.T_target_source = orthonormalized(result.T_target_source);  // steps compose with drift
   return result;
 }
 

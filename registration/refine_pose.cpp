@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "geometry/error.h"
+#include "geometry/pose.h"
 
 namespace lmk {
 namespace {
@@ -153,7 +154,7 @@ RefineResult refine_pose(const std::vector<Eigen::Vector3f>& source,
   Eigen::Isometry3d update = Eigen::Isometry3d::Identity();
   update.linear() = R;
   update.translation() = pivot + Eigen::Vector3d(pose[3], pose[4], pose[5]) - R * pivot;
-  result.T_target_source = update * T_target_source;
+  result.T_target_source = orthonormalized(update * T_target_source);
   return result;
 }
 

@@ -79,11 +79,17 @@ ErrorTerms visibility_metric(const SceneView& scene, const LandmarkView& landmar
                                            : static_cast<double>(supported) /
                                                  static_cast<double>(landmark.points.size());
 
-  const OccupancyGrid::Sampler occupied(scene.index.occupancy());
+  // Empty space, from the scene's side: its occupied voxels inside the box that land in the
+  // landmark's observed-empty voxels. Both grids share the voxel size, so this counts the same
+  // overlap as probing every empty voxel, at a few thousand lookups instead of tens of thousands.
+  const EmptySpaceGrid::Sampler empty(landmark.landmark.empty_space);
   const DistanceField::Sampler landmark_field(landmark.landmark.distance);
-  for (const auto& e : landmark.landmark.empty_space.centres()) {
-    ++terms.empty_space_probes;
-    if (!occupied.occupied(T * e)) continue;
+  const Eigen::Isometry3f T_capture_scene = T.inverse();
+  terms.empty_space_probes = landmark.landmark.empty_space.size();
+  for (const Eigen::Vector3f& occupied :
+       scene.index.occupancy().occupied_in(landmark.box.transformed(T_scene_capture))) {
+    const Eigen::Vector3f e = T_capture_scene * occupied;
+    if (!empty.is_empty(e)) continue;
     ++terms.empty_space_violations;
     terms.scene_to_landmark_sum += landmark_field.distance(e);
     ++terms.scene_to_landmark_count;

@@ -7,6 +7,17 @@
 namespace lmk {
 namespace {
 
+TEST(Pose, OrthonormalizedRepairsDriftAndKeepsTheRotation) {
+  Eigen::Isometry3d T = pose_from_xyz_rpy({0.1, -0.2, 0.3}, {0.3, -0.5, 2.0});
+  Eigen::Isometry3d drifted = T;
+  drifted.linear() += 4e-6 * Eigen::Matrix3d::Ones();
+  ASSERT_FALSE(is_valid_pose(drifted));
+  const Eigen::Isometry3d repaired = orthonormalized(drifted);
+  EXPECT_TRUE(is_valid_pose(repaired, 1e-12));
+  EXPECT_LT(rotation_angle_between(repaired.linear(), T.linear()), 1e-5);
+  EXPECT_EQ(repaired.translation(), T.translation());
+}
+
 TEST(Pose, RpyRoundTripsAwayFromGimbalLock) {
   SplitMix64 rng(1);
   for (int i = 0; i < 1000; ++i) {

@@ -4,8 +4,12 @@
 
 #include <gtest/gtest.h>
 
+#include <optional>
+#include <set>
+
 #include "geometry/error.h"
 #include "geometry/pose.h"
+#include "geometry/random.h"
 #include "occupancy/occupancy_grid.h"
 
 namespace lmk {
@@ -61,6 +65,52 @@ TEST(OccupancyGrid, MarksTheVoxelsHoldingPoints) {
   EXPECT_TRUE(s.occupied({0.004f, 0.0f, 0.0f}));
   EXPECT_FALSE(s.occupied({0.05f, 0.0f, 0.0f}));
   EXPECT_FALSE(s.occupied({NAN, 0.0f, 0.0f}));
+}
+
+TEST(OccupancyGrid, OccupiedInABoxAgreesWithTestingEveryVoxel) {
+  // A scattered cloud over several leaf nodes, and a tilted box across them: the leaf-by-leaf
+  // query must return exactly the occupied voxels whose centre the box contains.
+  std::vector<Eigen::Vector3f> points;
+  SplitMix64 rng(4);
+  for (int k = 0; k < 3000; ++k) {
+    points.emplace_back(rng.uniform01() - 0.5, rng.uniform01() - 0.5, rng.uniform01() - 0.5);
+  }
+  const double voxel = 0.01;
+  const OccupancyGrid grid(points, voxel);
+  const Box box(pose_from_xyz_rpy({0.05, -0.1, 0.02}, {0.4, -0.3, 1.1}), {0.3, 0.2, 0.25});
+  std::set<std::array<int, 3>> expected, got;
+  const auto sampler = grid.sampler();
+  for (int x = -60; x <= 60; ++x)
+    for (int y = -60; y <= 60; ++y)
+      for (int z = -60; z <= 60; ++z) {
+        const Eigen::Vector3d centre = Eigen::Vector3d(x, y, z) * voxel;
+        if (box.contains(centre) && sampler.occupied(centre.cast<float>())) {
+          expected.insert({x, y, z});
+        }
+      }
+  for (const Eigen::Vector3f& c : grid.occupied_in(box)) {
+    const Eigen::Vector3i v = (c.cast<double>() / voxel).array().round().cast<int>();
+    got.insert({v.x(), v.y(), v.z()});
+  }
+  EXPECT_GT(expected.size(), 20u);
+  EXPECT_EQ(got, expected);
+  EXPECT_EQ(grid.occupied_in(box).size(), expected.size());  // no voxel twice
+}
+
+TEST(EmptySpace, SamplerAgreesWithTheGridAndOutlivesIt) {
+  const auto points = wall();
+  const Box box(pose_from_xyz_rpy({0, 0, 1.0}, {0, 0, 0}), {0.2, 0.2, 0.2});
+  const DistanceField surface(points, {0.005, 0.02});
+  std::optional<EmptySpaceGrid::Sampler> sampler;
+  {
+    const EmptySpaceGrid empty = EmptySpaceGrid::observe(points, Eigen::Vector3d::Zero(), box,
+                                                         surface, EmptySpaceSettings{0.005, 0.01});
+    sampler.emplace(empty.sampler());
+    for (const auto& c : empty.centres()) EXPECT_TRUE(sampler->is_empty(c));
+  }
+  EXPECT_TRUE(sampler->is_empty({0.0f, 0.0f, 0.95f}));
+  EXPECT_FALSE(sampler->is_empty({0.0f, 0.0f, 1.05f}));
+  EXPECT_FALSE(sampler->is_empty({NAN, 0.0f, 0.95f}));
 }
 
 }  // namespace
