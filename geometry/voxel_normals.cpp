@@ -12,7 +12,7 @@ namespace {
 
 // The raw points of one voxel as moments about the voxel's corner: small coordinates keep the
 // sums well conditioned in double. Plain arrays: this is accumulated once per raw point.
-struct VoxelMoments {
+struct Moments {
   detail::VoxelCoord coord{};
   double count = 0.0;
   double sum[3] = {0.0, 0.0, 0.0};
@@ -27,7 +27,7 @@ struct VoxelMoments {
 
   // Adds `w`, whose corner lies `d` from this voxel's: for q' = q + d, sum' = sum + n d and
   // outer' = outer + sum d^T + d sum^T + n d d^T.
-  void pool(const VoxelMoments& w, const double d[3]) {
+  void pool(const Moments& w, const double d[3]) {
     static constexpr int kRow[6] = {0, 0, 0, 1, 1, 2}, kCol[6] = {0, 1, 2, 1, 2, 2};
     for (int k = 0; k < 6; ++k) {
       const int a = kRow[k], b = kCol[k];
@@ -44,11 +44,27 @@ struct VoxelMoments {
   }
 };
 
+Eigen::Vector3d corner_of(const detail::VoxelCoord& c, double leaf) {
+  return Eigen::Vector3d(static_cast<double>(c[0]), static_cast<double>(c[1]),
+                         static_cast<double>(c[2])) *
+         leaf;
+}
+
+Eigen::Vector3d mean_of(const Moments& v) {
+  return Eigen::Vector3d(v.sum[0], v.sum[1], v.sum[2]) / v.count;
+}
+
 }  // namespace
 
-PointCloud voxel_downsample_with_normals(const PointCloud& cloud, double leaf_size) {
+struct VoxelMoments::Impl {
+  double leaf = 0.0;
+  detail::VoxelTable table{0};
+  std::vector<Moments> voxels;
+};
+
+VoxelMoments::VoxelMoments(const PointCloud& cloud, double leaf_size) {
   if (!(leaf_size > 0.0) || !std::isfinite(leaf_size)) {
-    throw Error("voxel_downsample_with_normals: leaf size must be positive and finite, got " +
+    throw Error("voxel moments: leaf size must be positive and finite, got " +
                 std::to_string(leaf_size));
   }
   const double inv_leaf = 1.0 / leaf_size;
@@ -60,65 +76,82 @@ PointCloud voxel_downsample_with_normals(const PointCloud& cloud, double leaf_si
     }
   });
 
-  // One serial pass: ids in order of first appearance, so the output is deterministic.
-  detail::VoxelTable table(n / 8);
-  std::vector<VoxelMoments> voxels;
+  // One serial pass: ids in order of first appearance, so the result is deterministic.
+  auto impl = std::make_shared<Impl>();
+  impl->leaf = leaf_size;
+  impl->table = detail::VoxelTable(n / 8);
+  std::vector<Moments>& voxels = impl->voxels;
   voxels.reserve(n / 4 + 16);                 // untouched capacity costs no memory
   std::uint64_t last_key = detail::kNoVoxel;  // neighbouring pixels often share a voxel
   std::uint32_t id = 0;
   for (std::size_t i = 0; i < n; ++i) {
     if (keys[i] == detail::kNoVoxel) continue;
-    if (keys[i] != last_key) id = table.insert(keys[i]), last_key = keys[i];
+    if (keys[i] != last_key) id = impl->table.insert(keys[i]), last_key = keys[i];
     if (id == voxels.size()) {
       voxels.emplace_back();
       voxels.back().coord = detail::voxel_coord(cloud.points[i], inv_leaf);
     }
-    VoxelMoments& v = voxels[id];
-    const Eigen::Vector3f& p = cloud.points[i];
-    v.add(p.x() - static_cast<double>(v.coord[0]) * leaf_size,
-          p.y() - static_cast<double>(v.coord[1]) * leaf_size,
-          p.z() - static_cast<double>(v.coord[2]) * leaf_size);
+    Moments& v = voxels[id];
+    const Eigen::Vector3d q = cloud.points[i].cast<double>() - corner_of(v.coord, leaf_size);
+    v.add(q.x(), q.y(), q.z());
   }
+  impl_ = std::move(impl);
+}
 
-  PointCloud out;
-  out.T_cloud_sensor = cloud.T_cloud_sensor;
-  out.points.resize(voxels.size());
-  out.normals.assign(voxels.size(), Eigen::Vector3f::Constant(std::nanf("")));
-  const Eigen::Vector3d origin = cloud.sensor_origin();
-  tbb::parallel_for(std::size_t{0}, voxels.size(), [&](std::size_t id) {
-    const VoxelMoments& v = voxels[id];
-    const Eigen::Vector3d corner = Eigen::Vector3d(v.coord[0], v.coord[1], v.coord[2]) * leaf_size;
-    const Eigen::Vector3d local = Eigen::Vector3d(v.sum[0], v.sum[1], v.sum[2]) / v.count;
-    out.points[id] = (corner + local).cast<float>();
+std::size_t VoxelMoments::size() const { return impl_->voxels.size(); }
 
+std::vector<Eigen::Vector3f> VoxelMoments::centroids() const {
+  std::vector<Eigen::Vector3f> out(size());
+  tbb::parallel_for(std::size_t{0}, size(), [&](std::size_t id) {
+    const Moments& v = impl_->voxels[id];
+    out[id] = (corner_of(v.coord, impl_->leaf) + mean_of(v)).cast<float>();
+  });
+  return out;
+}
+
+std::vector<Eigen::Vector3f> VoxelMoments::normals(const Eigen::Vector3d& viewpoint) const {
+  const double leaf = impl_->leaf;
+  const std::vector<Moments>& voxels = impl_->voxels;
+  std::vector<Eigen::Vector3f> out(size(), Eigen::Vector3f::Constant(std::nanf("")));
+  tbb::parallel_for(std::size_t{0}, size(), [&](std::size_t id) {
+    const Moments& v = voxels[id];
+    const Eigen::Vector3d local = mean_of(v);  // the centroid, from the corner
     // Pool the block of 2x2x2 voxels whose centre is the voxel corner nearest to the centroid,
     // with moments moved to this voxel's corner.
     std::array<int, 3> step;
-    for (int a = 0; a < 3; ++a) step[a] = local[a] < 0.5 * leaf_size ? -1 : 1;
-    VoxelMoments block;
+    for (int a = 0; a < 3; ++a) step[a] = local[a] < 0.5 * leaf ? -1 : 1;
+    Moments block;
     for (int corner_bits = 0; corner_bits < 8; ++corner_bits) {
       detail::VoxelCoord c = v.coord;
       double d[3];
       for (int a = 0; a < 3; ++a) {
         const int offset = ((corner_bits >> a) & 1) ? step[a] : 0;
         c[a] += offset;
-        d[a] = offset * leaf_size;
+        d[a] = offset * leaf;
       }
-      const std::uint32_t other = table.find(detail::pack_voxel(c));
+      const std::uint32_t other = impl_->table.find(detail::pack_voxel(c));
       if (other != detail::VoxelTable::kAbsent) block.pool(voxels[other], d);
     }
-    const double count = block.count;
-    const Eigen::Vector3d sum(block.sum[0], block.sum[1], block.sum[2]);
-    const Eigen::Matrix3d outer = block.outer_matrix();
-    if (count < 3.0) return;
-    const PrincipalAxes pca = principal_axes_from_moments(count, sum, outer);
+    if (block.count < 3.0) return;
+    const PrincipalAxes pca = principal_axes_from_moments(
+        block.count, Eigen::Vector3d(block.sum[0], block.sum[1], block.sum[2]),
+        block.outer_matrix());
     // Two near-zero spreads mean the points lie on a line; "near zero" allows for the closed-form
     // solver's error.
     if (pca.spread[1] <= 1e-6 * pca.spread[2]) return;
     Eigen::Vector3d normal = pca.axes.col(0);
-    if (normal.dot(origin - (corner + local)) < 0.0) normal = -normal;
-    out.normals[id] = normal.cast<float>();
+    if (normal.dot(viewpoint - (corner_of(v.coord, leaf) + local)) < 0.0) normal = -normal;
+    out[id] = normal.cast<float>();
   });
+  return out;
+}
+
+PointCloud voxel_downsample_with_normals(const PointCloud& cloud, double leaf_size) {
+  const VoxelMoments moments(cloud, leaf_size);
+  PointCloud out;
+  out.T_cloud_sensor = cloud.T_cloud_sensor;
+  out.points = moments.centroids();
+  out.normals = moments.normals(cloud.sensor_origin());
   out.set_unorganized();
   return out;
 }

@@ -3,17 +3,38 @@
 // points. The scene index needs both for every frame; a k-nearest-neighbour normal search over the
 // downsampled cloud cost more than everything else in building it.
 
+#include <memory>
+
 #include "geometry/point_cloud.h"
 
 namespace lmk {
 
-/// One point per occupied voxel of side `leaf_size` (the centroid, as voxel_downsample), with a
-/// normal from the principal axes of the raw points in the 2x2x2 block of voxels nearest to the
-/// centroid: a neighbourhood about two leaves across, pooled from per-voxel moments. The normal
-/// faces cloud.sensor_origin(); it is NaN where the block's points lie on a line or number fewer
-/// than three. Colours and labels are dropped. The output is unorganised, in order of each voxel's
-/// first point in the input, so it does not depend on the thread count. Throws lmk::Error for a
-/// non-positive leaf or a cloud too large for the leaf.
+/// The raw points of each occupied voxel (side `leaf_size`, grid anchored at the origin) as
+/// moments: count, sum and sum of outer products, gathered in one pass over the cloud. Centroids
+/// and normals both come from them, so a caller can use the centroids while the normals are being
+/// pooled. Voxels are in order of their first point in the input. Immutable once built; copies
+/// share the moments.
+class VoxelMoments {
+ public:
+  /// Throws lmk::Error for a non-positive leaf or a cloud too large for the leaf.
+  VoxelMoments(const PointCloud& cloud, double leaf_size);
+
+  std::size_t size() const;  ///< occupied voxels
+  /// The centroid of each voxel's points.
+  std::vector<Eigen::Vector3f> centroids() const;
+  /// Each voxel's normal: the principal axes of the raw points in the 2x2x2 block of voxels
+  /// nearest to its centroid, a neighbourhood about two leaves across, facing `viewpoint`. NaN
+  /// where the block's points lie on a line or number fewer than three.
+  std::vector<Eigen::Vector3f> normals(const Eigen::Vector3d& viewpoint) const;
+
+ private:
+  struct Impl;
+  std::shared_ptr<const Impl> impl_;
+};
+
+/// One point per occupied voxel (the centroid, as voxel_downsample) with VoxelMoments' normal,
+/// facing cloud.sensor_origin(). Colours and labels are dropped. The output is unorganised, in
+/// order of each voxel's first point in the input, so it does not depend on the thread count.
 PointCloud voxel_downsample_with_normals(const PointCloud& cloud, double leaf_size);
 
 }  // namespace lmk

@@ -41,20 +41,25 @@ SceneIndex::SceneIndex(const PointCloud& scene, const SceneSettings& settings)
     throw Error(settings.work_volume ? "scene: the work volume holds no scene point"
                                      : "scene: the scene holds no finite point");
   }
-  // The grids are independent of each other: the occupancy (raw points) builds beside the
-  // downsampling, and the k-d tree beside the distance field, so neither thread waits on a serial
-  // step.
+  // The grids are built side by side: the occupancy (raw points) beside the voxel moments, then
+  // the distance field from the centroids beside the normals and the k-d tree, so that neither
+  // thread waits on the other's serial steps.
   tbb::parallel_invoke(
       [&] { occupancy_ = OccupancyGrid(cropped_.points, settings.leaf_size); },
       [&] {
-        // Normals from a block of two leaves (about 2 cm at the default 1 cm): fine enough for a
-        // carton's edges, and pooled from the raw points rather than the centroids.
-        coarse_ = voxel_downsample_with_normals(cropped_, settings.coarse_leaf);
+        const VoxelMoments moments(cropped_, settings.coarse_leaf);
+        coarse_.points = moments.centroids();
+        coarse_.set_unorganized();
         coarse_.T_cloud_sensor = scene.T_cloud_sensor;
         tbb::parallel_invoke(
-            [&] { coarse_tree_ = std::make_unique<KdTree>(coarse_); },
             [&] {
               field_ = DistanceField(coarse_.points, {settings.coarse_leaf, settings.field_band});
+            },
+            [&] {
+              // Normals from a block of two leaves (about 2 cm at the default 1 cm): fine enough
+              // for a carton's edges, and pooled from the raw points rather than the centroids.
+              coarse_.normals = moments.normals(scene.sensor_origin());
+              coarse_tree_ = std::make_unique<KdTree>(coarse_);
             });
       });
   seconds_ = detail::seconds_since(start);
