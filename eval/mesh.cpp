@@ -44,6 +44,27 @@ TriangleMesh make_cylinder_mesh(double radius, double height, int segments) {
   return mesh;
 }
 
+TriangleMesh make_lathe_mesh(const std::vector<Eigen::Vector2d>& profile, int segments) {
+  TriangleMesh mesh;
+  for (const Eigen::Vector2d& p : profile) {
+    for (int s = 0; s < segments; ++s) {
+      const double a = 2.0 * M_PI * s / segments;
+      mesh.vertices.emplace_back(p.x() * std::cos(a), p.x() * std::sin(a), p.y());
+    }
+  }
+  for (std::size_t r = 0; r + 1 < profile.size(); ++r) {
+    for (int s = 0; s < segments; ++s) {
+      const int a = static_cast<int>(r) * segments + s;
+      const int b = static_cast<int>(r) * segments + (s + 1) % segments;
+      const int c = a + segments, d = b + segments;
+      // A ring on the axis collapses its quads to triangles: drop the degenerate half.
+      if (profile[r].x() > 0.0) mesh.triangles.emplace_back(a, b, d);
+      if (profile[r + 1].x() > 0.0) mesh.triangles.emplace_back(a, d, c);
+    }
+  }
+  return mesh;
+}
+
 TriangleMesh make_sphere_mesh(double radius, int rings, int segments) {
   TriangleMesh mesh;
   for (int r = 0; r <= rings; ++r) {

@@ -20,6 +20,12 @@ struct TriangleMesh {
 TriangleMesh make_box_mesh(const Eigen::Vector3d& size);
 /// Closed cylinder along z, centred at the origin.
 TriangleMesh make_cylinder_mesh(double radius, double height, int segments = 32);
+/// Surface of revolution about z of the polyline `profile`, each point (radius, z). A point of
+/// radius 0 lies on the axis, so a profile from the axis back to the axis is closed, and one that
+/// ends off the axis is open there (a cup's mouth, a bowl's rim). Surfaces are single sheets: the
+/// simulated sensor sees both sides. Wind the profile from bottom to top along the outside for
+/// outward-facing triangles.
+TriangleMesh make_lathe_mesh(const std::vector<Eigen::Vector2d>& profile, int segments = 32);
 /// UV sphere centred at the origin.
 TriangleMesh make_sphere_mesh(double radius, int rings = 16, int segments = 32);
 

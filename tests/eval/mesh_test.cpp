@@ -24,6 +24,18 @@ TEST(Mesh, PrimitivesAreClosedOutwardFacingAndOfTheRightVolume) {
               2e-3 * 4.0 / 3.0 * M_PI * r * r * r);
 }
 
+TEST(Mesh, LatheOfAClosedProfileIsASolidOfRevolution) {
+  // A cylinder drawn as a profile from the axis, out, up and back: the same solid as the
+  // primitive.
+  const double r = 0.1, h = 0.3;
+  const TriangleMesh lathe = make_lathe_mesh({{0, 0}, {r, 0}, {r, h}, {0, h}}, 256);
+  EXPECT_NEAR(signed_volume(lathe), M_PI * r * r * h, 1e-3 * M_PI * r * r * h);
+  // An open profile (a cup without its mouth) has no triangles on the missing disc.
+  const TriangleMesh cup = make_lathe_mesh({{0, 0}, {r, 0}, {r, h}}, 16);
+  EXPECT_EQ(cup.triangles.size(), 16u + 2u * 16u);
+  for (const auto& v : cup.vertices) EXPECT_LE(v.z(), h + 1e-12);
+}
+
 TEST(Mesh, AppendTransformsTheVertices) {
   TriangleMesh mesh;
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
