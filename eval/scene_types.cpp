@@ -1,0 +1,359 @@
+#include "eval/scene_types.h"
+
+#include <cmath>
+#include <functional>
+
+#include "eval/objects.h"
+#include "geometry/error.h"
+#include "geometry/pose.h"
+#include "geometry/random.h"
+
+namespace lmk {
+namespace {
+
+const Symmetry kNone{};
+const Symmetry kAboutZ{Eigen::Vector3d::UnitZ()};
+
+// FNV-1a: a scene's random stream must not depend on the standard library's string hash.
+std::uint64_t stable_hash(const std::string& text) {
+  std::uint64_t h = 14695981039346656037ull;
+  for (const char c : text) h = (h ^ static_cast<unsigned char>(c)) * 1099511628211ull;
+  return h;
+}
+
+// The generator of one scene: a seeded random stream, the world mesh and its ground truth.
+class SceneBuilder {
+ public:
+  SceneBuilder(const std::string& type, std::uint64_t seed, bool hard)
+      : rng_(seed * 0x9E3779B97F4A7C15ull ^ stable_hash(type)), hard_(hard) {
+    scene_.type = type;
+    scene_.setting = type.substr(0, type.find('/'));
+    // The floor, and a wall 1.5 m behind the origin that bounds the view.
+    scene_.mesh.append(make_box_mesh({6.0, 6.0, 0.02}), at({0, 0, -0.01}));
+    scene_.mesh.append(make_box_mesh({6.0, 0.02, 2.5}), at({0, 1.5, 1.25}));
+  }
+
+  double uniform(double lo, double hi) { return lo + (hi - lo) * rng_.uniform01(); }
+  bool hard() const { return hard_; }
+
+  // A yaw about z near `nominal`: within 15 degrees, or any yaw in hard scenes.
+  double yaw(double nominal = 0.0) {
+    return hard_ ? uniform(-M_PI, M_PI) : nominal + uniform(-0.26, 0.26);
+  }
+
+  static Eigen::Isometry3d at(const Eigen::Vector3d& xyz, double yaw = 0.0) {
+    return pose_from_xyz_rpy(xyz, {0, 0, yaw});
+  }
+
+  void add(const ObjectModel& object, const Eigen::Isometry3d& T_world_object) {
+    scene_.mesh.append(object.mesh, T_world_object);
+  }
+
+  void instance(const std::string& landmark, const ObjectModel& object, const std::string& part,
+                const Eigen::Isometry3d& T_world_object) {
+    scene_.instances[landmark].push_back(object.part(part).box.transformed(T_world_object));
+  }
+
+  void in_context(std::vector<std::string> landmarks) { scene_.in_context = std::move(landmarks); }
+
+  // A head-mounted sensor in front of `target` (towards -y), `distance` away and `height` above
+  // the floor, with some lateral spread; hard scenes also roll it about its optical axis.
+  void look_at(const Eigen::Vector3d& target, double distance, double height) {
+    const double azimuth = uniform(-0.25, 0.25) * (hard_ ? 2.0 : 1.0);
+    const Eigen::Vector3d eye(target.x() + distance * std::sin(azimuth),
+                              target.y() - distance * std::cos(azimuth),
+                              height + uniform(-0.08, 0.08));
+    Eigen::Isometry3d T = camera_look_at(eye, target, Eigen::Vector3d::UnitZ());
+    if (hard_)
+      T.linear() =
+          T.linear() *
+          Eigen::AngleAxisd(uniform(-0.5, 0.5), Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    scene_.T_world_sensor = T;
+  }
+
+  GeneratedScene take() { return std::move(scene_); }
+
+ private:
+  SplitMix64 rng_;
+  bool hard_;
+  GeneratedScene scene_;
+};
+
+constexpr double kTableTop = 0.72;
+
+// A table at the origin; returns the height of its top.
+double add_table(SceneBuilder& b) {
+  b.add(make_table({1.2, 0.8, kTableTop}), SceneBuilder::at({0, 0, 0}));
+  return kTableTop;
+}
+
+// A tabletop object at (x, y) on a surface at height z, with a yaw.
+Eigen::Isometry3d on_surface(double x, double y, double z, double yaw) {
+  return SceneBuilder::at({x, y, z}, yaw);
+}
+
+// A bowl, standing alone: an instance of the bowl and of its rim.
+void add_bowl(SceneBuilder& b, const Eigen::Isometry3d& T) {
+  const ObjectModel bowl = make_bowl();
+  b.add(bowl, T);
+  b.instance("bowl", bowl, "bowl", T);
+  b.instance("bowl_rim", bowl, "rim", T);
+}
+
+// A stack of `count` nested bowls: only the top one's rim is an instance (the paper's "rim of top
+// bowl"); the stack as a whole is no instance of a single bowl.
+void add_bowl_stack(SceneBuilder& b, const Eigen::Isometry3d& T_base, int count) {
+  const ObjectModel bowl = make_bowl();
+  Eigen::Isometry3d T = T_base;
+  for (int k = 0; k < count; ++k) {
+    T = T_base * SceneBuilder::at({0, 0, 0.018 * k}, b.uniform(-M_PI, M_PI));
+    b.add(bowl, T);
+  }
+  b.instance("bowl_rim", bowl, "rim", T);
+}
+
+void add_cup(SceneBuilder& b, const Eigen::Isometry3d& T) {
+  const ObjectModel cup = make_cup();
+  b.add(cup, T);
+  b.instance("cup", cup, "cup", T);
+}
+
+void add_ball(SceneBuilder& b, const Eigen::Isometry3d& T) {
+  const ObjectModel ball = make_ball();
+  b.add(ball, T);
+  b.instance("ball", ball, "ball", T);
+}
+
+void add_detergent(SceneBuilder& b, const Eigen::Isometry3d& T) {
+  const ObjectModel bottle = make_detergent_bottle();
+  b.add(bottle, T);
+  b.instance("tide_bottle", bottle, "bottle", T);
+}
+
+void add_spray(SceneBuilder& b, const Eigen::Isometry3d& T) {
+  const ObjectModel spray = make_spray_bottle();
+  b.add(spray, T);
+  b.instance("spray_bottle", spray, "spray_bottle", T);
+  b.instance("spray_top", spray, "top", T);
+}
+
+void add_clutter(SceneBuilder& b, double x, double y, double z) {
+  const Eigen::Vector3d size(b.uniform(0.06, 0.14), b.uniform(0.06, 0.14), b.uniform(0.05, 0.2));
+  b.add(make_clutter_box(size), on_surface(x, y, z, b.uniform(-M_PI, M_PI)));
+}
+
+// --- simple -----------------------------------------------------------------------------------
+
+void bowl_and_cup(SceneBuilder& b) {
+  const double z = add_table(b);
+  add_bowl(b, on_surface(b.uniform(-0.3, -0.15), b.uniform(-0.15, 0.15), z, b.yaw()));
+  add_cup(b, on_surface(b.uniform(0.1, 0.3), b.uniform(-0.15, 0.15), z, b.yaw()));
+  b.in_context({"bowl", "cup"});
+  b.look_at({0, 0, z}, b.uniform(0.95, 1.15), 1.3);
+}
+
+void tide_bottle(SceneBuilder& b) {
+  const double z = add_table(b);
+  add_detergent(b, on_surface(b.uniform(-0.15, 0.15), b.uniform(-0.1, 0.1), z, b.yaw()));
+  b.in_context({"tide_bottle"});
+  b.look_at({0, 0, z}, b.uniform(0.95, 1.15), 1.3);
+}
+
+void tide_and_spray(SceneBuilder& b) {
+  const double z = add_table(b);
+  add_detergent(b, on_surface(b.uniform(-0.35, -0.2), b.uniform(-0.1, 0.1), z, b.yaw()));
+  add_spray(b, on_surface(b.uniform(0.15, 0.3), b.uniform(-0.1, 0.1), z, b.yaw()));
+  b.in_context({"tide_bottle", "spray_bottle"});
+  b.look_at({0, 0, z}, b.uniform(0.95, 1.15), 1.3);
+}
+
+void three_balls(SceneBuilder& b) {
+  const double z = add_table(b);
+  for (const double x : {-0.3, 0.0, 0.3}) {
+    add_ball(b, on_surface(x + b.uniform(-0.05, 0.05), b.uniform(-0.15, 0.15), z, 0.0));
+  }
+  b.in_context({"ball"});
+  b.look_at({0, 0, z}, b.uniform(0.95, 1.15), 1.3);
+}
+
+// --- cluttered --------------------------------------------------------------------------------
+
+void stacked_bowls_and_cup(SceneBuilder& b) {
+  const double z = add_table(b);
+  add_bowl_stack(b, on_surface(b.uniform(-0.3, -0.15), b.uniform(-0.1, 0.1), z, 0.0), 3);
+  add_cup(b, on_surface(b.uniform(0.1, 0.3), b.uniform(-0.1, 0.1), z, b.yaw()));
+  b.in_context({"bowl_rim", "cup"});
+  b.look_at({0, 0, z}, b.uniform(0.95, 1.15), 1.3);
+}
+
+void shelf(SceneBuilder& b) {
+  const ObjectModel shelf = make_shelf();
+  b.add(shelf, SceneBuilder::at({0, 0.2, 0}));
+  for (const double level : shelf.surfaces) {
+    const double side = b.uniform(0.0, 1.0) < 0.5 ? -1.0 : 1.0;
+    add_bowl_stack(b, on_surface(side * b.uniform(0.12, 0.2), 0.2, level, 0.0), 2);
+    add_cup(b, on_surface(-side * b.uniform(0.12, 0.22), 0.2, level, b.yaw()));
+  }
+  b.in_context({"bowl_rim", "cup"});
+  b.look_at({0, 0.2, 0.7}, b.uniform(1.25, 1.45), 1.3);
+}
+
+void bowls_in_contact(SceneBuilder& b) {
+  const double z = add_table(b);
+  const double r = make_bowl().bounds.size.x() * 0.5;
+  const double x0 = b.uniform(-0.25, -0.1), y0 = b.uniform(-0.1, 0.1);
+  for (int k = 0; k < 3; ++k) {
+    add_bowl(b, on_surface(x0 + 2.0 * r * k, y0, z, b.uniform(-M_PI, M_PI)));
+  }
+  // A tennis ball in the middle bowl, on its bottom.
+  add_ball(b, on_surface(x0 + 2.0 * r, y0, z, 0.0));
+  b.in_context({"bowl_rim", "ball"});
+  b.look_at({0, 0, z}, b.uniform(0.95, 1.15), 1.3);
+}
+
+void tide_touching_spray(SceneBuilder& b) {
+  const double z = add_table(b);
+  const double x = b.uniform(-0.2, 0.0), y = b.uniform(-0.1, 0.1);
+  const double bottle_half = 0.5 * make_detergent_bottle().bounds.size.x();
+  add_detergent(b, on_surface(x, y, z, 0.0));
+  add_spray(b, on_surface(x + bottle_half + 0.04, y, z, b.yaw()));
+  b.in_context({"tide_bottle", "spray_top"});
+  b.look_at({0, 0, z}, b.uniform(0.95, 1.15), 1.3);
+}
+
+void spray_occluded(SceneBuilder& b) {
+  const double z = add_table(b);
+  const double x = b.uniform(-0.15, 0.15), y = b.uniform(0.0, 0.15);
+  add_spray(b, on_surface(x, y, z, b.yaw()));
+  // A box between the sensor and the bottle hides its lower half.
+  b.add(make_clutter_box({0.2, 0.06, 0.11}), on_surface(x, y - 0.12, z, 0.0));
+  b.in_context({"spray_top"});
+  b.look_at({0, 0, z}, b.uniform(0.95, 1.15), 1.25);
+}
+
+void spray_with_clutter(SceneBuilder& b) {
+  const double z = add_table(b);
+  add_spray(b, on_surface(b.uniform(-0.1, 0.1), b.uniform(0.0, 0.1), z, b.yaw()));
+  add_ball(b, on_surface(b.uniform(-0.35, -0.25), b.uniform(-0.15, 0.0), z, 0.0));
+  add_ball(b, on_surface(b.uniform(0.25, 0.35), b.uniform(-0.15, 0.0), z, 0.0));
+  add_clutter(b, b.uniform(-0.45, -0.3), b.uniform(0.1, 0.25), z);
+  add_clutter(b, b.uniform(0.3, 0.45), b.uniform(0.1, 0.25), z);
+  add_clutter(b, b.uniform(-0.1, 0.1), b.uniform(0.2, 0.3), z);
+  b.in_context({"spray_top", "ball"});
+  b.look_at({0, 0, z}, b.uniform(0.95, 1.15), 1.3);
+}
+
+// --- unconventional ---------------------------------------------------------------------------
+
+void chair(SceneBuilder& b, bool lowered) {
+  const ObjectModel chair = make_chair(lowered);
+  // Rotated chairs were where the paper's method failed: up to 90 degrees in hard scenes.
+  const double yaw = b.hard() ? b.uniform(-1.57, 1.57) : b.uniform(-0.17, 0.17);
+  const Eigen::Isometry3d T =
+      SceneBuilder::at({b.uniform(-0.1, 0.1), b.uniform(-0.1, 0.1), 0}, yaw);
+  b.add(chair, T);
+  b.instance("chair_corner", chair, "left_corner", T);
+  b.instance("chair_corner", chair, "right_corner", T);
+  b.in_context({"chair_corner"});
+  b.look_at({0, 0, 0.75}, b.uniform(1.2, 1.4), 1.35);
+}
+
+// A wall-mounted object, tilted back by up to 30 degrees in hard scenes.
+Eigen::Isometry3d on_wall(SceneBuilder& b, double height) {
+  const double tilt = b.hard() ? b.uniform(-0.52, 0.52) : 0.0;
+  return pose_from_xyz_rpy({b.uniform(-0.1, 0.1), 0.3, height}, {tilt, 0, b.uniform(-0.1, 0.1)});
+}
+
+void tool_rack(SceneBuilder& b, const std::vector<int>& hanging) {
+  const ObjectModel rack = make_tool_rack(4, hanging);
+  const Eigen::Isometry3d T = on_wall(b, 0.6);
+  b.add(rack, T);
+  for (const ObjectPart& part : rack.parts) {
+    b.instance(part.name.rfind("griple", 0) == 0 ? "griple" : "griple_mount", rack, part.name, T);
+  }
+  b.in_context({"griple", "griple_mount"});
+  b.look_at({0, 0.3, 1.1}, b.uniform(1.0, 1.2), 1.35);
+}
+
+void drawer(SceneBuilder& b, bool open) {
+  const ObjectModel unit = make_drawer_unit(3, open ? 0 : -1);
+  const double yaw = b.hard() ? b.uniform(-0.8, 0.8) : b.uniform(-0.1, 0.1);
+  const Eigen::Isometry3d T = SceneBuilder::at({b.uniform(-0.1, 0.1), 0.2, 0}, yaw);
+  b.add(unit, T);
+  for (const ObjectPart& part : unit.parts) b.instance("drawer_handle", unit, part.name, T);
+  b.in_context({"drawer_handle"});
+  b.look_at({0, 0.0, 0.45}, b.uniform(1.0, 1.2), 1.3);
+}
+
+using Builder = std::function<void(SceneBuilder&)>;
+
+const std::vector<std::pair<std::string, Builder>>& builders() {
+  static const std::vector<std::pair<std::string, Builder>> all = {
+      {"simple/bowl_and_cup", bowl_and_cup},
+      {"simple/tide_bottle", tide_bottle},
+      {"simple/tide_and_spray", tide_and_spray},
+      {"simple/three_balls", three_balls},
+      {"cluttered/stacked_bowls_and_cup", stacked_bowls_and_cup},
+      {"cluttered/shelf", shelf},
+      {"cluttered/bowls_in_contact", bowls_in_contact},
+      {"cluttered/tide_touching_spray", tide_touching_spray},
+      {"cluttered/spray_occluded", spray_occluded},
+      {"cluttered/spray_with_clutter", spray_with_clutter},
+      {"unconventional/chair", [](SceneBuilder& b) { chair(b, false); }},
+      {"unconventional/lowered_chair", [](SceneBuilder& b) { chair(b, true); }},
+      {"unconventional/rack_partly_full",
+       [](SceneBuilder& b) {
+         tool_rack(b, {0, 2});
+       }},
+      {"unconventional/rack_full",
+       [](SceneBuilder& b) {
+         tool_rack(b, {0, 1, 2, 3});
+       }},
+      {"unconventional/rack_empty", [](SceneBuilder& b) { tool_rack(b, {}); }},
+      {"unconventional/drawer", [](SceneBuilder& b) { drawer(b, false); }},
+      {"unconventional/drawer_open", [](SceneBuilder& b) { drawer(b, true); }},
+  };
+  return all;
+}
+
+}  // namespace
+
+const std::vector<BenchmarkLandmark>& benchmark_landmarks() {
+  static const std::vector<BenchmarkLandmark> all = {
+      {"bowl", "simple", "simple/bowl_and_cup", kAboutZ},
+      {"cup", "simple", "simple/bowl_and_cup", kNone},
+      {"tide_bottle", "simple", "simple/tide_bottle", kNone},
+      {"spray_bottle", "simple", "simple/tide_and_spray", kNone},
+      {"ball", "simple", "simple/three_balls", kAboutZ},
+      {"bowl_rim", "cluttered", "cluttered/stacked_bowls_and_cup", kAboutZ},
+      {"spray_top", "cluttered", "cluttered/spray_occluded", kNone},
+      {"chair_corner", "unconventional", "unconventional/chair", kNone},
+      {"griple", "unconventional", "unconventional/rack_partly_full", kNone},
+      {"griple_mount", "unconventional", "unconventional/rack_partly_full", kNone},
+      {"drawer_handle", "unconventional", "unconventional/drawer", kNone},
+  };
+  return all;
+}
+
+const std::vector<std::string>& scene_types() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out;
+    for (const auto& [name, build] : builders()) out.push_back(name);
+    return out;
+  }();
+  return names;
+}
+
+GeneratedScene make_scene(const std::string& type, std::uint64_t seed, bool hard) {
+  for (const auto& [name, build] : builders()) {
+    if (name != type) continue;
+    SceneBuilder builder(type, seed, hard);
+    build(builder);
+    return builder.take();
+  }
+  std::string known;
+  for (const std::string& name : scene_types()) known += (known.empty() ? "" : ", ") + name;
+  throw Error("unknown scene type '" + type + "' (known: " + known + ")");
+}
+
+}  // namespace lmk

@@ -1,0 +1,49 @@
+#pragma once
+// The paper's 17 evaluation scenes (its Tables I-III, DESIGN.md "Synthetic benchmark") as seeded
+// generators over the object library, with exact ground truth: every landmark instance's box in
+// the world frame.
+//
+// Worlds are z up, in metres, with the floor at z = 0. A seed varies object positions and yaws,
+// clutter and the sensor's viewpoint; `hard` adds what the paper's method could not handle: any
+// yaw of the objects, rotated chairs, tilted walls and cabinets, and a rolled camera.
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "eval/evaluation_protocol.h"
+#include "eval/mesh.h"
+#include "geometry/box.h"
+
+namespace lmk {
+
+/// A landmark of the benchmark: cut once, in its demonstration scene, from one object part.
+struct BenchmarkLandmark {
+  std::string name;        ///< e.g. "bowl_rim"
+  std::string setting;     ///< the setting whose scenes it was made for
+  std::string demo_scene;  ///< the scene type it is captured in (with seed 0, not hard)
+  Symmetry symmetry;       ///< in the landmark's box frame
+};
+
+/// The benchmark's landmarks, in a fixed order.
+const std::vector<BenchmarkLandmark>& benchmark_landmarks();
+
+struct GeneratedScene {
+  std::string type;                     ///< e.g. "cluttered/shelf"
+  std::string setting;                  ///< "simple", "cluttered" or "unconventional"
+  TriangleMesh mesh;                    ///< world frame
+  Eigen::Isometry3d T_world_sensor;     ///< the sensor's optical frame (z forward, y down)
+  std::vector<std::string> in_context;  ///< the landmarks the paper searched in this scene
+  /// Ground-truth boxes per landmark name, world frame (landmarks absent from the scene have none).
+  std::map<std::string, std::vector<Box>> instances;
+};
+
+/// The 17 scene types, in the paper's order: "simple/bowl_and_cup", ...
+const std::vector<std::string>& scene_types();
+
+/// Builds scene `type` for `seed`. Deterministic: the same arguments give the same scene. Throws
+/// lmk::Error naming the known types for an unknown one.
+GeneratedScene make_scene(const std::string& type, std::uint64_t seed, bool hard = false);
+
+}  // namespace lmk
