@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <functional>
+#include <initializer_list>
 
 #include "eval/objects.h"
 #include "geometry/error.h"
@@ -92,12 +93,16 @@ Eigen::Isometry3d on_surface(double x, double y, double z, double yaw) {
   return SceneBuilder::at({x, y, z}, yaw);
 }
 
+// Places `object` and records it as an instance of each (landmark, part) listed.
+void add_object(SceneBuilder& b, const ObjectModel& object, const Eigen::Isometry3d& T,
+                std::initializer_list<std::pair<const char*, const char*>> landmark_parts) {
+  b.add(object, T);
+  for (const auto& [landmark, part] : landmark_parts) b.instance(landmark, object, part, T);
+}
+
 // A bowl, standing alone: an instance of the bowl and of its rim.
 void add_bowl(SceneBuilder& b, const Eigen::Isometry3d& T) {
-  const ObjectModel bowl = make_bowl();
-  b.add(bowl, T);
-  b.instance("bowl", bowl, "bowl", T);
-  b.instance("bowl_rim", bowl, "rim", T);
+  add_object(b, make_bowl(), T, {{"bowl", "bowl"}, {"bowl_rim", "rim"}});
 }
 
 // A stack of `count` nested bowls: only the top one's rim is an instance (the paper's "rim of top
@@ -113,28 +118,19 @@ void add_bowl_stack(SceneBuilder& b, const Eigen::Isometry3d& T_base, int count)
 }
 
 void add_cup(SceneBuilder& b, const Eigen::Isometry3d& T) {
-  const ObjectModel cup = make_cup();
-  b.add(cup, T);
-  b.instance("cup", cup, "cup", T);
+  add_object(b, make_cup(), T, {{"cup", "cup"}});
 }
 
 void add_ball(SceneBuilder& b, const Eigen::Isometry3d& T) {
-  const ObjectModel ball = make_ball();
-  b.add(ball, T);
-  b.instance("ball", ball, "ball", T);
+  add_object(b, make_ball(), T, {{"ball", "ball"}});
 }
 
 void add_detergent(SceneBuilder& b, const Eigen::Isometry3d& T) {
-  const ObjectModel bottle = make_detergent_bottle();
-  b.add(bottle, T);
-  b.instance("tide_bottle", bottle, "bottle", T);
+  add_object(b, make_detergent_bottle(), T, {{"tide_bottle", "bottle"}});
 }
 
 void add_spray(SceneBuilder& b, const Eigen::Isometry3d& T) {
-  const ObjectModel spray = make_spray_bottle();
-  b.add(spray, T);
-  b.instance("spray_bottle", spray, "spray_bottle", T);
-  b.instance("spray_top", spray, "top", T);
+  add_object(b, make_spray_bottle(), T, {{"spray_bottle", "spray_bottle"}, {"spray_top", "top"}});
 }
 
 void add_clutter(SceneBuilder& b, double x, double y, double z) {
