@@ -43,7 +43,7 @@ TEST(DistanceField, ReadsTheBandAcrossTheBandEdge) {
   const DistanceFieldSettings settings{0.01, 0.05};
   const auto sampler = DistanceField(one, settings).sampler();
   for (const Eigen::Vector3f& direction : {Eigen::Vector3f(1, 0, 0), Eigen::Vector3f(0, -1, 0),
-                                          Eigen::Vector3f(1, 1, 1).normalized()}) {
+                                           Eigen::Vector3f(1, 1, 1).normalized()}) {
     for (float r = 0.0f; r <= 0.08f; r += 0.001f) {
       const float expected = std::min(r, float(settings.band));
       EXPECT_NEAR(sampler.distance(r * direction), expected, 0.5 * settings.voxel_size)
