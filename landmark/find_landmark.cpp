@@ -65,13 +65,7 @@ void check_settings(const FindSettings& s) {
 // that measure them, the coverage and the empty space).
 std::vector<Match> select(std::vector<Match> candidates, const FindSettings& s,
                           SearchStats& stats) {
-  std::vector<Eigen::Vector3d> centres;
-  std::vector<double> errors;
-  for (const Match& m : candidates) {
-    centres.push_back(m.box.center());
-    errors.push_back(m.error);
-  }
-  const std::vector<std::size_t> kept = non_max_suppression(centres, errors, s.nms_radius);
+  const std::vector<std::size_t> kept = non_max_suppression_of(candidates, s.nms_radius);
   stats.after_nms = kept.size();
   std::vector<Match> matches;
   for (std::size_t i : kept) {

@@ -14,4 +14,16 @@ namespace lmk {
 std::vector<std::size_t> non_max_suppression(const std::vector<Eigen::Vector3d>& centres,
                                              const std::vector<double>& errors, double radius);
 
+/// The same over matches, or anything with a `box` and an `error`.
+template <typename Match>
+std::vector<std::size_t> non_max_suppression_of(const std::vector<Match>& matches, double radius) {
+  std::vector<Eigen::Vector3d> centres;
+  std::vector<double> errors;
+  for (const Match& m : matches) {
+    centres.push_back(m.box.center());
+    errors.push_back(m.error);
+  }
+  return non_max_suppression(centres, errors, radius);
+}
+
 }  // namespace lmk

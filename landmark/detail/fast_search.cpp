@@ -18,8 +18,6 @@
 #include "registration/refine_pose.h"
 
 namespace lmk::detail {
-double g_icp = 0, g_metric = 0, g_refine = 0;
-int g_nref = 0;
 namespace {
 
 struct Candidate {
@@ -193,14 +191,10 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
   tbb::parallel_for(std::size_t{0}, survivors.size(), [&](std::size_t k) {
     const std::size_t c = survivors[k];
     const DistanceFieldTarget target(index.field(), &coarse.normals);
-    auto t0 = Clock::now();
     const IcpResult r = icp(icp_points, target, aligned[c], fine_icp);
-    g_icp += seconds_since(t0);
-    t0 = Clock::now();
     Match& m = aligned_matches[k];
     m.T_scene_capture = r.T_target_source;
     m.terms = in.metric.evaluate(in.scene_view, in.landmark_view, m.T_scene_capture);
-    g_metric += seconds_since(t0);
     m.icp_iterations = iterations[c] + r.iterations;
     m.icp_converged = r.converged;
     m.seed_index = clusters[c].seed;
@@ -212,28 +206,17 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
 
   // Step 5 comes early for the polish: of candidates within the suppression radius of each other
   // only the best survives selection, so only it is worth Ceres' time.
-  std::vector<Eigen::Vector3d> centres;
-  std::vector<double> errors;
-  for (const Match& m : aligned_matches) {
-    centres.push_back(m.box.center());
-    errors.push_back(m.error);
-  }
-  std::vector<std::size_t> kept = non_max_suppression(centres, errors, s.nms_radius);
+  std::vector<std::size_t> kept = non_max_suppression_of(aligned_matches, s.nms_radius);
   std::sort(kept.begin(), kept.end());  // cluster rank again: a deterministic order
   std::vector<Match> matches;
   for (std::size_t k : kept) matches.push_back(std::move(aligned_matches[k]));
   tbb::parallel_for(std::size_t{0}, matches.size(), [&](std::size_t k) {
     Match& m = matches[k];
     if (!s.refine || !(m.terms.error < worth_refining)) return;
-    auto t0 = Clock::now();
-    ++g_nref;
     const Eigen::Isometry3d polished =
         refine_pose(refine_points, index.field(), m.T_scene_capture, refine, empty_probes)
             .T_target_source;
-    g_refine += seconds_since(t0);
-    t0 = Clock::now();
     ErrorTerms terms = in.metric.evaluate(in.scene_view, in.landmark_view, polished);
-    g_metric += seconds_since(t0);
     if (terms.error <= m.terms.error) {
       m.T_scene_capture = polished;
       m.terms = terms;

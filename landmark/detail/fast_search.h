@@ -8,9 +8,10 @@
 // 2. Clustering: nearby poses merge, their votes add up; the best-voted clusters go on.
 // 3. Coarse alignment: a few point-to-plane ICP steps of the landmark's coarse points against the
 //    scene's closest-point grid, then a cheap score; hopeless candidates are pruned.
-// 4. Fine alignment of the survivors: ICP with every landmark point, then Ceres robust refinement
-//    with the empty-space penalty.
-// 5. Scoring with the chosen metric.
+// 4. Fine alignment of the survivors (ICP on up to 1000 landmark points) and scoring with the
+//    chosen metric.
+// 5. Non-max suppression, then Ceres robust refinement with the empty-space penalty for the
+//    suppression's winners that are near the threshold.
 
 #include <vector>
 
