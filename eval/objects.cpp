@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "geometry/error.h"
 #include "geometry/pose.h"
@@ -65,10 +64,9 @@ const ObjectPart& ObjectModel::part(const std::string& name) const {
 
 Box mesh_bounds(const TriangleMesh& mesh) {
   if (mesh.vertices.empty()) return Box(Eigen::Isometry3d::Identity(), Eigen::Vector3d::Ones());
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
-  Eigen::Vector3d hi = -lo;
-  for (const Eigen::Vector3d& v : mesh.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
-  return box_between(lo, hi);
+  Eigen::AlignedBox3d bounds;
+  for (const Eigen::Vector3d& v : mesh.vertices) bounds.extend(v);
+  return box_between(bounds.min(), bounds.max());
 }
 
 ObjectModel make_bowl(double radius, double height) {

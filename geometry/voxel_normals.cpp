@@ -57,8 +57,9 @@ Eigen::Vector3d mean_of(const Moments& v) {
 }  // namespace
 
 struct VoxelMoments::Impl {
-  double leaf = 0.0;
-  detail::VoxelTable table{0};
+  Impl(double leaf_size, std::size_t expected_voxels) : leaf(leaf_size), table(expected_voxels) {}
+  double leaf;
+  detail::VoxelTable table;
   std::vector<Moments> voxels;
 };
 
@@ -77,9 +78,7 @@ VoxelMoments::VoxelMoments(const PointCloud& cloud, double leaf_size) {
   });
 
   // One serial pass: ids in order of first appearance, so the result is deterministic.
-  auto impl = std::make_shared<Impl>();
-  impl->leaf = leaf_size;
-  impl->table = detail::VoxelTable(n / 8);
+  auto impl = std::make_shared<Impl>(leaf_size, n / 8);
   std::vector<Moments>& voxels = impl->voxels;
   voxels.reserve(n / 4 + 16);                 // untouched capacity costs no memory
   std::uint64_t last_key = detail::kNoVoxel;  // neighbouring pixels often share a voxel
@@ -143,16 +142,6 @@ std::vector<Eigen::Vector3f> VoxelMoments::normals(const Eigen::Vector3d& viewpo
     if (normal.dot(viewpoint - (corner_of(v.coord, leaf) + local)) < 0.0) normal = -normal;
     out[id] = normal.cast<float>();
   });
-  return out;
-}
-
-PointCloud voxel_downsample_with_normals(const PointCloud& cloud, double leaf_size) {
-  const VoxelMoments moments(cloud, leaf_size);
-  PointCloud out;
-  out.T_cloud_sensor = cloud.T_cloud_sensor;
-  out.points = moments.centroids();
-  out.normals = moments.normals(cloud.sensor_origin());
-  out.set_unorganized();
   return out;
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// Voxel downsampling that also gives each centroid a surface normal, in one pass over the raw
+// Voxel downsampling that also gives each centroid a surface normal, from one pass over the raw
 // points. The scene index needs both for every frame; a k-nearest-neighbour normal search over the
 // downsampled cloud cost more than everything else in building it.
 
@@ -31,10 +31,5 @@ class VoxelMoments {
   struct Impl;
   std::shared_ptr<const Impl> impl_;
 };
-
-/// One point per occupied voxel (the centroid, as voxel_downsample) with VoxelMoments' normal,
-/// facing cloud.sensor_origin(). Colours and labels are dropped. The output is unorganised, in
-/// order of each voxel's first point in the input, so it does not depend on the thread count.
-PointCloud voxel_downsample_with_normals(const PointCloud& cloud, double leaf_size);
 
 }  // namespace lmk

@@ -1,7 +1,7 @@
 #include "occupancy/occupancy_grid.h"
 
+#include <Eigen/Geometry>
 #include <cmath>
-#include <limits>
 
 #include "geometry/error.h"
 #include "occupancy/detail/vdb_support.h"
@@ -42,11 +42,10 @@ std::vector<Eigen::Vector3f> OccupancyGrid::occupied_in(const Box& box) const {
   // Finite is enough: poses from registration may be a few 1e-6 off orthonormal.
   if (!box.pose.matrix().allFinite() || !box.size.allFinite()) return out;
   const double voxel = grid_->voxel;
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
-  Eigen::Vector3d hi = -lo;
-  for (const Eigen::Vector3d& c : box.corners()) lo = lo.cwiseMin(c), hi = hi.cwiseMax(c);
-  const openvdb::Coord first = detail::nearest_voxel(lo, voxel);
-  const openvdb::Coord last = detail::nearest_voxel(hi, voxel);
+  Eigen::AlignedBox3d bounds;
+  for (const Eigen::Vector3d& c : box.corners()) bounds.extend(c);
+  const openvdb::Coord first = detail::nearest_voxel(bounds.min(), voxel);
+  const openvdb::Coord last = detail::nearest_voxel(bounds.max(), voxel);
   const auto leaf_origin = [](int v) { return v & ~static_cast<int>(Leaf::DIM - 1); };
   const auto access = grid_->grid->getConstAccessor();
   for (int x = leaf_origin(first.x()); x <= last.x(); x += Leaf::DIM) {
