@@ -89,6 +89,11 @@ Dataset parse(const json& j, const Reader& r) {
     s.file = r.text(scenes[i], where, "file");
     s.setting = r.text(scenes[i], where, "setting");
     s.T_scene_sensor = r.pose(r.field(scenes[i], where, "sensor_pose"), where + ".sensor_pose");
+    if (scenes[i].contains("up") && !scenes[i]["up"].is_null()) {
+      const Eigen::Vector3d up = r.numbers(scenes[i]["up"], where + ".up", 3);
+      if (!(up.norm() > 0.0)) r.fail(where + ".up", "must not be zero");
+      s.up = up.normalized();
+    }
     const json& pairs = scenes[i].contains("pairs") ? scenes[i]["pairs"] : json::array();
     if (!pairs.is_array()) r.fail(where + ".pairs", "must be an array");
     for (std::size_t k = 0; k < pairs.size(); ++k) {
@@ -190,6 +195,7 @@ void save_dataset(const std::string& dir, const Dataset& d) {
                       {"file", s.file},
                       {"setting", s.setting},
                       {"sensor_pose", detail::pose_to_json(s.T_scene_sensor)},
+                      {"up", s.up ? detail::vector_to_json(*s.up) : json(nullptr)},
                       {"pairs", pairs}});
   }
   const json j = {{"format", "lmk-dataset"},

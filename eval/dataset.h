@@ -3,6 +3,7 @@
 // scene clouds, landmark files and the ground truth of every (scene, landmark) pair.
 
 #include <Eigen/Geometry>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,9 @@ struct DatasetScene {
   std::string file;     ///< point cloud, relative to the dataset directory
   std::string setting;  ///< "simple", "cluttered", "unconventional", or free text
   Eigen::Isometry3d T_scene_sensor = Eigen::Isometry3d::Identity();
+  /// The scene's up axis (unit, scene frame), where the scene frame has one (a world or robot
+  /// base frame). Unset: the sensor's -y, as for any camera-frame cloud.
+  std::optional<Eigen::Vector3d> up;
   std::vector<DatasetPair> pairs;
 };
 

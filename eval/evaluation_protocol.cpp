@@ -64,18 +64,28 @@ void record_tp(Counts& c, const Eigen::Isometry3d& truth, const Eigen::Isometry3
 
 }  // namespace
 
-Counts count_all_matches(const PairInput& pair, const MatchTolerance& tolerance) {
-  Counts c;
+std::vector<std::optional<std::size_t>> assign_matches(const PairInput& pair,
+                                                       const MatchTolerance& tolerance) {
+  std::vector<std::optional<std::size_t>> assigned;
   std::vector<char> taken(pair.truth.size(), 0);
   for (const Eigen::Isometry3d& found : pair.found) {
-    if (const auto i = match(pair, found, taken, tolerance)) {
-      taken[*i] = 1;
-      record_tp(c, pair.truth[*i], found, pair.symmetry);
+    assigned.push_back(match(pair, found, taken, tolerance));
+    if (assigned.back()) taken[*assigned.back()] = 1;
+  }
+  return assigned;
+}
+
+Counts count_all_matches(const PairInput& pair, const MatchTolerance& tolerance) {
+  Counts c;
+  const auto assigned = assign_matches(pair, tolerance);
+  for (std::size_t k = 0; k < assigned.size(); ++k) {
+    if (assigned[k]) {
+      record_tp(c, pair.truth[*assigned[k]], pair.found[k], pair.symmetry);
     } else {
       ++c.fp;
     }
   }
-  c.fn = static_cast<std::size_t>(std::count(taken.begin(), taken.end(), 0));
+  c.fn = pair.truth.size() - c.tp;
   return c;
 }
 

@@ -45,6 +45,12 @@ struct Counts {
   std::optional<double> recall() const;
 };
 
+/// For each returned pose, best first, the ground-truth instance it matches under assumptions 1
+/// and 2: the nearest one within tolerance not matched by a better pose; nothing for a false
+/// positive.
+std::vector<std::optional<std::size_t>> assign_matches(const PairInput& pair,
+                                                       const MatchTolerance& tolerance = {});
+
 /// Assumptions 1 and 2 for one pair: each returned pose, best first, is a true positive when its
 /// centre is within tolerance of a ground-truth instance not already matched (the nearest such) and
 /// its rotation error is within tolerance; otherwise a false positive. Unmatched instances are

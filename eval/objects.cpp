@@ -194,7 +194,10 @@ ObjectModel make_shelf() {
 ObjectModel make_chair(bool lowered) {
   const double drop = lowered ? 0.12 : 0.0;
   const double seat_z = 0.45 - drop, back_bottom = 0.62 - drop, back_height = 0.42;
-  const Eigen::Vector3d back(0.44, 0.05, back_height);
+  // A padded backrest: a slab whose top is a rounded roll. The roll also gives the corner relief,
+  // which a flat slab would not (its corner would be a plane with a grazing top).
+  const double roll = 0.035;
+  const Eigen::Vector3d back(0.44, 2.0 * roll, back_height - roll);
   const double back_y = 0.2;
   TriangleMesh mesh;
   // A five-spoke base, the gas post, the seat, the backrest's post and the backrest.
@@ -207,7 +210,9 @@ ObjectModel make_chair(bool lowered) {
   mesh.append(make_cylinder_mesh(0.025, seat_z - 0.03, 24), at(0, 0, 0.5 * (seat_z + 0.03)));
   add_box(mesh, {0.46, 0.46, 0.06}, 0, 0, seat_z + 0.03);
   add_box(mesh, {0.05, 0.03, back_bottom - seat_z}, 0, back_y + 0.03, 0.5 * (seat_z + back_bottom));
-  add_box(mesh, back, 0, back_y, back_bottom + 0.5 * back_height);
+  add_box(mesh, back, 0, back_y, back_bottom + 0.5 * back.z());
+  mesh.append(make_cylinder_mesh(roll, back.x(), 24),
+              pose_from_xyz_rpy({0, back_y, back_bottom + back.z()}, {0, 0.5 * M_PI, 0}));
   ObjectModel chair = finish(lowered ? "lowered_chair" : "chair", std::move(mesh));
   // A corner: 9 cm of backrest below and inside the corner, 3 cm of free space above and outside.
   const double top = back_bottom + back_height;

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <fstream>
 #include <string>
 #include <system_error>
 
@@ -35,6 +36,14 @@ void write_file_atomically(const fs::path& path,
     fs::remove(tmp, ec);
     throw Error(path.string() + ": cannot write: " + ec.message());
   }
+}
+
+void write_text_atomically(const fs::path& path, const std::string& text) {
+  write_file_atomically(path, [&](const fs::path& tmp) {
+    std::ofstream out(tmp, std::ios::binary);
+    out << text;
+    if (!out) throw Error(path.string() + ": write failed");
+  });
 }
 
 }  // namespace lmk

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <string>
 
 namespace lmk {
 
@@ -12,5 +13,8 @@ namespace lmk {
 /// target directory does not exist or the rename fails.
 void write_file_atomically(const std::filesystem::path& path,
                            const std::function<void(const std::filesystem::path&)>& write);
+
+/// Writes `text` to `path` atomically; throws lmk::Error naming the file when it cannot.
+void write_text_atomically(const std::filesystem::path& path, const std::string& text);
 
 }  // namespace lmk

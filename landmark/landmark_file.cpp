@@ -17,6 +17,7 @@
 #include "geometry/detail/pose_json.h"
 #include "geometry/error.h"
 #include "geometry/filters.h"
+#include "geometry/hash.h"
 #include "geometry/pose.h"
 #include "occupancy/detail/grids.h"
 
@@ -48,13 +49,12 @@ bool has_vdb_magic(const std::string& path) {
 // reads some damaged files without error and aborts on others (Debian builds it with assertions).
 constexpr char kTrailerMagic[8] = {'L', 'M', 'K', 'T', 'R', 'A', 'I', 'L'};
 constexpr std::size_t kTrailerSize = 24;
+// The trailer's hash starts from this basis (not FNV's standard one, which has one digit more);
+// it is part of the file format, so it stays.
+constexpr std::uint64_t kTrailerHashBasis = 1469598103934665603ULL;
 
-std::uint64_t fnv1a(const char* data, std::size_t size) {
-  std::uint64_t h = 1469598103934665603ULL;
-  for (std::size_t i = 0; i < size; ++i) {
-    h = (h ^ static_cast<unsigned char>(data[i])) * 1099511628211ULL;
-  }
-  return h;
+std::uint64_t trailer_hash(const char* data, std::size_t size) {
+  return Fnv1a(kTrailerHashBasis).add(data, size).value();
 }
 
 std::string read_bytes(const std::string& path) {
@@ -64,7 +64,7 @@ std::string read_bytes(const std::string& path) {
 
 void append_trailer(const fs::path& file) {
   const std::string bytes = read_bytes(file.string());
-  const std::uint64_t length = bytes.size(), hash = fnv1a(bytes.data(), bytes.size());
+  const std::uint64_t length = bytes.size(), hash = trailer_hash(bytes.data(), bytes.size());
   std::ofstream out(file, std::ios::binary | std::ios::app);
   out.write(kTrailerMagic, sizeof(kTrailerMagic));
   out.write(reinterpret_cast<const char*>(&length), sizeof(length));
@@ -82,7 +82,7 @@ void check_trailer(const std::string& path) {
   std::uint64_t length = 0, hash = 0;
   std::memcpy(&length, bytes.data() + bytes.size() - 16, sizeof(length));
   std::memcpy(&hash, bytes.data() + bytes.size() - 8, sizeof(hash));
-  if (length != bytes.size() - kTrailerSize || hash != fnv1a(bytes.data(), length)) {
+  if (length != bytes.size() - kTrailerSize || hash != trailer_hash(bytes.data(), length)) {
     throw Error(path +
                 ": corrupt landmark file: its data does not match the checksum it was "
                 "written with");

@@ -7,6 +7,8 @@
 #include <optional>
 #include <vector>
 
+#include "landmark/find_landmark.h"
+
 namespace lmk::cli {
 
 /// Exit codes: 0 success, 1 an unexpected internal failure, 2 bad input (a file, an argument).
@@ -32,6 +34,11 @@ struct UpOptions {
 };
 void add_up_options(CLI::App* sub, UpOptions& options);
 
+/// The options of a search that lmk find, eval and ablate share: --method, --metric, --threshold,
+/// --orientations, --max-tilt, --min-coverage, --max-empty-violation, --max-seeds,
+/// --seeds-per-instance and --seed. `settings` must outlive the parse.
+void add_search_options(CLI::App* sub, FindSettings& settings);
+
 Subcommand add_bench(CLI::App& app);
 Subcommand add_info(CLI::App& app);
 Subcommand add_convert(CLI::App& app);
@@ -40,5 +47,6 @@ Subcommand add_capture(CLI::App& app);
 Subcommand add_find(CLI::App& app);
 Subcommand add_landmark(CLI::App& app);
 Subcommand add_robot(CLI::App& app);
+Subcommand add_eval(CLI::App& app);
 
 }  // namespace lmk::cli

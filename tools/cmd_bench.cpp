@@ -169,11 +169,7 @@ int run_bench(const BenchOptions& o) {
                                   {"seconds_per_search_extrapolated", reference_search},
                                   {"peak_memory_mib", reference_peak}}},
                                 {"ratio", ratio}};
-    write_file_atomically(o.json, [&](const fs::path& tmp) {
-      std::ofstream file(tmp);
-      file << out.dump(2) << "\n";
-      if (!file) throw Error(o.json + ": write failed");
-    });
+    write_text_atomically(o.json, out.dump(2) + "\n");
   }
   return kOk;
 }

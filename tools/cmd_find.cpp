@@ -13,6 +13,7 @@
 #include "geometry/detail/pose_json.h"
 #include "geometry/error.h"
 #include "geometry/pose.h"
+#include "landmark/detail/terms_json.h"
 #include "landmark/find_landmark.h"
 #include "landmark/landmark_file.h"
 #include "tools/cli_common.h"
@@ -27,25 +28,12 @@ struct FindOptions {
   FindSettings settings;
 };
 
-nlohmann::json terms_json(const ErrorTerms& t) {
-  return {
-      {"scene_to_landmark_sum", t.scene_to_landmark_sum},
-      {"scene_to_landmark_count", t.scene_to_landmark_count},
-      {"landmark_to_scene_sum", t.landmark_to_scene_sum},
-      {"landmark_to_scene_count", t.landmark_to_scene_count},
-      {"scene_points_in_box", t.scene_points_in_box},
-      {"coverage", std::isnan(t.coverage) ? nlohmann::json(nullptr) : nlohmann::json(t.coverage)},
-      {"empty_space_probes", t.empty_space_probes},
-      {"empty_space_violations", t.empty_space_violations},
-      {"empty_space_violation_mean", t.empty_space_violation_mean}};
-}
-
 nlohmann::json result_json(const FindResult& r) {
   nlohmann::json matches = nlohmann::json::array();
   for (const Match& m : r.matches) {
     nlohmann::json match = detail::pose_to_json(m.box.pose);
     match["error"] = m.error;
-    match["terms"] = terms_json(m.terms);
+    match["terms"] = detail::terms_to_json(m.terms);
     match["seed_index"] = m.seed_index;
     match["icp_iterations"] = m.icp_iterations;
     match["votes"] = m.votes;
@@ -127,11 +115,7 @@ int run_find(FindOptions& o) {
   }
   print_table(result, landmark.name);
   if (!o.json.empty()) {
-    write_file_atomically(o.json, [&](const std::filesystem::path& tmp) {
-      std::ofstream out(tmp);
-      out << result_json(result).dump(2) << "\n";
-      if (!out) throw Error(o.json + ": write failed");
-    });
+    write_text_atomically(o.json, result_json(result).dump(2) + "\n");
   }
   return kOk;
 }
@@ -144,36 +128,8 @@ Subcommand add_find(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("find", "Find every instance of a landmark in a scene");
   sub->add_option("scene", o->scene, "Scene cloud (.pcd, .ply, .xyz)")->required();
   sub->add_option("landmark", o->landmark, "Landmark file (.lmk)")->required();
-  sub->add_option("--method", s.method, "Search method: fast or reference")
-      ->check(CLI::IsMember(search_methods()))
-      ->capture_default_str();
-  sub->add_option("--metric", s.metric,
-                  "Error metric: paper, rapid, vdb or visibility (default: visibility for fast, "
-                  "paper for reference)");
-  sub->add_option("--threshold", s.threshold,
-                  "Largest error of a match, m (default: the metric's own)");
-  sub->add_option("--orientations", s.orientations,
-                  "Fast: 'upright' (any yaw, tilt up to --max-tilt) or 'full' (all of SO(3))")
-      ->check(CLI::IsMember({"upright", "full"}))
-      ->capture_default_str();
-  sub->add_option_function<double>(
-      "--max-tilt", [&s](double degrees) { s.max_tilt = degrees * M_PI / 180.0; },
-      "Fast, upright: largest tilt of the landmark's up axis, degrees (default 60)");
-  sub->add_option("--min-coverage", s.min_coverage,
-                  "Fast: least fraction of landmark points with scene support")
-      ->capture_default_str();
-  sub->add_option("--max-empty-violation", s.max_empty_space_violation,
-                  "Fast: largest fraction of the landmark's empty space the scene may occupy")
-      ->capture_default_str();
+  add_search_options(sub, s);
   add_up_options(sub, o->up);
-  sub->add_option(
-         "--max-seeds", s.max_seeds,
-         "Most seeds (below this: fast, --seeds-per-instance; reference, 5% of the points)")
-      ->capture_default_str();
-  sub->add_option("--seeds-per-instance", s.seeds_per_instance,
-                  "Fast: seeds expected on one instance of the landmark")
-      ->capture_default_str();
-  sub->add_option("--seed", s.seed, "Random seed of the seed sampling")->capture_default_str();
   sub->add_option("--threads", s.threads, "Worker threads; 0 uses every core")
       ->capture_default_str();
   sub->add_option("--json", o->json,

@@ -1,13 +1,19 @@
-// lmk gen OUT [--seed S] [--no-noise]: render a synthetic tabletop frame with the simulated Kinect.
+// lmk gen: render synthetic data with the simulated Kinect.
+//   lmk gen OUT.pcd [--seed S] [--no-noise]            one tabletop frame (the demo scene)
+//   lmk gen --preset NAME OUT_DIR [--seeds N] [--hard]  a benchmark dataset (docs/datasets.md)
 
+#include <chrono>
 #include <cstdio>
 #include <memory>
 
+#include "eval/benchmark_dataset.h"
 #include "eval/depth_sensor.h"
 #include "eval/tabletop_scene.h"
 #include "geometry/cloud_io.h"
+#include "geometry/error.h"
 #include "geometry/pose.h"
 #include "tools/cli_common.h"
+#include "tools/progress.h"
 
 namespace lmk::cli {
 namespace {
@@ -16,9 +22,12 @@ struct GenOptions {
   std::string output;
   std::uint64_t seed = 0;
   bool no_noise = false;
+  std::string preset;
+  std::optional<int> seeds;
+  bool hard = false;
 };
 
-int run_gen(const GenOptions& options) {
+int run_tabletop(const GenOptions& options) {
   format_from_path(options.output);  // reject an unknown extension before rendering
   const SyntheticScene scene = make_tabletop_scene(options.seed);
   DepthSensorSettings sensor;
@@ -37,16 +46,64 @@ int run_gen(const GenOptions& options) {
   return kOk;
 }
 
+int run_preset(const GenOptions& options) {
+  benchmark_preset(options.preset);  // an unknown name fails before anything is written
+  GenerateOptions generate;
+  generate.seeds = options.seeds;
+  generate.hard = options.hard;
+  generate.noise = !options.no_noise;
+  if (options.seed != 0) generate.first_seed = options.seed;
+  ProgressBar bar("gen " + options.preset);
+  generate.progress = [&bar](std::size_t done, std::size_t total) { bar.update(done, total); };
+  const auto start = std::chrono::steady_clock::now();
+  const Dataset dataset = generate_benchmark_dataset(options.output, options.preset, generate);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::size_t instances = 0, in_context = 0;
+  for (const DatasetScene& scene : dataset.scenes) {
+    for (const DatasetPair& pair : scene.pairs) {
+      instances += pair.instances.size();
+      in_context += pair.in_context ? 1 : 0;
+    }
+  }
+  std::printf(
+      "wrote dataset '%s' to %s: %zu landmarks, %zu scenes, %zu in-context pairs, %zu "
+      "ground-truth instances (%.1f s)\n",
+      dataset.name.c_str(), options.output.c_str(), dataset.landmarks.size(), dataset.scenes.size(),
+      in_context, instances, seconds);
+  return kOk;
+}
+
 }  // namespace
 
 Subcommand add_gen(CLI::App& app) {
   auto options = std::make_shared<GenOptions>();
+  std::string presets;
+  for (const BenchmarkPreset& p : benchmark_presets())
+    presets += "\n  " + p.name + ": " + p.description;
   CLI::App* sub = app.add_subcommand(
-      "gen", "Render a synthetic tabletop scene (carton, cup, ball) with a simulated Kinect v1");
-  sub->add_option("output", options->output, "Cloud file to write (.pcd, .ply, .xyz)")->required();
-  sub->add_option("--seed", options->seed, "Scene and noise seed")->capture_default_str();
+      "gen",
+      "Render synthetic data with a simulated Kinect v1: one tabletop frame (carton, cup, ball), "
+      "or with --preset a benchmark dataset of the paper's scene types");
+  sub->add_option("output", options->output,
+                  "Cloud file to write (.pcd, .ply, .xyz), or with --preset the dataset directory")
+      ->required();
+  sub->add_option("--preset", options->preset, "Write a benchmark dataset:" + presets);
+  sub->add_option("--seed", options->seed,
+                  "Scene and noise seed; with --preset the first scene seed (default 1: seed 0 is "
+                  "where the landmarks are captured)");
+  sub->add_option("--seeds", options->seeds, "With --preset: scenes per scene type")
+      ->check(CLI::PositiveNumber);
+  sub->add_flag("--hard", options->hard,
+                "With --preset: strong rotations and tilts (any yaw, turned chairs, tilted walls)");
   sub->add_flag("--no-noise", options->no_noise, "Exact depth: no sensor noise or quantisation");
-  return {sub, [options] { return run_gen(*options); }};
+  return {sub, [options] {
+            if (options->preset.empty()) {
+              if (options->seeds || options->hard) throw Error("--seeds and --hard need --preset");
+              return run_tabletop(*options);
+            }
+            return run_preset(*options);
+          }};
 }
 
 }  // namespace lmk::cli

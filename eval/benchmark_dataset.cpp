@@ -1,0 +1,187 @@
+#include "eval/benchmark_dataset.h"
+
+#include <filesystem>
+#include <fstream>
+
+#include "eval/depth_sensor.h"
+#include "geometry/cloud_io.h"
+#include "geometry/error.h"
+#include "geometry/hash.h"
+#include "geometry/version.h"
+#include "landmark/landmark_file.h"
+
+namespace lmk {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+PointCloud render(const GeneratedScene& scene, std::uint64_t noise_seed, bool noise) {
+  DepthSensorSettings sensor;
+  sensor.noise = noise;
+  sensor.seed = noise_seed;
+  return render_depth(scene.mesh, scene.T_world_sensor, sensor);
+}
+
+// Each rendered frame gets its own noise stream, derived from what the frame shows.
+std::uint64_t noise_seed(const std::string& scene_name) {
+  return fnv1a(scene_name.data(), scene_name.size());
+}
+
+// The scene's ground truth as dataset pairs: its in-context landmarks, and any other landmark it
+// holds an instance of (out of context, yet a correct find there is no false positive).
+std::vector<DatasetPair> pairs_of(const GeneratedScene& scene) {
+  std::vector<DatasetPair> pairs;
+  for (const BenchmarkLandmark& landmark : benchmark_landmarks()) {
+    const bool in_context = std::find(scene.in_context.begin(), scene.in_context.end(),
+                                      landmark.name) != scene.in_context.end();
+    const auto it = scene.instances.find(landmark.name);
+    const bool has_instances = it != scene.instances.end() && !it->second.empty();
+    if (!in_context && !has_instances) continue;
+    DatasetPair pair{landmark.name, in_context, {}};
+    if (has_instances) {
+      for (const Box& box : it->second) pair.instances.push_back(box.pose);
+    }
+    pairs.push_back(pair);
+  }
+  return pairs;
+}
+
+std::string read_bytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path.string() + ": cannot be read");
+  return std::string((std::istreambuf_iterator<char>(in)), {});
+}
+
+}  // namespace
+
+const std::vector<BenchmarkPreset>& benchmark_presets() {
+  static const std::vector<BenchmarkPreset> all = {
+      {"paper", "the paper's 17 scene types, one scene each", 1, false},
+      {"paper-x10", "the paper's 17 scene types, ten scenes each", 10, false},
+      {"rotations", "the 17 scene types with strong rotations and tilts, three scenes each", 3,
+       true},
+  };
+  return all;
+}
+
+const BenchmarkPreset& benchmark_preset(const std::string& name) {
+  std::string known;
+  for (const BenchmarkPreset& preset : benchmark_presets()) {
+    if (preset.name == name) return preset;
+    known += (known.empty() ? "" : ", ") + preset.name;
+  }
+  throw Error("unknown preset '" + name + "' (known: " + known + ")");
+}
+
+Landmark capture_benchmark_landmark(const BenchmarkLandmark& landmark, bool noise) {
+  const GeneratedScene demo = make_scene(landmark.demo_scene, 0, false);
+  const auto it = demo.instances.find(landmark.name);
+  if (it == demo.instances.end() || it->second.empty()) {
+    throw Error("landmark '" + landmark.name + "' has no instance in its demonstration scene " +
+                landmark.demo_scene);
+  }
+  const PointCloud cloud =
+      render(demo, noise_seed(benchmark_scene_name(landmark.demo_scene, 0, false)), noise);
+  CaptureSettings settings;
+  settings.base_frame = true;  // the world frame: z up
+  return capture(cloud, it->second.front(), landmark.name, settings);
+}
+
+std::string benchmark_scene_name(const std::string& type, std::uint64_t seed, bool hard) {
+  std::string name = type;
+  std::replace(name.begin(), name.end(), '/', '-');
+  return name + "-" + std::to_string(seed) + (hard ? "-hard" : "");
+}
+
+Dataset generate_benchmark_dataset(const std::string& dir, const std::string& preset_name,
+                                   const GenerateOptions& options) {
+  const BenchmarkPreset& preset = benchmark_preset(preset_name);
+  const int seeds = options.seeds.value_or(preset.seeds);
+  if (seeds < 1) throw Error("--seeds must be at least 1 (got " + std::to_string(seeds) + ")");
+  const bool hard = preset.hard || options.hard;
+
+  std::error_code ec;
+  fs::create_directories(fs::path(dir) / "landmarks", ec);
+  fs::create_directories(fs::path(dir) / "scenes", ec);
+  if (ec) throw Error(dir + ": cannot create the dataset directory (" + ec.message() + ")");
+
+  Dataset dataset;
+  dataset.name = preset.name + (hard && !preset.hard ? "-hard" : "");
+  const std::size_t total =
+      benchmark_landmarks().size() + scene_types().size() * static_cast<std::size_t>(seeds);
+  std::size_t done = 0;
+  const auto step = [&] {
+    if (options.progress) options.progress(++done, total);
+  };
+
+  for (const BenchmarkLandmark& landmark : benchmark_landmarks()) {
+    const std::string file = "landmarks/" + landmark.name + ".lmk";
+    save_landmark((fs::path(dir) / file).string(),
+                  capture_benchmark_landmark(landmark, options.noise));
+    dataset.landmarks.push_back({landmark.name, file, landmark.symmetry});
+    step();
+  }
+  for (const std::string& type : scene_types()) {
+    for (int k = 0; k < seeds; ++k) {
+      const std::uint64_t seed = options.first_seed + static_cast<std::uint64_t>(k);
+      const GeneratedScene scene = make_scene(type, seed, hard);
+      DatasetScene entry;
+      entry.name = benchmark_scene_name(type, seed, hard);
+      entry.file = "scenes/" + entry.name + ".pcd";
+      entry.setting = scene.setting;
+      entry.T_scene_sensor = scene.T_world_sensor;
+      entry.up = Eigen::Vector3d::UnitZ();
+      entry.pairs = pairs_of(scene);
+      write_cloud((fs::path(dir) / entry.file).string(),
+                  render(scene, noise_seed(entry.name), options.noise));
+      dataset.scenes.push_back(entry);
+      step();
+    }
+  }
+  save_dataset(dir, dataset);
+  return dataset;
+}
+
+std::string cached_benchmark_dataset(const std::string& cache_dir, const std::string& preset,
+                                     const GenerateOptions& options) {
+  benchmark_preset(preset);
+  const std::string key = Fnv1a()
+                              .add(preset)
+                              .add_value(options.seeds.value_or(0))
+                              .add_value(options.hard)
+                              .add_value(options.first_seed)
+                              .add_value(options.noise)
+                              .add_value(kBenchmarkGeneratorVersion)
+                              .add(kVersion)
+                              .hex();
+  const fs::path dir = fs::path(cache_dir) / "datasets" / (preset + "-" + key);
+  if (fs::is_regular_file(dir / "dataset.json")) return dir.string();
+  const fs::path tmp = dir.string() + ".partial";
+  std::error_code ec;
+  fs::remove_all(tmp, ec);
+  generate_benchmark_dataset(tmp.string(), preset, options);
+  fs::remove_all(dir, ec);
+  fs::rename(tmp, dir, ec);
+  if (ec)
+    throw Error(dir.string() + ": cannot move the generated dataset into place (" + ec.message() +
+                ")");
+  return dir.string();
+}
+
+std::string dataset_fingerprint(const std::string& dir, const Dataset& dataset) {
+  Fnv1a hash;
+  hash.add(read_bytes(fs::path(dir) / "dataset.json"));
+  for (const DatasetScene& scene : dataset.scenes) hash.add(read_bytes(fs::path(dir) / scene.file));
+  for (const DatasetLandmark& entry : dataset.landmarks) {
+    const Landmark landmark = load_landmark((fs::path(dir) / entry.file).string());
+    for (const Eigen::Vector3f& p : landmark.points.points) hash.add(p.data(), sizeof(float) * 3);
+    const Eigen::Matrix4d box_pose = landmark.box.pose.matrix();
+    hash.add(box_pose.data(), sizeof(double) * 16)
+        .add(landmark.box.size.data(), sizeof(double) * 3)
+        .add(landmark.up.data(), sizeof(double) * 3);
+  }
+  return hash.hex();
+}
+
+}  // namespace lmk

@@ -1,0 +1,70 @@
+#pragma once
+// The synthetic benchmark as a dataset on disk (docs/datasets.md): the paper's 17 scene types
+// rendered by the simulated Kinect for a run of seeds, and its 11 landmarks, each captured once in
+// its demonstration scene with the box a user would draw, as the paper's users did.
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "eval/dataset.h"
+#include "eval/scene_types.h"
+#include "landmark/landmark.h"
+
+namespace lmk {
+
+/// Bumped whenever the generator's output changes (objects, scene types, sensor, capture), so that
+/// cached benchmark datasets are regenerated.
+inline constexpr int kBenchmarkGeneratorVersion = 1;
+
+/// A named recipe for a benchmark dataset.
+struct BenchmarkPreset {
+  std::string name;
+  std::string description;
+  int seeds = 1;      ///< scenes per scene type
+  bool hard = false;  ///< strong rotations and tilts (make_scene's hard variants)
+};
+
+/// "paper" (the 17 types, one seed each), "paper-x10" (ten seeds each) and "rotations" (the hard
+/// variants, three seeds each).
+const std::vector<BenchmarkPreset>& benchmark_presets();
+/// The preset called `name`; throws lmk::Error listing the known ones otherwise.
+const BenchmarkPreset& benchmark_preset(const std::string& name);
+
+struct GenerateOptions {
+  std::optional<int> seeds;      ///< scenes per type instead of the preset's
+  bool hard = false;             ///< hard variants even where the preset has none
+  std::uint64_t first_seed = 1;  ///< seeds first_seed, first_seed + 1, ...; 0 is the demo scene
+  bool noise = true;             ///< false renders exact depth (for ground-truth checks)
+  /// Called after each file written, with (files done, files in all).
+  std::function<void(std::size_t, std::size_t)> progress;
+};
+
+/// Landmark `landmark` captured in its demonstration scene (its demo_scene type, seed 0, not
+/// hard), in the world frame (z up), with the box of the scene's first instance of it.
+Landmark capture_benchmark_landmark(const BenchmarkLandmark& landmark, bool noise = true);
+
+/// The dataset scene name for a scene type and seed: "simple-bowl_and_cup-3", "...-3-hard".
+std::string benchmark_scene_name(const std::string& type, std::uint64_t seed, bool hard);
+
+/// Writes the preset into `dir` (created if absent): landmarks/NAME.lmk, scenes/NAME.pcd (organised
+/// 640x480 frames in the world frame, the sensor pose in the PCD VIEWPOINT) and dataset.json,
+/// which lists for every scene its in-context landmarks and every landmark it holds an instance
+/// of. The same preset and options always write the same content.
+Dataset generate_benchmark_dataset(const std::string& dir, const std::string& preset,
+                                   const GenerateOptions& options = {});
+
+/// The preset's dataset under CACHE_DIR/datasets/, generated there first if it is not yet (into a
+/// temporary directory renamed into place, so an interrupted generation leaves nothing half
+/// written). Returns its directory.
+std::string cached_benchmark_dataset(const std::string& cache_dir, const std::string& preset,
+                                     const GenerateOptions& options = {});
+
+/// A hash of what a dataset holds: dataset.json, the scene files, and each landmark's points, box
+/// and up axis. Raw .lmk bytes are not hashed because OpenVDB writes a random id into every file.
+/// Two datasets with the same fingerprint give the same evaluation.
+std::string dataset_fingerprint(const std::string& dir, const Dataset& dataset);
+
+}  // namespace lmk

@@ -1,0 +1,29 @@
+#pragma once
+// The JSON forms of evaluation results: a pair's result (the cache's file and the report's
+// per-scene entries), the table rows and the settings. Internal: lmk's public headers never expose
+// nlohmann-json.
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "eval/evaluation.h"
+
+namespace lmk::detail {
+
+/// The settings that change a search's results (not threads or callbacks).
+nlohmann::json find_settings_to_json(const FindSettings& find);
+
+nlohmann::json pair_result_to_json(const PairResult& pair, double threshold,
+                                   const MatchTolerance& tolerance);
+/// Reads what pair_result_to_json wrote; throws lmk::Error naming `where` for anything else.
+PairResult pair_result_from_json(const nlohmann::json& j, const std::string& where);
+
+nlohmann::json rows_to_json(const std::vector<EvaluationRow>& rows);
+
+/// {"method", "metric", "threshold", ..., "rows": [...], "pairs": [...]}: the issue's --json
+/// schema, with the dataset, the settings and the run's times.
+nlohmann::json evaluation_to_json(const Evaluation& evaluation,
+                                  const std::vector<EvaluationRow>& rows);
+
+}  // namespace lmk::detail

@@ -1,0 +1,265 @@
+#include "eval/evaluation.h"
+
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include "eval/benchmark_dataset.h"
+#include "eval/detail/evaluation_json.h"
+#include "geometry/atomic_file.h"
+#include "geometry/cloud_io.h"
+#include "geometry/error.h"
+#include "geometry/hash.h"
+#include "geometry/version.h"
+#include "landmark/error_metrics.h"
+#include "landmark/landmark_file.h"
+
+namespace lmk {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Matches are kept up to this multiple of the threshold, for the curve against the threshold.
+constexpr double kRecordedThresholdFactor = 2.0;
+
+std::optional<double> median(std::vector<double> values) {
+  if (values.empty()) return std::nullopt;
+  const std::size_t mid = values.size() / 2;
+  std::nth_element(values.begin(), values.begin() + mid, values.end());
+  if (values.size() % 2 == 1) return values[mid];
+  const double upper = values[mid];
+  return 0.5 * (upper + *std::max_element(values.begin(), values.begin() + mid));
+}
+
+// The search a pair runs: one thread, no callback, matches kept up to the recorded threshold, and
+// the scene's own up axis where the dataset gives one.
+FindSettings pair_search(const FindSettings& find, const DatasetScene& scene) {
+  FindSettings f = find;
+  f.threads = 1;
+  f.progress = nullptr;
+  f.keep_aligned_points = false;
+  f.threshold = kRecordedThresholdFactor * effective_threshold(find);
+  if (scene.up) f.up = scene.up;
+  return f;
+}
+
+// The cache: one JSON file per pair under CACHE/evaluations/KEY/, named by a hash of the pair's
+// names (scene names are free text), which the file repeats.
+class PairCache {
+ public:
+  PairCache(const std::string& cache_dir, const std::string& key)
+      : dir_(cache_dir.empty() ? fs::path() : fs::path(cache_dir) / "evaluations" / key) {
+    if (dir_.empty()) return;
+    std::error_code ec;
+    fs::create_directories(dir_, ec);
+    if (ec)
+      throw Error(dir_.string() + ": cannot create the cache directory (" + ec.message() + ")");
+  }
+
+  std::optional<PairResult> read(const std::string& scene, const std::string& landmark) const {
+    if (dir_.empty()) return std::nullopt;
+    std::ifstream in(file(scene, landmark));
+    if (!in) return std::nullopt;
+    try {
+      nlohmann::json j;
+      in >> j;
+      PairResult r = detail::pair_result_from_json(j, file(scene, landmark).string());
+      if (r.scene != scene || r.landmark != landmark) return std::nullopt;  // a hash collision
+      r.from_cache = true;
+      return r;
+    } catch (const std::exception&) {
+      return std::nullopt;  // a damaged entry (an interrupted write cannot leave one) is re-run
+    }
+  }
+
+  void write(const PairResult& r, double threshold, const MatchTolerance& tolerance) const {
+    if (dir_.empty()) return;
+    const fs::path path = file(r.scene, r.landmark);
+    write_text_atomically(path, detail::pair_result_to_json(r, threshold, tolerance).dump() + "\n");
+  }
+
+ private:
+  fs::path file(const std::string& scene, const std::string& landmark) const {
+    return dir_ / (Fnv1a().add(scene).add(landmark).hex() + ".json");
+  }
+  fs::path dir_;
+};
+
+PairResult search_pair(const PointCloud& cloud, const DatasetScene& scene, const Landmark& landmark,
+                       const DatasetLandmark& entry, const DatasetPair& truth,
+                       const FindSettings& find) {
+  PairResult r;
+  r.scene = scene.name;
+  r.landmark = entry.name;
+  r.setting = scene.setting;
+  r.in_context = truth.in_context;
+  r.symmetry = entry.symmetry;
+  r.truth = truth.instances;
+  const FindResult found = find_landmark(cloud, landmark, pair_search(find, scene));
+  for (const Match& m : found.matches) r.found.push_back({m.box, m.error, m.terms});
+  r.seconds = found.stats.seconds_total;
+  r.seeds = found.stats.seeds;
+  r.rejections = describe_rejections(found.stats);
+  return r;
+}
+
+}  // namespace
+
+double effective_threshold(const FindSettings& find) {
+  if (find.threshold) return *find.threshold;
+  const bool fast = find.method == "fast";
+  return find_error_metric(find.metric.empty() ? (fast ? "visibility" : "paper") : find.metric)
+      .default_threshold;
+}
+
+PairInput matches_within(const PairResult& pair, double threshold) {
+  PairInput in;
+  in.truth = pair.truth;
+  in.symmetry = pair.symmetry;
+  in.in_context = pair.in_context;
+  for (const FoundBox& f : pair.found) {
+    if (f.error < threshold) in.found.push_back(f.box.pose);
+  }
+  return in;
+}
+
+std::string evaluation_cache_key(const FindSettings& find, const std::string& fingerprint) {
+  FindSettings recorded = find;
+  recorded.threshold = kRecordedThresholdFactor * effective_threshold(find);
+  return Fnv1a()
+      .add(detail::find_settings_to_json(recorded).dump())
+      .add(fingerprint)
+      .add(kVersion)
+      .hex();
+}
+
+std::string default_cache_dir() {
+  if (const char* dir = std::getenv("LMK_CACHE_DIR"); dir && *dir) return dir;
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg)
+    return (fs::path(xdg) / "lmk").string();
+  if (const char* home = std::getenv("HOME"); home && *home)
+    return (fs::path(home) / ".cache" / "lmk").string();
+  return ".lmk-cache";
+}
+
+Evaluation evaluate(const std::string& dir, const Dataset& dataset,
+                    const EvaluationSettings& settings) {
+  const auto start = Clock::now();
+  Evaluation evaluation;
+  evaluation.dataset = dataset.name;
+  evaluation.settings = settings;
+  evaluation.settings.progress = nullptr;
+  effective_threshold(settings.find);  // an unknown metric fails before any work
+
+  // Every pair to search, scene by scene, and the landmarks, loaded once.
+  struct Job {
+    std::size_t scene, landmark;
+  };
+  std::vector<Job> jobs;
+  for (std::size_t s = 0; s < dataset.scenes.size(); ++s) {
+    for (std::size_t l = 0; l < dataset.landmarks.size(); ++l) {
+      const DatasetPair truth = dataset.pair(dataset.scenes[s], dataset.landmarks[l].name);
+      if (!settings.in_context_only || truth.in_context) jobs.push_back({s, l});
+    }
+  }
+  std::vector<Landmark> landmarks;
+  for (const DatasetLandmark& entry : dataset.landmarks)
+    landmarks.push_back(load_landmark((fs::path(dir) / entry.file).string()));
+
+  evaluation.fingerprint = dataset_fingerprint(dir, dataset);
+  const PairCache cache(settings.cache_dir,
+                        evaluation_cache_key(settings.find, evaluation.fingerprint));
+  const double threshold = effective_threshold(settings.find);
+
+  evaluation.pairs.resize(jobs.size());
+  std::atomic<std::size_t> done{0}, cached{0};
+  const auto finished = [&](bool from_cache) {
+    const std::size_t c = from_cache ? ++cached : cached.load();
+    const std::size_t d = ++done;
+    if (settings.progress) settings.progress(d, jobs.size(), c);
+  };
+  // Scenes in parallel, then each scene's pairs: a scene is read once, and only when one of its
+  // pairs is not cached.
+  std::vector<std::pair<std::size_t, std::size_t>> scene_jobs;  // [first, last) per scene
+  for (std::size_t k = 0; k < jobs.size(); ++k) {
+    if (scene_jobs.empty() || jobs[scene_jobs.back().first].scene != jobs[k].scene)
+      scene_jobs.push_back({k, k});
+    scene_jobs.back().second = k + 1;
+  }
+  tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
+  arena.execute([&] {
+    tbb::parallel_for(std::size_t{0}, scene_jobs.size(), [&](std::size_t s) {
+      const auto [first, last] = scene_jobs[s];
+      const DatasetScene& scene = dataset.scenes[jobs[first].scene];
+      std::vector<std::size_t> to_search;
+      for (std::size_t k = first; k < last; ++k) {
+        const std::string& name = dataset.landmarks[jobs[k].landmark].name;
+        if (auto hit = cache.read(scene.name, name)) {
+          evaluation.pairs[k] = std::move(*hit);
+          finished(true);
+        } else {
+          to_search.push_back(k);
+        }
+      }
+      if (to_search.empty()) return;
+      const PointCloud cloud = read_cloud((fs::path(dir) / scene.file).string());
+      tbb::parallel_for(std::size_t{0}, to_search.size(), [&](std::size_t i) {
+        const std::size_t k = to_search[i];
+        const DatasetLandmark& entry = dataset.landmarks[jobs[k].landmark];
+        evaluation.pairs[k] = search_pair(cloud, scene, landmarks[jobs[k].landmark], entry,
+                                          dataset.pair(scene, entry.name), settings.find);
+        cache.write(evaluation.pairs[k], threshold, settings.tolerance);
+        finished(false);
+      });
+    });
+  });
+  evaluation.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  return evaluation;
+}
+
+std::vector<EvaluationRow> evaluation_rows(const Evaluation& evaluation,
+                                           std::optional<double> threshold) {
+  const double t = threshold.value_or(effective_threshold(evaluation.settings.find));
+  const MatchTolerance& tolerance = evaluation.settings.tolerance;
+  std::vector<std::string> settings;
+  for (const PairResult& p : evaluation.pairs) {
+    if (std::find(settings.begin(), settings.end(), p.setting) == settings.end())
+      settings.push_back(p.setting);
+  }
+  settings.push_back("all");
+  std::vector<EvaluationRow> rows;
+  for (const std::string& setting : settings) {
+    for (int assumption = evaluation.settings.in_context_only ? 2 : 1; assumption <= 3;
+         ++assumption) {
+      EvaluationRow row;
+      row.setting = setting;
+      row.assumption = assumption;
+      std::vector<double> seconds;
+      for (const PairResult& p : evaluation.pairs) {
+        if (setting != "all" && p.setting != setting) continue;
+        if (assumption > 1 && !p.in_context) continue;
+        const PairInput in = matches_within(p, t);
+        row.counts.add(assumption == 3 ? count_best_match(in, tolerance)
+                                       : count_all_matches(in, tolerance));
+        seconds.push_back(p.seconds);
+        ++row.pairs;
+      }
+      row.median_translation_error = median(row.counts.translation_errors);
+      row.median_rotation_error = median(row.counts.rotation_errors);
+      row.median_seconds = median(seconds);
+      rows.push_back(std::move(row));
+    }
+  }
+  return rows;
+}
+
+}  // namespace lmk

@@ -1,0 +1,101 @@
+#pragma once
+// Batch evaluation of a search method over a dataset (DESIGN.md, "Evaluation protocol"): every
+// (scene, landmark) pair searched, each result matched to the ground truth, and the paper's
+// precision/recall table under its three assumptions, per setting.
+//
+// Each pair's result is cached on disk as soon as it is known, keyed by the search settings, the
+// dataset's content and the lmk version, so that an interrupted evaluation resumes where it
+// stopped and an ablation reuses every variant it has already run.
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "eval/dataset.h"
+#include "eval/evaluation_protocol.h"
+#include "landmark/find_landmark.h"
+
+namespace lmk {
+
+struct EvaluationSettings {
+  /// The search: method, metric, threshold, max_seeds, ... (threads and progress are ignored: the
+  /// evaluation runs one search per thread).
+  FindSettings find;
+  bool in_context_only = false;  ///< search in-context pairs only (assumptions 2 and 3)
+  int threads = 0;               ///< pairs searched at once; 0 uses every core
+  std::string cache_dir;         ///< where pair results are cached; empty: no cache
+  MatchTolerance tolerance;
+  /// Called after each pair with (pairs done, pairs in all, of those done how many from the cache),
+  /// possibly from several threads at once.
+  std::function<void(std::size_t, std::size_t, std::size_t)> progress;
+};
+
+/// The error threshold a FindSettings applies: its own, or its metric's default.
+double effective_threshold(const FindSettings& find);
+
+/// A match as the evaluation keeps it.
+struct FoundBox {
+  Box box;  ///< scene frame
+  double error = 0.0;
+  ErrorTerms terms;
+};
+
+struct PairResult {
+  std::string scene, landmark, setting;
+  bool in_context = false;
+  Symmetry symmetry;
+  std::vector<Eigen::Isometry3d> truth;
+  /// Every match the search kept with an error below twice the threshold (see
+  /// matches_within), best first. The threshold is applied afterwards, as the search's own
+  /// selection does it (non-max suppression first, then the threshold), so that one search also
+  /// serves the precision/recall curve against the threshold.
+  std::vector<FoundBox> found;
+  double seconds = 0.0;     ///< the search's wall time, one thread, scene preprocessing included
+  std::size_t seeds = 0;    ///< seeds the search started from
+  std::string rejections;   ///< describe_rejections() of the search
+  bool from_cache = false;  ///< read from the cache rather than searched in this run
+};
+
+/// The matches of `pair` with an error below `threshold`, as PairInput for the protocol.
+PairInput matches_within(const PairResult& pair, double threshold);
+
+/// One row of the paper's table.
+struct EvaluationRow {
+  std::string setting;  ///< a scene setting, or "all"
+  int assumption = 1;   ///< 1: all pairs, 2: in-context pairs, 3: in context, best match only
+  Counts counts;
+  std::optional<double> median_translation_error;  ///< m, over true positives
+  std::optional<double> median_rotation_error;     ///< rad, over true positives
+  std::optional<double> median_seconds;            ///< per search, over the row's pairs
+  std::size_t pairs = 0;
+};
+
+struct Evaluation {
+  std::string dataset;      ///< the dataset's name
+  std::string fingerprint;  ///< dataset_fingerprint() of it
+  EvaluationSettings settings;
+  std::vector<PairResult> pairs;  ///< in dataset order: scene by scene, landmark by landmark
+  double seconds = 0.0;           ///< wall time of the whole run
+};
+
+/// Searches every pair of the dataset in `dir` (or its in-context pairs only), resuming from the
+/// cache. Deterministic: the pairs' results do not depend on the thread count or on the cache.
+Evaluation evaluate(const std::string& dir, const Dataset& dataset,
+                    const EvaluationSettings& settings);
+
+/// The table at `threshold` (default: the evaluation's own): each setting of the dataset in order
+/// of first appearance, then "all"; per setting assumptions 1 (unless only in-context pairs were
+/// searched), 2 and 3.
+std::vector<EvaluationRow> evaluation_rows(const Evaluation& evaluation,
+                                           std::optional<double> threshold = {});
+
+/// The cache key of a search configuration on a dataset: a hash of the settings that change
+/// results, the dataset fingerprint and the lmk version.
+std::string evaluation_cache_key(const FindSettings& find, const std::string& fingerprint);
+
+/// The default cache directory: $LMK_CACHE_DIR, else $XDG_CACHE_HOME/lmk, else ~/.cache/lmk,
+/// else .lmk-cache in the working directory.
+std::string default_cache_dir();
+
+}  // namespace lmk

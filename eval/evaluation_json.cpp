@@ -1,0 +1,162 @@
+#include "eval/detail/evaluation_json.h"
+
+#include <cmath>
+
+#include "geometry/detail/pose_json.h"
+#include "geometry/error.h"
+#include "geometry/version.h"
+#include "landmark/detail/terms_json.h"
+
+namespace lmk::detail {
+
+using nlohmann::json;
+
+namespace {
+
+json optional_number(const std::optional<double>& v) {
+  return v && std::isfinite(*v) ? json(*v) : json(nullptr);
+}
+
+json box_to_json(const Box& box) {
+  json j = pose_to_json(box.pose);
+  j["size"] = vector_to_json(box.size);
+  return j;
+}
+
+Box box_from_json(const json& j, const std::string& where) {
+  const Eigen::VectorXd size = numbers_from_json(json_field(j, "size", where), 3, where + ".size");
+  return Box(pose_from_json(j, where), size);
+}
+
+template <typename T>
+T get(const json& j, const char* key, const std::string& where) {
+  try {
+    return json_field(j, key, where).get<T>();
+  } catch (const json::exception&) {
+    throw Error(where + "." + key + ": has the wrong type");
+  }
+}
+
+}  // namespace
+
+json find_settings_to_json(const FindSettings& f) {
+  json j = {{"method", f.method},
+            {"metric", f.metric},
+            {"threshold", optional_number(f.threshold)},
+            {"leaf_size", f.leaf_size},
+            {"coarse_leaf", f.coarse_leaf},
+            {"sample_fraction", f.sample_fraction},
+            {"seeds_per_instance", f.seeds_per_instance},
+            {"max_seeds", f.max_seeds},
+            {"seed", f.seed},
+            {"icp_iterations", f.icp_iterations},
+            {"nms_radius", f.nms_radius},
+            {"min_coverage", f.min_coverage},
+            {"max_empty_space_violation", f.max_empty_space_violation},
+            {"orientations", f.orientations},
+            {"max_tilt", f.max_tilt},
+            {"base_frame", f.base_frame},
+            {"vote_leaf_fraction", f.vote_leaf_fraction},
+            {"poses_per_seed", f.poses_per_seed},
+            {"max_candidates", f.max_candidates},
+            {"prune_error", f.prune_error},
+            {"max_refined", f.max_refined},
+            {"refine", f.refine},
+            {"up", f.up ? vector_to_json(*f.up) : json(nullptr)},
+            {"work_volume", f.work_volume ? box_to_json(*f.work_volume) : json(nullptr)}};
+  return j;
+}
+
+json pair_result_to_json(const PairResult& p, double threshold, const MatchTolerance& tolerance) {
+  json truth = json::array(), found = json::array();
+  for (const auto& T : p.truth) truth.push_back(pose_to_json(T));
+  // Each match says whether it is correct at the evaluation's threshold (assumption 1's rule),
+  // so the report's per-scene table needs no protocol code of its own.
+  // Matches come best first, so those within the threshold are the first assigned.size().
+  const auto assigned = assign_matches(matches_within(p, threshold), tolerance);
+  for (std::size_t i = 0; i < p.found.size(); ++i) {
+    const FoundBox& f = p.found[i];
+    json m = box_to_json(f.box);
+    m["error"] = f.error;
+    m["within_threshold"] = f.error < threshold;
+    m["correct"] = i < assigned.size() && assigned[i].has_value();
+    m["terms"] = terms_to_json(f.terms);
+    found.push_back(m);
+  }
+  return {{"scene", p.scene},
+          {"landmark", p.landmark},
+          {"setting", p.setting},
+          {"in_context", p.in_context},
+          {"symmetry_axis", p.symmetry.revolution_axis ? vector_to_json(*p.symmetry.revolution_axis)
+                                                       : json(nullptr)},
+          {"truth", truth},
+          {"found", found},
+          {"seconds", p.seconds},
+          {"seeds", p.seeds},
+          {"rejections", p.rejections}};
+}
+
+PairResult pair_result_from_json(const json& j, const std::string& where) {
+  PairResult p;
+  p.scene = get<std::string>(j, "scene", where);
+  p.landmark = get<std::string>(j, "landmark", where);
+  p.setting = get<std::string>(j, "setting", where);
+  p.in_context = get<bool>(j, "in_context", where);
+  const json& axis = json_field(j, "symmetry_axis", where);
+  if (!axis.is_null())
+    p.symmetry.revolution_axis = numbers_from_json(axis, 3, where + ".symmetry_axis");
+  for (const json& t : json_field(j, "truth", where)) p.truth.push_back(pose_from_json(t, where));
+  for (const json& m : json_field(j, "found", where)) {
+    p.found.push_back({box_from_json(m, where + ".found"), get<double>(m, "error", where),
+                       terms_from_json(json_field(m, "terms", where), where + ".terms")});
+  }
+  p.seconds = get<double>(j, "seconds", where);
+  p.seeds = get<std::size_t>(j, "seeds", where);
+  p.rejections = get<std::string>(j, "rejections", where);
+  return p;
+}
+
+json rows_to_json(const std::vector<EvaluationRow>& rows) {
+  json out = json::array();
+  for (const EvaluationRow& r : rows) {
+    out.push_back({{"setting", r.setting},
+                   {"assumption", r.assumption},
+                   {"precision", optional_number(r.counts.precision())},
+                   {"recall", optional_number(r.counts.recall())},
+                   {"tp", r.counts.tp},
+                   {"fp", r.counts.fp},
+                   {"fn", r.counts.fn},
+                   {"pairs", r.pairs},
+                   {"median_translation_error_m", optional_number(r.median_translation_error)},
+                   {"median_rotation_error_rad", optional_number(r.median_rotation_error)},
+                   {"median_seconds_per_search", optional_number(r.median_seconds)}});
+  }
+  return out;
+}
+
+json evaluation_to_json(const Evaluation& e, const std::vector<EvaluationRow>& rows) {
+  const FindSettings& f = e.settings.find;
+  const double threshold = effective_threshold(f);
+  json pairs = json::array();
+  for (const PairResult& p : e.pairs)
+    pairs.push_back(pair_result_to_json(p, threshold, e.settings.tolerance));
+  return {{"format", "lmk-evaluation"},
+          {"version", 1},
+          {"lmk_version", kVersion},
+          {"dataset", e.dataset},
+          {"dataset_fingerprint", e.fingerprint},
+          {"method", f.method},
+          {"metric", f.metric.empty() ? (f.method == "fast" ? "visibility" : "paper") : f.metric},
+          {"threshold", threshold},
+          {"max_seeds", f.max_seeds},
+          {"pairs_searched", e.settings.in_context_only ? "in-context" : "all"},
+          {"tolerance",
+           {{"translation_m", e.settings.tolerance.translation},
+            {"rotation_rad", e.settings.tolerance.rotation}}},
+          {"settings", find_settings_to_json(f)},
+          {"seconds", e.seconds},
+          {"rows", rows_to_json(rows)},
+          {"pairs", pairs}};
+}
+
+}  // namespace lmk::detail

@@ -1,0 +1,180 @@
+#include "eval/evaluation_report.h"
+
+#include <cmath>
+#include <filesystem>
+
+#include "eval/detail/evaluation_json.h"
+#include "eval/evaluation_table.h"
+#include "eval/svg_plot.h"
+#include "geometry/atomic_file.h"
+#include "geometry/error.h"
+#include "geometry/version.h"
+
+namespace lmk {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+const char* const kColours[] = {"#4477aa", "#ee6677", "#228833", "#ccbb44", "#66ccee", "#aa3377"};
+
+// The assumption the curves show: 1 when every pair was searched, else 2.
+int curve_assumption(const Evaluation& e) { return e.settings.in_context_only ? 2 : 1; }
+
+std::vector<std::string> settings_of(const Evaluation& e) {
+  std::vector<std::string> out;
+  for (const PairResult& p : e.pairs) {
+    if (std::find(out.begin(), out.end(), p.setting) == out.end()) out.push_back(p.setting);
+  }
+  out.push_back("all");
+  return out;
+}
+
+// One line per pair: what was there, what was found, how good the best match was, how long.
+TextTable pair_table(const Evaluation& e) {
+  const double threshold = effective_threshold(e.settings.find);
+  TextTable t;
+  t.header = {"scene", "landmark", "in context",    "truth",
+              "found", "correct",  "best error mm", "seconds"};
+  t.numeric = {false, false, false, true, true, true, true, true};
+  for (const PairResult& p : e.pairs) {
+    const PairInput in = matches_within(p, threshold);
+    const Counts c = count_all_matches(in, e.settings.tolerance);
+    std::optional<double> best;
+    if (!p.found.empty()) best = p.found.front().error;
+    t.rows.push_back({p.scene, p.landmark, p.in_context ? "yes" : "no",
+                      std::to_string(p.truth.size()), std::to_string(in.found.size()),
+                      std::to_string(c.tp), format_optional(best, 2, 1e3),
+                      format_optional(p.seconds, 3)});
+  }
+  return t;
+}
+
+// A TextTable as an HTML table.
+std::string html_table(const TextTable& t) {
+  std::string s = "<table>\n<thead><tr>";
+  for (std::size_t i = 0; i < t.header.size(); ++i) {
+    const bool num = i < t.numeric.size() && t.numeric[i];
+    s += std::string("<th") + (num ? " class=\"num\"" : "") + ">" + escape_html(t.header[i]) +
+         "</th>";
+  }
+  s += "</tr></thead>\n<tbody>\n";
+  for (const auto& row : t.rows) {
+    s += "<tr>";
+    for (std::size_t i = 0; i < row.size(); ++i) {
+      const bool num = i < t.numeric.size() && t.numeric[i];
+      s += std::string("<td") + (num ? " class=\"num\"" : "") + ">" + escape_html(row[i]) + "</td>";
+    }
+    s += "</tr>\n";
+  }
+  return s + "</tbody>\n</table>\n";
+}
+
+std::string threshold_plot(const Evaluation& e) {
+  LinePlot plot;
+  plot.title = "Precision (solid) and recall (dashed) against the threshold, assumption " +
+               std::to_string(curve_assumption(e));
+  plot.x_label = "error threshold (mm)";
+  plot.marker_x = 1e3 * effective_threshold(e.settings.find);
+  std::size_t k = 0;
+  for (const std::string& setting : settings_of(e)) {
+    const std::string colour = kColours[k++ % (sizeof(kColours) / sizeof(kColours[0]))];
+    PlotSeries precision{setting + " P", {}, colour, false};
+    PlotSeries recall{setting + " R", {}, colour, true};
+    for (const ThresholdPoint& p : threshold_curve(e, setting, curve_assumption(e))) {
+      precision.points.push_back({1e3 * p.threshold, p.precision.value_or(NAN)});
+      recall.points.push_back({1e3 * p.threshold, p.recall.value_or(NAN)});
+    }
+    plot.series.push_back(precision);
+    plot.series.push_back(recall);
+  }
+  return render_svg(plot, 640, 340);
+}
+
+std::string times_plot(const Evaluation& e) {
+  Histogram h;
+  h.title = "Seconds per search (" + std::to_string(e.pairs.size()) + " searches, 1 thread each)";
+  h.x_label = "seconds (log scale)";
+  h.log_x = true;
+  for (const PairResult& p : e.pairs) h.values.push_back(p.seconds);
+  return render_svg(h, 640, 280);
+}
+
+std::string markdown(const Evaluation& e, const std::vector<EvaluationRow>& rows) {
+  return "# lmk evaluation: " + e.dataset + "\n\n" + evaluation_header(e) + ".\n\nlmk " + kVersion +
+         ", dataset fingerprint " + e.fingerprint + ", run " + format_optional(e.seconds, 1) +
+         " s.\n\n## Precision and recall\n\n"
+         "Assumptions: 1, all pairs; 2, in-context pairs; 3, in-context pairs, best match only. "
+         "Errors are medians over true positives; '-' is undefined (no output, or nothing to "
+         "find).\n\n" +
+         evaluation_table(rows).markdown() + "\n## Pairs\n\n" + pair_table(e).markdown();
+}
+
+std::string html(const Evaluation& e, const std::vector<EvaluationRow>& rows) {
+  return "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>lmk "
+         "evaluation: " +
+         escape_html(e.dataset) +
+         "</title>\n<style>\nbody{font-family:sans-serif;margin:2em;max-width:70em}\n"
+         "table{border-collapse:collapse;margin:1em 0}\n"
+         "th,td{border:1px solid #ccc;padding:2px 8px}\n.num{text-align:right}\n"
+         "th{background:#f0f0f0}\n</style>\n</head>\n<body>\n<h1>lmk evaluation: " +
+         escape_html(e.dataset) + "</h1>\n<p>" + escape_html(evaluation_header(e)) +
+         ".</p>\n<p>lmk " + kVersion + ", dataset fingerprint <code>" + e.fingerprint +
+         "</code>, run " + format_optional(e.seconds, 1) +
+         " s.</p>\n<h2>Precision and recall</h2>\n<p>Assumptions: 1, all pairs; 2, in-context "
+         "pairs; 3, in-context pairs, best match only. Errors are medians over true positives; "
+         "'-' is undefined (no output, or nothing to find).</p>\n" +
+         html_table(evaluation_table(rows)) + "<h2>Plots</h2>\n<figure>\n" + threshold_plot(e) +
+         "</figure>\n<figure>\n" + times_plot(e) + "</figure>\n<h2>Pairs</h2>\n" +
+         html_table(pair_table(e)) + "</body>\n</html>\n";
+}
+
+}  // namespace
+
+std::vector<ThresholdPoint> threshold_curve(const Evaluation& e, const std::string& setting,
+                                            int assumption, int steps) {
+  std::vector<ThresholdPoint> curve;
+  const double t = effective_threshold(e.settings.find);
+  for (int i = 0; i < steps; ++i) {
+    ThresholdPoint point;
+    point.threshold = t * (0.1 + 1.9 * i / std::max(1, steps - 1));
+    Counts counts;
+    for (const PairResult& p : e.pairs) {
+      if (setting != "all" && p.setting != setting) continue;
+      if (assumption > 1 && !p.in_context) continue;
+      const PairInput in = matches_within(p, point.threshold);
+      counts.add(assumption == 3 ? count_best_match(in, e.settings.tolerance)
+                                 : count_all_matches(in, e.settings.tolerance));
+    }
+    point.precision = counts.precision();
+    point.recall = counts.recall();
+    curve.push_back(point);
+  }
+  return curve;
+}
+
+void write_evaluation_report(const std::string& dir, const Evaluation& e) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw Error(dir + ": cannot create the report directory (" + ec.message() + ")");
+  const std::vector<EvaluationRow> rows = evaluation_rows(e);
+  json j = detail::evaluation_to_json(e, rows);
+  json curves = json::array();
+  for (const std::string& setting : settings_of(e)) {
+    json points = json::array();
+    for (const ThresholdPoint& p : threshold_curve(e, setting, curve_assumption(e))) {
+      points.push_back({{"threshold", p.threshold},
+                        {"precision", p.precision ? json(*p.precision) : json(nullptr)},
+                        {"recall", p.recall ? json(*p.recall) : json(nullptr)}});
+    }
+    curves.push_back(
+        {{"setting", setting}, {"assumption", curve_assumption(e)}, {"points", points}});
+  }
+  j["threshold_curves"] = curves;
+  write_text_atomically(fs::path(dir) / "report.json", j.dump(2) + "\n");
+  write_text_atomically(fs::path(dir) / "report.md", markdown(e, rows));
+  write_text_atomically(fs::path(dir) / "report.html", html(e, rows));
+}
+
+}  // namespace lmk

@@ -1,0 +1,29 @@
+#pragma once
+// An evaluation's report directory: report.json (everything), report.md (the tables) and a
+// self-contained report.html with SVG plots: precision and recall against the error threshold per
+// setting, the distribution of search times, and a per-scene table of the matches.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "eval/evaluation.h"
+
+namespace lmk {
+
+struct ThresholdPoint {
+  double threshold = 0.0;  ///< m
+  std::optional<double> precision, recall;
+};
+
+/// Precision and recall of `setting`'s pairs ("all": every pair) under `assumption`, at `steps`
+/// thresholds from a tenth of the evaluation's threshold to twice it (the errors the evaluation
+/// kept). Each point applies that threshold to the same search results.
+std::vector<ThresholdPoint> threshold_curve(const Evaluation& evaluation,
+                                            const std::string& setting, int assumption,
+                                            int steps = 20);
+
+/// Writes DIR/report.json, DIR/report.md and DIR/report.html (creating DIR), each atomically.
+void write_evaluation_report(const std::string& dir, const Evaluation& evaluation);
+
+}  // namespace lmk

@@ -1,0 +1,55 @@
+#include "eval/evaluation_table.h"
+
+#include <cmath>
+#include <cstdio>
+
+namespace lmk {
+
+std::string assumption_name(int assumption) {
+  switch (assumption) {
+    case 1:
+      return "1 all pairs";
+    case 2:
+      return "2 in context";
+    default:
+      return "3 best match";
+  }
+}
+
+TextTable evaluation_table(const std::vector<EvaluationRow>& rows) {
+  TextTable table;
+  table.header = {"setting", "assumption", "precision", "recall",    "TP",      "FP",
+                  "FN",      "pairs",      "t err mm",  "r err deg", "s/search"};
+  table.numeric = {false, false, true, true, true, true, true, true, true, true, true};
+  for (const EvaluationRow& r : rows) {
+    table.rows.push_back(
+        {r.setting, assumption_name(r.assumption), format_optional(r.counts.precision(), 3),
+         format_optional(r.counts.recall(), 3), std::to_string(r.counts.tp),
+         std::to_string(r.counts.fp), std::to_string(r.counts.fn), std::to_string(r.pairs),
+         format_optional(r.median_translation_error, 1, 1e3),
+         format_optional(r.median_rotation_error, 2, 180.0 / M_PI),
+         format_optional(r.median_seconds, 3)});
+  }
+  return table;
+}
+
+std::string evaluation_header(const Evaluation& e) {
+  const FindSettings& f = e.settings.find;
+  const std::string metric =
+      f.metric.empty() ? (f.method == "fast" ? "visibility" : "paper") : f.metric;
+  std::size_t scenes = 0;
+  std::string last;
+  for (const PairResult& p : e.pairs) {
+    if (p.scene != last) ++scenes, last = p.scene;
+  }
+  char text[512];
+  std::snprintf(text, sizeof(text),
+                "dataset %s (%zu scenes, %zu pairs, %s pairs searched), method %s, metric %s, "
+                "threshold %.4f m, max seeds %zu; times per search on 1 thread",
+                e.dataset.c_str(), scenes, e.pairs.size(),
+                e.settings.in_context_only ? "in-context" : "all", f.method.c_str(), metric.c_str(),
+                effective_threshold(f), f.max_seeds);
+  return text;
+}
+
+}  // namespace lmk

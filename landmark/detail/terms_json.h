@@ -1,0 +1,56 @@
+#pragma once
+// The JSON form of a match's error terms, shared by `lmk find --json` and the evaluation cache and
+// reports. Header-only and internal, like geometry/detail/pose_json.h.
+
+#include <cmath>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "geometry/detail/pose_json.h"
+#include "landmark/error_metrics.h"
+
+namespace lmk::detail {
+
+/// Every term; coverage is null for the metrics that do not measure it.
+inline nlohmann::json terms_to_json(const ErrorTerms& t) {
+  return {
+      {"scene_to_landmark_sum", t.scene_to_landmark_sum},
+      {"scene_to_landmark_count", t.scene_to_landmark_count},
+      {"landmark_to_scene_sum", t.landmark_to_scene_sum},
+      {"landmark_to_scene_count", t.landmark_to_scene_count},
+      {"scene_points_in_box", t.scene_points_in_box},
+      {"coverage", std::isnan(t.coverage) ? nlohmann::json(nullptr) : nlohmann::json(t.coverage)},
+      {"empty_space_probes", t.empty_space_probes},
+      {"empty_space_violations", t.empty_space_violations},
+      {"empty_space_violation_mean", t.empty_space_violation_mean}};
+}
+
+/// The inverse of terms_to_json; `error` is recomputed from the sums and counts.
+inline ErrorTerms terms_from_json(const nlohmann::json& j, const std::string& where) {
+  const auto number = [&](const char* key) {
+    const nlohmann::json& v = json_field(j, key, where);
+    if (!v.is_number()) throw Error(where + "." + key + ": must be a number");
+    return v.get<double>();
+  };
+  const auto count = [&](const char* key) {
+    const nlohmann::json& v = json_field(j, key, where);
+    if (!v.is_number_unsigned()) throw Error(where + "." + key + ": must be a count");
+    return v.get<std::size_t>();
+  };
+  ErrorTerms t;
+  t.scene_to_landmark_sum = number("scene_to_landmark_sum");
+  t.scene_to_landmark_count = count("scene_to_landmark_count");
+  t.landmark_to_scene_sum = number("landmark_to_scene_sum");
+  t.landmark_to_scene_count = count("landmark_to_scene_count");
+  t.scene_points_in_box = count("scene_points_in_box");
+  const nlohmann::json& coverage = json_field(j, "coverage", where);
+  t.coverage = coverage.is_null() ? std::numeric_limits<double>::quiet_NaN() : number("coverage");
+  t.empty_space_probes = count("empty_space_probes");
+  t.empty_space_violations = count("empty_space_violations");
+  t.empty_space_violation_mean = number("empty_space_violation_mean");
+  t.finish();
+  return t;
+}
+
+}  // namespace lmk::detail

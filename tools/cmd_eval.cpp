@@ -1,0 +1,66 @@
+// lmk eval [--dataset DIR | --preset NAME] [search options] [--pairs all|in-context]
+//          [--threads N] [--json FILE] [--report DIR] [--cache DIR | --no-cache]
+// The paper's precision/recall table of a search method on a dataset (docs/evaluation.md).
+
+#include <cstdio>
+#include <memory>
+
+#include "eval/benchmark_dataset.h"
+#include "eval/detail/evaluation_json.h"
+#include "eval/evaluation.h"
+#include "eval/evaluation_report.h"
+#include "eval/evaluation_table.h"
+#include "geometry/atomic_file.h"
+#include "geometry/error.h"
+#include "tools/cli_common.h"
+#include "tools/eval_common.h"
+#include "tools/progress.h"
+
+namespace lmk::cli {
+namespace {
+
+struct EvalOptions {
+  DatasetOptions dataset;
+  EvaluationSettings settings;
+  std::string pairs = "all";
+  std::string json, report;
+};
+
+int run_eval(EvalOptions& o) {
+  const LoadedDataset data = load_or_generate(o.dataset, o.settings.cache_dir);
+  o.settings.in_context_only = o.pairs == "in-context";
+  const Evaluation evaluation = evaluate_with_progress(data, o.settings, "eval");
+  const std::vector<EvaluationRow> rows = evaluation_rows(evaluation);
+  std::printf("%s\n\n%s", evaluation_header(evaluation).c_str(),
+              evaluation_table(rows).plain().c_str());
+  if (!o.json.empty())
+    write_text_atomically(o.json, detail::evaluation_to_json(evaluation, rows).dump(2) + "\n");
+  if (!o.report.empty()) {
+    write_evaluation_report(o.report, evaluation);
+    std::printf("report: %s/report.html (also report.md, report.json)\n", o.report.c_str());
+  }
+  return kOk;
+}
+
+}  // namespace
+
+Subcommand add_eval(CLI::App& app) {
+  auto o = std::make_shared<EvalOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "eval",
+      "Evaluate a search method on a dataset: the paper's precision/recall table per setting and "
+      "assumption (default: the built-in 'paper' preset, fast method)");
+  add_dataset_options(sub, o->dataset);
+  add_search_options(sub, o->settings.find);
+  add_evaluation_options(sub, o->settings);
+  sub->add_option("--pairs", o->pairs,
+                  "Pairs to search: all (assumptions 1-3) or in-context (assumptions 2 and 3)")
+      ->check(CLI::IsMember({"all", "in-context"}))
+      ->capture_default_str();
+  sub->add_option("--json", o->json, "Write the table and every pair's matches as JSON to FILE");
+  sub->add_option("--report", o->report,
+                  "Write report.json, report.md and report.html (with plots) into DIR");
+  return {sub, [o] { return run_eval(*o); }};
+}
+
+}  // namespace lmk::cli

@@ -1,0 +1,79 @@
+#include "tools/eval_common.h"
+
+#include <cstdio>
+#include <filesystem>
+
+#include "geometry/error.h"
+#include "tools/progress.h"
+
+namespace lmk::cli {
+
+namespace fs = std::filesystem;
+
+void add_dataset_options(CLI::App* sub, DatasetOptions& o) {
+  std::string presets;
+  for (const BenchmarkPreset& p : benchmark_presets())
+    presets += (presets.empty() ? "" : ", ") + p.name;
+  auto* dataset = sub->add_option("--dataset", o.dir, "Dataset directory (holding dataset.json)");
+  sub->add_option("--preset", o.preset,
+                  "Built-in benchmark, generated on first use: " + presets + " (default paper)")
+      ->excludes(dataset);
+  sub->add_option("--seeds", o.seeds, "With a preset: scenes per scene type")
+      ->check(CLI::PositiveNumber)
+      ->excludes(dataset);
+  sub->add_flag("--hard", o.hard, "With a preset: its strong-rotation variants")->excludes(dataset);
+}
+
+void add_evaluation_options(CLI::App* sub, EvaluationSettings& s) {
+  s.cache_dir = default_cache_dir();
+  sub->add_option("--threads", s.threads, "Searches run at once (one thread each); 0: every core")
+      ->capture_default_str();
+  auto* cache = sub->add_option("--cache", s.cache_dir,
+                                "Cache of generated datasets and of every search's result, so "
+                                "that an interrupted run resumes")
+                    ->capture_default_str();
+  sub->add_flag_callback(
+         "--no-cache", [&s] { s.cache_dir.clear(); }, "Search everything again, cache nothing")
+      ->excludes(cache);
+}
+
+LoadedDataset load_or_generate(const DatasetOptions& o, const std::string& cache_dir) {
+  LoadedDataset data;
+  if (!o.dir.empty()) {
+    data.dir = o.dir;
+  } else {
+    GenerateOptions generate;
+    generate.seeds = o.seeds;
+    generate.hard = o.hard;
+    const std::string preset = o.preset.empty() ? "paper" : o.preset;
+    benchmark_preset(preset);  // an unknown name fails before anything else
+    // Without a cache the dataset still needs a home for the run; the system's temporary
+    // directory keeps it out of the user's way.
+    const std::string home =
+        cache_dir.empty() ? (fs::temp_directory_path() / "lmk-datasets").string() : cache_dir;
+    std::fprintf(stderr, "dataset: preset '%s' (generated on first use into %s/datasets)\n",
+                 preset.c_str(), home.c_str());
+    data.dir = cached_benchmark_dataset(home, preset, generate);
+  }
+  data.dataset = load_dataset(data.dir);
+  return data;
+}
+
+Evaluation evaluate_with_progress(const LoadedDataset& data, EvaluationSettings settings,
+                                  const std::string& label) {
+  const Evaluation evaluation = [&] {
+    ProgressBar bar(label);  // ends its line before the summary
+    settings.progress = [&bar](std::size_t done, std::size_t total, std::size_t) {
+      bar.update(done, total);
+    };
+    return evaluate(data.dir, data.dataset, settings);
+  }();
+  std::size_t cached = 0;
+  for (const PairResult& p : evaluation.pairs) cached += p.from_cache ? 1 : 0;
+  std::fprintf(stderr, "%s: %zu pairs (%zu searched, %zu from the cache) in %.1f s\n",
+               label.c_str(), evaluation.pairs.size(), evaluation.pairs.size() - cached, cached,
+               evaluation.seconds);
+  return evaluation;
+}
+
+}  // namespace lmk::cli
