@@ -76,7 +76,15 @@ Dataset parse(const json& j, const Reader& r) {
       const Eigen::Vector3d axis =
           r.numbers(landmarks[i]["symmetry_axis"], where + ".symmetry_axis", 3);
       if (!(axis.norm() > 0.0)) r.fail(where + ".symmetry_axis", "must not be zero");
-      l.symmetry.revolution_axis = axis.normalized();
+      l.symmetry.axis = axis.normalized();
+      if (landmarks[i].contains("symmetry_order") && !landmarks[i]["symmetry_order"].is_null()) {
+        const json& order = landmarks[i]["symmetry_order"];
+        if (!order.is_number_integer() || order.get<int>() == 1 || order.get<int>() < 0) {
+          r.fail(where + ".symmetry_order",
+                 "must be 0 (an axis of revolution) or an integer n >= 2 (n-fold)");
+        }
+        l.symmetry.order = order.get<int>();
+      }
     }
     d.landmarks.push_back(l);
   }
@@ -177,9 +185,10 @@ void save_dataset(const std::string& dir, const Dataset& d) {
   json landmarks = json::array(), scenes = json::array();
   for (const DatasetLandmark& l : d.landmarks) {
     json entry = {{"name", l.name}, {"file", l.file}, {"symmetry_axis", nullptr}};
-    if (l.symmetry.revolution_axis) {
-      const Eigen::Vector3d& a = *l.symmetry.revolution_axis;
+    if (l.symmetry.axis) {
+      const Eigen::Vector3d& a = *l.symmetry.axis;
       entry["symmetry_axis"] = detail::vector_to_json(a);
+      entry["symmetry_order"] = l.symmetry.order;
     }
     landmarks.push_back(entry);
   }

@@ -87,8 +87,8 @@ json pair_result_to_json(const PairResult& p, double threshold, const MatchToler
           {"landmark", p.landmark},
           {"setting", p.setting},
           {"in_context", p.in_context},
-          {"symmetry_axis", p.symmetry.revolution_axis ? vector_to_json(*p.symmetry.revolution_axis)
-                                                       : json(nullptr)},
+          {"symmetry_axis", p.symmetry.axis ? vector_to_json(*p.symmetry.axis) : json(nullptr)},
+          {"symmetry_order", p.symmetry.order},
           {"truth", truth},
           {"found", found},
           {"seconds", p.seconds},
@@ -104,7 +104,8 @@ PairResult pair_result_from_json(const json& j, const std::string& where) {
   p.in_context = get<bool>(j, "in_context", where);
   const json& axis = json_field(j, "symmetry_axis", where);
   if (!axis.is_null())
-    p.symmetry.revolution_axis = numbers_from_json(axis, 3, where + ".symmetry_axis");
+    p.symmetry.axis = numbers_from_json(axis, 3, where + ".symmetry_axis");
+  p.symmetry.order = get<int>(j, "symmetry_order", where);
   for (const json& t : json_field(j, "truth", where)) p.truth.push_back(pose_from_json(t, where));
   for (const json& m : json_field(j, "found", where)) {
     p.found.push_back({box_from_json(m, where + ".found"), get<double>(m, "error", where),

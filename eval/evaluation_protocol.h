@@ -9,10 +9,13 @@
 
 namespace lmk {
 
-/// A landmark's symmetry: none, or an axis of revolution (in the landmark's box frame) about which
-/// any rotation leaves it unchanged, such as a bowl's or a ball's vertical axis.
+/// A landmark's symmetry: none, or an axis (in the landmark's box frame) about which rotations
+/// leave it unchanged: any rotation for an axis of revolution (a bowl's or a ball's vertical axis),
+/// or multiples of 360/order degrees for an n-fold symmetry (a bar handle turned half a turn about
+/// the normal of the face it is mounted on).
 struct Symmetry {
-  std::optional<Eigen::Vector3d> revolution_axis;
+  std::optional<Eigen::Vector3d> axis;
+  int order = 0;  ///< 0: an axis of revolution; n >= 2: n-fold
 };
 
 struct MatchTolerance {
@@ -22,7 +25,8 @@ struct MatchTolerance {
 
 /// Angle of the rotation from R_truth to R_found, modulo the symmetry. With an axis of revolution
 /// a it is the swing angle acos(a . R_rel a), the smallest over every rotation about a
-/// (swing-twist decomposition of R_rel = R_truth^T R_found).
+/// (swing-twist decomposition of R_rel = R_truth^T R_found); with an n-fold axis, the smallest
+/// angle from R_truth turned by any multiple of 360/n degrees about a.
 double rotation_error(const Eigen::Matrix3d& R_truth, const Eigen::Matrix3d& R_found,
                       const Symmetry& symmetry);
 

@@ -234,9 +234,11 @@ ObjectModel make_tool_rack(int mounts, const std::vector<int>& hanging) {
   std::vector<ObjectPart> parts;
   for (int i = 0; i < mounts; ++i) {
     const double x = -0.5 * width + 0.05 + 0.25 * (i + 0.5);
-    // A mount: a block out of the wall with a lip at its front that a Griple hooks on.
-    add_box(mesh, {0.05, 0.04, 0.05}, x, -0.03, mount_z);
-    add_box(mesh, {0.05, 0.01, 0.025}, x, -0.055, mount_z + 0.0375);
+    // A mount: a wall plate with a hook block at its top, whose raised lip a Griple hooks on.
+    // Plate below, hook above: no turn in the wall's plane maps it onto itself.
+    add_box(mesh, {0.08, 0.012, 0.1}, x, -0.016, mount_z - 0.01);
+    add_box(mesh, {0.05, 0.04, 0.03}, x, -0.042, mount_z + 0.025);
+    add_box(mesh, {0.05, 0.01, 0.03}, x, -0.057, mount_z + 0.05);
     // A mount with a tool on it is hidden behind the Griple: only free mounts are instances.
     if (std::find(hanging.begin(), hanging.end(), i) != hanging.end()) continue;
     parts.push_back(
@@ -284,12 +286,14 @@ ObjectModel make_drawer_unit(int drawers, int open) {
       add_box(mesh, {0.01, pull, drawer_h - 0.04}, 0.5 * width - 0.02, inner_y, z - 0.01);
       add_box(mesh, {width - 0.04, pull, 0.01}, 0, inner_y, z - 0.5 * drawer_h + 0.02);
     }
-    // A bar handle on two standoffs, 3 cm proud of the front.
+    // A bar handle on two standoffs, 3.5 cm proud of the front: chunky enough for a Kinect at a
+    // metre and a half (5 mm noise) to see the bar's ends and the standoffs, which fix it along
+    // its length.
     const double hy = y - 0.01;
-    add_box(mesh, {0.012, 0.03, 0.012}, -0.05, hy - 0.015, z);
-    add_box(mesh, {0.012, 0.03, 0.012}, 0.05, hy - 0.015, z);
-    mesh.append(make_cylinder_mesh(0.007, 0.14, 16),
-                pose_from_xyz_rpy({0, hy - 0.03, z}, {0, 0.5 * M_PI, 0}));
+    add_box(mesh, {0.02, 0.03, 0.02}, -0.045, hy - 0.015, z);
+    add_box(mesh, {0.02, 0.03, 0.02}, 0.045, hy - 0.015, z);
+    mesh.append(make_cylinder_mesh(0.011, 0.13, 16),
+                pose_from_xyz_rpy({0, hy - 0.035, z}, {0, 0.5 * M_PI, 0}));
     parts.push_back({"handle_" + std::to_string(i),
                      box_between({-0.1, hy - 0.07, z - 0.035}, {0.1, hy + 0.005, z + 0.035})});
   }

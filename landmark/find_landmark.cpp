@@ -8,6 +8,8 @@
 #include "geometry/filters.h"
 #include "geometry/voxel_grid.h"
 #include "landmark/detail/fast_search.h"
+#include "landmark/detail/point_pair_voting.h"
+#include "landmark/detail/relief_seeds.h"
 #include "landmark/detail/reference_search.h"
 #include "landmark/detail/stopwatch.h"
 #include "landmark/non_max_suppression.h"
@@ -107,12 +109,27 @@ FindResult search(const SceneIndex& index, const Landmark& landmark, const FindS
   // Fast: the landmark at the scene's coarse leaf, which also sets the seed count.
   const PointCloud landmark_coarse =
       fast ? voxel_downsample(landmark.points, index.settings().coarse_leaf) : PointCloud();
-  const auto wanted = static_cast<std::size_t>(
-      std::ceil(fast ? settings.seeds_per_instance * static_cast<double>(points.size()) /
-                           static_cast<double>(landmark_coarse.size())
-                     : settings.sample_fraction * static_cast<double>(points.size())));
-  const Indices seeds =
-      random_sample_indices(points.size(), std::min(settings.max_seeds, wanted), settings.seed);
+  // Fast: seeds near relief only (detail/relief_seeds.h), in cells of half the landmark's size,
+  // and as many as put seeds_per_instance on each instance-sized stretch of them.
+  Indices seeds;
+  if (fast) {
+    const double diameter = std::max(
+        static_cast<double>(landmark.points.bounds().diagonal().norm()), 3.0 * index.settings().coarse_leaf);
+    const Indices candidates =
+        detail::points_near_relief(points, 0.5 * diameter, detail::kCoplanarAngle);
+    const auto wanted = static_cast<std::size_t>(std::ceil(
+        settings.seeds_per_instance * static_cast<double>(candidates.size()) /
+        static_cast<double>(landmark_coarse.size())));
+    for (Index k : random_sample_indices(candidates.size(),
+                                         std::min(settings.max_seeds, wanted), settings.seed)) {
+      seeds.push_back(candidates[k]);
+    }
+  } else {
+    const auto wanted = static_cast<std::size_t>(
+        std::ceil(settings.sample_fraction * static_cast<double>(points.size())));
+    seeds = random_sample_indices(points.size(), std::min(settings.max_seeds, wanted),
+                                  settings.seed);
+  }
   stats.seeds = seeds.size();
   const KdTree landmark_tree(landmark.points);
   stats.seconds_preprocess = seconds_since(start);

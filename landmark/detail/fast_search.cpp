@@ -95,22 +95,17 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
     references[k] = n ? n->index : 0;
   }
 
-  // Step 1: poses from every seed, in parallel, each into its own slot.
-  const bool upright = s.orientations == "upright";
+  // Step 1: poses from every seed, in parallel, each into its own slot. Upright searches vote
+  // only for poses within the tilt limit.
+  TiltLimit tilt;
+  tilt.model_up = landmark.up.cast<float>();
+  tilt.scene_up = index.up().cast<float>();
+  tilt.min_cos = static_cast<float>(std::cos(s.max_tilt));
+  const TiltLimit* limit = s.orientations == "upright" ? &tilt : nullptr;
   std::vector<std::vector<PoseVote>> votes(in.seeds.size());
   std::atomic<std::size_t> done{0};
   tbb::parallel_for(std::size_t{0}, in.seeds.size(), [&](std::size_t k) {
-    pairs.vote(voters, voter_tree, references[k], s.poses_per_seed, 0.75, votes[k]);
-    if (upright) {
-      const Eigen::Vector3d up = index.up();
-      votes[k].erase(std::remove_if(votes[k].begin(), votes[k].end(),
-                                    [&](const PoseVote& v) {
-                                      const double c =
-                                          (v.T_scene_model.linear() * landmark.up).dot(up);
-                                      return std::acos(std::clamp(c, -1.0, 1.0)) > s.max_tilt;
-                                    }),
-                     votes[k].end());
-    }
+    pairs.vote(voters, voter_tree, references[k], s.poses_per_seed, 0.75, votes[k], limit);
     if (s.progress) s.progress(++done, in.seeds.size());
   });
   std::vector<Candidate> poses;

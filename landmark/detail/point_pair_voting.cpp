@@ -14,7 +14,7 @@ constexpr float kPi = 3.14159265358979f;
 constexpr float kAngleStep = kPi / 15.0f;  // 12 degrees, as Drost et al.
 constexpr int kAngleBins = 15;
 constexpr int kAlphaBins = 30;
-constexpr float kCoplanarTolerance = 15.0f * kPi / 180.0f;
+constexpr float kCoplanarTolerance = static_cast<float>(kCoplanarAngle);
 
 // acos to about 7e-5 rad (Abramowitz & Stegun 4.4.45): the voting loop calls it three times per
 // scene pair, and the bins are 12 degrees wide.
@@ -156,7 +156,8 @@ std::uint32_t PointPairModel::key(int distance_bin, int a1, int a2, int a3) cons
 }
 
 void PointPairModel::vote(const PointCloud& scene, const KdTree& tree, Index reference,
-                          int max_poses, double min_fraction, std::vector<PoseVote>& out) const {
+                          int max_poses, double min_fraction, std::vector<PoseVote>& out,
+                          const TiltLimit* tilt) const {
   out.clear();
   const Eigen::Vector3f& sr = scene.points[reference];
   const Eigen::Vector3f& nr = scene.normals[reference];
@@ -198,12 +199,25 @@ void PointPairModel::vote(const PointCloud& scene, const KdTree& tree, Index ref
     }
   }
 
-  // The best bins, strongest first; ties go to the lower index, so the result is deterministic.
+  // x_scene = Ts^-1 Rx(alpha) Tm x_model, with Tm x = Rm (x - m), Ts x = Rs (x - s_r).
+  const auto rotation = [&](std::uint32_t k) -> Eigen::Matrix3f {
+    const float alpha = (static_cast<float>(k % kAlphaBins) + 0.5f) / alpha_bin;
+    return Rs.transpose() * Eigen::AngleAxisf(alpha, Eigen::Vector3f::UnitX()) *
+           to_x_axis_[k / kAlphaBins];
+  };
+  // The tilt is tested only for bins strong enough to enter the best list, a handful per seed.
+  const auto admissible = [&](std::uint32_t k) {
+    return !tilt || (rotation(k) * tilt->model_up).dot(tilt->scene_up) >= tilt->min_cos;
+  };
+
+  // The best admissible bins, strongest first; ties go to the lower index, so the result is
+  // deterministic.
   std::vector<std::pair<float, std::uint32_t>> best;
   best.reserve(static_cast<std::size_t>(max_poses) + 1);
   for (std::uint32_t k = 0; k < votes.size(); ++k) {
     if (votes[k] <= 0.0f) continue;
     if (static_cast<int>(best.size()) < max_poses || votes[k] > best.back().first) {
+      if (!admissible(k)) continue;
       best.emplace_back(votes[k], k);
       std::stable_sort(best.begin(), best.end(),
                        [](const auto& a, const auto& b) { return a.first > b.first; });
@@ -214,14 +228,10 @@ void PointPairModel::vote(const PointCloud& scene, const KdTree& tree, Index ref
   const float floor_votes = static_cast<float>(min_fraction) * best.front().first;
   for (const auto& [v, k] : best) {
     if (v < floor_votes) break;
-    const std::uint32_t m = k / kAlphaBins;
-    const float alpha = (static_cast<float>(k % kAlphaBins) + 0.5f) / alpha_bin;
-    // x_scene = Ts^-1 Rx(alpha) Tm x_model, with Tm x = Rm (x - m), Ts x = Rs (x - s_r).
-    const Eigen::Matrix3f R =
-        Rs.transpose() * Eigen::AngleAxisf(alpha, Eigen::Vector3f::UnitX()) * to_x_axis_[m];
+    const Eigen::Matrix3f R = rotation(k);
     PoseVote pv;
     pv.T_scene_model.linear() = R.cast<double>();
-    pv.T_scene_model.translation() = (sr - R * points_[m]).cast<double>();
+    pv.T_scene_model.translation() = (sr - R * points_[k / kAlphaBins]).cast<double>();
     pv.votes = v;
     out.push_back(pv);
   }

@@ -24,9 +24,21 @@
 
 namespace lmk::detail {
 
+/// Two points are a coplanar pair when both normals are within this angle of each other and of
+/// perpendicular to the segment joining them (rad, 15 degrees).
+inline constexpr double kCoplanarAngle = 15.0 * 3.14159265358979323846 / 180.0;
+
 struct PoseVote {
   Eigen::Isometry3d T_scene_model = Eigen::Isometry3d::Identity();
   float votes = 0.0f;
+};
+
+/// An orientation prior applied while voting: poses that tilt the model's up axis more than
+/// acos(min_cos) away from the scene's are no candidates at all, so they cannot crowd the admissible
+/// ones out of a seed's few best poses (as the many ways a flat face lies on a table would).
+struct TiltLimit {
+  Eigen::Vector3f model_up, scene_up;  ///< unit
+  float min_cos = -1.0f;
 };
 
 class PointPairModel {
@@ -37,9 +49,11 @@ class PointPairModel {
 
   /// The best-voted poses for the reference scene point `reference` of `scene` (which needs
   /// normals), paired with its neighbours within the model diameter found through `tree`. At most
-  /// `max_poses`, each with at least `min_fraction` of the best one's votes.
+  /// `max_poses`, each with at least `min_fraction` of the best one's votes; with `tilt`, only
+  /// poses within its limit.
   void vote(const PointCloud& scene, const KdTree& tree, Index reference, int max_poses,
-            double min_fraction, std::vector<PoseVote>& out) const;
+            double min_fraction, std::vector<PoseVote>& out,
+            const TiltLimit* tilt = nullptr) const;
 
   std::size_t size() const { return points_.size(); }
   std::size_t pairs() const { return entries_.size(); }

@@ -52,8 +52,8 @@ TEST_F(DatasetTest, RoundTrip) {
   const Dataset d = load_dataset(dir_.path().string());
   EXPECT_EQ(d.name, "tiny");
   ASSERT_EQ(d.landmarks.size(), 2u);
-  EXPECT_TRUE(d.landmarks[0].symmetry.revolution_axis.has_value());
-  EXPECT_FALSE(d.landmarks[1].symmetry.revolution_axis.has_value());
+  EXPECT_TRUE(d.landmarks[0].symmetry.axis.has_value());
+  EXPECT_FALSE(d.landmarks[1].symmetry.axis.has_value());
   ASSERT_EQ(d.scenes.size(), 2u);
   EXPECT_EQ(d.scenes[1].setting, "cluttered");
   EXPECT_TRUE(d.scenes[0].T_scene_sensor.isApprox(dataset_.scenes[0].T_scene_sensor, 1e-12));

@@ -39,7 +39,7 @@ TEST(CountAllMatches, TolerancesDecideTruePositives) {
   EXPECT_EQ(c.fn, 1u);
   pair.found = {at(0, 0, 20)};  // 20 degrees off
   EXPECT_EQ(count_all_matches(pair).fp, 1u);
-  pair.symmetry.revolution_axis = Eigen::Vector3d::UnitZ();  // unless the landmark is symmetric
+  pair.symmetry.axis = Eigen::Vector3d::UnitZ();  // unless the landmark is symmetric
   EXPECT_EQ(count_all_matches(pair).tp, 1u);
 }
 
