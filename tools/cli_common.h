@@ -48,5 +48,6 @@ Subcommand add_find(CLI::App& app);
 Subcommand add_landmark(CLI::App& app);
 Subcommand add_robot(CLI::App& app);
 Subcommand add_eval(CLI::App& app);
+Subcommand add_ablate(CLI::App& app);
 
 }  // namespace lmk::cli
