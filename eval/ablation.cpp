@@ -62,10 +62,8 @@ const std::map<std::string, Setter>& setters() {
                        const std::string& v) { s.threshold = positive(k, v); }},
       {"max-seeds", [](FindSettings& s, const std::string& k,
                        const std::string& v) { s.max_seeds = count(k, v); }},
-      {"seeds-per-instance",
-       [](FindSettings& s, const std::string& k, const std::string& v) {
-         s.seeds_per_instance = positive(k, v);
-       }},
+      {"seeds-per-instance", [](FindSettings& s, const std::string& k,
+                                const std::string& v) { s.seeds_per_instance = positive(k, v); }},
       {"seed",
        [](FindSettings& s, const std::string& k, const std::string& v) {
          const double n = parse_number(k, v);
@@ -212,10 +210,10 @@ TextTable ablation_table(const std::vector<AblationVariant>& variants) {
       row.push_back(format_optional(r.counts.precision(), 3));
       row.push_back(format_optional(r.counts.recall(), 3));
     }
-    row.push_back(first ? std::to_string(first->counts.tp) + "/" +
-                              std::to_string(first->counts.fp) + "/" +
-                              std::to_string(first->counts.fn)
-                        : "-");
+    row.push_back(first
+                      ? std::to_string(first->counts.tp) + "/" + std::to_string(first->counts.fp) +
+                            "/" + std::to_string(first->counts.fn)
+                      : "-");
     row.push_back(first ? format_optional(first->median_seconds, 3) : "-");
     table.rows.push_back(row);
   }

@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <set>
 
 #include "eval/depth_sensor.h"
 #include "geometry/cloud_io.h"
@@ -51,6 +52,12 @@ std::string read_bytes(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path.string() + ": cannot be read");
   return std::string((std::istreambuf_iterator<char>(in)), {});
+}
+
+std::string join(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& n : names) out += n + ";";
+  return out;
 }
 
 }  // namespace
@@ -106,23 +113,33 @@ Dataset generate_benchmark_dataset(const std::string& dir, const std::string& pr
   fs::create_directories(fs::path(dir) / "scenes", ec);
   if (ec) throw Error(dir + ": cannot create the dataset directory (" + ec.message() + ")");
 
+  std::vector<std::string> types = options.types.empty() ? scene_types() : options.types;
+  std::set<std::string> wanted_landmarks;
+  for (const std::string& type : types) {
+    for (const std::string& name : make_scene(type, 0, false).in_context)  // unknown types throw
+      wanted_landmarks.insert(name);
+  }
+  std::vector<BenchmarkLandmark> landmarks;
+  for (const BenchmarkLandmark& l : benchmark_landmarks()) {
+    if (options.types.empty() || wanted_landmarks.count(l.name)) landmarks.push_back(l);
+  }
+
   Dataset dataset;
   dataset.name = preset.name + (hard && !preset.hard ? "-hard" : "");
-  const std::size_t total =
-      benchmark_landmarks().size() + scene_types().size() * static_cast<std::size_t>(seeds);
+  const std::size_t total = landmarks.size() + types.size() * static_cast<std::size_t>(seeds);
   std::size_t done = 0;
   const auto step = [&] {
     if (options.progress) options.progress(++done, total);
   };
 
-  for (const BenchmarkLandmark& landmark : benchmark_landmarks()) {
+  for (const BenchmarkLandmark& landmark : landmarks) {
     const std::string file = "landmarks/" + landmark.name + ".lmk";
     save_landmark((fs::path(dir) / file).string(),
                   capture_benchmark_landmark(landmark, options.noise));
     dataset.landmarks.push_back({landmark.name, file, landmark.symmetry});
     step();
   }
-  for (const std::string& type : scene_types()) {
+  for (const std::string& type : types) {
     for (int k = 0; k < seeds; ++k) {
       const std::uint64_t seed = options.first_seed + static_cast<std::uint64_t>(k);
       const GeneratedScene scene = make_scene(type, seed, hard);
@@ -132,7 +149,12 @@ Dataset generate_benchmark_dataset(const std::string& dir, const std::string& pr
       entry.setting = scene.setting;
       entry.T_scene_sensor = scene.T_world_sensor;
       entry.up = Eigen::Vector3d::UnitZ();
-      entry.pairs = pairs_of(scene);
+      for (const DatasetPair& pair : pairs_of(scene)) {
+        const bool listed =
+            std::any_of(landmarks.begin(), landmarks.end(),
+                        [&](const BenchmarkLandmark& l) { return l.name == pair.landmark; });
+        if (listed) entry.pairs.push_back(pair);
+      }
       write_cloud((fs::path(dir) / entry.file).string(),
                   render(scene, noise_seed(entry.name), options.noise));
       dataset.scenes.push_back(entry);
@@ -152,6 +174,7 @@ std::string cached_benchmark_dataset(const std::string& cache_dir, const std::st
                               .add_value(options.hard)
                               .add_value(options.first_seed)
                               .add_value(options.noise)
+                              .add(join(options.types))
                               .add_value(kBenchmarkGeneratorVersion)
                               .add(kVersion)
                               .hex();

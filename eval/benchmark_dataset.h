@@ -38,6 +38,9 @@ struct GenerateOptions {
   bool hard = false;             ///< hard variants even where the preset has none
   std::uint64_t first_seed = 1;  ///< seeds first_seed, first_seed + 1, ...; 0 is the demo scene
   bool noise = true;             ///< false renders exact depth (for ground-truth checks)
+  /// Only these scene types (and the landmarks in context in them); empty: every type and every
+  /// landmark.
+  std::vector<std::string> types;
   /// Called after each file written, with (files done, files in all).
   std::function<void(std::size_t, std::size_t)> progress;
 };

@@ -1,26 +1,18 @@
 #include "eval/depth_sensor.h"
 
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_tree.h>
-#include <CGAL/AABB_triangle_primitive.h>
-#include <CGAL/Simple_cartesian.h>
 #include <tbb/parallel_for.h>
 
 #include <cmath>
 
+#include "eval/detail/mesh_tree.h"
 #include "geometry/error.h"
 #include "geometry/random.h"
 
 namespace lmk {
 namespace {
 
-using Kernel = CGAL::Simple_cartesian<double>;
-using Triangle = Kernel::Triangle_3;
-using TriangleIterator = std::vector<Triangle>::const_iterator;
-using Primitive = CGAL::AABB_triangle_primitive<Kernel, TriangleIterator>;
-using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
-
-Kernel::Point_3 to_cgal(const Eigen::Vector3d& p) { return {p.x(), p.y(), p.z()}; }
+using detail::Kernel;
+using detail::to_cgal;
 
 // Kinect v1 depth degradation: Gaussian axial noise growing with depth squared (Khoshelham &
 // Elberink 2012), then quantisation of the disparity from which the sensor triangulates depth.
@@ -42,14 +34,8 @@ PointCloud render_depth(const TriangleMesh& world, const Eigen::Isometry3d& T_wo
         "render_depth: image size, focal lengths and range must be positive, "
         "with max_range > min_range");
   }
-  std::vector<Triangle> triangles;
-  triangles.reserve(world.triangles.size());
-  for (const Eigen::Vector3i& t : world.triangles) {
-    triangles.emplace_back(to_cgal(world.vertices[t[0]]), to_cgal(world.vertices[t[1]]),
-                           to_cgal(world.vertices[t[2]]));
-  }
-  Tree tree(triangles.begin(), triangles.end());
-  tree.build();  // build before the parallel queries, which are then read-only
+  const detail::MeshTree mesh_tree(world);
+  const detail::AabbTree& tree = mesh_tree.tree;
 
   PointCloud cloud;
   cloud.width = static_cast<std::uint32_t>(s.width);
@@ -57,7 +43,7 @@ PointCloud render_depth(const TriangleMesh& world, const Eigen::Isometry3d& T_wo
   cloud.points.assign(static_cast<std::size_t>(s.width) * s.height,
                       Eigen::Vector3f::Constant(std::nanf("")));
   cloud.T_cloud_sensor = T_world_sensor;
-  if (triangles.empty()) return cloud;
+  if (mesh_tree.triangles.empty()) return cloud;
 
   const Eigen::Vector3d origin = T_world_sensor.translation();
   const double cos_max_incidence = std::cos(s.max_incidence);
@@ -73,7 +59,7 @@ PointCloud render_depth(const TriangleMesh& world, const Eigen::Isometry3d& T_wo
       const Eigen::Vector3d p(point->x(), point->y(), point->z());
       const double z = (T_world_sensor.linear().transpose() * (p - origin)).z();
       if (z < s.min_range || z > s.max_range) continue;
-      const Triangle& tri = *hit->second;
+      const detail::Triangle& tri = *hit->second;
       const Kernel::Vector_3 n = CGAL::cross_product(tri[1] - tri[0], tri[2] - tri[0]);
       const Eigen::Vector3d normal = Eigen::Vector3d(n.x(), n.y(), n.z()).normalized();
       if (std::abs(normal.dot(direction.normalized())) < cos_max_incidence) continue;

@@ -28,8 +28,20 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// Matches are kept up to this multiple of the threshold, for the curve against the threshold.
+// Matches are kept up to this multiple of the larger of the threshold and the metric's default,
+// for the curve against the threshold; every threshold up to the default then shares one search.
 constexpr double kRecordedThresholdFactor = 2.0;
+
+double metric_default_threshold(const FindSettings& find) {
+  const bool fast = find.method == "fast";
+  return find_error_metric(find.metric.empty() ? (fast ? "visibility" : "paper") : find.metric)
+      .default_threshold;
+}
+
+double recorded_threshold(const FindSettings& find) {
+  return kRecordedThresholdFactor *
+         std::max(effective_threshold(find), metric_default_threshold(find));
+}
 
 std::optional<double> median(std::vector<double> values) {
   if (values.empty()) return std::nullopt;
@@ -47,7 +59,7 @@ FindSettings pair_search(const FindSettings& find, const DatasetScene& scene) {
   f.threads = 1;
   f.progress = nullptr;
   f.keep_aligned_points = false;
-  f.threshold = kRecordedThresholdFactor * effective_threshold(find);
+  f.threshold = recorded_threshold(find);
   if (scene.up) f.up = scene.up;
   return f;
 }
@@ -115,10 +127,7 @@ PairResult search_pair(const PointCloud& cloud, const DatasetScene& scene, const
 }  // namespace
 
 double effective_threshold(const FindSettings& find) {
-  if (find.threshold) return *find.threshold;
-  const bool fast = find.method == "fast";
-  return find_error_metric(find.metric.empty() ? (fast ? "visibility" : "paper") : find.metric)
-      .default_threshold;
+  return find.threshold ? *find.threshold : metric_default_threshold(find);
 }
 
 PairInput matches_within(const PairResult& pair, double threshold) {
@@ -134,7 +143,7 @@ PairInput matches_within(const PairResult& pair, double threshold) {
 
 std::string evaluation_cache_key(const FindSettings& find, const std::string& fingerprint) {
   FindSettings recorded = find;
-  recorded.threshold = kRecordedThresholdFactor * effective_threshold(find);
+  recorded.threshold = recorded_threshold(find);
   return Fnv1a()
       .add(detail::find_settings_to_json(recorded).dump())
       .add(fingerprint)

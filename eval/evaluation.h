@@ -46,10 +46,10 @@ struct PairResult {
   bool in_context = false;
   Symmetry symmetry;
   std::vector<Eigen::Isometry3d> truth;
-  /// Every match the search kept with an error below twice the threshold (see
-  /// matches_within), best first. The threshold is applied afterwards, as the search's own
-  /// selection does it (non-max suppression first, then the threshold), so that one search also
-  /// serves the precision/recall curve against the threshold.
+  /// Every match the search kept with an error below twice the threshold, or twice the metric's
+  /// default threshold if that is larger (see matches_within), best first. The threshold is applied
+  /// afterwards, as the search's own selection does it (non-max suppression first, then the
+  /// threshold), so that one search also serves the precision/recall curve against the threshold.
   std::vector<FoundBox> found;
   double seconds = 0.0;     ///< the search's wall time, one thread, scene preprocessing included
   std::size_t seeds = 0;    ///< seeds the search started from

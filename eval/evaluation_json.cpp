@@ -103,8 +103,7 @@ PairResult pair_result_from_json(const json& j, const std::string& where) {
   p.setting = get<std::string>(j, "setting", where);
   p.in_context = get<bool>(j, "in_context", where);
   const json& axis = json_field(j, "symmetry_axis", where);
-  if (!axis.is_null())
-    p.symmetry.axis = numbers_from_json(axis, 3, where + ".symmetry_axis");
+  if (!axis.is_null()) p.symmetry.axis = numbers_from_json(axis, 3, where + ".symmetry_axis");
   p.symmetry.order = get<int>(j, "symmetry_order", where);
   for (const json& t : json_field(j, "truth", where)) p.truth.push_back(pose_from_json(t, where));
   for (const json& m : json_field(j, "found", where)) {

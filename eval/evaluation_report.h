@@ -17,8 +17,8 @@ struct ThresholdPoint {
 };
 
 /// Precision and recall of `setting`'s pairs ("all": every pair) under `assumption`, at `steps`
-/// thresholds from a tenth of the evaluation's threshold to twice it (the errors the evaluation
-/// kept). Each point applies that threshold to the same search results.
+/// thresholds from a tenth of the evaluation's threshold to twice it (errors the evaluation
+/// always keeps). Each point applies that threshold to the same search results.
 std::vector<ThresholdPoint> threshold_curve(const Evaluation& evaluation,
                                             const std::string& setting, int assumption,
                                             int steps = 20);

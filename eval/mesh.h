@@ -29,4 +29,9 @@ TriangleMesh make_lathe_mesh(const std::vector<Eigen::Vector2d>& profile, int se
 /// UV sphere centred at the origin.
 TriangleMesh make_sphere_mesh(double radius, int rings = 16, int segments = 32);
 
+/// The distance of each point to the nearest point of the mesh's surface (CGAL AABB tree), in
+/// parallel. For ground-truth checks: whether what a pose says is there lies on the world.
+std::vector<double> distances_to_mesh(const TriangleMesh& mesh,
+                                      const std::vector<Eigen::Vector3d>& points);
+
 }  // namespace lmk

@@ -9,8 +9,8 @@
 #include "geometry/voxel_grid.h"
 #include "landmark/detail/fast_search.h"
 #include "landmark/detail/point_pair_voting.h"
-#include "landmark/detail/relief_seeds.h"
 #include "landmark/detail/reference_search.h"
+#include "landmark/detail/relief_seeds.h"
 #include "landmark/detail/stopwatch.h"
 #include "landmark/non_max_suppression.h"
 
@@ -113,22 +113,23 @@ FindResult search(const SceneIndex& index, const Landmark& landmark, const FindS
   // and as many as put seeds_per_instance on each instance-sized stretch of them.
   Indices seeds;
   if (fast) {
-    const double diameter = std::max(
-        static_cast<double>(landmark.points.bounds().diagonal().norm()), 3.0 * index.settings().coarse_leaf);
+    const double diameter =
+        std::max(static_cast<double>(landmark.points.bounds().diagonal().norm()),
+                 3.0 * index.settings().coarse_leaf);
     const Indices candidates =
         detail::points_near_relief(points, 0.5 * diameter, detail::kCoplanarAngle);
-    const auto wanted = static_cast<std::size_t>(std::ceil(
-        settings.seeds_per_instance * static_cast<double>(candidates.size()) /
-        static_cast<double>(landmark_coarse.size())));
-    for (Index k : random_sample_indices(candidates.size(),
-                                         std::min(settings.max_seeds, wanted), settings.seed)) {
+    const auto wanted = static_cast<std::size_t>(
+        std::ceil(settings.seeds_per_instance * static_cast<double>(candidates.size()) /
+                  static_cast<double>(landmark_coarse.size())));
+    for (Index k : random_sample_indices(candidates.size(), std::min(settings.max_seeds, wanted),
+                                         settings.seed)) {
       seeds.push_back(candidates[k]);
     }
   } else {
     const auto wanted = static_cast<std::size_t>(
         std::ceil(settings.sample_fraction * static_cast<double>(points.size())));
-    seeds = random_sample_indices(points.size(), std::min(settings.max_seeds, wanted),
-                                  settings.seed);
+    seeds =
+        random_sample_indices(points.size(), std::min(settings.max_seeds, wanted), settings.seed);
   }
   stats.seeds = seeds.size();
   const KdTree landmark_tree(landmark.points);

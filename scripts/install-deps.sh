@@ -13,6 +13,8 @@ packages=(
   mpi-default-dev
   # tests and benchmarks
   googletest libgtest-dev libgmock-dev libbenchmark-dev
+  # the evaluation report's rendering test (headless)
+  chromium
 )
 
 missing=()

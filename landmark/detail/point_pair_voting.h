@@ -34,8 +34,9 @@ struct PoseVote {
 };
 
 /// An orientation prior applied while voting: poses that tilt the model's up axis more than
-/// acos(min_cos) away from the scene's are no candidates at all, so they cannot crowd the admissible
-/// ones out of a seed's few best poses (as the many ways a flat face lies on a table would).
+/// acos(min_cos) away from the scene's are no candidates at all, so they cannot crowd the
+/// admissible ones out of a seed's few best poses (as the many ways a flat face lies on a table
+/// would).
 struct TiltLimit {
   Eigen::Vector3f model_up, scene_up;  ///< unit
   float min_cos = -1.0f;
@@ -52,8 +53,7 @@ class PointPairModel {
   /// `max_poses`, each with at least `min_fraction` of the best one's votes; with `tilt`, only
   /// poses within its limit.
   void vote(const PointCloud& scene, const KdTree& tree, Index reference, int max_poses,
-            double min_fraction, std::vector<PoseVote>& out,
-            const TiltLimit* tilt = nullptr) const;
+            double min_fraction, std::vector<PoseVote>& out, const TiltLimit* tilt = nullptr) const;
 
   std::size_t size() const { return points_.size(); }
   std::size_t pairs() const { return entries_.size(); }

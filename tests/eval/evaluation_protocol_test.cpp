@@ -23,6 +23,22 @@ TEST(RotationError, SymmetryAboutAnAxisIsFree) {
               137 * M_PI / 180, 1e-9);
 }
 
+TEST(RotationError, AnNFoldSymmetryForgivesItsTurnsOnly) {
+  const Symmetry handle{Eigen::Vector3d::UnitZ(), 2};  // a half turn about z changes nothing
+  EXPECT_NEAR(rotation_error(at(0, 0).linear(), at(0, 0, 180).linear(), handle), 0.0, 1e-9);
+  EXPECT_NEAR(rotation_error(at(0, 0).linear(), at(0, 0, 170).linear(), handle), 10 * M_PI / 180,
+              1e-9);
+  EXPECT_NEAR(rotation_error(at(0, 0).linear(), at(0, 0, 90).linear(), handle), 90 * M_PI / 180,
+              1e-9);
+  PairInput pair;
+  pair.truth = {at(0, 0)};
+  pair.found = {at(0.005, 0, 178)};
+  pair.symmetry = handle;
+  EXPECT_EQ(count_all_matches(pair).tp, 1u);
+  pair.symmetry = Symmetry{};
+  EXPECT_EQ(count_all_matches(pair).fp, 1u);
+}
+
 TEST(CountAllMatches, TolerancesDecideTruePositives) {
   PairInput pair;
   pair.truth = {at(0, 0)};

@@ -1,0 +1,280 @@
+// The evaluator over a small generated dataset: its table, determinism, resuming from the cache
+// after an interruption, its JSON, its report (rendered by headless Chromium when installed), and
+// ablations.
+
+#include "eval/evaluation.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "eval/ablation.h"
+#include "eval/benchmark_dataset.h"
+#include "eval/detail/evaluation_json.h"
+#include "eval/evaluation_report.h"
+#include "eval/evaluation_table.h"
+#include "geometry/error.h"
+#include "tests/support/test_support.h"
+
+namespace lmk {
+namespace {
+
+// Two simple scenes (a bowl and a cup; three balls) and their three landmarks: 6 pairs.
+class EvaluationTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new test::ScratchDir();
+    GenerateOptions options;
+    options.types = {"simple/bowl_and_cup", "simple/three_balls"};
+    dataset_ = new Dataset(generate_benchmark_dataset(dir_->path().string(), "paper", options));
+  }
+  static void TearDownTestSuite() {
+    delete dataset_;
+    delete dir_;
+  }
+  static Evaluation run(EvaluationSettings settings) {
+    return evaluate(dir_->path().string(), *dataset_, settings);
+  }
+  static test::ScratchDir* dir_;
+  static Dataset* dataset_;
+};
+test::ScratchDir* EvaluationTest::dir_ = nullptr;
+Dataset* EvaluationTest::dataset_ = nullptr;
+
+void expect_same_results(const Evaluation& a, const Evaluation& b) {
+  ASSERT_EQ(a.pairs.size(), b.pairs.size());
+  for (std::size_t i = 0; i < a.pairs.size(); ++i) {
+    const PairResult &p = a.pairs[i], &q = b.pairs[i];
+    EXPECT_EQ(p.scene + "/" + p.landmark, q.scene + "/" + q.landmark);
+    ASSERT_EQ(p.found.size(), q.found.size()) << p.scene << " " << p.landmark;
+    for (std::size_t k = 0; k < p.found.size(); ++k) {
+      EXPECT_TRUE(p.found[k].box.pose.isApprox(q.found[k].box.pose, 1e-12));
+      EXPECT_DOUBLE_EQ(p.found[k].error, q.found[k].error);
+      EXPECT_EQ(p.found[k].terms.empty_space_violations, q.found[k].terms.empty_space_violations);
+    }
+  }
+}
+
+TEST_F(EvaluationTest, FindsEverythingInSimpleScenesAndTabulatesIt) {
+  const Evaluation e = run({});
+  ASSERT_EQ(e.pairs.size(), 6u);
+  const std::vector<EvaluationRow> rows = evaluation_rows(e);
+  ASSERT_EQ(rows.size(), 6u);  // simple and all, assumptions 1-3
+  for (const EvaluationRow& row : rows) {
+    EXPECT_TRUE(row.setting == "simple" || row.setting == "all");
+    // Every instance of a bowl, a cup and three balls, nothing else, within a few millimetres.
+    EXPECT_EQ(row.counts.fp, 0u) << row.setting << " " << row.assumption;
+    EXPECT_EQ(row.counts.fn, 0u) << row.setting << " " << row.assumption;
+    ASSERT_TRUE(row.median_translation_error);
+    EXPECT_LT(*row.median_translation_error, 0.01);
+    EXPECT_GT(*row.median_seconds, 0.0);
+  }
+  EXPECT_EQ(rows[0].counts.tp, 5u);  // assumption 1: bowl, cup, three balls
+  EXPECT_EQ(rows[2].counts.tp, 3u);  // assumption 3: one best match per in-context pair
+  const std::string table = evaluation_table(rows).plain();
+  EXPECT_NE(table.find("3 best match"), std::string::npos) << table;
+}
+
+TEST_F(EvaluationTest, ResultsDoNotDependOnThreadsOrTheCache) {
+  EvaluationSettings one;
+  one.threads = 1;
+  EvaluationSettings two;
+  two.threads = 2;
+  test::ScratchDir cache;
+  two.cache_dir = cache.path().string();
+  const Evaluation a = run(one), b = run(two), c = run(two);
+  expect_same_results(a, b);
+  expect_same_results(a, c);
+  for (const PairResult& p : c.pairs) EXPECT_TRUE(p.from_cache);
+}
+
+TEST_F(EvaluationTest, ResumesFromTheCacheAfterAnInterruption) {
+  test::ScratchDir cache;
+  EvaluationSettings settings;
+  settings.threads = 1;
+  settings.cache_dir = cache.path().string();
+  settings.progress = [](std::size_t done, std::size_t, std::size_t) {
+    if (done == 3) throw std::runtime_error("interrupted");
+  };
+  EXPECT_THROW(run(settings), std::runtime_error);
+  settings.progress = nullptr;
+  const Evaluation resumed = run(settings);
+  std::size_t cached = 0;
+  for (const PairResult& p : resumed.pairs) cached += p.from_cache ? 1 : 0;
+  EXPECT_EQ(cached, 3u);  // the three done before the interruption, and no other
+  EvaluationSettings fresh;
+  fresh.threads = 1;
+  expect_same_results(resumed, run(fresh));
+  // Another search configuration has its own cache entries.
+  settings.find.metric = "paper";
+  const Evaluation other = run(settings);
+  for (const PairResult& p : other.pairs) EXPECT_FALSE(p.from_cache);
+}
+
+TEST_F(EvaluationTest, InContextPairsOnlyForAssumptionsTwoAndThree) {
+  EvaluationSettings settings;
+  settings.in_context_only = true;
+  const Evaluation e = run(settings);
+  EXPECT_EQ(e.pairs.size(), 3u);  // bowl and cup in one scene, the ball in the other
+  for (const EvaluationRow& row : evaluation_rows(e)) EXPECT_NE(row.assumption, 1);
+}
+
+// Hand-made results: no search, so the JSON and the report can be checked exactly.
+Evaluation hand_made() {
+  Evaluation e;
+  e.dataset = "hand";
+  e.fingerprint = "0123456789abcdef";
+  PairResult found;
+  found.scene = "s1";
+  found.landmark = "cup";
+  found.setting = "simple";
+  found.in_context = true;
+  found.truth = {Eigen::Isometry3d::Identity()};
+  found.found = {{Box(Eigen::Isometry3d::Identity(), {0.1, 0.1, 0.1}), 0.002, {}}};
+  found.seconds = 0.05;
+  PairResult nothing = found;
+  nothing.scene = "s2";
+  nothing.setting = "cluttered";
+  nothing.truth.clear();
+  nothing.found.clear();
+  e.pairs = {found, nothing};
+  return e;
+}
+
+TEST(EvaluationJson, TheIssueSchemaWithNullForUndefinedPrecision) {
+  const Evaluation e = hand_made();
+  const nlohmann::json j = detail::evaluation_to_json(e, evaluation_rows(e));
+  EXPECT_EQ(j.at("method"), "fast");
+  EXPECT_EQ(j.at("metric"), "visibility");
+  bool saw_null = false;
+  for (const auto& row : j.at("rows")) {
+    for (const char* key :
+         {"setting", "assumption", "precision", "recall", "tp", "fp", "fn",
+          "median_translation_error_m", "median_rotation_error_rad", "median_seconds_per_search"}) {
+      EXPECT_TRUE(row.contains(key)) << key;
+    }
+    if (row.at("setting") == "cluttered") {
+      EXPECT_TRUE(row.at("precision").is_null());  // nothing returned: neither 0 nor 1
+      EXPECT_TRUE(row.at("recall").is_null());     // nothing to find
+      saw_null = true;
+    }
+    if (row.at("setting") == "simple") {
+      EXPECT_EQ(row.at("precision"), 1.0);
+    }
+  }
+  EXPECT_TRUE(saw_null);
+  ASSERT_EQ(j.at("pairs").size(), 2u);
+  EXPECT_TRUE(j.at("pairs")[0].at("found")[0].at("correct").get<bool>());
+  // A pair's JSON reads back as it was.
+  const PairResult back = detail::pair_result_from_json(j.at("pairs")[0], "pair");
+  EXPECT_EQ(back.found.size(), 1u);
+  EXPECT_DOUBLE_EQ(back.found[0].error, 0.002);
+}
+
+std::string read(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::size_t occurrences(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+TEST(EvaluationReport, WritesJsonMarkdownAndSelfContainedHtml) {
+  test::ScratchDir dir;
+  write_evaluation_report(dir.file("report"), hand_made());
+  const std::filesystem::path out = dir.path() / "report";
+  const nlohmann::json j = nlohmann::json::parse(read(out / "report.json"));
+  EXPECT_EQ(j.at("threshold_curves").size(), 3u);  // simple, cluttered, all
+  EXPECT_NE(read(out / "report.md").find("| setting |"), std::string::npos);
+  const std::string html = read(out / "report.html");
+  EXPECT_EQ(html.rfind("<!DOCTYPE html>", 0), 0u);
+  EXPECT_EQ(occurrences(html, "<svg"), 2u);  // the threshold curves and the times
+  for (const std::string tag : {"table", "svg", "figure", "tr", "td", "th", "body", "html"}) {
+    EXPECT_EQ(occurrences(html, "<" + tag + ">") + occurrences(html, "<" + tag + " "),
+              occurrences(html, "</" + tag + ">"))
+        << "unbalanced <" << tag << ">";
+  }
+  EXPECT_EQ(html.find("http://"), html.find("http://www.w3.org/2000/svg"));  // nothing external
+}
+
+// The report renders in a real browser: headless Chromium parses it, and the DOM it builds holds
+// the tables and the plots.
+TEST(EvaluationReport, RendersInHeadlessChromium) {
+  if (std::system("command -v chromium >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "chromium is not installed (scripts/install-deps.sh installs it)";
+  test::ScratchDir dir;
+  write_evaluation_report(dir.file("report"), hand_made());
+  const std::string html = dir.file("report/report.html"), dom = dir.file("dom.html"),
+                    png = dir.file("shot.png");
+  const std::string flags =
+      "chromium --headless --no-sandbox --disable-gpu --disable-dev-shm-usage "
+      "--user-data-dir=" +
+      dir.file("profile") + " ";
+  ASSERT_EQ(
+      std::system((flags + "--dump-dom file://" + html + " > " + dom + " 2>/dev/null").c_str()), 0);
+  const std::string rendered = read(dom);
+  EXPECT_EQ(occurrences(rendered, "<svg"), 2u);
+  EXPECT_GE(occurrences(rendered, "<table"), 2u);
+  EXPECT_NE(rendered.find("lmk evaluation: hand"), std::string::npos);
+  ASSERT_EQ(std::system((flags + "--window-size=1000,1400 --screenshot=" + png + " file://" + html +
+                         " >/dev/null 2>&1")
+                            .c_str()),
+            0);
+  EXPECT_GT(std::filesystem::file_size(png), 10000u);  // a page with content, not a blank one
+}
+
+TEST(Ablation, AxesParseWithClearErrors) {
+  const AblationAxis axis = parse_ablation_axis("metric=paper,vdb");
+  EXPECT_EQ(axis.key, "metric");
+  EXPECT_EQ(axis.values, (std::vector<std::string>{"paper", "vdb"}));
+  EXPECT_THROW(parse_ablation_axis("metric"), Error);
+  EXPECT_THROW(parse_ablation_axis("metric=paper,,vdb"), Error);
+  EXPECT_THROW(parse_ablation_axis("metric=paper,paper"), Error);
+  EXPECT_THROW(parse_ablation_axis("metric=nope"), Error);
+  EXPECT_THROW(parse_ablation_axis("threshold=-1"), Error);
+  try {
+    parse_ablation_axis("colour=red");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("max-seeds"), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(EvaluationTest, AblationRunsTheGridAndResumes) {
+  test::ScratchDir cache;
+  EvaluationSettings base;
+  base.cache_dir = cache.path().string();
+  base.in_context_only = true;
+  const std::vector<AblationAxis> axes = {parse_ablation_axis("metric=vdb,visibility"),
+                                          parse_ablation_axis("threshold=0.004,0.005")};
+  const auto first = run_ablation(dir_->path().string(), *dataset_, base, axes);
+  ASSERT_EQ(first.size(), 4u);
+  EXPECT_EQ(first[1].label(), "metric=vdb threshold=0.005");
+  // Thresholds at or below the metric's default share one search, so half the variants, and all of
+  // a second run, come from the cache.
+  std::size_t cached = 0;
+  for (const auto& v : first) {
+    for (const PairResult& p : v.evaluation.pairs) cached += p.from_cache ? 1 : 0;
+  }
+  EXPECT_EQ(cached, 6u);
+  const auto second = run_ablation(dir_->path().string(), *dataset_, base, axes);
+  for (std::size_t i = 0; i < first.size(); ++i) {
+    for (const PairResult& p : second[i].evaluation.pairs) EXPECT_TRUE(p.from_cache);
+    expect_same_results(first[i].evaluation, second[i].evaluation);
+  }
+  const TextTable table = ablation_table(second);
+  EXPECT_EQ(table.rows.size(), 4u);
+  EXPECT_EQ(table.header[0], "metric");
+  EXPECT_EQ(table.header[1], "threshold");
+}
+
+}  // namespace
+}  // namespace lmk
