@@ -25,7 +25,19 @@ struct GenOptions {
   std::string preset;
   std::optional<int> seeds;
   bool hard = false;
+  std::string types;  ///< comma-separated
 };
+
+std::vector<std::string> split_commas(const std::string& text) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  while (start <= text.size() && !text.empty()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    out.push_back(text.substr(start, comma - start));
+    start = comma + 1;
+  }
+  return out;
+}
 
 int run_tabletop(const GenOptions& options) {
   format_from_path(options.output);  // reject an unknown extension before rendering
@@ -52,6 +64,7 @@ int run_preset(const GenOptions& options) {
   generate.seeds = options.seeds;
   generate.hard = options.hard;
   generate.noise = !options.no_noise;
+  generate.types = split_commas(options.types);
   if (options.seed != 0) generate.first_seed = options.seed;
   ProgressBar bar("gen " + options.preset);
   generate.progress = [&bar](std::size_t done, std::size_t total) { bar.update(done, total); };
@@ -96,10 +109,14 @@ Subcommand add_gen(CLI::App& app) {
       ->check(CLI::PositiveNumber);
   sub->add_flag("--hard", options->hard,
                 "With --preset: strong rotations and tilts (any yaw, turned chairs, tilted walls)");
+  sub->add_option("--types", options->types,
+                  "With --preset: only these scene types (comma-separated, e.g. "
+                  "simple/three_balls) and the landmarks in context in them");
   sub->add_flag("--no-noise", options->no_noise, "Exact depth: no sensor noise or quantisation");
   return {sub, [options] {
             if (options->preset.empty()) {
-              if (options->seeds || options->hard) throw Error("--seeds and --hard need --preset");
+              if (options->seeds || options->hard || !options->types.empty())
+                throw Error("--seeds, --hard and --types need --preset");
               return run_tabletop(*options);
             }
             return run_preset(*options);

@@ -266,3 +266,62 @@ TEST_F(Cli, MilkSceneFromRealData) {
 
 }  // namespace
 }  // namespace lmk
+
+namespace lmk {
+namespace {
+
+TEST_F(Cli, GenPresetEvalAndAblateOnASmallDataset) {
+  const CommandResult gen =
+      lmk("gen --preset paper --types simple/three_balls,simple/bowl_and_cup " + path("data"));
+  ASSERT_EQ(gen.exit_code, 0) << gen.err;
+  EXPECT_NE(gen.out.find("3 landmarks, 2 scenes, 3 in-context pairs"), std::string::npos)
+      << gen.out;
+
+  const CommandResult eval = lmk("eval --dataset " + path("data") + " --cache " + path("cache") +
+                                 " --json " + path("eval.json") + " --report " + path("report"));
+  ASSERT_EQ(eval.exit_code, 0) << eval.err;
+  EXPECT_NE(eval.out.find("3 best match"), std::string::npos) << eval.out;
+  // Not a terminal: no progress bar, one summary line.
+  EXPECT_NE(eval.err.find("eval: 6 pairs (6 searched, 0 from the cache)"), std::string::npos)
+      << eval.err;
+  const nlohmann::json j = nlohmann::json::parse(slurp(dir_.file("eval.json")));
+  EXPECT_EQ(j.at("method"), "fast");
+  EXPECT_EQ(j.at("rows").size(), 6u);
+  EXPECT_EQ(j.at("pairs").size(), 6u);
+  for (const char* f : {"report.html", "report.md", "report.json"})
+    EXPECT_TRUE(std::filesystem::exists(dir_.path() / "report" / f)) << f;
+  // A second run resumes from the cache.
+  const CommandResult again = lmk("eval --dataset " + path("data") + " --cache " + path("cache"));
+  EXPECT_NE(again.err.find("(0 searched, 6 from the cache)"), std::string::npos) << again.err;
+
+  const CommandResult ablate =
+      lmk("ablate --dataset " + path("data") + " --cache " + path("cache") +
+          " --pairs in-context --vary metric=paper,vdb " + "--out " + path("ablation"));
+  ASSERT_EQ(ablate.exit_code, 0) << ablate.err;
+  EXPECT_NE(ablate.out.find("metric"), std::string::npos);
+  EXPECT_NE(ablate.out.find("vdb"), std::string::npos);
+  EXPECT_TRUE(std::filesystem::exists(dir_.path() / "ablation" / "ablation.json"));
+  EXPECT_TRUE(std::filesystem::exists(dir_.path() / "ablation" / "ablation.md"));
+}
+
+TEST_F(Cli, EvaluationErrorsAreOneLine) {
+  expect_bad_input("gen --preset papers " + path("x"), "unknown preset 'papers'");
+  expect_bad_input("gen --types simple/three_balls " + path("x.pcd"), "need --preset");
+  expect_bad_input("eval --dataset " + path("nowhere"), "dataset.json");
+  expect_bad_input("eval --preset nope", "unknown preset 'nope'");
+  expect_bad_input("ablate --vary colour=red", "unknown setting 'colour'");
+  expect_bad_input("ablate --vary metric=paper,paper", "given twice");
+}
+
+// The acceptance run: the built-in 'paper' preset with the fast method completes and prints the
+// paper's table (generated into a scratch cache, so it runs from scratch).
+TEST_F(Cli, EvalOnThePaperPresetPrintsTheTable) {
+  const CommandResult r = lmk("eval --preset paper --method fast --threads 2 --cache " + path("c"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* setting : {"simple", "cluttered", "unconventional", "all"})
+    EXPECT_NE(r.out.find(setting), std::string::npos) << setting;
+  EXPECT_NE(r.out.find("17 scenes, 187 pairs"), std::string::npos) << r.out;
+}
+
+}  // namespace
+}  // namespace lmk
