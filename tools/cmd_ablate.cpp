@@ -26,7 +26,6 @@ struct AblateOptions {
   DatasetOptions dataset;
   EvaluationSettings settings;
   std::vector<std::string> vary;
-  std::string pairs = "all";
   std::string out = "lmk-ablation";
 };
 
@@ -53,7 +52,6 @@ int run_ablate(AblateOptions& o) {
   std::vector<AblationAxis> axes;
   for (const std::string& text : o.vary) axes.push_back(parse_ablation_axis(text));
   const LoadedDataset data = load_or_generate(o.dataset, o.settings.cache_dir);
-  o.settings.in_context_only = o.pairs == "in-context";
   std::unique_ptr<ProgressBar> bar;
   o.settings.progress = [&bar](std::size_t done, std::size_t total, std::size_t) {
     if (bar) bar->update(done, total);
@@ -99,10 +97,6 @@ Subcommand add_ablate(CLI::App& app) {
   add_dataset_options(sub, o->dataset);
   add_search_options(sub, o->settings.find);
   add_evaluation_options(sub, o->settings);
-  sub->add_option("--pairs", o->pairs,
-                  "Pairs to search: all (assumptions 1-3) or in-context (assumptions 2 and 3)")
-      ->check(CLI::IsMember({"all", "in-context"}))
-      ->capture_default_str();
   sub->add_option("--out", o->out, "Directory for ablation.json and ablation.md")
       ->capture_default_str();
   return {sub, [o] { return run_ablate(*o); }};

@@ -22,13 +22,11 @@ namespace {
 struct EvalOptions {
   DatasetOptions dataset;
   EvaluationSettings settings;
-  std::string pairs = "all";
   std::string json, report;
 };
 
 int run_eval(EvalOptions& o) {
   const LoadedDataset data = load_or_generate(o.dataset, o.settings.cache_dir);
-  o.settings.in_context_only = o.pairs == "in-context";
   const Evaluation evaluation = evaluate_with_progress(data, o.settings, "eval");
   const std::vector<EvaluationRow> rows = evaluation_rows(evaluation);
   std::printf("%s\n\n%s", evaluation_header(evaluation).c_str(),
@@ -53,10 +51,6 @@ Subcommand add_eval(CLI::App& app) {
   add_dataset_options(sub, o->dataset);
   add_search_options(sub, o->settings.find);
   add_evaluation_options(sub, o->settings);
-  sub->add_option("--pairs", o->pairs,
-                  "Pairs to search: all (assumptions 1-3) or in-context (assumptions 2 and 3)")
-      ->check(CLI::IsMember({"all", "in-context"}))
-      ->capture_default_str();
   sub->add_option("--json", o->json, "Write the table and every pair's matches as JSON to FILE");
   sub->add_option("--report", o->report,
                   "Write report.json, report.md and report.html (with plots) into DIR");

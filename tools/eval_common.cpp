@@ -26,6 +26,11 @@ void add_dataset_options(CLI::App* sub, DatasetOptions& o) {
 
 void add_evaluation_options(CLI::App* sub, EvaluationSettings& s) {
   s.cache_dir = default_cache_dir();
+  sub->add_option_function<std::string>(
+         "--pairs", [&s](const std::string& v) { s.in_context_only = v == "in-context"; },
+         "Pairs to search: all (assumptions 1-3) or in-context (assumptions 2 and 3)")
+      ->check(CLI::IsMember({"all", "in-context"}))
+      ->default_str("all");
   sub->add_option("--threads", s.threads, "Searches run at once (one thread each); 0: every core")
       ->capture_default_str();
   auto* cache = sub->add_option("--cache", s.cache_dir,

@@ -18,7 +18,8 @@ struct DatasetOptions {
 };
 void add_dataset_options(CLI::App* sub, DatasetOptions& options);
 
-/// --threads, --cache DIR, --no-cache (settings.cache_dir starts as default_cache_dir()).
+/// --pairs all|in-context, --threads, --cache DIR, --no-cache (settings.cache_dir starts as
+/// default_cache_dir()).
 void add_evaluation_options(CLI::App* sub, EvaluationSettings& settings);
 
 struct LoadedDataset {

@@ -128,12 +128,14 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
   coarse_icp.max_iterations = 8;
   coarse_icp.max_correspondence_distance = index.field().band();
   coarse_icp.loss = {RobustKernel::huber, leaf};
+  // A few hundred points fix a coarse pose as well as all of them; the candidates are many.
+  const std::vector<Eigen::Vector3f> coarse_points = thin(model.points, 400);
   std::vector<Eigen::Isometry3d> aligned(clusters.size());
   std::vector<double> quick(clusters.size());
   std::vector<int> iterations(clusters.size(), 0);
   tbb::parallel_for(std::size_t{0}, clusters.size(), [&](std::size_t c) {
     const DistanceFieldTarget target(index.field(), &coarse.normals);
-    const IcpResult r = icp(model.points, target, clusters[c].T_scene_capture, coarse_icp);
+    const IcpResult r = icp(coarse_points, target, clusters[c].T_scene_capture, coarse_icp);
     aligned[c] = r.T_target_source;
     iterations[c] = r.iterations;
     const DistanceField::Sampler field(index.field());
