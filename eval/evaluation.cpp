@@ -144,11 +144,18 @@ PairInput matches_within(const PairResult& pair, double threshold) {
 std::string evaluation_cache_key(const FindSettings& find, const std::string& fingerprint) {
   FindSettings recorded = find;
   recorded.threshold = recorded_threshold(find);
-  return Fnv1a()
-      .add(detail::find_settings_to_json(recorded).dump())
-      .add(fingerprint)
-      .add(kVersion)
-      .hex();
+  // Only the settings the method reads: tuning the fast search must not throw away hours of
+  // cached reference searches, nor the reverse.
+  nlohmann::json settings = detail::find_settings_to_json(recorded);
+  const bool fast = find.method == "fast";
+  for (const char* key :
+       fast ? std::vector<const char*>{"sample_fraction", "icp_iterations"}
+            : std::vector<const char*>{"seeds_per_instance", "orientations", "max_tilt",
+                                       "vote_leaf_fraction", "poses_per_seed", "max_candidates",
+                                       "prune_error", "max_refined", "refine"}) {
+    settings.erase(key);
+  }
+  return Fnv1a().add(settings.dump()).add(fingerprint).add(kVersion).hex();
 }
 
 std::string default_cache_dir() {
