@@ -8,6 +8,7 @@
 
 #include "eval/benchmark_dataset.h"
 #include "eval/depth_sensor.h"
+#include "eval/mosd_dataset.h"
 #include "eval/tabletop_scene.h"
 #include "geometry/cloud_io.h"
 #include "geometry/error.h"
@@ -26,6 +27,8 @@ struct GenOptions {
   std::optional<int> seeds;
   bool hard = false;
   std::string types;  ///< comma-separated
+  std::string from_mosd;
+  int copies = 2, frames = 0;
 };
 
 std::vector<std::string> split_commas(const std::string& text) {
@@ -87,6 +90,21 @@ int run_preset(const GenOptions& options) {
   return kOk;
 }
 
+int run_mosd(const GenOptions& options) {
+  MosdOptions mosd;
+  mosd.copies = options.copies;
+  mosd.max_frames = options.frames;
+  ProgressBar bar("gen mosd");
+  mosd.progress = [&bar](std::size_t done, std::size_t total) { bar.update(done, total); };
+  const Dataset dataset = generate_mosd_dataset(options.from_mosd, options.output, mosd);
+  std::printf(
+      "wrote dataset '%s' to %s: %zu landmarks, %zu scenes (rigidly moved copies of labelled "
+      "frames); evaluate it with --pairs in-context\n",
+      dataset.name.c_str(), options.output.c_str(), dataset.landmarks.size(),
+      dataset.scenes.size());
+  return kOk;
+}
+
 }  // namespace
 
 Subcommand add_gen(CLI::App& app) {
@@ -112,8 +130,23 @@ Subcommand add_gen(CLI::App& app) {
   sub->add_option("--types", options->types,
                   "With --preset: only these scene types (comma-separated, e.g. "
                   "simple/three_balls) and the landmarks in context in them");
+  sub->add_option("--from-mosd", options->from_mosd,
+                  "Write a real-data dataset from the labelled mOSD learn frames in DIR "
+                  "(../shared/data/mosd/learn): landmarks around the labelled objects, searched in "
+                  "rigidly moved copies of their frames")
+      ->check(CLI::ExistingDirectory);
+  sub->add_option("--copies", options->copies, "With --from-mosd: moved copies per frame")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  sub->add_option("--frames", options->frames, "With --from-mosd: the first N frames only (0: all)")
+      ->check(CLI::NonNegativeNumber);
   sub->add_flag("--no-noise", options->no_noise, "Exact depth: no sensor noise or quantisation");
   return {sub, [options] {
+            if (!options->from_mosd.empty()) {
+              if (!options->preset.empty())
+                throw Error("--from-mosd and --preset exclude each other");
+              return run_mosd(*options);
+            }
             if (options->preset.empty()) {
               if (options->seeds || options->hard || !options->types.empty())
                 throw Error("--seeds, --hard and --types need --preset");
