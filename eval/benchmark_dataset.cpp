@@ -193,11 +193,18 @@ std::string cached_benchmark_dataset(const std::string& cache_dir, const std::st
 }
 
 std::string dataset_fingerprint(const std::string& dir, const Dataset& dataset) {
+  std::vector<Landmark> landmarks;
+  for (const DatasetLandmark& entry : dataset.landmarks)
+    landmarks.push_back(load_landmark((fs::path(dir) / entry.file).string()));
+  return dataset_fingerprint(dir, dataset, landmarks);
+}
+
+std::string dataset_fingerprint(const std::string& dir, const Dataset& dataset,
+                                const std::vector<Landmark>& landmarks) {
   Fnv1a hash;
   hash.add(read_bytes(fs::path(dir) / "dataset.json"));
   for (const DatasetScene& scene : dataset.scenes) hash.add(read_bytes(fs::path(dir) / scene.file));
-  for (const DatasetLandmark& entry : dataset.landmarks) {
-    const Landmark landmark = load_landmark((fs::path(dir) / entry.file).string());
+  for (const Landmark& landmark : landmarks) {
     for (const Eigen::Vector3f& p : landmark.points.points) hash.add(p.data(), sizeof(float) * 3);
     const Eigen::Matrix4d box_pose = landmark.box.pose.matrix();
     hash.add(box_pose.data(), sizeof(double) * 16)

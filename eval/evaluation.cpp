@@ -33,9 +33,7 @@ using Clock = std::chrono::steady_clock;
 constexpr double kRecordedThresholdFactor = 2.0;
 
 double metric_default_threshold(const FindSettings& find) {
-  const bool fast = find.method == "fast";
-  return find_error_metric(find.metric.empty() ? (fast ? "visibility" : "paper") : find.metric)
-      .default_threshold;
+  return find_error_metric(effective_metric(find)).default_threshold;
 }
 
 double recorded_threshold(const FindSettings& find) {
@@ -126,10 +124,6 @@ PairResult search_pair(const PointCloud& cloud, const DatasetScene& scene, const
 
 }  // namespace
 
-double effective_threshold(const FindSettings& find) {
-  return find.threshold ? *find.threshold : metric_default_threshold(find);
-}
-
 PairInput matches_within(const PairResult& pair, double threshold) {
   PairInput in;
   in.truth = pair.truth;
@@ -191,7 +185,7 @@ Evaluation evaluate(const std::string& dir, const Dataset& dataset,
   for (const DatasetLandmark& entry : dataset.landmarks)
     landmarks.push_back(load_landmark((fs::path(dir) / entry.file).string()));
 
-  evaluation.fingerprint = dataset_fingerprint(dir, dataset);
+  evaluation.fingerprint = dataset_fingerprint(dir, dataset, landmarks);
   const PairCache cache(settings.cache_dir,
                         evaluation_cache_key(settings.find, evaluation.fingerprint));
   const double threshold = effective_threshold(settings.find);

@@ -31,9 +31,6 @@ struct EvaluationSettings {
   std::function<void(std::size_t, std::size_t, std::size_t)> progress;
 };
 
-/// The error threshold a FindSettings applies: its own, or its metric's default.
-double effective_threshold(const FindSettings& find);
-
 /// A match as the evaluation keeps it.
 struct FoundBox {
   Box box;  ///< scene frame

@@ -146,7 +146,7 @@ json evaluation_to_json(const Evaluation& e, const std::vector<EvaluationRow>& r
           {"dataset", e.dataset},
           {"dataset_fingerprint", e.fingerprint},
           {"method", f.method},
-          {"metric", f.metric.empty() ? (f.method == "fast" ? "visibility" : "paper") : f.metric},
+          {"metric", effective_metric(f)},
           {"threshold", threshold},
           {"max_seeds", f.max_seeds},
           {"pairs_searched", e.settings.in_context_only ? "in-context" : "all"},

@@ -35,8 +35,7 @@ TextTable evaluation_table(const std::vector<EvaluationRow>& rows) {
 
 std::string evaluation_header(const Evaluation& e) {
   const FindSettings& f = e.settings.find;
-  const std::string metric =
-      f.metric.empty() ? (f.method == "fast" ? "visibility" : "paper") : f.metric;
+  const std::string metric = effective_metric(f);
   std::size_t scenes = 0;
   std::string last;
   for (const PairResult& p : e.pairs) {

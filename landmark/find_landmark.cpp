@@ -98,9 +98,9 @@ FindResult search(const SceneIndex& index, const Landmark& landmark, const FindS
   SearchStats& stats = result.stats;
   const bool fast = settings.method == "fast";
   stats.method = settings.method;
-  stats.metric = settings.metric.empty() ? (fast ? "visibility" : "paper") : settings.metric;
+  stats.metric = effective_metric(settings);
   const ErrorMetric& metric = find_error_metric(stats.metric);
-  stats.threshold = settings.threshold ? *settings.threshold : metric.default_threshold;
+  stats.threshold = effective_threshold(settings);
   stats.scene_points = index.input_points();
 
   // Seeds: a seeded random sample of the points the method starts from (step 3).
@@ -235,6 +235,16 @@ FindResult find_landmark(const SceneIndex& index, const Landmark& landmark,
                          const FindSettings& settings) {
   check_inputs(settings, landmark);
   return search(index, landmark, settings);
+}
+
+std::string effective_metric(const FindSettings& settings) {
+  if (!settings.metric.empty()) return settings.metric;
+  return settings.method == "fast" ? "visibility" : "paper";
+}
+
+double effective_threshold(const FindSettings& settings) {
+  return settings.threshold ? *settings.threshold
+                            : find_error_metric(effective_metric(settings)).default_threshold;
 }
 
 }  // namespace lmk

@@ -140,6 +140,13 @@ std::string describe_rejections(const SearchStats& stats);
 /// The scene settings a FindSettings implies.
 SceneSettings scene_settings(const FindSettings& settings);
 
+/// The metric a search applies: settings.metric, or the method's own when it is empty
+/// ("visibility" for fast, "paper" for reference).
+std::string effective_metric(const FindSettings& settings);
+
+/// The error threshold a search applies: settings.threshold, or its metric's default.
+double effective_threshold(const FindSettings& settings);
+
 /// The search methods find_landmark accepts.
 std::vector<std::string> search_methods();
 
