@@ -17,7 +17,7 @@ namespace lmk {
 
 /// Bumped whenever the generator's output changes (objects, scene types, sensor, capture), so that
 /// cached benchmark datasets are regenerated.
-inline constexpr int kBenchmarkGeneratorVersion = 1;
+inline constexpr int kBenchmarkGeneratorVersion = 2;
 
 /// A named recipe for a benchmark dataset.
 struct BenchmarkPreset {

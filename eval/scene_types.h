@@ -4,7 +4,7 @@
 // the world frame.
 //
 // Worlds are z up, in metres, with the floor at z = 0. A seed varies object positions and yaws,
-// clutter and the sensor's viewpoint; `hard` adds what the paper's method could not handle: any
+// clutter and the sensor's viewpoint; `hard` adds what the paper's method could not handle: larger
 // yaw of the objects, rotated chairs, tilted walls and cabinets, and a rolled camera.
 
 #include <cstdint>
