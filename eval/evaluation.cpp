@@ -16,6 +16,7 @@
 #include "geometry/cloud_io.h"
 #include "geometry/error.h"
 #include "geometry/hash.h"
+#include "geometry/statistics.h"
 #include "geometry/version.h"
 #include "landmark/error_metrics.h"
 #include "landmark/landmark_file.h"
@@ -39,15 +40,6 @@ double metric_default_threshold(const FindSettings& find) {
 double recorded_threshold(const FindSettings& find) {
   return kRecordedThresholdFactor *
          std::max(effective_threshold(find), metric_default_threshold(find));
-}
-
-std::optional<double> median(std::vector<double> values) {
-  if (values.empty()) return std::nullopt;
-  const std::size_t mid = values.size() / 2;
-  std::nth_element(values.begin(), values.begin() + mid, values.end());
-  if (values.size() % 2 == 1) return values[mid];
-  const double upper = values[mid];
-  return 0.5 * (upper + *std::max_element(values.begin(), values.begin() + mid));
 }
 
 // The search a pair runs: one thread, no callback, matches kept up to the recorded threshold, and
@@ -236,37 +228,46 @@ Evaluation evaluate(const std::string& dir, const Dataset& dataset,
   return evaluation;
 }
 
-std::vector<EvaluationRow> evaluation_rows(const Evaluation& evaluation,
-                                           std::optional<double> threshold) {
-  const double t = threshold.value_or(effective_threshold(evaluation.settings.find));
-  const MatchTolerance& tolerance = evaluation.settings.tolerance;
+std::vector<std::string> evaluation_settings(const Evaluation& evaluation) {
   std::vector<std::string> settings;
   for (const PairResult& p : evaluation.pairs) {
     if (std::find(settings.begin(), settings.end(), p.setting) == settings.end())
       settings.push_back(p.setting);
   }
   settings.push_back("all");
+  return settings;
+}
+
+EvaluationRow evaluation_row(const Evaluation& evaluation, const std::string& setting,
+                             int assumption, double threshold) {
+  const MatchTolerance& tolerance = evaluation.settings.tolerance;
+  EvaluationRow row;
+  row.setting = setting;
+  row.assumption = assumption;
+  std::vector<double> seconds;
+  for (const PairResult& p : evaluation.pairs) {
+    if (setting != "all" && p.setting != setting) continue;
+    if (assumption > 1 && !p.in_context) continue;
+    const PairInput in = matches_within(p, threshold);
+    row.counts.add(assumption == 3 ? count_best_match(in, tolerance)
+                                   : count_all_matches(in, tolerance));
+    seconds.push_back(p.seconds);
+    ++row.pairs;
+  }
+  row.median_translation_error = median(row.counts.translation_errors);
+  row.median_rotation_error = median(row.counts.rotation_errors);
+  row.median_seconds = median(seconds);
+  return row;
+}
+
+std::vector<EvaluationRow> evaluation_rows(const Evaluation& evaluation,
+                                           std::optional<double> threshold) {
+  const double t = threshold.value_or(effective_threshold(evaluation.settings.find));
   std::vector<EvaluationRow> rows;
-  for (const std::string& setting : settings) {
+  for (const std::string& setting : evaluation_settings(evaluation)) {
     for (int assumption = evaluation.settings.in_context_only ? 2 : 1; assumption <= 3;
          ++assumption) {
-      EvaluationRow row;
-      row.setting = setting;
-      row.assumption = assumption;
-      std::vector<double> seconds;
-      for (const PairResult& p : evaluation.pairs) {
-        if (setting != "all" && p.setting != setting) continue;
-        if (assumption > 1 && !p.in_context) continue;
-        const PairInput in = matches_within(p, t);
-        row.counts.add(assumption == 3 ? count_best_match(in, tolerance)
-                                       : count_all_matches(in, tolerance));
-        seconds.push_back(p.seconds);
-        ++row.pairs;
-      }
-      row.median_translation_error = median(row.counts.translation_errors);
-      row.median_rotation_error = median(row.counts.rotation_errors);
-      row.median_seconds = median(seconds);
-      rows.push_back(std::move(row));
+      rows.push_back(evaluation_row(evaluation, setting, assumption, t));
     }
   }
   return rows;

@@ -81,6 +81,14 @@ struct Evaluation {
 Evaluation evaluate(const std::string& dir, const Dataset& dataset,
                     const EvaluationSettings& settings);
 
+/// The settings of the evaluation's pairs in order of first appearance, then "all".
+std::vector<std::string> evaluation_settings(const Evaluation& evaluation);
+
+/// One row: the pairs of `setting` ("all": every pair) under `assumption`, matches below
+/// `threshold`.
+EvaluationRow evaluation_row(const Evaluation& evaluation, const std::string& setting,
+                             int assumption, double threshold);
+
 /// The table at `threshold` (default: the evaluation's own): each setting of the dataset in order
 /// of first appearance, then "all"; per setting assumptions 1 (unless only in-context pairs were
 /// searched), 2 and 3.

@@ -19,17 +19,12 @@ namespace {
 
 const char* const kColours[] = {"#4477aa", "#ee6677", "#228833", "#ccbb44", "#66ccee", "#aa3377"};
 
+const std::string kAssumptionsNote =
+    "Assumptions: 1, all pairs; 2, in-context pairs; 3, in-context pairs, best match only. Errors "
+    "are medians over true positives; '-' is undefined (no output, or nothing to find).";
+
 // The assumption the curves show: 1 when every pair was searched, else 2.
 int curve_assumption(const Evaluation& e) { return e.settings.in_context_only ? 2 : 1; }
-
-std::vector<std::string> settings_of(const Evaluation& e) {
-  std::vector<std::string> out;
-  for (const PairResult& p : e.pairs) {
-    if (std::find(out.begin(), out.end(), p.setting) == out.end()) out.push_back(p.setting);
-  }
-  out.push_back("all");
-  return out;
-}
 
 // One line per pair: what was there, what was found, how good the best match was, how long.
 TextTable pair_table(const Evaluation& e) {
@@ -78,7 +73,7 @@ std::string threshold_plot(const Evaluation& e) {
   plot.x_label = "error threshold (mm)";
   plot.marker_x = 1e3 * effective_threshold(e.settings.find);
   std::size_t k = 0;
-  for (const std::string& setting : settings_of(e)) {
+  for (const std::string& setting : evaluation_settings(e)) {
     const std::string colour = kColours[k++ % (sizeof(kColours) / sizeof(kColours[0]))];
     PlotSeries precision{setting + " P", {}, colour, false};
     PlotSeries recall{setting + " R", {}, colour, true};
@@ -104,10 +99,7 @@ std::string times_plot(const Evaluation& e) {
 std::string markdown(const Evaluation& e, const std::vector<EvaluationRow>& rows) {
   return "# lmk evaluation: " + e.dataset + "\n\n" + evaluation_header(e) + ".\n\nlmk " + kVersion +
          ", dataset fingerprint " + e.fingerprint + ", run " + format_optional(e.seconds, 1) +
-         " s.\n\n## Precision and recall\n\n"
-         "Assumptions: 1, all pairs; 2, in-context pairs; 3, in-context pairs, best match only. "
-         "Errors are medians over true positives; '-' is undefined (no output, or nothing to "
-         "find).\n\n" +
+         " s.\n\n## Precision and recall\n\n" + kAssumptionsNote + "\n\n" +
          evaluation_table(rows).markdown() + "\n## Pairs\n\n" + pair_table(e).markdown();
 }
 
@@ -122,9 +114,7 @@ std::string html(const Evaluation& e, const std::vector<EvaluationRow>& rows) {
          escape_html(e.dataset) + "</h1>\n<p>" + escape_html(evaluation_header(e)) +
          ".</p>\n<p>lmk " + kVersion + ", dataset fingerprint <code>" + e.fingerprint +
          "</code>, run " + format_optional(e.seconds, 1) +
-         " s.</p>\n<h2>Precision and recall</h2>\n<p>Assumptions: 1, all pairs; 2, in-context "
-         "pairs; 3, in-context pairs, best match only. Errors are medians over true positives; "
-         "'-' is undefined (no output, or nothing to find).</p>\n" +
+         " s.</p>\n<h2>Precision and recall</h2>\n<p>" + escape_html(kAssumptionsNote) + "</p>\n" +
          html_table(evaluation_table(rows)) + "<h2>Plots</h2>\n<figure>\n" + threshold_plot(e) +
          "</figure>\n<figure>\n" + times_plot(e) + "</figure>\n<h2>Pairs</h2>\n" +
          html_table(pair_table(e)) + "</body>\n</html>\n";
@@ -139,14 +129,7 @@ std::vector<ThresholdPoint> threshold_curve(const Evaluation& e, const std::stri
   for (int i = 0; i < steps; ++i) {
     ThresholdPoint point;
     point.threshold = t * (0.1 + 1.9 * i / std::max(1, steps - 1));
-    Counts counts;
-    for (const PairResult& p : e.pairs) {
-      if (setting != "all" && p.setting != setting) continue;
-      if (assumption > 1 && !p.in_context) continue;
-      const PairInput in = matches_within(p, point.threshold);
-      counts.add(assumption == 3 ? count_best_match(in, e.settings.tolerance)
-                                 : count_all_matches(in, e.settings.tolerance));
-    }
+    const Counts counts = evaluation_row(e, setting, assumption, point.threshold).counts;
     point.precision = counts.precision();
     point.recall = counts.recall();
     curve.push_back(point);
@@ -161,7 +144,7 @@ void write_evaluation_report(const std::string& dir, const Evaluation& e) {
   const std::vector<EvaluationRow> rows = evaluation_rows(e);
   json j = detail::evaluation_to_json(e, rows);
   json curves = json::array();
-  for (const std::string& setting : settings_of(e)) {
+  for (const std::string& setting : evaluation_settings(e)) {
     json points = json::array();
     for (const ThresholdPoint& p : threshold_curve(e, setting, curve_assumption(e))) {
       points.push_back({{"threshold", p.threshold},

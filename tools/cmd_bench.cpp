@@ -26,6 +26,7 @@
 #include "geometry/atomic_file.h"
 #include "geometry/cloud_io.h"
 #include "geometry/error.h"
+#include "geometry/statistics.h"
 #include "landmark/find_landmark.h"
 #include "landmark/landmark_file.h"
 #include "tools/cli_common.h"
@@ -81,11 +82,8 @@ Workload load_workload(const BenchOptions& o) {
   return w;
 }
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
+// The benchmark's samples are never empty: --repeats is checked to be at least 1.
+double median_of(const std::vector<double>& v) { return *median(v); }
 
 // The process's peak resident memory so far, MiB (Linux reports ru_maxrss in KiB).
 double peak_memory_mib() {
@@ -122,10 +120,10 @@ int run_bench(const BenchOptions& o) {
     fast_matches = r.matches.size();
   }
   const double fast_peak = peak_memory_mib();
-  const double fast_median = median(total);
+  const double fast_median = median_of(total);
   std::printf("\nfast               %d searches\n", o.repeats);
   std::printf("  median per search %.4f s (scene preprocessing %.4f s + search %.4f s)\n",
-              fast_median, median(preprocess), median(search));
+              fast_median, median_of(preprocess), median_of(search));
   std::printf("  matches           %zu\n", fast_matches);
   std::printf("  peak memory       %.0f MiB (process, after the fast searches)\n", fast_peak);
 
@@ -158,8 +156,8 @@ int run_bench(const BenchOptions& o) {
                                 {"fast",
                                  {{"searches", o.repeats},
                                   {"median_seconds_per_search", fast_median},
-                                  {"median_seconds_preprocess", median(preprocess)},
-                                  {"median_seconds_search", median(search)},
+                                  {"median_seconds_preprocess", median_of(preprocess)},
+                                  {"median_seconds_search", median_of(search)},
                                   {"matches", fast_matches},
                                   {"peak_memory_mib", fast_peak}}},
                                 {"reference",
@@ -183,7 +181,9 @@ Subcommand add_bench(CLI::App& app) {
   sub->add_option("scene", o->scene, "Scene cloud (default: the built-in milk-carton workload)");
   sub->add_option("landmark", o->landmark, "Landmark file (.lmk), with SCENE");
   sub->add_option("--data", o->data, "Shared data directory (default $LMK_SHARED_DATA)");
-  sub->add_option("--repeats", o->repeats, "Fast searches to time")->capture_default_str();
+  sub->add_option("--repeats", o->repeats, "Fast searches to time")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
   sub->add_option("--reference-seeds", o->reference_seeds,
                   "Seeds the reference search runs before extrapolating")
       ->capture_default_str();

@@ -311,6 +311,7 @@ TEST_F(Cli, EvaluationErrorsAreOneLine) {
   expect_bad_input("eval --preset nope", "unknown preset 'nope'");
   expect_bad_input("ablate --vary colour=red", "unknown setting 'colour'");
   expect_bad_input("ablate --vary metric=paper,paper", "given twice");
+  expect_bad_input("bench --repeats 0", "--repeats");
 }
 
 // The acceptance run: the built-in 'paper' preset with the fast method completes and prints the
