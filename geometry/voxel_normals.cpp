@@ -145,4 +145,15 @@ std::vector<Eigen::Vector3f> VoxelMoments::normals(const Eigen::Vector3d& viewpo
   return out;
 }
 
+PointCloud downsample_with_normals(const PointCloud& cloud, double leaf_size,
+                                   const Eigen::Vector3d& viewpoint) {
+  const VoxelMoments moments(cloud, leaf_size);
+  PointCloud out;
+  out.points = moments.centroids();
+  out.normals = moments.normals(viewpoint);
+  out.set_unorganized();
+  out.T_cloud_sensor = cloud.T_cloud_sensor;
+  return out;
+}
+
 }  // namespace lmk

@@ -32,4 +32,11 @@ class VoxelMoments {
   std::shared_ptr<const Impl> impl_;
 };
 
+/// The cloud downsampled to its voxel centroids, each with the normal VoxelMoments::normals gives
+/// it, facing `viewpoint`. Two clouds reduced this way have comparable normals whatever
+/// their own normals were: the fast search builds its landmark model like the scene's coarse cloud,
+/// so that point pair features of the two agree.
+PointCloud downsample_with_normals(const PointCloud& cloud, double leaf_size,
+                                   const Eigen::Vector3d& viewpoint);
+
 }  // namespace lmk

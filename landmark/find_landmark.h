@@ -66,7 +66,7 @@ struct FindSettings {
   /// diameter (at least the coarse leaf). Drost et al.'s 5% found the same poses at twice the cost.
   double vote_leaf_fraction = 0.07;
   int poses_per_seed = 3;            ///< best-voted poses kept per seed
-  std::size_t max_candidates = 96;   ///< pose clusters aligned coarsely
+  std::size_t max_candidates = 400;  ///< pose clusters aligned coarsely
   double prune_error = 0.015;        ///< coarse fit beyond which a candidate is dropped, m
   std::size_t max_refined = 16;      ///< candidates refined fully
   bool refine = true;                ///< Ceres robust refinement of the finalists

@@ -10,6 +10,7 @@
 
 #include "geometry/pose.h"
 #include "geometry/voxel_grid.h"
+#include "geometry/voxel_normals.h"
 #include "landmark/detail/grid_metrics.h"
 #include "landmark/detail/point_pair_voting.h"
 #include "landmark/detail/stopwatch.h"
@@ -78,11 +79,18 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
       std::max(static_cast<double>(landmark.points.bounds().diagonal().norm()), 3.0 * leaf);
   const double vote_leaf = std::max(leaf, diameter * s.vote_leaf_fraction);
   const PointCloud& model = in.landmark_coarse;
-  const PointCloud vote_model = voxel_downsample(landmark.points, vote_leaf);
+  // Model and scene reach the voting resolution the same way, from clouds whose normals were
+  // estimated alike (VoxelMoments over two-leaf blocks). The capture's own normals, averaged, gave
+  // thin parts such as a drawer handle's bar normals the scene never shows: on the paper-x10
+  // preset, precision on unconventional scenes rose from 0.938 to 0.967 with these.
+  const bool own_vote_cloud = vote_leaf > leaf * 1.01;
+  const PointCloud like_scene =
+      downsample_with_normals(landmark.points, leaf, landmark.sensor_origin);
+  const PointCloud vote_model =
+      own_vote_cloud ? voxel_downsample(like_scene, vote_leaf) : like_scene;
   const std::shared_ptr<const PointPairModel> shared_pairs =
       shared_point_pair_model(vote_model, vote_leaf, diameter);
   const PointPairModel& pairs = *shared_pairs;
-  const bool own_vote_cloud = vote_leaf > leaf * 1.01;
   const PointCloud vote_scene = own_vote_cloud ? voxel_downsample(coarse, vote_leaf) : PointCloud();
   const PointCloud& voters = own_vote_cloud ? vote_scene : coarse;
   const std::unique_ptr<KdTree> own_tree =
