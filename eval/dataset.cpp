@@ -6,7 +6,7 @@
 #include <set>
 
 #include "geometry/atomic_file.h"
-#include "geometry/detail/pose_json.h"
+#include "geometry/detail/json_reader.h"
 #include "geometry/error.h"
 
 namespace lmk {
@@ -16,61 +16,15 @@ using nlohmann::json;
 
 namespace {
 
-// Field paths like scenes[2].pairs[0] make every message point at the offending entry.
-std::string at(const std::string& path, const std::string& field, std::size_t i) {
-  return path + (path.empty() ? "" : ".") + field + "[" + std::to_string(i) + "]";
-}
-
-class Reader {
- public:
-  explicit Reader(std::string file) : file_(std::move(file)) {}
-
-  [[noreturn]] void fail(const std::string& where, const std::string& problem) const {
-    throw Error(file_ + ": " + (where.empty() ? "" : where + ": ") + problem);
-  }
-
-  // "file: where", the context the shared JSON readers prefix to their messages.
-  std::string in(const std::string& where) const {
-    return file_ + (where.empty() ? "" : ": " + where);
-  }
-
-  const json& field(const json& j, const std::string& where, const std::string& key) const {
-    return detail::json_field(j, key, in(where));
-  }
-
-  std::string text(const json& j, const std::string& where, const std::string& key) const {
-    const json& v = field(j, where, key);
-    if (!v.is_string() || v.get<std::string>().empty())
-      fail(where, "'" + key + "' must be a non-empty string");
-    return v.get<std::string>();
-  }
-
-  Eigen::VectorXd numbers(const json& v, const std::string& where, std::size_t n) const {
-    return detail::numbers_from_json(v, n, in(where));
-  }
-
-  Eigen::Isometry3d pose(const json& j, const std::string& where) const {
-    return detail::pose_from_json(j, in(where));
-  }
-
- private:
-  std::string file_;
-};
-
-Dataset parse(const json& j, const Reader& r) {
+Dataset parse(const json& j, const detail::JsonReader& r) {
   Dataset d;
   if (!j.is_object()) r.fail("", "must hold a JSON object");
-  const json& version = r.field(j, "", "version");
-  if (!version.is_number_integer() || version.get<int>() != kDatasetFormatVersion) {
-    r.fail("version", "dataset format version " + version.dump() +
-                          " is not supported (this lmk reads " +
-                          std::to_string(kDatasetFormatVersion) + ")");
-  }
+  r.require_version(j, kDatasetFormatVersion, "dataset");
   d.name = r.text(j, "", "name");
   const json& landmarks = r.field(j, "", "landmarks");
   if (!landmarks.is_array()) r.fail("landmarks", "must be an array");
   for (std::size_t i = 0; i < landmarks.size(); ++i) {
-    const std::string where = at("", "landmarks", i);
+    const std::string where = detail::at("", "landmarks", i);
     DatasetLandmark l{r.text(landmarks[i], where, "name"), r.text(landmarks[i], where, "file"), {}};
     if (landmarks[i].contains("symmetry_axis") && !landmarks[i]["symmetry_axis"].is_null()) {
       const Eigen::Vector3d axis =
@@ -91,7 +45,7 @@ Dataset parse(const json& j, const Reader& r) {
   const json& scenes = r.field(j, "", "scenes");
   if (!scenes.is_array()) r.fail("scenes", "must be an array");
   for (std::size_t i = 0; i < scenes.size(); ++i) {
-    const std::string where = at("", "scenes", i);
+    const std::string where = detail::at("", "scenes", i);
     DatasetScene s;
     s.name = r.text(scenes[i], where, "name");
     s.file = r.text(scenes[i], where, "file");
@@ -105,7 +59,7 @@ Dataset parse(const json& j, const Reader& r) {
     const json& pairs = scenes[i].contains("pairs") ? scenes[i]["pairs"] : json::array();
     if (!pairs.is_array()) r.fail(where + ".pairs", "must be an array");
     for (std::size_t k = 0; k < pairs.size(); ++k) {
-      const std::string pw = at(where, "pairs", k);
+      const std::string pw = detail::at(where, "pairs", k);
       DatasetPair p;
       p.landmark = r.text(pairs[k], pw, "landmark");
       const json& in_context = r.field(pairs[k], pw, "in_context");
@@ -114,7 +68,7 @@ Dataset parse(const json& j, const Reader& r) {
       const json& instances = r.field(pairs[k], pw, "instances");
       if (!instances.is_array()) r.fail(pw + ".instances", "must be an array of poses");
       for (std::size_t n = 0; n < instances.size(); ++n) {
-        p.instances.push_back(r.pose(instances[n], at(pw, "instances", n)));
+        p.instances.push_back(r.pose(instances[n], detail::at(pw, "instances", n)));
       }
       s.pairs.push_back(p);
     }
@@ -124,10 +78,10 @@ Dataset parse(const json& j, const Reader& r) {
 }
 
 // Names unique, pairs naming known landmarks once per scene, and every file present.
-void check_consistency(const Dataset& d, const std::string& dir, const Reader& r) {
+void check_consistency(const Dataset& d, const std::string& dir, const detail::JsonReader& r) {
   std::set<std::string> landmark_names, scene_names;
   for (std::size_t i = 0; i < d.landmarks.size(); ++i) {
-    const std::string where = at("", "landmarks", i);
+    const std::string where = detail::at("", "landmarks", i);
     if (!landmark_names.insert(d.landmarks[i].name).second) {
       r.fail(where, "duplicate landmark name '" + d.landmarks[i].name + "'");
     }
@@ -137,7 +91,7 @@ void check_consistency(const Dataset& d, const std::string& dir, const Reader& r
   }
   for (std::size_t i = 0; i < d.scenes.size(); ++i) {
     const DatasetScene& s = d.scenes[i];
-    const std::string where = at("", "scenes", i);
+    const std::string where = detail::at("", "scenes", i);
     if (!scene_names.insert(s.name).second) r.fail(where, "duplicate scene name '" + s.name + "'");
     if (!fs::is_regular_file(fs::path(dir) / s.file)) {
       r.fail(where + ".file", "'" + s.file + "' does not exist in " + dir);
@@ -146,9 +100,9 @@ void check_consistency(const Dataset& d, const std::string& dir, const Reader& r
     for (std::size_t k = 0; k < s.pairs.size(); ++k) {
       const std::string& name = s.pairs[k].landmark;
       if (!landmark_names.count(name))
-        r.fail(at(where, "pairs", k), "unknown landmark '" + name + "'");
+        r.fail(detail::at(where, "pairs", k), "unknown landmark '" + name + "'");
       if (!paired.insert(name).second)
-        r.fail(at(where, "pairs", k), "landmark '" + name + "' paired twice");
+        r.fail(detail::at(where, "pairs", k), "landmark '" + name + "' paired twice");
     }
   }
 }
@@ -164,7 +118,7 @@ DatasetPair Dataset::pair(const DatasetScene& scene, const std::string& landmark
 
 Dataset load_dataset(const std::string& dir) {
   const std::string file = (fs::path(dir) / "dataset.json").string();
-  const Reader r(file);
+  const detail::JsonReader r(file);
   std::ifstream in(file);
   if (!in)
     r.fail("", fs::is_directory(dir) ? "no such file"
@@ -213,7 +167,7 @@ void save_dataset(const std::string& dir, const Dataset& d) {
                   {"landmarks", landmarks},
                   {"scenes", scenes}};
   // Validate what is about to be written exactly as a reader would, before writing it.
-  const Reader r(file);
+  const detail::JsonReader r(file);
   check_consistency(parse(j, r), dir, r);
   write_file_atomically(file, [&](const fs::path& tmp) {
     std::ofstream out(tmp);

@@ -1,0 +1,67 @@
+#pragma once
+// A reader for lmk's JSON files (datasets, programs) that names the file and the offending field
+// in every message: "dataset.json: scenes[2].pairs[0]: unknown landmark 'cup'". Header-only and
+// internal, like pose_json.h.
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "geometry/detail/pose_json.h"
+#include "geometry/error.h"
+
+namespace lmk::detail {
+
+/// Field paths like scenes[2].pairs[0]: `path`.`field`[`i`].
+inline std::string at(const std::string& path, const std::string& field, std::size_t i) {
+  return path + (path.empty() ? "" : ".") + field + "[" + std::to_string(i) + "]";
+}
+
+class JsonReader {
+ public:
+  explicit JsonReader(std::string file) : file_(std::move(file)) {}
+
+  [[noreturn]] void fail(const std::string& where, const std::string& problem) const {
+    throw Error(file_ + ": " + (where.empty() ? "" : where + ": ") + problem);
+  }
+
+  /// "file: where", the context the shared JSON readers prefix to their messages.
+  std::string in(const std::string& where) const {
+    return file_ + (where.empty() ? "" : ": " + where);
+  }
+
+  const nlohmann::json& field(const nlohmann::json& j, const std::string& where,
+                              const std::string& key) const {
+    return json_field(j, key, in(where));
+  }
+
+  std::string text(const nlohmann::json& j, const std::string& where,
+                   const std::string& key) const {
+    const nlohmann::json& v = field(j, where, key);
+    if (!v.is_string() || v.get<std::string>().empty()) {
+      fail(where, "'" + key + "' must be a non-empty string");
+    }
+    return v.get<std::string>();
+  }
+
+  Eigen::VectorXd numbers(const nlohmann::json& v, const std::string& where, std::size_t n) const {
+    return numbers_from_json(v, n, in(where));
+  }
+
+  Eigen::Isometry3d pose(const nlohmann::json& j, const std::string& where) const {
+    return pose_from_json(j, in(where));
+  }
+
+  /// The file's "version" must be exactly `expected`.
+  void require_version(const nlohmann::json& j, int expected, const std::string& what) const {
+    const nlohmann::json& version = field(j, "", "version");
+    if (!version.is_number_integer() || version.get<int>() != expected) {
+      fail("version", what + " format version " + version.dump() +
+                          " is not supported (this lmk reads " + std::to_string(expected) + ")");
+    }
+  }
+
+ private:
+  std::string file_;
+};
+
+}  // namespace lmk::detail

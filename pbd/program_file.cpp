@@ -1,0 +1,138 @@
+// Program files: {"format": "lmk-program", "version": 1, "name": ..., "landmarks": [...],
+// "steps": [...]} (docs/programs.md).
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "geometry/atomic_file.h"
+#include "geometry/detail/json_reader.h"
+#include "geometry/error.h"
+#include "pbd/program.h"
+
+namespace lmk {
+
+namespace {
+
+using nlohmann::json;
+constexpr const char* kFormat = "lmk-program";
+
+json arm_to_json(const ArmTarget& t) {
+  json j = detail::pose_to_json(t.T_frame_ee);
+  j["frame"] = t.frame;
+  j["gripper"] = gripper_action_name(t.gripper);
+  return j;
+}
+
+ArmTarget arm_from_json(const json& j, const std::string& where, const detail::JsonReader& r) {
+  if (!j.is_object()) r.fail(where, "must be an object with frame, position, quaternion, gripper");
+  ArmTarget t;
+  t.frame = r.text(j, where, "frame");
+  t.T_frame_ee = r.pose(j, where);
+  const std::string gripper = r.text(j, where, "gripper");
+  if (gripper == "open") {
+    t.gripper = GripperAction::kOpen;
+  } else if (gripper == "close") {
+    t.gripper = GripperAction::kClose;
+  } else {
+    r.fail(where + ".gripper", "must be \"open\" or \"close\", not \"" + gripper + "\"");
+  }
+  return t;
+}
+
+Program parse(const json& j, const detail::JsonReader& r) {
+  if (!j.is_object()) r.fail("", "must hold a JSON object");
+  if (j.contains("format") && j["format"] != kFormat) {
+    r.fail("format", "is " + j["format"].dump() + ", not \"" + kFormat + "\"");
+  }
+  r.require_version(j, kProgramFormatVersion, "program");
+  Program p;
+  p.name = r.text(j, "", "name");
+  const json& landmarks = r.field(j, "", "landmarks");
+  if (!landmarks.is_array()) r.fail("landmarks", "must be an array");
+  for (std::size_t i = 0; i < landmarks.size(); ++i) {
+    const std::string where = detail::at("", "landmarks", i);
+    p.landmarks.push_back(
+        {r.text(landmarks[i], where, "name"), r.text(landmarks[i], where, "file")});
+  }
+  const json& steps = r.field(j, "", "steps");
+  if (!steps.is_array()) r.fail("steps", "must be an array");
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    const std::string where = detail::at("", "steps", i);
+    const json& s = steps[i];
+    if (!s.is_object()) r.fail(where, "must be an object");
+    ProgramStep step;
+    for (Arm arm : {Arm::kLeft, Arm::kRight}) {
+      const char* name = arm_name(arm);
+      if (s.contains(name) && !s[name].is_null()) {
+        step.arm(arm) = arm_from_json(s[name], where + "." + name, r);
+      }
+    }
+    if (!step.left && !step.right)
+      r.fail(where, "moves neither arm: give \"left\", \"right\" or both");
+    if (s.contains("duration") && !s["duration"].is_null()) {
+      if (!s["duration"].is_number() || !(s["duration"].get<double>() > 0.0)) {
+        r.fail(where + ".duration", "must be a positive number of seconds");
+      }
+      step.duration = s["duration"].get<double>();
+    }
+    p.steps.push_back(std::move(step));
+  }
+  return p;
+}
+
+}  // namespace
+
+std::string program_to_json(const Program& program) {
+  json landmarks = json::array(), steps = json::array();
+  for (const ProgramLandmark& l : program.landmarks) {
+    landmarks.push_back({{"name", l.name}, {"file", l.file}});
+  }
+  for (const ProgramStep& step : program.steps) {
+    json s = json::object();
+    for (Arm arm : {Arm::kLeft, Arm::kRight}) {
+      if (step.arm(arm)) s[arm_name(arm)] = arm_to_json(*step.arm(arm));
+    }
+    if (step.duration) s["duration"] = *step.duration;
+    steps.push_back(std::move(s));
+  }
+  const json j = {{"format", kFormat},
+                  {"version", kProgramFormatVersion},
+                  {"name", program.name},
+                  {"landmarks", std::move(landmarks)},
+                  {"steps", std::move(steps)}};
+  return j.dump(2) + "\n";
+}
+
+Program program_from_json(const std::string& text, const std::string& source) {
+  const detail::JsonReader r(source);
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::exception& e) {
+    r.fail("", std::string("not valid JSON (") + e.what() + ")");
+  }
+  Program p = parse(j, r);
+  try {
+    validate_program(p);
+  } catch (const Error& e) {
+    r.fail("", e.what());
+  }
+  return p;
+}
+
+Program load_program(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw Error(path + ": cannot open the program file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return program_from_json(text.str(), path);
+}
+
+void save_program(const std::string& path, const Program& program) {
+  validate_program(program);
+  write_text_atomically(path, program_to_json(program));
+}
+
+}  // namespace lmk

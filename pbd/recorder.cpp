@@ -1,0 +1,124 @@
+#include "pbd/recorder.h"
+
+#include <limits>
+
+#include "geometry/error.h"
+
+namespace lmk {
+
+double distance_to_box(const Eigen::Vector3d& point, const Box& box) {
+  const Eigen::Vector3d local = box.pose.inverse() * point;
+  const Eigen::Vector3d half = 0.5 * box.size;
+  return (local - local.cwiseMax(-half).cwiseMin(half)).norm();
+}
+
+Recorder::Recorder(std::string name, std::vector<ProgramLandmark> landmarks,
+                   std::vector<LandmarkInstance> instances, const RecorderSettings& settings)
+    : instances_(std::move(instances)), settings_(settings) {
+  program_.name = std::move(name);
+  program_.landmarks = std::move(landmarks);
+  validate_program(program_);
+  if (!(settings_.max_distance >= 0.0)) throw Error("recorder: the distance must not be negative");
+  for (const LandmarkInstance& instance : instances_) {
+    if (!program_.landmark(instance.name)) {
+      throw Error("recorder: an instance of '" + instance.name +
+                  "', which the program does not declare");
+    }
+    if (!instance.box.is_valid())
+      throw Error("recorder: instance of '" + instance.name + "': bad box");
+  }
+}
+
+int Recorder::nearest(const Eigen::Vector3d& point, const std::string* name) const {
+  int best = kBase;
+  double best_distance = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < instances_.size(); ++i) {
+    if (name && instances_[i].name != *name) continue;
+    const double d = distance_to_box(point, instances_[i].box);
+    if (d < best_distance) {
+      best_distance = d;
+      best = static_cast<int>(i);
+    }
+  }
+  return best;
+}
+
+ArmTarget Recorder::target_in(int anchor, const Eigen::Isometry3d& T_base_ee,
+                              GripperAction gripper) const {
+  ArmTarget t;
+  t.gripper = gripper;
+  if (anchor == kBase) {
+    t.frame = kBaseFrame;
+    t.T_frame_ee = T_base_ee;
+  } else {
+    const LandmarkInstance& instance = instances_[static_cast<std::size_t>(anchor)];
+    t.frame = instance.name;
+    // T_landmark_ee = T_base_landmark^-1 T_base_ee, so that T_base_landmark' T_landmark_ee
+    // puts the tool in the same place on a landmark found elsewhere.
+    t.T_frame_ee = instance.box.pose.inverse() * T_base_ee;
+  }
+  return t;
+}
+
+std::size_t Recorder::save_pose(const std::optional<ArmState>& left,
+                                const std::optional<ArmState>& right,
+                                std::optional<double> duration) {
+  if (!left && !right) throw Error("recorder: save pose needs at least one arm");
+  ProgramStep step;
+  step.duration = duration;
+  std::array<int, 2> anchors = {kBase, kBase};
+  for (Arm arm : {Arm::kLeft, Arm::kRight}) {
+    const std::optional<ArmState>& state = arm == Arm::kLeft ? left : right;
+    if (!state) continue;
+    int anchor = nearest(state->T_base_ee.translation(), nullptr);
+    if (anchor != kBase && distance_to_box(state->T_base_ee.translation(),
+                                           instances_[static_cast<std::size_t>(anchor)].box) >
+                               settings_.max_distance) {
+      anchor = kBase;
+    }
+    anchors[arm == Arm::kLeft ? 0 : 1] = anchor;
+    step.arm(arm) = target_in(anchor, state->T_base_ee, state->gripper);
+  }
+  program_.steps.push_back(step);
+  try {
+    validate_program(program_);
+  } catch (...) {
+    program_.steps.pop_back();
+    throw;
+  }
+  anchors_.push_back(anchors);
+  return program_.steps.size() - 1;
+}
+
+Eigen::Isometry3d Recorder::base_pose(std::size_t step, Arm arm) const {
+  if (step >= program_.steps.size()) {
+    throw Error("recorder: no step " + std::to_string(step) + " (the program has " +
+                std::to_string(program_.steps.size()) + ")");
+  }
+  const std::optional<ArmTarget>& target = program_.steps[step].arm(arm);
+  if (!target) {
+    throw Error("recorder: step " + std::to_string(step) + " does not move the " + arm_name(arm) +
+                " arm");
+  }
+  const int anchor = anchors_[step][arm == Arm::kLeft ? 0 : 1];
+  return anchor == kBase
+             ? target->T_frame_ee
+             : instances_[static_cast<std::size_t>(anchor)].box.pose * target->T_frame_ee;
+}
+
+void Recorder::set_frame(std::size_t step, Arm arm, const std::string& frame) {
+  const Eigen::Isometry3d T_base_ee = base_pose(step, arm);  // checks step and arm
+  int anchor = kBase;
+  if (frame != kBaseFrame) {
+    if (!program_.landmark(frame)) throw Error("recorder: unknown landmark '" + frame + "'");
+    anchor = nearest(T_base_ee.translation(), &frame);
+    if (anchor == kBase) {
+      throw Error("recorder: landmark '" + frame + "' was not found in the demonstration scene");
+    }
+  }
+  std::optional<ArmTarget>& target = program_.steps[step].arm(arm);
+  target = target_in(anchor, T_base_ee, target->gripper);
+  anchors_[step][arm == Arm::kLeft ? 0 : 1] = anchor;
+}
+
+}  // namespace lmk

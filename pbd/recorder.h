@@ -1,0 +1,76 @@
+#pragma once
+// Recording a demonstration (paper, Section III-B; the original PR2 PbD): the person moves the
+// arms, and each "save pose" appends a step. Each arm's pose is stored relative to the nearest
+// landmark instance found in the demonstration scene, if one is within `max_distance`, and
+// relative to the robot base otherwise.
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "geometry/box.h"
+#include "pbd/program.h"
+
+namespace lmk {
+
+/// A landmark instance found in the demonstration scene: its name in the program and its box in
+/// the robot base frame (the match's box; T_base_landmark is box.pose).
+struct LandmarkInstance {
+  std::string name;
+  Box box;
+};
+
+/// Distance from a point to a box: 0 inside, else to the nearest point of the box.
+double distance_to_box(const Eigen::Vector3d& point, const Box& box);
+
+struct RecorderSettings {
+  /// A tool farther than this from every landmark instance (from its box) is recorded in the base
+  /// frame. The original PR2 PbD attached a pose to an object within about 0.3 m.
+  double max_distance = 0.3;
+};
+
+/// One arm at "save pose": its tool frame in the base frame (from the robot's FK) and its gripper.
+struct ArmState {
+  Eigen::Isometry3d T_base_ee = Eigen::Isometry3d::Identity();
+  GripperAction gripper = GripperAction::kOpen;
+};
+
+class Recorder {
+ public:
+  /// Starts program `name` over `landmarks`, the landmarks its steps may refer to;
+  /// `instances` are those found in the demonstration scene, in the base frame. Throws lmk::Error
+  /// for an instance whose landmark is not among `landmarks`, or a bad box.
+  Recorder(std::string name, std::vector<ProgramLandmark> landmarks,
+           std::vector<LandmarkInstance> instances, const RecorderSettings& settings = {});
+
+  /// Appends a step moving the given arms (at least one); returns its index.
+  std::size_t save_pose(const std::optional<ArmState>& left, const std::optional<ArmState>& right,
+                        std::optional<double> duration = std::nullopt);
+
+  /// Re-expresses one arm of a recorded step in `frame` ("base" or a landmark with an instance in
+  /// the demonstration scene: the one nearest to the tool), keeping its pose in the base frame.
+  /// Throws lmk::Error for a bad step or arm, or a landmark without an instance.
+  void set_frame(std::size_t step, Arm arm, const std::string& frame);
+
+  /// The recorded pose of an arm in the base frame.
+  Eigen::Isometry3d base_pose(std::size_t step, Arm arm) const;
+
+  const Program& program() const { return program_; }
+  const std::vector<LandmarkInstance>& instances() const { return instances_; }
+
+ private:
+  static constexpr int kBase = -1;
+  /// The instance nearest to `point` (of landmark `name` if given), or kBase when there is none.
+  int nearest(const Eigen::Vector3d& point, const std::string* name) const;
+  ArmTarget target_in(int anchor, const Eigen::Isometry3d& T_base_ee, GripperAction g) const;
+
+  Program program_;
+  std::vector<LandmarkInstance> instances_;
+  RecorderSettings settings_;
+  /// Per step and arm (left, right): the index of the instance the target is relative to, or
+  /// kBase.
+  std::vector<std::array<int, 2>> anchors_;
+};
+
+}  // namespace lmk
