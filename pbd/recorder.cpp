@@ -1,5 +1,6 @@
 #include "pbd/recorder.h"
 
+#include <cmath>
 #include <limits>
 
 #include "geometry/error.h"
@@ -29,9 +30,12 @@ Recorder::Recorder(std::string name, std::vector<ProgramLandmark> landmarks,
   }
 }
 
-int Recorder::nearest(const Eigen::Vector3d& point, const std::string* name) const {
+int Recorder::nearest(const Eigen::Vector3d& point, const std::string* name,
+                      double max_distance) const {
   int best = kBase;
-  double best_distance = std::numeric_limits<double>::infinity();
+  // Strictly nearer wins, so ties go to the first instance; a distance of exactly max_distance
+  // still counts as within.
+  double best_distance = std::nextafter(max_distance, std::numeric_limits<double>::infinity());
   for (std::size_t i = 0; i < instances_.size(); ++i) {
     if (name && instances_[i].name != *name) continue;
     const double d = distance_to_box(point, instances_[i].box);
@@ -70,12 +74,7 @@ std::size_t Recorder::save_pose(const std::optional<ArmState>& left,
   for (Arm arm : {Arm::kLeft, Arm::kRight}) {
     const std::optional<ArmState>& state = arm == Arm::kLeft ? left : right;
     if (!state) continue;
-    int anchor = nearest(state->T_base_ee.translation(), nullptr);
-    if (anchor != kBase && distance_to_box(state->T_base_ee.translation(),
-                                           instances_[static_cast<std::size_t>(anchor)].box) >
-                               settings_.max_distance) {
-      anchor = kBase;
-    }
+    const int anchor = nearest(state->T_base_ee.translation(), nullptr, settings_.max_distance);
     anchors[arm == Arm::kLeft ? 0 : 1] = anchor;
     step.arm(arm) = target_in(anchor, state->T_base_ee, state->gripper);
   }
@@ -111,7 +110,7 @@ void Recorder::set_frame(std::size_t step, Arm arm, const std::string& frame) {
   int anchor = kBase;
   if (frame != kBaseFrame) {
     if (!program_.landmark(frame)) throw Error("recorder: unknown landmark '" + frame + "'");
-    anchor = nearest(T_base_ee.translation(), &frame);
+    anchor = nearest(T_base_ee.translation(), &frame, std::numeric_limits<double>::infinity());
     if (anchor == kBase) {
       throw Error("recorder: landmark '" + frame + "' was not found in the demonstration scene");
     }

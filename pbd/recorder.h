@@ -61,8 +61,9 @@ class Recorder {
 
  private:
   static constexpr int kBase = -1;
-  /// The instance nearest to `point` (of landmark `name` if given), or kBase when there is none.
-  int nearest(const Eigen::Vector3d& point, const std::string* name) const;
+  /// The instance nearest to `point` (of landmark `name` if given) if it is within
+  /// `max_distance`, else kBase.
+  int nearest(const Eigen::Vector3d& point, const std::string* name, double max_distance) const;
   ArmTarget target_in(int anchor, const Eigen::Isometry3d& T_base_ee, GripperAction g) const;
 
   Program program_;
