@@ -9,18 +9,9 @@ namespace lmk {
 
 double rotation_error(const Eigen::Matrix3d& R_truth, const Eigen::Matrix3d& R_found,
                       const Symmetry& symmetry) {
-  if (!symmetry.axis) return rotation_angle_between(R_truth, R_found);
-  const Eigen::Vector3d a = symmetry.axis->normalized();
-  if (symmetry.order == 0) {
-    const Eigen::Matrix3d R_rel = R_truth.transpose() * R_found;
-    return std::acos(std::clamp(a.dot(R_rel * a), -1.0, 1.0));
-  }
-  double best = M_PI;
-  for (int k = 0; k < symmetry.order; ++k) {
-    const Eigen::Matrix3d turn = Eigen::AngleAxisd(2.0 * M_PI * k / symmetry.order, a).matrix();
-    best = std::min(best, rotation_angle_between(R_truth * turn, R_found));
-  }
-  return best;
+  // The truth turned by its symmetry to face the found pose as nearly as it can; what remains is
+  // the error (for an axis of revolution, the swing angle acos(a . R_rel a)).
+  return rotation_angle_between(nearest_symmetric_rotation(R_truth, R_found, symmetry), R_found);
 }
 
 void Counts::add(const Counts& other) {

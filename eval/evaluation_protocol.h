@@ -7,16 +7,9 @@
 #include <optional>
 #include <vector>
 
-namespace lmk {
+#include "geometry/symmetry.h"
 
-/// A landmark's symmetry: none, or an axis (in the landmark's box frame) about which rotations
-/// leave it unchanged: any rotation for an axis of revolution (a bowl's or a ball's vertical axis),
-/// or multiples of 360/order degrees for an n-fold symmetry (a bar handle turned half a turn about
-/// the normal of the face it is mounted on).
-struct Symmetry {
-  std::optional<Eigen::Vector3d> axis;
-  int order = 0;  ///< 0: an axis of revolution; n >= 2: n-fold
-};
+namespace lmk {
 
 struct MatchTolerance {
   double translation = 0.0254;  ///< m, between box centres (one inch, as the paper)

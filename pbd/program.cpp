@@ -10,10 +10,31 @@ namespace lmk {
 
 const char* arm_name(Arm arm) { return arm == Arm::kLeft ? "left" : "right"; }
 std::string arm_group(Arm arm) { return std::string(arm_name(arm)) + "_arm"; }
-std::string arm_gripper(Arm arm) { return std::string(arm_name(arm)) + "_gripper"; }
+std::string arm_gripper(Arm arm) { return arm_name(arm); }
 
 const char* gripper_action_name(GripperAction action) {
   return action == GripperAction::kOpen ? "open" : "close";
+}
+
+const char* instance_policy_name(InstancePolicy policy) {
+  switch (policy) {
+    case InstancePolicy::kBestError:
+      return "best-error";
+    case InstancePolicy::kNearestToDemonstration:
+      return "nearest-to-demonstration";
+    case InstancePolicy::kDemonstratedHeight:
+      return "demonstrated-height";
+  }
+  return "?";
+}
+
+InstancePolicy instance_policy_from_name(const std::string& name) {
+  for (InstancePolicy p : {InstancePolicy::kBestError, InstancePolicy::kNearestToDemonstration,
+                           InstancePolicy::kDemonstratedHeight}) {
+    if (name == instance_policy_name(p)) return p;
+  }
+  throw Error("unknown instance policy '" + name +
+              "' (best-error, nearest-to-demonstration, demonstrated-height)");
 }
 
 const ProgramLandmark* Program::landmark(const std::string& name) const {
@@ -34,6 +55,23 @@ void validate_program(const Program& program) {
     if (l.name == kBaseFrame) throw Error(where + "'base' names the robot base frame");
     if (l.file.empty()) throw Error(where + "landmark '" + l.name + "' has no .lmk file");
     if (!names.insert(l.name).second) throw Error(where + "landmark '" + l.name + "' twice");
+    if (l.demonstration && !is_valid_pose(*l.demonstration, 1e-4)) {
+      throw Error(where + "the demonstrated pose is not a finite rigid transform");
+    }
+    if (l.symmetry.axis) {
+      if (!l.symmetry.axis->allFinite() || l.symmetry.axis->norm() < 1e-9) {
+        throw Error(where + "the symmetry axis must be a finite, non-zero vector");
+      }
+      if (l.symmetry.order == 1 || l.symmetry.order < 0) {
+        throw Error(where + "the symmetry order must be 0 (revolution) or at least 2");
+      }
+    }
+    const bool needs_demonstration =
+        l.symmetry.axis || (l.select && *l.select != InstancePolicy::kBestError);
+    if (needs_demonstration && !l.demonstration) {
+      throw Error(where + "landmark '" + l.name +
+                  "' needs its demonstrated pose for its symmetry or its policy");
+    }
   }
   for (std::size_t i = 0; i < program.steps.size(); ++i) {
     const ProgramStep& step = program.steps[i];

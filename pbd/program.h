@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "geometry/symmetry.h"
+
 namespace lmk {
 
 inline constexpr int kProgramFormatVersion = 1;
@@ -43,9 +45,38 @@ struct ProgramStep {
   std::optional<ArmTarget>& arm(Arm a) { return a == Arm::kLeft ? left : right; }
 };
 
+/// Which instance a step goes to when a landmark is found more than once in the scene.
+enum class InstancePolicy {
+  kBestError,  ///< the match with the lowest error (the paper's "best match")
+  /// The instance nearest to where the landmark was in the demonstration.
+  kNearestToDemonstration,
+  /// Only instances at the demonstrated height (within the planner's tolerance), best error first:
+  /// for a landmark that could also match elsewhere, such as an empty table patch that the top of
+  /// a large flat box also offers (the paper's Task 5 failure).
+  kDemonstratedHeight,
+};
+/// "best-error", "nearest-to-demonstration", "demonstrated-height".
+const char* instance_policy_name(InstancePolicy policy);
+/// The policy called `name`; throws lmk::Error naming the known ones.
+InstancePolicy instance_policy_from_name(const std::string& name);
+
 struct ProgramLandmark {
+  ProgramLandmark() = default;
+  ProgramLandmark(std::string name_in, std::string file_in)
+      : name(std::move(name_in)), file(std::move(file_in)) {}
+
   std::string name;
   std::string file;  ///< .lmk; relative paths are relative to the program file
+  /// Where the landmark was in the demonstration, T_base_landmark (the box of the instance the
+  /// steps were recorded against). The recorder fills it; the policies that compare with the
+  /// demonstration and symmetric landmarks need it.
+  std::optional<Eigen::Isometry3d> demonstration;
+  /// A symmetric landmark's pose is found only up to its symmetry; the planner turns it to the
+  /// equivalent pose nearest the demonstrated orientation, so that a bowl's rim is grasped on the
+  /// side the demonstration grasped it.
+  Symmetry symmetry;
+  /// Overrides the planner's default policy for this landmark.
+  std::optional<InstancePolicy> select;
 };
 
 struct Program {
@@ -57,9 +88,11 @@ struct Program {
 };
 
 /// Checks what a program must satisfy whatever its source: a name; unique, non-empty landmark
-/// names, none called "base"; every step moves at least one arm; every target's frame is "base" or
-/// a declared landmark; poses finite and proper; durations positive. Throws lmk::Error naming the
-/// offending step and arm ("program 'x': steps[2].left: unknown landmark 'rack'").
+/// names, none called "base"; a demonstrated pose where a symmetry or a policy that compares with
+/// the demonstration needs one; symmetry axes non-zero and orders 0 or at least 2; every step moves
+/// at least one arm; every target's frame is "base" or a declared landmark; poses finite and
+/// proper; durations positive. Throws lmk::Error naming the offending step and arm ("program 'x':
+/// steps[2].left: unknown landmark 'rack'").
 void validate_program(const Program& program);
 
 /// Reads and validates a program file: the JSON schema, the version (kProgramFormatVersion),

@@ -41,6 +41,47 @@ ArmTarget arm_from_json(const json& j, const std::string& where, const detail::J
   return t;
 }
 
+json landmark_to_json(const ProgramLandmark& l) {
+  json j = {{"name", l.name}, {"file", l.file}};
+  if (l.demonstration) j["demonstration"] = detail::pose_to_json(*l.demonstration);
+  if (l.symmetry.axis) {
+    const Eigen::Vector3d& a = *l.symmetry.axis;
+    j["symmetry"] = {{"axis", {a.x(), a.y(), a.z()}}, {"order", l.symmetry.order}};
+  }
+  if (l.select) j["select"] = instance_policy_name(*l.select);
+  return j;
+}
+
+bool has(const json& j, const char* key) { return j.contains(key) && !j[key].is_null(); }
+
+ProgramLandmark landmark_from_json(const json& j, const std::string& where,
+                                   const detail::JsonReader& r) {
+  if (!j.is_object()) r.fail(where, "must be an object with name and file");
+  ProgramLandmark l;
+  l.name = r.text(j, where, "name");
+  l.file = r.text(j, where, "file");
+  if (has(j, "demonstration"))
+    l.demonstration = r.pose(j["demonstration"], where + ".demonstration");
+  if (has(j, "symmetry")) {
+    const json& s = j["symmetry"];
+    const std::string at = where + ".symmetry";
+    if (!s.is_object()) r.fail(at, "must be an object with axis and order");
+    l.symmetry.axis = r.numbers(r.field(s, at, "axis"), at + ".axis", 3);
+    if (has(s, "order")) {
+      if (!s["order"].is_number_integer()) r.fail(at + ".order", "must be an integer");
+      l.symmetry.order = s["order"].get<int>();
+    }
+  }
+  if (has(j, "select")) {
+    try {
+      l.select = instance_policy_from_name(r.text(j, where, "select"));
+    } catch (const Error& e) {
+      r.fail(where + ".select", e.what());
+    }
+  }
+  return l;
+}
+
 Program parse(const json& j, const detail::JsonReader& r) {
   if (!j.is_object()) r.fail("", "must hold a JSON object");
   if (j.contains("format") && j["format"] != kFormat) {
@@ -53,8 +94,7 @@ Program parse(const json& j, const detail::JsonReader& r) {
   if (!landmarks.is_array()) r.fail("landmarks", "must be an array");
   for (std::size_t i = 0; i < landmarks.size(); ++i) {
     const std::string where = detail::at("", "landmarks", i);
-    p.landmarks.push_back(
-        {r.text(landmarks[i], where, "name"), r.text(landmarks[i], where, "file")});
+    p.landmarks.push_back(landmark_from_json(landmarks[i], where, r));
   }
   const json& steps = r.field(j, "", "steps");
   if (!steps.is_array()) r.fail("steps", "must be an array");
@@ -65,13 +105,13 @@ Program parse(const json& j, const detail::JsonReader& r) {
     ProgramStep step;
     for (Arm arm : {Arm::kLeft, Arm::kRight}) {
       const char* name = arm_name(arm);
-      if (s.contains(name) && !s[name].is_null()) {
+      if (has(s, name)) {
         step.arm(arm) = arm_from_json(s[name], where + "." + name, r);
       }
     }
     if (!step.left && !step.right)
       r.fail(where, "moves neither arm: give \"left\", \"right\" or both");
-    if (s.contains("duration") && !s["duration"].is_null()) {
+    if (has(s, "duration")) {
       if (!s["duration"].is_number() || !(s["duration"].get<double>() > 0.0)) {
         r.fail(where + ".duration", "must be a positive number of seconds");
       }
@@ -87,7 +127,7 @@ Program parse(const json& j, const detail::JsonReader& r) {
 std::string program_to_json(const Program& program) {
   json landmarks = json::array(), steps = json::array();
   for (const ProgramLandmark& l : program.landmarks) {
-    landmarks.push_back({{"name", l.name}, {"file", l.file}});
+    landmarks.push_back(landmark_to_json(l));
   }
   for (const ProgramStep& step : program.steps) {
     json s = json::object();

@@ -28,6 +28,32 @@ Recorder::Recorder(std::string name, std::vector<ProgramLandmark> landmarks,
     if (!instance.box.is_valid())
       throw Error("recorder: instance of '" + instance.name + "': bad box");
   }
+  declared_demonstrations_.reserve(program_.landmarks.size());
+  for (const ProgramLandmark& l : program_.landmarks) {
+    declared_demonstrations_.push_back(l.demonstration);
+  }
+  refresh_demonstrations();
+}
+
+void Recorder::refresh_demonstrations() {
+  for (std::size_t k = 0; k < program_.landmarks.size(); ++k) {
+    ProgramLandmark& landmark = program_.landmarks[k];
+    landmark.demonstration = declared_demonstrations_[k];
+    if (landmark.demonstration) continue;
+    // The first instance a step is anchored on, in step order; else the landmark's first instance
+    // in the scene, so that a landmark no step uses yet still knows where it was.
+    std::optional<std::size_t> chosen;
+    for (const auto& anchors : anchors_) {
+      for (const int a : anchors) {
+        if (!chosen && a != kBase && instances_[static_cast<std::size_t>(a)].name == landmark.name)
+          chosen = static_cast<std::size_t>(a);
+      }
+    }
+    for (std::size_t i = 0; i < instances_.size() && !chosen; ++i) {
+      if (instances_[i].name == landmark.name) chosen = i;
+    }
+    if (chosen) landmark.demonstration = instances_[*chosen].box.pose;
+  }
 }
 
 int Recorder::nearest(const Eigen::Vector3d& point, const std::string* name,
@@ -86,6 +112,7 @@ std::size_t Recorder::save_pose(const std::optional<ArmState>& left,
     throw;
   }
   anchors_.push_back(anchors);
+  refresh_demonstrations();
   return program_.steps.size() - 1;
 }
 
@@ -118,6 +145,7 @@ void Recorder::set_frame(std::size_t step, Arm arm, const std::string& frame) {
   std::optional<ArmTarget>& target = program_.steps[step].arm(arm);
   target = target_in(anchor, T_base_ee, target->gripper);
   anchors_[step][arm == Arm::kLeft ? 0 : 1] = anchor;
+  refresh_demonstrations();
 }
 
 }  // namespace lmk

@@ -39,7 +39,9 @@ struct ArmState {
 class Recorder {
  public:
   /// Starts program `name` over `landmarks`, the landmarks its steps may refer to;
-  /// `instances` are those found in the demonstration scene, in the base frame. Throws lmk::Error
+  /// `instances` are those found in the demonstration scene, in the base frame. Each landmark's
+  /// demonstrated pose, unless given, is the box of the first instance a step is anchored on (in
+  /// step order), else of its first instance in the scene. Throws lmk::Error
   /// for an instance whose landmark is not among `landmarks`, or a bad box.
   Recorder(std::string name, std::vector<ProgramLandmark> landmarks,
            std::vector<LandmarkInstance> instances, const RecorderSettings& settings = {});
@@ -65,6 +67,8 @@ class Recorder {
   /// `max_distance`, else kBase.
   int nearest(const Eigen::Vector3d& point, const std::string* name, double max_distance) const;
   ArmTarget target_in(int anchor, const Eigen::Isometry3d& T_base_ee, GripperAction g) const;
+  /// Sets every landmark's demonstrated pose from the anchors (see the constructor).
+  void refresh_demonstrations();
 
   Program program_;
   std::vector<LandmarkInstance> instances_;
@@ -72,6 +76,8 @@ class Recorder {
   /// Per step and arm (left, right): the index of the instance the target is relative to, or
   /// kBase.
   std::vector<std::array<int, 2>> anchors_;
+  /// The demonstrated poses the caller gave with the landmarks, which win over the anchors.
+  std::vector<std::optional<Eigen::Isometry3d>> declared_demonstrations_;
 };
 
 }  // namespace lmk

@@ -15,6 +15,10 @@ Program two_arm_program() {
   Program p;
   p.name = "hang tool";
   p.landmarks = {{"rack", "rack.lmk"}, {"tool", "landmarks/tool.lmk"}};
+  // The tool's handle is round: any turn about its axis is the same handle.
+  p.landmarks[1].demonstration = pose_from_xyz_rpy({0.7, -0.1, 0.9}, {0, 0, 0.2});
+  p.landmarks[1].symmetry = Symmetry{Eigen::Vector3d::UnitZ(), 0};
+  p.landmarks[1].select = InstancePolicy::kNearestToDemonstration;
   ProgramStep reach;
   reach.right = ArmTarget{"tool", pose_from_xyz_rpy({0.1, -0.02, 0.15}, {0.3, -0.2, 1.1}),
                           GripperAction::kOpen};
@@ -37,6 +41,16 @@ void expect_same(const Program& a, const Program& b) {
   for (std::size_t i = 0; i < a.landmarks.size(); ++i) {
     EXPECT_EQ(a.landmarks[i].name, b.landmarks[i].name);
     EXPECT_EQ(a.landmarks[i].file, b.landmarks[i].file);
+    EXPECT_EQ(a.landmarks[i].select, b.landmarks[i].select);
+    ASSERT_EQ(a.landmarks[i].demonstration.has_value(), b.landmarks[i].demonstration.has_value());
+    if (a.landmarks[i].demonstration) {
+      EXPECT_TRUE(a.landmarks[i].demonstration->isApprox(*b.landmarks[i].demonstration, 1e-12));
+    }
+    ASSERT_EQ(a.landmarks[i].symmetry.axis.has_value(), b.landmarks[i].symmetry.axis.has_value());
+    if (a.landmarks[i].symmetry.axis) {
+      EXPECT_EQ(*a.landmarks[i].symmetry.axis, *b.landmarks[i].symmetry.axis);
+      EXPECT_EQ(a.landmarks[i].symmetry.order, b.landmarks[i].symmetry.order);
+    }
   }
   ASSERT_EQ(a.steps.size(), b.steps.size());
   for (std::size_t i = 0; i < a.steps.size(); ++i) {
@@ -80,7 +94,7 @@ TEST(ProgramFile, EveryValidationErrorSaysWhatAndWhere) {
       {"unknown landmark", "\"frame\": \"rack\"", "\"frame\": \"shelf\"",
        "steps[2].right: unknown landmark 'shelf'"},
       {"bad quaternion", "\"quaternion\": [", "\"quaternion\": [2.0, ",
-       "steps[0].right.quaternion"},
+       "landmarks[1].demonstration.quaternion"},
       {"wrong version", "\"version\": 1", "\"version\": 7", "version 7 is not supported"},
       {"missing version", ",\n  \"version\": 1", "", "missing field 'version'"},
       {"wrong format", "\"lmk-program\"", "\"lmk-dataset\"", "format"},
@@ -89,6 +103,13 @@ TEST(ProgramFile, EveryValidationErrorSaysWhatAndWhere) {
       {"negative duration", "\"duration\": 2.5", "\"duration\": -1", "positive"},
       {"landmark without file", "\"file\": \"rack.lmk\"", "\"file\": \"\"", "'file'"},
       {"landmark called base", "\"name\": \"rack\"", "\"name\": \"base\"", "base"},
+      {"unknown policy", "\"nearest-to-demonstration\"", "\"closest\"",
+       "landmarks[1].select: unknown instance policy 'closest'"},
+      {"symmetry of order one", "\"order\": 0", "\"order\": 1", "order must be 0"},
+      {"zero symmetry axis", "\"axis\": [\n          0.0,\n          0.0,\n          1.0", "\"axis\": [0, 0, 0",
+       "symmetry axis must be a finite, non-zero vector"},
+      {"symmetry without demonstration", "\"demonstration\"", "\"shown\"",
+       "needs its demonstrated pose"},
   };
   for (const BadProgram& c : cases) {
     std::string text = good;

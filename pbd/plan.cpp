@@ -1,0 +1,281 @@
+#include "pbd/plan.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <set>
+
+#include "geometry/error.h"
+#include "landmark/landmark_file.h"
+#include "landmark/scene_index.h"
+
+namespace lmk {
+
+const char* refusal_kind(const Refusal& refusal) {
+  return std::holds_alternative<LandmarkNotFound>(refusal) ? "landmark-not-found" : "unreachable";
+}
+
+std::string describe(const Refusal& refusal) {
+  if (const auto* missing = std::get_if<LandmarkNotFound>(&refusal)) {
+    return "landmark '" + missing->landmark + "' not found: " + missing->reason;
+  }
+  const auto& u = std::get<Unreachable>(refusal);
+  return "step " + std::to_string(u.step) + ", " + arm_name(u.arm) +
+         " arm: unreachable: " + u.reason;
+}
+
+const LocatedLandmark* Plan::landmark(const std::string& name) const {
+  for (const LocatedLandmark& l : landmarks) {
+    if (l.name == name) return &l;
+  }
+  return nullptr;
+}
+
+std::map<std::string, Landmark> load_program_landmarks(const Program& program,
+                                                       const std::string& program_dir) {
+  std::map<std::string, Landmark> out;
+  for (const ProgramLandmark& l : program.landmarks) {
+    std::filesystem::path file(l.file);
+    if (file.is_relative() && !program_dir.empty())
+      file = std::filesystem::path(program_dir) / file;
+    try {
+      out.emplace(l.name, load_landmark(file.string()));
+    } catch (const Error& e) {
+      throw Error("program '" + program.name + "', landmark '" + l.name + "': " + e.what());
+    }
+  }
+  return out;
+}
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// The landmarks some step is relative to, in the order the program declares them.
+std::vector<const ProgramLandmark*> used_landmarks(const Program& program) {
+  std::set<std::string> used;
+  for (const ProgramStep& step : program.steps) {
+    for (Arm arm : {Arm::kLeft, Arm::kRight}) {
+      if (step.arm(arm) && step.arm(arm)->relative_to_landmark()) used.insert(step.arm(arm)->frame);
+    }
+  }
+  std::vector<const ProgramLandmark*> out;
+  for (const ProgramLandmark& l : program.landmarks) {
+    if (used.count(l.name)) out.push_back(&l);
+  }
+  return out;
+}
+
+// The matches the policy allows, in the order it prefers them.
+std::vector<const Match*> eligible_matches(const std::vector<Match>& matches,
+                                           const ProgramLandmark& landmark, InstancePolicy policy,
+                                           const PlanSettings& settings) {
+  std::vector<const Match*> out;
+  for (const Match& m : matches) out.push_back(&m);  // already by increasing error
+  if (policy == InstancePolicy::kBestError || !landmark.demonstration) return out;
+  const Eigen::Vector3d demonstrated = landmark.demonstration->translation();
+  if (policy == InstancePolicy::kDemonstratedHeight) {
+    out.erase(std::remove_if(out.begin(), out.end(),
+                             [&](const Match* m) {
+                               return std::abs(m->box.center().z() - demonstrated.z()) >
+                                      settings.height_tolerance;
+                             }),
+              out.end());
+  } else {
+    std::stable_sort(out.begin(), out.end(), [&](const Match* a, const Match* b) {
+      return (a->box.center() - demonstrated).norm() < (b->box.center() - demonstrated).norm();
+    });
+  }
+  return out;
+}
+
+std::string no_eligible_reason(const FindResult& result, std::size_t found, InstancePolicy policy,
+                               const ProgramLandmark& landmark, const PlanSettings& settings) {
+  if (found == 0) {
+    const std::string why = describe_rejections(result.stats);
+    return why.empty() ? "no match" : "no match (" + why + ")";
+  }
+  char text[160];
+  std::snprintf(text, sizeof(text),
+                "%zu match(es), none within %.0f mm of the demonstrated height %.3f m (%s)", found,
+                1000.0 * settings.height_tolerance, landmark.demonstration->translation().z(),
+                instance_policy_name(policy));
+  return text;
+}
+
+// Step 1-2 of execution: every landmark a step uses, located, or the refusal.
+std::optional<Refusal> locate_landmarks(const Program& program,
+                                        const std::map<std::string, Landmark>& landmarks,
+                                        const PointCloud& scene, const PlanSettings& settings,
+                                        std::vector<LocatedLandmark>& located) {
+  const std::vector<const ProgramLandmark*> used = used_landmarks(program);
+  if (used.empty()) return std::nullopt;
+  FindSettings find = settings.find;
+  find.base_frame = true;
+  const SceneIndex index(scene, scene_settings(find));
+  for (const ProgramLandmark* entry : used) {
+    const auto it = landmarks.find(entry->name);
+    if (it == landmarks.end()) {
+      throw Error("plan: program '" + program.name + "' declares landmark '" + entry->name +
+                  "', but it was not loaded");
+    }
+    if (settings.progress) settings.progress("locating '" + entry->name + "'");
+    const auto start = std::chrono::steady_clock::now();
+    const FindResult result = find_landmark(index, it->second, find);
+    const InstancePolicy policy = entry->select.value_or(settings.policy);
+    const std::vector<const Match*> eligible =
+        eligible_matches(result.matches, *entry, policy, settings);
+    if (eligible.empty()) {
+      return LandmarkNotFound{
+          entry->name, no_eligible_reason(result, result.matches.size(), policy, *entry, settings)};
+    }
+    LocatedLandmark l;
+    l.name = entry->name;
+    l.match = *eligible.front();
+    l.match.aligned_points = PointCloud();  // not needed past the search
+    l.found = result.matches.size();
+    l.eligible = eligible.size();
+    l.policy = policy;
+    l.seconds = seconds_since(start);
+    l.T_base_landmark = l.match.box.pose;
+    if (entry->demonstration) {
+      l.T_base_landmark.linear() = nearest_symmetric_rotation(
+          l.T_base_landmark.linear(), entry->demonstration->linear(), entry->symmetry);
+    }
+    located.push_back(std::move(l));
+  }
+  return std::nullopt;
+}
+
+// The joint's travel from a to b: the shorter way round for continuous joints.
+double signed_travel(const JointInfo& j, double a, double b) {
+  return j.continuous() ? std::remainder(b - a, 2.0 * M_PI) : b - a;
+}
+
+// A straight line in joint space from `from` to `to`, `points` waypoints over `duration`.
+JointTrajectory joint_line(const GroupInfo& group, const std::vector<double>& from,
+                           const std::vector<double>& to, double duration, int points) {
+  JointTrajectory t;
+  for (const JointInfo& j : group.joints) t.joint_names.push_back(j.name);
+  for (int k = 1; k <= points; ++k) {
+    const double s = static_cast<double>(k) / points;
+    JointTrajectory::Point p;
+    p.time_from_start = s * duration;
+    for (std::size_t i = 0; i < group.joints.size(); ++i) {
+      p.positions.push_back(from[i] + s * signed_travel(group.joints[i], from[i], to[i]));
+    }
+    t.points.push_back(std::move(p));
+  }
+  return t;
+}
+
+// The time a move takes at settings.speed_fraction of the slowest joint's limit.
+double move_duration(const GroupInfo& group, const std::vector<double>& from,
+                     const std::vector<double>& to, const PlanSettings& settings) {
+  double duration = 0.0;
+  for (std::size_t i = 0; i < group.joints.size(); ++i) {
+    const JointInfo& j = group.joints[i];
+    if (j.max_velocity <= 0.0) continue;
+    const double travel = std::abs(signed_travel(j, from[i], to[i]));
+    duration = std::max(duration, travel / (settings.speed_fraction * j.max_velocity));
+  }
+  return duration;
+}
+
+std::vector<double> group_start(const GroupInfo& group,
+                                const std::map<std::string, double>& positions) {
+  std::vector<double> q;
+  for (const JointInfo& j : group.joints) {
+    const auto it = positions.find(j.name);
+    if (it == positions.end()) {
+      throw Error("plan: the robot's joint state lacks '" + j.name + "' of group '" + group.name +
+                  "'");
+    }
+    q.push_back(it->second);
+  }
+  return q;
+}
+
+void check_settings(const PlanSettings& s) {
+  if (!(s.speed_fraction > 0.0 && s.speed_fraction <= 1.0))
+    throw Error("plan: the speed fraction must be in (0, 1]");
+  if (!(s.min_step_duration > 0.0)) throw Error("plan: the minimum step duration must be > 0");
+  if (s.waypoints < 1) throw Error("plan: a trajectory needs at least one waypoint");
+  if (!(s.height_tolerance >= 0.0)) throw Error("plan: the height tolerance must be >= 0");
+}
+
+}  // namespace
+
+Plan plan(const Program& program, const std::map<std::string, Landmark>& landmarks,
+          const PointCloud& scene, const KinematicsInterface& kinematics, const JointState& start,
+          const PlanSettings& settings) {
+  validate_program(program);
+  check_settings(settings);
+  Plan result;
+  result.program = program.name;
+
+  std::map<std::string, double> positions;
+  for (std::size_t i = 0; i < start.names.size() && i < start.positions.size(); ++i) {
+    positions[start.names[i]] = start.positions[i];
+  }
+  std::map<Arm, GroupInfo> groups;
+  std::map<Arm, std::vector<double>> current;
+  for (Arm arm : {Arm::kLeft, Arm::kRight}) {
+    const auto group = kinematics.group(arm_group(arm));
+    if (!group) throw Error("plan: the robot has no group '" + arm_group(arm) + "'");
+    groups[arm] = *group;
+    current[arm] = group_start(*group, positions);
+    for (std::size_t i = 0; i < group->joints.size(); ++i) {
+      result.start[group->joints[i].name] = current[arm][i];
+    }
+  }
+
+  // 1-2. Locate every landmark, or refuse.
+  result.refusal = locate_landmarks(program, landmarks, scene, settings, result.landmarks);
+  if (result.refusal) return result;
+
+  // 3-5. Targets, IK for every step (seeded with the previous one's joints, so that consecutive
+  // solutions stay on one branch), and the motions, before anything moves.
+  if (settings.progress)
+    settings.progress("solving IK for " + std::to_string(program.steps.size()) + " steps");
+  std::vector<PlannedStep> steps;
+  for (std::size_t s = 0; s < program.steps.size(); ++s) {
+    const ProgramStep& step = program.steps[s];
+    PlannedStep planned;
+    planned.index = s;
+    double duration = step.duration.value_or(0.0);
+    for (Arm arm : {Arm::kLeft, Arm::kRight}) {
+      const std::optional<ArmTarget>& target = step.arm(arm);
+      if (!target) continue;
+      PlannedArm a;
+      a.arm = arm;
+      a.frame = target->frame;
+      a.gripper = target->gripper;
+      a.T_base_ee = target->relative_to_landmark()
+                        ? result.landmark(target->frame)->T_base_landmark * target->T_frame_ee
+                        : target->T_frame_ee;
+      a.ik = kinematics.inverse(arm_group(arm), a.T_base_ee, current[arm]);
+      if (!a.ik.success) {
+        result.refusal = Unreachable{s, arm, a.ik.message};
+        return result;
+      }
+      duration =
+          std::max(duration, move_duration(groups[arm], current[arm], a.ik.joints, settings));
+      planned.arms.push_back(std::move(a));
+    }
+    planned.duration = std::max(duration, settings.min_step_duration);
+    for (PlannedArm& a : planned.arms) {
+      a.trajectory = joint_line(groups[a.arm], current[a.arm], a.ik.joints, planned.duration,
+                                settings.waypoints);
+      current[a.arm] = a.ik.joints;
+    }
+    steps.push_back(std::move(planned));
+  }
+  result.steps = std::move(steps);
+  return result;
+}
+
+}  // namespace lmk

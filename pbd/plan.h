@@ -1,0 +1,114 @@
+#pragma once
+// Planning a PbD program in a new scene (paper, Section III-B, and the original PR2 PbD's
+// execution): locate every landmark the program uses, compose each landmark-relative target with
+// where the landmark is now, and solve IK for every step before anything moves. A plan that
+// cannot be carried out whole carries its refusal instead, so that a robot never starts a program
+// it cannot finish.
+//
+//   T_base_ee = T_base_landmark * T_landmark_ee
+
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "landmark/find_landmark.h"
+#include "landmark/landmark.h"
+#include "pbd/program.h"
+#include "pbd/robot_interface.h"
+
+namespace lmk {
+
+/// Refusal: a landmark the program needs is not in the scene (or no instance passes the policy).
+struct LandmarkNotFound {
+  std::string landmark;
+  std::string reason;  ///< what the search turned down, for a person
+};
+
+/// Refusal: a step's target is out of the arm's reach (or its joint limits).
+struct Unreachable {
+  std::size_t step = 0;
+  Arm arm = Arm::kRight;
+  std::string reason;
+};
+
+using Refusal = std::variant<LandmarkNotFound, Unreachable>;
+
+/// "landmark-not-found" or "unreachable".
+const char* refusal_kind(const Refusal& refusal);
+/// One line for a person: "landmark 'rack' not found: no candidate pose ...",
+/// "step 3, right arm: unreachable: ...".
+std::string describe(const Refusal& refusal);
+
+/// A landmark where it was found in the scene.
+struct LocatedLandmark {
+  std::string name;
+  /// The box pose to compose targets with: the match's box, turned within the landmark's symmetry
+  /// to the orientation nearest the demonstration.
+  Eigen::Isometry3d T_base_landmark = Eigen::Isometry3d::Identity();
+  Match match;               ///< the instance chosen
+  std::size_t found = 0;     ///< matches the search returned
+  std::size_t eligible = 0;  ///< of those, the ones the policy allowed
+  InstancePolicy policy = InstancePolicy::kBestError;
+  double seconds = 0.0;  ///< the search's time
+};
+
+/// One arm's part of a planned step.
+struct PlannedArm {
+  Arm arm = Arm::kRight;
+  std::string frame;                                            ///< "base" or the landmark
+  Eigen::Isometry3d T_base_ee = Eigen::Isometry3d::Identity();  ///< the target in the base frame
+  IkResult ik;
+  JointTrajectory trajectory;  ///< from the previous step's joints to the solution
+  GripperAction gripper = GripperAction::kOpen;
+};
+
+struct PlannedStep {
+  std::size_t index = 0;
+  std::vector<PlannedArm> arms;
+  double duration = 0.0;  ///< s; both arms move together
+};
+
+struct Plan {
+  std::string program;
+  std::vector<LocatedLandmark> landmarks;
+  std::vector<PlannedStep> steps;  ///< every step, or none when refused
+  /// The arm joints the plan starts from, by joint name: execution checks the robot is there.
+  std::map<std::string, double> start;
+  std::optional<Refusal> refusal;
+  bool valid() const { return !refusal; }
+  const LocatedLandmark* landmark(const std::string& name) const;
+};
+
+struct PlanSettings {
+  /// The landmark search. The scene is in the robot base frame (base_frame is forced on).
+  FindSettings find;
+  /// The instance policy for landmarks whose program entry sets none.
+  InstancePolicy policy = InstancePolicy::kBestError;
+  /// kDemonstratedHeight: an instance's box centre must be within this of the demonstrated height.
+  double height_tolerance = 0.05;
+  /// Joint speeds are kept to this fraction of each joint's limit.
+  double speed_fraction = 0.5;
+  double min_step_duration = 1.0;  ///< s; no motion is planned faster than this
+  int waypoints = 10;              ///< points per joint trajectory
+  /// Progress lines for long runs ("locating 'rack'", ...); unset: silent.
+  std::function<void(const std::string&)> progress;
+};
+
+/// The landmarks a program uses, loaded from their .lmk files, by name. Relative file names are
+/// taken relative to `program_dir`. Throws lmk::Error naming the landmark and file that fail.
+std::map<std::string, Landmark> load_program_landmarks(const Program& program,
+                                                       const std::string& program_dir);
+
+/// Plans `program` in `scene` (a cloud in the robot base frame, with T_cloud_sensor the sensor's
+/// pose), for a robot whose joints are at `start` now. `landmarks` holds each landmark the program
+/// declares, by name. Only landmarks some step uses are searched for. Never throws for a refusal:
+/// the plan carries it. Throws lmk::Error for bad input (a declared landmark missing from
+/// `landmarks`, an arm group the kinematics lacks, a start state missing a joint).
+Plan plan(const Program& program, const std::map<std::string, Landmark>& landmarks,
+          const PointCloud& scene, const KinematicsInterface& kinematics, const JointState& start,
+          const PlanSettings& settings = {});
+
+}  // namespace lmk

@@ -1,0 +1,185 @@
+// Planning and executing on the simulated PR2: landmark-relative targets compose with where the
+// landmark is found, and every refusal (a missing landmark, an unreachable step, a robot that
+// moved) leaves the robot without a single motion.
+
+#include "pbd/plan.h"
+
+#include <gtest/gtest.h>
+
+#include "geometry/pose.h"
+#include "pbd/execute.h"
+#include "pr2/simulated_pr2.h"
+#include "tests/landmark/l_shape_scene.h"
+
+namespace lmk {
+namespace {
+
+using test_scenes::box_at;
+using test_scenes::render_scene;
+
+// The robot stands 0.65 m in front of the test table, facing it: the world's +y is the base's +x.
+const Eigen::Isometry3d kWorldBase = pose_from_xyz_rpy({0, -0.65, 0}, {0, 0, 0.5 * M_PI});
+
+PointCloud scene_in_base(const std::vector<Eigen::Vector2d>& copies, bool distractors) {
+  return render_scene(copies, distractors).transformed(kWorldBase.inverse());
+}
+
+// A gripper pointing down (its x axis along -z), `height` above the landmark box's centre.
+Eigen::Isometry3d above(double height) {
+  return pose_from_xyz_rpy({0, 0, height}, {0, 0.5 * M_PI, 0});
+}
+
+class PlanTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    const Eigen::Vector2d demo(-0.1, -0.15);
+    CaptureSettings capture_settings;
+    capture_settings.base_frame = true;
+    const PointCloud demo_scene = scene_in_base({demo}, false);
+    landmark_ = new Landmark(
+        capture(demo_scene, box_at(demo).transformed(kWorldBase.inverse()), "l", capture_settings));
+  }
+  static void TearDownTestSuite() { delete landmark_; }
+
+  Program program() const {
+    Program p;
+    p.name = "touch l";
+    p.landmarks = {{"l", "l.lmk"}};
+    ProgramStep approach, touch, away;
+    approach.right = ArmTarget{"l", above(0.2), GripperAction::kOpen};
+    touch.right = ArmTarget{"l", above(0.12), GripperAction::kClose};
+    away.right =
+        ArmTarget{kBaseFrame, pose_from_xyz_rpy({0.5, -0.3, 1.0}, {0, 0, 0}), GripperAction::kOpen};
+    p.steps = {approach, touch, away};
+    return p;
+  }
+
+  // The torso raised 0.25 m, as a PR2 reaching down onto a table does.
+  SimulatedPr2 robot() const {
+    SimulatedPr2 r(Pr2Kinematics(RobotModel::pr2(), 0.25));
+    EXPECT_TRUE(r.configure().ok());
+    EXPECT_TRUE(r.activate().ok());
+    return r;
+  }
+
+  Plan plan_in(const PointCloud& scene, const Program& p, const SimulatedPr2& r) const {
+    JointState state;
+    EXPECT_TRUE(r.read_joint_state(state).ok());
+    return plan(p, {{"l", *landmark_}}, scene, r.kinematics(), state);
+  }
+
+  static Landmark* landmark_;
+};
+
+Landmark* PlanTest::landmark_ = nullptr;
+
+TEST_F(PlanTest, TargetsComposeWithTheFoundLandmarkAndTheRobotGetsThere) {
+  // The L moved 0.4 m to the robot's right (world +x) and 10 cm towards it.
+  const Eigen::Vector2d moved(0.3, -0.25);
+  SimulatedPr2 r = robot();
+  const Plan p = plan_in(scene_in_base({moved}, true), program(), r);
+  ASSERT_TRUE(p.valid()) << describe(*p.refusal);
+  ASSERT_EQ(p.steps.size(), 3u);
+  const LocatedLandmark* l = p.landmark("l");
+  ASSERT_NE(l, nullptr);
+  const Box truth = box_at(moved).transformed(kWorldBase.inverse());
+  EXPECT_LT((l->T_base_landmark.translation() - truth.center()).norm(), 0.01);
+
+  // Hand-computed: the box centre in the base frame is (0.65 + y_world_centre, -x_world_centre,
+  // z); the first target is 0.2 m above it, pointing down.
+  const Eigen::Vector3d centre = truth.center();
+  EXPECT_NEAR(centre.x(), 0.65 + 0.5 * ((moved.y() - 0.04) + (moved.y() + 0.04)), 1e-9);
+  const Eigen::Vector3d expected_first =
+      l->T_base_landmark.translation() + Eigen::Vector3d(0, 0, 0.2);
+  EXPECT_LT((p.steps[0].arms[0].T_base_ee.translation() - expected_first).norm(), 1e-3);
+  EXPECT_LT(
+      (p.steps[0].arms[0].T_base_ee.translation() - (centre + Eigen::Vector3d(0, 0, 0.2))).norm(),
+      0.01);
+  // The box's axes are the world's, so in the base frame it is turned by -90 degrees about z, and
+  // the tool by that turn followed by the pitch that points it down.
+  const Eigen::Matrix3d hand_computed =
+      pose_from_xyz_rpy({0, 0, 0}, {0, 0, -0.5 * M_PI}).linear() * above(0).linear();
+  EXPECT_LT(rotation_angle_between(p.steps[0].arms[0].T_base_ee.linear(), hand_computed),
+            2.0 * M_PI / 180.0);
+  // The base-frame step is taken as it is.
+  EXPECT_TRUE(p.steps[2].arms[0].T_base_ee.isApprox(program().steps[2].right->T_frame_ee, 1e-12));
+
+  const ExecutionReport report = execute(p, r);
+  EXPECT_TRUE(report.completed) << report.error;
+  EXPECT_EQ(report.steps_completed, 3u);
+  EXPECT_EQ(r.history().size(), 3u);
+  Eigen::Isometry3d tool;
+  ASSERT_TRUE(r.kinematics().forward("right_arm", r.group_positions("right_arm"), tool).ok());
+  EXPECT_LT((tool.translation() - p.steps[2].arms[0].T_base_ee.translation()).norm(), 1e-3);
+  GripperState gripper;
+  ASSERT_TRUE(r.gripper_state("right", gripper).ok());
+  EXPECT_FALSE(gripper.closed);  // opened again by the last step
+}
+
+TEST_F(PlanTest, AMissingLandmarkIsRefusedByNameAndNothingMoves) {
+  SimulatedPr2 r = robot();
+  const Plan p = plan_in(scene_in_base({}, true), program(), r);
+  ASSERT_FALSE(p.valid());
+  const auto* missing = std::get_if<LandmarkNotFound>(&*p.refusal);
+  ASSERT_NE(missing, nullptr) << describe(*p.refusal);
+  EXPECT_EQ(missing->landmark, "l");
+  EXPECT_TRUE(p.steps.empty());
+  const ExecutionReport report = execute(p, r);
+  EXPECT_FALSE(report.started);
+  EXPECT_NE(report.error.find("landmark 'l' not found"), std::string::npos) << report.error;
+  EXPECT_TRUE(r.history().empty());
+  EXPECT_EQ(r.time(), 0.0);  // not even a gripper moved
+}
+
+TEST_F(PlanTest, AnUnreachableStepIsRefusedBeforeTheReachableOnesRun) {
+  Program far = program();
+  ProgramStep out_of_reach;
+  out_of_reach.left =
+      ArmTarget{kBaseFrame, pose_from_xyz_rpy({2.5, 0.5, 0.8}, {0, 0, 0}), GripperAction::kOpen};
+  far.steps.push_back(out_of_reach);
+  SimulatedPr2 r = robot();
+  const Plan p = plan_in(scene_in_base({{-0.1, -0.15}}, false), far, r);
+  ASSERT_FALSE(p.valid());
+  const auto* unreachable = std::get_if<Unreachable>(&*p.refusal);
+  ASSERT_NE(unreachable, nullptr) << describe(*p.refusal);
+  EXPECT_EQ(unreachable->step, 3u);
+  EXPECT_EQ(unreachable->arm, Arm::kLeft);
+  EXPECT_FALSE(unreachable->reason.empty());
+  EXPECT_FALSE(execute(p, r).started);
+  EXPECT_TRUE(r.history().empty());
+  EXPECT_EQ(r.time(), 0.0);
+}
+
+TEST_F(PlanTest, ARobotThatMovedSincePlanningIsNotDriven) {
+  SimulatedPr2 r = robot();
+  const Plan p = plan_in(scene_in_base({{-0.1, -0.15}}, false), program(), r);
+  ASSERT_TRUE(p.valid());
+  // Someone moves the right arm's first joint after planning.
+  const GroupInfo arm = *r.kinematics().group("right_arm");
+  JointTrajectory nudge;
+  for (const JointInfo& j : arm.joints) nudge.joint_names.push_back(j.name);
+  std::vector<double> q = r.group_positions("right_arm");
+  q[0] += 0.2;
+  nudge.points.push_back({q, 2.0});
+  ASSERT_TRUE(r.send_trajectory("right_arm", nudge).ok());
+  const ExecutionReport report = execute(p, r);
+  EXPECT_FALSE(report.started);
+  EXPECT_NE(report.error.find("moved since planning"), std::string::npos) << report.error;
+  EXPECT_EQ(r.history().size(), 1u);  // only the nudge
+}
+
+TEST_F(PlanTest, AnInactiveRobotStopsTheRunAtTheFirstCommandAndSaysWhere) {
+  SimulatedPr2 r = robot();
+  const Plan p = plan_in(scene_in_base({{-0.1, -0.15}}, false), program(), r);
+  ASSERT_TRUE(p.valid());
+  ASSERT_TRUE(r.deactivate().ok());
+  const ExecutionReport report = execute(p, r);
+  EXPECT_TRUE(report.started);
+  EXPECT_FALSE(report.completed);
+  EXPECT_EQ(report.steps_completed, 0u);
+  EXPECT_NE(report.error.find("step 0"), std::string::npos) << report.error;
+  EXPECT_TRUE(r.history().empty());
+}
+
+}  // namespace
+}  // namespace lmk
