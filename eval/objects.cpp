@@ -151,6 +151,13 @@ ObjectModel make_bin(bool round) {
   }
   ObjectModel bin = finish(round ? "round_bin" : "square_bin", std::move(mesh));
   bin.parts.push_back({"bin", drawn_on_table(bin.bounds)});
+  // The opening: the top 6 cm of the walls, with 2 cm of free space around them and 4 cm above.
+  // Inside, the space down to the box's bottom is seen empty, so the mouth's shape tells the bins
+  // apart while their bodies are alike.
+  const Eigen::Vector3d half = 0.5 * bin.bounds.size, centre = bin.bounds.center();
+  const Box top = box_between({centre.x() - half.x(), centre.y() - half.y(), h - 0.06},
+                              {centre.x() + half.x(), centre.y() + half.y(), h});
+  bin.parts.push_back({"opening", drawn_around(top, {0.02, 0.02, 0.0}, {0.02, 0.02, 0.04})});
   return bin;
 }
 
@@ -191,8 +198,10 @@ ObjectModel make_shelf() {
   return shelf;
 }
 
-ObjectModel make_chair(bool lowered) {
-  const double drop = lowered ? 0.12 : 0.0;
+ObjectModel make_chair(bool lowered) { return make_chair_at_height(lowered ? -0.12 : 0.0); }
+
+ObjectModel make_chair_at_height(double lift) {
+  const double drop = -lift;
   const double seat_z = 0.45 - drop, back_bottom = 0.62 - drop, back_height = 0.42;
   // A padded backrest: a slab whose top is a rounded roll. The roll also gives the corner relief,
   // which a flat slab would not (its corner would be a plane with a grazing top).
@@ -213,7 +222,7 @@ ObjectModel make_chair(bool lowered) {
   add_box(mesh, back, 0, back_y, back_bottom + 0.5 * back.z());
   mesh.append(make_cylinder_mesh(roll, back.x(), 24),
               pose_from_xyz_rpy({0, back_y, back_bottom + back.z()}, {0, 0.5 * M_PI, 0}));
-  ObjectModel chair = finish(lowered ? "lowered_chair" : "chair", std::move(mesh));
+  ObjectModel chair = finish(drop > 0.0 ? "lowered_chair" : "chair", std::move(mesh));
   // A corner: 9 cm of backrest below and inside the corner, 3 cm of free space above and outside.
   const double top = back_bottom + back_height;
   for (const double side : {-1.0, 1.0}) {
@@ -223,6 +232,10 @@ ObjectModel make_chair(bool lowered) {
                            box_between({std::min(inner, outer), back_y - 0.06, top - 0.09},
                                        {std::max(inner, outer), back_y + 0.06, top + 0.03})});
   }
+  // The whole top of the backrest, corner to corner: its top 10 cm and 3 cm of free space around.
+  chair.parts.push_back(
+      {"backrest_top", box_between({-0.5 * back.x() - 0.03, back_y - 0.06, top - 0.1},
+                                   {0.5 * back.x() + 0.03, back_y + 0.06, top + 0.03})});
   return chair;
 }
 

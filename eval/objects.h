@@ -46,7 +46,8 @@ ObjectModel make_detergent_bottle();
 /// A spray bottle: a round body, a neck, and a trigger head with its nozzle and trigger.
 ObjectModel make_spray_bottle(double body_height = 0.17);
 ObjectModel make_ball(double radius = 0.033);
-/// A bin open at the top: a square mouth (`round` false) or a circular one.
+/// A bin open at the top: a square mouth (`round` false) or a circular one. Parts: "bin" and
+/// "opening" (the mouth and the top of the walls).
 ObjectModel make_bin(bool round);
 ObjectModel make_clutter_box(const Eigen::Vector3d& size);
 
@@ -55,8 +56,11 @@ ObjectModel make_table(const Eigen::Vector3d& size = {1.2, 0.8, 0.72});
 /// A two-level shelf: a bottom board at 0.45 m and a top board at 0.85 m, sides and a back.
 ObjectModel make_shelf();
 /// An office chair's backrest on its post, over a seat. Parts: "left_corner" and "right_corner"
-/// (the backrest's top corners). `lowered` drops the whole chair by 12 cm.
+/// (the backrest's top corners) and "backrest_top" (its whole top). `lowered` drops the seat and
+/// backrest by 12 cm.
 ObjectModel make_chair(bool lowered);
+/// The chair with its gas lift raised by `lift` metres (negative lowers it).
+ObjectModel make_chair_at_height(double lift);
 
 // Unconventional scenes.
 /// A wall panel with `mounts` Griple-like mounts in a row; the mounts listed in `hanging` hold a

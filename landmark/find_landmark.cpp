@@ -185,7 +185,8 @@ void check_inputs(const FindSettings& settings, const Landmark& landmark) {
   check_settings(settings);
   const std::string what = "landmark '" + landmark.name + "'";
   landmark.validate(what);
-  if (const auto why = degenerate_shape(landmark.points, landmark.settings.leaf_size, what)) {
+  if (const auto why = degenerate_shape(landmark.points, landmark.settings.leaf_size, what,
+                                        landmark.settings.allow_flat)) {
     throw Error(*why);
   }
 }

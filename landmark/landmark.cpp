@@ -95,7 +95,8 @@ Landmark capture(const PointCloud& scene, const Box& box, const std::string& nam
                 " points in the box after downsampling, fewer than the minimum of " +
                 std::to_string(settings.min_points) + "; draw a larger box or lower min_points");
   }
-  if (const auto why = degenerate_shape(landmark.points, settings.leaf_size, what)) {
+  if (const auto why =
+          degenerate_shape(landmark.points, settings.leaf_size, what, settings.allow_flat)) {
     throw Error(*why);
   }
   landmark.points.T_cloud_sensor = scene.T_cloud_sensor;
@@ -109,7 +110,7 @@ Landmark capture(const PointCloud& scene, const Box& box, const std::string& nam
 }
 
 std::optional<std::string> degenerate_shape(const PointCloud& points, double leaf_size,
-                                            const std::string& what) {
+                                            const std::string& what, bool allow_flat) {
   constexpr double kDegenerateFraction = 0.95;
   if (points.size() < 3) return what + ": fewer than three points cannot fix a pose";
   const PrincipalAxes pca =
@@ -133,10 +134,10 @@ std::optional<std::string> degenerate_shape(const PointCloud& points, double lea
            " of one line), which leaves its turn about that line undetermined; draw the "
            "box around something with a corner or some width";
   }
-  if (share(near_plane) >= kDegenerateFraction) {
+  if (share(near_plane) >= kDegenerateFraction && !allow_flat) {
     return what + ": the shape is flat (" + percent(near_plane) + "% of the points" + within +
            " of one plane), so it would match anywhere on any plane; draw the box to include an "
-           "edge, a corner or some relief";
+           "edge, a corner or some relief, or capture it as a flat patch (--allow-flat)";
   }
   return std::nullopt;
 }

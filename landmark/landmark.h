@@ -29,6 +29,11 @@ struct CaptureSettings {
   std::optional<Eigen::Vector3d> up;
   /// The scene is expressed in a robot base frame, whose +z is up (else the sensor's -y is).
   bool base_frame = false;
+  /// Accept a flat landmark: a patch of free surface, such as the paper's empty spot on a crowded
+  /// table, whose box margins say that nothing may stand on it. Its place and turn on its plane are
+  /// free, so it matches wherever it fits; the programs that use one choose among the matches by
+  /// a cue such as the demonstrated height. Thin straight shapes stay refused.
+  bool allow_flat = false;
 };
 
 struct Landmark {
@@ -75,9 +80,10 @@ void prepare_landmark(Landmark& landmark,
 /// Why a landmark's shape cannot fix a pose, or nothing when it can. A flat landmark (at least 95%
 /// of its points within two leaves of one plane) slides and turns freely in that plane, and a thin
 /// straight one (likewise around one line) turns freely about it: either would match every table
-/// top or every edge in a scene. `what` names the landmark in the message.
+/// top or every edge in a scene. `allow_flat` accepts the flat case (CaptureSettings::allow_flat).
+/// `what` names the landmark in the message.
 std::optional<std::string> degenerate_shape(const PointCloud& points, double leaf_size,
-                                            const std::string& what);
+                                            const std::string& what, bool allow_flat = false);
 
 /// Cuts a landmark out of `scene`: the finite scene points inside the oriented `box` (given in the
 /// scene frame), voxel-downsampled to settings.leaf_size. Throws lmk::Error for an empty name, a

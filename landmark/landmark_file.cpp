@@ -133,6 +133,8 @@ vdb::points::PointDataGrid::Ptr make_points_grid(const Landmark& landmark) {
   grid->insertMeta("lmk_distance_band", vdb::DoubleMetadata(landmark.settings.distance_band));
   grid->insertMeta("lmk_empty_space_margin",
                    vdb::DoubleMetadata(landmark.settings.empty_space_margin));
+  // Optional: files without it hold a landmark with a shape, as every earlier file does.
+  if (landmark.settings.allow_flat) grid->insertMeta("lmk_allow_flat", vdb::BoolMetadata(true));
   return grid;
 }
 
@@ -164,6 +166,9 @@ Landmark landmark_from_grid(const vdb::points::PointDataGrid& grid, const std::s
     landmark.settings.empty_space_margin =
         require_meta<vdb::DoubleMetadata>(grid, "lmk_empty_space_margin", path);
   }  // version 1 had neither: the defaults apply, and up is the capture camera's -y
+  if (const auto flat = grid.getMetadata<vdb::BoolMetadata>("lmk_allow_flat")) {
+    landmark.settings.allow_flat = flat->value();
+  }
 
   const bool ordered = landmark.format_version >= 2;
   const auto require = [&](const auto& leaf, const char* attribute) {
@@ -226,7 +231,8 @@ nlohmann::json to_json(const Landmark& l) {
             {"min_points", l.settings.min_points},
             {"max_box_side", l.settings.max_box_side},
             {"distance_band", l.settings.distance_band},
-            {"empty_space_margin", l.settings.empty_space_margin}}},
+            {"empty_space_margin", l.settings.empty_space_margin},
+            {"allow_flat", l.settings.allow_flat}}},
           {"up", detail::vector_to_json(l.up)}};
 }
 
@@ -265,6 +271,7 @@ Landmark from_json(const nlohmann::json& j, const std::string& path) {
     l.settings.distance_band = capture.value("distance_band", l.settings.distance_band);
     l.settings.empty_space_margin =
         capture.value("empty_space_margin", l.settings.empty_space_margin);
+    l.settings.allow_flat = capture.value("allow_flat", false);
     if (j.contains("up")) l.up = detail::numbers_from_json(j.at("up"), 3, path + ": up");
   } catch (const nlohmann::json::exception& e) {
     throw Error(path + ": " + e.what());

@@ -9,6 +9,7 @@
 #include "geometry/error.h"
 #include "landmark/landmark_file.h"
 #include "landmark/scene_index.h"
+#include "pbd/joint_motion.h"
 
 namespace lmk {
 
@@ -150,41 +151,6 @@ std::optional<Refusal> locate_landmarks(const Program& program,
   return std::nullopt;
 }
 
-// The joint's travel from a to b: the shorter way round for continuous joints.
-double signed_travel(const JointInfo& j, double a, double b) {
-  return j.continuous() ? std::remainder(b - a, 2.0 * M_PI) : b - a;
-}
-
-// A straight line in joint space from `from` to `to`, `points` waypoints over `duration`.
-JointTrajectory joint_line(const GroupInfo& group, const std::vector<double>& from,
-                           const std::vector<double>& to, double duration, int points) {
-  JointTrajectory t;
-  for (const JointInfo& j : group.joints) t.joint_names.push_back(j.name);
-  for (int k = 1; k <= points; ++k) {
-    const double s = static_cast<double>(k) / points;
-    JointTrajectory::Point p;
-    p.time_from_start = s * duration;
-    for (std::size_t i = 0; i < group.joints.size(); ++i) {
-      p.positions.push_back(from[i] + s * signed_travel(group.joints[i], from[i], to[i]));
-    }
-    t.points.push_back(std::move(p));
-  }
-  return t;
-}
-
-// The time a move takes at settings.speed_fraction of the slowest joint's limit.
-double move_duration(const GroupInfo& group, const std::vector<double>& from,
-                     const std::vector<double>& to, const PlanSettings& settings) {
-  double duration = 0.0;
-  for (std::size_t i = 0; i < group.joints.size(); ++i) {
-    const JointInfo& j = group.joints[i];
-    if (j.max_velocity <= 0.0) continue;
-    const double travel = std::abs(signed_travel(j, from[i], to[i]));
-    duration = std::max(duration, travel / (settings.speed_fraction * j.max_velocity));
-  }
-  return duration;
-}
-
 std::vector<double> group_start(const GroupInfo& group,
                                 const std::map<std::string, double>& positions) {
   std::vector<double> q;
@@ -262,8 +228,8 @@ Plan plan(const Program& program, const std::map<std::string, Landmark>& landmar
         result.refusal = Unreachable{s, arm, a.ik.message};
         return result;
       }
-      duration =
-          std::max(duration, move_duration(groups[arm], current[arm], a.ik.joints, settings));
+      duration = std::max(duration, motion_duration(groups[arm], current[arm], a.ik.joints,
+                                                    settings.speed_fraction));
       planned.arms.push_back(std::move(a));
     }
     planned.duration = std::max(duration, settings.min_step_duration);

@@ -18,7 +18,6 @@ Recorder::Recorder(std::string name, std::vector<ProgramLandmark> landmarks,
     : instances_(std::move(instances)), settings_(settings) {
   program_.name = std::move(name);
   program_.landmarks = std::move(landmarks);
-  validate_program(program_);
   if (!(settings_.max_distance >= 0.0)) throw Error("recorder: the distance must not be negative");
   for (const LandmarkInstance& instance : instances_) {
     if (!program_.landmark(instance.name)) {
@@ -33,6 +32,8 @@ Recorder::Recorder(std::string name, std::vector<ProgramLandmark> landmarks,
     declared_demonstrations_.push_back(l.demonstration);
   }
   refresh_demonstrations();
+  // After the demonstrated poses are known: a symmetric landmark needs one.
+  validate_program(program_);
 }
 
 void Recorder::refresh_demonstrations() {

@@ -49,5 +49,6 @@ Subcommand add_landmark(CLI::App& app);
 Subcommand add_robot(CLI::App& app);
 Subcommand add_eval(CLI::App& app);
 Subcommand add_ablate(CLI::App& app);
+Subcommand add_pbd(CLI::App& app);
 
 }  // namespace lmk::cli

@@ -1,0 +1,21 @@
+#pragma once
+// Joint-space motions for a group: straight lines between two joint vectors, timed so that no
+// joint exceeds a fraction of its speed limit. Continuous joints go the shorter way round.
+
+#include <vector>
+
+#include "pbd/robot_interface.h"
+
+namespace lmk {
+
+/// The seconds a straight joint-space move from `from` to `to` takes with every joint at most at
+/// `speed_fraction` of its limit (0 when nothing moves).
+double motion_duration(const GroupInfo& group, const std::vector<double>& from,
+                       const std::vector<double>& to, double speed_fraction);
+
+/// The straight line from `from` (the robot's current joints, not a point of the trajectory) to
+/// `to`: `points` waypoints evenly spread over `duration` seconds.
+JointTrajectory joint_line(const GroupInfo& group, const std::vector<double>& from,
+                           const std::vector<double>& to, double duration, int points);
+
+}  // namespace lmk

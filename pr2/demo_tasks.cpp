@@ -1,0 +1,336 @@
+#include "pr2/demo_tasks.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <map>
+
+#include "geometry/cloud_io.h"
+#include "geometry/error.h"
+#include "geometry/pose.h"
+#include "landmark/landmark_file.h"
+#include "pbd/execute.h"
+#include "pbd/joint_motion.h"
+#include "pbd/plan.h"
+#include "pbd/recorder.h"
+#include "pr2/detail/demo_task_definitions.h"
+#include "pr2/head_pointing.h"
+#include "pr2/simulated_pr2.h"
+
+namespace lmk {
+
+std::size_t DemoTasksReport::succeeded() const {
+  return static_cast<std::size_t>(std::count_if(
+      scenarios.begin(), scenarios.end(), [](const DemoScenarioResult& r) { return r.success; }));
+}
+
+namespace {
+
+using detail::DemoArmPose;
+using detail::DemoLandmark;
+using detail::DemoScenario;
+using detail::DemoTask;
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void require(const CallResult& r, const std::string& what) {
+  if (!r.ok()) throw Error(what + ": " + r.message);
+}
+
+std::string task_prefix(const DemoTask& task) { return "task " + std::to_string(task.number); }
+
+// A file name for a landmark or program name: "pick tool" -> "pick_tool".
+std::string file_stem(std::string name) {
+  std::replace_if(
+      name.begin(), name.end(), [](char c) { return !std::isalnum(c); }, '_');
+  return name;
+}
+
+// The PR2 of a task: torso at the task's height, active, its head looking at the task's area.
+SimulatedPr2 make_robot(const DemoTask& task) {
+  SimulatedPr2 robot(Pr2Kinematics(RobotModel::pr2(), task.torso_height));
+  require(robot.configure(), task_prefix(task) + ": configure");
+  require(robot.activate(), task_prefix(task) + ": activate");
+  require(point_head(robot, robot.kinematics(), task.look_at), task_prefix(task) + ": head");
+  return robot;
+}
+
+PointCloud look(const SimulatedPr2& robot, const DemoWorld& world, std::uint64_t seed) {
+  Eigen::Isometry3d T_base_sensor;
+  require(robot.sensor_pose(T_base_sensor), "sensor pose");
+  return world.observe(T_base_sensor, seed);
+}
+
+// The box the user draws around a landmark in the demonstration world.
+Box drawn_box(const DemoTask& task, const DemoLandmark& l) {
+  if (l.object.empty()) return l.box;
+  const PlacedObject* o = task.demonstration.object(l.object);
+  if (!o) throw Error(task_prefix(task) + ": no object '" + l.object + "' to capture");
+  return o->model.part(l.part).box.transformed(o->T_base_object);
+}
+
+// Moves one arm to a demonstrated pose the way a person guiding it would end up there, and reads
+// back what the robot's FK says, as the recorder would on "save pose".
+ArmState place_arm(SimulatedPr2& robot, Arm arm, const DemoArmPose& pose,
+                   const std::string& where) {
+  const std::string group = arm_group(arm);
+  const std::vector<double> from = robot.group_positions(group);
+  const IkResult ik = robot.kinematics().inverse(group, pose.T_base_ee, from);
+  if (!ik.success) {
+    const Eigen::Vector3d p = pose.T_base_ee.translation();
+    const Eigen::Vector3d rpy = rpy_from_rotation(pose.T_base_ee.linear()) * 180.0 / M_PI;
+    char at[160];
+    std::snprintf(at, sizeof(at), " (%.3f, %.3f, %.3f) m, rpy (%.0f, %.0f, %.0f) deg", p.x(),
+                  p.y(), p.z(), rpy.x(), rpy.y(), rpy.z());
+    throw Error(where + ": the demonstrated pose of the " + arm_name(arm) + " arm" + at +
+                " is out of reach: " + ik.message);
+  }
+  const GroupInfo info = *robot.kinematics().group(group);
+  const double duration = std::max(1.0, motion_duration(info, from, ik.joints, 0.5));
+  require(robot.send_trajectory(group, joint_line(info, from, ik.joints, duration, 5)), where);
+  GripperCommand g;
+  g.position = pose.gripper == GripperAction::kOpen ? 0.08 : 0.0;
+  require(robot.command_gripper(arm_gripper(arm), g), where);
+  ArmState state;
+  require(robot.kinematics().forward(group, robot.group_positions(group), state.T_base_ee), where);
+  state.gripper = pose.gripper;
+  return state;
+}
+
+struct RecordedTask {
+  std::map<std::string, Landmark> landmarks;
+  std::map<std::string, Program> programs;
+};
+
+// Step 1 and 2 of each task: capture the landmarks in the demonstration scene, then record each
+// program by placing the simulated arms.
+RecordedTask record(const DemoTask& task, const DemoTasksSettings& settings) {
+  SimulatedPr2 robot = make_robot(task);
+  const PointCloud scene = look(robot, task.demonstration, 1000 + task.number);
+  RecordedTask out;
+  std::map<std::string, Box> boxes;
+  for (const DemoLandmark& l : task.landmarks) {
+    CaptureSettings capture_settings;
+    capture_settings.base_frame = true;
+    capture_settings.allow_flat = l.flat;
+    boxes[l.name] = drawn_box(task, l);
+    out.landmarks.emplace(l.name, capture(scene, boxes[l.name], l.name, capture_settings));
+  }
+  for (const detail::DemoProgram& p : task.programs) {
+    if (settings.progress) settings.progress(task_prefix(task) + ": recording '" + p.name + "'");
+    std::vector<ProgramLandmark> declared;
+    std::vector<LandmarkInstance> instances;
+    for (const std::string& name : p.landmarks) {
+      ProgramLandmark pl(name, file_stem(name) + ".lmk");
+      pl.symmetry = task.landmark(name).symmetry;
+      pl.select = task.landmark(name).select;
+      declared.push_back(pl);
+      instances.push_back({name, boxes.at(name)});
+    }
+    Recorder recorder(p.name, declared, instances);
+    for (const detail::DemoStep& step : p.steps) {
+      std::optional<ArmState> left, right;
+      const std::string where = task_prefix(task) + ", program '" + p.name + "'";
+      if (step.left) left = place_arm(robot, Arm::kLeft, *step.left, where);
+      if (step.right) right = place_arm(robot, Arm::kRight, *step.right, where);
+      const std::size_t index = recorder.save_pose(left, right);
+      // The user corrects a step the recorder attached to another frame than intended.
+      for (Arm arm : {Arm::kLeft, Arm::kRight}) {
+        const auto& intended = arm == Arm::kLeft ? step.left : step.right;
+        if (intended && recorder.program().steps[index].arm(arm)->frame != intended->frame) {
+          recorder.set_frame(index, arm, intended->frame);
+        }
+      }
+    }
+    out.programs.emplace(p.name, recorder.program());
+  }
+  if (!settings.save_dir.empty()) {
+    const std::filesystem::path dir =
+        std::filesystem::path(settings.save_dir) / ("task" + std::to_string(task.number));
+    std::filesystem::create_directories(dir);
+    for (const auto& [name, landmark] : out.landmarks) {
+      save_landmark((dir / (file_stem(name) + ".lmk")).string(), landmark);
+    }
+    for (const auto& [name, program] : out.programs) {
+      save_program((dir / (file_stem(name) + ".json")).string(), program);
+    }
+    write_cloud((dir / "demonstration.pcd").string(), scene);
+  }
+  return out;
+}
+
+// The true pose of the landmark instance a plan located: the nearest ground-truth instance turned
+// within the landmark's symmetry to the located pose, or for a free-surface patch the valid patch
+// under the located one. Nothing when no true instance is there. `object` receives the instance's
+// object.
+std::optional<Eigen::Isometry3d> true_landmark_pose(const DemoWorld& world, const DemoLandmark& l,
+                                                    const LocatedLandmark& located,
+                                                    std::string& object) {
+  if (world.has_free_surface(l.name)) {
+    return world.free_patch_near(l.name, Box(located.T_base_landmark, located.match.box.size));
+  }
+  std::optional<Eigen::Isometry3d> best;
+  double best_distance = 0.05;  // two inches: farther than that, it is no instance of this one
+  for (const auto& [box, id] : world.instances(l.name)) {
+    const double d = (box.center() - located.T_base_landmark.translation()).norm();
+    if (d < best_distance) {
+      best_distance = d;
+      best = box.pose;
+      best->linear() = nearest_symmetric_rotation(box.pose.linear(),
+                                                  located.T_base_landmark.linear(), l.symmetry);
+      object = id;
+    }
+  }
+  return best;
+}
+
+std::string format_error(double position, double rotation) {
+  char text[96];
+  std::snprintf(text, sizeof(text), "%.1f mm, %.1f deg", 1000.0 * position,
+                rotation * 180.0 / M_PI);
+  return text;
+}
+
+struct ScenarioState {
+  DemoWorld world;
+  std::optional<SimulatedPr2> robot;
+  std::string picked;  ///< the object the last acting scenario's landmark belonged to
+};
+
+// Judges an acting scenario's targets against ground truth; returns "" when all are within
+// tolerance, else why not.
+std::string judge_targets(const DemoTask& task, const Program& program, const Plan& plan,
+                          const DemoWorld& world, const DemoTasksSettings& settings,
+                          DemoScenarioResult& result, std::string& picked) {
+  for (const PlannedStep& step : plan.steps) {
+    for (const PlannedArm& a : step.arms) {
+      if (a.frame == kBaseFrame) continue;
+      const LocatedLandmark& located = *plan.landmark(a.frame);
+      const std::optional<Eigen::Isometry3d> truth =
+          true_landmark_pose(world, task.landmark(a.frame), located, picked);
+      if (!truth) {
+        const Eigen::Vector3d p = located.T_base_landmark.translation();
+        char text[200];
+        std::snprintf(text, sizeof(text), "'%s' located at (%.3f, %.3f, %.3f), where there is none",
+                      a.frame.c_str(), p.x(), p.y(), p.z());
+        return text;
+      }
+      const Eigen::Isometry3d true_target =
+          *truth * program.steps[step.index].arm(a.arm)->T_frame_ee;
+      result.max_position_error =
+          std::max(result.max_position_error,
+                   (true_target.translation() - a.T_base_ee.translation()).norm());
+      result.max_rotation_error =
+          std::max(result.max_rotation_error,
+                   rotation_angle_between(true_target.linear(), a.T_base_ee.linear()));
+    }
+  }
+  if (result.max_position_error > settings.max_position_error ||
+      result.max_rotation_error > settings.max_rotation_error) {
+    return "a target is " + format_error(result.max_position_error, result.max_rotation_error) +
+           " from the truth";
+  }
+  return "";
+}
+
+// Step 3: one scenario, perceived, planned, executed on the simulated PR2 and judged.
+DemoScenarioResult run_scenario(const DemoTask& task, std::size_t index,
+                                const RecordedTask& recorded, ScenarioState& state,
+                                const DemoTasksSettings& settings) {
+  const DemoScenario& scenario = task.scenarios[index];
+  const auto start = std::chrono::steady_clock::now();
+  DemoScenarioResult result;
+  result.task = task.number;
+  result.task_title = task.title;
+  result.name = scenario.name;
+  result.should_act = scenario.should_act;
+  if (scenario.continues_previous && state.robot) {
+    if (!state.picked.empty() && state.world.object(state.picked)) state.world.remove(state.picked);
+  } else {
+    state.world = scenario.world;
+    state.robot = make_robot(task);
+  }
+  state.picked.clear();
+  SimulatedPr2& robot = *state.robot;
+  const PointCloud scene = look(robot, state.world, 100 * task.number + index);
+  if (!settings.save_dir.empty()) {
+    write_cloud((std::filesystem::path(settings.save_dir) / ("task" + std::to_string(task.number)) /
+                 ("scenario" + std::to_string(index + 1) + ".pcd"))
+                    .string(),
+                scene);
+  }
+  const Program& program = recorded.programs.at(scenario.program);
+  JointState joints;
+  require(robot.read_joint_state(joints), "read joints");
+  PlanSettings plan_settings;
+  plan_settings.find.threads = settings.threads;
+  const Plan plan =
+      lmk::plan(program, recorded.landmarks, scene, robot.kinematics(), joints, plan_settings);
+  const std::size_t motions_before = robot.history().size();
+  const double time_before = robot.time();
+  const ExecutionReport execution = execute(plan, robot);
+  result.steps_executed = execution.steps_completed;
+  const bool moved = robot.history().size() != motions_before || robot.time() != time_before;
+
+  if (!scenario.should_act) {
+    const auto* missing = plan.refusal ? std::get_if<LandmarkNotFound>(&*plan.refusal) : nullptr;
+    result.success = missing && missing->landmark == scenario.missing_landmark && !moved;
+    if (result.success) {
+      result.reason = "refused, no motion: " + describe(*plan.refusal);
+    } else if (plan.valid()) {
+      result.reason = "acted although '" + scenario.missing_landmark + "' is absent";
+    } else {
+      result.reason = "refused for another reason: " + describe(*plan.refusal);
+    }
+  } else if (!plan.valid()) {
+    result.reason = "refused: " + describe(*plan.refusal);
+  } else {
+    const std::string off =
+        judge_targets(task, program, plan, state.world, settings, result, state.picked);
+    if (!execution.completed) {
+      result.reason = "stopped after " + std::to_string(execution.steps_completed) + " of " +
+                      std::to_string(plan.steps.size()) + " steps: " + execution.error;
+    } else if (!off.empty()) {
+      result.reason = off;
+    } else {
+      result.success = true;
+      result.reason =
+          std::to_string(execution.steps_completed) + " steps executed; targets within " +
+          format_error(result.max_position_error, result.max_rotation_error) + " of the truth";
+    }
+  }
+  result.seconds = seconds_since(start);
+  return result;
+}
+
+}  // namespace
+
+DemoTasksReport run_demo_tasks(const DemoTasksSettings& settings) {
+  const auto start = std::chrono::steady_clock::now();
+  for (const int n : settings.tasks) {
+    if (n < 1 || n > 6) throw Error("demo tasks: no task " + std::to_string(n) + " (1 to 6)");
+  }
+  DemoTasksReport report;
+  for (const DemoTask& task : detail::demo_task_definitions()) {
+    if (!settings.tasks.empty() && std::find(settings.tasks.begin(), settings.tasks.end(),
+                                             task.number) == settings.tasks.end()) {
+      continue;
+    }
+    const RecordedTask recorded = record(task, settings);
+    ScenarioState state;
+    for (std::size_t i = 0; i < task.scenarios.size(); ++i) {
+      if (settings.progress) {
+        settings.progress(task_prefix(task) + ", scenario " + std::to_string(i + 1) + ": " +
+                          task.scenarios[i].name);
+      }
+      report.scenarios.push_back(run_scenario(task, i, recorded, state, settings));
+    }
+  }
+  report.seconds = seconds_since(start);
+  return report;
+}
+
+}  // namespace lmk

@@ -1,0 +1,63 @@
+#pragma once
+// The paper's six PbD demonstration tasks, end to end on the simulated PR2 (`lmk pbd demo-tasks`):
+// for each task, a demonstration scene seen by the head Kinect, landmarks captured with the boxes
+// a user would draw, a program recorded by placing the simulated arms, and the paper's test
+// scenarios, each planned and executed in a new scene and judged against ground truth.
+//
+// Success: when a scenario should act, every landmark-relative target is within 2 cm and 10
+// degrees of the true target (the true landmark pose, modulo its symmetry, composed with
+// T_landmark_ee) and the whole plan executed; when it should not act, the refusal names the
+// missing landmark and the robot made no motion.
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "landmark/find_landmark.h"
+
+namespace lmk {
+
+struct DemoScenarioResult {
+  int task = 0;
+  std::string task_title;
+  std::string name;
+  bool should_act = true;
+  bool success = false;
+  std::string reason;  ///< why it succeeded or failed, for a person
+  std::size_t steps_executed = 0;
+  double max_position_error = 0.0;  ///< m, over the landmark-relative targets (acting scenarios)
+  double max_rotation_error = 0.0;  ///< rad
+  double seconds = 0.0;             ///< perception, planning and execution
+};
+
+struct DemoTasksReport {
+  std::vector<DemoScenarioResult> scenarios;
+  double seconds = 0.0;
+  std::size_t succeeded() const;
+  std::size_t total() const { return scenarios.size(); }
+};
+
+struct DemoTasksSettings {
+  std::vector<int> tasks;                           ///< 1-6; empty runs all six
+  int threads = 0;                                  ///< search threads; 0 uses every core
+  double max_position_error = 0.02;                 ///< m
+  double max_rotation_error = 10.0 * M_PI / 180.0;  ///< rad
+  /// If set, each task's landmarks (.lmk) and programs (.json), and every scene (.pcd) are written
+  /// there, so that `lmk pbd plan` can replay them.
+  std::string save_dir;
+  /// A line per stage ("task 1: recording 'pick tool'", "task 1, scenario 2: ...").
+  std::function<void(const std::string&)> progress;
+};
+
+/// Runs the tasks. Throws lmk::Error only for a broken task definition (a demonstrated pose the
+/// arm cannot reach) or an unknown task number; every scenario outcome is in the report.
+DemoTasksReport run_demo_tasks(const DemoTasksSettings& settings = {});
+
+/// The paper-style table: task, scenario, should act, success, reason; and the total.
+std::string demo_tasks_table(const DemoTasksReport& report);
+
+/// {"scenarios":[{"task":n,"name":"...","should_act":b,"success":b,"reason":"..."}],
+///  "succeeded":n,"total":n} with a few more fields per scenario.
+std::string demo_tasks_json(const DemoTasksReport& report);
+
+}  // namespace lmk

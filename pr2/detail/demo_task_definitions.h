@@ -1,0 +1,104 @@
+#pragma once
+// The paper's six PbD demonstration tasks (its Tables IV-IX) as data: each task's demonstration
+// world, the landmark boxes a user draws in it, the arm poses the user demonstrates, and the test
+// scenarios. pr2/demo_tasks.cpp records and runs them; nothing here knows the answers the runs
+// will give.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "geometry/pose.h"
+#include "geometry/symmetry.h"
+#include "pbd/program.h"
+#include "pr2/demo_world.h"
+
+namespace lmk::detail {
+
+/// A landmark a user captures in the demonstration world: the box drawn around `part` of object
+/// `object` (or `box`, base frame, when `object` is empty: a patch of free table).
+struct DemoLandmark {
+  std::string name;
+  std::string object, part;
+  Box box;
+  Symmetry symmetry;
+  std::optional<InstancePolicy> select;
+  bool flat = false;  ///< a free-surface patch (CaptureSettings::allow_flat)
+};
+
+/// The landmark a user captures around an object's part.
+inline DemoLandmark part_landmark(std::string name, std::string object, std::string part,
+                                  Symmetry symmetry = {}) {
+  DemoLandmark l;
+  l.name = std::move(name);
+  l.object = std::move(object);
+  l.part = std::move(part);
+  l.symmetry = std::move(symmetry);
+  return l;
+}
+
+/// One arm placed by the demonstrator: its tool pose in the demonstration world (base frame), the
+/// frame the step should be relative to ("base" or a landmark), and the gripper.
+struct DemoArmPose {
+  std::string frame;
+  Eigen::Isometry3d T_base_ee = Eigen::Isometry3d::Identity();
+  GripperAction gripper = GripperAction::kOpen;
+};
+
+struct DemoStep {
+  std::optional<DemoArmPose> left, right;
+};
+
+struct DemoProgram {
+  std::string name;
+  std::vector<std::string> landmarks;  ///< the task landmarks it declares
+  std::vector<DemoStep> steps;
+};
+
+struct DemoScenario {
+  std::string name;
+  std::string program;
+  bool should_act = true;
+  std::string missing_landmark;  ///< when it should not act: the landmark it must say is missing
+  /// Run in the world the previous scenario left, minus the object it picked (Task 3's second
+  /// pick), instead of `world`.
+  bool continues_previous = false;
+  DemoWorld world;
+  std::uint64_t seed = 0;  ///< sensor noise
+};
+
+struct DemoTask {
+  int number = 0;
+  std::string title;
+  double torso_height = 0.2;                               ///< m
+  Eigen::Vector3d look_at = Eigen::Vector3d(0.7, 0, 0.7);  ///< where the head looks, base frame
+  DemoWorld demonstration;
+  std::vector<DemoLandmark> landmarks;
+  std::vector<DemoProgram> programs;
+  std::vector<DemoScenario> scenarios;
+
+  const DemoLandmark& landmark(const std::string& name) const;
+};
+
+// The six tasks, in the paper's order.
+DemoTask hanging_tools_task();
+DemoTask chair_task();
+DemoTask bowls_on_shelf_task();
+DemoTask bins_task();
+DemoTask crowded_table_task();
+DemoTask control_panel_task();
+std::vector<DemoTask> demo_task_definitions();
+
+// Poses shared by the definitions.
+/// An object standing at (x, y, z) of the base frame with its front (-y in its own frame) turned
+/// towards the robot (-x of the base), then turned by `yaw` about the vertical.
+inline Eigen::Isometry3d facing_robot(double x, double y, double z, double yaw = 0.0) {
+  return pose_from_xyz_rpy({x, y, z}, {0, 0, -0.5 * M_PI + yaw});
+}
+/// A tool at `p` pointing down (its x axis along -z), fingers closing along the base frame's
+/// direction at `yaw` from +y.
+inline Eigen::Isometry3d pointing_down(const Eigen::Vector3d& p, double yaw = 0.0) {
+  return pose_from_xyz_rpy(p, {0, 0.5 * M_PI, yaw});
+}
+
+}  // namespace lmk::detail

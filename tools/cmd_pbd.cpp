@@ -1,0 +1,241 @@
+// lmk pbd show | plan | run | demo-tasks: PbD programs relative to landmarks, planned in a scene,
+// executed on the simulated PR2, and the paper's six demonstration tasks end to end.
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "geometry/atomic_file.h"
+#include "geometry/cloud_io.h"
+#include "geometry/detail/pose_json.h"
+#include "geometry/error.h"
+#include "pbd/execute.h"
+#include "pbd/plan.h"
+#include "pr2/demo_tasks.h"
+#include "pr2/simulated_pr2.h"
+#include "tools/cli_common.h"
+
+namespace lmk::cli {
+namespace {
+
+struct PbdOptions {
+  std::string program, scene, json, save_dir, policy;
+  double torso = 0.0;
+  int threads = 0;
+  bool sim = false, json_stdout = false;
+  std::vector<int> tasks;
+};
+
+void print_pose(const char* label, const Eigen::Isometry3d& T) {
+  const Eigen::Vector3d p = T.translation();
+  const Eigen::Vector3d rpy = rpy_degrees(T.linear());
+  std::printf("%s(%.3f, %.3f, %.3f) m, rpy (%.1f, %.1f, %.1f) deg", label, p.x(), p.y(), p.z(),
+              rpy.x(), rpy.y(), rpy.z());
+}
+
+int run_show(const PbdOptions& o) {
+  const Program p = load_program(o.program);
+  std::printf("program '%s': %zu landmark%s, %zu step%s\n", p.name.c_str(), p.landmarks.size(),
+              p.landmarks.size() == 1 ? "" : "s", p.steps.size(), p.steps.size() == 1 ? "" : "s");
+  for (const ProgramLandmark& l : p.landmarks) {
+    std::printf("  landmark %-16s %s", l.name.c_str(), l.file.c_str());
+    if (l.select) std::printf(", policy %s", instance_policy_name(*l.select));
+    if (l.symmetry.axis) {
+      std::printf(
+          ", symmetric about (%.2g, %.2g, %.2g)%s", l.symmetry.axis->x(), l.symmetry.axis->y(),
+          l.symmetry.axis->z(),
+          l.symmetry.order ? (" " + std::to_string(l.symmetry.order) + "-fold").c_str() : "");
+    }
+    if (l.demonstration) print_pose(", demonstrated at ", *l.demonstration);
+    std::printf("\n");
+  }
+  for (std::size_t i = 0; i < p.steps.size(); ++i) {
+    const ProgramStep& s = p.steps[i];
+    std::printf("  step %zu", i);
+    if (s.duration) std::printf(" (%.1f s)", *s.duration);
+    std::printf("\n");
+    for (Arm arm : {Arm::kLeft, Arm::kRight}) {
+      if (!s.arm(arm)) continue;
+      const ArmTarget& t = *s.arm(arm);
+      std::printf("    %-5s in %-14s ", arm_name(arm), t.frame.c_str());
+      print_pose("", t.T_frame_ee);
+      std::printf(", gripper %s\n", gripper_action_name(t.gripper));
+    }
+  }
+  return kOk;
+}
+
+nlohmann::json plan_json(const Plan& plan) {
+  nlohmann::json landmarks = nlohmann::json::array(), steps = nlohmann::json::array();
+  for (const LocatedLandmark& l : plan.landmarks) {
+    nlohmann::json j = detail::pose_to_json(l.T_base_landmark);
+    j["name"] = l.name;
+    j["error"] = l.match.error;
+    j["found"] = l.found;
+    j["eligible"] = l.eligible;
+    j["policy"] = instance_policy_name(l.policy);
+    j["seconds"] = l.seconds;
+    landmarks.push_back(j);
+  }
+  for (const PlannedStep& s : plan.steps) {
+    nlohmann::json arms = nlohmann::json::array();
+    for (const PlannedArm& a : s.arms) {
+      nlohmann::json j = detail::pose_to_json(a.T_base_ee);
+      j["arm"] = arm_name(a.arm);
+      j["frame"] = a.frame;
+      j["gripper"] = gripper_action_name(a.gripper);
+      j["joints"] = a.ik.joints;
+      j["position_error_m"] = a.ik.position_error;
+      j["rotation_error_rad"] = a.ik.rotation_error;
+      arms.push_back(j);
+    }
+    steps.push_back({{"step", s.index}, {"duration", s.duration}, {"arms", arms}});
+  }
+  nlohmann::json j = {{"program", plan.program},
+                      {"valid", plan.valid()},
+                      {"landmarks", landmarks},
+                      {"steps", steps}};
+  if (plan.refusal) {
+    j["refusal"] = {{"kind", refusal_kind(*plan.refusal)}, {"message", describe(*plan.refusal)}};
+  }
+  return j;
+}
+
+void print_plan(const Plan& plan) {
+  for (const LocatedLandmark& l : plan.landmarks) {
+    std::printf("landmark %-16s ", l.name.c_str());
+    print_pose("at ", l.T_base_landmark);
+    std::printf(", error %.1f mm, %zu found, %zu eligible (%s)\n", 1000.0 * l.match.error, l.found,
+                l.eligible, instance_policy_name(l.policy));
+  }
+  for (const PlannedStep& s : plan.steps) {
+    for (const PlannedArm& a : s.arms) {
+      std::printf("step %-3zu %-5s ", s.index, arm_name(a.arm));
+      print_pose("to ", a.T_base_ee);
+      std::printf(", gripper %s, IK %.1e m %.1e rad, %.1f s\n", gripper_action_name(a.gripper),
+                  a.ik.position_error, a.ik.rotation_error, s.duration);
+    }
+  }
+}
+
+// Plans the program in the scene for a simulated PR2 at rest with the torso at o.torso; the robot
+// is returned configured and active, so that `run` can execute the plan on it.
+Plan plan_program(const PbdOptions& o, SimulatedPr2& robot) {
+  format_from_path(o.scene);
+  const Program program = load_program(o.program);
+  const auto landmarks =
+      load_program_landmarks(program, std::filesystem::path(o.program).parent_path().string());
+  const PointCloud scene = read_cloud(o.scene);
+  if (!robot.configure().ok() || !robot.activate().ok())
+    throw Error("simulated PR2 failed to start");
+  JointState state;
+  robot.read_joint_state(state);
+  PlanSettings settings;
+  settings.find.threads = o.threads;
+  if (!o.policy.empty()) settings.policy = instance_policy_from_name(o.policy);
+  if (isatty(STDERR_FILENO)) {
+    settings.progress = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
+  }
+  return plan(program, landmarks, scene, robot.kinematics(), state, settings);
+}
+
+int refused(const Plan& plan) {
+  std::fprintf(stderr, "lmk: refused: %s\n", describe(*plan.refusal).c_str());
+  return kInternalError;  // exit 1: a valid request the robot will not carry out
+}
+
+int run_plan(const PbdOptions& o) {
+  SimulatedPr2 robot(Pr2Kinematics(RobotModel::pr2(), o.torso));
+  const Plan plan = plan_program(o, robot);
+  if (o.json_stdout) {
+    std::cout << plan_json(plan).dump(2) << "\n";
+  } else {
+    print_plan(plan);
+  }
+  return plan.valid() ? kOk : refused(plan);
+}
+
+int run_run(const PbdOptions& o) {
+  if (!o.sim) {
+    throw Error(
+        "pbd run: only --sim is available from the command line; real robots run programs "
+        "through lmk's C++ RobotInterface");
+  }
+  SimulatedPr2 robot(Pr2Kinematics(RobotModel::pr2(), o.torso));
+  const Plan plan = plan_program(o, robot);
+  print_plan(plan);
+  if (!plan.valid()) return refused(plan);
+  const ExecutionReport report = execute(plan, robot);
+  for (const std::string& line : report.log) std::printf("executed %s\n", line.c_str());
+  if (!report.completed) {
+    std::fprintf(stderr, "lmk: stopped after %zu of %zu steps: %s\n", report.steps_completed,
+                 report.steps_total, report.error.c_str());
+    return kInternalError;
+  }
+  std::printf("program '%s' done: %zu steps in %.1f s of robot time\n", plan.program.c_str(),
+              report.steps_completed, robot.time());
+  return kOk;
+}
+
+int run_demo_tasks_command(const PbdOptions& o) {
+  DemoTasksSettings settings;
+  settings.tasks = o.tasks;
+  settings.threads = o.threads;
+  settings.save_dir = o.save_dir;
+  // One line per scenario on stderr: a run takes a minute or two.
+  settings.progress = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
+  const DemoTasksReport report = run_demo_tasks(settings);
+  std::printf("%s", demo_tasks_table(report).c_str());
+  if (!o.json.empty()) write_text_atomically(o.json, demo_tasks_json(report));
+  return kOk;
+}
+
+void add_plan_options(CLI::App* sub, PbdOptions& o) {
+  sub->add_option("program", o.program, "Program file (.json)")->required();
+  sub->add_option("--scene", o.scene, "Scene cloud in the robot base frame (.pcd, .ply, .xyz)")
+      ->required();
+  sub->add_option("--torso", o.torso, "PR2 torso height, m (0 to 0.33)")->capture_default_str();
+  sub->add_option("--policy", o.policy,
+                  "Instance policy for landmarks whose program sets none: best-error, "
+                  "nearest-to-demonstration, demonstrated-height");
+  sub->add_option("--threads", o.threads, "Search threads; 0 uses every core")
+      ->capture_default_str();
+}
+
+}  // namespace
+
+Subcommand add_pbd(CLI::App& app) {
+  auto o = std::make_shared<PbdOptions>();
+  CLI::App* sub = app.add_subcommand("pbd", "PbD programs: show, plan, run, the paper's six tasks");
+  sub->require_subcommand(1);
+  CLI::App* show = sub->add_subcommand("show", "Print a program's landmarks and steps");
+  show->add_option("program", o->program, "Program file (.json)")->required();
+  CLI::App* plan = sub->add_subcommand(
+      "plan", "Locate the landmarks, compose the targets and solve IK, or say why not");
+  add_plan_options(plan, *o);
+  plan->add_flag("--json", o->json_stdout, "Print the plan (or refusal) as JSON");
+  CLI::App* run = sub->add_subcommand("run", "Plan, then execute on the simulated PR2");
+  add_plan_options(run, *o);
+  run->add_flag("--sim", o->sim, "Execute on the simulated PR2 (the only robot the CLI drives)");
+  CLI::App* demo = sub->add_subcommand(
+      "demo-tasks", "The paper's six demonstration tasks, end to end on the simulated PR2");
+  demo->add_option("--json", o->json, "Also write the results as JSON to FILE");
+  demo->add_option("--task", o->tasks, "Only these tasks (1 to 6)");
+  demo->add_option("--save", o->save_dir,
+                   "Write each task's landmarks, programs and scenes to DIR/taskN");
+  demo->add_option("--threads", o->threads, "Search threads; 0 uses every core")
+      ->capture_default_str();
+  return {sub, [o, show, plan, run] {
+            if (show->parsed()) return run_show(*o);
+            if (plan->parsed()) return run_plan(*o);
+            if (run->parsed()) return run_run(*o);
+            return run_demo_tasks_command(*o);
+          }};
+}
+
+}  // namespace lmk::cli
