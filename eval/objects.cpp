@@ -319,9 +319,11 @@ ObjectModel make_control_panel(int buttons) {
   const double width = 0.34, height = 0.22;
   TriangleMesh mesh;
   add_box(mesh, {width, 0.02, height}, 0, 0, 0.5 * height);
-  // The dial: a disc with a pointer ridge; the buttons in a row to its right.
-  add_knob(mesh, 0.03, 0.02, -0.09, -0.02, 0.11);
-  add_box(mesh, {0.006, 0.01, 0.04}, -0.09, -0.035, 0.115);
+  // The dial: a knob with a grip bar from its centre to its rim, which is also its pointer (as on a
+  // washing machine: the bar is what a hand turns, and no turn of the knob looks the same); the
+  // buttons in a row to its right.
+  add_knob(mesh, 0.03, 0.025, -0.09, -0.0225, 0.11);
+  add_box(mesh, {0.014, 0.015, 0.034}, -0.09, -0.0425, 0.122);
   ObjectModel panel;
   std::vector<ObjectPart> parts;
   parts.push_back({"dial", box_between({-0.135, -0.07, 0.065}, {-0.045, -0.005, 0.155})});

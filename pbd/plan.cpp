@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <numeric>
 #include <set>
 
 #include "geometry/error.h"
@@ -107,15 +108,36 @@ std::string no_eligible_reason(const FindResult& result, std::size_t found, Inst
   return text;
 }
 
-// Step 1-2 of execution: every landmark a step uses, located, or the refusal.
+// A landmark's eligible instances, in the order its policy prefers them.
+struct Candidates {
+  const ProgramLandmark* entry = nullptr;
+  std::vector<Match> matches;
+  LocatedLandmark located;  ///< everything but the chosen match
+};
+
+// The located landmark for one of its candidates: the match's box, turned within the landmark's
+// symmetry to the orientation nearest the demonstration.
+LocatedLandmark choose(const Candidates& c, std::size_t k) {
+  LocatedLandmark l = c.located;
+  l.match = c.matches[k];
+  l.T_base_landmark = l.match.box.pose;
+  if (c.entry->demonstration) {
+    l.T_base_landmark.linear() = nearest_symmetric_rotation(
+        l.T_base_landmark.linear(), c.entry->demonstration->linear(), c.entry->symmetry);
+  }
+  return l;
+}
+
+// Step 1-2 of execution: every landmark a step uses, with its eligible instances, or the refusal.
 std::optional<Refusal> locate_landmarks(const Program& program,
                                         const std::map<std::string, Landmark>& landmarks,
                                         const PointCloud& scene, const PlanSettings& settings,
-                                        std::vector<LocatedLandmark>& located) {
+                                        std::vector<Candidates>& out) {
   const std::vector<const ProgramLandmark*> used = used_landmarks(program);
   if (used.empty()) return std::nullopt;
   FindSettings find = settings.find;
   find.base_frame = true;
+  if (!find.work_volume) find.work_volume = settings.workspace;
   const SceneIndex index(scene, scene_settings(find));
   for (const ProgramLandmark* entry : used) {
     const auto it = landmarks.find(entry->name);
@@ -133,20 +155,18 @@ std::optional<Refusal> locate_landmarks(const Program& program,
       return LandmarkNotFound{
           entry->name, no_eligible_reason(result, result.matches.size(), policy, *entry, settings)};
     }
-    LocatedLandmark l;
-    l.name = entry->name;
-    l.match = *eligible.front();
-    l.match.aligned_points = PointCloud();  // not needed past the search
-    l.found = result.matches.size();
-    l.eligible = eligible.size();
-    l.policy = policy;
-    l.seconds = seconds_since(start);
-    l.T_base_landmark = l.match.box.pose;
-    if (entry->demonstration) {
-      l.T_base_landmark.linear() = nearest_symmetric_rotation(
-          l.T_base_landmark.linear(), entry->demonstration->linear(), entry->symmetry);
+    Candidates c;
+    c.entry = entry;
+    for (const Match* m : eligible) {
+      c.matches.push_back(*m);
+      c.matches.back().aligned_points = PointCloud();  // not needed past the search
     }
-    located.push_back(std::move(l));
+    c.located.name = entry->name;
+    c.located.found = result.matches.size();
+    c.located.eligible = eligible.size();
+    c.located.policy = policy;
+    c.located.seconds = seconds_since(start);
+    out.push_back(std::move(c));
   }
   return std::nullopt;
 }
@@ -163,6 +183,52 @@ std::vector<double> group_start(const GroupInfo& group,
     q.push_back(it->second);
   }
   return q;
+}
+
+// The arms' groups and their joints at the start.
+struct Arms {
+  std::map<Arm, GroupInfo> groups;
+  std::map<Arm, std::vector<double>> start;
+};
+
+// Steps 3-5 for one choice of instances: targets, IK for every step (seeded with the previous
+// one's joints, so that consecutive solutions stay on one branch), and the motions. Fills `steps`,
+// or returns the first step an arm cannot reach.
+std::optional<Unreachable> solve_steps(const Program& program, const Plan& plan,
+                                       const KinematicsInterface& kinematics, const Arms& arms,
+                                       const PlanSettings& settings,
+                                       std::vector<PlannedStep>& steps) {
+  std::map<Arm, std::vector<double>> current = arms.start;
+  for (std::size_t s = 0; s < program.steps.size(); ++s) {
+    const ProgramStep& step = program.steps[s];
+    PlannedStep planned;
+    planned.index = s;
+    double duration = step.duration.value_or(0.0);
+    for (Arm arm : {Arm::kLeft, Arm::kRight}) {
+      const std::optional<ArmTarget>& target = step.arm(arm);
+      if (!target) continue;
+      PlannedArm a;
+      a.arm = arm;
+      a.frame = target->frame;
+      a.gripper = target->gripper;
+      a.T_base_ee = target->relative_to_landmark()
+                        ? plan.landmark(target->frame)->T_base_landmark * target->T_frame_ee
+                        : target->T_frame_ee;
+      a.ik = kinematics.inverse(arm_group(arm), a.T_base_ee, current[arm]);
+      if (!a.ik.success) return Unreachable{s, arm, a.ik.message};
+      duration = std::max(duration, motion_duration(arms.groups.at(arm), current[arm], a.ik.joints,
+                                                    settings.speed_fraction));
+      planned.arms.push_back(std::move(a));
+    }
+    planned.duration = std::max(duration, settings.min_step_duration);
+    for (PlannedArm& a : planned.arms) {
+      a.trajectory = joint_line(arms.groups.at(a.arm), current[a.arm], a.ik.joints,
+                                planned.duration, settings.waypoints);
+      current[a.arm] = a.ik.joints;
+    }
+    steps.push_back(std::move(planned));
+  }
+  return std::nullopt;
 }
 
 void check_settings(const PlanSettings& s) {
@@ -187,60 +253,59 @@ Plan plan(const Program& program, const std::map<std::string, Landmark>& landmar
   for (std::size_t i = 0; i < start.names.size() && i < start.positions.size(); ++i) {
     positions[start.names[i]] = start.positions[i];
   }
-  std::map<Arm, GroupInfo> groups;
-  std::map<Arm, std::vector<double>> current;
+  Arms arms;
   for (Arm arm : {Arm::kLeft, Arm::kRight}) {
     const auto group = kinematics.group(arm_group(arm));
     if (!group) throw Error("plan: the robot has no group '" + arm_group(arm) + "'");
-    groups[arm] = *group;
-    current[arm] = group_start(*group, positions);
+    arms.groups[arm] = *group;
+    arms.start[arm] = group_start(*group, positions);
     for (std::size_t i = 0; i < group->joints.size(); ++i) {
-      result.start[group->joints[i].name] = current[arm][i];
+      result.start[group->joints[i].name] = arms.start[arm][i];
     }
   }
 
   // 1-2. Locate every landmark, or refuse.
-  result.refusal = locate_landmarks(program, landmarks, scene, settings, result.landmarks);
+  std::vector<Candidates> candidates;
+  result.refusal = locate_landmarks(program, landmarks, scene, settings, candidates);
   if (result.refusal) return result;
 
-  // 3-5. Targets, IK for every step (seeded with the previous one's joints, so that consecutive
-  // solutions stay on one branch), and the motions, before anything moves.
+  // 3-5. Everything before anything moves. When a step is out of reach relative to a landmark that
+  // has other eligible instances, the next one in policy order is tried (a tool on a full rack:
+  // take one the arm can reach); the refusal reported is the first, for the preferred instances.
   if (settings.progress)
     settings.progress("solving IK for " + std::to_string(program.steps.size()) + " steps");
-  std::vector<PlannedStep> steps;
-  for (std::size_t s = 0; s < program.steps.size(); ++s) {
-    const ProgramStep& step = program.steps[s];
-    PlannedStep planned;
-    planned.index = s;
-    double duration = step.duration.value_or(0.0);
-    for (Arm arm : {Arm::kLeft, Arm::kRight}) {
-      const std::optional<ArmTarget>& target = step.arm(arm);
-      if (!target) continue;
-      PlannedArm a;
-      a.arm = arm;
-      a.frame = target->frame;
-      a.gripper = target->gripper;
-      a.T_base_ee = target->relative_to_landmark()
-                        ? result.landmark(target->frame)->T_base_landmark * target->T_frame_ee
-                        : target->T_frame_ee;
-      a.ik = kinematics.inverse(arm_group(arm), a.T_base_ee, current[arm]);
-      if (!a.ik.success) {
-        result.refusal = Unreachable{s, arm, a.ik.message};
-        return result;
-      }
-      duration = std::max(duration, motion_duration(groups[arm], current[arm], a.ik.joints,
-                                                    settings.speed_fraction));
-      planned.arms.push_back(std::move(a));
+  std::vector<std::size_t> choice(candidates.size(), 0);
+  std::optional<Unreachable> first_failure;
+  while (true) {
+    result.landmarks.clear();
+    for (std::size_t i = 0; i < candidates.size(); ++i) {
+      result.landmarks.push_back(choose(candidates[i], choice[i]));
     }
-    planned.duration = std::max(duration, settings.min_step_duration);
-    for (PlannedArm& a : planned.arms) {
-      a.trajectory = joint_line(groups[a.arm], current[a.arm], a.ik.joints, planned.duration,
-                                settings.waypoints);
-      current[a.arm] = a.ik.joints;
+    std::vector<PlannedStep> steps;
+    const std::optional<Unreachable> failure =
+        solve_steps(program, result, kinematics, arms, settings, steps);
+    if (!failure) {
+      result.steps = std::move(steps);
+      return result;
     }
-    steps.push_back(std::move(planned));
+    if (!first_failure) first_failure = failure;
+    const std::string& frame = program.steps[failure->step].arm(failure->arm)->frame;
+    std::size_t i = 0;
+    while (i < candidates.size() && candidates[i].entry->name != frame) ++i;
+    if (!settings.try_other_instances || i == candidates.size() ||
+        choice[i] + 1 >= candidates[i].matches.size()) {
+      break;
+    }
+    ++choice[i];
   }
-  result.steps = std::move(steps);
+  Unreachable refusal = *first_failure;
+  const std::size_t tried = std::accumulate(choice.begin(), choice.end(), std::size_t{0});
+  if (tried > 0) refusal.reason += " (and with " + std::to_string(tried) + " other instance(s))";
+  result.refusal = refusal;
+  result.landmarks.clear();
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    result.landmarks.push_back(choose(candidates[i], 0));
+  }
   return result;
 }
 

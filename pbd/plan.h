@@ -85,10 +85,20 @@ struct Plan {
 struct PlanSettings {
   /// The landmark search. The scene is in the robot base frame (base_frame is forced on).
   FindSettings find;
+  /// Step 1 of the paper's Algorithm 1, the work volume, when find.work_volume is unset: the space
+  /// the arms can act in, base frame. The default, x 0-1.3 m, y -1 to 1 m, z 0-1.9 m, holds a
+  /// PR2's reach and leaves out the floor, whose plane the flat parts of many landmarks would
+  /// otherwise match all over (a control panel's face around its dial).
+  Box workspace = Box(Eigen::Translation3d(0.65, 0.0, 0.95) * Eigen::Isometry3d::Identity(),
+                      Eigen::Vector3d(1.3, 2.0, 1.9));
   /// The instance policy for landmarks whose program entry sets none.
   InstancePolicy policy = InstancePolicy::kBestError;
-  /// kDemonstratedHeight: an instance's box centre must be within this of the demonstrated height.
-  double height_tolerance = 0.05;
+  /// kDemonstratedHeight: an instance's box centre must be within this of the demonstrated height
+  /// (about an inch: a table is not a box standing on it).
+  double height_tolerance = 0.03;
+  /// When a step is out of reach with the preferred instance of its landmark, try the landmark's
+  /// other eligible instances in policy order before refusing.
+  bool try_other_instances = true;
   /// Joint speeds are kept to this fraction of each joint's limit.
   double speed_fraction = 0.5;
   double min_step_duration = 1.0;  ///< s; no motion is planned faster than this

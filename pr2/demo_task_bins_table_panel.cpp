@@ -227,7 +227,12 @@ DemoTask control_panel_task() {
   t.torso_height = 0.2;
   t.look_at = {0.6, 0.0, 0.85};
   add_panel(t.demonstration, 0.0, 0, 0, 0, 0);
-  t.landmarks = {part_landmark("dial", "panel", "dial")};
+  // The user draws the box around the dial and the panel's corner beside it, 3 cm past its edges:
+  // a round knob turns freely about its axis but for its small grip bar, and the corner pins that
+  // turn down, where the buttons' positions depend on it.
+  DemoLandmark dial = part_landmark("dial", "panel", "dial");
+  dial.drawn = Box(pose_from_xyz_rpy({-0.1225, -0.0275, 0.1575}, {0, 0, 0}), {0.155, 0.085, 0.185});
+  t.landmarks = {dial};
   // Press buttons 2, 0 and 1: for each, 6 cm in front of it, onto it, and back.
   const Eigen::Isometry3d T_panel = t.demonstration.object("panel")->T_base_object;
   DemoProgram press{"press buttons 2, 0, 1", {"dial"}, {}};

@@ -121,21 +121,24 @@ DemoTask chair_task() {
   t.look_at = {0.75, 0.0, 0.8};
   add_chair(t.demonstration, 0.0, 0.92, 0.0, 0.0);
   t.landmarks = {part_landmark("backrest_top", "chair", "backrest_top")};
-  // Both hands on the backrest's top roll, 17 cm either side of its middle, from above, fingers
-  // closing across the roll.
+  // Both hands on the backrest's top roll, 17 cm either side of its middle, reaching over it from
+  // behind: each tool horizontal and pointing into the chair, fingers closing from above and below
+  // the roll.
   const Box top = t.demonstration.instances("backrest_top").at(0).first;
   const Eigen::Isometry3d T_chair = t.demonstration.object("chair")->T_base_object;
-  const auto on_roll = [&](double side, double above) {
-    // The roll's axis at the top of the backrest; `side` along it (chair x, the robot's y).
+  const auto on_roll = [&](double side, double back) {
     // The roll's centre is the box's centre height (the box spans 10 cm below the top and 3 cm
-    // above, and the roll's radius is 3.5 cm).
-    const Eigen::Vector3d roll =
-        T_chair * Eigen::Vector3d(side, 0.2, top.center().z() - kFloorInBase);
-    return pointing_down(roll + Eigen::Vector3d(0, 0, above), 0.5 * M_PI);
+    // above, and the roll's radius is 3.5 cm). The chair's -y points away from the robot.
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear().col(0) = -Eigen::Vector3d::UnitY();  // approach: into the chair
+    T.linear().col(1) = Eigen::Vector3d::UnitZ();   // fingers close vertically
+    T.linear().col(2) = T.linear().col(0).cross(T.linear().col(1));
+    T.translation() = Eigen::Vector3d(side, 0.2 + back, top.center().z() - kFloorInBase);
+    return T_chair * T;
   };
   DemoStep approach, grasp;
-  approach.left = DemoArmPose{"backrest_top", on_roll(0.17, 0.12), GripperAction::kOpen};
-  approach.right = DemoArmPose{"backrest_top", on_roll(-0.17, 0.12), GripperAction::kOpen};
+  approach.left = DemoArmPose{"backrest_top", on_roll(0.17, 0.1), GripperAction::kOpen};
+  approach.right = DemoArmPose{"backrest_top", on_roll(-0.17, 0.1), GripperAction::kOpen};
   grasp.left = DemoArmPose{"backrest_top", on_roll(0.17, 0.0), GripperAction::kClose};
   grasp.right = DemoArmPose{"backrest_top", on_roll(-0.17, 0.0), GripperAction::kClose};
   t.programs.push_back({"grasp backrest", {"backrest_top"}, {approach, grasp}});
@@ -161,18 +164,20 @@ DemoTask chair_task() {
 
 namespace {
 
-constexpr double kShelfX = 0.82;
+constexpr double kShelfX = 0.74;
 const double kBoards[2] = {kFloorInBase + 0.45, kFloorInBase + 0.85};
 
 void add_shelf(DemoWorld& w) {
   w.add("shelf", make_shelf(), facing_robot(kShelfX, 0.0, kFloorInBase));
 }
 
-// A bowl on shelf `level` (0 bottom, 1 top) at `y`, with a paper cup touching it on one side.
+// A bowl on shelf `level` (0 bottom, 1 top) at `y`, with a paper cup touching it on one side. On
+// the bottom shelf the bowl stands near the front: further in, the top board hides its far rim
+// from the head (a person would put it where they can see it too).
 void add_bowl_with_cup(DemoWorld& w, const std::string& id, int level, double y, double yaw) {
-  const double z = kBoards[level];
-  w.add(id, make_bowl(), pose_from_xyz_rpy({kShelfX, y, z}, {0, 0, yaw}), {{"bowl_rim", "rim"}});
-  w.add(id + "_cup", make_cup(), pose_from_xyz_rpy({kShelfX - 0.03, y + 0.118, z}, {0, 0, 0}));
+  const double z = kBoards[level], x = level == 0 ? kShelfX - 0.07 : kShelfX;
+  w.add(id, make_bowl(), pose_from_xyz_rpy({x, y, z}, {0, 0, yaw}), {{"bowl_rim", "rim"}});
+  w.add(id + "_cup", make_cup(), pose_from_xyz_rpy({x - 0.03, y + 0.118, z}, {0, 0, 0}));
 }
 
 }  // namespace
@@ -181,31 +186,44 @@ DemoTask bowls_on_shelf_task() {
   DemoTask t;
   t.number = 3;
   t.title = "bowls on a shelf";
-  t.torso_height = 0.2;
-  t.look_at = {0.8, 0.0, 0.6};
+  // The torso down: the head then sees under the top board, onto the bottom shelf.
+  t.torso_height = 0.0;
+  t.look_at = {0.75, 0.0, 0.6};
   add_shelf(t.demonstration);
-  add_bowl_with_cup(t.demonstration, "bowl", 1, -0.05, 0.0);
-  // The rim is round: any turn about its axis is the same rim.
-  t.landmarks = {part_landmark("bowl_rim", "bowl", "rim", Symmetry{Eigen::Vector3d::UnitZ(), 0})};
-  // Grasp the rim's near side from above, fingers closing across the bowl's wall; lift it; take
-  // it out to a place beside the robot.
+  // The demonstrator sets the bowl apart to capture its rim: a cup inside the box would become
+  // part of the landmark. The test scenes put cups against the bowls.
+  t.demonstration.add("bowl", make_bowl(),
+                      pose_from_xyz_rpy({kShelfX, -0.05, kBoards[1]}, {0, 0, 0}),
+                      {{"bowl_rim", "rim"}});
+  t.demonstration.add("cup", make_cup(), pose_from_xyz_rpy({kShelfX, 0.2, kBoards[1]}, {0, 0, 0}));
+  // The rim is round: any turn about its axis is the same rim. Cups stand against the bowls in
+  // the test scenes, and bowls nest in stacks, so the user draws the box tight around the rim
+  // (5 mm out, the top 3 cm, 2 cm above): its margins claim free space only inside the bowl and
+  // above it, not where a cup touches the bowl.
+  DemoLandmark rim_landmark =
+      part_landmark("bowl_rim", "bowl", "rim", Symmetry{Eigen::Vector3d::UnitZ(), 0});
+  rim_landmark.drawn = Box(pose_from_xyz_rpy({0, 0, 0.06}, {0, 0, 0}), {0.17, 0.17, 0.05});
+  t.landmarks = {rim_landmark};
+  // Grasp the rim's near side reaching in and down at 60 degrees, fingers closing across the
+  // bowl's wall; lift it; take it out to a place beside the robot.
   const Eigen::Isometry3d T_bowl = t.demonstration.object("bowl")->T_base_object;
   const Eigen::Vector3d rim = T_bowl * Eigen::Vector3d(-0.075, 0, 0.065 - 0.015);
+  const auto tool_at = [](const Eigen::Vector3d& p) {
+    return pose_from_xyz_rpy(p, {0.5 * M_PI, M_PI / 3.0, 0.0});
+  };
+  const Eigen::Vector3d approach = tool_at(rim).linear().col(0);
   const auto right = [](const std::string& frame, const Eigen::Isometry3d& T, GripperAction g) {
     DemoStep s;
     s.right = DemoArmPose{frame, T, g};
     return s;
   };
-  const double across = 0.5 * M_PI;  // fingers along the robot's x: across the near wall
   t.programs.push_back(
       {"pick bowl",
        {"bowl_rim"},
-       {right("bowl_rim", pointing_down(rim + Eigen::Vector3d(0, 0, 0.1), across),
-              GripperAction::kOpen),
-        right("bowl_rim", pointing_down(rim, across), GripperAction::kClose),
-        right("bowl_rim", pointing_down(rim + Eigen::Vector3d(0, 0, 0.08), across),
-              GripperAction::kClose),
-        right(kBaseFrame, pointing_down({0.45, -0.45, 0.85}, across), GripperAction::kClose)}});
+       {right("bowl_rim", tool_at(rim - 0.1 * approach), GripperAction::kOpen),
+        right("bowl_rim", tool_at(rim), GripperAction::kClose),
+        right("bowl_rim", tool_at(rim + Eigen::Vector3d(0, 0, 0.08)), GripperAction::kClose),
+        right(kBaseFrame, tool_at({0.45, -0.45, 0.85}), GripperAction::kClose)}});
 
   const auto scenario = [](std::string name, bool continues) {
     DemoScenario s;

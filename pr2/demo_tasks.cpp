@@ -69,7 +69,7 @@ Box drawn_box(const DemoTask& task, const DemoLandmark& l) {
   if (l.object.empty()) return l.box;
   const PlacedObject* o = task.demonstration.object(l.object);
   if (!o) throw Error(task_prefix(task) + ": no object '" + l.object + "' to capture");
-  return o->model.part(l.part).box.transformed(o->T_base_object);
+  return (l.drawn ? *l.drawn : o->model.part(l.part).box).transformed(o->T_base_object);
 }
 
 // Moves one arm to a demonstrated pose the way a person guiding it would end up there, and reads
@@ -83,8 +83,8 @@ ArmState place_arm(SimulatedPr2& robot, Arm arm, const DemoArmPose& pose,
     const Eigen::Vector3d p = pose.T_base_ee.translation();
     const Eigen::Vector3d rpy = rpy_from_rotation(pose.T_base_ee.linear()) * 180.0 / M_PI;
     char at[160];
-    std::snprintf(at, sizeof(at), " (%.3f, %.3f, %.3f) m, rpy (%.0f, %.0f, %.0f) deg", p.x(),
-                  p.y(), p.z(), rpy.x(), rpy.y(), rpy.z());
+    std::snprintf(at, sizeof(at), " (%.3f, %.3f, %.3f) m, rpy (%.0f, %.0f, %.0f) deg", p.x(), p.y(),
+                  p.z(), rpy.x(), rpy.y(), rpy.z());
     throw Error(where + ": the demonstrated pose of the " + arm_name(arm) + " arm" + at +
                 " is out of reach: " + ik.message);
   }
@@ -174,7 +174,9 @@ std::optional<Eigen::Isometry3d> true_landmark_pose(const DemoWorld& world, cons
   }
   std::optional<Eigen::Isometry3d> best;
   double best_distance = 0.05;  // two inches: farther than that, it is no instance of this one
-  for (const auto& [box, id] : world.instances(l.name)) {
+  for (auto [box, id] : world.instances(l.name)) {
+    // The user's own box, where they drew one instead of the part's, moved with the object.
+    if (l.drawn) box = l.drawn->transformed(world.object(id)->T_base_object);
     const double d = (box.center() - located.T_base_landmark.translation()).norm();
     if (d < best_distance) {
       best_distance = d;

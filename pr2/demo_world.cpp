@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "eval/depth_sensor.h"
 #include "geometry/error.h"
@@ -61,52 +62,82 @@ bool DemoWorld::has_free_surface(const std::string& landmark) const {
                      [&](const FreeSurface& s) { return s.landmark == landmark; });
 }
 
+namespace {
+
+// Points on every triangle of `mesh`, at most `spacing` apart along its edges.
+std::vector<Eigen::Vector3d> surface_samples(const TriangleMesh& mesh, double spacing) {
+  std::vector<Eigen::Vector3d> out;
+  for (const Eigen::Vector3i& t : mesh.triangles) {
+    const Eigen::Vector3d &a = mesh.vertices[t.x()], &b = mesh.vertices[t.y()],
+                          &c = mesh.vertices[t.z()];
+    const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+    const int n = std::max(1, static_cast<int>(std::ceil(longest / spacing)));
+    for (int i = 0; i <= n; ++i) {
+      for (int j = 0; i + j <= n; ++j) {
+        out.push_back(a + (b - a) * (double(i) / n) + (c - a) * (double(j) / n));
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
 std::optional<Eigen::Isometry3d> DemoWorld::free_patch_near(const std::string& landmark,
                                                             const Box& found) const {
+  constexpr double kStep = 0.005, kReach = 0.03;  // search the nearest valid place within 3 cm
+  std::vector<Eigen::Vector3d> obstacles;
+  for (const PlacedObject& o : objects_) {
+    for (const Eigen::Vector3d& p : surface_samples(o.model.mesh, 0.005)) {
+      obstacles.push_back(o.T_base_object * p);
+    }
+  }
+  std::optional<Eigen::Isometry3d> best;
+  double best_distance = std::numeric_limits<double>::infinity();
   for (const FreeSurface& surface : surfaces_) {
     if (surface.landmark != landmark) continue;
     // Level the found box onto the surface: keep its place in the surface plane and its heading.
     const Eigen::Vector3d up = surface.top.pose.linear().col(2);
     Eigen::Vector3d heading = found.pose.linear().col(0);
     heading = (heading - heading.dot(up) * up).normalized();
-    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-    T.linear().col(0) = heading;
-    T.linear().col(1) = up.cross(heading);
-    T.linear().col(2) = up;
+    Eigen::Isometry3d levelled = Eigen::Isometry3d::Identity();
+    levelled.linear().col(0) = heading;
+    levelled.linear().col(1) = up.cross(heading);
+    levelled.linear().col(2) = up;
     const Eigen::Vector3d in_surface = surface.top.pose.inverse() * found.center();
-    T.translation() = surface.top.pose * Eigen::Vector3d(in_surface.x(), in_surface.y(), 0.0) +
-                      surface.box_height * up;
-    const Box patch(T, found.size);
-    // On the surface: every corner of the patch's footprint is over the top face.
-    bool on_surface = true;
-    for (const Eigen::Vector3d& corner : patch.corners()) {
-      const Eigen::Vector3d c = surface.top.pose.inverse() * corner;
-      on_surface = on_surface && std::abs(c.x()) <= 0.5 * surface.top.size.x() &&
-                   std::abs(c.y()) <= 0.5 * surface.top.size.y();
-    }
-    if (!on_surface) continue;
-    // Clear: no object's bounding box reaches into the patch box (sampled every centimetre; the
-    // surface's own object, which the box stands on, ends below it).
-    bool clear = true;
-    const Eigen::Vector3i n = (found.size / 0.01).cast<int>().cwiseMax(1);
-    for (const PlacedObject& o : objects_) {
-      const Box bounds = o.model.bounds.transformed(o.T_base_object);
-      for (int i = 0; i <= n.x() && clear; ++i) {
-        for (int j = 0; j <= n.y() && clear; ++j) {
-          for (int k = 0; k <= n.z() && clear; ++k) {
-            const Eigen::Vector3d f(double(i) / n.x() - 0.5, double(j) / n.y() - 0.5,
-                                    double(k) / n.z() - 0.5);
-            const Eigen::Vector3d p = patch.pose * found.size.cwiseProduct(f);
-            // The box's bottom sits just under the surface; only what stands above it counts.
-            if ((p - surface.top.pose.translation()).dot(up) > 0.005 && bounds.contains(p))
-              clear = false;
-          }
+    levelled.translation() =
+        surface.top.pose * Eigen::Vector3d(in_surface.x(), in_surface.y(), 0.0) +
+        surface.box_height * up;
+    const Eigen::Vector3d half = 0.5 * found.size;
+    const int n = static_cast<int>(std::round(kReach / kStep));
+    for (int i = -n; i <= n; ++i) {
+      for (int j = -n; j <= n; ++j) {
+        const Eigen::Vector3d shift(i * kStep, j * kStep, 0.0);
+        if (shift.norm() > kReach || shift.norm() >= best_distance) continue;
+        Eigen::Isometry3d T = levelled;
+        T.translation() += levelled.linear() * shift;
+        // On the surface: every corner of the patch's footprint is over the top face.
+        bool valid = true;
+        for (const Eigen::Vector3d& corner : Box(T, found.size).corners()) {
+          const Eigen::Vector3d c = surface.top.pose.inverse() * corner;
+          valid = valid && std::abs(c.x()) <= 0.5 * surface.top.size.x() &&
+                  std::abs(c.y()) <= 0.5 * surface.top.size.y();
+        }
+        // Clear: no object's surface inside the box above the surface (the box's bottom sits
+        // just under the surface, which is the patch itself).
+        for (std::size_t k = 0; k < obstacles.size() && valid; ++k) {
+          const Eigen::Vector3d local = T.inverse() * obstacles[k];
+          const double height = (obstacles[k] - surface.top.pose.translation()).dot(up);
+          if (height > 0.005 && (local.cwiseAbs() - half).maxCoeff() <= 0.0) valid = false;
+        }
+        if (valid) {
+          best = T;
+          best_distance = shift.norm();
         }
       }
     }
-    if (clear) return T;
   }
-  return std::nullopt;
+  return best;
 }
 
 TriangleMesh DemoWorld::mesh() const {

@@ -52,9 +52,9 @@ class DemoWorld {
   /// left out).
   std::vector<std::pair<Box, std::string>> instances(const std::string& landmark) const;
 
-  /// For an empty-patch landmark: the valid patch pose nearest `found` (levelled onto the
-  /// surface under it, same place and heading), if its box lies on a free surface and clear of
-  /// every object; nothing otherwise.
+  /// For an empty-patch landmark: the valid patch pose nearest `found`, if one is within 3 cm:
+  /// levelled onto the surface under it with the same heading, its footprint on the surface and
+  /// its box clear of every object's surface (sampled every 5 mm). Nothing otherwise.
   std::optional<Eigen::Isometry3d> free_patch_near(const std::string& landmark,
                                                    const Box& found) const;
   bool has_free_surface(const std::string& landmark) const;

@@ -21,6 +21,8 @@ struct DemoLandmark {
   std::string name;
   std::string object, part;
   Box box;
+  /// When set, the box the user draws instead of the part's, in the object's frame.
+  std::optional<Box> drawn;
   Symmetry symmetry;
   std::optional<InstancePolicy> select;
   bool flat = false;  ///< a free-surface patch (CaptureSettings::allow_flat)
