@@ -128,6 +128,26 @@ LocatedLandmark choose(const Candidates& c, std::size_t k) {
   return l;
 }
 
+// A landmark that may only be taken at its demonstrated height is searched only there: the work
+// volume narrowed to the slab its box can occupy at that height. Instances elsewhere (the top of a
+// box standing on the table, for an empty table patch) would only crowd the search's finalists.
+FindResult find_at_height(const PointCloud& scene, const Landmark& landmark,
+                          const ProgramLandmark& entry, const FindSettings& find,
+                          const PlanSettings& settings) {
+  FindSettings narrowed = find;
+  const double z = entry.demonstration->translation().z();
+  // Half the box's vertical extent however it is turned, plus the tolerance and a leaf of slack.
+  const Eigen::Matrix3d R = entry.demonstration->linear();
+  const double half = 0.5 * (R.row(2).cwiseAbs() * landmark.box.size)(0);
+  const double slab = 2.0 * (half + settings.height_tolerance + find.leaf_size);
+  Box volume = *find.work_volume;
+  const Eigen::Vector3d centre = volume.center();
+  volume.pose.translation() = Eigen::Vector3d(centre.x(), centre.y(), z);
+  volume.size.z() = slab;
+  narrowed.work_volume = volume;
+  return find_landmark(scene, landmark, narrowed);
+}
+
 // Step 1-2 of execution: every landmark a step uses, with its eligible instances, or the refusal.
 std::optional<Refusal> locate_landmarks(const Program& program,
                                         const std::map<std::string, Landmark>& landmarks,
@@ -147,8 +167,10 @@ std::optional<Refusal> locate_landmarks(const Program& program,
     }
     if (settings.progress) settings.progress("locating '" + entry->name + "'");
     const auto start = std::chrono::steady_clock::now();
-    const FindResult result = find_landmark(index, it->second, find);
     const InstancePolicy policy = entry->select.value_or(settings.policy);
+    const FindResult result = policy == InstancePolicy::kDemonstratedHeight
+                                  ? find_at_height(scene, it->second, *entry, find, settings)
+                                  : find_landmark(index, it->second, find);
     const std::vector<const Match*> eligible =
         eligible_matches(result.matches, *entry, policy, settings);
     if (eligible.empty()) {

@@ -109,6 +109,16 @@ std::optional<Eigen::Isometry3d> DemoWorld::free_patch_near(const std::string& l
         surface.top.pose * Eigen::Vector3d(in_surface.x(), in_surface.y(), 0.0) +
         surface.box_height * up;
     const Eigen::Vector3d half = 0.5 * found.size;
+    // Only what stands on the surface (the box's bottom sits just under it, on the patch itself)
+    // and near enough to reach into a shifted box can block it.
+    std::vector<Eigen::Vector3d> near;
+    const double radius = half.norm() + kReach;
+    for (const Eigen::Vector3d& p : obstacles) {
+      if ((p - surface.top.pose.translation()).dot(up) > 0.005 &&
+          (p - levelled.translation()).norm() <= radius) {
+        near.push_back(p);
+      }
+    }
     const int n = static_cast<int>(std::round(kReach / kStep));
     for (int i = -n; i <= n; ++i) {
       for (int j = -n; j <= n; ++j) {
@@ -123,12 +133,10 @@ std::optional<Eigen::Isometry3d> DemoWorld::free_patch_near(const std::string& l
           valid = valid && std::abs(c.x()) <= 0.5 * surface.top.size.x() &&
                   std::abs(c.y()) <= 0.5 * surface.top.size.y();
         }
-        // Clear: no object's surface inside the box above the surface (the box's bottom sits
-        // just under the surface, which is the patch itself).
-        for (std::size_t k = 0; k < obstacles.size() && valid; ++k) {
-          const Eigen::Vector3d local = T.inverse() * obstacles[k];
-          const double height = (obstacles[k] - surface.top.pose.translation()).dot(up);
-          if (height > 0.005 && (local.cwiseAbs() - half).maxCoeff() <= 0.0) valid = false;
+        // Clear: no object's surface inside the box.
+        const Eigen::Isometry3d T_patch_base = T.inverse();
+        for (std::size_t k = 0; k < near.size() && valid; ++k) {
+          if (((T_patch_base * near[k]).cwiseAbs() - half).maxCoeff() <= 0.0) valid = false;
         }
         if (valid) {
           best = T;

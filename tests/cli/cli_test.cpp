@@ -54,7 +54,7 @@ class Cli : public ::testing::Test {
 TEST_F(Cli, HelpAndVersion) {
   const CommandResult help = lmk("--help");
   EXPECT_EQ(help.exit_code, 0);
-  for (const char* sub : {"info", "convert", "gen", "capture", "find", "landmark", "robot"})
+  for (const char* sub : {"info", "convert", "gen", "capture", "find", "landmark", "robot", "pbd"})
     EXPECT_NE(help.out.find(sub), std::string::npos);
   const CommandResult version = lmk("--version");
   EXPECT_EQ(version.exit_code, 0);
@@ -250,6 +250,53 @@ TEST_F(Cli, RobotFkIkRoundTripAndRefusals) {
   expect_bad_input("robot info --urdf " + path("missing.urdf"), "no such file");
   expect_bad_input("robot fk --torso 0.5 --joints 0 0 0 0 0 0 0", "torso height");
   EXPECT_NE(lmk("robot info").out.find("r_wrist_roll_joint"), std::string::npos);
+}
+
+// PbD from the command line, on task 4's recorded program and landmarks (trash vs recycling).
+TEST_F(Cli, PbdShowPlanRunAndRefusals) {
+  const CommandResult demo =
+      lmk("pbd demo-tasks --task 4 --save " + path("demo") + " --json " + path("demo.json"));
+  ASSERT_EQ(demo.exit_code, 0) << demo.err;
+  EXPECT_NE(demo.out.find("succeeded"), std::string::npos) << demo.out;
+  EXPECT_EQ(nlohmann::json::parse(slurp(dir_.file("demo.json")))["total"].get<int>(), 5);
+  const std::string program = path("demo/task4/drop_in_trash.json");
+  const std::string dir = dir_.file("demo/task4/");
+
+  const CommandResult show = lmk("pbd show " + program);
+  ASSERT_EQ(show.exit_code, 0) << show.err;
+  EXPECT_NE(show.out.find("program 'drop in trash'"), std::string::npos) << show.out;
+  EXPECT_NE(show.out.find("trash_opening"), std::string::npos) << show.out;
+
+  // In the demonstration scene the landmark is where it was captured: the plan is valid.
+  const CommandResult plan =
+      lmk("pbd plan " + program + " --torso 0.05 --json --scene '" + dir + "demonstration.pcd'");
+  ASSERT_EQ(plan.exit_code, 0) << plan.err;
+  const auto j = nlohmann::json::parse(plan.out);
+  EXPECT_TRUE(j["valid"].get<bool>());
+  EXPECT_EQ(j["steps"].size(), 3u);
+  EXPECT_EQ(j["landmarks"][0]["name"], "trash_opening");
+
+  const CommandResult run =
+      lmk("pbd run " + program + " --torso 0.05 --sim --scene '" + dir + "demonstration.pcd'");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("executed step 0: right_arm to"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("done: 3 steps"), std::string::npos) << run.out;
+
+  // Scenario 4 has only the recycling bin: a refusal, one line, exit 1.
+  const CommandResult refused =
+      lmk("pbd run " + program + " --torso 0.05 --sim --scene '" + dir + "scenario4.pcd'");
+  EXPECT_EQ(refused.exit_code, 1);
+  EXPECT_EQ(refused.err.rfind("lmk: refused: landmark 'trash_opening' not found", 0), 0u)
+      << refused.err;
+  EXPECT_EQ(refused.out.find("executed"), std::string::npos) << refused.out;
+
+  expect_bad_input("pbd run " + program + " --scene '" + dir + "demonstration.pcd'", "only --sim");
+  expect_bad_input("pbd show " + path("missing.json"), "cannot open the program file");
+  expect_bad_input("pbd plan " + program + " --scene " + path("missing.pcd"), "missing.pcd");
+  expect_bad_input(
+      "pbd plan " + program + " --policy closest --scene '" + dir + "demonstration.pcd'",
+      "unknown instance policy 'closest'");
+  expect_bad_input("pbd demo-tasks --task 9", "no task 9");
 }
 
 TEST_F(Cli, MilkSceneFromRealData) {

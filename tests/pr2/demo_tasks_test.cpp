@@ -1,0 +1,145 @@
+// The paper's six PbD tasks end to end on the simulated PR2, and the pieces they stand on: the
+// demo world's ground truth and head pointing.
+
+#include "pr2/demo_tasks.h"
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "geometry/error.h"
+#include "geometry/pose.h"
+#include "pr2/demo_world.h"
+#include "pr2/head_pointing.h"
+
+namespace lmk {
+namespace {
+
+TEST(HeadPointing, PutsTheTargetOnTheOpticalAxis) {
+  const Pr2Kinematics kinematics(RobotModel::pr2(), 0.2);
+  for (const Eigen::Vector3d target :
+       {Eigen::Vector3d(0.8, 0.0, 0.7), Eigen::Vector3d(0.6, 0.4, 0.1),
+        Eigen::Vector3d(1.5, -0.8, 1.2)}) {
+    const std::vector<double> q = head_joints_looking_at(kinematics, target);
+    Eigen::Isometry3d T_base_camera;
+    ASSERT_TRUE(kinematics.forward("head", q, T_base_camera).ok());
+    const Eigen::Vector3d axis = T_base_camera.linear().col(2);  // optical z: forward
+    const Eigen::Vector3d to_target = (target - T_base_camera.translation()).normalized();
+    EXPECT_GT(axis.dot(to_target), std::cos(0.5 * M_PI / 180.0)) << target.transpose();
+  }
+}
+
+TEST(DemoWorld, GroundTruthFollowsObjectsAndHidesNestedOnes) {
+  DemoWorld w;
+  const Eigen::Isometry3d T = pose_from_xyz_rpy({0.7, 0.1, 0.4}, {0, 0, 0.3});
+  w.add("lower", make_bowl(), T, {{"bowl_rim", "rim"}});
+  w.add("upper", make_bowl(), T * pose_from_xyz_rpy({0, 0, 0.018}, {0, 0, 0}),
+        {{"bowl_rim", "rim"}});
+  w.hide_under("lower", "upper");
+  auto rims = w.instances("bowl_rim");
+  ASSERT_EQ(rims.size(), 1u);
+  EXPECT_EQ(rims[0].second, "upper");
+  EXPECT_TRUE(rims[0].first.pose.isApprox(
+      T * pose_from_xyz_rpy({0, 0, 0.018}, {0, 0, 0}) * make_bowl().part("rim").box.pose, 1e-12));
+  w.remove("upper");  // picked: the lower rim shows
+  rims = w.instances("bowl_rim");
+  ASSERT_EQ(rims.size(), 1u);
+  EXPECT_EQ(rims[0].second, "lower");
+  EXPECT_THROW(w.remove("upper"), Error);
+  EXPECT_THROW(w.add("lower", make_cup(), T), Error);                     // the id is taken
+  EXPECT_THROW(w.add("cup", make_cup(), T, {{"cup", "handle"}}), Error);  // no such part
+}
+
+TEST(DemoWorld, AFreePatchIsLevelledOntoFreeTableAndNotOntoObjects) {
+  DemoWorld w;
+  const double top = 0.7;
+  w.add("table", make_table({1.0, 1.0, top}), pose_from_xyz_rpy({0.8, 0, 0}, {0, 0, 0}));
+  w.add_free_surface(
+      {"patch", Box(pose_from_xyz_rpy({0.8, 0, top}, {0, 0, 0}), {1.0, 1.0, 0}), 0.05});
+  w.add("box", make_clutter_box({0.1, 0.1, 0.1}), pose_from_xyz_rpy({0.8, 0.3, top}, {0, 0, 0}));
+  const Eigen::Vector3d size(0.2, 0.2, 0.12);
+  // Slightly high and tilted on free table: levelled onto the surface, same place.
+  const Box found(pose_from_xyz_rpy({0.7, -0.2, top + 0.06}, {0.05, 0, 0.4}), size);
+  const auto valid = w.free_patch_near("patch", found);
+  ASSERT_TRUE(valid);
+  EXPECT_NEAR(valid->translation().z(), top + 0.05, 1e-9);
+  EXPECT_NEAR((valid->translation() - found.center()).head<2>().norm(), 0.0, 1e-9);
+  EXPECT_GT(valid->linear().col(2).z(), 1.0 - 1e-9);
+  // Overlapping the box by 2 cm: the nearest valid place is about 2 cm away.
+  const Box overlapping(pose_from_xyz_rpy({0.8, 0.17, top + 0.05}, {0, 0, 0}), size);
+  const auto shifted = w.free_patch_near("patch", overlapping);
+  ASSERT_TRUE(shifted);
+  EXPECT_NEAR((shifted->translation() - overlapping.center()).norm(), 0.0225, 0.0055);
+  // Right over the box, or off the table: no valid patch near.
+  EXPECT_FALSE(
+      w.free_patch_near("patch", Box(pose_from_xyz_rpy({0.8, 0.3, top + 0.05}, {0, 0, 0}), size)));
+  EXPECT_FALSE(
+      w.free_patch_near("patch", Box(pose_from_xyz_rpy({1.35, 0, top + 0.05}, {0, 0, 0}), size)));
+  EXPECT_FALSE(w.free_patch_near("other", found));
+}
+
+// All six tasks once, shared by the tests below (about 15 s on two cores).
+const DemoTasksReport& report() {
+  static const DemoTasksReport r = run_demo_tasks();
+  return r;
+}
+
+TEST(DemoTasks, RunTheSixTasksOfThePaper) {
+  const DemoTasksReport& r = report();
+  std::map<int, int> per_task;
+  for (const DemoScenarioResult& s : r.scenarios) ++per_task[s.task];
+  ASSERT_EQ(per_task.size(), 6u);
+  for (const auto& [task, scenarios] : per_task) EXPECT_GE(scenarios, 5) << "task " << task;
+  EXPECT_EQ(r.total(), r.scenarios.size());
+  std::cout << demo_tasks_table(r);
+}
+
+// Safety, the paper's "should not act" cases: the robot refuses, names the missing landmark, and
+// does not move.
+TEST(DemoTasks, NeverActsWhenTheLandmarkIsMissing) {
+  int cases = 0;
+  for (const DemoScenarioResult& s : report().scenarios) {
+    if (s.should_act) continue;
+    ++cases;
+    EXPECT_TRUE(s.success) << "task " << s.task << ", " << s.name << ": " << s.reason;
+    EXPECT_EQ(s.steps_executed, 0u) << s.name;
+    EXPECT_EQ(s.reason.rfind("refused, no motion: landmark '", 0), 0u) << s.reason;
+  }
+  EXPECT_EQ(cases, 4);  // two in task 1, one each in tasks 3 and 4
+}
+
+// A success is what the criterion says: targets within 2 cm and 10 degrees of the truth and the
+// whole program executed; and every task succeeds in some scenario that acts, end to end.
+TEST(DemoTasks, SuccessesMeetTheCriterionInEveryTask) {
+  std::map<int, int> acted;
+  for (const DemoScenarioResult& s : report().scenarios) {
+    if (!s.should_act || !s.success) continue;
+    ++acted[s.task];
+    EXPECT_LE(s.max_position_error, 0.02) << s.name;
+    EXPECT_LE(s.max_rotation_error, 10.0 * M_PI / 180.0) << s.name;
+    EXPECT_GT(s.steps_executed, 0u) << s.name;
+  }
+  for (int task = 1; task <= 6; ++task) EXPECT_GE(acted[task], 1) << "task " << task;
+}
+
+TEST(DemoTasks, JsonHoldsEveryScenario) {
+  const auto j = nlohmann::json::parse(demo_tasks_json(report()));
+  ASSERT_EQ(j["scenarios"].size(), report().total());
+  EXPECT_EQ(j["total"].get<std::size_t>(), report().total());
+  EXPECT_EQ(j["succeeded"].get<std::size_t>(), report().succeeded());
+  for (const auto& s : j["scenarios"]) {
+    for (const char* key : {"task", "name", "should_act", "success", "reason"}) {
+      EXPECT_TRUE(s.contains(key)) << key;
+    }
+  }
+}
+
+TEST(DemoTasks, AnUnknownTaskIsAnError) {
+  DemoTasksSettings settings;
+  settings.tasks = {7};
+  EXPECT_THROW(run_demo_tasks(settings), Error);
+}
+
+}  // namespace
+}  // namespace lmk
