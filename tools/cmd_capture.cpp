@@ -85,7 +85,11 @@ int run_capture(CaptureOptions& o) {
   std::printf("wrote %s: landmark '%s', %zu points, box %.3f x %.3f x %.3f m\n", o.output.c_str(),
               landmark.name.c_str(), landmark.points.size(), box.size.x(), box.size.y(),
               box.size.z());
-  if (!o.no_check) check_in_capture_scene(scene, landmark);
+  if (landmark.settings.allow_flat) {
+    std::printf("a flat patch matches wherever it fits: no distinctiveness check\n");
+  } else if (!o.no_check) {
+    check_in_capture_scene(scene, landmark);
+  }
   return kOk;
 }
 
@@ -110,6 +114,9 @@ Subcommand add_capture(CLI::App& app) {
   sub->add_option("--max-box-side", o->settings.max_box_side, "Longest allowed box side, m")
       ->capture_default_str();
   add_up_options(sub, o->up);
+  sub->add_flag("--allow-flat", o->settings.allow_flat,
+                "Accept a flat landmark: a patch of free surface (an empty spot on a table), which "
+                "matches wherever it fits");
   sub->add_flag("--no-check", o->no_check,
                 "Skip the distinctiveness check (searching the landmark in its own scene)");
   return {sub, [o] { return run_capture(*o); }};

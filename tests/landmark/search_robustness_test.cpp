@@ -11,7 +11,9 @@
 #include "geometry/pose.h"
 #include "landmark/distinctiveness.h"
 #include "landmark/find_landmark.h"
+#include "landmark/landmark_file.h"
 #include "tests/landmark/l_shape_scene.h"
+#include "tests/support/test_support.h"
 
 namespace lmk {
 namespace {
@@ -119,6 +121,33 @@ TEST_F(SearchInput, FlatLandmarksAreRefusedWithTheReason) {
 
   // The L-shape itself is neither.
   EXPECT_FALSE(degenerate_shape(landmark_->points, 0.005, "L").has_value());
+}
+
+// An empty patch of table, captured as a flat landmark on purpose: it matches wherever a patch of
+// its size is free, at table height, and never where an object stands in its box.
+TEST(FlatPatch, MatchesFreeTableOnlyAndSurvivesTheFile) {
+  const PointCloud empty_table = render_scene({}, false);
+  const Box patch(pose_from_xyz_rpy({0.0, 0.1, kTable + 0.04}, {0, 0, 0}), {0.16, 0.16, 0.1});
+  CaptureSettings settings;
+  settings.allow_flat = true;
+  const Landmark landmark = capture(empty_table, patch, "patch", settings);
+  const test::ScratchDir dir;
+  save_landmark(dir.file("patch.lmk"), landmark);
+  const Landmark loaded = load_landmark(dir.file("patch.lmk"));
+  EXPECT_TRUE(loaded.settings.allow_flat);
+
+  const PointCloud scene = render_scene(kCopies, true);
+  const FindResult result = find_landmark(scene, loaded);
+  ASSERT_FALSE(result.matches.empty()) << describe_rejections(result.stats);
+  for (const Match& m : result.matches) {
+    EXPECT_NEAR(m.box.center().z(), patch.center().z(), 0.01);
+    EXPECT_GT(m.box.pose.linear().col(2).z(), std::cos(5.0 * M_PI / 180.0));  // level
+    // No L-shape's post (its lower part, 2 cm above the table) inside the patch's box.
+    for (const Eigen::Vector2d& copy : kCopies) {
+      EXPECT_FALSE(m.box.contains(Eigen::Vector3d(copy.x(), copy.y(), kTable + 0.02)))
+          << "a patch on the L at " << copy.transpose();
+    }
+  }
 }
 
 // Several threads search one SceneIndex at once, each with its own landmark view: every result is
