@@ -89,7 +89,7 @@ struct PlanSettings {
   /// the arms can act in, base frame. The default, x 0-1.3 m, y -1 to 1 m, z 0-1.9 m, holds a
   /// PR2's reach and leaves out the floor, whose plane the flat parts of many landmarks would
   /// otherwise match all over (a control panel's face around its dial).
-  Box workspace = Box(Eigen::Translation3d(0.65, 0.0, 0.95) * Eigen::Isometry3d::Identity(),
+  Box workspace = Box(Eigen::Translation3d(0.65, 0.0, 0.85) * Eigen::Isometry3d::Identity(),
                       Eigen::Vector3d(1.3, 2.0, 1.9));
   /// The instance policy for landmarks whose program entry sets none.
   InstancePolicy policy = InstancePolicy::kBestError;

@@ -181,10 +181,12 @@ DemoTask crowded_table_task() {
       scenario("free spot on the right, a flat box on the left",
                {{0.6, 0.05, 0}, {0.9, -0.1, 2}, {0.62, -0.45, 3}, {0.95, 0.25, 1}});
   add_flat_box(box_left.world, 0.7, 0.35, 0.06);
+  // The free spot within the arm's reach is on the left; a flat box, larger than the patch, stands
+  // in front on the right.
   DemoScenario box_right =
-      scenario("free spot at the back, a flat box in front",
-               {{0.6, 0.32, 1}, {0.95, -0.35, 0}, {0.58, -0.45, 2}, {1.05, 0.3, 3}});
-  add_flat_box(box_right.world, 0.62, -0.08, 0.1);
+      scenario("free spot on the left, a flat box on the right",
+               {{0.62, -0.1, 0}, {0.9, 0.25, 2}, {1.0, -0.1, 3}, {0.85, -0.4, 1}});
+  add_flat_box(box_right.world, 0.62, -0.42, 0.1);
   t.scenarios = {
       scenario("free spot in front, on the left",
                {{0.6, -0.2, 0}, {0.85, 0.1, 1}, {0.95, -0.3, 3}}),
