@@ -8,7 +8,9 @@
 
 #include "geometry/cloud_io.h"
 #include "geometry/error.h"
+#include "geometry/filters.h"
 #include "geometry/pose.h"
+#include "geometry/voxel_grid.h"
 #include "landmark/landmark_file.h"
 #include "pbd/execute.h"
 #include "pbd/joint_motion.h"
@@ -196,6 +198,29 @@ std::string format_error(double position, double rotation) {
   return text;
 }
 
+// Why perception may have failed, from the ground truth: how much of each true instance the head
+// Kinect saw, against what the capture saw of the demonstrated one (an instance half hidden behind
+// a shelf board shows half the points).
+std::string what_the_sensor_saw(const DemoLandmark& l, const DemoWorld& world,
+                                const PointCloud& scene, const Landmark& captured) {
+  std::string out = "truth:";
+  if (world.has_free_surface(l.name)) {
+    return out + " no free patch of the table within 3 cm of that place (an object stands in it)";
+  }
+  const auto instances = world.instances(l.name);
+  if (instances.empty()) return out + " no instance of '" + l.name + "' in the scene";
+  for (auto [box, id] : instances) {
+    if (l.drawn) box = l.drawn->transformed(world.object(id)->T_base_object);
+    const PointCloud inside = voxel_downsample(crop(scene, box), captured.settings.leaf_size);
+    const Eigen::Vector3d c = box.center();
+    char text[200];
+    std::snprintf(text, sizeof(text), " '%s' at (%.3f, %.3f, %.3f) with %zu points seen in its box",
+                  l.name.c_str(), c.x(), c.y(), c.z(), inside.size());
+    out += text;
+  }
+  return out + " (the capture had " + std::to_string(captured.points.size()) + ")";
+}
+
 struct ScenarioState {
   DemoWorld world;
   std::optional<SimulatedPr2> robot;
@@ -291,6 +316,10 @@ DemoScenarioResult run_scenario(const DemoTask& task, std::size_t index,
     }
   } else if (!plan.valid()) {
     result.reason = "refused: " + describe(*plan.refusal);
+    if (const auto* missing = std::get_if<LandmarkNotFound>(&*plan.refusal)) {
+      result.reason += "; " + what_the_sensor_saw(task.landmark(missing->landmark), state.world,
+                                                  scene, recorded.landmarks.at(missing->landmark));
+    }
   } else {
     const std::string off =
         judge_targets(task, program, plan, state.world, settings, result, state.picked);
@@ -299,6 +328,10 @@ DemoScenarioResult run_scenario(const DemoTask& task, std::size_t index,
                       std::to_string(plan.steps.size()) + " steps: " + execution.error;
     } else if (!off.empty()) {
       result.reason = off;
+      for (const LocatedLandmark& l : plan.landmarks) {
+        result.reason += "; " + what_the_sensor_saw(task.landmark(l.name), state.world, scene,
+                                                    recorded.landmarks.at(l.name));
+      }
     } else {
       result.success = true;
       result.reason =
