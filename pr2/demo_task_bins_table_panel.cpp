@@ -41,11 +41,7 @@ void add_bins(DemoWorld& w, std::optional<Eigen::Vector3d> trash, Eigen::Vector3
 }  // namespace
 
 DemoTask bins_task() {
-  DemoTask t;
-  t.number = 4;
-  t.title = "trash vs recycling";
-  t.torso_height = 0.05;
-  t.look_at = {0.6, 0.0, 0.1};
+  DemoTask t = new_task(4, "trash vs recycling", 0.05, {0.6, 0.0, 0.1});
   add_bins(t.demonstration, Eigen::Vector3d(kBinX, 0.2, 0.0), {kBinX, -0.2, 0.0});
   // A square mouth looks the same a quarter turn round; a round one, any turn round.
   t.landmarks = {
@@ -69,11 +65,7 @@ DemoTask bins_task() {
   const auto scenario = [](std::string name, std::string program,
                            std::optional<Eigen::Vector3d> trash, Eigen::Vector3d recycling,
                            std::string missing = "") {
-    DemoScenario s;
-    s.name = std::move(name);
-    s.program = std::move(program);
-    s.should_act = missing.empty();
-    s.missing_landmark = std::move(missing);
+    DemoScenario s = new_scenario(std::move(name), std::move(program), std::move(missing));
     add_bins(s.world, trash, recycling);
     return s;
   };
@@ -142,11 +134,7 @@ void add_flat_box(DemoWorld& w, double x, double y, double height) {
 }  // namespace
 
 DemoTask crowded_table_task() {
-  DemoTask t;
-  t.number = 5;
-  t.title = "crowded table";
-  t.torso_height = 0.2;
-  t.look_at = {0.8, 0.0, kTableTop};
+  DemoTask t = new_task(5, "crowded table", 0.2, {0.8, 0.0, kTableTop});
   add_table(t.demonstration);
   add_clutter(t.demonstration, {{0.6, 0.3, 0}, {0.75, -0.35, 1}, {0.95, 0.05, 2}});
   const Eigen::Vector3d patch_centre(0.62, -0.05, kTableTop - 0.01 + 0.5 * kPatch.z());
@@ -170,9 +158,7 @@ DemoTask crowded_table_task() {
   t.programs.push_back({"point to empty spot", {"empty_patch"}, {point, back}});
 
   const auto scenario = [](std::string name, std::vector<Eigen::Vector3d> items) {
-    DemoScenario s;
-    s.name = std::move(name);
-    s.program = "point to empty spot";
+    DemoScenario s = new_scenario(std::move(name), "point to empty spot");
     add_table(s.world);
     add_clutter(s.world, items);
     return s;
@@ -223,11 +209,7 @@ Eigen::Isometry3d on_button(const Eigen::Isometry3d& T_panel, int button, double
 }  // namespace
 
 DemoTask control_panel_task() {
-  DemoTask t;
-  t.number = 6;
-  t.title = "control panel";
-  t.torso_height = 0.2;
-  t.look_at = {0.6, 0.0, 0.85};
+  DemoTask t = new_task(6, "control panel", 0.2, {0.6, 0.0, 0.85});
   add_panel(t.demonstration, 0.0, 0, 0, 0, 0);
   // The user draws the box around the dial and the panel's corner beside it, 3 cm past its edges:
   // a round knob turns freely about its axis but for its small grip bar, and the corner pins that
@@ -248,9 +230,7 @@ DemoTask control_panel_task() {
   t.programs.push_back(press);
   const auto scenario = [](std::string name, double incline, double dx, double dy, double dz,
                            double yaw) {
-    DemoScenario s;
-    s.name = std::move(name);
-    s.program = "press buttons 2, 0, 1";
+    DemoScenario s = new_scenario(std::move(name), "press buttons 2, 0, 1");
     add_panel(s.world, incline, dx, dy, dz, yaw);
     return s;
   };

@@ -42,11 +42,7 @@ Eigen::Isometry3d tool_handle_on_mount(int i) {
 }  // namespace
 
 DemoTask hanging_tools_task() {
-  DemoTask t;
-  t.number = 1;
-  t.title = "hanging tools";
-  t.torso_height = 0.2;
-  t.look_at = {0.65, 0.0, 0.8};
+  DemoTask t = new_task(1, "hanging tools", 0.2, {0.65, 0.0, 0.8});
   // Demonstration: tools on the outer mounts, the middle one free.
   add_rack(t.demonstration, {0, 2}, 0, 0, 0);
   t.landmarks = {part_landmark("griple", "rack", "griple_2"),
@@ -57,34 +53,25 @@ DemoTask hanging_tools_task() {
     T.translation() += offset;
     return T;
   };
-  const auto arm = [](const std::string& frame, const Eigen::Isometry3d& T, GripperAction g) {
-    DemoStep s;
-    s.right = DemoArmPose{frame, T, g};
-    return s;
-  };
   const auto open = GripperAction::kOpen, close = GripperAction::kClose;
   // Pick the tool on mount 2: in front of its handle, onto it, lift it off the lip, back away.
   t.programs.push_back({"pick tool",
                         {"griple"},
-                        {arm("griple", at_handle(2, {-0.12, 0, 0}), open),
-                         arm("griple", at_handle(2, {0, 0, 0}), close),
-                         arm("griple", at_handle(2, {0, 0, 0.06}), close),
-                         arm("griple", at_handle(2, {-0.12, 0, 0.06}), close)}});
+                        {right_arm_step("griple", at_handle(2, {-0.12, 0, 0}), open),
+                         right_arm_step("griple", at_handle(2, {0, 0, 0}), close),
+                         right_arm_step("griple", at_handle(2, {0, 0, 0.06}), close),
+                         right_arm_step("griple", at_handle(2, {-0.12, 0, 0.06}), close)}});
   // Hang a held tool on the free mount 1: in front of it, over the lip, down onto it, let go.
   t.programs.push_back({"place tool",
                         {"griple_mount"},
-                        {arm("griple_mount", at_handle(1, {-0.12, 0, 0.06}), close),
-                         arm("griple_mount", at_handle(1, {0, 0, 0.06}), close),
-                         arm("griple_mount", at_handle(1, {0, 0, 0}), open),
-                         arm("griple_mount", at_handle(1, {-0.12, 0, 0}), open)}});
+                        {right_arm_step("griple_mount", at_handle(1, {-0.12, 0, 0.06}), close),
+                         right_arm_step("griple_mount", at_handle(1, {0, 0, 0.06}), close),
+                         right_arm_step("griple_mount", at_handle(1, {0, 0, 0}), open),
+                         right_arm_step("griple_mount", at_handle(1, {-0.12, 0, 0}), open)}});
 
   const auto scenario = [](std::string name, std::string program, std::vector<int> hanging,
                            double dx, double dy, double yaw, std::string missing = "") {
-    DemoScenario s;
-    s.name = std::move(name);
-    s.program = std::move(program);
-    s.should_act = missing.empty();
-    s.missing_landmark = std::move(missing);
+    DemoScenario s = new_scenario(std::move(name), std::move(program), std::move(missing));
     add_rack(s.world, hanging, dx, dy, yaw);
     return s;
   };
@@ -114,11 +101,7 @@ void add_chair(DemoWorld& w, double lift, double x, double y, double yaw) {
 }  // namespace
 
 DemoTask chair_task() {
-  DemoTask t;
-  t.number = 2;
-  t.title = "chair";
-  t.torso_height = 0.25;
-  t.look_at = {0.75, 0.0, 0.8};
+  DemoTask t = new_task(2, "chair", 0.25, {0.75, 0.0, 0.8});
   add_chair(t.demonstration, 0.0, 0.92, 0.0, 0.0);
   t.landmarks = {part_landmark("backrest_top", "chair", "backrest_top")};
   // Both hands on the backrest's top roll, 17 cm either side of its middle, reaching over it from
@@ -144,9 +127,7 @@ DemoTask chair_task() {
   t.programs.push_back({"grasp backrest", {"backrest_top"}, {approach, grasp}});
 
   const auto scenario = [](std::string name, double lift, double x, double y, double yaw) {
-    DemoScenario s;
-    s.name = std::move(name);
-    s.program = "grasp backrest";
+    DemoScenario s = new_scenario(std::move(name), "grasp backrest");
     add_chair(s.world, lift, x, y, yaw);
     return s;
   };
@@ -183,12 +164,8 @@ void add_bowl_with_cup(DemoWorld& w, const std::string& id, int level, double y,
 }  // namespace
 
 DemoTask bowls_on_shelf_task() {
-  DemoTask t;
-  t.number = 3;
-  t.title = "bowls on a shelf";
   // The torso down: the head then sees under the top board, onto the bottom shelf.
-  t.torso_height = 0.0;
-  t.look_at = {0.75, 0.0, 0.6};
+  DemoTask t = new_task(3, "bowls on a shelf", 0.0, {0.75, 0.0, 0.6});
   add_shelf(t.demonstration);
   // The demonstrator sets the bowl apart to capture its rim: a cup inside the box would become
   // part of the landmark. The test scenes put cups against the bowls.
@@ -212,23 +189,17 @@ DemoTask bowls_on_shelf_task() {
     return pose_from_xyz_rpy(p, {0.5 * M_PI, M_PI / 3.0, 0.0});
   };
   const Eigen::Vector3d approach = tool_at(rim).linear().col(0);
-  const auto right = [](const std::string& frame, const Eigen::Isometry3d& T, GripperAction g) {
-    DemoStep s;
-    s.right = DemoArmPose{frame, T, g};
-    return s;
-  };
   t.programs.push_back(
       {"pick bowl",
        {"bowl_rim"},
-       {right("bowl_rim", tool_at(rim - 0.1 * approach), GripperAction::kOpen),
-        right("bowl_rim", tool_at(rim), GripperAction::kClose),
-        right("bowl_rim", tool_at(rim + Eigen::Vector3d(0, 0, 0.08)), GripperAction::kClose),
-        right(kBaseFrame, tool_at({0.45, -0.45, 0.85}), GripperAction::kClose)}});
+       {right_arm_step("bowl_rim", tool_at(rim - 0.1 * approach), GripperAction::kOpen),
+        right_arm_step("bowl_rim", tool_at(rim), GripperAction::kClose),
+        right_arm_step("bowl_rim", tool_at(rim + Eigen::Vector3d(0, 0, 0.08)),
+                       GripperAction::kClose),
+        right_arm_step(kBaseFrame, tool_at({0.45, -0.45, 0.85}), GripperAction::kClose)}});
 
   const auto scenario = [](std::string name, bool continues) {
-    DemoScenario s;
-    s.name = std::move(name);
-    s.program = "pick bowl";
+    DemoScenario s = new_scenario(std::move(name), "pick bowl");
     s.continues_previous = continues;
     return s;
   };
@@ -244,9 +215,7 @@ DemoTask bowls_on_shelf_task() {
                 pose_from_xyz_rpy({kShelfX, 0.02, kBoards[1] + 0.018}, {0, 0, 1.1}),
                 {{"bowl_rim", "rim"}});
   two.world.hide_under("lower_bowl", "upper_bowl");
-  DemoScenario three = scenario("scene 3: only cups (should not act)", false);
-  three.should_act = false;
-  three.missing_landmark = "bowl_rim";
+  DemoScenario three = new_scenario("scene 3: only cups (should not act)", "pick bowl", "bowl_rim");
   add_shelf(three.world);
   for (const auto& [level, y] : {std::pair{1, -0.1}, std::pair{1, 0.12}, std::pair{0, 0.0}}) {
     three.world.add("cup_" + std::to_string(level) + "_" + std::to_string(y), make_cup(),

@@ -82,6 +82,35 @@ struct DemoTask {
   const DemoLandmark& landmark(const std::string& name) const;
 };
 
+/// A task's header: its number and title, the torso height and where the head looks.
+inline DemoTask new_task(int number, std::string title, double torso_height,
+                         const Eigen::Vector3d& look_at) {
+  DemoTask t;
+  t.number = number;
+  t.title = std::move(title);
+  t.torso_height = torso_height;
+  t.look_at = look_at;
+  return t;
+}
+
+/// A scenario running `program`; it should act unless `missing` names the landmark it lacks.
+inline DemoScenario new_scenario(std::string name, std::string program, std::string missing = "") {
+  DemoScenario s;
+  s.name = std::move(name);
+  s.program = std::move(program);
+  s.should_act = missing.empty();
+  s.missing_landmark = std::move(missing);
+  return s;
+}
+
+/// A step moving the right arm only.
+inline DemoStep right_arm_step(std::string frame, const Eigen::Isometry3d& T_base_ee,
+                               GripperAction gripper) {
+  DemoStep s;
+  s.right = DemoArmPose{std::move(frame), T_base_ee, gripper};
+  return s;
+}
+
 // The six tasks, in the paper's order.
 DemoTask hanging_tools_task();
 DemoTask chair_task();
