@@ -88,6 +88,30 @@ TEST(Recorder, ChangingTheFrameKeepsTheBasePose) {
                                                               1e-12));
 }
 
+// The program remembers where each landmark was in the demonstration: the instance its steps were
+// recorded against, which symmetric landmarks and the demonstration-based policies need.
+TEST(Recorder, RemembersTheDemonstratedInstanceOfEachLandmark) {
+  Recorder r = demo_recorder();
+  const auto demonstration = [&r](const char* name) {
+    return *r.program().landmark(name)->demonstration;
+  };
+  // Before any step: each landmark's first instance in the scene.
+  EXPECT_TRUE(demonstration("bowl").isApprox(r.instances()[0].box.pose, 1e-12));
+  EXPECT_TRUE(demonstration("shelf").isApprox(r.instances()[2].box.pose, 1e-12));
+  // A step at the second bowl makes it the demonstrated one; moving that step to the base frame
+  // falls back to the first.
+  r.save_pose(tool_at({0.6, -0.3, 0.84}), std::nullopt);
+  EXPECT_TRUE(demonstration("bowl").isApprox(r.instances()[1].box.pose, 1e-12));
+  r.set_frame(0, Arm::kLeft, kBaseFrame);
+  EXPECT_TRUE(demonstration("bowl").isApprox(r.instances()[0].box.pose, 1e-12));
+  // A symmetric landmark without any instance cannot be recorded: it would have no orientation
+  // to turn its matches to.
+  ProgramLandmark rim("rim", "rim.lmk");
+  rim.symmetry = Symmetry{Eigen::Vector3d::UnitZ(), 0};
+  EXPECT_THROW(Recorder("p", {rim}, {}), Error);
+  EXPECT_NO_THROW(Recorder("p", {rim}, {{"rim", box_at({0.7, 0, 0.8}, 0, {0.2, 0.2, 0.05})}}));
+}
+
 TEST(Recorder, RefusesWhatItCannotRecord) {
   Recorder r = demo_recorder();
   EXPECT_THROW(r.save_pose(std::nullopt, std::nullopt), Error);
