@@ -47,7 +47,7 @@ std::string evaluation_header(const Evaluation& e) {
                 "threshold %.4f m, max seeds %zu; times per search on 1 thread",
                 e.dataset.c_str(), scenes, e.pairs.size(),
                 e.settings.in_context_only ? "in-context" : "all", f.method.c_str(), metric.c_str(),
-                effective_threshold(f), f.max_seeds);
+                effective_threshold(f), effective_max_seeds(f));
   return text;
 }
 

@@ -50,7 +50,7 @@ void check_settings(const FindSettings& s) {
   if (!(s.sample_fraction > 0.0 && s.sample_fraction <= 1.0)) {
     throw Error("find: sample fraction must be in (0, 1]");
   }
-  if (s.max_seeds == 0) throw Error("find: max seeds must be at least 1");
+  if (s.max_seeds && *s.max_seeds == 0) throw Error("find: max seeds must be at least 1");
   if (!(s.seeds_per_instance >= 1.0) || !std::isfinite(s.seeds_per_instance)) {
     throw Error("find: seeds per instance must be finite and at least 1");
   }
@@ -121,15 +121,15 @@ FindResult search(const SceneIndex& index, const Landmark& landmark, const FindS
     const auto wanted = static_cast<std::size_t>(
         std::ceil(settings.seeds_per_instance * static_cast<double>(candidates.size()) /
                   static_cast<double>(landmark_coarse.size())));
-    for (Index k : random_sample_indices(candidates.size(), std::min(settings.max_seeds, wanted),
-                                         settings.seed)) {
+    for (Index k : random_sample_indices(
+             candidates.size(), std::min(effective_max_seeds(settings), wanted), settings.seed)) {
       seeds.push_back(candidates[k]);
     }
   } else {
     const auto wanted = static_cast<std::size_t>(
         std::ceil(settings.sample_fraction * static_cast<double>(points.size())));
-    seeds =
-        random_sample_indices(points.size(), std::min(settings.max_seeds, wanted), settings.seed);
+    seeds = random_sample_indices(points.size(), std::min(effective_max_seeds(settings), wanted),
+                                  settings.seed);
   }
   stats.seeds = seeds.size();
   const KdTree landmark_tree(landmark.points);
@@ -194,6 +194,11 @@ void check_inputs(const FindSettings& settings, const Landmark& landmark) {
 }  // namespace
 
 std::vector<std::string> search_methods() { return {"fast", "reference"}; }
+
+std::size_t effective_max_seeds(const FindSettings& settings) {
+  if (settings.max_seeds) return *settings.max_seeds;
+  return settings.method == "reference" ? 1000 : 2000;
+}
 
 std::string describe_rejections(const SearchStats& s) {
   if (s.after_nms == 0) {

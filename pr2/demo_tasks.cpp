@@ -294,8 +294,6 @@ DemoScenarioResult run_scenario(const DemoTask& task, std::size_t index,
   require(robot.read_joint_state(joints), "read joints");
   PlanSettings plan_settings;
   plan_settings.find.threads = settings.threads;
-  plan_settings.find.seeds_per_instance = 16;
-  plan_settings.find.max_refined = 32;
   const Plan plan =
       lmk::plan(program, recorded.landmarks, scene, robot.kinematics(), joints, plan_settings);
   const std::size_t motions_before = robot.history().size();

@@ -134,9 +134,10 @@ int run_bench(const BenchOptions& o) {
   const FindSettings full = reference;
   reference.max_seeds = o.reference_seeds;
   const FindResult r = find_landmark(w.scene, w.landmark, reference);
-  const std::size_t full_seeds = std::min(
-      full.max_seeds, static_cast<std::size_t>(std::ceil(
-                          full.sample_fraction * static_cast<double>(r.stats.scene_points_used))));
+  const std::size_t full_seeds =
+      std::min(effective_max_seeds(full),
+               static_cast<std::size_t>(std::ceil(full.sample_fraction *
+                                                  static_cast<double>(r.stats.scene_points_used))));
   const double per_seed = r.stats.seconds_search / static_cast<double>(r.stats.seeds);
   const double reference_search =
       r.stats.seconds_preprocess + per_seed * static_cast<double>(full_seeds);

@@ -18,7 +18,7 @@ namespace {
 
 TEST(HeadPointing, PutsTheTargetOnTheOpticalAxis) {
   const Pr2Kinematics kinematics(RobotModel::pr2(), 0.2);
-  for (const Eigen::Vector3d target :
+  for (const Eigen::Vector3d& target :
        {Eigen::Vector3d(0.8, 0.0, 0.7), Eigen::Vector3d(0.6, 0.4, 0.1),
         Eigen::Vector3d(1.5, -0.8, 1.2)}) {
     const std::vector<double> q = head_joints_looking_at(kinematics, target);
