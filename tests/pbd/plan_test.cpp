@@ -150,6 +150,38 @@ TEST_F(PlanTest, AnUnreachableStepIsRefusedBeforeTheReachableOnesRun) {
   EXPECT_EQ(r.time(), 0.0);
 }
 
+// Three L-shapes, the one the policy prefers out of reach: the planner takes the next one the arm
+// can reach, unless told not to.
+TEST_F(PlanTest, AnOutOfReachInstanceGivesWayToTheNextOne) {
+  // The robot stands at the table's left end, facing along it: the copies' boxes are about 0.55,
+  // 0.9 and 1.3 m in front of it, and the policy prefers the far end.
+  const Eigen::Isometry3d world_base = pose_from_xyz_rpy({-0.95, -0.1, 0}, {0, 0, 0});
+  const PointCloud scene =
+      render_scene(test_scenes::kCopies, true).transformed(world_base.inverse());
+  Program p = program();
+  p.landmarks[0].select = InstancePolicy::kNearestToDemonstration;
+  p.landmarks[0].demonstration =
+      box_at(test_scenes::kCopies[2]).transformed(world_base.inverse()).pose;
+  SimulatedPr2 r = robot();
+  JointState state;
+  ASSERT_TRUE(r.read_joint_state(state).ok());
+  const Plan fallback = plan(p, {{"l", *landmark_}}, scene, r.kinematics(), state);
+  ASSERT_TRUE(fallback.valid()) << describe(*fallback.refusal);
+  const double chosen = fallback.landmark("l")->T_base_landmark.translation().x();
+  EXPECT_LT(chosen, 1.0);  // not the far copy
+  EXPECT_GE(fallback.landmark("l")->eligible, 2u);
+
+  PlanSettings strict;
+  strict.try_other_instances = false;
+  const Plan refused = plan(p, {{"l", *landmark_}}, scene, r.kinematics(), state, strict);
+  ASSERT_FALSE(refused.valid());
+  const auto* unreachable = std::get_if<Unreachable>(&*refused.refusal);
+  ASSERT_NE(unreachable, nullptr) << describe(*refused.refusal);
+  EXPECT_EQ(unreachable->step, 0u);
+  // Refused with the preferred instance (the farthest found), which the fallback passed over.
+  EXPECT_GT(refused.landmark("l")->T_base_landmark.translation().x(), chosen + 0.2);
+}
+
 TEST_F(PlanTest, ARobotThatMovedSincePlanningIsNotDriven) {
   SimulatedPr2 r = robot();
   const Plan p = plan_in(scene_in_base({{-0.1, -0.15}}, false), program(), r);
