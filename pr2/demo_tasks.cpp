@@ -93,8 +93,10 @@ ArmState place_arm(SimulatedPr2& robot, Arm arm, const DemoArmPose& pose,
   const GroupInfo info = *robot.kinematics().group(group);
   const double duration = std::max(1.0, motion_duration(info, from, ik.joints, 0.5));
   require(robot.send_trajectory(group, joint_line(info, from, ik.joints, duration, 5)), where);
-  GripperCommand g;
-  g.position = pose.gripper == GripperAction::kOpen ? 0.08 : 0.0;
+  GripperCommand g;  // the openings execution commands
+  const ExecuteSettings execution;
+  g.position =
+      pose.gripper == GripperAction::kOpen ? execution.gripper_open : execution.gripper_closed;
   require(robot.command_gripper(arm_gripper(arm), g), where);
   ArmState state;
   require(robot.kinematics().forward(group, robot.group_positions(group), state.T_base_ee), where);
