@@ -106,8 +106,8 @@ TEST(ProgramFile, EveryValidationErrorSaysWhatAndWhere) {
       {"unknown policy", "\"nearest-to-demonstration\"", "\"closest\"",
        "landmarks[1].select: unknown instance policy 'closest'"},
       {"symmetry of order one", "\"order\": 0", "\"order\": 1", "order must be 0"},
-      {"zero symmetry axis", "\"axis\": [\n          0.0,\n          0.0,\n          1.0", "\"axis\": [0, 0, 0",
-       "symmetry axis must be a finite, non-zero vector"},
+      {"zero symmetry axis", "\"axis\": [\n          0.0,\n          0.0,\n          1.0",
+       "\"axis\": [0, 0, 0", "symmetry axis must be a finite, non-zero vector"},
       {"symmetry without demonstration", "\"demonstration\"", "\"shown\"",
        "needs its demonstrated pose"},
   };
