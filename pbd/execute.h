@@ -24,8 +24,8 @@ struct ExecuteSettings {
   /// The robot's arm joints must be within this of the plan's start (rad or m): a robot that moved
   /// since planning would run the first motion from somewhere else.
   double start_tolerance = 1e-3;
-  double gripper_open = 0.08;   ///< m, as PlanSettings
-  double gripper_closed = 0.0;  ///< m
+  double gripper_open = 0.08;   ///< m, the opening commanded for "open"
+  double gripper_closed = 0.0;  ///< m, for "close" (the fingers stop on an object)
   /// Called after each step with (steps done, steps in all).
   std::function<void(std::size_t, std::size_t)> progress;
 };

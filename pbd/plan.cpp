@@ -158,7 +158,8 @@ std::optional<Refusal> locate_landmarks(const Program& program,
   FindSettings find = settings.find;
   find.base_frame = true;
   if (!find.work_volume) find.work_volume = settings.workspace;
-  const SceneIndex index(scene, scene_settings(find));
+  // Built on first use: landmarks searched only at their demonstrated height index their own slab.
+  std::optional<SceneIndex> index;
   for (const ProgramLandmark* entry : used) {
     const auto it = landmarks.find(entry->name);
     if (it == landmarks.end()) {
@@ -168,9 +169,12 @@ std::optional<Refusal> locate_landmarks(const Program& program,
     if (settings.progress) settings.progress("locating '" + entry->name + "'");
     const auto start = std::chrono::steady_clock::now();
     const InstancePolicy policy = entry->select.value_or(settings.policy);
+    if (policy != InstancePolicy::kDemonstratedHeight && !index) {
+      index.emplace(scene, scene_settings(find));
+    }
     const FindResult result = policy == InstancePolicy::kDemonstratedHeight
                                   ? find_at_height(scene, it->second, *entry, find, settings)
-                                  : find_landmark(index, it->second, find);
+                                  : find_landmark(*index, it->second, find);
     const std::vector<const Match*> eligible =
         eligible_matches(result.matches, *entry, policy, settings);
     if (eligible.empty()) {
@@ -297,12 +301,15 @@ Plan plan(const Program& program, const std::map<std::string, Landmark>& landmar
   if (settings.progress)
     settings.progress("solving IK for " + std::to_string(program.steps.size()) + " steps");
   std::vector<std::size_t> choice(candidates.size(), 0);
-  std::optional<Unreachable> first_failure;
-  while (true) {
+  const auto locate = [&](const std::vector<std::size_t>& chosen) {
     result.landmarks.clear();
     for (std::size_t i = 0; i < candidates.size(); ++i) {
-      result.landmarks.push_back(choose(candidates[i], choice[i]));
+      result.landmarks.push_back(choose(candidates[i], chosen[i]));
     }
+  };
+  std::optional<Unreachable> first_failure;
+  while (true) {
+    locate(choice);
     std::vector<PlannedStep> steps;
     const std::optional<Unreachable> failure =
         solve_steps(program, result, kinematics, arms, settings, steps);
@@ -324,10 +331,7 @@ Plan plan(const Program& program, const std::map<std::string, Landmark>& landmar
   const std::size_t tried = std::accumulate(choice.begin(), choice.end(), std::size_t{0});
   if (tried > 0) refusal.reason += " (and with " + std::to_string(tried) + " other instance(s))";
   result.refusal = refusal;
-  result.landmarks.clear();
-  for (std::size_t i = 0; i < candidates.size(); ++i) {
-    result.landmarks.push_back(choose(candidates[i], 0));
-  }
+  locate(std::vector<std::size_t>(candidates.size(), 0));  // report the preferred instances
   return result;
 }
 

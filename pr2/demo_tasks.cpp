@@ -91,8 +91,12 @@ ArmState place_arm(SimulatedPr2& robot, Arm arm, const DemoArmPose& pose,
                 " is out of reach: " + ik.message);
   }
   const GroupInfo info = *robot.kinematics().group(group);
-  const double duration = std::max(1.0, motion_duration(info, from, ik.joints, 0.5));
-  require(robot.send_trajectory(group, joint_line(info, from, ik.joints, duration, 5)), where);
+  const PlanSettings timing;  // moved at the pace execution would move it
+  const double duration = std::max(timing.min_step_duration,
+                                   motion_duration(info, from, ik.joints, timing.speed_fraction));
+  require(
+      robot.send_trajectory(group, joint_line(info, from, ik.joints, duration, timing.waypoints)),
+      where);
   GripperCommand g;  // the openings execution commands
   const ExecuteSettings execution;
   g.position =
@@ -166,6 +170,16 @@ RecordedTask record(const DemoTask& task, const DemoTasksSettings& settings) {
   return out;
 }
 
+// The ground-truth boxes of landmark `l` in `world`, with the object each belongs to: the part's
+// box, or the user's own box where they drew one instead, moved with the object.
+std::vector<std::pair<Box, std::string>> true_boxes(const DemoWorld& world, const DemoLandmark& l) {
+  std::vector<std::pair<Box, std::string>> boxes = world.instances(l.name);
+  if (l.drawn) {
+    for (auto& [box, id] : boxes) box = l.drawn->transformed(world.object(id)->T_base_object);
+  }
+  return boxes;
+}
+
 // The true pose of the landmark instance a plan located: the nearest ground-truth instance turned
 // within the landmark's symmetry to the located pose, or for a free-surface patch the valid patch
 // under the located one. Nothing when no true instance is there. `object` receives the instance's
@@ -178,9 +192,7 @@ std::optional<Eigen::Isometry3d> true_landmark_pose(const DemoWorld& world, cons
   }
   std::optional<Eigen::Isometry3d> best;
   double best_distance = 0.05;  // two inches: farther than that, it is no instance of this one
-  for (auto [box, id] : world.instances(l.name)) {
-    // The user's own box, where they drew one instead of the part's, moved with the object.
-    if (l.drawn) box = l.drawn->transformed(world.object(id)->T_base_object);
+  for (const auto& [box, id] : true_boxes(world, l)) {
     const double d = (box.center() - located.T_base_landmark.translation()).norm();
     if (d < best_distance) {
       best_distance = d;
@@ -209,10 +221,9 @@ std::string what_the_sensor_saw(const DemoLandmark& l, const DemoWorld& world,
   if (world.has_free_surface(l.name)) {
     return out + " no free patch of the table within 3 cm of that place (an object stands in it)";
   }
-  const auto instances = world.instances(l.name);
+  const auto instances = true_boxes(world, l);
   if (instances.empty()) return out + " no instance of '" + l.name + "' in the scene";
-  for (auto [box, id] : instances) {
-    if (l.drawn) box = l.drawn->transformed(world.object(id)->T_base_object);
+  for (const auto& [box, id] : instances) {
     const PointCloud inside = voxel_downsample(crop(scene, box), captured.settings.leaf_size);
     const Eigen::Vector3d c = box.center();
     char text[200];
