@@ -1,7 +1,5 @@
 #include "eval/ablation.h"
 
-#include <cmath>
-#include <map>
 #include <set>
 
 #include "eval/evaluation_table.h"
@@ -9,116 +7,15 @@
 
 namespace lmk {
 
-namespace {
-
-double parse_number(const std::string& key, const std::string& value) {
-  std::size_t used = 0;
-  double v = 0.0;
-  try {
-    v = std::stod(value, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != value.size() || !std::isfinite(v))
-    throw Error("--vary " + key + ": '" + value + "' is not a number");
-  return v;
-}
-
-double positive(const std::string& key, const std::string& value) {
-  const double v = parse_number(key, value);
-  if (!(v > 0.0)) throw Error("--vary " + key + ": '" + value + "' must be positive");
-  return v;
-}
-
-std::size_t count(const std::string& key, const std::string& value) {
-  const double v = positive(key, value);
-  if (v != std::floor(v)) throw Error("--vary " + key + ": '" + value + "' must be an integer");
-  return static_cast<std::size_t>(v);
-}
-
-double fraction(const std::string& key, const std::string& value) {
-  const double v = parse_number(key, value);
-  if (v < 0.0 || v > 1.0) throw Error("--vary " + key + ": '" + value + "' must be in [0, 1]");
-  return v;
-}
-
-using Setter = std::function<void(FindSettings&, const std::string&, const std::string&)>;
-
-const std::map<std::string, Setter>& setters() {
-  static const std::map<std::string, Setter> all = {
-      {"method",
-       [](FindSettings& s, const std::string& k, const std::string& v) {
-         const auto methods = search_methods();
-         if (std::find(methods.begin(), methods.end(), v) == methods.end())
-           throw Error("--vary " + k + ": unknown method '" + v + "'");
-         s.method = v;
-       }},
-      {"metric",
-       [](FindSettings& s, const std::string&, const std::string& v) {
-         find_error_metric(v);  // lists the known metrics for an unknown one
-         s.metric = v;
-       }},
-      {"threshold", [](FindSettings& s, const std::string& k,
-                       const std::string& v) { s.threshold = positive(k, v); }},
-      {"max-seeds", [](FindSettings& s, const std::string& k,
-                       const std::string& v) { s.max_seeds = count(k, v); }},
-      {"seeds-per-instance", [](FindSettings& s, const std::string& k,
-                                const std::string& v) { s.seeds_per_instance = positive(k, v); }},
-      {"seed",
-       [](FindSettings& s, const std::string& k, const std::string& v) {
-         const double n = parse_number(k, v);
-         if (n < 0 || n != std::floor(n)) throw Error("--vary seed: '" + v + "' must be >= 0");
-         s.seed = static_cast<std::uint64_t>(n);
-       }},
-      {"orientations",
-       [](FindSettings& s, const std::string& k, const std::string& v) {
-         if (v != "upright" && v != "full")
-           throw Error("--vary " + k + ": '" + v + "' must be upright or full");
-         s.orientations = v;
-       }},
-      {"max-tilt", [](FindSettings& s, const std::string& k,
-                      const std::string& v) { s.max_tilt = positive(k, v) * M_PI / 180.0; }},
-      {"min-coverage", [](FindSettings& s, const std::string& k,
-                          const std::string& v) { s.min_coverage = fraction(k, v); }},
-      {"max-empty-violation",
-       [](FindSettings& s, const std::string& k, const std::string& v) {
-         s.max_empty_space_violation = fraction(k, v);
-       }},
-      {"leaf", [](FindSettings& s, const std::string& k,
-                  const std::string& v) { s.leaf_size = positive(k, v); }},
-      {"coarse-leaf", [](FindSettings& s, const std::string& k,
-                         const std::string& v) { s.coarse_leaf = positive(k, v); }},
-      {"nms-radius", [](FindSettings& s, const std::string& k,
-                        const std::string& v) { s.nms_radius = positive(k, v); }},
-      {"max-candidates", [](FindSettings& s, const std::string& k,
-                            const std::string& v) { s.max_candidates = count(k, v); }},
-      {"refine",
-       [](FindSettings& s, const std::string& k, const std::string& v) {
-         if (v != "true" && v != "false")
-           throw Error("--vary " + k + ": '" + v + "' must be true or false");
-         s.refine = v == "true";
-       }},
-  };
-  return all;
-}
-
-}  // namespace
-
-std::vector<std::string> ablation_keys() {
-  std::vector<std::string> keys;
-  for (const auto& [key, setter] : setters()) keys.push_back(key);
-  return keys;
-}
+std::vector<std::string> ablation_keys() { return find_setting_keys(); }
 
 void apply_ablation_setting(FindSettings& settings, const std::string& key,
                             const std::string& value) {
-  const auto it = setters().find(key);
-  if (it == setters().end()) {
-    std::string known;
-    for (const std::string& k : ablation_keys()) known += (known.empty() ? "" : ", ") + k;
-    throw Error("--vary: unknown setting '" + key + "' (known: " + known + ")");
+  try {
+    set_find_setting(settings, key, value);
+  } catch (const Error& e) {
+    throw Error("--vary " + key + "=" + value + ": " + e.what());
   }
-  it->second(settings, key, value);
 }
 
 AblationAxis parse_ablation_axis(const std::string& text) {

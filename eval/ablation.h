@@ -23,9 +23,8 @@ struct AblationAxis {
 /// an empty or repeated value.
 AblationAxis parse_ablation_axis(const std::string& text);
 
-/// The keys that can be varied: method, metric, threshold, max-seeds, seeds-per-instance, seed,
-/// orientations, max-tilt (degrees), min-coverage, max-empty-violation, leaf, coarse-leaf,
-/// nms-radius, max-candidates, refine (true/false).
+/// The keys that can be varied: every search setting, by its flag's name (find_setting_keys():
+/// method, metric, threshold, max-seeds, max-tilt in degrees, refine true/false, ...).
 std::vector<std::string> ablation_keys();
 
 /// Sets `key` to `value` in `settings`; throws lmk::Error for a value that does not parse or is

@@ -18,6 +18,7 @@
 #include "geometry/hash.h"
 #include "geometry/statistics.h"
 #include "geometry/version.h"
+#include "landmark/detail/find_settings_json.h"
 #include "landmark/error_metrics.h"
 #include "landmark/landmark_file.h"
 
@@ -46,11 +47,10 @@ double recorded_threshold(const FindSettings& find) {
 // the scene's own up axis where the dataset gives one.
 FindSettings pair_search(const FindSettings& find, const DatasetScene& scene) {
   FindSettings f = find;
-  f.threads = 1;
-  f.progress = nullptr;
-  f.keep_aligned_points = false;
-  f.threshold = recorded_threshold(find);
-  if (scene.up) f.up = scene.up;
+  f.execution = ExecutionSettings();
+  f.execution.threads = 1;
+  f.selection.threshold = recorded_threshold(find);
+  if (scene.up) f.scene.up = scene.up;
   return f;
 }
 
@@ -128,19 +128,12 @@ PairInput matches_within(const PairResult& pair, double threshold) {
 }
 
 std::string evaluation_cache_key(const FindSettings& find, const std::string& fingerprint) {
-  FindSettings recorded = find;
-  recorded.threshold = recorded_threshold(find);
-  // Only the settings the method reads: tuning the fast search must not throw away hours of
-  // cached reference searches, nor the reverse.
-  nlohmann::json settings = detail::find_settings_to_json(recorded);
-  const bool fast = find.method == "fast";
-  for (const char* key :
-       fast ? std::vector<const char*>{"sample_fraction", "icp_iterations"}
-            : std::vector<const char*>{"seeds_per_instance", "orientations", "max_tilt",
-                                       "vote_leaf_fraction", "poses_per_seed", "max_candidates",
-                                       "prune_error", "max_refined", "refine"}) {
-    settings.erase(key);
-  }
+  // The settings as the search applies them, so that spelling out a default keeps the key.
+  FindSettings applied = find;
+  applied.selection.metric = effective_metric(find);
+  applied.selection.threshold = recorded_threshold(find);
+  applied.sampling.max_seeds = effective_max_seeds(find);
+  const nlohmann::json settings = detail::result_settings_to_json(applied);
   return Fnv1a().add(settings.dump()).add(fingerprint).add(kVersion).hex();
 }
 
@@ -160,7 +153,7 @@ Evaluation evaluate(const std::string& dir, const Dataset& dataset,
   evaluation.dataset = dataset.name;
   evaluation.settings = settings;
   evaluation.settings.progress = nullptr;
-  effective_threshold(settings.find);  // an unknown metric fails before any work
+  validate(settings.find);  // bad settings fail before any work
 
   // Every pair to search, scene by scene, and the landmarks, loaded once.
   struct Job {

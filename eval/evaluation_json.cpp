@@ -5,6 +5,7 @@
 #include "geometry/detail/pose_json.h"
 #include "geometry/error.h"
 #include "geometry/version.h"
+#include "landmark/detail/find_settings_json.h"
 #include "landmark/detail/terms_json.h"
 
 namespace lmk::detail {
@@ -38,34 +39,6 @@ T get(const json& j, const char* key, const std::string& where) {
 }
 
 }  // namespace
-
-json find_settings_to_json(const FindSettings& f) {
-  json j = {{"method", f.method},
-            {"metric", f.metric},
-            {"threshold", optional_number(f.threshold)},
-            {"leaf_size", f.leaf_size},
-            {"coarse_leaf", f.coarse_leaf},
-            {"sample_fraction", f.sample_fraction},
-            {"seeds_per_instance", f.seeds_per_instance},
-            {"max_seeds", effective_max_seeds(f)},
-            {"seed", f.seed},
-            {"icp_iterations", f.icp_iterations},
-            {"nms_radius", f.nms_radius},
-            {"min_coverage", f.min_coverage},
-            {"max_empty_space_violation", f.max_empty_space_violation},
-            {"orientations", f.orientations},
-            {"max_tilt", f.max_tilt},
-            {"base_frame", f.base_frame},
-            {"vote_leaf_fraction", f.vote_leaf_fraction},
-            {"poses_per_seed", f.poses_per_seed},
-            {"max_candidates", f.max_candidates},
-            {"prune_error", f.prune_error},
-            {"max_refined", f.max_refined},
-            {"refine", f.refine},
-            {"up", f.up ? vector_to_json(*f.up) : json(nullptr)},
-            {"work_volume", f.work_volume ? box_to_json(*f.work_volume) : json(nullptr)}};
-  return j;
-}
 
 json pair_result_to_json(const PairResult& p, double threshold, const MatchTolerance& tolerance) {
   json truth = json::array(), found = json::array();

@@ -10,7 +10,7 @@ DistinctivenessReport check_distinctiveness(const PointCloud& capture_scene,
   // The captured instance sits at the identity: the capture frame is the capture scene's frame.
   const Eigen::Vector3d captured = landmark.box.center();
   for (const Match& m : report.search.matches) {
-    if ((m.box.center() - captured).norm() <= settings.nms_radius) {
+    if ((m.box.center() - captured).norm() <= settings.selection.nms_radius) {
       report.found_itself = true;
     } else {
       report.other_instances.push_back(m);

@@ -13,7 +13,7 @@
 namespace lmk {
 
 struct DistinctivenessReport {
-  /// Matches whose box centre lies farther than settings.nms_radius from the captured box centre,
+  /// Matches whose box centre lies farther than settings.selection.nms_radius from the captured box centre,
   /// best first. Empty: the landmark is distinctive in its capture scene.
   std::vector<Match> other_instances;
   /// Did the search find the captured instance itself? A landmark that its own scene does not

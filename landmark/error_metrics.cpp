@@ -111,6 +111,12 @@ const std::vector<ErrorMetric>& error_metrics() {
   return metrics;
 }
 
+std::vector<std::string> error_metric_names() {
+  std::vector<std::string> names;
+  for (const ErrorMetric& m : error_metrics()) names.push_back(m.name);
+  return names;
+}
+
 const ErrorMetric& find_error_metric(const std::string& name) {
   std::string known;
   for (const ErrorMetric& m : error_metrics()) {

@@ -74,6 +74,8 @@ struct ErrorMetric {
 
 /// Every registered metric, in a fixed order: "paper", "rapid", "vdb", "visibility".
 const std::vector<ErrorMetric>& error_metrics();
+/// The registered metrics' names, in the registry's order.
+std::vector<std::string> error_metric_names();
 /// The metric called `name`; throws lmk::Error listing the known names otherwise.
 const ErrorMetric& find_error_metric(const std::string& name);
 

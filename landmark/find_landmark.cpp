@@ -20,52 +20,9 @@ namespace {
 using detail::Clock;
 using detail::seconds_since;
 
-void check_settings(const FindSettings& s) {
-  const auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
-  const auto methods = search_methods();
-  if (std::find(methods.begin(), methods.end(), s.method) == methods.end()) {
-    std::string known;
-    for (const auto& m : methods) known += (known.empty() ? "" : ", ") + m;
-    throw Error("unknown search method '" + s.method + "' (known: " + known + ")");
-  }
-  if (!s.metric.empty()) find_error_metric(s.metric);  // throws for an unknown name
-  if (!positive(s.leaf_size)) throw Error("find: leaf size must be positive and finite");
-  if (!positive(s.coarse_leaf)) throw Error("find: coarse leaf must be positive and finite");
-  if (s.orientations != "upright" && s.orientations != "full") {
-    throw Error("find: orientations must be 'upright' or 'full', not '" + s.orientations + "'");
-  }
-  if (!(s.max_tilt >= 0.0) || !std::isfinite(s.max_tilt)) {
-    throw Error("find: the maximum tilt must be finite and non-negative");
-  }
-  if (!(s.min_coverage >= 0.0 && s.min_coverage <= 1.0)) {
-    throw Error("find: the minimum coverage must be in [0, 1]");
-  }
-  if (!(s.max_empty_space_violation >= 0.0 && s.max_empty_space_violation <= 1.0)) {
-    throw Error("find: the empty-space violation allowance must be in [0, 1]");
-  }
-  if (s.poses_per_seed < 1 || s.max_candidates == 0 || s.max_refined == 0) {
-    throw Error("find: poses per seed, candidates and refined candidates must be at least 1");
-  }
-  if (!(s.prune_error > 0.0)) throw Error("find: the prune error must be positive");
-  if (!(s.sample_fraction > 0.0 && s.sample_fraction <= 1.0)) {
-    throw Error("find: sample fraction must be in (0, 1]");
-  }
-  if (s.max_seeds && *s.max_seeds == 0) throw Error("find: max seeds must be at least 1");
-  if (!(s.seeds_per_instance >= 1.0) || !std::isfinite(s.seeds_per_instance)) {
-    throw Error("find: seeds per instance must be finite and at least 1");
-  }
-  if (s.icp_iterations < 1) throw Error("find: ICP iterations must be at least 1");
-  if (!positive(s.nms_radius)) throw Error("find: NMS radius must be positive and finite");
-  if (s.threshold && !(*s.threshold > 0.0)) throw Error("find: threshold must be positive");
-  if (s.threads < 0) throw Error("find: threads must be 0 (all cores) or more");
-  if (s.work_volume && !s.work_volume->is_valid()) {
-    throw Error("find: the work volume needs a finite pose and positive sides");
-  }
-}
-
 // Steps 5 and 6: non-max suppression on box centres, then the error threshold (and, for metrics
 // that measure them, the coverage and the empty space).
-std::vector<Match> select(std::vector<Match> candidates, const FindSettings& s,
+std::vector<Match> select(std::vector<Match> candidates, const SelectionSettings& s,
                           SearchStats& stats) {
   const std::vector<std::size_t> kept = non_max_suppression_of(candidates, s.nms_radius);
   stats.after_nms = kept.size();
@@ -119,17 +76,18 @@ FindResult search(const SceneIndex& index, const Landmark& landmark, const FindS
     const Indices candidates =
         detail::points_near_relief(points, 0.5 * diameter, detail::kCoplanarAngle);
     const auto wanted = static_cast<std::size_t>(
-        std::ceil(settings.seeds_per_instance * static_cast<double>(candidates.size()) /
+        std::ceil(settings.fast.seeds_per_instance * static_cast<double>(candidates.size()) /
                   static_cast<double>(landmark_coarse.size())));
-    for (Index k : random_sample_indices(
-             candidates.size(), std::min(effective_max_seeds(settings), wanted), settings.seed)) {
+    for (Index k :
+         random_sample_indices(candidates.size(), std::min(effective_max_seeds(settings), wanted),
+                               settings.sampling.seed)) {
       seeds.push_back(candidates[k]);
     }
   } else {
     const auto wanted = static_cast<std::size_t>(
-        std::ceil(settings.sample_fraction * static_cast<double>(points.size())));
+        std::ceil(settings.reference.sample_fraction * static_cast<double>(points.size())));
     seeds = random_sample_indices(points.size(), std::min(effective_max_seeds(settings), wanted),
-                                  settings.seed);
+                                  settings.sampling.seed);
   }
   stats.seeds = seeds.size();
   const KdTree landmark_tree(landmark.points);
@@ -149,7 +107,8 @@ FindResult search(const SceneIndex& index, const Landmark& landmark, const FindS
       stats.threshold,
       settings};
   std::vector<Match> candidates;
-  tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
+  const int threads = settings.execution.threads;
+  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
   arena.execute([&] {
     if (fast) {
       detail::FastSearchStats fast_stats;
@@ -169,8 +128,8 @@ FindResult search(const SceneIndex& index, const Landmark& landmark, const FindS
   stats.seconds_search = seconds_since(search_start);
 
   const auto select_start = Clock::now();
-  result.matches = select(std::move(candidates), settings, stats);
-  if (settings.keep_aligned_points) {
+  result.matches = select(std::move(candidates), settings.selection, stats);
+  if (settings.execution.keep_aligned_points) {
     for (Match& m : result.matches) {
       m.aligned_points = landmark.points.transformed(m.T_scene_capture);
       m.aligned_points.T_cloud_sensor = index.T_scene_sensor();
@@ -182,7 +141,7 @@ FindResult search(const SceneIndex& index, const Landmark& landmark, const FindS
 }
 
 void check_inputs(const FindSettings& settings, const Landmark& landmark) {
-  check_settings(settings);
+  validate(settings);
   const std::string what = "landmark '" + landmark.name + "'";
   landmark.validate(what);
   if (const auto why = degenerate_shape(landmark.points, landmark.settings.leaf_size, what,
@@ -192,13 +151,6 @@ void check_inputs(const FindSettings& settings, const Landmark& landmark) {
 }
 
 }  // namespace
-
-std::vector<std::string> search_methods() { return {"fast", "reference"}; }
-
-std::size_t effective_max_seeds(const FindSettings& settings) {
-  if (settings.max_seeds) return *settings.max_seeds;
-  return settings.method == "reference" ? 1000 : 2000;
-}
 
 std::string describe_rejections(const SearchStats& s) {
   if (s.after_nms == 0) {
@@ -215,21 +167,10 @@ std::string describe_rejections(const SearchStats& s) {
   return out;
 }
 
-SceneSettings scene_settings(const FindSettings& s) {
-  SceneSettings scene;
-  scene.work_volume = s.work_volume;
-  scene.leaf_size = s.leaf_size;
-  scene.coarse_leaf = std::max(s.coarse_leaf, s.leaf_size);
-  scene.field_band = 2.0 * scene.coarse_leaf;
-  scene.up = s.up;
-  scene.base_frame = s.base_frame;
-  return scene;
-}
-
 FindResult find_landmark(const PointCloud& scene, const Landmark& landmark,
                          const FindSettings& settings) {
   check_inputs(settings, landmark);
-  const SceneIndex index(scene, scene_settings(settings));
+  const SceneIndex index(scene, settings.scene);
   FindResult result = search(index, landmark, settings);
   result.stats.seconds_preprocess += index.seconds_to_build();
   result.stats.seconds_total += index.seconds_to_build();
@@ -241,16 +182,6 @@ FindResult find_landmark(const SceneIndex& index, const Landmark& landmark,
                          const FindSettings& settings) {
   check_inputs(settings, landmark);
   return search(index, landmark, settings);
-}
-
-std::string effective_metric(const FindSettings& settings) {
-  if (!settings.metric.empty()) return settings.metric;
-  return settings.method == "fast" ? "visibility" : "paper";
-}
-
-double effective_threshold(const FindSettings& settings) {
-  return settings.threshold ? *settings.threshold
-                            : find_error_metric(effective_metric(settings)).default_threshold;
 }
 
 }  // namespace lmk

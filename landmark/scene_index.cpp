@@ -3,6 +3,7 @@
 #include <tbb/parallel_invoke.h>
 
 #include <cmath>
+#include <sstream>
 
 #include "geometry/error.h"
 #include "geometry/filters.h"
@@ -13,23 +14,23 @@
 
 namespace lmk {
 
+void validate(const SceneSettings& settings) {
+  validate_settings(settings, "scene: ");
+  if (settings.coarse_leaf < settings.leaf_size) {
+    std::ostringstream message;
+    message << "scene: the coarse leaf (--coarse-leaf, " << settings.coarse_leaf
+            << " m) must be at least the leaf size (--leaf-size, " << settings.leaf_size << " m)";
+    throw Error(message.str());
+  }
+  if (settings.effective_field_band() < settings.coarse_leaf) {
+    throw Error("scene: the distance-field band (--field-band) must be at least the coarse leaf");
+  }
+}
+
 SceneIndex::SceneIndex(const PointCloud& scene, const SceneSettings& settings)
     : settings_(settings), T_scene_sensor_(scene.T_cloud_sensor) {
   const auto start = detail::Clock::now();
-  const auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
-  if (!positive(settings.leaf_size)) throw Error("scene: leaf size must be positive and finite");
-  if (!positive(settings.coarse_leaf) || settings.coarse_leaf < settings.leaf_size) {
-    throw Error("scene: the coarse leaf must be finite and at least the leaf size");
-  }
-  if (!(settings.field_band >= settings.coarse_leaf) || !std::isfinite(settings.field_band)) {
-    throw Error("scene: the distance-field band must be finite and at least the coarse leaf");
-  }
-  if (settings.work_volume && !settings.work_volume->is_valid()) {
-    throw Error("scene: the work volume needs a finite pose and positive sides");
-  }
-  if (settings.up && (!settings.up->allFinite() || settings.up->norm() < 1e-9)) {
-    throw Error("scene: the up axis must be a finite non-zero vector");
-  }
+  validate(settings);
   if (!scene.T_cloud_sensor.matrix().allFinite())
     throw Error("scene: the sensor pose is not finite");
   up_ = settings.up ? settings.up->normalized()
@@ -44,24 +45,26 @@ SceneIndex::SceneIndex(const PointCloud& scene, const SceneSettings& settings)
   // The grids are built side by side: the occupancy (raw points) beside the voxel moments, then
   // the distance field from the centroids beside the normals and the k-d tree, so that neither
   // thread waits on the other's serial steps.
-  tbb::parallel_invoke(
-      [&] { occupancy_ = OccupancyGrid(cropped_.points, settings.leaf_size); },
-      [&] {
-        const VoxelMoments moments(cropped_, settings.coarse_leaf);
-        coarse_.points = moments.centroids();
-        coarse_.set_unorganized();
-        coarse_.T_cloud_sensor = scene.T_cloud_sensor;
-        tbb::parallel_invoke(
-            [&] {
-              field_ = DistanceField(coarse_.points, {settings.coarse_leaf, settings.field_band});
-            },
-            [&] {
-              // Normals from a block of two leaves (about 2 cm at the default 1 cm): fine enough
-              // for a carton's edges, and pooled from the raw points rather than the centroids.
-              coarse_.normals = moments.normals(scene.sensor_origin());
-              coarse_tree_ = std::make_unique<KdTree>(coarse_);
-            });
-      });
+  tbb::parallel_invoke([&] { occupancy_ = OccupancyGrid(cropped_.points, settings.leaf_size); },
+                       [&] {
+                         const VoxelMoments moments(cropped_, settings.coarse_leaf);
+                         coarse_.points = moments.centroids();
+                         coarse_.set_unorganized();
+                         coarse_.T_cloud_sensor = scene.T_cloud_sensor;
+                         tbb::parallel_invoke(
+                             [&] {
+                               field_ = DistanceField(
+                                   coarse_.points,
+                                   {settings.coarse_leaf, settings.effective_field_band()});
+                             },
+                             [&] {
+                               // Normals from a block of two leaves (about 2 cm at the default 1
+                               // cm): fine enough for a carton's edges, and pooled from the raw
+                               // points rather than the centroids.
+                               coarse_.normals = moments.normals(scene.sensor_origin());
+                               coarse_tree_ = std::make_unique<KdTree>(coarse_);
+                             });
+                       });
   seconds_ = detail::seconds_since(start);
 }
 

@@ -18,23 +18,13 @@
 #include <mutex>
 #include <optional>
 
-#include "geometry/box.h"
 #include "geometry/kdtree.h"
 #include "geometry/point_cloud.h"
+#include "landmark/scene_settings.h"
 #include "occupancy/distance_field.h"
 #include "occupancy/occupancy_grid.h"
 
 namespace lmk {
-
-struct SceneSettings {
-  /// Crop the scene to this box (scene frame) first; nothing means the whole scene.
-  std::optional<Box> work_volume;
-  double leaf_size = 0.005;           ///< the paper's leaf: fine points and occupancy voxels, m
-  double coarse_leaf = 0.01;          ///< seeds, voting and coarse alignment, m
-  double field_band = 0.02;           ///< band of the scene distance field, m
-  std::optional<Eigen::Vector3d> up;  ///< up axis in the scene frame; unset: default_up()
-  bool base_frame = false;            ///< the scene is in a robot base frame (+z up)
-};
 
 class SceneIndex {
  public:

@@ -139,12 +139,12 @@ FindResult find_at_height(const PointCloud& scene, const Landmark& landmark,
   // Half the box's vertical extent however it is turned, plus the tolerance and a leaf of slack.
   const Eigen::Matrix3d R = entry.demonstration->linear();
   const double half = 0.5 * (R.row(2).cwiseAbs() * landmark.box.size)(0);
-  const double slab = 2.0 * (half + settings.height_tolerance + find.leaf_size);
-  Box volume = *find.work_volume;
+  const double slab = 2.0 * (half + settings.height_tolerance + find.scene.leaf_size);
+  Box volume = *find.scene.work_volume;
   const Eigen::Vector3d centre = volume.center();
   volume.pose.translation() = Eigen::Vector3d(centre.x(), centre.y(), z);
   volume.size.z() = slab;
-  narrowed.work_volume = volume;
+  narrowed.scene.work_volume = volume;
   return find_landmark(scene, landmark, narrowed);
 }
 
@@ -156,8 +156,8 @@ std::optional<Refusal> locate_landmarks(const Program& program,
   const std::vector<const ProgramLandmark*> used = used_landmarks(program);
   if (used.empty()) return std::nullopt;
   FindSettings find = settings.find;
-  find.base_frame = true;
-  if (!find.work_volume) find.work_volume = settings.workspace;
+  find.scene.base_frame = true;
+  if (!find.scene.work_volume) find.scene.work_volume = settings.workspace;
   // Built on first use: landmarks searched only at their demonstrated height index their own slab.
   std::optional<SceneIndex> index;
   for (const ProgramLandmark* entry : used) {
@@ -170,7 +170,7 @@ std::optional<Refusal> locate_landmarks(const Program& program,
     const auto start = std::chrono::steady_clock::now();
     const InstancePolicy policy = entry->select.value_or(settings.policy);
     if (policy != InstancePolicy::kDemonstratedHeight && !index) {
-      index.emplace(scene, scene_settings(find));
+      index.emplace(scene, find.scene);
     }
     const FindResult result = policy == InstancePolicy::kDemonstratedHeight
                                   ? find_at_height(scene, it->second, *entry, find, settings)

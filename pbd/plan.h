@@ -85,8 +85,8 @@ struct Plan {
 struct PlanSettings {
   /// The landmark search. The scene is in the robot base frame (base_frame is forced on).
   FindSettings find;
-  /// Step 1 of the paper's Algorithm 1, the work volume, when find.work_volume is unset: the space
-  /// the arms can act in, base frame. The default, x 0-1.3 m, y -1 to 1 m, z 0-1.9 m, holds a
+  /// Step 1 of the paper's Algorithm 1, the work volume, when find.scene.work_volume is unset: the
+  /// space the arms can act in, base frame. The default, x 0-1.3 m, y -1 to 1 m, z 0-1.9 m, holds a
   /// PR2's reach and leaves out the floor, whose plane the flat parts of many landmarks would
   /// otherwise match all over (a control panel's face around its dial).
   Box workspace = Box(Eigen::Translation3d(0.65, 0.0, 0.85) * Eigen::Isometry3d::Identity(),

@@ -306,7 +306,7 @@ DemoScenarioResult run_scenario(const DemoTask& task, std::size_t index,
   JointState joints;
   require(robot.read_joint_state(joints), "read joints");
   PlanSettings plan_settings;
-  plan_settings.find.threads = settings.threads;
+  plan_settings.find.execution.threads = settings.threads;
   const Plan plan =
       lmk::plan(program, recorded.landmarks, scene, robot.kinematics(), joints, plan_settings);
   const std::size_t motions_before = robot.history().size();

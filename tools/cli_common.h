@@ -34,10 +34,10 @@ struct UpOptions {
 };
 void add_up_options(CLI::App* sub, UpOptions& options);
 
-/// The options of a search that lmk find, eval and ablate share: --method, --metric, --threshold,
-/// --orientations, --max-tilt, --min-coverage, --max-empty-violation, --max-seeds,
-/// --seeds-per-instance and --seed. `settings` must outlive the parse.
-void add_search_options(CLI::App* sub, FindSettings& settings);
+/// The options of a search that lmk find, eval and ablate share: one flag per search setting
+/// (find_settings.h), grouped by stage in --help; the execution stage (--threads) only when
+/// `with_execution`. `settings` must outlive the parse.
+void add_search_options(CLI::App* sub, FindSettings& settings, bool with_execution = false);
 
 Subcommand add_bench(CLI::App& app);
 Subcommand add_info(CLI::App& app);

@@ -13,6 +13,7 @@
 #include "geometry/atomic_file.h"
 #include "geometry/error.h"
 #include "geometry/version.h"
+#include "landmark/detail/find_settings_json.h"
 #include "tools/cli_common.h"
 #include "tools/eval_common.h"
 #include "tools/progress.h"

@@ -109,7 +109,7 @@ int run_bench(const BenchOptions& o) {
   // Fast: each repeat is a whole search from the raw frame, the scene index built for this one
   // landmark (preprocessing amortised over one landmark, the worst case).
   FindSettings fast;
-  fast.threads = o.threads;
+  fast.execution.threads = o.threads;
   std::vector<double> total, preprocess, search;
   std::size_t fast_matches = 0;
   for (int k = 0; k < o.repeats; ++k) {
@@ -130,13 +130,13 @@ int run_bench(const BenchOptions& o) {
   // Reference: a capped run, extrapolated to the full seed count.
   FindSettings reference;
   reference.method = "reference";
-  reference.threads = o.threads;
+  reference.execution.threads = o.threads;
   const FindSettings full = reference;
-  reference.max_seeds = o.reference_seeds;
+  reference.sampling.max_seeds = o.reference_seeds;
   const FindResult r = find_landmark(w.scene, w.landmark, reference);
   const std::size_t full_seeds =
       std::min(effective_max_seeds(full),
-               static_cast<std::size_t>(std::ceil(full.sample_fraction *
+               static_cast<std::size_t>(std::ceil(full.reference.sample_fraction *
                                                   static_cast<double>(r.stats.scene_points_used))));
   const double per_seed = r.stats.seconds_search / static_cast<double>(r.stats.seeds);
   const double reference_search =

@@ -46,7 +46,7 @@ Box box_from_options(const CaptureOptions& o) {
 // somewhere else in its own scene, or when the search misses the captured instance itself.
 void check_in_capture_scene(const PointCloud& scene, const Landmark& landmark) {
   FindSettings find;
-  find.up = landmark.up;  // the capture frame is the scene frame
+  find.scene.up = landmark.up;  // the capture frame is the scene frame
   const DistinctivenessReport report = check_distinctiveness(scene, landmark, find);
   if (!report.found_itself) {
     std::fprintf(stderr,

@@ -1,4 +1,4 @@
-// lmk find SCENE LANDMARK [--method M] [--metric NAME] [--threshold T] [--max-seeds N] [--seed S]
+// lmk find SCENE LANDMARK [search settings: --method M --metric NAME --threshold T ...]
 //          [--threads N] [--json FILE|-]: every instance of a landmark, with its pose and error.
 
 #include <cmath>
@@ -24,7 +24,6 @@ namespace {
 
 struct FindOptions {
   std::string scene, landmark, json;
-  UpOptions up;
   FindSettings settings;
 };
 
@@ -103,12 +102,12 @@ int run_find(FindOptions& o) {
   format_from_path(o.scene);
   const Landmark landmark = load_landmark(o.landmark);
   const PointCloud scene = read_cloud(o.scene);
-  o.settings.up = o.up.vector();
-  o.settings.base_frame = o.up.base_frame;
   ProgressBar bar("find " + landmark.name);
-  o.settings.progress = [&bar](std::size_t done, std::size_t total) { bar.update(done, total); };
+  o.settings.execution.progress = [&bar](std::size_t done, std::size_t total) {
+    bar.update(done, total);
+  };
   const FindResult result = find_landmark(scene, landmark, o.settings);
-  o.settings.progress = nullptr;
+  o.settings.execution.progress = nullptr;
   if (o.json == "-") {
     std::cout << result_json(result).dump(2) << "\n";
     return kOk;
@@ -128,10 +127,7 @@ Subcommand add_find(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("find", "Find every instance of a landmark in a scene");
   sub->add_option("scene", o->scene, "Scene cloud (.pcd, .ply, .xyz)")->required();
   sub->add_option("landmark", o->landmark, "Landmark file (.lmk)")->required();
-  add_search_options(sub, s);
-  add_up_options(sub, o->up);
-  sub->add_option("--threads", s.threads, "Worker threads; 0 uses every core")
-      ->capture_default_str();
+  add_search_options(sub, s, true);
   sub->add_option("--json", o->json,
                   "Write the matches and statistics as JSON to FILE, or - for stdout");
   return {sub, [o] { return run_find(*o); }};

@@ -136,7 +136,7 @@ Plan plan_program(const PbdOptions& o, SimulatedPr2& robot) {
   JointState state;
   robot.read_joint_state(state);
   PlanSettings settings;
-  settings.find.threads = o.threads;
+  settings.find.execution.threads = o.threads;
   if (!o.policy.empty()) settings.policy = instance_policy_from_name(o.policy);
   if (isatty(STDERR_FILENO)) {
     settings.progress = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };

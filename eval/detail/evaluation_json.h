@@ -11,9 +11,6 @@
 
 namespace lmk::detail {
 
-/// The settings that change a search's results (not threads or callbacks).
-nlohmann::json find_settings_to_json(const FindSettings& find);
-
 nlohmann::json pair_result_to_json(const PairResult& pair, double threshold,
                                    const MatchTolerance& tolerance);
 /// Reads what pair_result_to_json wrote; throws lmk::Error naming `where` for anything else.

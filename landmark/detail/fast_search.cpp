@@ -77,7 +77,7 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
   // whatever the landmark's size, and the scene pairs per seed likewise.
   const double diameter =
       std::max(static_cast<double>(landmark.points.bounds().diagonal().norm()), 3.0 * leaf);
-  const double vote_leaf = std::max(leaf, diameter * s.vote_leaf_fraction);
+  const double vote_leaf = std::max(leaf, diameter * s.fast.vote_leaf_fraction);
   const PointCloud& model = in.landmark_coarse;
   // Model and scene reach the voting resolution the same way, from clouds whose normals were
   // estimated alike (VoxelMoments over two-leaf blocks). The capture's own normals, averaged, gave
@@ -108,13 +108,13 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
   TiltLimit tilt;
   tilt.model_up = landmark.up.cast<float>();
   tilt.scene_up = index.up().cast<float>();
-  tilt.min_cos = static_cast<float>(std::cos(s.max_tilt));
-  const TiltLimit* limit = s.orientations == "upright" ? &tilt : nullptr;
+  tilt.min_cos = static_cast<float>(std::cos(s.fast.max_tilt));
+  const TiltLimit* limit = s.fast.orientations == "upright" ? &tilt : nullptr;
   std::vector<std::vector<PoseVote>> votes(in.seeds.size());
   std::atomic<std::size_t> done{0};
   tbb::parallel_for(std::size_t{0}, in.seeds.size(), [&](std::size_t k) {
-    pairs.vote(voters, voter_tree, references[k], s.poses_per_seed, 0.75, votes[k], limit);
-    if (s.progress) s.progress(++done, in.seeds.size());
+    pairs.vote(voters, voter_tree, references[k], s.fast.poses_per_seed, 0.75, votes[k], limit);
+    if (s.execution.progress) s.execution.progress(++done, in.seeds.size());
   });
   std::vector<Candidate> poses;
   for (std::size_t k = 0; k < votes.size(); ++k) {
@@ -126,7 +126,7 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
 
   // Step 2.
   const std::vector<Candidate> clusters =
-      cluster(std::move(poses), std::max(2.0 * leaf, 0.1 * diameter), 0.35, s.max_candidates);
+      cluster(std::move(poses), std::max(2.0 * leaf, 0.1 * diameter), 0.35, s.fast.max_candidates);
   stats.clusters = clusters.size();
   stats.seconds_vote = seconds_since(start);
   const auto coarse_start = Clock::now();
@@ -167,7 +167,7 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
            rotation_angle_between(aligned[a].linear(), aligned[b].linear()) < 0.2;
   };
   for (std::size_t c : order) {
-    if (quick[c] > s.prune_error || survivors.size() >= s.max_refined) continue;
+    if (quick[c] > s.fast.prune_error || survivors.size() >= s.fast.max_refined) continue;
     if (std::none_of(survivors.begin(), survivors.end(),
                      [&](std::size_t kept) { return same_pose(kept, c); })) {
       survivors.push_back(c);
@@ -211,13 +211,13 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
 
   // Step 5 comes early for the polish: of candidates within the suppression radius of each other
   // only the best survives selection, so only it is worth Ceres' time.
-  std::vector<std::size_t> kept = non_max_suppression_of(aligned_matches, s.nms_radius);
+  std::vector<std::size_t> kept = non_max_suppression_of(aligned_matches, s.selection.nms_radius);
   std::sort(kept.begin(), kept.end());  // cluster rank again: a deterministic order
   std::vector<Match> matches;
   for (std::size_t k : kept) matches.push_back(std::move(aligned_matches[k]));
   tbb::parallel_for(std::size_t{0}, matches.size(), [&](std::size_t k) {
     Match& m = matches[k];
-    if (!s.refine || !(m.terms.error < worth_refining)) return;
+    if (!s.fast.refine || !(m.terms.error < worth_refining)) return;
     const Eigen::Isometry3d polished =
         refine_pose(refine_points, index.field(), m.T_scene_capture, refine, empty_probes)
             .T_target_source;

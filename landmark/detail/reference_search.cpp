@@ -48,7 +48,8 @@ std::vector<Match> reference_candidates(const SearchInput& in) {
     return (sum / static_cast<double>(in.landmark.points.size())).eval();
   }();
 
-  tbb::enumerable_thread_specific<Worker> workers(scene, source, in.settings.icp_iterations);
+  tbb::enumerable_thread_specific<Worker> workers(scene, source,
+                                                  in.settings.reference.icp_iterations);
   std::vector<Match> candidates(in.seeds.size());
   std::atomic<std::size_t> done{0};
 
@@ -70,7 +71,7 @@ std::vector<Match> reference_candidates(const SearchInput& in) {
     m.terms = in.metric.evaluate(in.scene_view, in.landmark_view, m.T_scene_capture);
     m.error = m.terms.error;
     m.box = in.landmark.box.transformed(m.T_scene_capture);
-    if (in.settings.progress) in.settings.progress(++done, in.seeds.size());
+    if (in.settings.execution.progress) in.settings.execution.progress(++done, in.seeds.size());
   });
   return candidates;
 }

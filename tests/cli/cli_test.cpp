@@ -209,12 +209,21 @@ TEST_F(CliLandmark, BadInputToCaptureAndFind) {
   expect_bad_input("find " + scene + " " + path("missing.lmk"), "no such file");
   expect_bad_input("find " + scene + " " + scene, "not an OpenVDB file");  // another format
   expect_bad_input("find " + scene + " " + path("c.lmk") + " --metric nope",
-                   "unknown error metric");
+                   "selection.metric (--metric): 'nope' must be one of paper, rapid");
   expect_bad_input("find " + scene + " " + path("c.lmk") + " --method magic",
-                   "not in {fast,reference}");
-  expect_bad_input("find " + scene + " " + path("c.lmk") + " --up 0 0 0", "--up must be");
+                   "method (--method): 'magic' must be one of fast, reference");
+  expect_bad_input("find " + scene + " " + path("c.lmk") + " --up 0 0 0",
+                   "scene.up (--up): must be a finite non-zero vector");
   expect_bad_input("find " + scene + " " + path("c.lmk") + " --orientations sideways",
-                   "not in {upright,full}");
+                   "fast.orientations (--orientations): 'sideways' must be one of upright");
+  expect_bad_input("find " + scene + " " + path("c.lmk") + " --max-tilt 200",
+                   "fast.max_tilt (--max-tilt): 200 must be finite and in [0, 180] degrees");
+  expect_bad_input("find " + scene + " " + path("c.lmk") + " --max-seeds -3",
+                   "--max-seeds: '-3' is not a non-negative whole number");
+  expect_bad_input("find " + scene + " " + path("c.lmk") + " --threshold inf",
+                   "--threshold: 'inf' is not a finite number");
+  expect_bad_input("find " + scene + " " + path("c.lmk") + " --coarse-leaf 0.001",
+                   "the coarse leaf (--coarse-leaf, 0.001 m) must be at least the leaf size");
 }
 
 TEST_F(Cli, RobotFkIkRoundTripAndRefusals) {

@@ -109,7 +109,7 @@ TEST_F(EvaluationTest, ResumesFromTheCacheAfterAnInterruption) {
   fresh.threads = 1;
   expect_same_results(resumed, run(fresh));
   // Another search configuration has its own cache entries.
-  settings.find.metric = "paper";
+  settings.find.selection.metric = "paper";
   const Evaluation other = run(settings);
   for (const PairResult& p : other.pairs) EXPECT_FALSE(p.from_cache);
 }

@@ -77,9 +77,9 @@ TEST_P(Search, FindsNothingInASceneWithoutTheShape) {
 
 TEST_P(Search, SameResultWhateverTheThreadCount) {
   FindSettings one = settings(), two = settings();
-  one.threads = 1;
-  two.threads = 2;
-  one.max_seeds = two.max_seeds = 150;
+  one.execution.threads = 1;
+  two.execution.threads = 2;
+  one.sampling.max_seeds = two.sampling.max_seeds = 150;
   const FindResult a = find_landmark(*scene_, *landmark_, one);
   const FindResult b = find_landmark(*scene_, *landmark_, two);
   ASSERT_EQ(a.matches.size(), b.matches.size());
@@ -93,10 +93,10 @@ TEST_P(Search, SameResultWhateverTheThreadCount) {
 
 TEST_P(Search, WorkVolumeAndAlignedPoints) {
   FindSettings s = settings();
-  s.work_volume =
+  s.scene.work_volume =
       Box(pose_from_xyz_rpy({kCopies[1].x() + 0.05, kCopies[1].y(), kTable + 0.05}, {0, 0, 0}),
           {0.4, 0.3, 0.3});
-  s.keep_aligned_points = true;
+  s.execution.keep_aligned_points = true;
   const FindResult r = find_landmark(*scene_, *landmark_, s);
   ASSERT_EQ(r.matches.size(), 1u);
   EXPECT_LT((r.matches[0].box.center() - box_at(kCopies[1]).center()).norm(), 0.01);
@@ -109,13 +109,13 @@ TEST_P(Search, BadSettingsAreErrors) {
   s.method = "magic";
   EXPECT_THROW(find_landmark(*scene_, *landmark_, s), Error);
   s = FindSettings();
-  s.metric = "nope";
+  s.selection.metric = "nope";
   EXPECT_THROW(find_landmark(*scene_, *landmark_, s), Error);
   s = FindSettings();
-  s.work_volume = Box(pose_from_xyz_rpy({9, 9, 9}, {0, 0, 0}), {0.1, 0.1, 0.1});
+  s.scene.work_volume = Box(pose_from_xyz_rpy({9, 9, 9}, {0, 0, 0}), {0.1, 0.1, 0.1});
   EXPECT_THROW(find_landmark(*scene_, *landmark_, s), Error);
   s = FindSettings();
-  s.threshold = -1;
+  s.selection.threshold = -1;
   EXPECT_THROW(find_landmark(*scene_, *landmark_, s), Error);
   EXPECT_THROW(find_landmark(PointCloud(), *landmark_), Error);
 }
@@ -150,7 +150,7 @@ TEST(FastSearchRotation, FindsRotatedAndTiltedLandmarks) {
   in_base_frame.base_frame = true;
   const Landmark landmark = capture(capture_scene, box, "L", in_base_frame);
   FindSettings settings;
-  settings.base_frame = true;
+  settings.scene.base_frame = true;
   SplitMix64 rng(2026);
   int found = 0;
   for (int trial = 0; trial < 100; ++trial) {

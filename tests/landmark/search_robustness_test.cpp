@@ -61,13 +61,13 @@ TEST_F(SearchInput, NanPosesAreClearErrors) {
             std::string::npos);
 
   FindSettings s;
-  s.work_volume = Box(pose_from_xyz_rpy({kNaN, 0, 0}, {0, 0, 0}), {1, 1, 1});
-  EXPECT_NE(error_of([&] { find_landmark(*scene_, *landmark_, s); }).find("work volume"),
+  s.scene.work_volume = Box(pose_from_xyz_rpy({kNaN, 0, 0}, {0, 0, 0}), {1, 1, 1});
+  EXPECT_NE(error_of([&] { find_landmark(*scene_, *landmark_, s); }).find("--work-volume"),
             std::string::npos);
 
   s = FindSettings();
-  s.up = Eigen::Vector3d(0, kNaN, 1);
-  EXPECT_NE(error_of([&] { find_landmark(*scene_, *landmark_, s); }).find("up axis"),
+  s.scene.up = Eigen::Vector3d(0, kNaN, 1);
+  EXPECT_NE(error_of([&] { find_landmark(*scene_, *landmark_, s); }).find("--up"),
             std::string::npos);
 }
 
@@ -156,8 +156,8 @@ TEST(SceneIndexSharing, ConcurrentSearchesGiveTheSerialResult) {
   const PointCloud scene = render_scene(kCopies, true);
   const Landmark landmark = capture(scene, box_at(kCopies[0]), "L");
   FindSettings s;
-  s.threads = 1;
-  const SceneIndex index(scene, scene_settings(s));
+  s.execution.threads = 1;
+  const SceneIndex index(scene, s.scene);
   const FindResult serial = find_landmark(index, landmark, s);
   ASSERT_EQ(serial.matches.size(), kCopies.size());
 

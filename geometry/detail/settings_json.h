@@ -1,0 +1,97 @@
+#pragma once
+// The JSON form of any settings struct described with settings_schema.h: one member per field,
+// named as the field, in the field's own unit; an unset optional is null. Header-only and
+// internal, like pose_json.h.
+
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "geometry/detail/pose_json.h"
+#include "geometry/settings_schema.h"
+
+namespace lmk::detail {
+
+inline nlohmann::json setting_to_json(const Eigen::Vector3d& v) { return vector_to_json(v); }
+
+inline nlohmann::json setting_to_json(const Box& box) {
+  nlohmann::json j = pose_to_json(box.pose);
+  j["size"] = vector_to_json(box.size);
+  return j;
+}
+
+template <class T>
+nlohmann::json setting_to_json(const T& v) {
+  return nlohmann::json(v);
+}
+
+template <class T>
+nlohmann::json setting_to_json(const std::optional<T>& v) {
+  return v ? setting_to_json(*v) : nlohmann::json(nullptr);
+}
+
+template <class S>
+nlohmann::json settings_to_json(const S& settings) {
+  nlohmann::json j = nlohmann::json::object();
+  S::describe(settings, [&j](const SettingInfo& info, const auto& value) {
+    j[info.name] = setting_to_json(value);
+  });
+  return j;
+}
+
+inline void setting_from_json(const nlohmann::json& j, const std::string& where,
+                              Eigen::Vector3d& out) {
+  out = numbers_from_json(j, 3, where);
+}
+
+inline void setting_from_json(const nlohmann::json& j, const std::string& where, Box& out) {
+  out = Box(pose_from_json(j, where), numbers_from_json(json_field(j, "size", where), 3, where));
+}
+
+template <class T>
+void setting_from_json(const nlohmann::json& j, const std::string& where, T& out) {
+  // Integers must be integers of the right sign; a double accepts any number.
+  const bool ok = std::is_same<T, bool>::value          ? j.is_boolean()
+                  : std::is_same<T, std::string>::value ? j.is_string()
+                  : std::is_floating_point<T>::value    ? j.is_number()
+                  : std::is_unsigned<T>::value
+                      ? j.is_number_unsigned() || (j.is_number_integer() && j.get<long long>() >= 0)
+                      : j.is_number_integer();
+  if (!ok) throw Error(where + ": has the wrong type (" + std::string(j.type_name()) + ")");
+  out = j.get<T>();
+}
+
+template <class T>
+void setting_from_json(const nlohmann::json& j, const std::string& where, std::optional<T>& out) {
+  if (j.is_null()) {
+    out.reset();
+    return;
+  }
+  T value{};
+  setting_from_json(j, where, value);
+  out = value;
+}
+
+/// Reads the fields `j` holds into `settings` (those it lacks keep their value) and checks them;
+/// an unknown member is an error, so that a misspelt setting is never silently ignored.
+template <class S>
+void settings_from_json(const nlohmann::json& j, const std::string& where, S& settings) {
+  if (!j.is_object()) throw Error(where + ": must be an object");
+  std::size_t known = 0;
+  S::describe(settings, [&](const SettingInfo& info, auto& value) {
+    if (!j.contains(info.name)) return;
+    ++known;
+    setting_from_json(j.at(info.name), where + "." + info.name, value);
+    settings_detail::check(info, value, where + ".");
+  });
+  if (known == j.size()) return;
+  for (const auto& [key, value] : j.items()) {
+    bool found = false;
+    S::describe(settings, [&, k = key](const SettingInfo& info, const auto&) {
+      found = found || info.name == k;
+    });
+    if (!found) throw Error(where + ": unknown setting '" + key + "'");
+  }
+}
+
+}  // namespace lmk::detail

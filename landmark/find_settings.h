@@ -1,0 +1,226 @@
+#pragma once
+// The settings of FindLandmark, one struct per stage of the search, each field described once
+// (geometry/settings_schema.h) with its unit, its limits and its reason:
+//
+//   scene      SceneSettings      steps 1-2: crop, downsample, the scene's grids and up axis
+//   sampling   SamplingSettings   step 3: the random seeds (both methods)
+//   reference  ReferenceSettings  step 4 of the paper's method
+//   fast       FastSettings       the fast method's voting and coarse-to-fine alignment
+//   selection  SelectionSettings  steps 5-6: metric, non-max suppression, threshold, coverage
+//   execution  ExecutionSettings  threads, progress, extra output: how to run, not what is found
+//
+// Validation, JSON, the evaluation cache key, `lmk ablate --vary KEY=...` and the CLI flags all
+// derive from the descriptions, so every field reaches each of them. Keys are the fields' names in
+// kebab-case (`--max-tilt`, `--vary max-tilt=30,45`) and are unique across the stages.
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "geometry/settings_schema.h"
+#include "landmark/error_metrics.h"
+#include "landmark/scene_settings.h"
+
+namespace lmk {
+
+/// The search methods find_landmark accepts.
+std::vector<std::string> search_methods();
+
+/// Step 3: which scene points seed the search.
+struct SamplingSettings {
+  std::uint64_t seed = 0;  ///< random seed of the sampling
+  /// At most this many seeds. Unset: the method's own, effective_max_seeds(): the paper's 1000 for
+  /// the reference; 2000 for fast, whose seeds cost little and whose seed count otherwise follows
+  /// seeds_per_instance (a small landmark in a large scene wants more than 1000).
+  std::optional<std::size_t> max_seeds;
+
+  template <class Self, class Visit>
+  static void describe(Self& s, Visit&& visit) {
+    visit(SettingInfo("seed", "Random seed of the seed sampling"), s.seed);
+    visit(SettingInfo("max_seeds",
+                      "Most seeds (default: 1000 for the reference, as the paper; 2000 for fast)")
+              .at_least(1),
+          s.max_seeds);
+  }
+};
+
+/// The paper's Algorithm 1, steps 3-4, as the authors ran it.
+struct ReferenceSettings {
+  double sample_fraction = 0.05;  ///< step 3: fraction of the downsampled points used as seeds
+  int icp_iterations = 50;        ///< step 4: ICP iterations per seed (PCL's ICP)
+
+  template <class Self, class Visit>
+  static void describe(Self& s, Visit&& visit) {
+    visit(SettingInfo("sample_fraction", "Reference: fraction of the scene points used as seeds")
+              .within(0.0, 1.0)
+              .above(0.0),
+          s.sample_fraction);
+    visit(SettingInfo("icp_iterations", "Reference: ICP iterations per seed").at_least(1),
+          s.icp_iterations);
+  }
+};
+
+/// The fast method: point pair voting over orientations, then coarse-to-fine alignment.
+struct FastSettings {
+  /// As many seeds as put about this many on one instance of the landmark (the scene's coarse
+  /// points over the landmark's, times this). Each seed on an instance votes for its pose, so a
+  /// handful leave room for a half-occluded instance and for seeds on its edges, whose normals are
+  /// poor, while a search costs a few hundred seeds rather than a thousand (docs/evaluation.md).
+  double seeds_per_instance = 8.0;
+  /// "upright": any rotation about the up axis, and tilts of the landmark's capture up axis up to
+  /// max_tilt; "full": all of SO(3).
+  std::string orientations = "upright";
+  double max_tilt = 1.0471975511965976;  ///< rad (60 degrees)
+  /// Point pair voting samples the landmark and the scene at this fraction of the landmark's
+  /// diameter (at least the coarse leaf). Drost et al.'s 5% found the same poses at twice the cost.
+  double vote_leaf_fraction = 0.07;
+  int poses_per_seed = 3;            ///< best-voted poses kept per seed
+  std::size_t max_candidates = 400;  ///< pose clusters aligned coarsely
+  double prune_error = 0.015;        ///< coarse fit beyond which a candidate is dropped, m
+  std::size_t max_refined = 16;      ///< candidates refined fully
+  bool refine = true;                ///< Ceres robust refinement of the finalists
+
+  template <class Self, class Visit>
+  static void describe(Self& s, Visit&& visit) {
+    visit(SettingInfo("seeds_per_instance", "Fast: seeds expected on one instance of the landmark")
+              .at_least(1),
+          s.seeds_per_instance);
+    visit(SettingInfo("orientations",
+                      "Fast: 'upright' (any yaw, tilt up to --max-tilt) or 'full' (all of SO(3))")
+              .one_of({"upright", "full"}),
+          s.orientations);
+    visit(SettingInfo("max_tilt", "Fast, upright: largest tilt of the landmark's up axis")
+              .within(0.0, 3.14159265358979323846)
+              .in_degrees(),
+          s.max_tilt);
+    visit(SettingInfo("vote_leaf_fraction",
+                      "Fast: voting sample spacing, as a fraction of the landmark's diameter")
+              .within(0.0, 1.0)
+              .above(0.0),
+          s.vote_leaf_fraction);
+    visit(SettingInfo("poses_per_seed", "Fast: best-voted poses kept per seed").at_least(1),
+          s.poses_per_seed);
+    visit(SettingInfo("max_candidates", "Fast: pose clusters aligned coarsely").at_least(1),
+          s.max_candidates);
+    visit(SettingInfo("prune_error", "Fast: coarse fit beyond which a candidate is dropped, m")
+              .positive(),
+          s.prune_error);
+    visit(SettingInfo("max_refined", "Fast: candidates refined fully").at_least(1), s.max_refined);
+    visit(SettingInfo("refine", "Fast: Ceres robust refinement of the finalists"), s.refine);
+  }
+};
+
+/// Steps 5-6: how candidates are scored, suppressed and accepted.
+struct SelectionSettings {
+  /// Error metric, by registry name (error_metrics.h). Empty: the method's own, "visibility" for
+  /// fast and "paper" for reference.
+  std::string metric;
+  double nms_radius = 0.03;  ///< step 5: non-max suppression radius on box centres, m
+  /// Step 6: matches need an error below this, m. Unset: the metric's default threshold.
+  std::optional<double> threshold;
+  /// Matches need at least this fraction of their points supported by the scene (only for metrics
+  /// that measure coverage).
+  double min_coverage = 0.5;
+  /// Matches may have at most this fraction of the landmark's observed-empty voxels occupied by
+  /// the scene (only for metrics that test empty space). The landmark's empty space keeps a margin
+  /// from its surface that absorbs depth noise and the pose error of a true match, so a true
+  /// instance leaves it empty; the 1% allowance is for the Kinect's isolated flying pixels at
+  /// depth edges, not for surfaces.
+  double max_empty_space_violation = 0.01;
+
+  template <class Self, class Visit>
+  static void describe(Self& s, Visit&& visit) {
+    visit(SettingInfo("metric", "Error metric (default: visibility for fast, paper for reference)")
+              .one_of(error_metric_names())
+              .or_default(),
+          s.metric);
+    visit(SettingInfo("nms_radius", "Non-max suppression radius on box centres, m").positive(),
+          s.nms_radius);
+    visit(SettingInfo("threshold", "Largest error of a match, m (default: the metric's own)")
+              .positive(),
+          s.threshold);
+    visit(SettingInfo("min_coverage", "Least fraction of landmark points with scene support")
+              .within(0.0, 1.0),
+          s.min_coverage);
+    visit(SettingInfo("max_empty_space_violation",
+                      "Largest fraction of the landmark's empty space the scene may occupy")
+              .within(0.0, 1.0)
+              .also("max-empty-violation"),
+          s.max_empty_space_violation);
+  }
+};
+
+/// How to run a search. None of it changes what is found.
+struct ExecutionSettings {
+  int threads = 0;  ///< worker threads; 0 uses every core
+  /// Return each match's landmark points in the scene frame. A request of C++ callers for more
+  /// output, not a setting: like progress, it has no description, JSON or flag.
+  bool keep_aligned_points = false;
+  /// Called after each seed with (seeds done, seeds in all), possibly from several threads at once.
+  std::function<void(std::size_t, std::size_t)> progress;
+
+  template <class Self, class Visit>
+  static void describe(Self& s, Visit&& visit) {
+    visit(SettingInfo("threads", "Worker threads; 0 uses every core")
+              .at_least(0)
+              .not_affecting_results(),
+          s.threads);
+  }
+};
+
+struct FindSettings {
+  std::string method = "fast";  ///< search method: "fast" or "reference"
+  SceneSettings scene;
+  SamplingSettings sampling;
+  ReferenceSettings reference;
+  FastSettings fast;
+  SelectionSettings selection;
+  ExecutionSettings execution;
+
+  template <class Self, class Visit>
+  static void describe(Self& s, Visit&& visit) {
+    visit(SettingInfo("method", "Search method: fast or reference").one_of(search_methods()),
+          s.method);
+  }
+};
+
+/// Calls f(name, group) for each stage's settings, in the order of the search.
+template <class Find, class F>
+void for_each_settings_group(Find& s, F&& f) {
+  f("scene", s.scene);
+  f("sampling", s.sampling);
+  f("reference", s.reference);
+  f("fast", s.fast);
+  f("selection", s.selection);
+  f("execution", s.execution);
+}
+
+/// Whether the stage named `group` can change what `method` finds: scene, sampling and selection
+/// always; reference and fast only for their own method; execution never.
+bool settings_group_affects(const std::string& method, const std::string& group);
+
+/// Throws lmk::Error naming the stage, the field and its flag for the first setting out of its
+/// limits ("find: fast.max_tilt (--max-tilt): 4 must be finite and in [0, 3.14159]").
+void validate(const FindSettings& settings);
+
+/// Sets the setting whose key is `key` ("max-tilt"; the field name "max_tilt" and "method" work
+/// too) from text as written on the command line: numbers in the flag's unit (degrees for angles),
+/// true/false, "X Y Z" for a vector, "CX CY CZ SX SY SZ [ROLL PITCH YAW]" for a box. Throws
+/// lmk::Error naming the known keys for an unknown one, and for a bad value.
+void set_find_setting(FindSettings& settings, const std::string& key, const std::string& text);
+
+/// Every key set_find_setting accepts, in stage order.
+std::vector<std::string> find_setting_keys();
+
+/// The metric a search applies: selection.metric, or the method's own when it is empty
+/// ("visibility" for fast, "paper" for reference).
+std::string effective_metric(const FindSettings& settings);
+
+/// The error threshold a search applies: selection.threshold, or its metric's default.
+double effective_threshold(const FindSettings& settings);
+
+/// The seed cap a search applies: sampling.max_seeds, or its method's own.
+std::size_t effective_max_seeds(const FindSettings& settings);
+
+}  // namespace lmk

@@ -1,0 +1,55 @@
+#pragma once
+// SceneSettings: steps 1-2 of the search, the scene's crop, leaves and grids, and which way is up
+// (geometry/settings_schema.h describes each field once for validation, JSON and the CLI).
+
+#include <Eigen/Core>
+#include <optional>
+
+#include "geometry/box.h"
+#include "geometry/settings_schema.h"
+
+namespace lmk {
+
+struct SceneSettings {
+  /// Step 1: crop the scene to this box (scene frame) first; nothing means the whole scene.
+  std::optional<Box> work_volume;
+  double leaf_size = 0.005;   ///< step 2, the paper's leaf: fine points and occupancy voxels, m
+  double coarse_leaf = 0.01;  ///< seeds, voting and coarse alignment, m; at least leaf_size
+  /// Band of the scene distance field, m; at least coarse_leaf. Unset: twice the coarse leaf, so
+  /// that a candidate a voxel off still finds its surface.
+  std::optional<double> field_band;
+  std::optional<Eigen::Vector3d> up;  ///< up axis in the scene frame; unset: default_up()
+  bool base_frame = false;            ///< the scene is in a robot base frame (+z up)
+
+  double effective_field_band() const { return field_band.value_or(2.0 * coarse_leaf); }
+
+  template <class Self, class Visit>
+  static void describe(Self& s, Visit&& visit) {
+    visit(SettingInfo("work_volume",
+                      "Crop the scene to this box first: CX CY CZ SX SY SZ [ROLL PITCH YAW], m and "
+                      "degrees (default: the whole scene)"),
+          s.work_volume);
+    visit(
+        SettingInfo("leaf_size", "Scene voxel leaf (the paper's 5 mm), m").positive().also("leaf"),
+        s.leaf_size);
+    visit(SettingInfo("coarse_leaf", "Fast: leaf of the seeds, voting and coarse alignment, m")
+              .positive(),
+          s.coarse_leaf);
+    visit(
+        SettingInfo("field_band", "Band of the scene distance field, m (default: 2 coarse leaves)")
+            .positive(),
+        s.field_band);
+    visit(SettingInfo("up",
+                      "Up axis X Y Z in the scene frame (default: the sensor's -y, or +z "
+                      "with --base-frame)"),
+          s.up);
+    visit(SettingInfo("base_frame", "The scene is expressed in a robot base frame, whose +z is up"),
+          s.base_frame);
+  }
+};
+
+/// Throws lmk::Error for settings out of their limits, and for leaves out of order (the coarse
+/// leaf below the leaf, the field band below the coarse leaf).
+void validate(const SceneSettings& settings);
+
+}  // namespace lmk

@@ -1,0 +1,66 @@
+// The evaluation cache key changes with every setting that can change what the chosen method
+// finds, and with nothing else, so a new setting can never leave a stale cached result in use.
+
+#include <gtest/gtest.h>
+
+#include "eval/evaluation.h"
+#include "tests/support/find_settings_variants.h"
+
+namespace lmk {
+namespace {
+
+// Whether the stage's field can change what `method` finds, as the descriptions declare it.
+bool matters(const std::string& method, const std::string& stage, const SettingInfo& info) {
+  return info.affects_results && (stage.empty() || settings_group_affects(method, stage));
+}
+
+void expect_key_follows_every_setting(const std::string& method) {
+  FindSettings base;
+  base.method = method;
+  const std::string key = evaluation_cache_key(base, "dataset");
+  std::map<std::string, bool> changed;  // field -> some other value changed the key
+  test::for_each_variant(base, [&](const std::string& stage, const SettingInfo& info,
+                                   const FindSettings& variant, const std::string& text) {
+    const std::string field = (stage.empty() ? "" : stage + ".") + info.name;
+    const bool differs = evaluation_cache_key(variant, "dataset") != key;
+    if (!matters(method, stage, info)) {
+      EXPECT_FALSE(differs) << method << ": " << field << " = '" << text
+                            << "' is declared not to matter, yet changes the key";
+    }
+    changed[field] = changed[field] || differs;
+  });
+  for (const auto& [field, differs] : changed) {
+    const std::string stage =
+        field.find('.') == std::string::npos ? "" : field.substr(0, field.find('.'));
+    FindSettings probe;
+    bool declared = true;
+    test::on_stage(probe, stage, [&](auto& group) {
+      std::decay_t<decltype(group)>::describe(group, [&](const SettingInfo& info, const auto&) {
+        if ((stage.empty() ? "" : stage + ".") + info.name == field)
+          declared = matters(method, stage, info);
+      });
+    });
+    if (declared) {
+      EXPECT_TRUE(differs) << method << ": no change of " << field << " changes the cache key";
+    }
+  }
+  EXPECT_NE(evaluation_cache_key(base, "other dataset"), key);
+}
+
+TEST(EvaluationCacheKey, FollowsEverySettingOfTheFastMethod) {
+  expect_key_follows_every_setting("fast");
+}
+
+TEST(EvaluationCacheKey, FollowsEverySettingOfTheReferenceMethod) {
+  expect_key_follows_every_setting("reference");
+}
+
+TEST(EvaluationCacheKey, SpellingOutADefaultKeepsTheKey) {
+  FindSettings implicit, spelled;
+  spelled.selection.metric = "visibility";
+  spelled.sampling.max_seeds = 2000;
+  EXPECT_EQ(evaluation_cache_key(implicit, "d"), evaluation_cache_key(spelled, "d"));
+}
+
+}  // namespace
+}  // namespace lmk

@@ -1,0 +1,138 @@
+// FindSettings: every field of every stage reaches the JSON, the text form of its flag and the
+// validation, through the one description each stage gives of its fields.
+
+#include "landmark/find_settings.h"
+
+#include <gtest/gtest.h>
+
+#include <set>
+
+#include "landmark/detail/find_settings_json.h"
+#include "tests/support/find_settings_variants.h"
+
+namespace lmk {
+namespace {
+
+using nlohmann::json;
+
+// Numbers equal to 1e-9 (angles go through degrees and boxes through roll, pitch and yaw).
+bool near(const json& a, const json& b) {
+  if (a.is_number() && b.is_number())
+    return std::abs(a.get<double>() - b.get<double>()) <= 1e-9 * (1.0 + std::abs(a.get<double>()));
+  if (a.type() != b.type() || a.size() != b.size()) return false;
+  if (a.is_object()) {
+    for (const auto& [key, value] : a.items()) {
+      if (!b.contains(key) || !near(value, b.at(key))) return false;
+    }
+    return true;
+  }
+  if (a.is_array()) {
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      if (!near(a[i], b[i])) return false;
+    }
+    return true;
+  }
+  return a == b;
+}
+
+std::string name_of(const std::string& stage, const SettingInfo& info) {
+  return (stage.empty() ? "" : stage + ".") + info.name;
+}
+
+TEST(FindSettings, EveryFieldHasAVariantAndAUniqueKey) {
+  std::set<std::string> fields, keys;
+  test::for_each_variant(FindSettings(),
+                         [&](const std::string& stage, const SettingInfo& info, const FindSettings&,
+                             const std::string&) { fields.insert(name_of(stage, info)); });
+  for (const std::string& key : find_setting_keys()) {
+    EXPECT_TRUE(keys.insert(key).second) << key << " is the key of two settings";
+  }
+  EXPECT_EQ(fields.size(), keys.size()) << "a field without another valid value is untested";
+  // The flat struct this replaced held 25 settings (and two requests: progress and aligned points);
+  // field_band is new.
+  EXPECT_GE(keys.size(), 26u);
+}
+
+TEST(FindSettings, EveryFieldRoundTripsThroughJson) {
+  const json defaults = detail::find_settings_to_json(FindSettings());
+  test::for_each_variant(FindSettings(), [&](const std::string& stage, const SettingInfo& info,
+                                             const FindSettings& variant, const std::string&) {
+    const json written = detail::find_settings_to_json(variant);
+    EXPECT_NE(written, defaults) << name_of(stage, info) << " is missing from the JSON";
+    FindSettings read;
+    detail::find_settings_from_json(written, "settings", read);
+    EXPECT_TRUE(near(detail::find_settings_to_json(read), written)) << name_of(stage, info);
+  });
+}
+
+TEST(FindSettings, EveryFieldIsSetFromItsFlagText) {
+  test::for_each_variant(FindSettings(), [&](const std::string& stage, const SettingInfo& info,
+                                             const FindSettings& variant, const std::string& text) {
+    if (text.empty()) return;  // unsetting an optional has no flag text
+    FindSettings set;
+    set_find_setting(set, info.key(), text);
+    EXPECT_TRUE(near(detail::find_settings_to_json(set), detail::find_settings_to_json(variant)))
+        << name_of(stage, info) << " from '" << text << "'";
+  });
+}
+
+TEST(FindSettings, BadTextIsRefusedNamingTheFlagAndChangesNothing) {
+  const std::string defaults = detail::find_settings_to_json(FindSettings()).dump();
+  for (const std::string& key : find_setting_keys()) {
+    std::size_t refused = 0;
+    for (const char* bad : {"abc", "nan", "1 2", "-1e300"}) {
+      FindSettings s;
+      try {
+        set_find_setting(s, key, bad);
+        continue;
+      } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+      }
+      ++refused;
+      EXPECT_EQ(detail::find_settings_to_json(s).dump(), defaults) << key << " = '" << bad << "'";
+    }
+    EXPECT_GE(refused, 3u) << key << " takes values it should refuse";
+  }
+  FindSettings s;
+  EXPECT_THROW(set_find_setting(s, "colour", "red"), Error);
+  EXPECT_THROW(set_find_setting(s, "max-seeds", "-3"), Error);  // not wrapped around
+  EXPECT_THROW(set_find_setting(s, "threshold", "inf"), Error);
+  EXPECT_THROW(set_find_setting(s, "max-tilt", "200"), Error);  // degrees, at most 180
+  set_find_setting(s, "max-tilt", "30");
+  EXPECT_NEAR(s.fast.max_tilt, M_PI / 6.0, 1e-12);
+  set_find_setting(s, "max-empty-violation", "0.02");  // the flag's older name
+  EXPECT_EQ(s.selection.max_empty_space_violation, 0.02);
+}
+
+TEST(FindSettings, ValidationNamesTheStageAndTheFlag) {
+  FindSettings s;
+  s.fast.max_tilt = 4.0;
+  try {
+    validate(s);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("fast.max_tilt (--max-tilt)"), std::string::npos)
+        << e.what();
+  }
+  s = FindSettings();
+  s.scene.coarse_leaf = 0.002;  // below the 5 mm leaf
+  EXPECT_THROW(validate(s), Error);
+  s = FindSettings();
+  s.selection.metric = "nope";
+  EXPECT_THROW(validate(s), Error);
+  EXPECT_NO_THROW(validate(FindSettings()));
+}
+
+TEST(FindSettings, JsonRefusesUnknownAndMistypedFields) {
+  FindSettings s;
+  EXPECT_THROW(detail::find_settings_from_json(json{{"fast", {{"max_tlit", 1}}}}, "s", s), Error);
+  EXPECT_THROW(detail::find_settings_from_json(json{{"colour", 1}}, "s", s), Error);
+  EXPECT_THROW(detail::find_settings_from_json(json{{"fast", {{"max_candidates", -1}}}}, "s", s),
+               Error);
+  EXPECT_THROW(detail::find_settings_from_json(json{{"sampling", {{"seed", "1"}}}}, "s", s), Error);
+  detail::find_settings_from_json(json{{"fast", {{"max_candidates", 12}}}}, "s", s);
+  EXPECT_EQ(s.fast.max_candidates, 12u);
+}
+
+}  // namespace
+}  // namespace lmk
