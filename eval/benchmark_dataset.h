@@ -17,7 +17,7 @@ namespace lmk {
 
 /// Bumped whenever the generator's output changes (objects, scene types, sensor, capture), so that
 /// cached benchmark datasets are regenerated.
-inline constexpr int kBenchmarkGeneratorVersion = 2;
+inline constexpr int kBenchmarkGeneratorVersion = 3;  // 3: the Kinect model of lmk sensor-check
 
 /// A named recipe for a benchmark dataset.
 struct BenchmarkPreset {

@@ -3,6 +3,9 @@
 #include <tbb/parallel_for.h>
 
 #include <cmath>
+#include <optional>
+#include <utility>
+#include <vector>
 
 #include "eval/detail/mesh_tree.h"
 #include "geometry/error.h"
@@ -14,25 +17,104 @@ namespace {
 using detail::Kernel;
 using detail::to_cgal;
 
-// Kinect v1 depth degradation: Gaussian axial noise growing with depth squared (Khoshelham &
-// Elberink 2012), then quantisation of the disparity from which the sensor triangulates depth.
-double degrade_depth(double z, const DepthSensorSettings& s, SplitMix64& rng) {
-  const double sigma = s.noise_a + s.noise_b * (z - s.noise_z0) * (z - s.noise_z0);
-  const double noisy = z + sigma * rng.normal();
-  const double disparity = s.fx * s.baseline / noisy;
-  const double quantised = std::round(disparity / s.disparity_step) * s.disparity_step;
-  return s.fx * s.baseline / quantised;
+// Independent per-pixel streams for the noise and the flying pixels, so that a frame does not
+// depend on which thread renders which row.
+constexpr std::uint64_t kNoiseStream = 0;
+constexpr std::uint64_t kFlyingPixelStream = 0x5bd1e9955bd1e995ULL;
+
+SplitMix64 pixel_stream(std::uint64_t seed, std::size_t pixel, std::uint64_t stream) {
+  return SplitMix64(seed ^ stream ^ (0x9e3779b97f4a7c15ULL * (pixel + 1)));
+}
+
+// The first surface along the ray from `from` through `towards`, if any.
+std::optional<std::pair<Eigen::Vector3d, const detail::Triangle*>> first_hit(
+    const detail::AabbTree& tree, const Eigen::Vector3d& from, const Eigen::Vector3d& towards) {
+  const auto hit = tree.first_intersection(Kernel::Ray_3(to_cgal(from), to_cgal(towards)));
+  if (!hit) return std::nullopt;
+  const Kernel::Point_3* point = boost::get<Kernel::Point_3>(&hit->first);
+  if (point == nullptr) return std::nullopt;  // the ray runs inside a triangle's plane: grazing
+  return std::make_pair(Eigen::Vector3d(point->x(), point->y(), point->z()), &*hit->second);
+}
+
+// Flying pixels: a pixel on a depth edge sees both surfaces and may return a depth between them.
+// Reads the exact depths `z` (NaN: no return) and writes the mixed ones into `out`.
+void add_flying_pixels(const std::vector<double>& z, const DepthSensorSettings& s,
+                       std::vector<double>& out) {
+  tbb::parallel_for(0, s.height, [&](int v) {
+    for (int u = 0; u < s.width; ++u) {
+      const std::size_t i = static_cast<std::size_t>(v) * s.width + u;
+      if (std::isnan(z[i])) continue;
+      double other = z[i];
+      const int du[4] = {-1, 1, 0, 0}, dv[4] = {0, 0, -1, 1};
+      for (int k = 0; k < 4; ++k) {
+        const int nu = u + du[k], nv = v + dv[k];
+        if (nu < 0 || nv < 0 || nu >= s.width || nv >= s.height) continue;
+        const double zn = z[static_cast<std::size_t>(nv) * s.width + nu];
+        if (std::abs(zn - z[i]) > std::max(s.edge_jump * z[i], std::abs(other - z[i]))) other = zn;
+      }
+      if (other == z[i]) continue;
+      SplitMix64 rng = pixel_stream(s.seed, i, kFlyingPixelStream);
+      if (rng.uniform01() < s.flying_pixel_rate) out[i] = z[i] + rng.uniform01() * (other - z[i]);
+    }
+  });
 }
 
 }  // namespace
 
+std::vector<double> sensor_noise_field(const DepthSensorSettings& s) {
+  const std::size_t pixels = static_cast<std::size_t>(s.width) * s.height;
+  std::vector<double> white(pixels);
+  for (std::size_t i = 0; i < pixels; ++i)
+    white[i] = pixel_stream(s.seed, i, kNoiseStream).normal();
+  if (s.noise_window <= 1) return white;
+  // A box filter over the window, rescaled by the square root of the pixels it averaged, so that
+  // every pixel keeps unit variance while its neighbours share part of it.
+  const int r = s.noise_window / 2;
+  std::vector<double> field(pixels);
+  tbb::parallel_for(0, s.height, [&](int v) {
+    for (int u = 0; u < s.width; ++u) {
+      double sum = 0.0;
+      int n = 0;
+      for (int dv = -r; dv <= r; ++dv) {
+        for (int du = -r; du <= r; ++du) {
+          const int nu = u + du, nv = v + dv;
+          if (nu < 0 || nv < 0 || nu >= s.width || nv >= s.height) continue;
+          sum += white[static_cast<std::size_t>(nv) * s.width + nu];
+          ++n;
+        }
+      }
+      field[static_cast<std::size_t>(v) * s.width + u] = sum / std::sqrt(static_cast<double>(n));
+    }
+  });
+  return field;
+}
+
+double sensor_depth(double z, double unit_noise, const DepthSensorSettings& s) {
+  // Gaussian axial noise growing with depth squared (Khoshelham & Elberink 2012), then the
+  // quantisation of the disparity from which the sensor triangulates depth, then millimetres.
+  const double sigma = s.noise_a + s.noise_b * (z - s.noise_z0) * (z - s.noise_z0);
+  const double noisy = z + sigma * unit_noise;
+  const double fb = s.disparity_focal * s.baseline;
+  const double quantised = std::round(fb / noisy / s.disparity_step) * s.disparity_step;
+  const double depth = fb / quantised;
+  return s.depth_unit > 0.0 ? std::round(depth / s.depth_unit) * s.depth_unit : depth;
+}
+
+double depth_level_spacing(double z, const DepthSensorSettings& s) {
+  return s.disparity_step * z * z / (s.disparity_focal * s.baseline);
+}
+
 PointCloud render_depth(const TriangleMesh& world, const Eigen::Isometry3d& T_world_sensor,
                         const DepthSensorSettings& s) {
   if (s.width <= 0 || s.height <= 0 || !(s.fx > 0) || !(s.fy > 0) || !(s.min_range > 0) ||
-      !(s.max_range > s.min_range)) {
+      !(s.max_range > s.min_range) || !(s.disparity_focal > 0) || !(s.baseline > 0) ||
+      !(s.disparity_step > 0) || !(s.depth_unit >= 0) ||
+      !(s.flying_pixel_rate >= 0 && s.flying_pixel_rate <= 1) || !(s.edge_jump > 0) ||
+      s.noise_window < 1 || s.noise_window % 2 == 0) {
     throw Error(
-        "render_depth: image size, focal lengths and range must be positive, "
-        "with max_range > min_range");
+        "render_depth: image size, focal lengths, range, baseline, disparity step and edge jump "
+        "must be positive, with max_range > min_range, the depth unit non-negative and the "
+        "flying-pixel rate in [0, 1], and the noise window odd");
   }
   const detail::MeshTree mesh_tree(world);
   const detail::AabbTree& tree = mesh_tree.tree;
@@ -40,37 +122,51 @@ PointCloud render_depth(const TriangleMesh& world, const Eigen::Isometry3d& T_wo
   PointCloud cloud;
   cloud.width = static_cast<std::uint32_t>(s.width);
   cloud.height = static_cast<std::uint32_t>(s.height);
-  cloud.points.assign(static_cast<std::size_t>(s.width) * s.height,
-                      Eigen::Vector3f::Constant(std::nanf("")));
+  const std::size_t pixels = static_cast<std::size_t>(s.width) * s.height;
+  cloud.points.assign(pixels, Eigen::Vector3f::Constant(std::nanf("")));
   cloud.T_cloud_sensor = T_world_sensor;
   if (mesh_tree.triangles.empty()) return cloud;
 
   const Eigen::Vector3d origin = T_world_sensor.translation();
+  const Eigen::Vector3d projector = T_world_sensor * Eigen::Vector3d(s.baseline, 0.0, 0.0);
   const double cos_max_incidence = std::cos(s.max_incidence);
+  const auto ray = [&](int u, int v) {  // world frame, with unit depth along the optical axis
+    return Eigen::Vector3d(T_world_sensor.linear() *
+                           Eigen::Vector3d((u - s.cx) / s.fx, (v - s.cy) / s.fy, 1.0));
+  };
+  // The exact depth of every pixel that returns one (NaN otherwise).
+  std::vector<double> depth(pixels, std::nan(""));
   tbb::parallel_for(0, s.height, [&](int v) {
     for (int u = 0; u < s.width; ++u) {
-      const Eigen::Vector3d ray_sensor((u - s.cx) / s.fx, (v - s.cy) / s.fy, 1.0);
-      const Eigen::Vector3d direction = T_world_sensor.linear() * ray_sensor;
-      const auto hit =
-          tree.first_intersection(Kernel::Ray_3(to_cgal(origin), to_cgal(origin + direction)));
+      const Eigen::Vector3d direction = ray(u, v);
+      const auto hit = first_hit(tree, origin, origin + direction);
       if (!hit) continue;
-      const Kernel::Point_3* point = boost::get<Kernel::Point_3>(&hit->first);
-      if (point == nullptr) continue;  // the ray runs inside a triangle's plane: grazing
-      const Eigen::Vector3d p(point->x(), point->y(), point->z());
-      const double z = (T_world_sensor.linear().transpose() * (p - origin)).z();
+      const Eigen::Vector3d& p = hit->first;
+      const double z = (p - origin).dot(direction) / direction.squaredNorm();
       if (z < s.min_range || z > s.max_range) continue;
       const detail::Triangle& tri = *hit->second;
       const Kernel::Vector_3 n = CGAL::cross_product(tri[1] - tri[0], tri[2] - tri[0]);
       const Eigen::Vector3d normal = Eigen::Vector3d(n.x(), n.y(), n.z()).normalized();
       if (std::abs(normal.dot(direction.normalized())) < cos_max_incidence) continue;
-      const std::size_t index = static_cast<std::size_t>(v) * s.width + u;
-      double depth = z;
-      if (s.noise) {
-        // One stream per pixel, so the noise does not depend on which thread renders which row.
-        SplitMix64 rng(s.seed ^ (0x9e3779b97f4a7c15ULL * (index + 1)));
-        depth = degrade_depth(z, s, rng);
+      if (s.shadows) {
+        // The projector's ray to p stops at a nearer surface: p is in its shadow (1 mm of slack
+        // for the intersection's rounding on p's own triangle).
+        const auto lit = first_hit(tree, projector, p);
+        if (lit && (lit->first - projector).norm() < (p - projector).norm() - 1e-3) continue;
       }
-      cloud.points[index] = (origin + direction * depth).cast<float>();  // ray_sensor.z() == 1
+      depth[static_cast<std::size_t>(v) * s.width + u] = z;
+    }
+  });
+  std::vector<double> measured = depth;
+  if (s.noise && s.flying_pixel_rate > 0.0) add_flying_pixels(depth, s, measured);
+  const std::vector<double> noise = s.noise ? sensor_noise_field(s) : std::vector<double>();
+
+  tbb::parallel_for(0, s.height, [&](int v) {
+    for (int u = 0; u < s.width; ++u) {
+      const std::size_t i = static_cast<std::size_t>(v) * s.width + u;
+      if (std::isnan(measured[i])) continue;
+      const double z = s.noise ? sensor_depth(measured[i], noise[i], s) : measured[i];
+      cloud.points[i] = (origin + ray(u, v) * z).cast<float>();
     }
   });
   return cloud;

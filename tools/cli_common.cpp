@@ -1,6 +1,7 @@
 #include "tools/cli_common.h"
 
 #include <cmath>
+#include <cstdlib>
 
 #include "geometry/error.h"
 #include "geometry/pose.h"
@@ -13,6 +14,13 @@ Eigen::Vector3d rpy_degrees(const Eigen::Matrix3d& R) {
     if (std::abs(rpy[i]) < 0.005) rpy[i] = 0.0;
   }
   return rpy;
+}
+
+std::filesystem::path shared_data_dir(const std::string& option) {
+  if (!option.empty()) return option;
+  const char* env = std::getenv("LMK_SHARED_DATA");
+  return env != nullptr && *env != '\0' ? std::filesystem::path(env)
+                                        : std::filesystem::path(LMK_SHARED_DATA_DIR);
 }
 
 std::optional<Eigen::Vector3d> UpOptions::vector() const {

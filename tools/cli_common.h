@@ -3,6 +3,7 @@
 
 #include <CLI/CLI.hpp>
 #include <Eigen/Core>
+#include <filesystem>
 #include <functional>
 #include <optional>
 #include <vector>
@@ -20,6 +21,10 @@ struct Subcommand {
   CLI::App* app;
   std::function<int()> run;
 };
+
+/// The shared data directory: `option` if given, else $LMK_SHARED_DATA, else ../shared/data beside
+/// the source tree.
+std::filesystem::path shared_data_dir(const std::string& option);
 
 /// Roll, pitch, yaw of a rotation in degrees for printing, with values that would print as "-0.00"
 /// set to 0.
@@ -50,5 +55,6 @@ Subcommand add_robot(CLI::App& app);
 Subcommand add_eval(CLI::App& app);
 Subcommand add_ablate(CLI::App& app);
 Subcommand add_pbd(CLI::App& app);
+Subcommand add_sensor_check(CLI::App& app);
 
 }  // namespace lmk::cli

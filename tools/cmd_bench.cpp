@@ -49,12 +49,6 @@ struct Workload {
   Landmark landmark;
 };
 
-fs::path shared_data_dir(const std::string& option) {
-  if (!option.empty()) return option;
-  const char* env = std::getenv("LMK_SHARED_DATA");
-  return env != nullptr && *env != '\0' ? fs::path(env) : fs::path(LMK_SHARED_DATA_DIR);
-}
-
 Workload load_workload(const BenchOptions& o) {
   Workload w;
   if (!o.scene.empty()) {

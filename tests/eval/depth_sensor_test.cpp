@@ -39,6 +39,7 @@ TEST(DepthSensor, ExactDepthOnAFrontoParallelWall) {
 TEST(DepthSensor, NoiseMatchesTheKinectModel) {
   DepthSensorSettings s;
   s.seed = 5;
+  s.flying_pixel_rate = 0.0;  // a wall has no depth edge anyway
   const double z = 2.0;
   const PointCloud cloud = render_depth(wall(z), Eigen::Isometry3d::Identity(), s);
   double sum = 0, sum2 = 0;
@@ -47,12 +48,84 @@ TEST(DepthSensor, NoiseMatchesTheKinectModel) {
     sum2 += (p.z() - z) * (p.z() - z);
   }
   const double n = static_cast<double>(cloud.size());
-  const double sigma = 0.0012 + 0.0019 * (z - 0.4) * (z - 0.4);
-  // Quantisation at 2 m adds a step of z^2 / (fx b) / 8 = 1.3 mm, i.e. 0.37 mm of uniform noise.
-  const double step = z * z / (525.0 * 0.075) / 8.0;
+  const double sigma = s.noise_a + s.noise_b * (z - s.noise_z0) * (z - s.noise_z0);
+  // Quantisation at 2 m adds levels z^2 / (f b) / 8 = 11.5 mm apart, i.e. 3.3 mm of uniform
+  // noise, when the noise spreads the points over several levels as here.
+  const double step = depth_level_spacing(z, s);
+  EXPECT_NEAR(step, z * z / (580.0 * 0.075) / 8.0, 1e-12);
   const double expected = std::sqrt(sigma * sigma + step * step / 12.0);
-  EXPECT_NEAR(sum / n, 0.0, 2e-4);
+  EXPECT_NEAR(sum / n, 0.0, 5e-4);
   EXPECT_NEAR(std::sqrt(sum2 / n), expected, 0.05 * expected);
+}
+
+// The disparity's levels, then whole millimetres: what the real sensor's driver reports.
+TEST(DepthSensor, DepthComesInDisparityLevelsAndMillimetres) {
+  DepthSensorSettings s;
+  s.noise_b = 0.0;  // exact depth, quantised only
+  for (double z : {0.7, 1.3, 2.5, 3.5}) {
+    const double reported = sensor_depth(z, 0.0, s);
+    EXPECT_NEAR(reported * 1000.0, std::round(reported * 1000.0), 1e-9) << z;
+    // Within half a level (and half a millimetre) of the truth.
+    EXPECT_LE(std::abs(reported - z), 0.5 * depth_level_spacing(z, s) + 0.0005 + 1e-9) << z;
+    // Depths a level apart report different values; depths a tenth of a level apart mostly not.
+    EXPECT_NE(sensor_depth(z + depth_level_spacing(z, s), 0.0, s), reported) << z;
+  }
+}
+
+// A box in front of a wall: the projector, 7.5 cm to the camera's +x, cannot light the wall just
+// left of the box (as the image shows it), so those pixels return nothing; right of it they do.
+TEST(DepthSensor, ProjectorShadowLiesLeftOfObjects) {
+  DepthSensorSettings s;
+  s.noise = false;
+  TriangleMesh scene = wall(2.0);
+  scene.append(make_box_mesh({0.2, 0.2, 0.2}), pose_from_xyz_rpy({0, 0, 1.0}, {0, 0, 0}));
+  const PointCloud with = render_depth(scene, Eigen::Isometry3d::Identity(), s);
+  s.shadows = false;
+  const PointCloud without = render_depth(scene, Eigen::Isometry3d::Identity(), s);
+  EXPECT_EQ(without.count_finite(), without.size());
+  const int v = 240;
+  std::vector<int> shadowed;
+  for (int u = 0; u < 640; ++u) {
+    if (!is_finite(with.points[v * 640 + u])) shadowed.push_back(u);
+  }
+  ASSERT_FALSE(shadowed.empty());
+  // The box's left face is at u = 319.5 - 525 * 0.1 / 0.9 (its front at 0.9 m hides the rest);
+  // the shadow on the wall at 2 m spans the projector's offset seen from there: from the box's
+  // left edge on the wall (x = -0.1 * 2 / 0.9 ... the ray past the edge) about f b (1/0.9 - 1/2)
+  // pixels wide.
+  const double left_edge = 319.5 - 525.0 * 0.1 / 0.9;
+  const double width = 525.0 * 0.075 * (1.0 / 0.9 - 1.0 / 2.0);
+  EXPECT_NEAR(shadowed.back(), left_edge, 2.0);
+  EXPECT_NEAR(static_cast<double>(shadowed.size()), width, 2.0);
+  for (int u : shadowed) EXPECT_LT(u, 320);
+}
+
+// Flying pixels only at depth edges, and only between the two surfaces.
+TEST(DepthSensor, FlyingPixelsLieBetweenTheSurfacesAtDepthEdges) {
+  DepthSensorSettings s;
+  s.noise_b = 0.0;
+  s.shadows = false;
+  s.flying_pixel_rate = 1.0;
+  TriangleMesh scene = wall(2.0);
+  scene.append(make_box_mesh({0.4, 0.4, 0.2}), pose_from_xyz_rpy({0, 0, 1.1}, {0, 0, 0}));
+  const PointCloud cloud = render_depth(scene, Eigen::Isometry3d::Identity(), s);
+  std::size_t flying = 0;
+  for (const auto& p : cloud.points) {
+    if (!is_finite(p)) continue;
+    const double z = p.z();
+    const bool on_a_surface = std::abs(z - 1.0) < 0.002 || std::abs(z - 2.0) < 0.02;
+    if (on_a_surface) continue;
+    ++flying;
+    EXPECT_GT(z, 1.0);
+    EXPECT_LT(z, 2.0);
+    // Only next to the box's outline: within a pixel of its edges seen from the sensor.
+    const double u = 525.0 * p.x() / z + 319.5, v = 525.0 * p.y() / z + 239.5;
+    const double half = 525.0 * 0.2 / 1.0;
+    const bool near_edge =
+        std::abs(std::abs(u - 319.5) - half) < 2.0 || std::abs(std::abs(v - 239.5) - half) < 2.0;
+    EXPECT_TRUE(near_edge) << u << " " << v;
+  }
+  EXPECT_GT(flying, 4u * 150u);  // the box's outline is 4 x 210 pixels long, both sides of it
 }
 
 TEST(DepthSensor, NoReturnOutsideTheRange) {

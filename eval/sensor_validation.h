@@ -1,0 +1,89 @@
+#pragma once
+// The simulated Kinect checked against real frames: planar patches of real Kinect clouds (tables,
+// walls, floors) are fitted, then the very same pixels are re-measured by the sensor model
+// (sensor_depth) from the fitted plane, so that geometry, incidence and pixel set are identical
+// and only the sensor differs. Per range, the two are compared on
+// - the residual spread about the plane (a robust standard deviation), and
+// - the spacing of the depth levels (the disparity's quantisation, then the driver's millimetres).
+
+#include <string>
+#include <vector>
+
+#include "eval/depth_sensor.h"
+#include "geometry/point_cloud.h"
+
+namespace lmk {
+
+struct PlanePatchSettings {
+  int tile = 12;  ///< patches are tile x tile pixels of the organised frame
+  /// Least fraction of a tile's pixels that must hold a (kept) point.
+  double min_fill = 0.75;
+  /// Patches whose plane residuals a quadratic in the pixel coordinates explains beyond this
+  /// fraction of their variance are not planes (an edge, a curved surface) and are skipped. Pure
+  /// noise on 100 points leaves about 5%; the staircase of the depth levels on a tilted plane more.
+  double max_curvature_r2 = 0.5;
+};
+
+/// One planar patch: where it is and what the sensor made of it.
+struct PlanePatch {
+  double depth = 0.0;          ///< mean depth along the optical axis, m
+  double residual_sd = 0.0;    ///< of the residuals about the fitted plane, 3-sigma clipped, m
+  double level_spacing = 0.0;  ///< median gap between consecutive distinct depths, m (NaN: < 3)
+  std::size_t points = 0;
+  std::vector<std::size_t> pixels;  ///< the frame's indices of its points
+  Eigen::Vector4d plane;            ///< n.x + d = 0 in the sensor frame, |n| = 1
+};
+
+/// The planar patches of an organised frame, among the points `keep` accepts (empty: all).
+/// Throws lmk::Error for an unorganised frame.
+std::vector<PlanePatch> plane_patches(const PointCloud& frame, const std::vector<bool>& keep = {},
+                                      const PlanePatchSettings& settings = {});
+
+/// The same pixels as `patch`, measured by the sensor model from the patch's fitted plane, with
+/// the frame's noise `noise` (sensor_noise_field of the frame's size).
+PlanePatch simulate_patch(const PointCloud& frame, const PlanePatch& patch,
+                          const DepthSensorSettings& sensor, const std::vector<double>& noise);
+
+/// Real against simulated, over the patches whose depth lies in [min_depth, max_depth).
+struct SensorRangeComparison {
+  double min_depth = 0.0, max_depth = 0.0;
+  std::size_t patches = 0;
+  double real_residual_sd = 0.0, simulated_residual_sd = 0.0;      ///< medians over patches, m
+  double real_level_spacing = 0.0, simulated_level_spacing = 0.0;  ///< medians over patches, m
+  double model_level_spacing = 0.0;  ///< depth_level_spacing at the bin's median depth, m
+};
+
+/// Accumulates patches of many frames and compares them per depth bin.
+class SensorValidation {
+ public:
+  explicit SensorValidation(DepthSensorSettings sensor = {}, double bin_width = 0.25,
+                            PlanePatchSettings patches = {});
+
+  /// Adds the planar patches of one real frame (and their simulated twins). Returns how many.
+  std::size_t add_frame(const PointCloud& frame, const std::vector<bool>& keep = {});
+
+  /// One comparison per depth bin holding at least `min_patches` patches, nearest first.
+  std::vector<SensorRangeComparison> compare(std::size_t min_patches = 20) const;
+
+ private:
+  DepthSensorSettings sensor_;
+  double bin_width_;
+  PlanePatchSettings patch_settings_;
+  std::size_t frames_ = 0;
+  std::vector<PlanePatch> real_, simulated_;
+};
+
+/// The real Kinect frames of the shared data (../shared/data layout) that the validation uses:
+/// mOSD's learn frames and the PCL frames from a Kinect (not the stereo one). Missing files are
+/// left out.
+std::vector<std::string> sensor_validation_files(const std::string& data_dir);
+
+/// One of them, with the points the validation keeps: in mOSD frames the table and background
+/// (label 1), not the objects; in the others every point (the patch test keeps the planes).
+struct RealFrame {
+  PointCloud cloud;
+  std::vector<bool> keep;
+};
+RealFrame load_sensor_validation_frame(const std::string& path);
+
+}  // namespace lmk
