@@ -41,7 +41,8 @@ struct DepthSensorSettings {
   bool shadows = true;
   /// At a depth edge (neighbouring depths differing by more than edge_jump of the depth), a pixel
   /// sees both surfaces and returns a depth between them with this probability: a flying pixel.
-  double flying_pixel_rate = 0.25;
+  /// 2% gives the real frames' share of mixed returns at depth edges (1.8%, lmk sensor-check).
+  double flying_pixel_rate = 0.02;
   double edge_jump = 0.03;
   /// The noise of neighbouring pixels is correlated over blocks of this many pixels a side (odd):
   /// the sensor finds each pixel's disparity by matching a window of the projected pattern.

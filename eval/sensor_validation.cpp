@@ -235,6 +235,30 @@ std::vector<SensorRangeComparison> SensorValidation::compare(std::size_t min_pat
   return out;
 }
 
+DepthEdgeCount count_depth_edges(const PointCloud& cloud) {
+  DepthEdgeCount count;
+  if (cloud.height <= 1 || cloud.points.size() != std::size_t{cloud.width} * cloud.height)
+    return count;
+  const Eigen::Isometry3d T_sensor_cloud = cloud.T_cloud_sensor.inverse();
+  const auto depth = [&](std::size_t i) {
+    return (T_sensor_cloud * cloud.points[i].cast<double>()).z();
+  };
+  for (std::uint32_t v = 0; v < cloud.height; ++v) {
+    for (std::uint32_t u = 1; u + 1 < cloud.width; ++u) {
+      const std::size_t i = std::size_t{v} * cloud.width + u;
+      if (!is_finite(cloud.points[i - 1]) || !is_finite(cloud.points[i]) ||
+          !is_finite(cloud.points[i + 1]))
+        continue;
+      const double a = depth(i - 1), b = depth(i + 1), z = depth(i);
+      const double near = std::min(a, b), far = std::max(a, b);
+      if (far - near < 0.05 * near) continue;
+      ++count.edges;
+      if (z > 1.015 * near && z < far / 1.015) ++count.mixed;
+    }
+  }
+  return count;
+}
+
 std::vector<std::string> sensor_validation_files(const std::string& data_dir) {
   std::vector<std::string> files;
   const fs::path mosd = fs::path(data_dir) / "mosd" / "learn";

@@ -73,6 +73,21 @@ class SensorValidation {
   std::vector<PlanePatch> real_, simulated_;
 };
 
+/// Flying pixels, counted along image rows: of the pixels whose two neighbours differ in depth by
+/// more than 5% (a depth edge), those whose own depth lies between the neighbours', at least 1.5%
+/// from each: a mixed return.
+struct DepthEdgeCount {
+  std::size_t edges = 0, mixed = 0;
+  void add(const DepthEdgeCount& other) {
+    edges += other.edges;
+    mixed += other.mixed;
+  }
+  double rate() const {
+    return edges ? static_cast<double>(mixed) / static_cast<double>(edges) : 0.0;
+  }
+};
+DepthEdgeCount count_depth_edges(const PointCloud& organised);
+
 /// The real Kinect frames of the shared data (../shared/data layout) that the validation uses:
 /// mOSD's learn frames and the PCL frames from a Kinect (not the stereo one). Missing files are
 /// left out.

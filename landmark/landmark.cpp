@@ -9,6 +9,7 @@
 #include "geometry/normals.h"
 #include "geometry/pose.h"
 #include "geometry/principal_axes.h"
+#include "geometry/projector_shadow.h"
 #include "geometry/voxel_grid.h"
 
 namespace lmk {
@@ -29,6 +30,9 @@ void check_settings(const CaptureSettings& s, const std::string& what) {
   }
   if (!(s.empty_space_margin >= 0.0) || !std::isfinite(s.empty_space_margin)) {
     throw Error(what + ": the empty-space margin must be finite and non-negative");
+  }
+  if (!(s.projector_baseline >= 0.0) || !std::isfinite(s.projector_baseline)) {
+    throw Error(what + ": the projector baseline must be finite and non-negative (0: none)");
   }
   if (s.up && (!s.up->allFinite() || s.up->norm() < 1e-9)) {
     throw Error(what + ": the up axis must be a finite non-zero vector");
@@ -105,7 +109,12 @@ Landmark capture(const PointCloud& scene, const Box& box, const std::string& nam
   landmark.settings = settings;
   landmark.up = settings.up ? settings.up->normalized()
                             : default_up(scene.T_cloud_sensor, settings.base_frame);
-  prepare_landmark(landmark, &scene.points);  // rays to non-finite points are skipped
+  // Rays to every scene point (non-finite ones are skipped), and through the projector's shadow.
+  std::vector<Eigen::Vector3f> rays = scene.points;
+  const std::vector<Eigen::Vector3f> shadow =
+      projector_shadow_ray_ends(scene, {settings.projector_baseline});
+  rays.insert(rays.end(), shadow.begin(), shadow.end());
+  prepare_landmark(landmark, &rays);
   return landmark;
 }
 

@@ -34,6 +34,11 @@ struct CaptureSettings {
   /// free, so it matches wherever it fits; the programs that use one choose among the matches by
   /// a cue such as the demonstrated height. Thin straight shapes stay refused.
   bool allow_flat = false;
+  /// A structured-light sensor's projector offset along the camera's +x, m (the Kinect v1's 7.5
+  /// cm): the camera's rays through the projector's shadow count as observed free up to the
+  /// surface casting it (geometry/projector_shadow.h). 0 for a sensor without one (stereo, time
+  /// of flight). Used at capture only: the empty space it carves is stored in the landmark.
+  double projector_baseline = 0.075;
 };
 
 struct Landmark {

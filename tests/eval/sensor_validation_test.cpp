@@ -8,6 +8,7 @@
 
 #include "eval/depth_sensor.h"
 #include "eval/mesh.h"
+#include "eval/scene_types.h"
 #include "geometry/error.h"
 #include "geometry/pose.h"
 #include "tests/support/test_support.h"
@@ -72,6 +73,39 @@ TEST(SensorValidation, SimulatedKinectAgreesWithRealPlanes) {
     EXPECT_NEAR(r.simulated_level_spacing / r.real_level_spacing, 1.0, 0.3)
         << r.min_depth << "-" << r.max_depth << " m, " << r.patches << " patches";
   }
+}
+
+// Flying pixels: the share of depth edges with a mixed return, in the real frames and in the
+// benchmark's scenes seen by the model, within 30% of each other.
+TEST(SensorValidation, FlyingPixelsAreAsRareAsInRealFrames) {
+  LMK_REQUIRE_SHARED_DATA(data);
+  DepthEdgeCount real, simulated;
+  for (const std::string& file : sensor_validation_files(data.string()))
+    real.add(count_depth_edges(load_sensor_validation_frame(file).cloud));
+  for (std::size_t i = 0; i < scene_types().size(); ++i) {
+    const GeneratedScene scene = make_scene(scene_types()[i], 1, false);
+    DepthSensorSettings sensor;
+    sensor.seed = i;
+    simulated.add(count_depth_edges(render_depth(scene.mesh, scene.T_world_sensor, sensor)));
+  }
+  ASSERT_GT(real.edges, 10000u);
+  ASSERT_GT(simulated.edges, 10000u);
+  EXPECT_NEAR(simulated.rate() / real.rate(), 1.0, 0.3)
+      << "real " << real.rate() << ", simulated " << simulated.rate();
+}
+
+// Without flying pixels the count finds almost none: it measures the mixing, not the edges.
+TEST(SensorValidation, DepthEdgeCountSeesFlyingPixels) {
+  const GeneratedScene scene = make_scene(scene_types().front(), 1, false);
+  DepthSensorSettings sensor;
+  sensor.flying_pixel_rate = 0.0;
+  const double none =
+      count_depth_edges(render_depth(scene.mesh, scene.T_world_sensor, sensor)).rate();
+  sensor.flying_pixel_rate = 0.5;
+  const double half =
+      count_depth_edges(render_depth(scene.mesh, scene.T_world_sensor, sensor)).rate();
+  EXPECT_LT(none, 0.01);
+  EXPECT_GT(half, 0.2);
 }
 
 }  // namespace
