@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -111,6 +113,7 @@ PairResult search_pair(const PointCloud& cloud, const DatasetScene& scene, const
   r.seconds = found.stats.seconds_total;
   r.seeds = found.stats.seeds;
   r.rejections = describe_rejections(found.stats);
+  r.sensor_position = scene.T_scene_sensor.translation();
   return r;
 }
 
@@ -251,6 +254,56 @@ EvaluationRow evaluation_row(const Evaluation& evaluation, const std::string& se
   row.median_rotation_error = median(row.counts.rotation_errors);
   row.median_seconds = median(seconds);
   return row;
+}
+
+std::vector<EvaluationRow> evaluation_rows_by_range(const Evaluation& evaluation,
+                                                    std::optional<double> threshold,
+                                                    double bin_width) {
+  if (!(bin_width > 0.0)) throw Error("the range bins must be wider than 0 m");
+  const double t = threshold.value_or(effective_threshold(evaluation.settings.find));
+  const MatchTolerance& tolerance = evaluation.settings.tolerance;
+  constexpr int kBins = 20;  // up to 10 m at the default width: beyond any depth sensor's range
+  const auto bin_of = [&](const PairResult& p, const Eigen::Isometry3d& pose) {
+    return static_cast<int>(
+        std::floor((pose.translation() - p.sensor_position).norm() / bin_width));
+  };
+  std::vector<EvaluationRow> rows;
+  for (int assumption = evaluation.settings.in_context_only ? 2 : 1; assumption <= 2;
+       ++assumption) {
+    std::vector<Counts> counts(kBins);
+    std::vector<std::size_t> pairs(kBins, 0);
+    for (const PairResult& p : evaluation.pairs) {
+      if (assumption > 1 && !p.in_context) continue;
+      const PairInput in = matches_within(p, t);
+      std::vector<int> truth_bin, found_bin;
+      for (const auto& T : in.truth) truth_bin.push_back(bin_of(p, T));
+      for (const auto& T : in.found) found_bin.push_back(bin_of(p, T));
+      const std::vector<Counts> split =
+          count_all_matches_by(in, truth_bin, found_bin, kBins, tolerance);
+      for (int b = 0; b < kBins; ++b) {
+        counts[b].add(split[b]);
+        if (split[b].tp + split[b].fp + split[b].fn > 0) ++pairs[b];
+      }
+    }
+    for (int b = 0; b < kBins; ++b) {
+      if (counts[b].tp + counts[b].fp + counts[b].fn == 0) continue;
+      char label[32];
+      std::snprintf(label, sizeof(label), "%.1f-%.1f m", b * bin_width, (b + 1) * bin_width);
+      EvaluationRow row;
+      row.setting = label;
+      row.assumption = assumption;
+      row.counts = counts[b];
+      row.pairs = pairs[b];
+      row.median_translation_error = median(row.counts.translation_errors);
+      row.median_rotation_error = median(row.counts.rotation_errors);
+      rows.push_back(row);
+    }
+  }
+  // Nearest first, assumption by assumption within a bin.
+  std::stable_sort(rows.begin(), rows.end(), [](const EvaluationRow& a, const EvaluationRow& b) {
+    return std::stod(a.setting) < std::stod(b.setting);
+  });
+  return rows;
 }
 
 std::vector<EvaluationRow> evaluation_rows(const Evaluation& evaluation,

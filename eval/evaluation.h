@@ -48,9 +48,11 @@ struct PairResult {
   /// afterwards, as the search's own selection does it (non-max suppression first, then the
   /// threshold), so that one search also serves the precision/recall curve against the threshold.
   std::vector<FoundBox> found;
-  double seconds = 0.0;     ///< the search's wall time, one thread, scene preprocessing included
-  std::size_t seeds = 0;    ///< seeds the search started from
-  std::string rejections;   ///< describe_rejections() of the search
+  double seconds = 0.0;    ///< the search's wall time, one thread, scene preprocessing included
+  std::size_t seeds = 0;   ///< seeds the search started from
+  std::string rejections;  ///< describe_rejections() of the search
+  /// The scene's sensor position, scene frame: the range of each instance and match.
+  Eigen::Vector3d sensor_position = Eigen::Vector3d::Zero();
   bool from_cache = false;  ///< read from the cache rather than searched in this run
 };
 
@@ -94,6 +96,14 @@ EvaluationRow evaluation_row(const Evaluation& evaluation, const std::string& se
 /// searched), 2 and 3.
 std::vector<EvaluationRow> evaluation_rows(const Evaluation& evaluation,
                                            std::optional<double> threshold = {});
+
+/// Assumptions 1 (when every pair was searched) and 2, split by range: the distance from the
+/// scene's sensor to each ground-truth instance (true positives, false negatives) or to each match
+/// (false positives), in bins of `bin_width` m. One row per bin that holds anything, nearest
+/// first, its `setting` naming the bin ("1.0-1.5 m"); median errors as the table's, no times.
+std::vector<EvaluationRow> evaluation_rows_by_range(const Evaluation& evaluation,
+                                                    std::optional<double> threshold = {},
+                                                    double bin_width = 0.5);
 
 /// The cache key of a search configuration on a dataset: a hash of the settings that change
 /// results, the dataset fingerprint and the lmk version.

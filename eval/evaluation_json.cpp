@@ -66,7 +66,8 @@ json pair_result_to_json(const PairResult& p, double threshold, const MatchToler
           {"found", found},
           {"seconds", p.seconds},
           {"seeds", p.seeds},
-          {"rejections", p.rejections}};
+          {"rejections", p.rejections},
+          {"sensor_position", vector_to_json(p.sensor_position)}};
 }
 
 PairResult pair_result_from_json(const json& j, const std::string& where) {
@@ -86,6 +87,8 @@ PairResult pair_result_from_json(const json& j, const std::string& where) {
   p.seconds = get<double>(j, "seconds", where);
   p.seeds = get<std::size_t>(j, "seeds", where);
   p.rejections = get<std::string>(j, "rejections", where);
+  p.sensor_position =
+      numbers_from_json(json_field(j, "sensor_position", where), 3, where + ".sensor_position");
   return p;
 }
 

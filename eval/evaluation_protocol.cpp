@@ -88,6 +88,28 @@ Counts count_all_matches(const PairInput& pair, const MatchTolerance& tolerance)
   return c;
 }
 
+std::vector<Counts> count_all_matches_by(const PairInput& pair, const std::vector<int>& truth_bin,
+                                         const std::vector<int>& found_bin, int bins,
+                                         const MatchTolerance& tolerance) {
+  std::vector<Counts> out(static_cast<std::size_t>(std::max(bins, 0)));
+  const auto in = [&](int bin) { return bin >= 0 && bin < bins; };
+  const auto assigned = assign_matches(pair, tolerance);
+  std::vector<char> matched(pair.truth.size(), 0);
+  for (std::size_t k = 0; k < assigned.size(); ++k) {
+    if (assigned[k]) {
+      matched[*assigned[k]] = 1;
+      const int bin = truth_bin[*assigned[k]];
+      if (in(bin)) record_tp(out[bin], pair.truth[*assigned[k]], pair.found[k], pair.symmetry);
+    } else if (in(found_bin[k])) {
+      ++out[found_bin[k]].fp;
+    }
+  }
+  for (std::size_t t = 0; t < pair.truth.size(); ++t) {
+    if (!matched[t] && in(truth_bin[t])) ++out[truth_bin[t]].fn;
+  }
+  return out;
+}
+
 Counts count_best_match(const PairInput& pair, const MatchTolerance& tolerance) {
   Counts c;
   if (pair.truth.empty()) {

@@ -59,6 +59,14 @@ Counts count_all_matches(const PairInput& pair, const MatchTolerance& tolerance 
 /// returned.
 Counts count_best_match(const PairInput& pair, const MatchTolerance& tolerance = {});
 
+/// Assumptions 1 and 2 for one pair, split into bins of a per-item quantity (the range, the hidden
+/// fraction): matches are assigned as count_all_matches does over the whole pair, then each true
+/// positive and false negative counts in its ground-truth instance's bin (truth_bin) and each false
+/// positive in its own (found_bin). Bins outside [0, bins) are left out.
+std::vector<Counts> count_all_matches_by(const PairInput& pair, const std::vector<int>& truth_bin,
+                                         const std::vector<int>& found_bin, int bins,
+                                         const MatchTolerance& tolerance = {});
+
 /// The paper's three assumptions over many pairs: 1, all pairs; 2, in-context pairs;
 /// 3, in-context pairs, best match only. Index 0 holds assumption 1.
 std::array<Counts, 3> count_assumptions(const std::vector<PairInput>& pairs,

@@ -96,11 +96,17 @@ std::string times_plot(const Evaluation& e) {
   return render_svg(h, 640, 280);
 }
 
+constexpr const char* kRangeNote =
+    "The same counts split by the distance from the sensor to each ground-truth instance (true "
+    "positives, false negatives) or to each false match, in 0.5 m bins; assumptions 1 and 2.";
+
 std::string markdown(const Evaluation& e, const std::vector<EvaluationRow>& rows) {
   return "# lmk evaluation: " + e.dataset + "\n\n" + evaluation_header(e) + ".\n\nlmk " + kVersion +
          ", dataset fingerprint " + e.fingerprint + ", run " + format_optional(e.seconds, 1) +
          " s.\n\n## Precision and recall\n\n" + kAssumptionsNote + "\n\n" +
-         evaluation_table(rows).markdown() + "\n## Pairs\n\n" + pair_table(e).markdown();
+         evaluation_table(rows).markdown() + "\n## By range\n\n" + kRangeNote + "\n\n" +
+         evaluation_table(evaluation_rows_by_range(e)).markdown() + "\n## Pairs\n\n" +
+         pair_table(e).markdown();
 }
 
 std::string html(const Evaluation& e, const std::vector<EvaluationRow>& rows) {
@@ -115,9 +121,11 @@ std::string html(const Evaluation& e, const std::vector<EvaluationRow>& rows) {
          ".</p>\n<p>lmk " + kVersion + ", dataset fingerprint <code>" + e.fingerprint +
          "</code>, run " + format_optional(e.seconds, 1) +
          " s.</p>\n<h2>Precision and recall</h2>\n<p>" + escape_html(kAssumptionsNote) + "</p>\n" +
-         html_table(evaluation_table(rows)) + "<h2>Plots</h2>\n<figure>\n" + threshold_plot(e) +
-         "</figure>\n<figure>\n" + times_plot(e) + "</figure>\n<h2>Pairs</h2>\n" +
-         html_table(pair_table(e)) + "</body>\n</html>\n";
+         html_table(evaluation_table(rows)) + "<h2>By range</h2>\n<p>" + escape_html(kRangeNote) +
+         "</p>\n" + html_table(evaluation_table(evaluation_rows_by_range(e))) +
+         "<h2>Plots</h2>\n<figure>\n" + threshold_plot(e) + "</figure>\n<figure>\n" +
+         times_plot(e) + "</figure>\n<h2>Pairs</h2>\n" + html_table(pair_table(e)) +
+         "</body>\n</html>\n";
 }
 
 }  // namespace
@@ -155,6 +163,7 @@ void write_evaluation_report(const std::string& dir, const Evaluation& e) {
         {{"setting", setting}, {"assumption", curve_assumption(e)}, {"points", points}});
   }
   j["threshold_curves"] = curves;
+  j["rows_by_range"] = detail::rows_to_json(evaluation_rows_by_range(e));
   write_text_atomically(fs::path(dir) / "report.json", j.dump(2) + "\n");
   write_text_atomically(fs::path(dir) / "report.md", markdown(e, rows));
   write_text_atomically(fs::path(dir) / "report.html", html(e, rows));

@@ -23,6 +23,7 @@ struct EvalOptions {
   DatasetOptions dataset;
   EvaluationSettings settings;
   std::string json, report;
+  std::string by;  ///< "range": also the table split by distance from the sensor
 };
 
 int run_eval(EvalOptions& o) {
@@ -31,8 +32,15 @@ int run_eval(EvalOptions& o) {
   const std::vector<EvaluationRow> rows = evaluation_rows(evaluation);
   std::printf("%s\n\n%s", evaluation_header(evaluation).c_str(),
               evaluation_table(rows).plain().c_str());
-  if (!o.json.empty())
-    write_text_atomically(o.json, detail::evaluation_to_json(evaluation, rows).dump(2) + "\n");
+  nlohmann::json json = detail::evaluation_to_json(evaluation, rows);
+  if (o.by == "range") {
+    const std::vector<EvaluationRow> by_range = evaluation_rows_by_range(evaluation);
+    std::printf(
+        "\nby range (distance from the sensor to each instance, or to a false match):\n\n%s",
+        evaluation_table(by_range).plain().c_str());
+    json["rows_by_range"] = detail::rows_to_json(by_range);
+  }
+  if (!o.json.empty()) write_text_atomically(o.json, json.dump(2) + "\n");
   if (!o.report.empty()) {
     write_evaluation_report(o.report, evaluation);
     std::printf("report: %s/report.html (also report.md, report.json)\n", o.report.c_str());
@@ -52,6 +60,9 @@ Subcommand add_eval(CLI::App& app) {
   add_search_options(sub, o->settings.find);
   add_evaluation_options(sub, o->settings);
   sub->add_option("--json", o->json, "Write the table and every pair's matches as JSON to FILE");
+  sub->add_option("--by", o->by,
+                  "Also split the table by 'range': the distance from the sensor, in 0.5 m bins")
+      ->check(CLI::IsMember({"range"}));
   sub->add_option("--report", o->report,
                   "Write report.json, report.md and report.html (with plots) into DIR");
   return {sub, [o] { return run_eval(*o); }};

@@ -69,6 +69,31 @@ TEST(CountAllMatches, DuplicatesOnOneInstanceCountOnce) {
   EXPECT_EQ(c.fn, 0u);
 }
 
+// Split by a per-item bin, the counts are the whole pair's: each true positive and false negative
+// in its instance's bin, each false positive in its own.
+TEST(CountAllMatchesBy, EachItemCountsInItsBin) {
+  PairInput pair;
+  pair.truth = {at(0, 0), at(1, 0), at(2, 0)};
+  pair.found = {at(0.005, 0), at(5, 5), at(2.004, 0, 2.0)};  // a TP, an FP, a TP
+  const std::vector<Counts> split = count_all_matches_by(pair, {0, 1, 1}, {0, 2, 1}, 3);
+  ASSERT_EQ(split.size(), 3u);
+  EXPECT_EQ(split[0].tp, 1u);
+  EXPECT_EQ(split[0].fp + split[0].fn, 0u);
+  EXPECT_EQ(split[1].tp, 1u);  // the third instance
+  EXPECT_EQ(split[1].fn, 1u);  // the second, missed
+  EXPECT_EQ(split[1].fp, 0u);
+  EXPECT_EQ(split[2].fp, 1u);
+  EXPECT_EQ(split[2].tp + split[2].fn, 0u);
+  Counts sum;
+  for (const Counts& c : split) sum.add(c);
+  const Counts whole = count_all_matches(pair);
+  EXPECT_EQ(sum.tp, whole.tp);
+  EXPECT_EQ(sum.fp, whole.fp);
+  EXPECT_EQ(sum.fn, whole.fn);
+  // Bins outside the range are left out.
+  EXPECT_EQ(count_all_matches_by(pair, {0, 5, -1}, {0, 0, 0}, 1)[0].fn, 0u);
+}
+
 TEST(CountBestMatch, OnlyTheBestMatchCounts) {
   PairInput pair;
   pair.truth = {at(0, 0), at(0.5, 0)};

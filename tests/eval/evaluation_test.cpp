@@ -122,6 +122,30 @@ TEST_F(EvaluationTest, InContextPairsOnlyForAssumptionsTwoAndThree) {
   for (const EvaluationRow& row : evaluation_rows(e)) EXPECT_NE(row.assumption, 1);
 }
 
+// The table split by range adds up to the table: every instance and match lies in some bin.
+TEST_F(EvaluationTest, RowsByRangeAddUpToTheWholeTable) {
+  EvaluationSettings settings;
+  const Evaluation e = run(settings);
+  const std::vector<EvaluationRow> whole = evaluation_rows(e),
+                                   by_range = evaluation_rows_by_range(e);
+  ASSERT_FALSE(by_range.empty());
+  for (int assumption : {1, 2}) {
+    Counts sum;
+    for (const EvaluationRow& row : by_range) {
+      if (row.assumption == assumption) sum.add(row.counts);
+      EXPECT_NE(row.setting.find(" m"), std::string::npos) << row.setting;
+    }
+    const auto all = std::find_if(whole.begin(), whole.end(), [&](const EvaluationRow& r) {
+      return r.setting == "all" && r.assumption == assumption;
+    });
+    ASSERT_NE(all, whole.end());
+    EXPECT_EQ(sum.tp, all->counts.tp);
+    EXPECT_EQ(sum.fp, all->counts.fp);
+    EXPECT_EQ(sum.fn, all->counts.fn);
+  }
+  EXPECT_THROW(evaluation_rows_by_range(e, std::nullopt, 0.0), Error);
+}
+
 // Hand-made results: no search, so the JSON and the report can be checked exactly.
 Evaluation hand_made() {
   Evaluation e;
@@ -194,6 +218,8 @@ TEST(EvaluationReport, WritesJsonMarkdownAndSelfContainedHtml) {
   const nlohmann::json j = nlohmann::json::parse(read(out / "report.json"));
   EXPECT_EQ(j.at("threshold_curves").size(), 3u);  // simple, cluttered, all
   EXPECT_NE(read(out / "report.md").find("| setting |"), std::string::npos);
+  EXPECT_NE(read(out / "report.md").find("## By range"), std::string::npos);
+  EXPECT_NE(read(out / "report.html").find("<h2>By range</h2>"), std::string::npos);
   const std::string html = read(out / "report.html");
   EXPECT_EQ(html.rfind("<!DOCTYPE html>", 0), 0u);
   EXPECT_EQ(occurrences(html, "<svg"), 2u);  // the threshold curves and the times
