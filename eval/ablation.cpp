@@ -1,5 +1,6 @@
 #include "eval/ablation.h"
 
+#include <algorithm>
 #include <set>
 
 #include "eval/evaluation_table.h"
@@ -7,10 +8,16 @@
 
 namespace lmk {
 
-std::vector<std::string> ablation_keys() { return find_setting_keys(); }
+std::vector<std::string> ablation_keys() { return find_setting_keys(true); }
 
 void apply_ablation_setting(FindSettings& settings, const std::string& key,
                             const std::string& value) {
+  const std::vector<std::string> varied = ablation_keys(), all = find_setting_keys();
+  const auto has = [&key](const std::vector<std::string>& keys) {
+    return std::find(keys.begin(), keys.end(), key) != keys.end();
+  };
+  if (!has(varied) && has(all))
+    throw Error("--vary " + key + ": changes how a search runs, not what it finds");
   try {
     set_find_setting(settings, key, value);
   } catch (const Error& e) {

@@ -33,10 +33,12 @@ void set_find_setting(FindSettings& settings, const std::string& key, const std:
   throw Error("unknown setting '" + key + "' (known: " + known + ")");
 }
 
-std::vector<std::string> find_setting_keys() {
+std::vector<std::string> find_setting_keys(bool results_only) {
   std::vector<std::string> keys;
-  const auto add = [&keys](const std::vector<SettingInfo>& infos) {
-    for (const SettingInfo& info : infos) keys.push_back(info.key());
+  const auto add = [&](const std::vector<SettingInfo>& infos) {
+    for (const SettingInfo& info : infos) {
+      if (!results_only || info.affects_results) keys.push_back(info.key());
+    }
   };
   add(setting_infos<FindSettings>());
   const FindSettings defaults;

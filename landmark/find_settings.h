@@ -210,8 +210,9 @@ void validate(const FindSettings& settings);
 /// lmk::Error naming the known keys for an unknown one, and for a bad value.
 void set_find_setting(FindSettings& settings, const std::string& key, const std::string& text);
 
-/// Every key set_find_setting accepts, in stage order.
-std::vector<std::string> find_setting_keys();
+/// Every key set_find_setting accepts, in stage order; with `results_only`, only those of settings
+/// that can change what is found (not threads).
+std::vector<std::string> find_setting_keys(bool results_only = false);
 
 /// The metric a search applies: selection.metric, or the method's own when it is empty
 /// ("visibility" for fast, "paper" for reference).

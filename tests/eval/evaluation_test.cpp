@@ -266,6 +266,11 @@ TEST(Ablation, AxesParseWithClearErrors) {
   EXPECT_THROW(parse_ablation_axis("metric=paper,paper"), Error);
   EXPECT_THROW(parse_ablation_axis("metric=nope"), Error);
   EXPECT_THROW(parse_ablation_axis("threshold=-1"), Error);
+  EXPECT_THROW(parse_ablation_axis("threads=1,2"), Error);          // how to run, not what is found
+  const AblationAxis tilt = parse_ablation_axis("max-tilt=30,45");  // any search setting
+  FindSettings s;
+  apply_ablation_setting(s, tilt.key, tilt.values[1]);
+  EXPECT_NEAR(s.fast.max_tilt, M_PI / 4.0, 1e-12);
   try {
     parse_ablation_axis("colour=red");
     FAIL();
