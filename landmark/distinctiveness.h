@@ -13,8 +13,8 @@
 namespace lmk {
 
 struct DistinctivenessReport {
-  /// Matches whose box centre lies farther than settings.selection.nms_radius from the captured box centre,
-  /// best first. Empty: the landmark is distinctive in its capture scene.
+  /// Matches whose box centre lies farther than settings.selection.nms_radius from the captured box
+  /// centre, best first. Empty: the landmark is distinctive in its capture scene.
   std::vector<Match> other_instances;
   /// Did the search find the captured instance itself? A landmark that its own scene does not
   /// reproduce is too thin for the search (too few points, a featureless shape).

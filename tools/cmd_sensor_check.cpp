@@ -82,10 +82,11 @@ int run_sensor_check(const SensorCheckOptions& o) {
                    {"simulated_level_spacing_m", r.simulated_level_spacing},
                    {"model_level_spacing_m", r.model_level_spacing}});
   }
-  std::printf("\nmixed returns at depth edges (flying pixels): real %.1f%% of %zu, simulated %.1f%% "
-              "of %zu (the benchmark's 17 scenes)\n",
-              100.0 * real_edges.rate(), real_edges.edges, 100.0 * simulated_edges.rate(),
-              simulated_edges.edges);
+  std::printf(
+      "\nmixed returns at depth edges (flying pixels): real %.1f%% of %zu, simulated %.1f%% "
+      "of %zu (the benchmark's 17 scenes)\n",
+      100.0 * real_edges.rate(), real_edges.edges, 100.0 * simulated_edges.rate(),
+      simulated_edges.edges);
   std::printf("\n%s within %.0f%% at every depth\n",
               all_within ? "simulated and real agree" : "NOT", 100.0 * o.tolerance);
   if (!o.json.empty()) write_text_atomically(o.json, out.dump(2) + "\n");

@@ -23,8 +23,9 @@ struct SearchInput {
 };
 
 /// One candidate per seed, in seed order: the landmark centred on the seed with its capture
-/// orientation, aligned by pcl::IterativeClosestPoint (settings.reference.icp_iterations, no correspondence
-/// distance limit, PCL's default convergence test, as the authors ran it), then scored.
+/// orientation, aligned by pcl::IterativeClosestPoint (settings.reference.icp_iterations, no
+/// correspondence distance limit, PCL's default convergence test, as the authors ran it), then
+/// scored.
 std::vector<Match> reference_candidates(const SearchInput& input);
 
 }  // namespace lmk::detail
