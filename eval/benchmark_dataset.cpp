@@ -5,6 +5,7 @@
 #include <set>
 
 #include "eval/depth_sensor.h"
+#include "eval/instance_visibility.h"
 #include "geometry/cloud_io.h"
 #include "geometry/error.h"
 #include "geometry/hash.h"
@@ -30,8 +31,12 @@ std::uint64_t noise_seed(const std::string& scene_name) {
 }
 
 // The scene's ground truth as dataset pairs: its in-context landmarks, and any other landmark it
-// holds an instance of (out of context, yet a correct find there is no false positive).
-std::vector<DatasetPair> pairs_of(const GeneratedScene& scene) {
+// holds an instance of (out of context, yet a correct find there is no false positive), each
+// instance with the fraction of the landmark the scene's sensor does not see in `exact` (the frame
+// without noise).
+std::vector<DatasetPair> pairs_of(const GeneratedScene& scene,
+                                  const std::map<std::string, Landmark>& captured,
+                                  const PointCloud& exact) {
   std::vector<DatasetPair> pairs;
   for (const BenchmarkLandmark& landmark : benchmark_landmarks()) {
     const bool in_context = std::find(scene.in_context.begin(), scene.in_context.end(),
@@ -41,7 +46,12 @@ std::vector<DatasetPair> pairs_of(const GeneratedScene& scene) {
     if (!in_context && !has_instances) continue;
     DatasetPair pair{landmark.name, in_context, {}};
     if (has_instances) {
-      for (const Box& box : it->second) pair.instances.push_back(box.pose);
+      const auto model = captured.find(landmark.name);
+      for (const Box& box : it->second) {
+        pair.instances.push_back(box.pose);
+        if (model != captured.end())
+          pair.hidden.push_back(hidden_fraction(model->second, box, exact, DepthSensorSettings()));
+      }
     }
     pairs.push_back(pair);
   }
@@ -132,10 +142,11 @@ Dataset generate_benchmark_dataset(const std::string& dir, const std::string& pr
     if (options.progress) options.progress(++done, total);
   };
 
+  std::map<std::string, Landmark> captured;
   for (const BenchmarkLandmark& landmark : landmarks) {
     const std::string file = "landmarks/" + landmark.name + ".lmk";
-    save_landmark((fs::path(dir) / file).string(),
-                  capture_benchmark_landmark(landmark, options.noise));
+    captured[landmark.name] = capture_benchmark_landmark(landmark, options.noise);
+    save_landmark((fs::path(dir) / file).string(), captured[landmark.name]);
     dataset.landmarks.push_back({landmark.name, file, landmark.symmetry});
     step();
   }
@@ -149,7 +160,8 @@ Dataset generate_benchmark_dataset(const std::string& dir, const std::string& pr
       entry.setting = scene.setting;
       entry.T_scene_sensor = scene.T_world_sensor;
       entry.up = Eigen::Vector3d::UnitZ();
-      for (const DatasetPair& pair : pairs_of(scene)) {
+      const PointCloud exact = render(scene, 0, false);
+      for (const DatasetPair& pair : pairs_of(scene, captured, exact)) {
         const bool listed =
             std::any_of(landmarks.begin(), landmarks.end(),
                         [&](const BenchmarkLandmark& l) { return l.name == pair.landmark; });

@@ -70,6 +70,17 @@ Dataset parse(const json& j, const detail::JsonReader& r) {
       for (std::size_t n = 0; n < instances.size(); ++n) {
         p.instances.push_back(r.pose(instances[n], detail::at(pw, "instances", n)));
       }
+      if (pairs[k].contains("hidden")) {
+        const json& hidden = pairs[k]["hidden"];
+        if (!hidden.is_array() || hidden.size() != instances.size())
+          r.fail(pw + ".hidden", "must be an array of one fraction per instance");
+        for (std::size_t n = 0; n < hidden.size(); ++n) {
+          if (!hidden[n].is_number() || !(hidden[n].get<double>() >= 0.0) ||
+              !(hidden[n].get<double>() <= 1.0))
+            r.fail(detail::at(pw, "hidden", n), "must be a fraction in [0, 1]");
+          p.hidden.push_back(hidden[n].get<double>());
+        }
+      }
       s.pairs.push_back(p);
     }
     d.scenes.push_back(s);
@@ -103,6 +114,12 @@ void check_consistency(const Dataset& d, const std::string& dir, const detail::J
         r.fail(detail::at(where, "pairs", k), "unknown landmark '" + name + "'");
       if (!paired.insert(name).second)
         r.fail(detail::at(where, "pairs", k), "landmark '" + name + "' paired twice");
+      const std::vector<double>& hidden = s.pairs[k].hidden;
+      if (!hidden.empty() && (hidden.size() != s.pairs[k].instances.size() ||
+                              std::any_of(hidden.begin(), hidden.end(),
+                                          [](double h) { return !(h >= 0.0 && h <= 1.0); })))
+        r.fail(detail::at(where, "pairs", k) + ".hidden",
+               "must hold one fraction in [0, 1] per instance");
     }
   }
 }
@@ -151,8 +168,10 @@ void save_dataset(const std::string& dir, const Dataset& d) {
     for (const DatasetPair& p : s.pairs) {
       json instances = json::array();
       for (const auto& T : p.instances) instances.push_back(detail::pose_to_json(T));
-      pairs.push_back(
-          {{"landmark", p.landmark}, {"in_context", p.in_context}, {"instances", instances}});
+      json pair = {
+          {"landmark", p.landmark}, {"in_context", p.in_context}, {"instances", instances}};
+      if (!p.hidden.empty()) pair["hidden"] = p.hidden;
+      pairs.push_back(pair);
     }
     scenes.push_back({{"name", s.name},
                       {"file", s.file},

@@ -25,6 +25,9 @@ struct DatasetPair {
   std::string landmark;
   bool in_context = true;
   std::vector<Eigen::Isometry3d> instances;  ///< box poses in the scene frame
+  /// Optional: for each instance, the fraction of the landmark the scene's sensor does not see
+  /// (eval/instance_visibility.h), in [0, 1]; empty when the dataset does not record it.
+  std::vector<double> hidden;
 };
 
 struct DatasetScene {

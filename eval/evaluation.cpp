@@ -108,6 +108,7 @@ PairResult search_pair(const PointCloud& cloud, const DatasetScene& scene, const
   r.in_context = truth.in_context;
   r.symmetry = entry.symmetry;
   r.truth = truth.instances;
+  r.truth_hidden = truth.hidden;
   const FindResult found = find_landmark(cloud, landmark, pair_search(find, scene));
   for (const Match& m : found.matches) r.found.push_back({m.box, m.error, m.terms});
   r.seconds = found.stats.seconds_total;
@@ -256,54 +257,96 @@ EvaluationRow evaluation_row(const Evaluation& evaluation, const std::string& se
   return row;
 }
 
-std::vector<EvaluationRow> evaluation_rows_by_range(const Evaluation& evaluation,
-                                                    std::optional<double> threshold,
-                                                    double bin_width) {
-  if (!(bin_width > 0.0)) throw Error("the range bins must be wider than 0 m");
-  const double t = threshold.value_or(effective_threshold(evaluation.settings.find));
-  const MatchTolerance& tolerance = evaluation.settings.tolerance;
-  constexpr int kBins = 20;  // up to 10 m at the default width: beyond any depth sensor's range
-  const auto bin_of = [&](const PairResult& p, const Eigen::Isometry3d& pose) {
-    return static_cast<int>(
-        std::floor((pose.translation() - p.sensor_position).norm() / bin_width));
-  };
-  std::vector<EvaluationRow> rows;
+namespace {
+
+// Assumptions 1 (when every pair was searched) and 2, split into `bins` bins: each ground-truth
+// instance k of a pair counts in truth_bin(pair, k), each false match in found_bin(pair, pose),
+// and label(bin) names a bin's row. Rows by bin, then assumption; bins holding nothing are left
+// out.
+template <class TruthBin, class FoundBin, class Label>
+std::vector<EvaluationRow> rows_by_bin(const Evaluation& evaluation, double threshold, int bins,
+                                       TruthBin truth_bin, FoundBin found_bin, Label label) {
+  std::vector<std::vector<EvaluationRow>> per_bin(static_cast<std::size_t>(bins));
   for (int assumption = evaluation.settings.in_context_only ? 2 : 1; assumption <= 2;
        ++assumption) {
-    std::vector<Counts> counts(kBins);
-    std::vector<std::size_t> pairs(kBins, 0);
+    std::vector<Counts> counts(bins);
+    std::vector<std::size_t> pairs(bins, 0);
     for (const PairResult& p : evaluation.pairs) {
       if (assumption > 1 && !p.in_context) continue;
-      const PairInput in = matches_within(p, t);
-      std::vector<int> truth_bin, found_bin;
-      for (const auto& T : in.truth) truth_bin.push_back(bin_of(p, T));
-      for (const auto& T : in.found) found_bin.push_back(bin_of(p, T));
+      const PairInput in = matches_within(p, threshold);
+      std::vector<int> truths, founds;
+      for (std::size_t k = 0; k < in.truth.size(); ++k) truths.push_back(truth_bin(p, k));
+      for (const auto& T : in.found) founds.push_back(found_bin(p, T));
       const std::vector<Counts> split =
-          count_all_matches_by(in, truth_bin, found_bin, kBins, tolerance);
-      for (int b = 0; b < kBins; ++b) {
+          count_all_matches_by(in, truths, founds, bins, evaluation.settings.tolerance);
+      for (int b = 0; b < bins; ++b) {
         counts[b].add(split[b]);
         if (split[b].tp + split[b].fp + split[b].fn > 0) ++pairs[b];
       }
     }
-    for (int b = 0; b < kBins; ++b) {
+    for (int b = 0; b < bins; ++b) {
       if (counts[b].tp + counts[b].fp + counts[b].fn == 0) continue;
-      char label[32];
-      std::snprintf(label, sizeof(label), "%.1f-%.1f m", b * bin_width, (b + 1) * bin_width);
       EvaluationRow row;
-      row.setting = label;
+      row.setting = label(b);
       row.assumption = assumption;
       row.counts = counts[b];
       row.pairs = pairs[b];
       row.median_translation_error = median(row.counts.translation_errors);
       row.median_rotation_error = median(row.counts.rotation_errors);
-      rows.push_back(row);
+      per_bin[b].push_back(row);
     }
   }
-  // Nearest first, assumption by assumption within a bin.
-  std::stable_sort(rows.begin(), rows.end(), [](const EvaluationRow& a, const EvaluationRow& b) {
-    return std::stod(a.setting) < std::stod(b.setting);
-  });
+  std::vector<EvaluationRow> rows;
+  for (const auto& bin : per_bin) rows.insert(rows.end(), bin.begin(), bin.end());
   return rows;
+}
+
+}  // namespace
+
+std::vector<EvaluationRow> evaluation_rows_by_range(const Evaluation& evaluation,
+                                                    std::optional<double> threshold,
+                                                    double bin_width) {
+  if (!(bin_width > 0.0)) throw Error("the range bins must be wider than 0 m");
+  const auto bin_of = [bin_width](const PairResult& p, const Eigen::Isometry3d& pose) {
+    return static_cast<int>(
+        std::floor((pose.translation() - p.sensor_position).norm() / bin_width));
+  };
+  return rows_by_bin(
+      evaluation, threshold.value_or(effective_threshold(evaluation.settings.find)),
+      static_cast<int>(std::ceil(10.0 / bin_width)),  // up to 10 m: beyond any depth sensor
+      [&](const PairResult& p, std::size_t k) { return bin_of(p, p.truth[k]); }, bin_of,
+      [bin_width](int b) {
+        char label[32];
+        std::snprintf(label, sizeof(label), "%.1f-%.1f m", b * bin_width, (b + 1) * bin_width);
+        return std::string(label);
+      });
+}
+
+std::vector<EvaluationRow> evaluation_rows_by_hidden(const Evaluation& evaluation,
+                                                     std::optional<double> threshold,
+                                                     double bin_width) {
+  if (!(bin_width > 0.0 && bin_width <= 1.0))
+    throw Error("the hidden-fraction bins must be wider than 0 and at most 1");
+  const bool recorded = std::any_of(evaluation.pairs.begin(), evaluation.pairs.end(),
+                                    [](const PairResult& p) { return !p.truth_hidden.empty(); });
+  if (!recorded) {
+    throw Error("dataset '" + evaluation.dataset +
+                "' records no hidden fraction of its instances (--by range works on any dataset)");
+  }
+  const int bins = static_cast<int>(std::ceil(1.0 / bin_width - 1e-9));
+  return rows_by_bin(
+      evaluation, threshold.value_or(effective_threshold(evaluation.settings.find)), bins,
+      [&](const PairResult& p, std::size_t k) {
+        if (k >= p.truth_hidden.size()) return -1;  // a pair without the record
+        return std::min(static_cast<int>(std::floor(p.truth_hidden[k] / bin_width)), bins - 1);
+      },
+      [](const PairResult&, const Eigen::Isometry3d&) { return -1; },
+      [bin_width](int b) {
+        char label[32];
+        std::snprintf(label, sizeof(label), "%.0f-%.0f%% hidden", 100.0 * b * bin_width,
+                      100.0 * std::min(1.0, (b + 1) * bin_width));
+        return std::string(label);
+      });
 }
 
 std::vector<EvaluationRow> evaluation_rows(const Evaluation& evaluation,

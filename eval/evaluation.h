@@ -43,6 +43,7 @@ struct PairResult {
   bool in_context = false;
   Symmetry symmetry;
   std::vector<Eigen::Isometry3d> truth;
+  std::vector<double> truth_hidden;  ///< the dataset's hidden fraction per instance, if it has them
   /// Every match the search kept with an error below twice the threshold, or twice the metric's
   /// default threshold if that is larger (see matches_within), best first. The threshold is applied
   /// afterwards, as the search's own selection does it (non-max suppression first, then the
@@ -104,6 +105,15 @@ std::vector<EvaluationRow> evaluation_rows(const Evaluation& evaluation,
 std::vector<EvaluationRow> evaluation_rows_by_range(const Evaluation& evaluation,
                                                     std::optional<double> threshold = {},
                                                     double bin_width = 0.5);
+
+/// Assumptions 1 (when every pair was searched) and 2, split by the hidden fraction of each
+/// ground-truth instance, in bins of `bin_width` ("20-40% hidden"): recall by how much of the
+/// landmark its sensor could not see. False matches hide nothing and count in no bin, so the
+/// precision of a bin is that of the matches on its instances. Throws lmk::Error when the dataset
+/// records no hidden fraction.
+std::vector<EvaluationRow> evaluation_rows_by_hidden(const Evaluation& evaluation,
+                                                     std::optional<double> threshold = {},
+                                                     double bin_width = 0.2);
 
 /// The cache key of a search configuration on a dataset: a hash of the settings that change
 /// results, the dataset fingerprint and the lmk version.

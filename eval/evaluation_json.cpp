@@ -67,7 +67,8 @@ json pair_result_to_json(const PairResult& p, double threshold, const MatchToler
           {"seconds", p.seconds},
           {"seeds", p.seeds},
           {"rejections", p.rejections},
-          {"sensor_position", vector_to_json(p.sensor_position)}};
+          {"sensor_position", vector_to_json(p.sensor_position)},
+          {"truth_hidden", p.truth_hidden}};
 }
 
 PairResult pair_result_from_json(const json& j, const std::string& where) {
@@ -87,6 +88,10 @@ PairResult pair_result_from_json(const json& j, const std::string& where) {
   p.seconds = get<double>(j, "seconds", where);
   p.seeds = get<std::size_t>(j, "seeds", where);
   p.rejections = get<std::string>(j, "rejections", where);
+  for (const json& h : json_field(j, "truth_hidden", where)) {
+    if (!h.is_number()) throw Error(where + ".truth_hidden: must hold numbers");
+    p.truth_hidden.push_back(h.get<double>());
+  }
   p.sensor_position =
       numbers_from_json(json_field(j, "sensor_position", where), 3, where + ".sensor_position");
   return p;

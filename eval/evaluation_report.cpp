@@ -1,5 +1,6 @@
 #include "eval/evaluation_report.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -100,13 +101,25 @@ constexpr const char* kRangeNote =
     "The same counts split by the distance from the sensor to each ground-truth instance (true "
     "positives, false negatives) or to each false match, in 0.5 m bins; assumptions 1 and 2.";
 
+constexpr const char* kHiddenNote =
+    "Recall by the fraction of each ground-truth instance that the scene's sensor does not see, in "
+    "20% bins; false matches hide nothing and count in no row; assumptions 1 and 2.";
+
+bool records_hidden(const Evaluation& e) {
+  return std::any_of(e.pairs.begin(), e.pairs.end(),
+                     [](const PairResult& p) { return !p.truth_hidden.empty(); });
+}
+
 std::string markdown(const Evaluation& e, const std::vector<EvaluationRow>& rows) {
   return "# lmk evaluation: " + e.dataset + "\n\n" + evaluation_header(e) + ".\n\nlmk " + kVersion +
          ", dataset fingerprint " + e.fingerprint + ", run " + format_optional(e.seconds, 1) +
          " s.\n\n## Precision and recall\n\n" + kAssumptionsNote + "\n\n" +
          evaluation_table(rows).markdown() + "\n## By range\n\n" + kRangeNote + "\n\n" +
-         evaluation_table(evaluation_rows_by_range(e)).markdown() + "\n## Pairs\n\n" +
-         pair_table(e).markdown();
+         evaluation_table(evaluation_rows_by_range(e)).markdown() +
+         (records_hidden(e) ? "\n## By hidden fraction\n\n" + std::string(kHiddenNote) + "\n\n" +
+                                  evaluation_table(evaluation_rows_by_hidden(e)).markdown()
+                            : std::string()) +
+         "\n## Pairs\n\n" + pair_table(e).markdown();
 }
 
 std::string html(const Evaluation& e, const std::vector<EvaluationRow>& rows) {
@@ -123,6 +136,10 @@ std::string html(const Evaluation& e, const std::vector<EvaluationRow>& rows) {
          " s.</p>\n<h2>Precision and recall</h2>\n<p>" + escape_html(kAssumptionsNote) + "</p>\n" +
          html_table(evaluation_table(rows)) + "<h2>By range</h2>\n<p>" + escape_html(kRangeNote) +
          "</p>\n" + html_table(evaluation_table(evaluation_rows_by_range(e))) +
+         (records_hidden(e)
+              ? "<h2>By hidden fraction</h2>\n<p>" + escape_html(kHiddenNote) + "</p>\n" +
+                    html_table(evaluation_table(evaluation_rows_by_hidden(e)))
+              : std::string()) +
          "<h2>Plots</h2>\n<figure>\n" + threshold_plot(e) + "</figure>\n<figure>\n" +
          times_plot(e) + "</figure>\n<h2>Pairs</h2>\n" + html_table(pair_table(e)) +
          "</body>\n</html>\n";
@@ -164,6 +181,7 @@ void write_evaluation_report(const std::string& dir, const Evaluation& e) {
   }
   j["threshold_curves"] = curves;
   j["rows_by_range"] = detail::rows_to_json(evaluation_rows_by_range(e));
+  if (records_hidden(e)) j["rows_by_hidden"] = detail::rows_to_json(evaluation_rows_by_hidden(e));
   write_text_atomically(fs::path(dir) / "report.json", j.dump(2) + "\n");
   write_text_atomically(fs::path(dir) / "report.md", markdown(e, rows));
   write_text_atomically(fs::path(dir) / "report.html", html(e, rows));

@@ -23,7 +23,7 @@ struct EvalOptions {
   DatasetOptions dataset;
   EvaluationSettings settings;
   std::string json, report;
-  std::string by;  ///< "range": also the table split by distance from the sensor
+  std::string by;  ///< "range" or "hidden": also the table split by that
 };
 
 int run_eval(EvalOptions& o) {
@@ -39,6 +39,11 @@ int run_eval(EvalOptions& o) {
         "\nby range (distance from the sensor to each instance, or to a false match):\n\n%s",
         evaluation_table(by_range).plain().c_str());
     json["rows_by_range"] = detail::rows_to_json(by_range);
+  } else if (o.by == "hidden") {
+    const std::vector<EvaluationRow> by_hidden = evaluation_rows_by_hidden(evaluation);
+    std::printf("\nby the hidden fraction of each instance (false matches in no row):\n\n%s",
+                evaluation_table(by_hidden).plain().c_str());
+    json["rows_by_hidden"] = detail::rows_to_json(by_hidden);
   }
   if (!o.json.empty()) write_text_atomically(o.json, json.dump(2) + "\n");
   if (!o.report.empty()) {
@@ -61,8 +66,9 @@ Subcommand add_eval(CLI::App& app) {
   add_evaluation_options(sub, o->settings);
   sub->add_option("--json", o->json, "Write the table and every pair's matches as JSON to FILE");
   sub->add_option("--by", o->by,
-                  "Also split the table by 'range': the distance from the sensor, in 0.5 m bins")
-      ->check(CLI::IsMember({"range"}));
+                  "Also split the table by 'range' (the distance from the sensor, 0.5 m bins) or "
+                  "'hidden' (the fraction of each instance the sensor does not see, 20% bins)")
+      ->check(CLI::IsMember({"range", "hidden"}));
   sub->add_option("--report", o->report,
                   "Write report.json, report.md and report.html (with plots) into DIR");
   return {sub, [o] { return run_eval(*o); }};

@@ -41,6 +41,29 @@ TEST(BenchmarkDataset, TheSamePresetAndSeedWriteTheSameContent) {
   EXPECT_TRUE(cloud.T_cloud_sensor.isApprox(loaded.scenes[0].T_scene_sensor, 1e-5));
 }
 
+// Every instance records how much of it the scene's sensor does not see; an unoccluded one in
+// plain view (a standalone cup) little, the ball inside touching bowls much.
+TEST(BenchmarkDataset, InstancesRecordTheirHiddenFraction) {
+  test::ScratchDir dir;
+  GenerateOptions options;
+  options.types = {"simple/bowl_and_cup", "cluttered/bowls_in_contact"};
+  const Dataset d = generate_benchmark_dataset(dir.path().string(), "paper", options);
+  std::size_t recorded = 0;
+  for (const DatasetScene& s : d.scenes) {
+    for (const DatasetPair& p : s.pairs) {
+      ASSERT_EQ(p.hidden.size(), p.instances.size()) << s.name << " " << p.landmark;
+      for (double h : p.hidden) {
+        EXPECT_GE(h, 0.0);
+        EXPECT_LE(h, 1.0);
+        ++recorded;
+      }
+    }
+  }
+  EXPECT_GT(recorded, 4u);
+  EXPECT_LT(d.pair(d.scenes[0], "cup").hidden.at(0), 0.2);
+  EXPECT_GT(d.pair(d.scenes[1], "ball").hidden.at(0), 0.4);
+}
+
 TEST(BenchmarkDataset, PresetsAndTheirSizes) {
   EXPECT_EQ(benchmark_preset("paper").seeds, 1);
   EXPECT_EQ(benchmark_preset("paper-x10").seeds, 10);

@@ -94,6 +94,25 @@ TEST_F(DatasetTest, ClearErrors) {
   EXPECT_THROW(load_dataset(dir_.file("nowhere")), Error);
 }
 
+TEST_F(DatasetTest, HiddenFractionsRoundTripAndAreChecked) {
+  dataset_.scenes[0].pairs[0].hidden = {0.25};
+  save_dataset(dir_.path().string(), dataset_);
+  const Dataset d = load_dataset(dir_.path().string());
+  EXPECT_EQ(d.pair(d.scenes[0], "bowl").hidden, std::vector<double>{0.25});
+  EXPECT_TRUE(d.pair(d.scenes[0], "cup").hidden.empty());  // optional
+  const auto expect = [](const std::string& message, const std::string& part) {
+    EXPECT_NE(message.find(part), std::string::npos) << message;
+  };
+  expect(error_after([](auto& j) {
+           j["scenes"][0]["pairs"][0]["hidden"] = {0.1, 0.2};
+         }),
+         "scenes[0].pairs[0].hidden: must be an array of one fraction per instance");
+  expect(error_after([](auto& j) { j["scenes"][0]["pairs"][0]["hidden"] = {1.5}; }),
+         "scenes[0].pairs[0].hidden[0]: must be a fraction in [0, 1]");
+  dataset_.scenes[0].pairs[0].hidden = {0.1, 0.2};
+  EXPECT_THROW(save_dataset(dir_.path().string(), dataset_), Error);
+}
+
 TEST_F(DatasetTest, SaveRefusesAnInconsistentDataset) {
   dataset_.scenes[0].pairs[0].landmark = "plate";
   EXPECT_THROW(save_dataset(dir_.path().string(), dataset_), Error);

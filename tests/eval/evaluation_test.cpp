@@ -17,6 +17,7 @@
 #include "eval/evaluation_report.h"
 #include "eval/evaluation_table.h"
 #include "geometry/error.h"
+#include "geometry/pose.h"
 #include "tests/support/test_support.h"
 
 namespace lmk {
@@ -166,6 +167,28 @@ Evaluation hand_made() {
   nothing.found.clear();
   e.pairs = {found, nothing};
   return e;
+}
+
+// Recall by hidden fraction: each instance in its bin, false matches in none.
+TEST(EvaluationByHidden, InstancesCountInTheirBinAndFalseMatchesInNone) {
+  Evaluation e = hand_made();
+  EXPECT_THROW(evaluation_rows_by_hidden(e), Error);  // nothing recorded
+  PairResult& p = e.pairs[0];
+  p.truth = {Eigen::Isometry3d::Identity(), pose_from_xyz_rpy({1, 0, 0}, {0, 0, 0})};
+  p.truth_hidden = {0.1, 0.5};
+  p.found.push_back({Box(pose_from_xyz_rpy({3, 0, 0}, {0, 0, 0}), {0.1, 0.1, 0.1}), 0.003, {}});
+  const std::vector<EvaluationRow> rows = evaluation_rows_by_hidden(e);
+  ASSERT_EQ(rows.size(), 4u);  // two bins, assumptions 1 and 2
+  EXPECT_EQ(rows[0].setting, "0-20% hidden");
+  EXPECT_EQ(rows[0].counts.tp, 1u);
+  EXPECT_EQ(rows[0].counts.fp, 0u);
+  EXPECT_EQ(rows[2].setting, "40-60% hidden");
+  EXPECT_EQ(rows[2].counts.fn, 1u);
+  EXPECT_EQ(rows[2].counts.tp + rows[2].counts.fp, 0u);
+  // The JSON carries the record.
+  const PairResult back =
+      detail::pair_result_from_json(detail::pair_result_to_json(p, 0.006, {}), "pair");
+  EXPECT_EQ(back.truth_hidden, p.truth_hidden);
 }
 
 TEST(EvaluationJson, TheIssueSchemaWithNullForUndefinedPrecision) {
