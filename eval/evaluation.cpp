@@ -322,14 +322,17 @@ std::vector<EvaluationRow> evaluation_rows_by_range(const Evaluation& evaluation
       });
 }
 
+bool records_hidden_fractions(const Evaluation& evaluation) {
+  return std::any_of(evaluation.pairs.begin(), evaluation.pairs.end(),
+                     [](const PairResult& p) { return !p.truth_hidden.empty(); });
+}
+
 std::vector<EvaluationRow> evaluation_rows_by_hidden(const Evaluation& evaluation,
                                                      std::optional<double> threshold,
                                                      double bin_width) {
   if (!(bin_width > 0.0 && bin_width <= 1.0))
     throw Error("the hidden-fraction bins must be wider than 0 and at most 1");
-  const bool recorded = std::any_of(evaluation.pairs.begin(), evaluation.pairs.end(),
-                                    [](const PairResult& p) { return !p.truth_hidden.empty(); });
-  if (!recorded) {
+  if (!records_hidden_fractions(evaluation)) {
     throw Error("dataset '" + evaluation.dataset +
                 "' records no hidden fraction of its instances (--by range works on any dataset)");
   }

@@ -106,6 +106,9 @@ std::vector<EvaluationRow> evaluation_rows_by_range(const Evaluation& evaluation
                                                     std::optional<double> threshold = {},
                                                     double bin_width = 0.5);
 
+/// Whether the evaluated dataset records the hidden fraction of its instances (pairs[].hidden).
+bool records_hidden_fractions(const Evaluation& evaluation);
+
 /// Assumptions 1 (when every pair was searched) and 2, split by the hidden fraction of each
 /// ground-truth instance, in bins of `bin_width` ("20-40% hidden"): recall by how much of the
 /// landmark its sensor could not see. False matches hide nothing and count in no bin, so the

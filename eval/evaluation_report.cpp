@@ -105,24 +105,25 @@ constexpr const char* kHiddenNote =
     "Recall by the fraction of each ground-truth instance that the scene's sensor does not see, in "
     "20% bins; false matches hide nothing and count in no row; assumptions 1 and 2.";
 
-bool records_hidden(const Evaluation& e) {
-  return std::any_of(e.pairs.begin(), e.pairs.end(),
-                     [](const PairResult& p) { return !p.truth_hidden.empty(); });
-}
+// The report's tables, each computed once for the JSON, the Markdown and the HTML.
+struct ReportTables {
+  std::vector<EvaluationRow> rows, by_range;
+  std::vector<EvaluationRow> by_hidden;  ///< empty when the dataset records no hidden fraction
+};
 
-std::string markdown(const Evaluation& e, const std::vector<EvaluationRow>& rows) {
+std::string markdown(const Evaluation& e, const ReportTables& t) {
   return "# lmk evaluation: " + e.dataset + "\n\n" + evaluation_header(e) + ".\n\nlmk " + kVersion +
          ", dataset fingerprint " + e.fingerprint + ", run " + format_optional(e.seconds, 1) +
          " s.\n\n## Precision and recall\n\n" + kAssumptionsNote + "\n\n" +
-         evaluation_table(rows).markdown() + "\n## By range\n\n" + kRangeNote + "\n\n" +
-         evaluation_table(evaluation_rows_by_range(e)).markdown() +
-         (records_hidden(e) ? "\n## By hidden fraction\n\n" + std::string(kHiddenNote) + "\n\n" +
-                                  evaluation_table(evaluation_rows_by_hidden(e)).markdown()
-                            : std::string()) +
+         evaluation_table(t.rows).markdown() + "\n## By range\n\n" + kRangeNote + "\n\n" +
+         evaluation_table(t.by_range).markdown() +
+         (t.by_hidden.empty() ? std::string()
+                              : "\n## By hidden fraction\n\n" + std::string(kHiddenNote) + "\n\n" +
+                                    evaluation_table(t.by_hidden).markdown()) +
          "\n## Pairs\n\n" + pair_table(e).markdown();
 }
 
-std::string html(const Evaluation& e, const std::vector<EvaluationRow>& rows) {
+std::string html(const Evaluation& e, const ReportTables& t) {
   return "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>lmk "
          "evaluation: " +
          escape_html(e.dataset) +
@@ -134,12 +135,11 @@ std::string html(const Evaluation& e, const std::vector<EvaluationRow>& rows) {
          ".</p>\n<p>lmk " + kVersion + ", dataset fingerprint <code>" + e.fingerprint +
          "</code>, run " + format_optional(e.seconds, 1) +
          " s.</p>\n<h2>Precision and recall</h2>\n<p>" + escape_html(kAssumptionsNote) + "</p>\n" +
-         html_table(evaluation_table(rows)) + "<h2>By range</h2>\n<p>" + escape_html(kRangeNote) +
-         "</p>\n" + html_table(evaluation_table(evaluation_rows_by_range(e))) +
-         (records_hidden(e)
-              ? "<h2>By hidden fraction</h2>\n<p>" + escape_html(kHiddenNote) + "</p>\n" +
-                    html_table(evaluation_table(evaluation_rows_by_hidden(e)))
-              : std::string()) +
+         html_table(evaluation_table(t.rows)) + "<h2>By range</h2>\n<p>" + escape_html(kRangeNote) +
+         "</p>\n" + html_table(evaluation_table(t.by_range)) +
+         (t.by_hidden.empty() ? std::string()
+                              : "<h2>By hidden fraction</h2>\n<p>" + escape_html(kHiddenNote) +
+                                    "</p>\n" + html_table(evaluation_table(t.by_hidden))) +
          "<h2>Plots</h2>\n<figure>\n" + threshold_plot(e) + "</figure>\n<figure>\n" +
          times_plot(e) + "</figure>\n<h2>Pairs</h2>\n" + html_table(pair_table(e)) +
          "</body>\n</html>\n";
@@ -166,8 +166,11 @@ void write_evaluation_report(const std::string& dir, const Evaluation& e) {
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) throw Error(dir + ": cannot create the report directory (" + ec.message() + ")");
-  const std::vector<EvaluationRow> rows = evaluation_rows(e);
-  json j = detail::evaluation_to_json(e, rows);
+  ReportTables tables;
+  tables.rows = evaluation_rows(e);
+  tables.by_range = evaluation_rows_by_range(e);
+  if (records_hidden_fractions(e)) tables.by_hidden = evaluation_rows_by_hidden(e);
+  json j = detail::evaluation_to_json(e, tables.rows);
   json curves = json::array();
   for (const std::string& setting : evaluation_settings(e)) {
     json points = json::array();
@@ -180,11 +183,11 @@ void write_evaluation_report(const std::string& dir, const Evaluation& e) {
         {{"setting", setting}, {"assumption", curve_assumption(e)}, {"points", points}});
   }
   j["threshold_curves"] = curves;
-  j["rows_by_range"] = detail::rows_to_json(evaluation_rows_by_range(e));
-  if (records_hidden(e)) j["rows_by_hidden"] = detail::rows_to_json(evaluation_rows_by_hidden(e));
+  j["rows_by_range"] = detail::rows_to_json(tables.by_range);
+  if (!tables.by_hidden.empty()) j["rows_by_hidden"] = detail::rows_to_json(tables.by_hidden);
   write_text_atomically(fs::path(dir) / "report.json", j.dump(2) + "\n");
-  write_text_atomically(fs::path(dir) / "report.md", markdown(e, rows));
-  write_text_atomically(fs::path(dir) / "report.html", html(e, rows));
+  write_text_atomically(fs::path(dir) / "report.md", markdown(e, tables));
+  write_text_atomically(fs::path(dir) / "report.html", html(e, tables));
 }
 
 }  // namespace lmk

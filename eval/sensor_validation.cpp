@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <limits>
 
+#include "eval/scene_types.h"
 #include "geometry/cloud_io.h"
 #include "geometry/error.h"
 #include "geometry/statistics.h"
@@ -255,6 +256,22 @@ DepthEdgeCount count_depth_edges(const PointCloud& cloud) {
       ++count.edges;
       if (z > 1.015 * near && z < far / 1.015) ++count.mixed;
     }
+  }
+  return count;
+}
+
+DepthEdgeCount simulated_depth_edges(
+    const DepthSensorSettings& sensor,
+    const std::function<void(std::size_t, std::size_t)>& progress) {
+  // Flying pixels need whole scenes with depth edges: the benchmark's, seen by the model.
+  const std::vector<std::string>& types = scene_types();
+  DepthEdgeCount count;
+  for (std::size_t i = 0; i < types.size(); ++i) {
+    const GeneratedScene scene = make_scene(types[i], 1, false);
+    DepthSensorSettings s = sensor;
+    s.seed = i;
+    count.add(count_depth_edges(render_depth(scene.mesh, scene.T_world_sensor, s)));
+    if (progress) progress(i + 1, types.size());
   }
   return count;
 }

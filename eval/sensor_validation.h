@@ -6,6 +6,7 @@
 // - the residual spread about the plane (a robust standard deviation), and
 // - the spacing of the depth levels (the disparity's quantisation, then the driver's millimetres).
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -87,6 +88,12 @@ struct DepthEdgeCount {
   }
 };
 DepthEdgeCount count_depth_edges(const PointCloud& organised);
+
+/// The simulated side of that count: the benchmark's scene types (seed 1), rendered by `sensor`,
+/// each with its own noise seed. `progress` is called after each scene with (done, in all).
+DepthEdgeCount simulated_depth_edges(
+    const DepthSensorSettings& sensor,
+    const std::function<void(std::size_t, std::size_t)>& progress = {});
 
 /// The real Kinect frames of the shared data (../shared/data layout) that the validation uses:
 /// mOSD's learn frames and the PCL frames from a Kinect (not the stereo one). Missing files are

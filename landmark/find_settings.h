@@ -201,7 +201,8 @@ void for_each_settings_group(Find& s, F&& f) {
 bool settings_group_affects(const std::string& method, const std::string& group);
 
 /// Throws lmk::Error naming the stage, the field and its flag for the first setting out of its
-/// limits ("find: fast.max_tilt (--max-tilt): 4 must be finite and in [0, 3.14159]").
+/// limits, in the flag's unit ("find: fast.max_tilt (--max-tilt): 229.18 must be finite and in
+/// [0, 180] degrees").
 void validate(const FindSettings& settings);
 
 /// Sets the setting whose key is `key` ("max-tilt"; the field name "max_tilt" and "method" work

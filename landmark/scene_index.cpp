@@ -45,6 +45,7 @@ SceneIndex::SceneIndex(const PointCloud& scene, const SceneSettings& settings)
   // The grids are built side by side: the occupancy (raw points) beside the voxel moments, then
   // the distance field from the centroids beside the normals and the k-d tree, so that neither
   // thread waits on the other's serial steps.
+  const DistanceFieldSettings field_settings{settings.coarse_leaf, settings.effective_field_band()};
   tbb::parallel_invoke([&] { occupancy_ = OccupancyGrid(cropped_.points, settings.leaf_size); },
                        [&] {
                          const VoxelMoments moments(cropped_, settings.coarse_leaf);
@@ -52,11 +53,7 @@ SceneIndex::SceneIndex(const PointCloud& scene, const SceneSettings& settings)
                          coarse_.set_unorganized();
                          coarse_.T_cloud_sensor = scene.T_cloud_sensor;
                          tbb::parallel_invoke(
-                             [&] {
-                               field_ = DistanceField(
-                                   coarse_.points,
-                                   {settings.coarse_leaf, settings.effective_field_band()});
-                             },
+                             [&] { field_ = DistanceField(coarse_.points, field_settings); },
                              [&] {
                                // Normals from a block of two leaves (about 2 cm at the default 1
                                // cm): fine enough for a carton's edges, and pooled from the raw

@@ -37,23 +37,17 @@ int run_sensor_check(const SensorCheckOptions& o) {
   std::size_t patches = 0;
   DepthEdgeCount real_edges, simulated_edges;
   {
-    const std::vector<std::string>& types = scene_types();
+    const std::size_t scenes = scene_types().size();
     ProgressBar bar("sensor-check");
     for (std::size_t i = 0; i < files.size(); ++i) {
       const RealFrame frame = load_sensor_validation_frame(files[i]);
       patches += validation.add_frame(frame.cloud, frame.keep);
       real_edges.add(count_depth_edges(frame.cloud));
-      bar.update(i + 1, files.size() + types.size());
+      bar.update(i + 1, files.size() + scenes);
     }
-    // Flying pixels need whole scenes with depth edges: the benchmark's, seen by the model.
-    for (std::size_t i = 0; i < types.size(); ++i) {
-      const GeneratedScene scene = make_scene(types[i], 1, false);
-      DepthSensorSettings sensor = o.sensor;
-      sensor.seed = i;
-      simulated_edges.add(
-          count_depth_edges(render_depth(scene.mesh, scene.T_world_sensor, sensor)));
-      bar.update(files.size() + i + 1, files.size() + types.size());
-    }
+    simulated_edges = simulated_depth_edges(o.sensor, [&](std::size_t done, std::size_t) {
+      bar.update(files.size() + done, files.size() + scenes);
+    });
   }
   const std::vector<SensorRangeComparison> rows = validation.compare(o.min_patches);
   std::printf("%zu planar patches in %zu real frames; simulated twins from the same pixels\n\n",

@@ -79,15 +79,10 @@ TEST(SensorValidation, SimulatedKinectAgreesWithRealPlanes) {
 // benchmark's scenes seen by the model, within 30% of each other.
 TEST(SensorValidation, FlyingPixelsAreAsRareAsInRealFrames) {
   LMK_REQUIRE_SHARED_DATA(data);
-  DepthEdgeCount real, simulated;
+  DepthEdgeCount real;
   for (const std::string& file : sensor_validation_files(data.string()))
     real.add(count_depth_edges(load_sensor_validation_frame(file).cloud));
-  for (std::size_t i = 0; i < scene_types().size(); ++i) {
-    const GeneratedScene scene = make_scene(scene_types()[i], 1, false);
-    DepthSensorSettings sensor;
-    sensor.seed = i;
-    simulated.add(count_depth_edges(render_depth(scene.mesh, scene.T_world_sensor, sensor)));
-  }
+  const DepthEdgeCount simulated = simulated_depth_edges(DepthSensorSettings());
   ASSERT_GT(real.edges, 10000u);
   ASSERT_GT(simulated.edges, 10000u);
   EXPECT_NEAR(simulated.rate() / real.rate(), 1.0, 0.3)
