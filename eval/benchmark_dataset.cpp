@@ -6,6 +6,7 @@
 
 #include "eval/depth_sensor.h"
 #include "eval/instance_visibility.h"
+#include "eval/scene_variations.h"
 #include "geometry/cloud_io.h"
 #include "geometry/error.h"
 #include "geometry/hash.h"
@@ -78,6 +79,14 @@ const std::vector<BenchmarkPreset>& benchmark_presets() {
       {"paper-x10", "the paper's 17 scene types, ten scenes each", 10, false},
       {"rotations", "the 17 scene types with strong rotations and tilts, three scenes each", 3,
        true},
+      {"viewpoints",
+       "the 17 scene types seen from 0.7-3.5 m, within 60 degrees of the demonstration's side and "
+       "0.8-1.8 m high, six scenes each",
+       6, false, SceneVariation::viewpoints},
+      {"occlusion",
+       "the 17 scene types with boxes touching or in front of each landmark instance, hiding 0-60% "
+       "of it, four scenes each",
+       4, false, SceneVariation::occlusion},
   };
   return all;
 }
@@ -105,10 +114,14 @@ Landmark capture_benchmark_landmark(const BenchmarkLandmark& landmark, bool nois
   return capture(cloud, it->second.front(), landmark.name, settings);
 }
 
-std::string benchmark_scene_name(const std::string& type, std::uint64_t seed, bool hard) {
+std::string benchmark_scene_name(const std::string& type, std::uint64_t seed, bool hard,
+                                 SceneVariation variation) {
   std::string name = type;
   std::replace(name.begin(), name.end(), '/', '-');
-  return name + "-" + std::to_string(seed) + (hard ? "-hard" : "");
+  name += "-" + std::to_string(seed) + (hard ? "-hard" : "");
+  if (variation == SceneVariation::viewpoints) name += "-viewpoints";
+  if (variation == SceneVariation::occlusion) name += "-occlusion";
+  return name;
 }
 
 Dataset generate_benchmark_dataset(const std::string& dir, const std::string& preset_name,
@@ -153,9 +166,14 @@ Dataset generate_benchmark_dataset(const std::string& dir, const std::string& pr
   for (const std::string& type : types) {
     for (int k = 0; k < seeds; ++k) {
       const std::uint64_t seed = options.first_seed + static_cast<std::uint64_t>(k);
-      const GeneratedScene scene = make_scene(type, seed, hard);
       DatasetScene entry;
-      entry.name = benchmark_scene_name(type, seed, hard);
+      entry.name = benchmark_scene_name(type, seed, hard, preset.variation);
+      GeneratedScene scene = make_scene(type, seed, hard);
+      const std::uint64_t variation_seed = noise_seed(entry.name);
+      if (preset.variation == SceneVariation::viewpoints)
+        view_from_random_viewpoint(scene, captured, variation_seed);
+      if (preset.variation == SceneVariation::occlusion)
+        add_occluders(scene, captured, variation_seed);
       entry.file = "scenes/" + entry.name + ".pcd";
       entry.setting = scene.setting;
       entry.T_scene_sensor = scene.T_world_sensor;

@@ -17,7 +17,15 @@ namespace lmk {
 
 /// Bumped whenever the generator's output changes (objects, scene types, sensor, capture), so that
 /// cached benchmark datasets are regenerated.
-inline constexpr int kBenchmarkGeneratorVersion = 3;  // 3: the Kinect model of lmk sensor-check
+// 3: the Kinect model of lmk sensor-check; 4: the viewpoints and occlusion presets
+inline constexpr int kBenchmarkGeneratorVersion = 4;
+
+/// What a preset changes in the generated scenes (eval/scene_variations.h).
+enum class SceneVariation {
+  none,
+  viewpoints,  ///< each scene seen from a random place 0.7-3.5 m from its first landmark instance
+  occlusion,   ///< boxes touching or in front of each in-context instance hide 0-60% of it
+};
 
 /// A named recipe for a benchmark dataset.
 struct BenchmarkPreset {
@@ -25,10 +33,12 @@ struct BenchmarkPreset {
   std::string description;
   int seeds = 1;      ///< scenes per scene type
   bool hard = false;  ///< strong rotations and tilts (make_scene's hard variants)
+  SceneVariation variation = SceneVariation::none;
 };
 
-/// "paper" (the 17 types, one seed each), "paper-x10" (ten seeds each) and "rotations" (the hard
-/// variants, three seeds each).
+/// "paper" (the 17 types, one seed each), "paper-x10" (ten seeds each), "rotations" (the hard
+/// variants, three seeds each), "viewpoints" (six seeds each, seen from new places) and
+/// "occlusion" (four seeds each, with occluders).
 const std::vector<BenchmarkPreset>& benchmark_presets();
 /// The preset called `name`; throws lmk::Error listing the known ones otherwise.
 const BenchmarkPreset& benchmark_preset(const std::string& name);
@@ -49,8 +59,10 @@ struct GenerateOptions {
 /// hard), in the world frame (z up), with the box of the scene's first instance of it.
 Landmark capture_benchmark_landmark(const BenchmarkLandmark& landmark, bool noise = true);
 
-/// The dataset scene name for a scene type and seed: "simple-bowl_and_cup-3", "...-3-hard".
-std::string benchmark_scene_name(const std::string& type, std::uint64_t seed, bool hard);
+/// The dataset scene name for a scene type and seed: "simple-bowl_and_cup-3", "...-3-hard", and
+/// with a variation "...-3-viewpoints", "...-3-occlusion".
+std::string benchmark_scene_name(const std::string& type, std::uint64_t seed, bool hard,
+                                 SceneVariation variation = SceneVariation::none);
 
 /// Writes the preset into `dir` (created if absent): landmarks/NAME.lmk, scenes/NAME.pcd (organised
 /// 640x480 frames in the world frame, the sensor pose in the PCD VIEWPOINT) and dataset.json,

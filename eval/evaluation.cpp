@@ -125,6 +125,7 @@ PairInput matches_within(const PairResult& pair, double threshold) {
   in.truth = pair.truth;
   in.symmetry = pair.symmetry;
   in.in_context = pair.in_context;
+  for (double hidden : pair.truth_hidden) in.ignored.push_back(hidden >= kIgnoredHiddenFraction);
   for (const FoundBox& f : pair.found) {
     if (f.error < threshold) in.found.push_back(f.box.pose);
   }

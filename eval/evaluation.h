@@ -57,7 +57,13 @@ struct PairResult {
   bool from_cache = false;  ///< read from the cache rather than searched in this run
 };
 
-/// The matches of `pair` with an error below `threshold`, as PairInput for the protocol.
+/// An instance of which the sensor sees less than a fifth of the landmark (its recorded hidden
+/// fraction is at least this) is ignored by the protocol: effectively unseen, as an object out of
+/// the view, so neither a miss nor, when found, a false positive.
+inline constexpr double kIgnoredHiddenFraction = 0.8;
+
+/// The matches of `pair` with an error below `threshold`, as PairInput for the protocol, with
+/// instances hidden at least kIgnoredHiddenFraction ignored.
 PairInput matches_within(const PairResult& pair, double threshold);
 
 /// One row of the paper's table.

@@ -77,14 +77,16 @@ std::vector<std::optional<std::size_t>> assign_matches(const PairInput& pair,
 Counts count_all_matches(const PairInput& pair, const MatchTolerance& tolerance) {
   Counts c;
   const auto assigned = assign_matches(pair, tolerance);
+  std::vector<char> matched(pair.truth.size(), 0);
   for (std::size_t k = 0; k < assigned.size(); ++k) {
-    if (assigned[k]) {
-      record_tp(c, pair.truth[*assigned[k]], pair.found[k], pair.symmetry);
-    } else {
+    if (!assigned[k]) {
       ++c.fp;
+    } else if (!pair.is_ignored(*assigned[k])) {
+      matched[*assigned[k]] = 1;
+      record_tp(c, pair.truth[*assigned[k]], pair.found[k], pair.symmetry);
     }
   }
-  c.fn = pair.truth.size() - c.tp;
+  for (std::size_t t = 0; t < pair.truth.size(); ++t) c.fn += !matched[t] && !pair.is_ignored(t);
   return c;
 }
 
@@ -96,33 +98,31 @@ std::vector<Counts> count_all_matches_by(const PairInput& pair, const std::vecto
   const auto assigned = assign_matches(pair, tolerance);
   std::vector<char> matched(pair.truth.size(), 0);
   for (std::size_t k = 0; k < assigned.size(); ++k) {
-    if (assigned[k]) {
+    if (!assigned[k]) {
+      if (in(found_bin[k])) ++out[found_bin[k]].fp;
+    } else if (!pair.is_ignored(*assigned[k])) {
       matched[*assigned[k]] = 1;
       const int bin = truth_bin[*assigned[k]];
       if (in(bin)) record_tp(out[bin], pair.truth[*assigned[k]], pair.found[k], pair.symmetry);
-    } else if (in(found_bin[k])) {
-      ++out[found_bin[k]].fp;
     }
   }
   for (std::size_t t = 0; t < pair.truth.size(); ++t) {
-    if (!matched[t] && in(truth_bin[t])) ++out[truth_bin[t]].fn;
+    if (!matched[t] && !pair.is_ignored(t) && in(truth_bin[t])) ++out[truth_bin[t]].fn;
   }
   return out;
 }
 
 Counts count_best_match(const PairInput& pair, const MatchTolerance& tolerance) {
   Counts c;
-  if (pair.truth.empty()) {
-    c.fp = pair.found.empty() ? 0 : 1;
-    return c;
-  }
+  bool any_to_find = false;
+  for (std::size_t t = 0; t < pair.truth.size(); ++t) any_to_find |= !pair.is_ignored(t);
   if (pair.found.empty()) {
-    c.fn = 1;
+    c.fn = any_to_find ? 1 : 0;
     return c;
   }
   const std::vector<char> none_taken(pair.truth.size(), 0);
   if (const auto i = match(pair, pair.found.front(), none_taken, tolerance)) {
-    record_tp(c, pair.truth[*i], pair.found.front(), pair.symmetry);
+    if (!pair.is_ignored(*i)) record_tp(c, pair.truth[*i], pair.found.front(), pair.symmetry);
   } else {
     c.fp = 1;
   }

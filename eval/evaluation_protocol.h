@@ -29,6 +29,12 @@ struct PairInput {
   std::vector<Eigen::Isometry3d> found;  ///< returned box poses, best (lowest error) first
   Symmetry symmetry;
   bool in_context = true;
+  /// Per ground-truth instance (empty: none): an instance the sensor hardly sees. Nobody is blamed
+  /// for missing it, and a pose on it is no false positive either: it counts nowhere.
+  std::vector<char> ignored;
+  bool is_ignored(std::size_t instance) const {
+    return instance < ignored.size() && ignored[instance];
+  }
 };
 
 struct Counts {
@@ -51,12 +57,13 @@ std::vector<std::optional<std::size_t>> assign_matches(const PairInput& pair,
 /// Assumptions 1 and 2 for one pair: each returned pose, best first, is a true positive when its
 /// centre is within tolerance of a ground-truth instance not already matched (the nearest such) and
 /// its rotation error is within tolerance; otherwise a false positive. Unmatched instances are
-/// false negatives. Duplicates on one instance therefore count once.
+/// false negatives. Duplicates on one instance therefore count once. Ignored instances and the
+/// poses matched to them count nowhere.
 Counts count_all_matches(const PairInput& pair, const MatchTolerance& tolerance = {});
 
 /// Assumption 3 for one pair, the best match only: with ground truth, TP if the best match is
 /// correct, FP if it is wrong, FN if nothing was returned; without ground truth, FP if anything was
-/// returned.
+/// returned. Ignored instances are no ground truth to miss, and a best match on one counts nowhere.
 Counts count_best_match(const PairInput& pair, const MatchTolerance& tolerance = {});
 
 /// Assumptions 1 and 2 for one pair, split into bins of a per-item quantity (the range, the hidden

@@ -9,26 +9,44 @@
 
 namespace lmk {
 
-double hidden_fraction(const Landmark& landmark, const Box& instance, const PointCloud& exact,
-                       const DepthSensorSettings& s, double tolerance) {
-  if (landmark.points.empty()) return 0.0;
+std::vector<Eigen::Vector3d> points_on_instance(const Landmark& landmark, const Box& instance) {
+  const Eigen::Isometry3d T_world_capture = instance.pose * landmark.box.pose.inverse();
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(landmark.points.size());
+  for (const Eigen::Vector3f& q : landmark.points.points)
+    out.push_back(T_world_capture * q.cast<double>());
+  return out;
+}
+
+std::vector<char> seen_on_instance(const Landmark& landmark, const Box& instance,
+                                   const PointCloud& exact, const DepthSensorSettings& s,
+                                   double tolerance) {
   if (exact.width != static_cast<std::uint32_t>(s.width) ||
       exact.height != static_cast<std::uint32_t>(s.height))
-    throw Error("hidden_fraction: the frame is not the sensor's size");
+    throw Error("seen_on_instance: the frame is not the sensor's size");
   const Eigen::Isometry3d T_sensor_world = exact.T_cloud_sensor.inverse();
-  const Eigen::Isometry3d T_world_capture = instance.pose * landmark.box.pose.inverse();
-  std::size_t seen = 0;
-  for (const Eigen::Vector3f& q : landmark.points.points) {
-    const Eigen::Vector3d p = T_sensor_world * (T_world_capture * q.cast<double>());
+  std::vector<char> seen;
+  seen.reserve(landmark.points.size());
+  for (const Eigen::Vector3d& world : points_on_instance(landmark, instance)) {
+    const Eigen::Vector3d p = T_sensor_world * world;
+    seen.push_back(0);
     if (!(p.z() > 0.0)) continue;
     const long u = std::lround(s.fx * p.x() / p.z() + s.cx);
     const long v = std::lround(s.fy * p.y() / p.z() + s.cy);
     if (u < 0 || v < 0 || u >= s.width || v >= s.height) continue;
     const Eigen::Vector3f& hit = exact.points[static_cast<std::size_t>(v) * s.width + u];
     if (!is_finite(hit)) continue;
-    if (std::abs((T_sensor_world * hit.cast<double>()).z() - p.z()) <= tolerance) ++seen;
+    seen.back() = std::abs((T_sensor_world * hit.cast<double>()).z() - p.z()) <= tolerance;
   }
-  return 1.0 - static_cast<double>(seen) / static_cast<double>(landmark.points.size());
+  return seen;
+}
+
+double hidden_fraction(const Landmark& landmark, const Box& instance, const PointCloud& exact,
+                       const DepthSensorSettings& s, double tolerance) {
+  const std::vector<char> seen = seen_on_instance(landmark, instance, exact, s, tolerance);
+  if (seen.empty()) return 0.0;
+  return 1.0 - static_cast<double>(std::count(seen.begin(), seen.end(), 1)) /
+                   static_cast<double>(seen.size());
 }
 
 Eigen::Isometry3d random_viewpoint(const Eigen::Vector3d& target, const Eigen::Vector3d& reference,

@@ -4,6 +4,7 @@
 // by it and an instance nobody could see is not held against a method.
 
 #include <Eigen/Geometry>
+#include <vector>
 
 #include "eval/depth_sensor.h"
 #include "geometry/box.h"
@@ -11,6 +12,17 @@
 #include "landmark/landmark.h"
 
 namespace lmk {
+
+/// `landmark`'s captured points moved from their capture box onto `instance` (a box pose of the
+/// landmark in the world), world frame, in the landmark's point order.
+std::vector<Eigen::Vector3d> points_on_instance(const Landmark& landmark, const Box& instance);
+
+/// For each point of points_on_instance, whether a sensor sees it: it projects into the image and
+/// the exact frame `exact` (rendered without noise by `sensor`, with its pose) holds a surface
+/// within `tolerance` of its depth at that pixel.
+std::vector<char> seen_on_instance(const Landmark& landmark, const Box& instance,
+                                   const PointCloud& exact, const DepthSensorSettings& sensor,
+                                   double tolerance = 0.015);
 
 /// The fraction of `landmark`'s captured points that a sensor does not see on the instance
 /// `instance` (a box pose of the landmark in the world): each point, moved from its capture box

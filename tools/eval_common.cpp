@@ -58,6 +58,8 @@ LoadedDataset load_or_generate(const DatasetOptions& o, const std::string& cache
         cache_dir.empty() ? (fs::temp_directory_path() / "lmk-datasets").string() : cache_dir;
     std::fprintf(stderr, "dataset: preset '%s' (generated on first use into %s/datasets)\n",
                  preset.c_str(), home.c_str());
+    ProgressBar bar("generate");  // draws only when the dataset is not cached yet
+    generate.progress = [&bar](std::size_t done, std::size_t total) { bar.update(done, total); };
     data.dir = cached_benchmark_dataset(home, preset, generate);
   }
   data.dataset = load_dataset(data.dir);

@@ -132,6 +132,38 @@ TEST(CountAssumptions, PairsWithoutGroundTruthAndOutOfContextPairs) {
   EXPECT_DOUBLE_EQ(*counts[2].recall(), 1.0);
 }
 
+// An instance the sensor hardly sees counts nowhere: not missed, and a pose on it is no false
+// positive; a pose elsewhere still is one.
+TEST(CountAllMatches, IgnoredInstancesCountNowhere) {
+  PairInput pair;
+  pair.truth = {at(0, 0), at(0.5, 0)};
+  pair.ignored = {0, 1};
+  pair.found = {};
+  Counts c = count_all_matches(pair);
+  EXPECT_EQ(c.tp + c.fp + c.fn, 1u);
+  EXPECT_EQ(c.fn, 1u);
+  pair.found = {at(0.5, 0), at(0, 0), at(1.0, 0)};  // the ignored one, the other, nothing
+  c = count_all_matches(pair);
+  EXPECT_EQ(c.tp, 1u);
+  EXPECT_EQ(c.fp, 1u);
+  EXPECT_EQ(c.fn, 0u);
+  const std::vector<Counts> bins = count_all_matches_by(pair, {0, 1}, {1, 0, 0}, 2);
+  EXPECT_EQ(bins[0].tp, 1u);
+  EXPECT_EQ(bins[0].fp, 1u);
+  EXPECT_EQ(bins[1].tp + bins[1].fp + bins[1].fn, 0u);
+  // Best match only: on the ignored instance it counts nowhere; with only ignored instances,
+  // finding nothing is no miss.
+  pair.found = {at(0.5, 0)};
+  c = count_best_match(pair);
+  EXPECT_EQ(c.tp + c.fp + c.fn, 0u);
+  pair.ignored = {1, 1};
+  pair.found = {};
+  c = count_best_match(pair);
+  EXPECT_EQ(c.tp + c.fp + c.fn, 0u);
+  pair.found = {at(1.0, 0)};
+  EXPECT_EQ(count_best_match(pair).fp, 1u);
+}
+
 TEST(Counts, EmptyOutputsHaveNoPrecision) {
   PairInput miss{{at(0, 0)}, {}, {}, true};
   const auto counts = count_assumptions({miss});
