@@ -71,16 +71,19 @@ std::string threshold_plot(const Evaluation& e) {
   LinePlot plot;
   plot.title = "Precision (solid) and recall (dashed) against the threshold, assumption " +
                std::to_string(curve_assumption(e));
-  plot.x_label = "error threshold (mm)";
-  plot.marker_x = 1e3 * effective_threshold(e.settings.find);
+  const bool in_sigma =
+      find_error_metric(effective_metric(e.settings.find)).unit == ErrorMetric::Unit::sigma;
+  const double scale = in_sigma ? 1.0 : 1e3;  // plotted in sigma or in millimetres
+  plot.x_label = in_sigma ? "error threshold (sigma)" : "error threshold (mm)";
+  plot.marker_x = scale * effective_threshold(e.settings.find);
   std::size_t k = 0;
   for (const std::string& setting : evaluation_settings(e)) {
     const std::string colour = kColours[k++ % (sizeof(kColours) / sizeof(kColours[0]))];
     PlotSeries precision{setting + " P", {}, colour, false};
     PlotSeries recall{setting + " R", {}, colour, true};
     for (const ThresholdPoint& p : threshold_curve(e, setting, curve_assumption(e))) {
-      precision.points.push_back({1e3 * p.threshold, p.precision.value_or(NAN)});
-      recall.points.push_back({1e3 * p.threshold, p.recall.value_or(NAN)});
+      precision.points.push_back({scale * p.threshold, p.precision.value_or(NAN)});
+      recall.points.push_back({scale * p.threshold, p.recall.value_or(NAN)});
     }
     plot.series.push_back(precision);
     plot.series.push_back(recall);

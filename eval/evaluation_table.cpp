@@ -44,10 +44,10 @@ std::string evaluation_header(const Evaluation& e) {
   char text[512];
   std::snprintf(text, sizeof(text),
                 "dataset %s (%zu scenes, %zu pairs, %s pairs searched), method %s, metric %s, "
-                "threshold %.4f m, max seeds %zu; times per search on 1 thread",
+                "threshold %s, max seeds %zu; times per search on 1 thread",
                 e.dataset.c_str(), scenes, e.pairs.size(),
                 e.settings.in_context_only ? "in-context" : "all", f.method.c_str(), metric.c_str(),
-                effective_threshold(f), effective_max_seeds(f));
+                format_error(effective_threshold(f), metric).c_str(), effective_max_seeds(f));
   return text;
 }
 

@@ -1,11 +1,13 @@
 #include "landmark/error_metrics.h"
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <optional>
 
 #include "geometry/error.h"
 #include "landmark/detail/grid_metrics.h"
+#include "landmark/detail/sensor_metric.h"
 #include "landmark/scene_index.h"
 
 namespace lmk {
@@ -107,8 +109,27 @@ const std::vector<ErrorMetric>& error_metrics() {
        "visibility-aware: every landmark point's distance to the scene surface (capped), plus the "
        "landmark's observed-empty voxels that the scene occupies; occluded space is not penalised",
        visibility_metric, 0.006},
+      {"sensor",
+       "sensor-aware: residuals in units of the depth noise expected at each point's capture and "
+       "scene depths; points the scene's sensor could not see are unknown, points it saw through "
+       "count against; empty space as 'visibility', beyond the surface's noise",
+       sensor_metric, 1.0, ErrorMetric::Unit::sigma},
   };
   return metrics;
+}
+
+std::string format_error(double value, const ErrorMetric& metric) {
+  char text[64];
+  if (metric.unit == ErrorMetric::Unit::sigma) {
+    std::snprintf(text, sizeof(text), "%.2f sigma", value);
+  } else {
+    std::snprintf(text, sizeof(text), "%.1f mm", 1000.0 * value);
+  }
+  return text;
+}
+
+std::string format_error(double value, const std::string& name) {
+  return format_error(value, find_error_metric(name));
 }
 
 std::vector<std::string> error_metric_names() {

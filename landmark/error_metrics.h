@@ -35,6 +35,11 @@ struct ErrorTerms {
   std::size_t empty_space_violations = 0;  ///< of those, voxels the scene occupies
   /// Mean distance of the violating voxels to the landmark surface, m (0 without violations).
   double empty_space_violation_mean = 0.0;
+  /// Sensor metric: landmark points the scene's sensor could not see (behind a nearer surface,
+  /// turned away, outside the view, no return), which count neither way.
+  std::size_t unseen_points = 0;
+  /// Sensor metric: landmark points the scene's sensor saw through, to a surface clearly behind.
+  std::size_t seen_through_points = 0;
   /// (sum of both terms) / (count of both terms), m. When no term was counted there is no evidence
   /// of a match, and the error is +infinity: defined, never NaN.
   double error = 0.0;
@@ -68,11 +73,18 @@ struct ErrorMetric {
   std::string name;
   std::string description;
   ErrorMetricFunction evaluate;
-  /// The error threshold used when a search sets none, m: each metric has its own scale.
+  /// The error threshold used when a search sets none, in the metric's unit.
   double default_threshold;
+  /// The metric's unit: metres, or the expected depth noise (sigma) of each residual.
+  enum class Unit { metres, sigma } unit = Unit::metres;
 };
 
-/// Every registered metric, in a fixed order: "paper", "rapid", "vdb", "visibility".
+/// `value` (an error or a threshold of `metric`) with its unit: "5.5 mm", "1.30 sigma".
+std::string format_error(double value, const ErrorMetric& metric);
+/// The same for the metric called `name`.
+std::string format_error(double value, const std::string& name);
+
+/// Every registered metric, in a fixed order: "paper", "rapid", "vdb", "visibility", "sensor".
 const std::vector<ErrorMetric>& error_metrics();
 /// The registered metrics' names, in the registry's order.
 std::vector<std::string> error_metric_names();

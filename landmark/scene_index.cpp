@@ -46,14 +46,17 @@ SceneIndex::SceneIndex(const PointCloud& scene, const SceneSettings& settings)
   // the distance field from the centroids beside the normals and the k-d tree, so that neither
   // thread waits on the other's serial steps.
   const DistanceFieldSettings field_settings{settings.coarse_leaf, settings.effective_field_band()};
-  tbb::parallel_invoke([&] { occupancy_ = OccupancyGrid(cropped_.points, settings.leaf_size); },
-                       [&] {
-                         const VoxelMoments moments(cropped_, settings.coarse_leaf);
-                         coarse_.points = moments.centroids();
-                         coarse_.set_unorganized();
-                         coarse_.T_cloud_sensor = scene.T_cloud_sensor;
-                         tbb::parallel_invoke(
-                             [&] { field_ = DistanceField(coarse_.points, field_settings); },
+  tbb::parallel_invoke(
+      [&] {
+        occupancy_ = OccupancyGrid(cropped_.points, settings.leaf_size);
+        range_image_ = RangeImage::from_cloud(scene);
+      },
+      [&] {
+        const VoxelMoments moments(cropped_, settings.coarse_leaf);
+        coarse_.points = moments.centroids();
+        coarse_.set_unorganized();
+        coarse_.T_cloud_sensor = scene.T_cloud_sensor;
+        tbb::parallel_invoke([&] { field_ = DistanceField(coarse_.points, field_settings); },
                              [&] {
                                // Normals from a block of two leaves (about 2 cm at the default 1
                                // cm): fine enough for a carton's edges, and pooled from the raw
@@ -61,7 +64,7 @@ SceneIndex::SceneIndex(const PointCloud& scene, const SceneSettings& settings)
                                coarse_.normals = moments.normals(scene.sensor_origin());
                                coarse_tree_ = std::make_unique<KdTree>(coarse_);
                              });
-                       });
+      });
   seconds_ = detail::seconds_since(start);
 }
 

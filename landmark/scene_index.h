@@ -7,6 +7,7 @@
 // - field: the distance field of the coarse points (voxel = coarse_leaf), with its closest-point
 //   grid: ICP correspondences and the Ceres residuals in O(1);
 // - occupancy: the voxels (side leaf_size) that hold a scene point: the empty-space test;
+// - range_image: the depth the sensor saw along each ray: projective visibility;
 // - fine: the scene at the paper's leaf and its k-d tree, for the metrics that need every point
 //   inside a box ("paper", "rapid", "vdb"). It is built on first use.
 //
@@ -20,6 +21,7 @@
 
 #include "geometry/kdtree.h"
 #include "geometry/point_cloud.h"
+#include "geometry/range_image.h"
 #include "landmark/scene_settings.h"
 #include "occupancy/distance_field.h"
 #include "occupancy/occupancy_grid.h"
@@ -40,6 +42,9 @@ class SceneIndex {
   const KdTree& coarse_tree() const { return *coarse_tree_; }
   const DistanceField& field() const { return field_; }
   const OccupancyGrid& occupancy() const { return occupancy_; }
+  /// What the scene's sensor saw along each ray (the whole scene, before the crop), for
+  /// projective visibility; nothing when the cloud is no view from its recorded sensor pose.
+  const std::optional<RangeImage>& range_image() const { return range_image_; }
   /// The scene at leaf_size and its tree; built on the first call.
   const PointCloud& fine() const;
   const KdTree& fine_tree() const;
@@ -58,6 +63,7 @@ class SceneIndex {
   std::unique_ptr<KdTree> coarse_tree_;
   DistanceField field_;
   OccupancyGrid occupancy_;
+  std::optional<RangeImage> range_image_;
   double seconds_ = 0.0;
 
   mutable std::once_flag fine_once_;

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "geometry/box.h"
+#include "geometry/depth_noise.h"
 #include "geometry/settings_schema.h"
 
 namespace lmk {
@@ -20,8 +21,18 @@ struct SceneSettings {
   std::optional<double> field_band;
   std::optional<Eigen::Vector3d> up;  ///< up axis in the scene frame; unset: default_up()
   bool base_frame = false;            ///< the scene is in a robot base frame (+z up)
+  /// The depth sensor's axial noise coefficient, m^-1 (sigma = noise_axial z^2; Kinect v1's by
+  /// default) and the residual that remains at any depth, m: the unit of the sensor metric.
+  double noise_axial = DepthNoise().axial;
+  double noise_floor = DepthNoise().floor;
 
   double effective_field_band() const { return field_band.value_or(2.0 * coarse_leaf); }
+  DepthNoise depth_noise() const {
+    DepthNoise noise;
+    noise.axial = noise_axial;
+    noise.floor = noise_floor;
+    return noise;
+  }
 
   template <class Self, class Visit>
   static void describe(Self& s, Visit&& visit) {
@@ -45,6 +56,13 @@ struct SceneSettings {
           s.up);
     visit(SettingInfo("base_frame", "The scene is expressed in a robot base frame, whose +z is up"),
           s.base_frame);
+    visit(SettingInfo("noise_axial",
+                      "Sensor metric: depth noise coefficient, sigma = this x depth^2, 1/m "
+                      "(Kinect v1's)")
+              .within(0.0, 0.1),
+          s.noise_axial);
+    visit(SettingInfo("noise_floor", "Sensor metric: residual at any depth, m").positive(),
+          s.noise_floor);
   }
 };
 

@@ -189,6 +189,7 @@ std::optional<Refusal> locate_landmarks(const Program& program,
     }
     c.located.name = entry->name;
     c.located.found = result.matches.size();
+    c.located.metric = result.stats.metric;
     c.located.eligible = eligible.size();
     c.located.policy = policy;
     c.located.seconds = seconds_since(start);

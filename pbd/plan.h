@@ -53,6 +53,7 @@ struct LocatedLandmark {
   std::size_t eligible = 0;  ///< of those, the ones the policy allowed
   InstancePolicy policy = InstancePolicy::kBestError;
   double seconds = 0.0;  ///< the search's time
+  std::string metric;    ///< the search's error metric: the unit of match.error
 };
 
 /// One arm's part of a planned step.

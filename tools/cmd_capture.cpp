@@ -66,8 +66,8 @@ void check_in_capture_scene(const PointCloud& scene, const Landmark& landmark) {
                report.other_instances.size() == 1 ? "" : "s");
   for (const Match& m : report.other_instances) {
     const Eigen::Vector3d c = m.box.center();
-    std::fprintf(stderr, "  at %.3f %.3f %.3f m (error %.2f mm, coverage %.2f)\n", c.x(), c.y(),
-                 c.z(), 1000.0 * m.error, m.terms.coverage);
+    std::fprintf(stderr, "  at %.3f %.3f %.3f m (error %s, coverage %.2f)\n", c.x(), c.y(), c.z(),
+                 format_error(m.error, report.search.stats.metric).c_str(), m.terms.coverage);
   }
   std::fprintf(stderr,
                "  a robot could take those for the landmark: draw the box with more context or "

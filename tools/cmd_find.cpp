@@ -67,15 +67,16 @@ void print_table(const FindResult& r, const std::string& name) {
   const std::string rejected = describe_rejections(s);
   const std::string why = rejected.empty() ? "" : "; " + rejected;
   std::printf(
-      "%zu match%s for '%s' (%s, metric %s, threshold %.1f mm, %zu seeds, %zu scene points,"
+      "%zu match%s for '%s' (%s, metric %s, threshold %s, %zu seeds, %zu scene points,"
       " %.2f s%s)\n",
       r.matches.size(), r.matches.size() == 1 ? "" : "es", name.c_str(), s.method.c_str(),
-      s.metric.c_str(), 1000.0 * s.threshold, s.seeds, s.scene_points_used, s.seconds_total,
-      why.c_str());
+      s.metric.c_str(), format_error(s.threshold, s.metric).c_str(), s.seeds, s.scene_points_used,
+      s.seconds_total, why.c_str());
   if (r.matches.empty()) return;
   const bool grid_terms = !std::isnan(r.matches.front().terms.coverage);
+  const bool in_sigma = find_error_metric(s.metric).unit == ErrorMetric::Unit::sigma;
   std::printf("%4s %9s %9s %9s %8s %8s %8s %9s", "rank", "x", "y", "z", "roll", "pitch", "yaw",
-              "error_mm");
+              in_sigma ? "error_sd" : "error_mm");
   if (grid_terms) {
     std::printf(" %8s %11s\n", "coverage", "empty_viol");
   } else {
@@ -86,7 +87,7 @@ void print_table(const FindResult& r, const std::string& name) {
     const Eigen::Vector3d c = m.box.center();
     const Eigen::Vector3d rpy = rpy_degrees(m.box.pose.linear());
     std::printf("%4zu %9.4f %9.4f %9.4f %8.2f %8.2f %8.2f %9.3f", i + 1, c.x(), c.y(), c.z(),
-                rpy.x(), rpy.y(), rpy.z(), 1000.0 * m.error);
+                rpy.x(), rpy.y(), rpy.z(), in_sigma ? m.error : 1000.0 * m.error);
     if (grid_terms) {
       const std::string viol = std::to_string(m.terms.empty_space_violations) + "/" +
                                std::to_string(m.terms.empty_space_probes);

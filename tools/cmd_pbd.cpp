@@ -110,8 +110,9 @@ void print_plan(const Plan& plan) {
   for (const LocatedLandmark& l : plan.landmarks) {
     std::printf("landmark %-16s ", l.name.c_str());
     print_pose("at ", l.T_base_landmark);
-    std::printf(", error %.1f mm, %zu found, %zu eligible (%s)\n", 1000.0 * l.match.error, l.found,
-                l.eligible, instance_policy_name(l.policy));
+    std::printf(", error %s, %zu found, %zu eligible (%s)\n",
+                format_error(l.match.error, l.metric).c_str(), l.found, l.eligible,
+                instance_policy_name(l.policy));
   }
   for (const PlannedStep& s : plan.steps) {
     for (const PlannedArm& a : s.arms) {

@@ -23,7 +23,9 @@ inline nlohmann::json terms_to_json(const ErrorTerms& t) {
       {"coverage", std::isnan(t.coverage) ? nlohmann::json(nullptr) : nlohmann::json(t.coverage)},
       {"empty_space_probes", t.empty_space_probes},
       {"empty_space_violations", t.empty_space_violations},
-      {"empty_space_violation_mean", t.empty_space_violation_mean}};
+      {"empty_space_violation_mean", t.empty_space_violation_mean},
+      {"unseen_points", t.unseen_points},
+      {"seen_through_points", t.seen_through_points}};
 }
 
 /// The inverse of terms_to_json; `error` is recomputed from the sums and counts.
@@ -49,6 +51,9 @@ inline ErrorTerms terms_from_json(const nlohmann::json& j, const std::string& wh
   t.empty_space_probes = count("empty_space_probes");
   t.empty_space_violations = count("empty_space_violations");
   t.empty_space_violation_mean = number("empty_space_violation_mean");
+  // Written since the sensor metric; earlier files have neither.
+  if (j.contains("unseen_points")) t.unseen_points = count("unseen_points");
+  if (j.contains("seen_through_points")) t.seen_through_points = count("seen_through_points");
   t.finish();
   return t;
 }

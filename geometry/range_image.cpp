@@ -1,0 +1,94 @@
+#include "geometry/range_image.h"
+
+#include <cmath>
+#include <limits>
+
+namespace lmk {
+
+namespace {
+
+constexpr float kNothing = std::numeric_limits<float>::quiet_NaN();
+
+// Least squares of y = a x + b; false when x does not vary.
+bool fit_line(double n, double sx, double sy, double sxx, double sxy, double& a, double& b) {
+  const double det = n * sxx - sx * sx;
+  if (!(std::abs(det) > 1e-12 * n * n)) return false;
+  a = (n * sxy - sx * sy) / det;
+  b = (sy - a * sx) / n;
+  return true;
+}
+
+}  // namespace
+
+std::optional<RangeImage> RangeImage::from_cloud(const PointCloud& cloud,
+                                                 const PinholeIntrinsics& fallback,
+                                                 double max_fit_rms) {
+  RangeImage image;
+  image.T_sensor_cloud_ = cloud.T_cloud_sensor.inverse().cast<float>();
+  if (cloud.is_organized()) {
+    // u = fx x/z + cx and v = fy y/z + cy, fitted over every pixel with a point in front.
+    double n = 0, sa = 0, su = 0, saa = 0, sau = 0, sb = 0, sv = 0, sbb = 0, sbv = 0;
+    const std::uint32_t w = cloud.width;
+    for (std::size_t i = 0; i < cloud.size(); ++i) {
+      const Eigen::Vector3f p = image.T_sensor_cloud_ * cloud.points[i];
+      if (!p.allFinite() || !(p.z() > 0.0f)) continue;
+      const double a = p.x() / p.z(), b = p.y() / p.z();
+      const double u = static_cast<double>(i % w), v = static_cast<double>(i / w);
+      n += 1, sa += a, su += u, saa += a * a, sau += a * u;
+      sb += b, sv += v, sbb += b * b, sbv += b * v;
+    }
+    PinholeIntrinsics& k = image.k_;
+    if (n < 100 || !fit_line(n, sa, su, saa, sau, k.fx, k.cx) ||
+        !fit_line(n, sb, sv, sbb, sbv, k.fy, k.cy))
+      return std::nullopt;
+    k.width = static_cast<int>(w);
+    k.height = static_cast<int>(cloud.height);
+    double squared = 0.0;
+    image.depth_.assign(cloud.size(), kNothing);
+    for (std::size_t i = 0; i < cloud.size(); ++i) {
+      const Eigen::Vector3f p = image.T_sensor_cloud_ * cloud.points[i];
+      if (!p.allFinite() || !(p.z() > 0.0f)) continue;
+      const double du = k.fx * p.x() / p.z() + k.cx - static_cast<double>(i % w);
+      const double dv = k.fy * p.y() / p.z() + k.cy - static_cast<double>(i / w);
+      squared += du * du + dv * dv;
+      image.depth_[i] = p.z();
+    }
+    if (!(std::sqrt(squared / n) <= max_fit_rms)) return std::nullopt;
+    image.organised_ = true;
+    return image;
+  }
+  image.k_ = fallback;
+  image.depth_.assign(static_cast<std::size_t>(fallback.width) * fallback.height, kNothing);
+  bool any = false;
+  for (const Eigen::Vector3f& point : cloud.points) {
+    const Look look = image.look(point);
+    if (!look.in_view) continue;
+    const Eigen::Vector3f p = image.T_sensor_cloud_ * point;
+    const long u = std::lround(fallback.fx * p.x() / p.z() + fallback.cx);
+    const long v = std::lround(fallback.fy * p.y() / p.z() + fallback.cy);
+    float& d = image.depth_[static_cast<std::size_t>(v) * fallback.width + u];
+    if (std::isnan(d) || p.z() < d) d = p.z();
+    any = true;
+  }
+  if (!any) return std::nullopt;
+  return image;
+}
+
+double RangeImage::depth_of(const Eigen::Vector3f& point) const {
+  return (T_sensor_cloud_ * point).z();
+}
+
+RangeImage::Look RangeImage::look(const Eigen::Vector3f& point) const {
+  Look look;
+  const Eigen::Vector3f p = T_sensor_cloud_ * point;
+  look.depth = p.z();
+  if (!p.allFinite() || !(p.z() > 0.0f)) return look;
+  const long u = std::lround(k_.fx * p.x() / p.z() + k_.cx);
+  const long v = std::lround(k_.fy * p.y() / p.z() + k_.cy);
+  if (u < 0 || v < 0 || u >= k_.width || v >= k_.height) return look;
+  look.in_view = true;
+  look.measured = depth_[static_cast<std::size_t>(v) * k_.width + u];
+  return look;
+}
+
+}  // namespace lmk

@@ -1,0 +1,27 @@
+#pragma once
+// The sensor-aware error metric (issue #16, part 3), registered as "sensor". Internal.
+
+#include "landmark/error_metrics.h"
+
+namespace lmk {
+
+/// Sensor-aware error, in units of the expected depth noise (geometry/depth_noise.h):
+///
+/// - Each landmark point, placed by the candidate pose, is looked up in the scene's range image.
+///   Behind a nearer scene surface, turned away from the scene's sensor, outside its view or where
+///   it measured nothing, the point is unknown: it counts neither way. Where the sensor saw
+///   clearly past it, to a surface more than kOccluding sigma behind, the point is seen through:
+///   the strongest evidence against the match, it costs the cap. Otherwise its residual (its
+///   distance to the scene surface, at most its depth gap) is divided by sigma, the noise expected
+///   of a point captured at its capture depth and measured again at its scene depth, and capped.
+/// - Coverage is the share of the points that should be visible with a residual below the
+///   support level, over at least a fifth of all points (so that a pose seen nowhere is no match).
+/// - Empty space: each scene voxel inside the box that falls in the landmark's observed-empty space
+///   and lies more than two sigma from its surface (closer, it is noise of the landmark's own
+///   surface) is a violation and adds its distance to the surface in sigma, capped.
+/// - The error is the mean of all terms. Without a range image (an unorganised cloud whose sensor
+///   pose does not explain it), every point counts as visible.
+ErrorTerms sensor_metric(const SceneView& scene, const LandmarkView& landmark,
+                         const Eigen::Isometry3d& T_scene_capture);
+
+}  // namespace lmk
