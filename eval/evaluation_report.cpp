@@ -6,6 +6,7 @@
 
 #include "eval/detail/evaluation_json.h"
 #include "eval/evaluation_table.h"
+#include "eval/failure_pictures.h"
 #include "eval/svg_plot.h"
 #include "geometry/atomic_file.h"
 #include "geometry/error.h"
@@ -30,9 +31,17 @@ int curve_assumption(const Evaluation& e) { return e.settings.in_context_only ? 
 // One line per pair: what was there, what was found, how good the best match was, how long.
 TextTable pair_table(const Evaluation& e) {
   const double threshold = effective_threshold(e.settings.find);
+  const bool in_sigma =
+      find_error_metric(effective_metric(e.settings.find)).unit == ErrorMetric::Unit::sigma;
   TextTable t;
-  t.header = {"scene", "landmark", "in context",    "truth",
-              "found", "correct",  "best error mm", "seconds"};
+  t.header = {"scene",
+              "landmark",
+              "in context",
+              "truth",
+              "found",
+              "correct",
+              in_sigma ? "best error sigma" : "best error mm",
+              "seconds"};
   t.numeric = {false, false, false, true, true, true, true, true};
   for (const PairResult& p : e.pairs) {
     const PairInput in = matches_within(p, threshold);
@@ -41,7 +50,7 @@ TextTable pair_table(const Evaluation& e) {
     if (!p.found.empty()) best = p.found.front().error;
     t.rows.push_back({p.scene, p.landmark, p.in_context ? "yes" : "no",
                       std::to_string(p.truth.size()), std::to_string(in.found.size()),
-                      std::to_string(c.tp), format_optional(best, 2, 1e3),
+                      std::to_string(c.tp), format_optional(best, 2, in_sigma ? 1.0 : 1e3),
                       format_optional(p.seconds, 3)});
   }
   return t;
@@ -111,8 +120,37 @@ constexpr const char* kHiddenNote =
 // The report's tables, each computed once for the JSON, the Markdown and the HTML.
 struct ReportTables {
   std::vector<EvaluationRow> rows, by_range;
-  std::vector<EvaluationRow> by_hidden;  ///< empty when the dataset records no hidden fraction
+  std::vector<EvaluationRow> by_hidden;     ///< empty when the dataset records no hidden fraction
+  std::optional<FailurePictures> failures;  ///< when the dataset's directory was given
 };
+
+// What the failure pictures hold beyond the limit, in words.
+std::string failures_summary(const FailurePictures& f) {
+  return std::to_string(f.pairs_with_failures) +
+         " pairs with a missed instance or a false match (matches below the threshold); " +
+         std::to_string(f.pictures.size()) + " pictured" +
+         (f.unpictured > 0 ? ", " + std::to_string(f.unpictured) + " not (beyond the limit)" : "") +
+         ".";
+}
+
+std::string failures_markdown(const ReportTables& t) {
+  if (!t.failures) return "";
+  std::string s = "\n## Failures\n\n" + failures_summary(*t.failures) + "\n\n";
+  for (const FailurePicture& f : t.failures->pictures) s += "- " + f.caption + "\n";
+  return s;
+}
+
+std::string failures_html(const ReportTables& t) {
+  if (!t.failures) return "";
+  std::string s = "<h2>Failures</h2>\n<p>" + escape_html(failures_summary(*t.failures)) +
+                  " Depth images (near bright, far dark, no return black) with the true boxes "
+                  "in green (dashed: ignored, hardly seen), correct matches in blue and false "
+                  "matches in red.</p>\n";
+  for (const FailurePicture& f : t.failures->pictures)
+    s += "<figure>\n" + f.svg + "\n<figcaption>" + escape_html(f.caption) +
+         "</figcaption>\n</figure>\n";
+  return s;
+}
 
 std::string markdown(const Evaluation& e, const ReportTables& t) {
   return "# lmk evaluation: " + e.dataset + "\n\n" + evaluation_header(e) + ".\n\nlmk " + kVersion +
@@ -123,7 +161,7 @@ std::string markdown(const Evaluation& e, const ReportTables& t) {
          (t.by_hidden.empty() ? std::string()
                               : "\n## By hidden fraction\n\n" + std::string(kHiddenNote) + "\n\n" +
                                     evaluation_table(t.by_hidden).markdown()) +
-         "\n## Pairs\n\n" + pair_table(e).markdown();
+         failures_markdown(t) + "\n## Pairs\n\n" + pair_table(e).markdown();
 }
 
 std::string html(const Evaluation& e, const ReportTables& t) {
@@ -144,8 +182,8 @@ std::string html(const Evaluation& e, const ReportTables& t) {
                               : "<h2>By hidden fraction</h2>\n<p>" + escape_html(kHiddenNote) +
                                     "</p>\n" + html_table(evaluation_table(t.by_hidden))) +
          "<h2>Plots</h2>\n<figure>\n" + threshold_plot(e) + "</figure>\n<figure>\n" +
-         times_plot(e) + "</figure>\n<h2>Pairs</h2>\n" + html_table(pair_table(e)) +
-         "</body>\n</html>\n";
+         times_plot(e) + "</figure>\n" + failures_html(t) + "<h2>Pairs</h2>\n" +
+         html_table(pair_table(e)) + "</body>\n</html>\n";
 }
 
 }  // namespace
@@ -165,7 +203,8 @@ std::vector<ThresholdPoint> threshold_curve(const Evaluation& e, const std::stri
   return curve;
 }
 
-void write_evaluation_report(const std::string& dir, const Evaluation& e) {
+void write_evaluation_report(const std::string& dir, const Evaluation& e,
+                             const std::string& dataset_dir) {
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) throw Error(dir + ": cannot create the report directory (" + ec.message() + ")");
@@ -173,6 +212,7 @@ void write_evaluation_report(const std::string& dir, const Evaluation& e) {
   tables.rows = evaluation_rows(e);
   tables.by_range = evaluation_rows_by_range(e);
   if (records_hidden_fractions(e)) tables.by_hidden = evaluation_rows_by_hidden(e);
+  if (!dataset_dir.empty()) tables.failures = failure_pictures(e, dataset_dir);
   json j = detail::evaluation_to_json(e, tables.rows);
   json curves = json::array();
   for (const std::string& setting : evaluation_settings(e)) {
@@ -188,6 +228,19 @@ void write_evaluation_report(const std::string& dir, const Evaluation& e) {
   j["threshold_curves"] = curves;
   j["rows_by_range"] = detail::rows_to_json(tables.by_range);
   if (!tables.by_hidden.empty()) j["rows_by_hidden"] = detail::rows_to_json(tables.by_hidden);
+  if (tables.failures) {
+    json failures = json::array();
+    for (const FailurePicture& f : tables.failures->pictures) {
+      failures.push_back({{"scene", f.scene},
+                          {"landmark", f.landmark},
+                          {"missed", f.missed},
+                          {"false_matches", f.false_found},
+                          {"caption", f.caption}});
+    }
+    j["failures"] = {{"pairs_with_failures", tables.failures->pairs_with_failures},
+                     {"pictured", failures},
+                     {"unpictured", tables.failures->unpictured}};
+  }
   write_text_atomically(fs::path(dir) / "report.json", j.dump(2) + "\n");
   write_text_atomically(fs::path(dir) / "report.md", markdown(e, tables));
   write_text_atomically(fs::path(dir) / "report.html", html(e, tables));

@@ -1,7 +1,8 @@
 #pragma once
 // An evaluation's report directory: report.json (everything), report.md (the tables) and a
 // self-contained report.html with SVG plots: precision and recall against the error threshold per
-// setting, the distribution of search times, and a per-scene table of the matches.
+// setting, the distribution of search times, a per-scene table of the matches and, given the
+// dataset, a picture of each failure.
 
 #include <optional>
 #include <string>
@@ -24,6 +25,10 @@ std::vector<ThresholdPoint> threshold_curve(const Evaluation& evaluation,
                                             int steps = 20);
 
 /// Writes DIR/report.json, DIR/report.md and DIR/report.html (creating DIR), each atomically.
-void write_evaluation_report(const std::string& dir, const Evaluation& evaluation);
+/// With the evaluated dataset's directory, the report also pictures its failures
+/// (eval/failure_pictures.h): each pair with a missed instance or a false match, drawn on its
+/// scene's depth image.
+void write_evaluation_report(const std::string& dir, const Evaluation& evaluation,
+                             const std::string& dataset_dir = "");
 
 }  // namespace lmk

@@ -74,6 +74,12 @@ std::optional<RangeImage> RangeImage::from_cloud(const PointCloud& cloud,
   return image;
 }
 
+std::optional<Eigen::Vector2d> RangeImage::project(const Eigen::Vector3f& point) const {
+  const Eigen::Vector3f p = T_sensor_cloud_ * point;
+  if (!p.allFinite() || !(p.z() > 0.0f)) return std::nullopt;
+  return Eigen::Vector2d(k_.fx * p.x() / p.z() + k_.cx, k_.fy * p.y() / p.z() + k_.cy);
+}
+
 double RangeImage::depth_of(const Eigen::Vector3f& point) const {
   return (T_sensor_cloud_ * point).z();
 }

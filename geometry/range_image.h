@@ -43,6 +43,10 @@ class RangeImage {
   };
   Look look(const Eigen::Vector3f& point) const;
 
+  /// The pixel coordinates (u right, v down) `point` projects to, if it lies in front of the
+  /// sensor; possibly outside the image.
+  std::optional<Eigen::Vector2d> project(const Eigen::Vector3f& point) const;
+
   /// The sensor's distance to `point` along its optical axis, m (negative behind it).
   double depth_of(const Eigen::Vector3f& point) const;
 

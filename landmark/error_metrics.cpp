@@ -8,6 +8,7 @@
 #include "geometry/error.h"
 #include "landmark/detail/grid_metrics.h"
 #include "landmark/detail/sensor_metric.h"
+#include "landmark/landmark.h"
 #include "landmark/scene_index.h"
 
 namespace lmk {
@@ -116,6 +117,15 @@ const std::vector<ErrorMetric>& error_metrics() {
        sensor_metric, 1.0, ErrorMetric::Unit::sigma},
   };
   return metrics;
+}
+
+std::vector<float> empty_space_distances(const Landmark& landmark, const KdTree& tree) {
+  const std::vector<Eigen::Vector3f>& centres = landmark.empty_space.centres();
+  std::vector<float> out(centres.size(), std::numeric_limits<float>::infinity());
+  for (std::size_t i = 0; i < centres.size(); ++i) {
+    if (const auto n = tree.nearest(centres[i])) out[i] = std::sqrt(n->squared_distance);
+  }
+  return out;
 }
 
 std::string format_error(double value, const ErrorMetric& metric) {

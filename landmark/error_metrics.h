@@ -40,6 +40,9 @@ struct ErrorTerms {
   std::size_t unseen_points = 0;
   /// Sensor metric: landmark points the scene's sensor saw through, to a surface clearly behind.
   std::size_t seen_through_points = 0;
+  /// Sensor metric: the share of the landmark's observed-empty voxels the scene's sensor observed
+  /// too, beyond the noise of the landmark's surface (NaN for the other metrics).
+  double empty_space_observed = std::numeric_limits<double>::quiet_NaN();
   /// (sum of both terms) / (count of both terms), m. When no term was counted there is no evidence
   /// of a match, and the error is +infinity: defined, never NaN.
   double error = 0.0;
@@ -63,7 +66,15 @@ struct LandmarkView {
   const KdTree& tree;
   const Box& box;            ///< the capture box, in the capture frame
   const Landmark& landmark;  ///< its grids
+  /// Optional: each observed-empty voxel's distance to the nearest landmark point, m, in the order
+  /// of landmark.empty_space.centres() (empty_space_distances()); metrics that need it beyond the
+  /// distance field's band compute it when absent.
+  const std::vector<float>* empty_distances = nullptr;
 };
+
+/// Each of `landmark`'s observed-empty voxel centres' distance to its nearest point (`tree` holds
+/// its points), unbounded, in the order of landmark.empty_space.centres().
+std::vector<float> empty_space_distances(const Landmark& landmark, const KdTree& tree);
 
 using ErrorMetricFunction =
     std::function<ErrorTerms(const SceneView& scene, const LandmarkView& landmark,

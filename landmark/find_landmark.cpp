@@ -91,21 +91,20 @@ FindResult search(const SceneIndex& index, const Landmark& landmark, const FindS
   }
   stats.seeds = seeds.size();
   const KdTree landmark_tree(landmark.points);
+  // The sensor metric tests empty space beyond the noise, which far away exceeds the landmark
+  // distance field's band.
+  const std::vector<float> empty_distances = metric.unit == ErrorMetric::Unit::sigma
+                                                 ? empty_space_distances(landmark, landmark_tree)
+                                                 : std::vector<float>();
+  LandmarkView landmark_view{landmark.points, landmark_tree, landmark.box, landmark};
+  if (!empty_distances.empty()) landmark_view.empty_distances = &empty_distances;
   stats.seconds_preprocess = seconds_since(start);
 
   // Step 4, in an arena of the requested size: no process-wide thread setting.
   const auto search_start = Clock::now();
   const detail::SearchInput input{
-      index,
-      points,
-      landmark,
-      landmark_coarse,
-      SceneView{index},
-      LandmarkView{landmark.points, landmark_tree, landmark.box, landmark},
-      seeds,
-      metric,
-      stats.threshold,
-      settings};
+      index,         points, landmark, landmark_coarse, SceneView{index},
+      landmark_view, seeds,  metric,   stats.threshold, settings};
   std::vector<Match> candidates;
   const int threads = settings.execution.threads;
   tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);

@@ -47,7 +47,7 @@ int run_eval(EvalOptions& o) {
   }
   if (!o.json.empty()) write_text_atomically(o.json, json.dump(2) + "\n");
   if (!o.report.empty()) {
-    write_evaluation_report(o.report, evaluation);
+    write_evaluation_report(o.report, evaluation, data.dir);
     std::printf("report: %s/report.html (also report.md, report.json)\n", o.report.c_str());
   }
   return kOk;

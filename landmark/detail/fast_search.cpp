@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <numeric>
 
@@ -13,6 +14,7 @@
 #include "geometry/voxel_normals.h"
 #include "landmark/detail/grid_metrics.h"
 #include "landmark/detail/point_pair_voting.h"
+#include "landmark/detail/sensor_metric.h"
 #include "landmark/detail/stopwatch.h"
 #include "landmark/non_max_suppression.h"
 #include "registration/icp.h"
@@ -20,6 +22,10 @@
 
 namespace lmk::detail {
 namespace {
+
+// The coarse fit, in sigma, beyond which a candidate of the sensor metric is dropped: twice the
+// metric's default threshold, as prune_error (15 mm) is for the 6 mm of `visibility`.
+constexpr double kSigmaPrune = 2.0;
 
 struct Candidate {
   Eigen::Isometry3d T_scene_capture;
@@ -139,6 +145,19 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
   // A few hundred points fix a coarse pose as well as all of them; the candidates are many.
   const std::vector<Eigen::Vector3f> coarse_points = thin(model.points, 400);
   std::vector<Eigen::Isometry3d> aligned(clusters.size());
+  // The cheap score in the metric's unit: for the sensor metric, its own fit (sigma residuals,
+  // projective visibility), so that a far instance, noisy in millimetres, still ranks first.
+  const bool in_sigma = in.metric.unit == ErrorMetric::Unit::sigma;
+  const Eigen::Vector3f capture_sensor = landmark.sensor_origin.cast<float>();
+  const double prune = in_sigma ? kSigmaPrune : s.fast.prune_error;
+  const std::vector<Eigen::Vector3f> quick_probes =
+      in_sigma ? thin(landmark.empty_space.centres(), 300) : std::vector<Eigen::Vector3f>();
+  std::vector<float> quick_probe_distances;
+  for (const Eigen::Vector3f& c : quick_probes) {
+    const auto n = in.landmark_view.tree.nearest(c);
+    quick_probe_distances.push_back(n ? std::sqrt(n->squared_distance)
+                                      : std::numeric_limits<float>::infinity());
+  }
   std::vector<double> quick(clusters.size());
   std::vector<int> iterations(clusters.size(), 0);
   tbb::parallel_for(std::size_t{0}, clusters.size(), [&](std::size_t c) {
@@ -146,9 +165,16 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
     const IcpResult r = icp(coarse_points, target, clusters[c].T_scene_capture, coarse_icp);
     aligned[c] = r.T_target_source;
     iterations[c] = r.iterations;
+    const Eigen::Isometry3f T = aligned[c].cast<float>();
+    if (in_sigma) {
+      // Space the landmark needs free but the scene's sensor measured a surface in is the
+      // sharpest test at range, where the fit's residuals drown in noise.
+      quick[c] = sensor_fit(index, model, capture_sensor, T).mean_cost() +
+                 empty_space_penalty(index, landmark, quick_probes, quick_probe_distances, T);
+      return;
+    }
     const DistanceField::Sampler field(index.field());
     double sum = 0.0;
-    const Eigen::Isometry3f T = aligned[c].cast<float>();
     for (std::size_t j = 0; j < model.size(); ++j) {
       sum += landmark_point_distance(index, field, T, model, j);
     }
@@ -167,7 +193,7 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
            rotation_angle_between(aligned[a].linear(), aligned[b].linear()) < 0.2;
   };
   for (std::size_t c : order) {
-    if (quick[c] > s.fast.prune_error || survivors.size() >= s.fast.max_refined) continue;
+    if (quick[c] > prune || survivors.size() >= s.fast.max_refined) continue;
     if (std::none_of(survivors.begin(), survivors.end(),
                      [&](std::size_t kept) { return same_pose(kept, c); })) {
       survivors.push_back(c);

@@ -16,30 +16,127 @@ constexpr double kSupport = 2.0;    // sigma: a point this close to the scene su
 constexpr double kOccluding = 3.0;  // sigma: a depth gap beyond noise, in front or behind
 constexpr double kNoiseBand = 2.0;  // sigma: scene voxels this close to the landmark are its noise
 constexpr double kMinVisibleShare = 0.2;
+constexpr double kAtSurface = 1.0;  // sigma
+// A landmark with free space must show at least this share of it to the scene's sensor beyond the
+// noise: a pose whose free space cannot be seen (too far for its margins, or buried in a surface
+// that hides it) has no evidence for it beyond a fit that the noise makes easy.
+constexpr double kMinEmptyObserved = 0.02;
 // A surface turned more than 80 degrees from its line of sight returns nothing to the sensor.
 constexpr float kTurnedAway = 0.1736f;
 
+// Empty space seen from the scene's sensor: each observed-empty voxel of the landmark (centres[i],
+// distances[i] from its surface), placed by the pose, is looked up in the range image. A surface
+// measured at its depth violates it; one clearly behind confirms it empty; one clearly in front
+// hides it and, as outside the view or without a return, leaves it unknown. Only voxels farther
+// from the landmark's surface than that same margin of noise are tested: nearer, the landmark's
+// own surface, measured behind them, could not confirm them. Probes are the voxels observed
+// either way.
+void projective_empty_space(const RangeImage& image, const DepthNoise& noise,
+                            const Landmark& landmark, const std::vector<Eigen::Vector3f>& centres,
+                            const std::vector<float>& distances, const Eigen::Isometry3f& T,
+                            ErrorTerms& terms) {
+  const Eigen::Vector3f capture_sensor = landmark.sensor_origin.cast<float>();
+  double violation_distance = 0.0;
+  for (std::size_t i = 0; i < centres.size(); ++i) {
+    const Eigen::Vector3f& c = centres[i];
+    const RangeImage::Look look = image.look(T * c);
+    if (!look.in_view || std::isnan(look.measured)) continue;
+    const double sigma = noise.residual_sigma((c - capture_sensor).norm(), look.depth);
+    if (distances[i] < kOccluding * sigma) continue;
+    const double gap = look.measured - look.depth;
+    if (gap > kOccluding * sigma) {  // seen empty
+      ++terms.empty_space_probes;
+      continue;
+    }
+    // A surface within a sigma of the voxel is at it. Further in front, the voxel is hidden: the
+    // surface may be a side of the object the capture never saw. Further behind, it may be the
+    // surface the voxel was seen empty in front of at capture (a table under a bottle), which the
+    // landmark need not hold.
+    if (std::abs(gap) > kAtSurface * sigma) continue;
+    ++terms.empty_space_probes;
+    ++terms.empty_space_violations;
+    violation_distance += distances[i];
+  }
+  if (terms.empty_space_violations > 0) {
+    terms.empty_space_violation_mean =
+        violation_distance / static_cast<double>(terms.empty_space_violations);
+  }
+}
+
+// Without a range image: the scene's occupied voxels in the box that fall in the landmark's
+// observed-empty space, beyond the noise of its surface (probes: every empty voxel).
+void occupied_empty_space(const SceneIndex& index, const DepthNoise& noise,
+                          const LandmarkView& landmark, const Eigen::Isometry3d& T_scene_capture,
+                          ErrorTerms& terms) {
+  const EmptySpaceGrid::Sampler empty(landmark.landmark.empty_space);
+  const DistanceField::Sampler landmark_field(landmark.landmark.distance);
+  const float band = static_cast<float>(landmark.landmark.distance.band());
+  const Eigen::Vector3f capture_sensor = landmark.landmark.sensor_origin.cast<float>();
+  const Eigen::Vector3f sensor = index.T_scene_sensor().translation().cast<float>();
+  const Eigen::Isometry3f T_capture_scene = T_scene_capture.inverse().cast<float>();
+  terms.empty_space_probes = landmark.landmark.empty_space.size();
+  double violation_distance = 0.0;
+  for (const Eigen::Vector3f& occupied :
+       index.occupancy().occupied_in(landmark.box.transformed(T_scene_capture))) {
+    const Eigen::Vector3f e = T_capture_scene * occupied;
+    if (!empty.is_empty(e)) continue;
+    const double sigma =
+        noise.residual_sigma((e - capture_sensor).norm(), (occupied - sensor).norm());
+    const float d = landmark_field.distance(e);
+    if (d < std::min<double>(kNoiseBand * sigma, 0.99 * band)) continue;
+    ++terms.empty_space_violations;
+    violation_distance += d;
+  }
+  if (terms.empty_space_violations > 0) {
+    terms.empty_space_violation_mean =
+        violation_distance / static_cast<double>(terms.empty_space_violations);
+  }
+}
+
 }  // namespace
 
-ErrorTerms sensor_metric(const SceneView& scene, const LandmarkView& landmark,
-                         const Eigen::Isometry3d& T_scene_capture) {
+double SensorFit::mean_cost() const {
+  const double total = static_cast<double>(visible + unseen);
+  const double floor = kMinVisibleShare * total;
+  const double shortfall = std::max(0.0, floor - static_cast<double>(visible));
+  const double count = std::max(static_cast<double>(visible), floor);
+  return count > 0.0 ? (cost_sum + kCap * shortfall) / count : kCap;
+}
+
+double SensorFit::coverage() const {
+  const double expected = std::max(static_cast<double>(visible),
+                                   kMinVisibleShare * static_cast<double>(visible + unseen));
+  return expected > 0.0 ? static_cast<double>(supported) / expected : 0.0;
+}
+
+double empty_space_penalty(const SceneIndex& index, const Landmark& landmark,
+                           const std::vector<Eigen::Vector3f>& centres,
+                           const std::vector<float>& distances,
+                           const Eigen::Isometry3f& T_scene_capture) {
+  if (!index.range_image() || centres.empty()) return 0.0;
   ErrorTerms terms;
-  const SceneIndex& index = scene.index;
+  projective_empty_space(*index.range_image(), index.settings().depth_noise(), landmark, centres,
+                         distances, T_scene_capture, terms);
+  const double observed =
+      static_cast<double>(terms.empty_space_probes) / static_cast<double>(centres.size());
+  if (observed < kMinEmptyObserved) return kCap;
+  return kCap * static_cast<double>(terms.empty_space_violations) /
+         static_cast<double>(terms.empty_space_probes);
+}
+
+SensorFit sensor_fit(const SceneIndex& index, const PointCloud& points,
+                     const Eigen::Vector3f& capture_sensor, const Eigen::Isometry3f& T) {
+  SensorFit fit;
   const DepthNoise noise = index.settings().depth_noise();
   const std::optional<RangeImage>& image = index.range_image();
-  const Eigen::Isometry3f T = T_scene_capture.cast<float>();
   const Eigen::Vector3f sensor = index.T_scene_sensor().translation().cast<float>();
-  const Eigen::Vector3f capture_sensor = landmark.landmark.sensor_origin.cast<float>();
   const DistanceField::Sampler scene_field(index.field());
-  const PointCloud& points = landmark.points;
-
-  std::size_t supported = 0;
   for (std::size_t j = 0; j < points.size(); ++j) {
     const Eigen::Vector3f q = T * points.points[j];
     if (points.has_normals()) {
       const Eigen::Vector3f n = T.linear() * points.normals[j];
       if (n.allFinite() && n.dot((sensor - q).normalized()) < kTurnedAway) {
-        ++terms.unseen_points;
+        ++fit.unseen;
         continue;
       }
     }
@@ -50,12 +147,12 @@ ErrorTerms sensor_metric(const SceneView& scene, const LandmarkView& landmark,
       const double sigma = noise.residual_sigma(capture_depth, look.depth);
       if (!look.in_view || std::isnan(look.measured) ||
           look.measured - look.depth < -kOccluding * sigma) {
-        ++terms.unseen_points;  // outside the view, no return, or behind a nearer surface
+        ++fit.unseen;  // outside the view, no return, or behind a nearer surface
         continue;
       }
       const double gap = look.measured - look.depth;
       if (gap > kOccluding * sigma) {
-        ++terms.seen_through_points;
+        ++fit.seen_through;
         cost = kCap;
       } else {
         const double d = std::min<double>(landmark_point_distance(index, scene_field, T, points, j),
@@ -66,38 +163,50 @@ ErrorTerms sensor_metric(const SceneView& scene, const LandmarkView& landmark,
       const double sigma = noise.residual_sigma(capture_depth, (q - sensor).norm());
       cost = std::min(landmark_point_distance(index, scene_field, T, points, j) / sigma, kCap);
     }
-    terms.landmark_to_scene_sum += cost;
-    ++terms.landmark_to_scene_count;
-    if (cost < kSupport) ++supported;
+    fit.cost_sum += cost;
+    ++fit.visible;
+    if (cost < kSupport) ++fit.supported;
   }
-  const double expected = std::max(static_cast<double>(terms.landmark_to_scene_count),
-                                   kMinVisibleShare * static_cast<double>(points.size()));
-  terms.coverage = expected > 0.0 ? static_cast<double>(supported) / expected : 0.0;
+  return fit;
+}
 
-  // Empty space, as the visibility metric tests it, with the landmark surface's noise band left
-  // out: a scene point within noise of the surface is that surface measured again.
-  const EmptySpaceGrid::Sampler empty(landmark.landmark.empty_space);
-  const DistanceField::Sampler landmark_field(landmark.landmark.distance);
-  const Eigen::Isometry3f T_capture_scene = T.inverse();
-  terms.empty_space_probes = landmark.landmark.empty_space.size();
-  double violation_distance = 0.0;
-  for (const Eigen::Vector3f& occupied :
-       index.occupancy().occupied_in(landmark.box.transformed(T_scene_capture))) {
-    const Eigen::Vector3f e = T_capture_scene * occupied;
-    if (!empty.is_empty(e)) continue;
-    const double sigma =
-        noise.residual_sigma((e - capture_sensor).norm(),
-                             image ? image->depth_of(occupied) : (occupied - sensor).norm());
-    const double d = landmark_field.distance(e);
-    if (d < kNoiseBand * sigma) continue;
-    ++terms.empty_space_violations;
-    violation_distance += d;
-    terms.scene_to_landmark_sum += std::min(d / sigma, kCap);
-    ++terms.scene_to_landmark_count;
+ErrorTerms sensor_metric(const SceneView& scene, const LandmarkView& landmark,
+                         const Eigen::Isometry3d& T_scene_capture) {
+  ErrorTerms terms;
+  const SceneIndex& index = scene.index;
+  const DepthNoise noise = index.settings().depth_noise();
+  const std::optional<RangeImage>& image = index.range_image();
+  const Eigen::Isometry3f T = T_scene_capture.cast<float>();
+  const SensorFit fit =
+      sensor_fit(index, landmark.points, landmark.landmark.sensor_origin.cast<float>(), T);
+  // A pose that shows less than a fifth of the landmark pays the cap for each point short of it.
+  const auto shortfall = static_cast<std::size_t>(std::ceil(
+      std::max(0.0, kMinVisibleShare * static_cast<double>(landmark.points.size()) - fit.visible)));
+  terms.landmark_to_scene_sum = fit.cost_sum + kCap * static_cast<double>(shortfall);
+  terms.landmark_to_scene_count = fit.visible + shortfall;
+  terms.unseen_points = fit.unseen;
+  terms.seen_through_points = fit.seen_through;
+  terms.coverage = fit.coverage();
+
+  if (image) {
+    const std::vector<float> computed =
+        landmark.empty_distances == nullptr
+            ? empty_space_distances(landmark.landmark, landmark.tree)
+            : std::vector<float>();
+    projective_empty_space(
+        *image, noise, landmark.landmark, landmark.landmark.empty_space.centres(),
+        landmark.empty_distances ? *landmark.empty_distances : computed, T, terms);
+  } else {
+    occupied_empty_space(index, noise, landmark, T_scene_capture, terms);
   }
-  if (terms.empty_space_violations > 0) {
-    terms.empty_space_violation_mean =
-        violation_distance / static_cast<double>(terms.empty_space_violations);
+  const std::size_t empty_voxels = landmark.landmark.empty_space.size();
+  if (image && empty_voxels > 0) {
+    terms.empty_space_observed =
+        static_cast<double>(terms.empty_space_probes) / static_cast<double>(empty_voxels);
+    if (terms.empty_space_observed < kMinEmptyObserved) {
+      // Every point at the cap: the error says "no evidence", the terms say why.
+      terms.landmark_to_scene_sum = kCap * static_cast<double>(terms.landmark_to_scene_count);
+    }
   }
   terms.finish();
   return terms;

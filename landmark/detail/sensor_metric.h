@@ -2,6 +2,7 @@
 // The sensor-aware error metric (issue #16, part 3), registered as "sensor". Internal.
 
 #include "landmark/error_metrics.h"
+#include "landmark/scene_index.h"
 
 namespace lmk {
 
@@ -23,5 +24,30 @@ namespace lmk {
 ///   pose does not explain it), every point counts as visible.
 ErrorTerms sensor_metric(const SceneView& scene, const LandmarkView& landmark,
                          const Eigen::Isometry3d& T_scene_capture);
+
+/// The sensor metric's fit of `points` (capture frame, with their normals if any, captured from
+/// `capture_sensor`) placed by T_scene_capture: the capped sigma residuals of the points that
+/// should be visible, and how the others were classified.
+struct SensorFit {
+  double cost_sum = 0.0;  ///< sigma, over the visible points
+  std::size_t visible = 0, supported = 0, unseen = 0, seen_through = 0;
+  /// cost_sum over the visible points, but over at least a fifth of all points, each point short
+  /// of that costing the cap: a pose seen nowhere fits nothing.
+  double mean_cost() const;
+  /// Supported over visible points, over at least a fifth of all points.
+  double coverage() const;
+};
+/// The empty space's part of the fast search's coarse score for the sensor metric, in sigma: the
+/// cap times the share of the observed ones among `centres` (observed-empty voxel centres of
+/// `landmark`, capture frame, `distances` from its surface) that the scene's sensor measured a
+/// surface at; the cap when too few are observed; 0 without a range image.
+double empty_space_penalty(const SceneIndex& index, const Landmark& landmark,
+                           const std::vector<Eigen::Vector3f>& centres,
+                           const std::vector<float>& distances,
+                           const Eigen::Isometry3f& T_scene_capture);
+
+SensorFit sensor_fit(const SceneIndex& index, const PointCloud& points,
+                     const Eigen::Vector3f& capture_sensor,
+                     const Eigen::Isometry3f& T_scene_capture);
 
 }  // namespace lmk

@@ -25,7 +25,10 @@ inline nlohmann::json terms_to_json(const ErrorTerms& t) {
       {"empty_space_violations", t.empty_space_violations},
       {"empty_space_violation_mean", t.empty_space_violation_mean},
       {"unseen_points", t.unseen_points},
-      {"seen_through_points", t.seen_through_points}};
+      {"seen_through_points", t.seen_through_points},
+      {"empty_space_observed", std::isnan(t.empty_space_observed)
+                                   ? nlohmann::json(nullptr)
+                                   : nlohmann::json(t.empty_space_observed)}};
 }
 
 /// The inverse of terms_to_json; `error` is recomputed from the sums and counts.
@@ -54,6 +57,8 @@ inline ErrorTerms terms_from_json(const nlohmann::json& j, const std::string& wh
   // Written since the sensor metric; earlier files have neither.
   if (j.contains("unseen_points")) t.unseen_points = count("unseen_points");
   if (j.contains("seen_through_points")) t.seen_through_points = count("seen_through_points");
+  if (j.contains("empty_space_observed") && !j["empty_space_observed"].is_null())
+    t.empty_space_observed = number("empty_space_observed");
   t.finish();
   return t;
 }

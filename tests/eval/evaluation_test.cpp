@@ -254,22 +254,33 @@ TEST(EvaluationReport, WritesJsonMarkdownAndSelfContainedHtml) {
   EXPECT_EQ(html.find("http://"), html.find("http://www.w3.org/2000/svg"));  // nothing external
 }
 
+// Headless Chromium, for the tests that render the report in a real browser.
+const char* const kNoChromium = "chromium is not installed (scripts/install-deps.sh installs it)";
+bool has_chromium() { return std::system("command -v chromium >/dev/null 2>&1") == 0; }
+// Its command line, with a profile of its own in `dir`.
+std::string chromium(const test::ScratchDir& dir) {
+  return "chromium --headless --no-sandbox --disable-gpu --disable-dev-shm-usage --user-data-dir=" +
+         dir.file("profile") + " ";
+}
+// The DOM Chromium builds from the HTML file `page` (empty if it fails).
+std::string rendered_dom(const test::ScratchDir& dir, const std::string& page) {
+  const std::string dom = dir.file("dom.html");
+  if (std::system(
+          (chromium(dir) + "--dump-dom file://" + page + " > " + dom + " 2>/dev/null").c_str()) !=
+      0)
+    return "";
+  return read(dom);
+}
+
 // The report renders in a real browser: headless Chromium parses it, and the DOM it builds holds
 // the tables and the plots.
 TEST(EvaluationReport, RendersInHeadlessChromium) {
-  if (std::system("command -v chromium >/dev/null 2>&1") != 0)
-    GTEST_SKIP() << "chromium is not installed (scripts/install-deps.sh installs it)";
+  if (!has_chromium()) GTEST_SKIP() << kNoChromium;
   test::ScratchDir dir;
   write_evaluation_report(dir.file("report"), hand_made());
-  const std::string html = dir.file("report/report.html"), dom = dir.file("dom.html"),
-                    png = dir.file("shot.png");
-  const std::string flags =
-      "chromium --headless --no-sandbox --disable-gpu --disable-dev-shm-usage "
-      "--user-data-dir=" +
-      dir.file("profile") + " ";
-  ASSERT_EQ(
-      std::system((flags + "--dump-dom file://" + html + " > " + dom + " 2>/dev/null").c_str()), 0);
-  const std::string rendered = read(dom);
+  const std::string html = dir.file("report/report.html"), png = dir.file("shot.png");
+  const std::string flags = chromium(dir);
+  const std::string rendered = rendered_dom(dir, html);
   EXPECT_EQ(occurrences(rendered, "<svg"), 2u);
   EXPECT_GE(occurrences(rendered, "<table"), 2u);
   EXPECT_NE(rendered.find("lmk evaluation: hand"), std::string::npos);
@@ -278,6 +289,42 @@ TEST(EvaluationReport, RendersInHeadlessChromium) {
                             .c_str()),
             0);
   EXPECT_GT(std::filesystem::file_size(png), 10000u);  // a page with content, not a blank one
+}
+
+// Failure pictures: a pair whose match is dropped (a missed instance) and one with a match moved
+// 30 cm off (a false match and a miss) are pictured on their scenes' depth images, with the
+// boxes drawn, and the page renders in headless Chromium with its embedded images.
+TEST_F(EvaluationTest, ReportPicturesEachFailureAndRendersInHeadlessChromium) {
+  Evaluation e = run({});
+  ASSERT_GE(e.pairs.size(), 2u);
+  ASSERT_FALSE(e.pairs[0].found.empty());
+  ASSERT_FALSE(e.pairs[1].found.empty());
+  e.pairs[0].found.clear();
+  e.pairs[1].found.resize(1);
+  e.pairs[1].found[0].box.pose.translation().x() += 0.3;
+  test::ScratchDir out;
+  write_evaluation_report(out.file("report"), e, dir_->path().string());
+  const nlohmann::json j = nlohmann::json::parse(read(out.path() / "report/report.json"));
+  const nlohmann::json& failures = j.at("failures");
+  EXPECT_EQ(failures.at("pairs_with_failures"), 2);
+  ASSERT_EQ(failures.at("pictured").size(), 2u);
+  EXPECT_EQ(failures["pictured"][0].at("missed"), 1);
+  EXPECT_EQ(failures["pictured"][1].at("false_matches"), 1);
+  EXPECT_NE(failures["pictured"][1].at("caption").get<std::string>().find("false match at"),
+            std::string::npos);
+  const std::string html = read(out.path() / "report/report.html");
+  const std::size_t from = html.find("<h2>Failures</h2>"), to = html.find("<h2>Pairs</h2>");
+  ASSERT_LT(from, to);
+  const std::string section = html.substr(from, to - from);
+  EXPECT_EQ(occurrences(section, "href=\"data:image/png;base64,"), 2u);
+  EXPECT_EQ(occurrences(section, "stroke=\"#ee6677\""), 12u);  // the false match's 12 edges
+  EXPECT_NE(read(out.path() / "report/report.md").find("## Failures"), std::string::npos);
+
+  if (!has_chromium()) GTEST_SKIP() << kNoChromium;
+  const std::string rendered = rendered_dom(out, out.file("report/report.html"));
+  EXPECT_EQ(occurrences(rendered, "<figcaption>"), 2u);
+  EXPECT_EQ(occurrences(rendered, "<image "), 2u);
+  EXPECT_GE(occurrences(rendered, "<line "), 24u);
 }
 
 TEST(Ablation, AxesParseWithClearErrors) {

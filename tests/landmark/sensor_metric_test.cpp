@@ -90,5 +90,22 @@ TEST(SensorMetric, APointWithoutAReturnIsUnknown) {
   expect_terms(Fixture().evaluate(wall(depth)), 3, 0, 6, 0.0, 1.0);
 }
 
+// Empty space, seen the same way. The patch was captured with the space in front of it free: with
+// the wall where it was, the sensor sees through that space and confirms it. A plate 3.5 cm in
+// front of the patch, across its pixels, stands in it: the voxels at the plate's depth are
+// violated, and the patch behind it is unknown.
+TEST(SensorMetric, EmptySpaceIsConfirmedWhereSeenThroughAndViolatedWhereASurfaceStands) {
+  const Fixture f;
+  ASSERT_GT(f.landmark.empty_space.size(), 0u);
+  const ErrorTerms free = f.evaluate(wall([](int, int) { return 1.0; }));
+  EXPECT_GT(free.empty_space_probes, 0u);
+  EXPECT_EQ(free.empty_space_violations, 0u);
+  EXPECT_GT(free.empty_space_observed, 0.0);
+  const ErrorTerms blocked = f.evaluate(
+      wall([](int u, int v) { return u >= 17 && u <= 21 && v >= 12 && v <= 16 ? 0.965 : 1.0; }));
+  EXPECT_EQ(blocked.unseen_points, 9u);
+  EXPECT_GT(blocked.empty_space_violations, 0u);
+}
+
 }  // namespace
 }  // namespace lmk
