@@ -22,6 +22,11 @@ void add_dataset_options(CLI::App* sub, DatasetOptions& o) {
       ->check(CLI::PositiveNumber)
       ->excludes(dataset);
   sub->add_flag("--hard", o.hard, "With a preset: its strong-rotation variants")->excludes(dataset);
+  sub->add_option("--first-seed", o.first_seed,
+                  "With a preset: its first scene seed (default 1), so that a method tuned on "
+                  "some seeds is reported on others; 0 is the landmarks' demonstration scene")
+      ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1000000000}))
+      ->excludes(dataset);
 }
 
 void add_evaluation_options(CLI::App* sub, EvaluationSettings& s) {
@@ -50,6 +55,7 @@ LoadedDataset load_or_generate(const DatasetOptions& o, const std::string& cache
     GenerateOptions generate;
     generate.seeds = o.seeds;
     generate.hard = o.hard;
+    generate.first_seed = o.first_seed;
     const std::string preset = o.preset.empty() ? "paper" : o.preset;
     benchmark_preset(preset);  // an unknown name fails before anything else
     // Without a cache the dataset still needs a home for the run; the system's temporary

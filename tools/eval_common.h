@@ -2,6 +2,7 @@
 // What lmk eval and lmk ablate share: choosing the dataset (a directory, or a built-in preset
 // generated once into the cache), the evaluation options, and a run with progress.
 
+#include <cstdint>
 #include <string>
 
 #include "eval/benchmark_dataset.h"
@@ -11,10 +12,11 @@
 namespace lmk::cli {
 
 struct DatasetOptions {
-  std::string dir;           ///< --dataset
-  std::string preset;        ///< --preset (default "paper" when neither is given)
-  std::optional<int> seeds;  ///< --seeds, with a preset
-  bool hard = false;         ///< --hard, with a preset
+  std::string dir;               ///< --dataset
+  std::string preset;            ///< --preset (default "paper" when neither is given)
+  std::optional<int> seeds;      ///< --seeds, with a preset
+  bool hard = false;             ///< --hard, with a preset
+  std::uint64_t first_seed = 1;  ///< --first-seed, with a preset
 };
 void add_dataset_options(CLI::App* sub, DatasetOptions& options);
 

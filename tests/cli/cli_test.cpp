@@ -365,6 +365,7 @@ TEST_F(Cli, EvaluationErrorsAreOneLine) {
   expect_bad_input("gen --types simple/three_balls " + path("x.pcd"), "need --preset");
   expect_bad_input("eval --dataset " + path("nowhere"), "dataset.json");
   expect_bad_input("eval --preset nope", "unknown preset 'nope'");
+  expect_bad_input("eval --preset paper --first-seed 0", "--first-seed");
   expect_bad_input("ablate --vary colour=red", "unknown setting 'colour'");
   expect_bad_input("ablate --vary metric=paper,paper", "given twice");
   expect_bad_input("bench --repeats 0", "--repeats");
