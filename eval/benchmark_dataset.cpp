@@ -19,13 +19,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-PointCloud render(const GeneratedScene& scene, std::uint64_t noise_seed, bool noise) {
-  DepthSensorSettings sensor;
-  sensor.noise = noise;
-  sensor.seed = noise_seed;
-  return render_depth(scene.mesh, scene.T_world_sensor, sensor);
-}
-
 // Each rendered frame gets its own noise stream, derived from what the frame shows.
 std::uint64_t noise_seed(const std::string& scene_name) {
   return fnv1a(scene_name.data(), scene_name.size());
@@ -45,7 +38,7 @@ std::vector<DatasetPair> pairs_of(const GeneratedScene& scene,
     const auto it = scene.instances.find(landmark.name);
     const bool has_instances = it != scene.instances.end() && !it->second.empty();
     if (!in_context && !has_instances) continue;
-    DatasetPair pair{landmark.name, in_context, {}};
+    DatasetPair pair{landmark.name, in_context, {}, {}};
     if (has_instances) {
       const auto model = captured.find(landmark.name);
       for (const Box& box : it->second) {
@@ -108,7 +101,7 @@ Landmark capture_benchmark_landmark(const BenchmarkLandmark& landmark, bool nois
                 landmark.demo_scene);
   }
   const PointCloud cloud =
-      render(demo, noise_seed(benchmark_scene_name(landmark.demo_scene, 0, false)), noise);
+      render_scene(demo, noise, noise_seed(benchmark_scene_name(landmark.demo_scene, 0, false)));
   CaptureSettings settings;
   settings.base_frame = true;  // the world frame: z up
   return capture(cloud, it->second.front(), landmark.name, settings);
@@ -178,7 +171,7 @@ Dataset generate_benchmark_dataset(const std::string& dir, const std::string& pr
       entry.setting = scene.setting;
       entry.T_scene_sensor = scene.T_world_sensor;
       entry.up = Eigen::Vector3d::UnitZ();
-      const PointCloud exact = render(scene, 0, false);
+      const PointCloud exact = render_scene(scene);
       for (const DatasetPair& pair : pairs_of(scene, captured, exact)) {
         const bool listed =
             std::any_of(landmarks.begin(), landmarks.end(),
@@ -186,7 +179,7 @@ Dataset generate_benchmark_dataset(const std::string& dir, const std::string& pr
         if (listed) entry.pairs.push_back(pair);
       }
       write_cloud((fs::path(dir) / entry.file).string(),
-                  render(scene, noise_seed(entry.name), options.noise));
+                  render_scene(scene, options.noise, noise_seed(entry.name)));
       dataset.scenes.push_back(entry);
       step();
     }

@@ -28,11 +28,15 @@ const std::string kAssumptionsNote =
 // The assumption the curves show: 1 when every pair was searched, else 2.
 int curve_assumption(const Evaluation& e) { return e.settings.in_context_only ? 2 : 1; }
 
+// Whether the evaluation's metric measures errors in sigma rather than metres.
+bool errors_in_sigma(const Evaluation& e) {
+  return find_error_metric(effective_metric(e.settings.find)).unit == ErrorMetric::Unit::sigma;
+}
+
 // One line per pair: what was there, what was found, how good the best match was, how long.
 TextTable pair_table(const Evaluation& e) {
   const double threshold = effective_threshold(e.settings.find);
-  const bool in_sigma =
-      find_error_metric(effective_metric(e.settings.find)).unit == ErrorMetric::Unit::sigma;
+  const bool in_sigma = errors_in_sigma(e);
   TextTable t;
   t.header = {"scene",
               "landmark",
@@ -80,8 +84,7 @@ std::string threshold_plot(const Evaluation& e) {
   LinePlot plot;
   plot.title = "Precision (solid) and recall (dashed) against the threshold, assumption " +
                std::to_string(curve_assumption(e));
-  const bool in_sigma =
-      find_error_metric(effective_metric(e.settings.find)).unit == ErrorMetric::Unit::sigma;
+  const bool in_sigma = errors_in_sigma(e);
   const double scale = in_sigma ? 1.0 : 1e3;  // plotted in sigma or in millimetres
   plot.x_label = in_sigma ? "error threshold (sigma)" : "error threshold (mm)";
   plot.marker_x = scale * effective_threshold(e.settings.find);

@@ -108,7 +108,8 @@ Dataset generate_mosd_dataset(const std::string& mosd_dir, const std::string& ou
       scene.setting = setting_of(number);
       const PointCloud moved = frame.transformed(T);
       scene.T_scene_sensor = moved.T_cloud_sensor;
-      for (const auto& [name, box] : captured) scene.pairs.push_back({name, true, {T * box.pose}});
+      for (const auto& [name, box] : captured)
+        scene.pairs.push_back({name, true, {T * box.pose}, {}});
       write_cloud((fs::path(out_dir) / scene.file).string(), moved);
       dataset.scenes.push_back(scene);
     }

@@ -4,6 +4,7 @@
 #include <functional>
 #include <initializer_list>
 
+#include "eval/depth_sensor.h"
 #include "eval/objects.h"
 #include "geometry/error.h"
 #include "geometry/hash.h"
@@ -341,6 +342,13 @@ const std::vector<std::string>& scene_types() {
     return out;
   }();
   return names;
+}
+
+PointCloud render_scene(const GeneratedScene& scene, bool noise, std::uint64_t noise_seed) {
+  DepthSensorSettings sensor;
+  sensor.noise = noise;
+  sensor.seed = noise_seed;
+  return render_depth(scene.mesh, scene.T_world_sensor, sensor);
 }
 
 GeneratedScene make_scene(const std::string& type, std::uint64_t seed, bool hard) {

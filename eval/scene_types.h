@@ -15,6 +15,7 @@
 #include "eval/evaluation_protocol.h"
 #include "eval/mesh.h"
 #include "geometry/box.h"
+#include "geometry/point_cloud.h"
 
 namespace lmk {
 
@@ -41,6 +42,11 @@ struct GeneratedScene {
 
 /// The 17 scene types, in the paper's order: "simple/bowl_and_cup", ...
 const std::vector<std::string>& scene_types();
+
+/// The scene as its sensor sees it (eval/depth_sensor.h): exact depth, the ground truth's view,
+/// or with `noise` the simulated Kinect's, from the noise stream `noise_seed`.
+PointCloud render_scene(const GeneratedScene& scene, bool noise = false,
+                        std::uint64_t noise_seed = 0);
 
 /// Builds scene `type` for `seed`. Deterministic: the same arguments give the same scene. Throws
 /// lmk::Error naming the known types for an unknown one.

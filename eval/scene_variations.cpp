@@ -12,12 +12,6 @@ namespace lmk {
 
 namespace {
 
-PointCloud render_exact(const GeneratedScene& scene) {
-  DepthSensorSettings exact;
-  exact.noise = false;
-  return render_depth(scene.mesh, scene.T_world_sensor, exact);
-}
-
 // The in-context instances a variation is about, in_context order, each landmark's first `limit`.
 std::vector<std::pair<const Landmark*, Box>> in_context_instances(
     const GeneratedScene& scene, const std::map<std::string, Landmark>& captured, int limit) {
@@ -77,7 +71,7 @@ void view_from_random_viewpoint(GeneratedScene& scene,
     scene.T_world_sensor = random_viewpoint(box.pose.translation(), reference,
                                             seed * 0x9E3779B97F4A7C15ull + k, range);
     const double hidden =
-        hidden_fraction(*landmark, box, render_exact(scene), DepthSensorSettings());
+        hidden_fraction(*landmark, box, render_scene(scene), DepthSensorSettings());
     if (hidden < best_hidden) best = scene.T_world_sensor, best_hidden = hidden;
     if (hidden <= 0.5) break;
   }
@@ -102,7 +96,7 @@ void add_occluders(GeneratedScene& scene, const std::map<std::string, Landmark>&
     const double side = rng.uniform01() < 0.5 ? -1.0 : 1.0;
 
     const std::vector<char> seen_mask =
-        seen_on_instance(*landmark, box, render_exact(scene), DepthSensorSettings());
+        seen_on_instance(*landmark, box, render_scene(scene), DepthSensorSettings());
     const std::vector<Eigen::Vector3d> points = points_on_instance(*landmark, box);
     std::vector<Eigen::Vector3d> seen;
     for (std::size_t i = 0; i < points.size(); ++i)

@@ -61,12 +61,10 @@ std::optional<RangeImage> RangeImage::from_cloud(const PointCloud& cloud,
   image.depth_.assign(static_cast<std::size_t>(fallback.width) * fallback.height, kNothing);
   bool any = false;
   for (const Eigen::Vector3f& point : cloud.points) {
-    const Look look = image.look(point);
-    if (!look.in_view) continue;
     const Eigen::Vector3f p = image.T_sensor_cloud_ * point;
-    const long u = std::lround(fallback.fx * p.x() / p.z() + fallback.cx);
-    const long v = std::lround(fallback.fy * p.y() / p.z() + fallback.cy);
-    float& d = image.depth_[static_cast<std::size_t>(v) * fallback.width + u];
+    const std::optional<std::size_t> pixel = image.pixel_of(p);
+    if (!pixel) continue;
+    float& d = image.depth_[*pixel];
     if (std::isnan(d) || p.z() < d) d = p.z();
     any = true;
   }
@@ -84,16 +82,22 @@ double RangeImage::depth_of(const Eigen::Vector3f& point) const {
   return (T_sensor_cloud_ * point).z();
 }
 
+std::optional<std::size_t> RangeImage::pixel_of(const Eigen::Vector3f& p) const {
+  if (!p.allFinite() || !(p.z() > 0.0f)) return std::nullopt;
+  const long u = std::lround(k_.fx * p.x() / p.z() + k_.cx);
+  const long v = std::lround(k_.fy * p.y() / p.z() + k_.cy);
+  if (u < 0 || v < 0 || u >= k_.width || v >= k_.height) return std::nullopt;
+  return static_cast<std::size_t>(v) * k_.width + static_cast<std::size_t>(u);
+}
+
 RangeImage::Look RangeImage::look(const Eigen::Vector3f& point) const {
   Look look;
   const Eigen::Vector3f p = T_sensor_cloud_ * point;
   look.depth = p.z();
-  if (!p.allFinite() || !(p.z() > 0.0f)) return look;
-  const long u = std::lround(k_.fx * p.x() / p.z() + k_.cx);
-  const long v = std::lround(k_.fy * p.y() / p.z() + k_.cy);
-  if (u < 0 || v < 0 || u >= k_.width || v >= k_.height) return look;
+  const std::optional<std::size_t> pixel = pixel_of(p);
+  if (!pixel) return look;
   look.in_view = true;
-  look.measured = depth_[static_cast<std::size_t>(v) * k_.width + u];
+  look.measured = depth_[*pixel];
   return look;
 }
 

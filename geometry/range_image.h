@@ -56,6 +56,9 @@ class RangeImage {
   const std::vector<float>& depths() const { return depth_; }
 
  private:
+  /// The index of the pixel a point in the sensor frame falls in, if in front and in the image.
+  std::optional<std::size_t> pixel_of(const Eigen::Vector3f& p_sensor) const;
+
   PinholeIntrinsics k_;
   Eigen::Isometry3f T_sensor_cloud_ = Eigen::Isometry3f::Identity();
   std::vector<float> depth_;

@@ -113,7 +113,7 @@ const std::vector<ErrorMetric>& error_metrics() {
       {"sensor",
        "sensor-aware: residuals in units of the depth noise expected at each point's capture and "
        "scene depths; points the scene's sensor could not see are unknown, points it saw through "
-       "count against; empty space as 'visibility', beyond the surface's noise",
+       "count against; the free space is checked through the scene's depth image too",
        sensor_metric, 1.0, ErrorMetric::Unit::sigma},
   };
   return metrics;

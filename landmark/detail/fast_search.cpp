@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <limits>
 #include <memory>
 #include <numeric>
 
@@ -34,12 +33,14 @@ struct Candidate {
   std::size_t seed = 0;
 };
 
-// Every k-th element, so that at most `cap` remain (deterministic).
-std::vector<Eigen::Vector3f> thin(const std::vector<Eigen::Vector3f>& points, std::size_t cap) {
-  if (points.size() <= cap) return points;
-  std::vector<Eigen::Vector3f> out;
-  const double step = static_cast<double>(points.size()) / static_cast<double>(cap);
-  for (std::size_t k = 0; k < cap; ++k) out.push_back(points[static_cast<std::size_t>(k * step)]);
+// Every k-th element, so that at most `cap` remain (deterministic: two vectors of one length keep
+// the same indices).
+template <class T>
+std::vector<T> thin(const std::vector<T>& items, std::size_t cap) {
+  if (items.size() <= cap) return items;
+  std::vector<T> out;
+  const double step = static_cast<double>(items.size()) / static_cast<double>(cap);
+  for (std::size_t k = 0; k < cap; ++k) out.push_back(items[static_cast<std::size_t>(k * step)]);
   return out;
 }
 
@@ -150,13 +151,14 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
   const bool in_sigma = in.metric.unit == ErrorMetric::Unit::sigma;
   const Eigen::Vector3f capture_sensor = landmark.sensor_origin.cast<float>();
   const double prune = in_sigma ? kSigmaPrune : s.fast.prune_error;
-  const std::vector<Eigen::Vector3f> quick_probes =
-      in_sigma ? thin(landmark.empty_space.centres(), 300) : std::vector<Eigen::Vector3f>();
+  std::vector<Eigen::Vector3f> quick_probes;
   std::vector<float> quick_probe_distances;
-  for (const Eigen::Vector3f& c : quick_probes) {
-    const auto n = in.landmark_view.tree.nearest(c);
-    quick_probe_distances.push_back(n ? std::sqrt(n->squared_distance)
-                                      : std::numeric_limits<float>::infinity());
+  if (in_sigma) {
+    quick_probes = thin(landmark.empty_space.centres(), 300);
+    quick_probe_distances = thin(in.landmark_view.empty_distances
+                                     ? *in.landmark_view.empty_distances
+                                     : empty_space_distances(landmark, in.landmark_view.tree),
+                                 300);
   }
   std::vector<double> quick(clusters.size());
   std::vector<int> iterations(clusters.size(), 0);

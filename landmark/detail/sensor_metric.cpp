@@ -68,25 +68,21 @@ void projective_empty_space(const RangeImage& image, const DepthNoise& noise,
 void occupied_empty_space(const SceneIndex& index, const DepthNoise& noise,
                           const LandmarkView& landmark, const Eigen::Isometry3d& T_scene_capture,
                           ErrorTerms& terms) {
-  const EmptySpaceGrid::Sampler empty(landmark.landmark.empty_space);
   const DistanceField::Sampler landmark_field(landmark.landmark.distance);
   const float band = static_cast<float>(landmark.landmark.distance.band());
   const Eigen::Vector3f capture_sensor = landmark.landmark.sensor_origin.cast<float>();
   const Eigen::Vector3f sensor = index.T_scene_sensor().translation().cast<float>();
-  const Eigen::Isometry3f T_capture_scene = T_scene_capture.inverse().cast<float>();
   terms.empty_space_probes = landmark.landmark.empty_space.size();
   double violation_distance = 0.0;
-  for (const Eigen::Vector3f& occupied :
-       index.occupancy().occupied_in(landmark.box.transformed(T_scene_capture))) {
-    const Eigen::Vector3f e = T_capture_scene * occupied;
-    if (!empty.is_empty(e)) continue;
-    const double sigma =
-        noise.residual_sigma((e - capture_sensor).norm(), (occupied - sensor).norm());
-    const float d = landmark_field.distance(e);
-    if (d < std::min<double>(kNoiseBand * sigma, 0.99 * band)) continue;
-    ++terms.empty_space_violations;
-    violation_distance += d;
-  }
+  for_each_occupied_empty_voxel(index, landmark, T_scene_capture,
+                                [&](const Eigen::Vector3f& e, const Eigen::Vector3f& occupied) {
+                                  const double sigma = noise.residual_sigma(
+                                      (e - capture_sensor).norm(), (occupied - sensor).norm());
+                                  const float d = landmark_field.distance(e);
+                                  if (d < std::min<double>(kNoiseBand * sigma, 0.99 * band)) return;
+                                  ++terms.empty_space_violations;
+                                  violation_distance += d;
+                                });
   if (terms.empty_space_violations > 0) {
     terms.empty_space_violation_mean =
         violation_distance / static_cast<double>(terms.empty_space_violations);

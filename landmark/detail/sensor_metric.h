@@ -17,11 +17,14 @@ namespace lmk {
 ///   of a point captured at its capture depth and measured again at its scene depth, and capped.
 /// - Coverage is the share of the points that should be visible with a residual below the
 ///   support level, over at least a fifth of all points (so that a pose seen nowhere is no match).
-/// - Empty space: each scene voxel inside the box that falls in the landmark's observed-empty space
-///   and lies more than two sigma from its surface (closer, it is noise of the landmark's own
-///   surface) is a violation and adds its distance to the surface in sigma, capped.
-/// - The error is the mean of all terms. Without a range image (an unorganised cloud whose sensor
-///   pose does not explain it), every point counts as visible.
+/// - Empty space is seen the same way: each observed-empty voxel of the landmark more than
+///   kOccluding sigma from its surface is violated when the image holds a surface within a sigma of
+///   its depth, confirmed empty when the surface lies more than kOccluding sigma behind, unknown
+///   otherwise; probes are the voxels observed either way. When less than kMinEmptyObserved of
+///   the landmark's free space is observed, the pose has no evidence and the error is the cap.
+/// - The error is the mean of the points' terms. Without a range image (an unorganised cloud whose
+///   sensor pose does not explain it), every point counts as visible, and empty space is tested as
+///   the visibility metric tests it, beyond two sigma of the landmark's surface.
 ErrorTerms sensor_metric(const SceneView& scene, const LandmarkView& landmark,
                          const Eigen::Isometry3d& T_scene_capture);
 

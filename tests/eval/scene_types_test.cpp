@@ -7,18 +7,11 @@
 
 #include <set>
 
-#include "eval/depth_sensor.h"
 #include "geometry/error.h"
 #include "geometry/pose.h"
 
 namespace lmk {
 namespace {
-
-PointCloud render_exact(const GeneratedScene& scene) {
-  DepthSensorSettings settings;
-  settings.noise = false;
-  return render_depth(scene.mesh, scene.T_world_sensor, settings);
-}
 
 std::size_t points_in(const PointCloud& cloud, const Box& box) {
   std::size_t n = 0;
@@ -58,7 +51,7 @@ TEST(SceneTypes, GroundTruthBoxesHoldWhatTheSensorSees) {
   // sensor pose is honoured and the instances are where the labels say.
   for (const std::string& type : scene_types()) {
     const GeneratedScene scene = make_scene(type, 1);
-    const PointCloud cloud = render_exact(scene);
+    const PointCloud cloud = render_scene(scene);
     EXPECT_EQ(cloud.T_cloud_sensor.matrix(), scene.T_world_sensor.matrix());
     for (const std::string& name : scene.in_context) {
       if (!scene.instances.count(name)) continue;  // e.g. mounts in a full rack: all hidden
