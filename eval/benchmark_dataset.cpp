@@ -232,7 +232,12 @@ std::string dataset_fingerprint(const std::string& dir, const Dataset& dataset,
     const Eigen::Matrix4d box_pose = landmark.box.pose.matrix();
     hash.add(box_pose.data(), sizeof(double) * 16)
         .add(landmark.box.size.data(), sizeof(double) * 3)
-        .add(landmark.up.data(), sizeof(double) * 3);
+        .add(landmark.up.data(), sizeof(double) * 3)
+        .add(landmark.sensor_origin.data(), sizeof(double) * 3);
+    // The free space is derived from the capture scene, which the file does not hold: a capture
+    // that carves it differently changes the results with the same points.
+    for (const Eigen::Vector3f& c : landmark.empty_space.centres())
+      hash.add(c.data(), sizeof(float) * 3);
   }
   return hash.hex();
 }

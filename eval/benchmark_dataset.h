@@ -17,8 +17,9 @@ namespace lmk {
 
 /// Bumped whenever the generator's output changes (objects, scene types, sensor, capture), so that
 /// cached benchmark datasets are regenerated.
-// 3: the Kinect model of lmk sensor-check; 4: the viewpoints and occlusion presets
-inline constexpr int kBenchmarkGeneratorVersion = 4;
+// 3: the Kinect model of lmk sensor-check; 4: the viewpoints and occlusion presets; 5: landmarks'
+// empty space stops beside unobserved space (occupancy/empty_space.h)
+inline constexpr int kBenchmarkGeneratorVersion = 5;
 
 /// What a preset changes in the generated scenes (eval/scene_variations.h).
 enum class SceneVariation {

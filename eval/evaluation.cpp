@@ -139,7 +139,12 @@ std::string evaluation_cache_key(const FindSettings& find, const std::string& fi
   applied.selection.threshold = recorded_threshold(find);
   applied.sampling.max_seeds = effective_max_seeds(find);
   const nlohmann::json settings = detail::result_settings_to_json(applied);
-  return Fnv1a().add(settings.dump()).add(fingerprint).add(kVersion).hex();
+  return Fnv1a()
+      .add(settings.dump())
+      .add(fingerprint)
+      .add(kVersion)
+      .add_value(kSearchRevision)
+      .hex();
 }
 
 std::string default_cache_dir() {

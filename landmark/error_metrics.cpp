@@ -110,6 +110,10 @@ const std::vector<ErrorMetric>& error_metrics() {
        "visibility-aware: every landmark point's distance to the scene surface (capped), plus the "
        "landmark's observed-empty voxels that the scene occupies; occluded space is not penalised",
        visibility_metric, 0.006},
+      {"projective",
+       "as 'visibility', seen from the scene's sensor: landmark points behind a nearer scene "
+       "surface are hidden and count neither way, over at least half of the points",
+       projective_metric, 0.006, ErrorMetric::Unit::metres, true},
       {"sensor",
        "sensor-aware: residuals in units of the depth noise expected at each point's capture and "
        "scene depths; points the scene's sensor could not see are unknown, points it saw through "

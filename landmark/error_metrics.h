@@ -88,6 +88,9 @@ struct ErrorMetric {
   double default_threshold;
   /// The metric's unit: metres, or the expected depth noise (sigma) of each residual.
   enum class Unit { metres, sigma } unit = Unit::metres;
+  /// Landmark points hidden behind nearer scene surfaces count neither way (hidden_behind(), in
+  /// landmark/detail/grid_metrics.h); the fast search's coarse score hides them too.
+  bool hides_occluded = false;
 };
 
 /// `value` (an error or a threshold of `metric`) with its unit: "5.5 mm", "1.30 sigma".
@@ -95,7 +98,8 @@ std::string format_error(double value, const ErrorMetric& metric);
 /// The same for the metric called `name`.
 std::string format_error(double value, const std::string& name);
 
-/// Every registered metric, in a fixed order: "paper", "rapid", "vdb", "visibility", "sensor".
+/// Every registered metric, in a fixed order: "paper", "rapid", "vdb", "visibility", "projective",
+/// "sensor".
 const std::vector<ErrorMetric>& error_metrics();
 /// The registered metrics' names, in the registry's order.
 std::vector<std::string> error_metric_names();

@@ -75,13 +75,17 @@ FindResult search(const SceneIndex& index, const Landmark& landmark, const FindS
                  3.0 * index.settings().coarse_leaf);
     const Indices candidates =
         detail::points_near_relief(points, 0.5 * diameter, detail::kCoplanarAngle);
-    const auto wanted = static_cast<std::size_t>(
-        std::ceil(settings.fast.seeds_per_instance * static_cast<double>(candidates.size()) /
-                  static_cast<double>(landmark_coarse.size())));
-    for (Index k :
-         random_sample_indices(candidates.size(), std::min(effective_max_seeds(settings), wanted),
-                               settings.sampling.seed)) {
-      seeds.push_back(candidates[k]);
+    // One seed per cell of a grid whose cells an instance's surface (about as many coarse
+    // leaves as the landmark has coarse points) spans seeds_per_instance times; coarser while the
+    // seeds would exceed the cap.
+    const double leaf = index.settings().coarse_leaf;
+    double spacing = leaf * std::sqrt(std::max(1.0, static_cast<double>(landmark_coarse.size()) /
+                                                        settings.fast.seeds_per_instance));
+    const std::size_t cap = effective_max_seeds(settings);
+    seeds = detail::spread_seeds(points, candidates, spacing, settings.sampling.seed);
+    while (seeds.size() > cap) {
+      spacing *= 1.02 * std::sqrt(static_cast<double>(seeds.size()) / static_cast<double>(cap));
+      seeds = detail::spread_seeds(points, candidates, spacing, settings.sampling.seed);
     }
   } else {
     const auto wanted = static_cast<std::size_t>(

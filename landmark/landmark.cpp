@@ -169,9 +169,9 @@ void prepare_landmark(Landmark& landmark, const std::vector<Eigen::Vector3f>* sc
   const PointCloud& points = landmark.points;
   const CaptureSettings& s = landmark.settings;
   landmark.distance = DistanceField(points.points, {s.leaf_size, s.distance_band});
-  landmark.empty_space =
-      EmptySpaceGrid::observe(scene_points ? *scene_points : points.points, landmark.sensor_origin,
-                              landmark.box, landmark.distance, {s.leaf_size, s.empty_space_margin});
+  landmark.empty_space = EmptySpaceGrid::observe(
+      scene_points ? *scene_points : points.points, landmark.sensor_origin, landmark.box,
+      landmark.distance, {s.leaf_size, s.empty_space_margin, s.leaf_size});
 }
 
 }  // namespace lmk

@@ -5,7 +5,8 @@
 // ray crossed it before hitting a surface. Voxels behind a surface were occluded: they are
 // *unknown*, not empty, and are not stored, so a search never penalises a scene point there.
 // Voxels within a margin of the landmark's own points are left out too: depth noise scatters the
-// surface over a few millimetres, and that must not count as intrusion.
+// surface over a few millimetres, and that must not count as intrusion. So are voxels next to
+// unobserved ones, where a surface the sensor never returned may stand.
 
 #include <Eigen/Geometry>
 #include <memory>
@@ -19,6 +20,10 @@ namespace lmk {
 struct EmptySpaceSettings {
   double voxel_size = 0.005;     ///< voxel side, m
   double surface_margin = 0.01;  ///< free space stops this far before each ray's end point, m
+  /// Free space stops this far from every voxel of the box that no ray crossed, m: a surface the
+  /// sensor never returned may lie there. One voxel catches a face's points wherever noise puts
+  /// them; the full surface margin cost more empty space than it bought (docs/evaluation.md).
+  double unobserved_margin = 0.005;
 };
 
 class EmptySpaceGrid {
@@ -27,9 +32,10 @@ class EmptySpaceGrid {
 
   /// Casts a ray from `sensor_origin` to every point of `scene_points` (the whole capture scene, in
   /// the capture frame: rays that pass through the box and end behind it count) and keeps the
-  /// voxels inside `box` that a ray crossed up to `surface_margin` before its end point, and that
-  /// lie at least `surface_margin` from every point of `surface`. Throws lmk::Error for a
-  /// non-positive voxel, a negative margin or an invalid box.
+  /// voxels inside `box` that a ray crossed up to `surface_margin` before its end point, that lie
+  /// at least `surface_margin` from every point of `surface`, and at least `unobserved_margin`
+  /// from every voxel inside `box` that no ray crossed. Throws lmk::Error for a non-positive
+  /// voxel, a negative margin or an invalid box.
   static EmptySpaceGrid observe(const std::vector<Eigen::Vector3f>& scene_points,
                                 const Eigen::Vector3d& sensor_origin, const Box& box,
                                 const DistanceField& surface, const EmptySpaceSettings& settings);

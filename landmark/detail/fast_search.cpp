@@ -175,12 +175,8 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
                  empty_space_penalty(index, landmark, quick_probes, quick_probe_distances, T);
       return;
     }
-    const DistanceField::Sampler field(index.field());
-    double sum = 0.0;
-    for (std::size_t j = 0; j < model.size(); ++j) {
-      sum += landmark_point_distance(index, field, T, model, j);
-    }
-    quick[c] = sum / static_cast<double>(model.size());
+    quick[c] =
+        mean_surface_distance(index, model, T, in.metric.hides_occluded ? &landmark.box : nullptr);
   });
 
   // Prune: only candidates whose coarse fit could still pass go on, the best first.

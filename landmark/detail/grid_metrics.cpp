@@ -61,23 +61,79 @@ ErrorTerms vdb_metric(const SceneView& scene, const LandmarkView& landmark,
   return terms;
 }
 
-ErrorTerms visibility_metric(const SceneView& scene, const LandmarkView& landmark,
-                             const Eigen::Isometry3d& T_scene_capture) {
+bool hidden_behind(const SceneIndex& scene, const Eigen::Vector3f& q, const Box& box) {
+  const std::optional<RangeImage>& image = scene.range_image();
+  if (!image) return false;
+  const RangeImage::Look look = image->look(q);
+  if (!look.in_view || std::isnan(look.measured)) return false;
+  const double margin = std::max(3.0 * scene.settings().depth_noise().measurement_sigma(look.depth),
+                                 2.0 * scene.settings().leaf_size);
+  if (!(look.measured < look.depth - margin)) return false;
+  // The surface measured along the point's ray (depths along the optical axis scale with the
+  // distance along the ray).
+  const Eigen::Vector3f sensor = scene.T_scene_sensor().translation().cast<float>();
+  const Eigen::Vector3f seen =
+      sensor + (q - sensor) * static_cast<float>(look.measured / look.depth);
+  const Box clear(box.pose, box.size + Eigen::Vector3d::Constant(2.0 * kOccluderClearance));
+  return !clear.contains(Eigen::Vector3d(seen.cast<double>()));
+}
+
+std::size_t shown_shortfall(std::size_t shown, std::size_t total) {
+  const double floor = kMinShownShare * static_cast<double>(total);
+  return static_cast<std::size_t>(std::ceil(std::max(0.0, floor - static_cast<double>(shown))));
+}
+
+double mean_surface_distance(const SceneIndex& scene, const PointCloud& points,
+                             const Eigen::Isometry3f& T_scene_capture, const Box* capture_box) {
+  const DistanceField::Sampler field(scene.field());
+  const bool projective = capture_box != nullptr;
+  const Box box = projective ? capture_box->transformed(T_scene_capture.cast<double>()) : Box();
+  double sum = 0.0;
+  std::size_t shown = 0;
+  for (std::size_t j = 0; j < points.size(); ++j) {
+    if (projective && hidden_behind(scene, T_scene_capture * points.points[j], box)) continue;
+    sum += landmark_point_distance(scene, field, T_scene_capture, points, j);
+    ++shown;
+  }
+  const std::size_t shortfall = shown_shortfall(shown, points.size());
+  const std::size_t count = shown + shortfall;
+  return count == 0 ? scene.field().band()
+                    : (sum + scene.field().band() * static_cast<double>(shortfall)) /
+                          static_cast<double>(count);
+}
+
+namespace {
+
+// The visibility metric's terms, with or without hiding the points behind nearer surfaces.
+ErrorTerms visibility_terms(const SceneView& scene, const LandmarkView& landmark,
+                            const Eigen::Isometry3d& T_scene_capture, bool projective) {
   ErrorTerms terms;
   const Eigen::Isometry3f T = T_scene_capture.cast<float>();
   const DistanceField::Sampler scene_field(scene.index.field());
+  const Box box = landmark.box.transformed(T_scene_capture);
   // Support: a scene surface within two paper leaves (1 cm) of the landmark point.
   const float support = static_cast<float>(2.0 * scene.index.settings().leaf_size);
   std::size_t supported = 0;
   for (std::size_t j = 0; j < landmark.points.size(); ++j) {
+    if (projective && hidden_behind(scene.index, T * landmark.points.points[j], box)) {
+      ++terms.unseen_points;
+      continue;
+    }
     const float d = landmark_point_distance(scene.index, scene_field, T, landmark.points, j);
     terms.landmark_to_scene_sum += d;
     ++terms.landmark_to_scene_count;
     if (d < support) ++supported;
   }
-  terms.coverage = landmark.points.empty() ? 0.0
-                                           : static_cast<double>(supported) /
-                                                 static_cast<double>(landmark.points.size());
+  // Points short of the share a pose must show cost the band each (none for the visibility
+  // metric, which shows every point).
+  const std::size_t shortfall =
+      shown_shortfall(terms.landmark_to_scene_count, landmark.points.size());
+  terms.landmark_to_scene_sum += scene.index.field().band() * static_cast<double>(shortfall);
+  terms.landmark_to_scene_count += shortfall;
+  terms.coverage =
+      terms.landmark_to_scene_count == 0
+          ? 0.0
+          : static_cast<double>(supported) / static_cast<double>(terms.landmark_to_scene_count);
 
   // Empty space, from the scene's side: its occupied voxels that land in the landmark's
   // observed-empty voxels.
@@ -95,6 +151,18 @@ ErrorTerms visibility_metric(const SceneView& scene, const LandmarkView& landmar
   }
   terms.finish();
   return terms;
+}
+
+}  // namespace
+
+ErrorTerms visibility_metric(const SceneView& scene, const LandmarkView& landmark,
+                             const Eigen::Isometry3d& T_scene_capture) {
+  return visibility_terms(scene, landmark, T_scene_capture, false);
+}
+
+ErrorTerms projective_metric(const SceneView& scene, const LandmarkView& landmark,
+                             const Eigen::Isometry3d& T_scene_capture) {
+  return visibility_terms(scene, landmark, T_scene_capture, true);
 }
 
 }  // namespace lmk

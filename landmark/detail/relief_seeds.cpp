@@ -1,6 +1,8 @@
 #include "landmark/detail/relief_seeds.h"
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <unordered_map>
 
 #include "geometry/detail/voxel_key.h"
@@ -47,6 +49,41 @@ Indices points_near_relief(const PointCloud& cloud, double cell, double angle) {
     }
     if (near) out.push_back(static_cast<Index>(i));
   }
+  return out;
+}
+
+namespace {
+
+// A 64-bit mix of (seed, index) (SplitMix64's finaliser): which candidate a cell keeps.
+std::uint64_t draw(std::uint64_t seed, std::uint64_t index) {
+  std::uint64_t z = seed * 0x9E3779B97F4A7C15ULL + index + 1;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  return z ^ (z >> 31);
+}
+
+}  // namespace
+
+Indices spread_seeds(const PointCloud& cloud, const Indices& candidates, double spacing,
+                     std::uint64_t seed) {
+  const double inv_cell = 1.0 / spacing;
+  struct Choice {
+    std::uint64_t draw;
+    Index index;
+  };
+  std::map<std::uint64_t, Choice> cells;  // ordered: the seeds come out in cell order
+  for (Index i : candidates) {
+    const std::uint64_t key = pack_voxel(voxel_coord(cloud.points[i], inv_cell));
+    const Choice c{draw(seed, i), i};
+    const auto [it, inserted] = cells.emplace(key, c);
+    if (!inserted &&
+        (c.draw < it->second.draw || (c.draw == it->second.draw && c.index < it->second.index))) {
+      it->second = c;
+    }
+  }
+  Indices out;
+  out.reserve(cells.size());
+  for (const auto& [key, choice] : cells) out.push_back(choice.index);
   return out;
 }
 

@@ -16,4 +16,12 @@ namespace lmk::detail {
 /// finite normal are left out. In index order.
 Indices points_near_relief(const PointCloud& cloud, double cell, double angle);
 
+/// Seeds spread evenly over `candidates` (indices into `cloud`): one per occupied cell of side
+/// `spacing`, chosen within its cell by `seed`. A uniform random sample leaves gaps as wide as its
+/// clumps: with a few seeds per instance, some instances got one seed or none (on the viewpoints
+/// preset, a partly hidden ball had one seed within 8 cm against fourteen on its neighbour) and
+/// were never voted for. In cell order, so the same whatever the order of `candidates`.
+Indices spread_seeds(const PointCloud& cloud, const Indices& candidates, double spacing,
+                     std::uint64_t seed);
+
 }  // namespace lmk::detail

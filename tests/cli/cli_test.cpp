@@ -167,7 +167,9 @@ TEST_F(CliLandmark, CaptureShowExportImportFind) {
   EXPECT_EQ(best["terms"]["empty_space_violations"], 0);
   EXPECT_EQ(j["stats"]["method"], "fast");
   EXPECT_EQ(j["stats"]["metric"], "visibility");
-  EXPECT_EQ(j["stats"]["seeds"], 150);
+  // Seeds spread one per cell, coarser until they fit the cap: at most 150, and not far below.
+  EXPECT_LE(j["stats"]["seeds"].get<int>(), 150);
+  EXPECT_GE(j["stats"]["seeds"].get<int>(), 120);
   EXPECT_GT(j["stats"]["seconds"].get<double>(), 0.0);
 
   const CommandResult table =

@@ -9,10 +9,29 @@
 
 #include "geometry/cloud_io.h"
 #include "geometry/error.h"
+#include "landmark/landmark_file.h"
 #include "tests/support/test_support.h"
 
 namespace lmk {
 namespace {
+
+// The free space is carved from the capture scene, which a landmark file does not hold: the same
+// points with other free space are another dataset, or a cached evaluation would outlive it.
+TEST(BenchmarkDataset, TheFingerprintFollowsTheLandmarksFreeSpace) {
+  test::ScratchDir dir;
+  GenerateOptions options;
+  options.types = {"simple/bowl_and_cup"};
+  const Dataset dataset = generate_benchmark_dataset(dir.path().string(), "paper", options);
+  std::vector<Landmark> landmarks;
+  for (const DatasetLandmark& entry : dataset.landmarks)
+    landmarks.push_back(load_landmark((dir.path() / entry.file).string()));
+  const std::string before = dataset_fingerprint(dir.path().string(), dataset, landmarks);
+  EXPECT_EQ(before, dataset_fingerprint(dir.path().string(), dataset));
+  const std::size_t voxels = landmarks[0].empty_space.size();
+  prepare_landmark(landmarks[0]);  // rays to its own points only: less space observed free
+  ASSERT_NE(landmarks[0].empty_space.size(), voxels);
+  EXPECT_NE(dataset_fingerprint(dir.path().string(), dataset, landmarks), before);
+}
 
 TEST(BenchmarkDataset, TheSamePresetAndSeedWriteTheSameContent) {
   test::ScratchDir a, b, c;

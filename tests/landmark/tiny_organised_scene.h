@@ -1,0 +1,33 @@
+#pragma once
+// A tiny organised scene for checking projective visibility by hand: a 40 x 30 pinhole image of a
+// wall 1 m away, and a landmark of nine of its points (pixels u 18-20, v 13-15) captured from
+// where the scene is seen.
+
+#include <Eigen/Geometry>
+#include <functional>
+#include <string>
+
+#include "landmark/error_metrics.h"
+#include "landmark/landmark.h"
+
+namespace lmk {
+
+inline constexpr int kTinyWidth = 40, kTinyHeight = 30;
+
+/// The point at pixel (u, v) and `depth` along the optical axis.
+Eigen::Vector3f on_tiny_ray(int u, int v, double depth);
+
+/// The wall, with the depth of some pixels changed (NaN: no return).
+PointCloud tiny_wall(const std::function<double(int, int)>& depth_at);
+
+/// Whether pixel (u, v) holds one of the landmark's nine points.
+bool in_tiny_landmark(int u, int v);
+
+/// The nine-point landmark, with the free space in front of it observed by a dense capture.
+Landmark tiny_landmark();
+
+/// `metric`'s terms for the landmark where it was captured, in `scene`.
+ErrorTerms evaluate_tiny(const std::string& metric, const Landmark& landmark,
+                         const PointCloud& scene);
+
+}  // namespace lmk
