@@ -8,9 +8,12 @@
 
 namespace lmk {
 
-/// Calls `write(temporary_path)` to produce the file, then renames it to `path`. If `write`
-/// throws, the temporary file is removed and the exception propagates. Throws lmk::Error when the
-/// target directory does not exist or the rename fails.
+/// Calls `write(temporary_path)` to produce the file, flushes it to the disk (fsync), then renames
+/// it to `path` and flushes the directory. If `write` throws, the temporary file is removed and
+/// the exception propagates (an lmk::Error naming the target, not the temporary). Temporaries of
+/// `path` left by writers that no longer run (killed before their rename) are removed first; a
+/// live writer's are kept. Throws lmk::Error when the target directory does not exist, the target
+/// is a directory, or the flush or the rename fails.
 void write_file_atomically(const std::filesystem::path& path,
                            const std::function<void(const std::filesystem::path&)>& write);
 

@@ -15,6 +15,12 @@ namespace lmk {
 
 enum class CloudFormat { kPcd, kPly, kXyz };
 
+/// The most points a cloud file may declare: ten times a 5-million-point scene, about 1.4 GB of
+/// points in memory. A header over it is refused before anything is allocated.
+inline constexpr std::size_t kMaxCloudPoints = 50'000'000;
+/// The most bytes one point of a PCD file may declare (its fields' SIZE x COUNT summed).
+inline constexpr std::size_t kMaxPcdPointBytes = 1 << 16;
+
 /// How a file stores its data. PLY and XYZ use kAscii / kBinary; kBinaryCompressed is PCD's LZF.
 enum class Encoding { kAscii, kBinary, kBinaryCompressed };
 

@@ -4,10 +4,15 @@
 
 #include <pcl/io/pcd_io.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 #include <sstream>
+#include <vector>
 
+#include "geometry/cloud_io.h"
 #include "geometry/detail/formats.h"
 #include "geometry/detail/pcl_conversion.h"
 #include "geometry/error.h"
@@ -86,6 +91,81 @@ AsciiBodyScan scan_ascii_body(const std::string& bytes, std::size_t offset,
   return scan;
 }
 
+// A header integer as written: digits only (no sign, no exponent), or nothing.
+std::optional<long long> header_count(const std::string& word) {
+  if (word.empty() || word.size() > 18) return std::nullopt;
+  for (char c : word) {
+    if (!std::isdigit(static_cast<unsigned char>(c))) return std::nullopt;
+  }
+  return std::stoll(word);
+}
+
+// The header's declarations, checked before PCL sees them: PCL trusts SIZE and COUNT (a negative
+// one crashed its body readers) and allocates POINTS x point size while parsing the header (a
+// 187-byte file declaring 2e9 points was killed at 20 GB). Sizes must be 1, 2, 4 or 8, counts
+// positive, the points within kMaxCloudPoints, and the bytes they need must be in the file.
+void check_declarations(const std::string& path, const std::string& bytes, std::size_t offset) {
+  std::istringstream header(bytes.substr(0, offset));
+  std::string line, key, word;
+  std::size_t fields = 0, point_bytes = 0;
+  std::vector<long long> sizes, counts;
+  long long points = -1;
+  std::string data;
+  while (std::getline(header, line)) {
+    std::istringstream words(line);
+    if (!(words >> key) || key[0] == '#') continue;
+    std::vector<std::string> values;
+    while (words >> word) values.push_back(word);
+    if (key == "FIELDS") fields = values.size();
+    if (key == "DATA" && !values.empty()) data = values[0];
+    if (key != "SIZE" && key != "COUNT" && key != "WIDTH" && key != "HEIGHT" && key != "POINTS") {
+      continue;
+    }
+    for (const std::string& v : values) {
+      const std::optional<long long> n = header_count(v);
+      if (!n) throw Error(path + ": header " + key + " '" + v + "' is not a count");
+      if (key == "SIZE" && *n != 1 && *n != 2 && *n != 4 && *n != 8) {
+        throw Error(path + ": header SIZE " + v + " is not 1, 2, 4 or 8 bytes");
+      }
+      if (key == "COUNT" && *n < 1) throw Error(path + ": header COUNT " + v + " is not positive");
+      if ((key == "POINTS" || key == "WIDTH" || key == "HEIGHT") &&
+          *n > static_cast<long long>(kMaxCloudPoints)) {
+        throw Error(path + ": header " + key + " " + v + " is over lmk's limit of " +
+                    std::to_string(kMaxCloudPoints) + " points");
+      }
+      if (key == "SIZE") sizes.push_back(*n);
+      if (key == "COUNT") counts.push_back(*n);
+      if (key == "POINTS") points = *n;
+    }
+  }
+  if (counts.empty()) counts.assign(sizes.size(), 1);  // COUNT is optional
+  if (sizes.size() != fields || counts.size() != fields) {
+    throw Error(path + ": header lists " + std::to_string(fields) + " fields but " +
+                std::to_string(sizes.size()) + " sizes and " + std::to_string(counts.size()) +
+                " counts");
+  }
+  for (std::size_t f = 0; f < fields; ++f) {
+    point_bytes += static_cast<std::size_t>(sizes[f]) *
+                   static_cast<std::size_t>(std::min<long long>(counts[f], kMaxPcdPointBytes));
+    if (point_bytes > kMaxPcdPointBytes) {
+      throw Error(path + ": header declares over " + std::to_string(kMaxPcdPointBytes) +
+                  " bytes per point");
+    }
+  }
+  if (points < 0) return;  // PCL refuses a header without POINTS (or WIDTH x HEIGHT)
+  const std::size_t declared = static_cast<std::size_t>(points);
+  const std::size_t available = bytes.size() - std::min(offset, bytes.size());
+  // What the body must hold at least: binary, every byte; ASCII, a character per point; LZF
+  // expands at most about 90-fold, so the compressed block bounds the points too.
+  std::size_t most = available;
+  if (data == "binary") most = point_bytes == 0 ? declared : available / point_bytes;
+  if (data == "binary_compressed" && point_bytes > 0) most = 100 * available / point_bytes;
+  if (declared > most) {
+    throw Error(path + ": truncated: header declares " + std::to_string(declared) +
+                " points but the data holds at most " + std::to_string(most));
+  }
+}
+
 [[noreturn]] void count_mismatch(const std::string& path, std::size_t declared, std::size_t held) {
   throw Error(path + (held < declared ? ": truncated: header" : ": header") + " declares " +
               std::to_string(declared) + " points but the data holds " + std::to_string(held));
@@ -102,6 +182,7 @@ CloudFile read_pcd(const std::string& path, const std::string& bytes) {
   unsigned int pcl_data_idx = 0;  // unused: lmk finds the body itself, for its size checks
   std::istringstream header(bytes);
   const std::size_t offset = body_offset(bytes);
+  if (offset != std::string::npos) check_declarations(path, bytes, offset);
   if (offset == std::string::npos ||
       reader.readHeader(header, blob, origin, orientation, version, data_type, pcl_data_idx) < 0) {
     const DeclaredCounts c =

@@ -103,6 +103,41 @@ TEST_F(BadInput, WidthTimesHeightDisagreesWithPoints) {
   expect_error(dir_.file("wh.pcd"), "WIDTH x HEIGHT = 5 x 1 but POINTS 2");
 }
 
+// Header declarations are checked before PCL sees them: a negative SIZE or COUNT crashed its body
+// readers, and it allocates POINTS x point size while parsing the header.
+TEST_F(BadInput, NegativeOrOddSizesAndCountsNeverReachPcl) {
+  const std::string body(24, '\0');
+  const auto header = [](const std::string& size, const std::string& count) {
+    return "VERSION 0.7\nFIELDS x y z\nSIZE " + size + "\nTYPE F F F\nCOUNT " + count +
+           "\nWIDTH 2\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 2\nDATA binary\n";
+  };
+  test::write_text(dir_.file("size.pcd"), header("-4 4 4", "1 1 1") + body);
+  expect_error(dir_.file("size.pcd"), "header SIZE '-4' is not a count");
+  test::write_text(dir_.file("count.pcd"), header("4 4 4", "-1 1 1") + body);
+  expect_error(dir_.file("count.pcd"), "header COUNT '-1' is not a count");
+  test::write_text(dir_.file("zero.pcd"), header("4 4 4", "0 1 1") + body);
+  expect_error(dir_.file("zero.pcd"), "header COUNT 0 is not positive");
+  test::write_text(dir_.file("odd.pcd"), header("3 4 4", "1 1 1") + body);
+  expect_error(dir_.file("odd.pcd"), "header SIZE 3 is not 1, 2, 4 or 8 bytes");
+  test::write_text(dir_.file("short.pcd"), header("4 4", "1 1") + body);
+  expect_error(dir_.file("short.pcd"), "header lists 3 fields but 2 sizes and 2 counts");
+}
+
+TEST_F(BadInput, DeclaredPointsAreCheckedAgainstTheLimitAndTheBytesBeforeAllocating) {
+  test::write_text(dir_.file("negative.pcd"), pcd_header("ascii", 1, -3) + "1 2 3\n");
+  expect_error(dir_.file("negative.pcd"), "header POINTS '-3' is not a count");
+  // 187 bytes declaring two billion points: refused at the limit, not by the OOM killer.
+  test::write_text(dir_.file("huge.pcd"), pcd_header("binary", 2000000000, 2000000000) + "xyz");
+  expect_error(dir_.file("huge.pcd"), "over lmk's limit of 50000000 points");
+  test::write_text(dir_.file("binary.pcd"), pcd_header("binary", 1000000, 1000000) + "0123");
+  expect_error(dir_.file("binary.pcd"),
+               "truncated: header declares 1000000 points but the data holds at most 0");
+  test::write_text(dir_.file("lzf.pcd"),
+                   pcd_header("binary_compressed", 40000000, 40000000) + std::string(64, 'z'));
+  expect_error(dir_.file("lzf.pcd"),
+               "truncated: header declares 40000000 points but the data holds at most 533");
+}
+
 TEST_F(BadInput, NoXyzFields) {
   test::write_text(dir_.file("abc.pcd"), pcd_header("ascii", 1, 1, "a b c") + "1 2 3\n");
   expect_error(dir_.file("abc.pcd"), "no x/y/z fields (the file has: a b c)");

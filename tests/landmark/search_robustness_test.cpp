@@ -38,16 +38,7 @@ class SearchInput : public ::testing::Test {
 PointCloud* SearchInput::scene_ = nullptr;
 Landmark* SearchInput::landmark_ = nullptr;
 
-// The error's message, or "" when `f` does not throw lmk::Error.
-template <typename F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::error_of;
 
 TEST_F(SearchInput, NanPosesAreClearErrors) {
   PointCloud scene = *scene_;

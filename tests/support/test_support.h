@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include "geometry/error.h"
 #include "geometry/point_cloud.h"
 
 namespace lmk::test {
@@ -25,6 +26,17 @@ class ScratchDir {
  private:
   std::filesystem::path path_;
 };
+
+/// The message of the lmk::Error that `f` throws, or "" when it throws none.
+template <typename F>
+std::string error_of(F&& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
 
 /// Writes `text` to `path` as is.
 void write_text(const std::string& path, const std::string& text);
