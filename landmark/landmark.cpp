@@ -22,8 +22,9 @@ std::string format_size(const Eigen::Vector3d& size) {
 }
 
 void check_settings(const CaptureSettings& s, const std::string& what) {
-  if (!(s.leaf_size > 0.0) || !std::isfinite(s.leaf_size)) {
-    throw Error(what + ": leaf size must be positive and finite");
+  if (!(s.leaf_size >= kMinLeafSize) || !std::isfinite(s.leaf_size)) {
+    throw Error(what + ": leaf size must be finite and at least " +
+                std::to_string(static_cast<int>(kMinLeafSize * 1000)) + " mm");
   }
   if (!(s.distance_band >= s.leaf_size) || !std::isfinite(s.distance_band)) {
     throw Error(what + ": the distance band must be finite and at least the leaf size");

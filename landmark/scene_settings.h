@@ -8,6 +8,7 @@
 #include "geometry/box.h"
 #include "geometry/depth_noise.h"
 #include "geometry/settings_schema.h"
+#include "geometry/voxel_grid.h"
 
 namespace lmk {
 
@@ -40,15 +41,17 @@ struct SceneSettings {
                       "Crop the scene to this box first: CX CY CZ SX SY SZ [ROLL PITCH YAW], m and "
                       "degrees (default: the whole scene)"),
           s.work_volume);
-    visit(
-        SettingInfo("leaf_size", "Scene voxel leaf (the paper's 5 mm), m").positive().also("leaf"),
-        s.leaf_size);
-    visit(SettingInfo("coarse_leaf", "Fast: leaf of the seeds, voting and coarse alignment, m")
-              .positive(),
+    visit(SettingInfo("leaf_size", "Scene voxel leaf (the paper's 5 mm), m; at least 1 mm")
+              .at_least(kMinLeafSize)
+              .also("leaf"),
+          s.leaf_size);
+    visit(SettingInfo("coarse_leaf",
+                      "Fast: leaf of the seeds, voting and coarse alignment, m; at least 1 mm")
+              .at_least(kMinLeafSize),
           s.coarse_leaf);
     visit(
         SettingInfo("field_band", "Band of the scene distance field, m (default: 2 coarse leaves)")
-            .positive(),
+            .at_least(kMinLeafSize),
         s.field_band);
     visit(SettingInfo("up",
                       "Up axis X Y Z in the scene frame (default: the sensor's -y, or +z "

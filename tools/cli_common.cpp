@@ -1,5 +1,7 @@
 #include "tools/cli_common.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 
@@ -7,6 +9,30 @@
 #include "geometry/pose.h"
 
 namespace lmk::cli {
+
+CLI::Validator finite_number() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double value = std::strtod(text.c_str(), &end);
+        if (end == text.c_str() || *end != '\0' || !std::isfinite(value)) {
+          return "'" + text + "' is not a finite number";
+        }
+        return "";
+      },
+      "FINITE");
+}
+
+CLI::Validator non_negative_whole() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        const bool digits = !text.empty() && std::all_of(text.begin(), text.end(), [](char c) {
+          return std::isdigit(static_cast<unsigned char>(c)) != 0;
+        });
+        return digits ? "" : "'" + text + "' is not a non-negative whole number";
+      },
+      "UINT");
+}
 
 Eigen::Vector3d rpy_degrees(const Eigen::Matrix3d& R) {
   Eigen::Vector3d rpy = rpy_from_rotation(R) * 180.0 / M_PI;

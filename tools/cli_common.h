@@ -30,6 +30,14 @@ std::filesystem::path shared_data_dir(const std::string& option);
 /// set to 0.
 Eigen::Vector3d rpy_degrees(const Eigen::Matrix3d& R);
 
+/// Refuses a value that is not a finite number ("nan", "inf"), for values that go into
+/// computations: joint values, positions, angles.
+CLI::Validator finite_number();
+
+/// Refuses a negative whole number before CLI11 stores it in an unsigned field, where "-1" would
+/// wrap around to 2^64 - 1.
+CLI::Validator non_negative_whole();
+
 /// The scene-frame options that say which way is up: --up X Y Z and --base-frame.
 struct UpOptions {
   std::vector<double> up;

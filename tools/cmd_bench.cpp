@@ -181,6 +181,7 @@ Subcommand add_bench(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--reference-seeds", o->reference_seeds,
                   "Seeds the reference search runs before extrapolating")
+      ->check(non_negative_whole())
       ->capture_default_str();
   sub->add_option("--threads", o->threads, "Worker threads; 0 uses every core")
       ->capture_default_str();

@@ -122,7 +122,8 @@ Subcommand add_gen(CLI::App& app) {
   sub->add_option("--preset", options->preset, "Write a benchmark dataset:" + presets);
   sub->add_option("--seed", options->seed,
                   "Scene and noise seed; with --preset the first scene seed (default 1: seed 0 is "
-                  "where the landmarks are captured)");
+                  "where the landmarks are captured)")
+      ->check(non_negative_whole());
   sub->add_option("--seeds", options->seeds, "With --preset: scenes per scene type")
       ->check(CLI::PositiveNumber);
   sub->add_flag("--hard", options->hard,

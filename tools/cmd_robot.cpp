@@ -125,15 +125,24 @@ Subcommand add_robot(CLI::App& app) {
   CLI::App* fk = sub->add_subcommand("fk", "Tool pose in base_link for joint values");
   add_common(fk, *o);
   fk->add_option("--group", o->group, "left_arm, right_arm or head")->capture_default_str();
-  fk->add_option("--joints", o->joints, "Joint values in the group's order, rad or m")->required();
+  fk->add_option("--joints", o->joints, "Joint values in the group's order, rad or m")
+      ->required()
+      ->check(finite_number());
   fk->add_flag("--json", o->json, "Print {\"position\":[x,y,z],\"quaternion\":[w,x,y,z]}");
   CLI::App* ik = sub->add_subcommand("ik", "Joint values that put the tool at a pose in base_link");
   add_common(ik, *o);
   ik->add_option("--group", o->group, "left_arm or right_arm")->capture_default_str();
-  ik->add_option("--position", o->position, "Tool position X Y Z, m")->expected(3)->required();
-  ik->add_option("--rpy", o->rpy_deg, "Tool roll pitch yaw, degrees")->expected(3)->required();
+  ik->add_option("--position", o->position, "Tool position X Y Z, m")
+      ->expected(3)
+      ->required()
+      ->check(finite_number());
+  ik->add_option("--rpy", o->rpy_deg, "Tool roll pitch yaw, degrees")
+      ->expected(3)
+      ->required()
+      ->check(finite_number());
   ik->add_option("--seed", o->seed,
-                 "Joint values to start from (the nearest solution is preferred)");
+                 "Joint values to start from (the nearest solution is preferred)")
+      ->check(finite_number());
   ik->add_flag("--json", o->json,
                "Print {\"joints\":[...],\"position_error_m\":e,\"rotation_error_rad\":e}");
   return {sub, [o, info, fk] {

@@ -118,6 +118,19 @@ class CliLandmark : public Cli {
   std::string carton_;
 };
 
+// Numbers that would wrap around in an unsigned field, or poison a computation, are refused.
+TEST_F(Cli, NegativeCountsAndNonFiniteValuesAreRefused) {
+  expect_bad_input("gen " + path("x.pcd") + " --seed -1",
+                   "--seed: '-1' is not a non-negative whole number");
+  expect_bad_input("bench --reference-seeds -2",
+                   "--reference-seeds: '-2' is not a non-negative whole number");
+  expect_bad_input("robot fk --group right_arm --joints nan 0 0 0 0 0 0",
+                   "--joints: 'nan' is not a finite number");
+  expect_bad_input("robot ik --position 0.5 inf 1 --rpy 0 0 0",
+                   "--position: 'inf' is not a finite number");
+  EXPECT_FALSE(std::filesystem::exists(dir_.file("x.pcd")));
+}
+
 TEST_F(CliLandmark, CaptureShowExportImportFind) {
   const CommandResult captured = lmk("capture " + path("scene.pcd") + " " + carton_ +
                                      " --name carton -o " + path("carton.lmk"));
@@ -185,6 +198,22 @@ TEST_F(CliLandmark, CaptureShowExportImportFind) {
                                       " --method reference --max-seeds 20");
   EXPECT_EQ(reference.exit_code, 0) << reference.err;
   EXPECT_NE(reference.out.find("reference, metric paper"), std::string::npos) << reference.out;
+}
+
+// Leaves below the documented 1 mm floor are refused up front: 10 um made OpenVDB fail inside the
+// search ("internal error"), and a capture at it grew without bound.
+TEST_F(CliLandmark, LeavesBelowAMillimetreAreRefusedUpFront) {
+  expect_bad_input("capture " + path("scene.pcd") + " " + carton_ + " --name c -o " +
+                       path("c.lmk") + " --leaf 1e-5",
+                   "leaf size must be finite and at least 1 mm");
+  EXPECT_FALSE(std::filesystem::exists(dir_.file("c.lmk")));
+  ASSERT_EQ(lmk("capture " + path("scene.pcd") + " " + carton_ + " --name c -o " + path("c.lmk"))
+                .exit_code,
+            0);
+  expect_bad_input("find " + path("scene.pcd") + " " + path("c.lmk") + " --leaf 1e-5",
+                   "scene.leaf_size (--leaf-size): 1e-05 must be finite and at least 0.001");
+  expect_bad_input("find " + path("scene.pcd") + " " + path("c.lmk") + " --coarse-leaf 0.0005",
+                   "at least 0.001");
 }
 
 TEST_F(CliLandmark, BadInputToCaptureAndFind) {

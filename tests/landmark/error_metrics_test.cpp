@@ -27,10 +27,11 @@ struct Fixture {
   }
   ErrorTerms evaluate(const std::string& metric, const PointCloud& scene,
                       const Eigen::Isometry3d& T = Eigen::Isometry3d::Identity()) const {
-    // A leaf far below the point spacing: the index keeps every scene point as it is.
+    // The finest leaf lmk accepts, far below the 1 cm point spacing: each scene point has a voxel
+    // of its own, so the index keeps it as it is.
     SceneSettings settings;
-    settings.leaf_size = settings.coarse_leaf = 1e-4;
-    settings.field_band = 2e-4;
+    settings.leaf_size = settings.coarse_leaf = kMinLeafSize;
+    settings.field_band = 2.0 * kMinLeafSize;
     const SceneIndex index(scene, settings);
     Landmark landmark;
     landmark.name = "grid";
