@@ -7,17 +7,20 @@
 
 namespace lmk {
 
+/// SplitMix64's output function: a bijective 64-bit mix whose outputs look independent for
+/// neighbouring inputs. Also a stateless hash of a value (spread seeds draw one per cell with it).
+inline std::uint64_t splitmix64_mix(std::uint64_t z) {
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
 /// SplitMix64 (Steele, Lea & Flood 2014): 64-bit state, passes BigCrush, trivially seedable.
 class SplitMix64 {
  public:
   explicit SplitMix64(std::uint64_t seed) : state_(seed) {}
 
-  std::uint64_t next() {
-    std::uint64_t z = (state_ += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
-  }
+  std::uint64_t next() { return splitmix64_mix(state_ += 0x9e3779b97f4a7c15ULL); }
 
   /// Uniform in [0, n) for n > 0, without modulo bias (Lemire's multiply-and-reject).
   std::uint64_t uniform_index(std::uint64_t n) {

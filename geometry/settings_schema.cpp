@@ -22,6 +22,50 @@ bool SettingInfo::answers_to(const std::string& k) const {
   return k == key() || k == name || (!alias.empty() && k == alias);
 }
 
+namespace {
+
+// The whole number `text` gives if it fits T; "-1" for an unsigned T is nothing, not wrapped
+// around.
+template <class T>
+std::optional<T> read_whole_number(const std::string& text) {
+  const bool digits = !text.empty() && text.find_first_not_of("+-0123456789") == std::string::npos;
+  if (!digits || (std::is_unsigned<T>::value && text.find('-') != std::string::npos)) {
+    return std::nullopt;
+  }
+  try {
+    std::size_t used = 0;
+    if (std::is_unsigned<T>::value) {
+      const unsigned long long v = std::stoull(text, &used);
+      if (used == text.size() && v <= std::numeric_limits<T>::max()) return static_cast<T>(v);
+    } else {
+      const long long v = std::stoll(text, &used);
+      if (used == text.size() && v >= std::numeric_limits<T>::min() &&
+          v <= std::numeric_limits<T>::max())
+        return static_cast<T>(v);
+    }
+  } catch (const std::exception&) {
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<double> read_finite_number(const std::string& text) {
+  std::size_t used = 0;
+  double v = 0.0;
+  try {
+    v = std::stod(text, &used);
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+  if (used == 0 || used != text.size() || !std::isfinite(v)) return std::nullopt;
+  return v;
+}
+
+std::optional<std::uint64_t> read_non_negative_whole(const std::string& text) {
+  return read_whole_number<std::uint64_t>(text);
+}
+
 namespace settings_detail {
 namespace {
 
@@ -60,38 +104,19 @@ std::vector<std::string> words(const std::string& text) {
 
 // One finite number, the whole word.
 double finite_number(const SettingInfo& info, const std::string& text) {
-  std::size_t used = 0;
-  double v = 0.0;
-  try {
-    v = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != text.size() || !std::isfinite(v))
-    unreadable(info, text, "a finite number");
-  return v;
+  const std::optional<double> v = read_finite_number(text);
+  if (!v) unreadable(info, text, "a finite number");
+  return *v;
 }
 
-// A whole number in [lo, hi]; "-1" for an unsigned field is refused, not wrapped around.
+// A whole number in T's range, with a message that says which way the text is wrong.
 template <class T>
 T whole_number(const SettingInfo& info, const std::string& text) {
-  const bool digits = !text.empty() && text.find_first_not_of("+-0123456789") == std::string::npos;
-  if (!digits) unreadable(info, text, "a whole number");
+  if (const std::optional<T> v = read_whole_number<T>(text)) return *v;
+  if (text.empty() || text.find_first_not_of("+-0123456789") != std::string::npos)
+    unreadable(info, text, "a whole number");
   if (std::is_unsigned<T>::value && text.find('-') != std::string::npos)
     unreadable(info, text, "a non-negative whole number");
-  try {
-    std::size_t used = 0;
-    if (std::is_unsigned<T>::value) {
-      const unsigned long long v = std::stoull(text, &used);
-      if (used == text.size() && v <= std::numeric_limits<T>::max()) return static_cast<T>(v);
-    } else {
-      const long long v = std::stoll(text, &used);
-      if (used == text.size() && v >= std::numeric_limits<T>::min() &&
-          v <= std::numeric_limits<T>::max())
-        return static_cast<T>(v);
-    }
-  } catch (const std::exception&) {
-  }
   unreadable(info, text, "a whole number in range");
 }
 

@@ -98,6 +98,11 @@ struct SettingInfo {
   bool answers_to(const std::string& key_or_alias) const;
 };
 
+/// `text` as one finite number, the whole word ("1e-3"); nothing for "nan", "inf" or "1x".
+std::optional<double> read_finite_number(const std::string& text);
+/// `text` as a whole number of at least 0 that fits 64 bits; nothing for "-1", "1.5" or "x".
+std::optional<std::uint64_t> read_non_negative_whole(const std::string& text);
+
 /// The per-type checks and text parsers the generic functions below dispatch to. Checks throw
 /// lmk::Error "<where><name> (--flag): <value> <problem>", where `where` is a prefix such as
 /// "find: fast."; parsers throw "--flag: '<text>' <problem>".

@@ -1,24 +1,18 @@
 #include "tools/cli_common.h"
 
-#include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdlib>
 
 #include "geometry/error.h"
 #include "geometry/pose.h"
+#include "geometry/settings_schema.h"
 
 namespace lmk::cli {
 
 CLI::Validator finite_number() {
   return CLI::Validator(
       [](std::string& text) -> std::string {
-        char* end = nullptr;
-        const double value = std::strtod(text.c_str(), &end);
-        if (end == text.c_str() || *end != '\0' || !std::isfinite(value)) {
-          return "'" + text + "' is not a finite number";
-        }
-        return "";
+        return read_finite_number(text) ? "" : "'" + text + "' is not a finite number";
       },
       "FINITE");
 }
@@ -26,10 +20,8 @@ CLI::Validator finite_number() {
 CLI::Validator non_negative_whole() {
   return CLI::Validator(
       [](std::string& text) -> std::string {
-        const bool digits = !text.empty() && std::all_of(text.begin(), text.end(), [](char c) {
-          return std::isdigit(static_cast<unsigned char>(c)) != 0;
-        });
-        return digits ? "" : "'" + text + "' is not a non-negative whole number";
+        return read_non_negative_whole(text) ? ""
+                                             : "'" + text + "' is not a non-negative whole number";
       },
       "UINT");
 }

@@ -33,26 +33,6 @@ std::size_t body_offset(const std::string& bytes) {
   return std::string::npos;
 }
 
-// The WIDTH, HEIGHT and POINTS header values as written, to explain a header PCL rejects.
-struct DeclaredCounts {
-  long long width = -1, height = -1, points = -1;
-};
-
-DeclaredCounts scan_counts(const std::string& bytes, std::size_t header_end) {
-  DeclaredCounts counts;
-  std::istringstream header(bytes.substr(0, header_end));
-  std::string line, key;
-  while (std::getline(header, line)) {
-    std::istringstream words(line);
-    long long value = -1;
-    words >> key >> value;
-    if (key == "WIDTH") counts.width = value;
-    if (key == "HEIGHT") counts.height = value;
-    if (key == "POINTS") counts.points = value;
-  }
-  return counts;
-}
-
 // One pass over an ASCII body: the number of data rows, and the first row that is not exactly
 // `tokens_per_row` numbers (nan and inf included). PCL's ASCII decoder would read such a token as
 // 0 without complaint; lmk refuses the file instead.
@@ -100,24 +80,29 @@ std::optional<long long> header_count(const std::string& word) {
   return std::stoll(word);
 }
 
-// The header's declarations, checked before PCL sees them: PCL trusts SIZE and COUNT (a negative
-// one crashed its body readers) and allocates POINTS x point size while parsing the header (a
-// 187-byte file declaring 2e9 points was killed at 20 GB). Sizes must be 1, 2, 4 or 8, counts
-// positive, the points within kMaxCloudPoints, and the bytes they need must be in the file.
-void check_declarations(const std::string& path, const std::string& bytes, std::size_t offset) {
-  std::istringstream header(bytes.substr(0, offset));
-  std::string line, key, word;
-  std::size_t fields = 0, point_bytes = 0;
+// What the header declares, as written. Each SIZE, COUNT, WIDTH, HEIGHT and POINTS value is
+// checked as it is read: PCL trusts SIZE and COUNT (a negative one crashed its body readers) and
+// allocates POINTS x point size while parsing the header (a 187-byte file declaring 2e9 points was
+// killed at 20 GB). Sizes must be 1, 2, 4 or 8, counts positive, point counts within
+// kMaxCloudPoints; -1 for a value the header does not give.
+struct Declarations {
+  std::size_t fields = 0;
   std::vector<long long> sizes, counts;
-  long long points = -1;
+  long long width = -1, height = -1, points = -1;
   std::string data;
+};
+
+Declarations read_declarations(const std::string& path, const std::string& header_text) {
+  Declarations d;
+  std::istringstream header(header_text);
+  std::string line, key, word;
   while (std::getline(header, line)) {
     std::istringstream words(line);
     if (!(words >> key) || key[0] == '#') continue;
     std::vector<std::string> values;
     while (words >> word) values.push_back(word);
-    if (key == "FIELDS") fields = values.size();
-    if (key == "DATA" && !values.empty()) data = values[0];
+    if (key == "FIELDS") d.fields = values.size();
+    if (key == "DATA" && !values.empty()) d.data = values[0];
     if (key != "SIZE" && key != "COUNT" && key != "WIDTH" && key != "HEIGHT" && key != "POINTS") {
       continue;
     }
@@ -133,33 +118,41 @@ void check_declarations(const std::string& path, const std::string& bytes, std::
         throw Error(path + ": header " + key + " " + v + " is over lmk's limit of " +
                     std::to_string(kMaxCloudPoints) + " points");
       }
-      if (key == "SIZE") sizes.push_back(*n);
-      if (key == "COUNT") counts.push_back(*n);
-      if (key == "POINTS") points = *n;
+      if (key == "SIZE") d.sizes.push_back(*n);
+      if (key == "COUNT") d.counts.push_back(*n);
+      if (key == "WIDTH") d.width = *n;
+      if (key == "HEIGHT") d.height = *n;
+      if (key == "POINTS") d.points = *n;
     }
   }
-  if (counts.empty()) counts.assign(sizes.size(), 1);  // COUNT is optional
-  if (sizes.size() != fields || counts.size() != fields) {
-    throw Error(path + ": header lists " + std::to_string(fields) + " fields but " +
-                std::to_string(sizes.size()) + " sizes and " + std::to_string(counts.size()) +
+  return d;
+}
+
+// The layout the declarations give must be whole, and the body must hold the bytes its points
+// need, before PCL allocates them.
+void check_declared_body(const std::string& path, Declarations d, std::size_t available) {
+  if (d.counts.empty()) d.counts.assign(d.sizes.size(), 1);  // COUNT is optional
+  if (d.sizes.size() != d.fields || d.counts.size() != d.fields) {
+    throw Error(path + ": header lists " + std::to_string(d.fields) + " fields but " +
+                std::to_string(d.sizes.size()) + " sizes and " + std::to_string(d.counts.size()) +
                 " counts");
   }
-  for (std::size_t f = 0; f < fields; ++f) {
-    point_bytes += static_cast<std::size_t>(sizes[f]) *
-                   static_cast<std::size_t>(std::min<long long>(counts[f], kMaxPcdPointBytes));
+  std::size_t point_bytes = 0;
+  for (std::size_t f = 0; f < d.fields; ++f) {
+    point_bytes += static_cast<std::size_t>(d.sizes[f]) *
+                   static_cast<std::size_t>(std::min<long long>(d.counts[f], kMaxPcdPointBytes));
     if (point_bytes > kMaxPcdPointBytes) {
       throw Error(path + ": header declares over " + std::to_string(kMaxPcdPointBytes) +
                   " bytes per point");
     }
   }
-  if (points < 0) return;  // PCL refuses a header without POINTS (or WIDTH x HEIGHT)
-  const std::size_t declared = static_cast<std::size_t>(points);
-  const std::size_t available = bytes.size() - std::min(offset, bytes.size());
+  if (d.points < 0) return;  // PCL refuses a header without POINTS (or WIDTH x HEIGHT)
+  const std::size_t declared = static_cast<std::size_t>(d.points);
   // What the body must hold at least: binary, every byte; ASCII, a character per point; LZF
   // expands at most about 90-fold, so the compressed block bounds the points too.
   std::size_t most = available;
-  if (data == "binary") most = point_bytes == 0 ? declared : available / point_bytes;
-  if (data == "binary_compressed" && point_bytes > 0) most = 100 * available / point_bytes;
+  if (d.data == "binary") most = point_bytes == 0 ? declared : available / point_bytes;
+  if (d.data == "binary_compressed" && point_bytes > 0) most = 100 * available / point_bytes;
   if (declared > most) {
     throw Error(path + ": truncated: header declares " + std::to_string(declared) +
                 " points but the data holds at most " + std::to_string(most));
@@ -182,11 +175,12 @@ CloudFile read_pcd(const std::string& path, const std::string& bytes) {
   unsigned int pcl_data_idx = 0;  // unused: lmk finds the body itself, for its size checks
   std::istringstream header(bytes);
   const std::size_t offset = body_offset(bytes);
-  if (offset != std::string::npos) check_declarations(path, bytes, offset);
+  const Declarations header_says =
+      read_declarations(path, bytes.substr(0, std::min(offset, bytes.size())));
+  if (offset != std::string::npos) check_declared_body(path, header_says, bytes.size() - offset);
   if (offset == std::string::npos ||
       reader.readHeader(header, blob, origin, orientation, version, data_type, pcl_data_idx) < 0) {
-    const DeclaredCounts c =
-        scan_counts(bytes, offset == std::string::npos ? bytes.size() : offset);
+    const Declarations& c = header_says;
     if (c.width >= 0 && c.height >= 0 && c.points >= 0 && c.width * c.height != c.points) {
       throw Error(path + ": inconsistent header: WIDTH x HEIGHT = " + std::to_string(c.width) +
                   " x " + std::to_string(c.height) + " but POINTS " + std::to_string(c.points));

@@ -61,7 +61,11 @@ ErrorTerms vdb_metric(const SceneView& scene, const LandmarkView& landmark,
   return terms;
 }
 
-bool hidden_behind(const SceneIndex& scene, const Eigen::Vector3f& q, const Box& box) {
+Box occluder_free_zone(const Box& box) {
+  return Box(box.pose, box.size + Eigen::Vector3d::Constant(2.0 * kOccluderClearance));
+}
+
+bool hidden_behind(const SceneIndex& scene, const Eigen::Vector3f& q, const Box& free_zone) {
   const std::optional<RangeImage>& image = scene.range_image();
   if (!image) return false;
   const RangeImage::Look look = image->look(q);
@@ -74,8 +78,7 @@ bool hidden_behind(const SceneIndex& scene, const Eigen::Vector3f& q, const Box&
   const Eigen::Vector3f sensor = scene.T_scene_sensor().translation().cast<float>();
   const Eigen::Vector3f seen =
       sensor + (q - sensor) * static_cast<float>(look.measured / look.depth);
-  const Box clear(box.pose, box.size + Eigen::Vector3d::Constant(2.0 * kOccluderClearance));
-  return !clear.contains(Eigen::Vector3d(seen.cast<double>()));
+  return !free_zone.contains(Eigen::Vector3d(seen.cast<double>()));
 }
 
 std::size_t shown_shortfall(std::size_t shown, std::size_t total) {
@@ -87,11 +90,15 @@ double mean_surface_distance(const SceneIndex& scene, const PointCloud& points,
                              const Eigen::Isometry3f& T_scene_capture, const Box* capture_box) {
   const DistanceField::Sampler field(scene.field());
   const bool projective = capture_box != nullptr;
-  const Box box = projective ? capture_box->transformed(T_scene_capture.cast<double>()) : Box();
+  const Box free_zone =
+      projective ? occluder_free_zone(capture_box->transformed(T_scene_capture.cast<double>()))
+                 : Box();
   double sum = 0.0;
   std::size_t shown = 0;
   for (std::size_t j = 0; j < points.size(); ++j) {
-    if (projective && hidden_behind(scene, T_scene_capture * points.points[j], box)) continue;
+    if (projective && hidden_behind(scene, T_scene_capture * points.points[j], free_zone)) {
+      continue;
+    }
     sum += landmark_point_distance(scene, field, T_scene_capture, points, j);
     ++shown;
   }
@@ -110,12 +117,13 @@ ErrorTerms visibility_terms(const SceneView& scene, const LandmarkView& landmark
   ErrorTerms terms;
   const Eigen::Isometry3f T = T_scene_capture.cast<float>();
   const DistanceField::Sampler scene_field(scene.index.field());
-  const Box box = landmark.box.transformed(T_scene_capture);
+  const Box free_zone =
+      projective ? occluder_free_zone(landmark.box.transformed(T_scene_capture)) : Box();
   // Support: a scene surface within two paper leaves (1 cm) of the landmark point.
   const float support = static_cast<float>(2.0 * scene.index.settings().leaf_size);
   std::size_t supported = 0;
   for (std::size_t j = 0; j < landmark.points.size(); ++j) {
-    if (projective && hidden_behind(scene.index, T * landmark.points.points[j], box)) {
+    if (projective && hidden_behind(scene.index, T * landmark.points.points[j], free_zone)) {
       ++terms.unseen_points;
       continue;
     }

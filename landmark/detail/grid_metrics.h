@@ -58,11 +58,15 @@ double mean_surface_distance(const SceneIndex& scene, const PointCloud& points,
                              const Eigen::Isometry3f& T_scene_capture,
                              const Box* capture_box = nullptr);
 
+/// Where no occluder may stand for a candidate whose box is `box` (scene frame): the box grown by
+/// kOccluderClearance on every side.
+Box occluder_free_zone(const Box& box);
+
 /// Whether `q` (scene frame) lies behind a surface the scene's sensor measured nearer than it by
 /// more than the noise (three sigma of a measurement at its depth, and at least two paper leaves),
-/// with that surface kOccluderClearance outside `box` (scene frame). False without a range image,
-/// outside the view and where nothing was measured.
-bool hidden_behind(const SceneIndex& scene, const Eigen::Vector3f& q, const Box& box);
+/// with that surface outside `free_zone` (occluder_free_zone() of the candidate's box). False
+/// without a range image, outside the view and where nothing was measured.
+bool hidden_behind(const SceneIndex& scene, const Eigen::Vector3f& q, const Box& free_zone);
 
 /// Calls visit(e, occupied) for each voxel the scene occupies inside the candidate's box
 /// (`occupied`, scene frame) that falls in the landmark's observed-empty space (`e`, capture

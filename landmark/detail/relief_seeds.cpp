@@ -6,6 +6,7 @@
 #include <unordered_map>
 
 #include "geometry/detail/voxel_key.h"
+#include "geometry/random.h"
 
 namespace lmk::detail {
 
@@ -54,12 +55,9 @@ Indices points_near_relief(const PointCloud& cloud, double cell, double angle) {
 
 namespace {
 
-// A 64-bit mix of (seed, index) (SplitMix64's finaliser): which candidate a cell keeps.
+// Which candidate a cell keeps: a 64-bit hash of (seed, index).
 std::uint64_t draw(std::uint64_t seed, std::uint64_t index) {
-  std::uint64_t z = seed * 0x9E3779B97F4A7C15ULL + index + 1;
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-  return z ^ (z >> 31);
+  return splitmix64_mix(seed * 0x9E3779B97F4A7C15ULL + index + 1);
 }
 
 }  // namespace
