@@ -80,7 +80,12 @@ std::vector<AblationVariant> run_ablation(
     EvaluationSettings settings = base;
     for (const auto& [key, value] : v.values) apply_ablation_setting(settings.find, key, value);
     if (on_variant) on_variant(i, grid.size(), v.label());
-    v.evaluation = evaluate(dir, dataset, settings);
+    try {
+      v.evaluation = evaluate(dir, dataset, settings);
+    } catch (const Interrupted& e) {
+      throw Interrupted("variant " + std::to_string(i + 1) + " of " + std::to_string(grid.size()) +
+                        " (" + v.label() + "): " + e.what());
+    }
     v.rows = evaluation_rows(v.evaluation);
     variants.push_back(std::move(v));
   }

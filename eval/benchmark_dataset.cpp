@@ -10,6 +10,7 @@
 #include "geometry/cloud_io.h"
 #include "geometry/error.h"
 #include "geometry/hash.h"
+#include "geometry/input_file.h"
 #include "geometry/version.h"
 #include "landmark/landmark_file.h"
 
@@ -52,11 +53,7 @@ std::vector<DatasetPair> pairs_of(const GeneratedScene& scene,
   return pairs;
 }
 
-std::string read_bytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path.string() + ": cannot be read");
-  return std::string((std::istreambuf_iterator<char>(in)), {});
-}
+std::string read_bytes(const fs::path& path) { return read_input_file(path.string(), kCloudInput); }
 
 std::string join(const std::vector<std::string>& names) {
   std::string out;

@@ -8,6 +8,7 @@
 #include "geometry/atomic_file.h"
 #include "geometry/detail/json_reader.h"
 #include "geometry/error.h"
+#include "geometry/input_file.h"
 
 namespace lmk {
 
@@ -136,13 +137,11 @@ DatasetPair Dataset::pair(const DatasetScene& scene, const std::string& landmark
 Dataset load_dataset(const std::string& dir) {
   const std::string file = (fs::path(dir) / "dataset.json").string();
   const detail::JsonReader r(file);
-  std::ifstream in(file);
-  if (!in)
-    r.fail("", fs::is_directory(dir) ? "no such file"
-                                     : "no such file (is '" + dir + "' a dataset directory?)");
+  if (!fs::is_directory(dir)) r.fail("", "no such file (is '" + dir + "' a dataset directory?)");
+  const std::string text = read_input_file(file, kDatasetInput);
   json j;
   try {
-    in >> j;
+    j = json::parse(text);
   } catch (const json::exception& e) {
     r.fail("", std::string("not valid JSON (") + e.what() + ")");
   }

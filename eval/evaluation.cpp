@@ -18,6 +18,7 @@
 #include "geometry/cloud_io.h"
 #include "geometry/error.h"
 #include "geometry/hash.h"
+#include "geometry/input_file.h"
 #include "geometry/statistics.h"
 #include "geometry/version.h"
 #include "landmark/detail/find_settings_json.h"
@@ -71,11 +72,11 @@ class PairCache {
 
   std::optional<PairResult> read(const std::string& scene, const std::string& landmark) const {
     if (dir_.empty()) return std::nullopt;
-    std::ifstream in(file(scene, landmark));
-    if (!in) return std::nullopt;
     try {
-      nlohmann::json j;
-      in >> j;
+      const std::string path = file(scene, landmark).string();
+      std::error_code ec;
+      if (!fs::exists(path, ec)) return std::nullopt;
+      const nlohmann::json j = nlohmann::json::parse(read_input_file(path, kJsonInput));
       PairResult r = detail::pair_result_from_json(j, file(scene, landmark).string());
       if (r.scene != scene || r.landmark != landmark) return std::nullopt;  // a hash collision
       r.from_cache = true;
@@ -163,6 +164,7 @@ Evaluation evaluate(const std::string& dir, const Dataset& dataset,
   evaluation.dataset = dataset.name;
   evaluation.settings = settings;
   evaluation.settings.progress = nullptr;
+  evaluation.settings.stop_requested = nullptr;
   validate(settings.find);  // bad settings fail before any work
 
   // Every pair to search, scene by scene, and the landmarks, loaded once.
@@ -187,6 +189,11 @@ Evaluation evaluate(const std::string& dir, const Dataset& dataset,
 
   evaluation.pairs.resize(jobs.size());
   std::atomic<std::size_t> done{0}, cached{0};
+  std::atomic<bool> stopped{false};
+  const auto stopping = [&] {
+    if (!stopped && settings.stop_requested && settings.stop_requested()) stopped = true;
+    return stopped.load();
+  };
   const auto finished = [&](bool from_cache) {
     const std::size_t c = from_cache ? ++cached : cached.load();
     const std::size_t d = ++done;
@@ -215,18 +222,31 @@ Evaluation evaluate(const std::string& dir, const Dataset& dataset,
           to_search.push_back(k);
         }
       }
-      if (to_search.empty()) return;
+      if (to_search.empty() || stopping()) return;
       const PointCloud cloud = read_cloud((fs::path(dir) / scene.file).string());
       tbb::parallel_for(std::size_t{0}, to_search.size(), [&](std::size_t i) {
+        if (stopping()) return;
         const std::size_t k = to_search[i];
         const DatasetLandmark& entry = dataset.landmarks[jobs[k].landmark];
-        evaluation.pairs[k] = search_pair(cloud, scene, landmarks[jobs[k].landmark], entry,
-                                          dataset.pair(scene, entry.name), settings.find);
-        cache.write(evaluation.pairs[k], threshold, settings.tolerance);
+        const PairResult searched = search_pair(cloud, scene, landmarks[jobs[k].landmark], entry,
+                                                dataset.pair(scene, entry.name), settings.find);
+        cache.write(searched, threshold, settings.tolerance);
+        // Kept as the cache holds it: a box pose goes through its quaternion there, which is not
+        // bit-exact, so a fresh result and a resumed one must take the same way to be identical.
+        const nlohmann::json as_stored =
+            detail::pair_result_to_json(searched, threshold, settings.tolerance);
+        evaluation.pairs[k] = detail::pair_result_from_json(as_stored, scene.name);
         finished(false);
       });
     });
   });
+  if (stopped) {
+    throw Interrupted("interrupted after " + std::to_string(done) + " of " +
+                      std::to_string(jobs.size()) + " pairs; " +
+                      (settings.cache_dir.empty() ? "nothing is kept without a cache"
+                                                  : "they are cached in " + settings.cache_dir +
+                                                        ": the same command resumes from them"));
+  }
   evaluation.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return evaluation;
 }

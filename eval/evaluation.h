@@ -29,6 +29,10 @@ struct EvaluationSettings {
   /// Called after each pair with (pairs done, pairs in all, of those done how many from the cache),
   /// possibly from several threads at once.
   std::function<void(std::size_t, std::size_t, std::size_t)> progress;
+  /// Polled before each search; once it returns true no further search starts, the searches under
+  /// way finish and are cached, and evaluate() throws lmk::Interrupted saying how many pairs are
+  /// kept. The next run with the same cache resumes from them.
+  std::function<bool()> stop_requested;
 };
 
 /// A match as the evaluation keeps it.

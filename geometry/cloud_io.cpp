@@ -9,6 +9,7 @@
 #include "geometry/atomic_file.h"
 #include "geometry/detail/formats.h"
 #include "geometry/error.h"
+#include "geometry/input_file.h"
 
 namespace lmk {
 
@@ -16,19 +17,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-void check_is_file(const std::string& path) {
-  std::error_code ec;
-  const fs::file_status status = fs::status(path, ec);
-  if (!fs::exists(status)) throw Error(path + ": no such file");
-  if (fs::is_directory(status)) throw Error(path + ": is a directory, not a point-cloud file");
-}
-
-std::string read_whole_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path + ": cannot open for reading (check permissions)");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  std::string bytes = std::move(buffer).str();
+std::string read_cloud_bytes(const std::string& path) {
+  std::string bytes = read_input_file(path, kCloudInput);
   if (bytes.empty()) throw Error(path + ": file is empty");
   return bytes;
 }
@@ -70,9 +60,9 @@ CloudFormat format_from_path(const std::string& path) {
 }
 
 CloudFile read_cloud_file(const std::string& path) {
-  check_is_file(path);
+  check_input_file(path, kCloudInput);
   const CloudFormat format = format_from_path(path);
-  const std::string bytes = read_whole_file(path);
+  const std::string bytes = read_cloud_bytes(path);
   CloudFile file;
   switch (format) {
     case CloudFormat::kPcd:

@@ -13,4 +13,16 @@ class Error : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// A long run (an evaluation, an ablation, the demo tasks) stopped on request, typically Ctrl-C:
+/// not an error of the input. The message says what was finished and kept, and how to resume.
+class Interrupted : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Text from a file made fit for a one-line message: at most `max_chars` bytes, with control
+/// characters and bytes that are not UTF-8 shown as \xNN, so that a binary file cannot garble
+/// the terminal or split the line.
+std::string printable(const std::string& text, std::size_t max_chars = 60);
+
 }  // namespace lmk

@@ -18,7 +18,9 @@
 #include "geometry/error.h"
 #include "geometry/filters.h"
 #include "geometry/hash.h"
+#include "geometry/input_file.h"
 #include "geometry/pose.h"
+#include "landmark/detail/landmark_container.h"
 #include "occupancy/detail/grids.h"
 
 namespace lmk {
@@ -35,58 +37,23 @@ constexpr const char* kPositionAttribute = "capture_position";
 constexpr const char* kIndexAttribute = "capture_index";
 
 // The first eight bytes of every OpenVDB file (io::Archive's magic number, little endian).
-bool has_vdb_magic(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  unsigned char magic[8] = {};
-  in.read(reinterpret_cast<char*>(magic), 8);
-  return in.gcount() == 8 && magic[0] == 0x20 && magic[1] == 0x42 && magic[2] == 0x44 &&
-         magic[3] == 0x56;
-}
-
-// The lmk trailer, appended after the OpenVDB data: a magic word, the length of the data before it
-// and an FNV-1a hash of that data. OpenVDB ignores trailing bytes, so the file stays a plain VDB
-// file for other tools; lmk checks the trailer before OpenVDB parses anything, because OpenVDB
-// reads some damaged files without error and aborts on others (Debian builds it with assertions).
-constexpr char kTrailerMagic[8] = {'L', 'M', 'K', 'T', 'R', 'A', 'I', 'L'};
-constexpr std::size_t kTrailerSize = 24;
-// The trailer's hash starts from this basis (not FNV's standard one, which has one digit more);
-// it is part of the file format, so it stays.
-constexpr std::uint64_t kTrailerHashBasis = 1469598103934665603ULL;
-
-std::uint64_t trailer_hash(const char* data, std::size_t size) {
-  return Fnv1a(kTrailerHashBasis).add(data, size).value();
-}
-
-std::string read_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), {});
+bool has_vdb_magic(const std::string& bytes) {
+  return bytes.size() >= 8 && bytes.compare(0, 4, "\x20\x42\x44\x56") == 0;
 }
 
 void append_trailer(const fs::path& file) {
-  const std::string bytes = read_bytes(file.string());
-  const std::uint64_t length = bytes.size(), hash = trailer_hash(bytes.data(), bytes.size());
+  const std::string trailer =
+      detail::landmark_trailer(read_input_file(file.string(), kLandmarkInput));
   std::ofstream out(file, std::ios::binary | std::ios::app);
-  out.write(kTrailerMagic, sizeof(kTrailerMagic));
-  out.write(reinterpret_cast<const char*>(&length), sizeof(length));
-  out.write(reinterpret_cast<const char*>(&hash), sizeof(hash));
+  out.write(trailer.data(), static_cast<std::streamsize>(trailer.size()));
   if (!out) throw Error(file.string() + ": write failed");
 }
 
-void check_trailer(const std::string& path) {
-  const std::string bytes = read_bytes(path);
-  if (bytes.size() < kTrailerSize ||
-      bytes.compare(bytes.size() - kTrailerSize, sizeof(kTrailerMagic),
-                    std::string(kTrailerMagic, sizeof(kTrailerMagic))) != 0) {
-    throw Error(path + ": truncated, or an OpenVDB file that lmk did not write (no lmk trailer)");
-  }
-  std::uint64_t length = 0, hash = 0;
-  std::memcpy(&length, bytes.data() + bytes.size() - 16, sizeof(length));
-  std::memcpy(&hash, bytes.data() + bytes.size() - 8, sizeof(hash));
-  if (length != bytes.size() - kTrailerSize || hash != trailer_hash(bytes.data(), length)) {
-    throw Error(path +
-                ": corrupt landmark file: its data does not match the checksum it was "
-                "written with");
-  }
+// OpenVDB allocates what a file's grid headers declare. Behind a valid checksum that is a file
+// written wrong, not damaged on the way: lmk reports it as corrupt instead of running out of
+// memory.
+Error corrupt_sizes(const std::string& path) {
+  return Error(path + ": corrupt landmark file: its grids declare sizes beyond memory");
 }
 
 template <typename MetaT>
@@ -176,6 +143,20 @@ Landmark landmark_from_grid(const vdb::points::PointDataGrid& grid, const std::s
       throw Error(path + ": not an lmk landmark file: points lack '" + std::string(attribute) +
                   "'");
     }
+    // The leaf's voxel values are running point offsets into its attribute arrays; OpenVDB reads
+    // both from the file without checking that they agree (a disagreement failed an assertion
+    // inside OpenVDB). They must rise and stay within the array.
+    const vdb::points::AttributeArray& array = leaf->constAttributeArray(attribute);
+    bool offsets_fit = array.stride() == 1;
+    for (vdb::Index v = 0, previous = 0; offsets_fit && v < leaf->SIZE; ++v) {
+      const vdb::Index offset = leaf->getValue(v);
+      offsets_fit = offset >= previous && offset <= array.dataSize();
+      previous = offset;
+    }
+    if (!offsets_fit) {
+      throw Error(path + ": corrupt landmark file: a leaf's '" + std::string(attribute) +
+                  "' array: its point offsets do not fit it");
+    }
   };
   std::vector<std::int32_t> order;
   for (auto leaf = grid.tree().cbeginLeaf(); leaf; ++leaf) {
@@ -245,12 +226,9 @@ Box box_from_json(const nlohmann::json& j, const std::string& where) {
 }
 
 nlohmann::json read_json_file(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw Error(path + ": no such file");
+  const std::string text = read_input_file(path, kJsonInput);
   try {
-    nlohmann::json j;
-    in >> j;
-    return j;
+    return nlohmann::json::parse(text);
   } catch (const nlohmann::json::exception& e) {
     throw Error(path + ": not valid JSON (" + e.what() + ")");
   }
@@ -282,11 +260,10 @@ Landmark from_json(const nlohmann::json& j, const std::string& path) {
 // Everything that must hold before OpenVDB may open the file: it exists, is an OpenVDB file, and
 // its lmk trailer matches its data.
 void check_landmark_file(const std::string& path) {
-  std::error_code ec;
-  if (!fs::exists(path, ec)) throw Error(path + ": no such file");
-  if (fs::is_directory(path, ec)) throw Error(path + ": is a directory, not a landmark file");
-  if (!has_vdb_magic(path)) throw Error(path + ": not an lmk landmark file (not an OpenVDB file)");
-  check_trailer(path);
+  const std::string bytes = read_input_file(path, kLandmarkInput);
+  if (!has_vdb_magic(bytes)) throw Error(path + ": not an lmk landmark file (not an OpenVDB file)");
+  detail::check_landmark_trailer(path, bytes);
+  detail::check_vdb_layout(path, bytes.substr(0, bytes.size() - detail::kLandmarkTrailerSize));
 }
 
 }  // namespace
@@ -311,6 +288,10 @@ std::vector<std::string> landmark_file_grids(const std::string& path) {
     file.close();
   } catch (const vdb::Exception& e) {
     throw Error(path + ": corrupt or truncated landmark file (" + e.what() + ")");
+  } catch (const std::bad_alloc&) {
+    throw corrupt_sizes(path);
+  } catch (const std::length_error&) {
+    throw corrupt_sizes(path);
   }
   return names;
 }
@@ -372,6 +353,10 @@ Landmark load_landmark(const std::string& path) {
     throw Error(path + ": corrupt or truncated landmark file (" + e.what() + ")");
   } catch (const std::ios_base::failure& e) {
     throw Error(path + ": corrupt or truncated landmark file (" + e.what() + ")");
+  } catch (const std::bad_alloc&) {
+    throw corrupt_sizes(path);
+  } catch (const std::length_error&) {
+    throw corrupt_sizes(path);
   }
 }
 

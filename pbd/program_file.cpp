@@ -9,6 +9,7 @@
 #include "geometry/atomic_file.h"
 #include "geometry/detail/json_reader.h"
 #include "geometry/error.h"
+#include "geometry/input_file.h"
 #include "pbd/program.h"
 
 namespace lmk {
@@ -163,11 +164,7 @@ Program program_from_json(const std::string& text, const std::string& source) {
 }
 
 Program load_program(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw Error(path + ": cannot open the program file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return program_from_json(text.str(), path);
+  return program_from_json(read_input_file(path, kProgramInput), path);
 }
 
 void save_program(const std::string& path, const Program& program) {

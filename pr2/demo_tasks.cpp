@@ -16,6 +16,7 @@
 #include "pbd/joint_motion.h"
 #include "pbd/plan.h"
 #include "pbd/recorder.h"
+#include "pr2/demo_task_cache.h"
 #include "pr2/detail/demo_task_definitions.h"
 #include "pr2/head_pointing.h"
 #include "pr2/simulated_pr2.h"
@@ -354,6 +355,19 @@ DemoScenarioResult run_scenario(const DemoTask& task, std::size_t index,
   return result;
 }
 
+// What a stopped run says: the tasks it kept, and how to resume.
+Interrupted interrupted(const DemoTasksSettings& settings, const std::vector<int>& kept) {
+  if (settings.cache_dir.empty()) {
+    return Interrupted("demo tasks interrupted; nothing is kept without --cache DIR");
+  }
+  std::string tasks;
+  for (const int t : kept) tasks += (tasks.empty() ? "" : ", ") + std::to_string(t);
+  return Interrupted("demo tasks interrupted; " +
+                     (kept.empty() ? std::string("no task was finished")
+                                   : "tasks " + tasks + " are cached in " + settings.cache_dir +
+                                         ": the same command resumes from them"));
+}
+
 }  // namespace
 
 DemoTasksReport run_demo_tasks(const DemoTasksSettings& settings) {
@@ -362,20 +376,33 @@ DemoTasksReport run_demo_tasks(const DemoTasksSettings& settings) {
     if (n < 1 || n > 6) throw Error("demo tasks: no task " + std::to_string(n) + " (1 to 6)");
   }
   DemoTasksReport report;
+  std::vector<int> kept;  // tasks whose results are in the cache
   for (const DemoTask& task : detail::demo_task_definitions()) {
     if (!settings.tasks.empty() && std::find(settings.tasks.begin(), settings.tasks.end(),
                                              task.number) == settings.tasks.end()) {
       continue;
     }
+    const bool saving = !settings.save_dir.empty();
+    if (const auto cached = saving ? std::nullopt : read_cached_demo_task(settings, task.number)) {
+      if (settings.progress) settings.progress(task_prefix(task) + ": from the cache");
+      report.scenarios.insert(report.scenarios.end(), cached->begin(), cached->end());
+      kept.push_back(task.number);
+      continue;
+    }
     const RecordedTask recorded = record(task, settings);
     ScenarioState state;
+    std::vector<DemoScenarioResult> results;
     for (std::size_t i = 0; i < task.scenarios.size(); ++i) {
       if (settings.progress) {
         settings.progress(task_prefix(task) + ", scenario " + std::to_string(i + 1) + ": " +
                           task.scenarios[i].name);
       }
-      report.scenarios.push_back(run_scenario(task, i, recorded, state, settings));
+      results.push_back(run_scenario(task, i, recorded, state, settings));
+      if (settings.stop_requested && settings.stop_requested()) throw interrupted(settings, kept);
     }
+    write_cached_demo_task(settings, task.number, results);
+    if (!settings.cache_dir.empty()) kept.push_back(task.number);
+    report.scenarios.insert(report.scenarios.end(), results.begin(), results.end());
   }
   report.seconds = seconds_since(start);
   return report;

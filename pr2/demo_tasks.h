@@ -47,6 +47,13 @@ struct DemoTasksSettings {
   std::string save_dir;
   /// A line per stage ("task 1: recording 'pick tool'", "task 1, scenario 2: ...").
   std::function<void(const std::string&)> progress;
+  /// If set, each finished task's results are kept in CACHE/demo-tasks/, and a later run with the
+  /// same settings and lmk version takes them from there instead of running the task again
+  /// (not when save_dir is set: saving needs the run).
+  std::string cache_dir;
+  /// Polled after each scenario; once it returns true the run stops and run_demo_tasks throws
+  /// lmk::Interrupted, naming the tasks kept in the cache.
+  std::function<bool()> stop_requested;
 };
 
 /// Runs the tasks. Throws lmk::Error only for a broken task definition (a demonstrated pose the

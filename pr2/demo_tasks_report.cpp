@@ -5,6 +5,7 @@
 
 #include "eval/text_table.h"
 #include "pr2/demo_tasks.h"
+#include "pr2/detail/demo_tasks_json.h"
 
 namespace lmk {
 
@@ -22,20 +23,42 @@ std::string demo_tasks_table(const DemoTasksReport& report) {
   return table.plain() + total;
 }
 
+namespace detail {
+
+nlohmann::json scenario_to_json(const DemoScenarioResult& r) {
+  return {{"task", r.task},
+          {"task_title", r.task_title},
+          {"name", r.name},
+          {"should_act", r.should_act},
+          {"success", r.success},
+          {"reason", r.reason},
+          {"steps_executed", r.steps_executed},
+          {"max_position_error_m", r.max_position_error},
+          {"max_rotation_error_rad", r.max_rotation_error},
+          {"seconds", r.seconds}};
+}
+
+DemoScenarioResult scenario_from_json(const nlohmann::json& j) {
+  DemoScenarioResult r;
+  r.task = j.at("task").get<int>();
+  r.task_title = j.at("task_title").get<std::string>();
+  r.name = j.at("name").get<std::string>();
+  r.should_act = j.at("should_act").get<bool>();
+  r.success = j.at("success").get<bool>();
+  r.reason = j.at("reason").get<std::string>();
+  r.steps_executed = j.at("steps_executed").get<std::size_t>();
+  r.max_position_error = j.at("max_position_error_m").get<double>();
+  r.max_rotation_error = j.at("max_rotation_error_rad").get<double>();
+  r.seconds = j.at("seconds").get<double>();
+  return r;
+}
+
+}  // namespace detail
+
 std::string demo_tasks_json(const DemoTasksReport& report) {
   nlohmann::json scenarios = nlohmann::json::array();
-  for (const DemoScenarioResult& r : report.scenarios) {
-    scenarios.push_back({{"task", r.task},
-                         {"task_title", r.task_title},
-                         {"name", r.name},
-                         {"should_act", r.should_act},
-                         {"success", r.success},
-                         {"reason", r.reason},
-                         {"steps_executed", r.steps_executed},
-                         {"max_position_error_m", r.max_position_error},
-                         {"max_rotation_error_rad", r.max_rotation_error},
-                         {"seconds", r.seconds}});
-  }
+  for (const DemoScenarioResult& r : report.scenarios)
+    scenarios.push_back(detail::scenario_to_json(r));
   return nlohmann::json{{"scenarios", scenarios},
                         {"succeeded", report.succeeded()},
                         {"total", report.total()},

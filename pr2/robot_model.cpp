@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "geometry/error.h"
+#include "geometry/input_file.h"
 
 namespace lmk {
 
@@ -125,12 +126,7 @@ RobotModel RobotModel::from_string(const std::string& xml, const std::string& wh
 }
 
 RobotModel RobotModel::from_file(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw Error(path + ": no such file");
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return from_string(text.str(), path);
+  return from_string(read_input_file(path, kRobotInput), path);
 }
 
 RobotModel RobotModel::pr2() { return from_string(kPr2Urdf, "lmk's PR2 description"); }

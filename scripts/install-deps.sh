@@ -15,6 +15,8 @@ packages=(
   googletest libgtest-dev libgmock-dev libbenchmark-dev
   # the evaluation report's rendering test (headless)
   chromium
+  # the sanitizer build and the fuzz targets (scripts/fuzz.sh): clang with libFuzzer's runtime
+  clang-14 libclang-rt-14-dev
 )
 
 missing=()

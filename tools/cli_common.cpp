@@ -26,6 +26,41 @@ CLI::Validator non_negative_whole() {
       "UINT");
 }
 
+CLI::Validator output_extension(const std::string& extension, const std::string& what) {
+  return CLI::Validator(
+      [extension, what](std::string& text) -> std::string {
+        const bool ends_right =
+            text.size() > extension.size() &&
+            text.compare(text.size() - extension.size(), extension.size(), extension) == 0;
+        return ends_right ? "" : "'" + text + "': " + what + " must end in " + extension;
+      },
+      "PATH" + extension);
+}
+
+void add_timings_flag(CLI::App* sub, bool& timings) {
+  sub->add_flag("--timings", timings,
+                "Keep wall-clock times in the JSON output (without them it is byte-identical for "
+                "the same inputs and settings, whatever the threads or the cache)");
+}
+
+nlohmann::json json_output(nlohmann::json j, bool timings) {
+  if (timings) return j;
+  if (j.is_object()) {
+    for (auto it = j.begin(); it != j.end();) {
+      const std::string& key = it.key();
+      if (key.rfind("seconds", 0) == 0 || key.rfind("median_seconds", 0) == 0) {
+        it = j.erase(it);
+      } else {
+        *it = json_output(std::move(*it), false);
+        ++it;
+      }
+    }
+  } else if (j.is_array()) {
+    for (auto& item : j) item = json_output(std::move(item), false);
+  }
+  return j;
+}
+
 Eigen::Vector3d rpy_degrees(const Eigen::Matrix3d& R) {
   Eigen::Vector3d rpy = rpy_from_rotation(R) * 180.0 / M_PI;
   for (int i = 0; i < 3; ++i) {

@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <filesystem>
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <vector>
 
@@ -13,7 +14,8 @@
 namespace lmk::cli {
 
 /// Exit codes: 0 success, 1 an unexpected internal failure, 2 bad input (a file, an argument).
-enum ExitCode : int { kOk = 0, kInternalError = 1, kBadInput = 2 };
+/// 130 for a run stopped by Ctrl-C, as shells report a process ended by SIGINT.
+enum ExitCode : int { kOk = 0, kInternalError = 1, kBadInput = 2, kInterrupted = 130 };
 
 /// A subcommand: its CLI11 node (options bound to its own state) and what to run when chosen.
 /// `run` may throw lmk::Error for bad input; main turns that into one line and exit code 2.
@@ -37,6 +39,18 @@ CLI::Validator finite_number();
 /// Refuses a negative whole number before CLI11 stores it in an unsigned field, where "-1" would
 /// wrap around to 2^64 - 1.
 CLI::Validator non_negative_whole();
+
+/// Refuses an output path that does not end in `extension` (".lmk"), so that a landmark is never
+/// written under a name other tools would read as a point cloud.
+CLI::Validator output_extension(const std::string& extension, const std::string& what);
+
+/// --timings: whether a command's JSON output keeps its wall-clock times. Without it the JSON is
+/// byte-identical for the same inputs and settings, whatever the thread count or the cache.
+void add_timings_flag(CLI::App* sub, bool& timings);
+
+/// The JSON without its wall-clock times (every key starting "seconds" or "median_seconds"), at
+/// any depth; unchanged when `timings` is set.
+nlohmann::json json_output(nlohmann::json j, bool timings);
 
 /// The scene-frame options that say which way is up: --up X Y Z and --base-frame.
 struct UpOptions {

@@ -16,6 +16,7 @@
 #include "landmark/detail/find_settings_json.h"
 #include "tools/cli_common.h"
 #include "tools/eval_common.h"
+#include "tools/interrupt.h"
 #include "tools/progress.h"
 
 namespace lmk::cli {
@@ -28,6 +29,7 @@ struct AblateOptions {
   EvaluationSettings settings;
   std::vector<std::string> vary;
   std::string out = "lmk-ablation";
+  bool timings = false;
 };
 
 nlohmann::json ablation_json(const std::vector<AblationVariant>& variants,
@@ -57,6 +59,8 @@ int run_ablate(AblateOptions& o) {
   o.settings.progress = [&bar](std::size_t done, std::size_t total, std::size_t) {
     if (bar) bar->update(done, total);
   };
+  const StopOnSigint stop;
+  o.settings.stop_requested = &StopOnSigint::requested;
   const std::vector<AblationVariant> variants =
       run_ablation(data.dir, data.dataset, o.settings, axes,
                    [&bar](std::size_t i, std::size_t n, const std::string& label) {
@@ -76,8 +80,10 @@ int run_ablate(AblateOptions& o) {
   fs::create_directories(o.out, ec);
   if (ec) throw Error(o.out + ": cannot create the output directory (" + ec.message() + ")");
   const std::string fingerprint = variants.empty() ? "" : variants.front().evaluation.fingerprint;
-  write_text_atomically(fs::path(o.out) / "ablation.json",
-                        ablation_json(variants, data.dataset.name, fingerprint).dump(2) + "\n");
+  write_text_atomically(
+      fs::path(o.out) / "ablation.json",
+      json_output(ablation_json(variants, data.dataset.name, fingerprint), o.timings).dump(2) +
+          "\n");
   write_text_atomically(fs::path(o.out) / "ablation.md",
                         "# lmk ablation\n\n" + header + ".\n\n" + table.markdown());
   std::printf("wrote %s/ablation.json and %s/ablation.md\n", o.out.c_str(), o.out.c_str());
@@ -100,6 +106,7 @@ Subcommand add_ablate(CLI::App& app) {
   add_evaluation_options(sub, o->settings);
   sub->add_option("--out", o->out, "Directory for ablation.json and ablation.md")
       ->capture_default_str();
+  add_timings_flag(sub, o->timings);
   return {sub, [o] { return run_ablate(*o); }};
 }
 

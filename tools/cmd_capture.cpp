@@ -106,7 +106,9 @@ Subcommand add_capture(CLI::App& app) {
   sub->add_option("--box-json", o->box_json,
                   "Box as JSON {position:[x,y,z], quaternion:[w,x,y,z], size:[sx,sy,sz]}");
   sub->add_option("--name", o->name, "Landmark name")->required();
-  sub->add_option("-o,--output", o->output, "Landmark file to write (.lmk)")->required();
+  sub->add_option("-o,--output", o->output, "Landmark file to write (.lmk)")
+      ->required()
+      ->check(output_extension(".lmk", "a landmark file"));
   sub->add_option("--leaf", o->settings.leaf_size, "Voxel leaf of the landmark points, m")
       ->capture_default_str();
   sub->add_option("--min-points", o->settings.min_points, "Fewest points a landmark may have")

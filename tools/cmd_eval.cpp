@@ -24,6 +24,7 @@ struct EvalOptions {
   EvaluationSettings settings;
   std::string json, report;
   std::string by;  ///< "range" or "hidden": also the table split by that
+  bool timings = false;
 };
 
 int run_eval(EvalOptions& o) {
@@ -45,7 +46,7 @@ int run_eval(EvalOptions& o) {
                 evaluation_table(by_hidden).plain().c_str());
     json["rows_by_hidden"] = detail::rows_to_json(by_hidden);
   }
-  if (!o.json.empty()) write_text_atomically(o.json, json.dump(2) + "\n");
+  if (!o.json.empty()) write_text_atomically(o.json, json_output(json, o.timings).dump(2) + "\n");
   if (!o.report.empty()) {
     write_evaluation_report(o.report, evaluation, data.dir);
     std::printf("report: %s/report.html (also report.md, report.json)\n", o.report.c_str());
@@ -65,6 +66,7 @@ Subcommand add_eval(CLI::App& app) {
   add_search_options(sub, o->settings.find);
   add_evaluation_options(sub, o->settings);
   sub->add_option("--json", o->json, "Write the table and every pair's matches as JSON to FILE");
+  add_timings_flag(sub, o->timings);
   sub->add_option("--by", o->by,
                   "Also split the table by 'range' (the distance from the sensor, 0.5 m bins) or "
                   "'hidden' (the fraction of each instance the sensor does not see, 20% bins)")

@@ -24,6 +24,7 @@ namespace {
 
 struct FindOptions {
   std::string scene, landmark, json;
+  bool timings = false;
   FindSettings settings;
 };
 
@@ -110,12 +111,12 @@ int run_find(FindOptions& o) {
   const FindResult result = find_landmark(scene, landmark, o.settings);
   o.settings.execution.progress = nullptr;
   if (o.json == "-") {
-    std::cout << result_json(result).dump(2) << "\n";
+    std::cout << json_output(result_json(result), o.timings).dump(2) << "\n";
     return kOk;
   }
   print_table(result, landmark.name);
   if (!o.json.empty()) {
-    write_text_atomically(o.json, result_json(result).dump(2) + "\n");
+    write_text_atomically(o.json, json_output(result_json(result), o.timings).dump(2) + "\n");
   }
   return kOk;
 }
@@ -131,6 +132,7 @@ Subcommand add_find(CLI::App& app) {
   add_search_options(sub, s, true);
   sub->add_option("--json", o->json,
                   "Write the matches and statistics as JSON to FILE, or - for stdout");
+  add_timings_flag(sub, o->timings);
   return {sub, [o] { return run_find(*o); }};
 }
 

@@ -47,7 +47,9 @@ Subcommand add_landmark(CLI::App& app) {
   CLI::App* imp =
       sub->add_subcommand("import", "Build a .lmk from DIR/points.pcd and DIR/landmark.json");
   imp->add_option("dir", o->dir, "Directory holding points.pcd and landmark.json")->required();
-  imp->add_option("output", o->output, "Landmark file to write (.lmk)")->required();
+  imp->add_option("output", o->output, "Landmark file to write (.lmk)")
+      ->required()
+      ->check(output_extension(".lmk", "a landmark file"));
   return {sub, [o, show, exp, imp] {
             if (show->parsed()) return run_show(*o);
             if (exp->parsed()) {

@@ -19,15 +19,16 @@
 #include "pr2/demo_tasks.h"
 #include "pr2/simulated_pr2.h"
 #include "tools/cli_common.h"
+#include "tools/interrupt.h"
 
 namespace lmk::cli {
 namespace {
 
 struct PbdOptions {
-  std::string program, scene, json, save_dir, policy;
+  std::string program, scene, json, save_dir, policy, cache_dir;
   double torso = 0.0;
   int threads = 0;
-  bool sim = false, json_stdout = false;
+  bool sim = false, json_stdout = false, timings = false;
   std::vector<int> tasks;
 };
 
@@ -188,11 +189,17 @@ int run_demo_tasks_command(const PbdOptions& o) {
   settings.tasks = o.tasks;
   settings.threads = o.threads;
   settings.save_dir = o.save_dir;
+  settings.cache_dir = o.cache_dir;
+  const StopOnSigint stop;
+  settings.stop_requested = &StopOnSigint::requested;
   // One line per scenario on stderr: a run takes a minute or two.
   settings.progress = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
   const DemoTasksReport report = run_demo_tasks(settings);
   std::printf("%s", demo_tasks_table(report).c_str());
-  if (!o.json.empty()) write_text_atomically(o.json, demo_tasks_json(report));
+  if (!o.json.empty()) {
+    const nlohmann::json j = json_output(nlohmann::json::parse(demo_tasks_json(report)), o.timings);
+    write_text_atomically(o.json, j.dump(2) + "\n");
+  }
   return kOk;
 }
 
@@ -226,11 +233,15 @@ Subcommand add_pbd(CLI::App& app) {
   CLI::App* demo = sub->add_subcommand(
       "demo-tasks", "The paper's six demonstration tasks, end to end on the simulated PR2");
   demo->add_option("--json", o->json, "Also write the results as JSON to FILE");
+  add_timings_flag(demo, o->timings);
   demo->add_option("--task", o->tasks, "Only these tasks (1 to 6)");
   demo->add_option("--save", o->save_dir,
                    "Write each task's landmarks, programs and scenes to DIR/taskN");
   demo->add_option("--threads", o->threads, "Search threads; 0 uses every core")
       ->capture_default_str();
+  demo->add_option("--cache", o->cache_dir,
+                   "Keep each finished task's results in DIR; a later run (after Ctrl-C, say) "
+                   "takes them from there");
   return {sub, [o, show, plan, run] {
             if (show->parsed()) return run_show(*o);
             if (plan->parsed()) return run_plan(*o);

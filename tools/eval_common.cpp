@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "geometry/error.h"
+#include "tools/interrupt.h"
 #include "tools/progress.h"
 
 namespace lmk::cli {
@@ -76,6 +77,8 @@ Evaluation evaluate_with_progress(const LoadedDataset& data, EvaluationSettings 
                                   const std::string& label) {
   const Evaluation evaluation = [&] {
     ProgressBar bar(label);  // ends its line before the summary
+    const StopOnSigint stop;
+    settings.stop_requested = &StopOnSigint::requested;
     settings.progress = [&bar](std::size_t done, std::size_t total, std::size_t) {
       bar.update(done, total);
     };

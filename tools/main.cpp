@@ -86,8 +86,12 @@ int main(int argc, char** argv) {
       if (sub.app->parsed()) return sub.run();
     }
     return kInternalError;  // unreachable: require_subcommand(1) guarantees one was parsed
+  } catch (const lmk::Interrupted& e) {
+    std::fprintf(stderr, "lmk: %s\n", e.what());
+    return kInterrupted;
   } catch (const lmk::Error& e) {
-    std::fprintf(stderr, "lmk: error: %s\n", e.what());
+    // printable: a message may quote a file's bytes; 1000 characters hold any path and reason.
+    std::fprintf(stderr, "lmk: error: %s\n", lmk::printable(e.what(), 1000).c_str());
     return kBadInput;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "lmk: internal error: %s\n", e.what());

@@ -9,6 +9,17 @@
 
 namespace lmk::detail {
 
+// One pass over an ASCII body from byte `offset`: the number of data rows (blank lines and lines
+// starting with '#' skipped), and the first of the first `rows_to_check` rows that is not exactly
+// `tokens_per_row` numbers (nan and inf included). PCL's ASCII decoders read a token such as "foo"
+// as 0 or NaN without complaint; lmk refuses the file instead.
+struct AsciiBodyScan {
+  std::size_t rows = 0;
+  std::string first_problem;  // empty when every checked row is well formed
+};
+AsciiBodyScan scan_ascii_body(const std::string& bytes, std::size_t offset,
+                              std::size_t tokens_per_row, std::size_t rows_to_check);
+
 CloudFile read_pcd(const std::string& path, const std::string& bytes);
 CloudFile read_ply(const std::string& path, const std::string& bytes);
 CloudFile read_xyz(const std::string& path, const std::string& bytes);

@@ -54,7 +54,11 @@ class JsonReader {
   /// The file's "version" must be exactly `expected`.
   void require_version(const nlohmann::json& j, int expected, const std::string& what) const {
     const nlohmann::json& version = field(j, "", "version");
-    if (!version.is_number_integer() || version.get<int>() != expected) {
+    if (!version.is_number_integer()) {
+      fail("version", "must be a whole number such as " + std::to_string(expected) + ", not " +
+                          version.dump());
+    }
+    if (version.get<int>() != expected) {
       fail("version", what + " format version " + version.dump() +
                           " is not supported (this lmk reads " + std::to_string(expected) + ")");
     }

@@ -33,44 +33,6 @@ std::size_t body_offset(const std::string& bytes) {
   return std::string::npos;
 }
 
-// One pass over an ASCII body: the number of data rows, and the first row that is not exactly
-// `tokens_per_row` numbers (nan and inf included). PCL's ASCII decoder would read such a token as
-// 0 without complaint; lmk refuses the file instead.
-struct AsciiBodyScan {
-  std::size_t rows = 0;
-  std::string first_problem;  // empty when every row is well formed
-};
-
-AsciiBodyScan scan_ascii_body(const std::string& bytes, std::size_t offset,
-                              std::size_t tokens_per_row) {
-  AsciiBodyScan scan;
-  std::istringstream body(bytes.substr(offset));
-  std::string line, token;
-  while (std::getline(body, line)) {
-    const std::size_t first = line.find_first_not_of(" \t\r");
-    if (first == std::string::npos || line[first] == '#') continue;
-    ++scan.rows;
-    if (!scan.first_problem.empty()) continue;
-    std::istringstream words(line);
-    std::size_t tokens = 0;
-    while (words >> token && scan.first_problem.empty()) {
-      char* end = nullptr;
-      std::strtod(token.c_str(), &end);
-      if (end == token.c_str() || *end != '\0') {
-        scan.first_problem =
-            "data row " + std::to_string(scan.rows) + ": '" + token + "' is not a number";
-      }
-      ++tokens;
-    }
-    if (scan.first_problem.empty() && tokens != tokens_per_row) {
-      scan.first_problem = "data row " + std::to_string(scan.rows) + " has " +
-                           std::to_string(tokens) + " values but the header's fields need " +
-                           std::to_string(tokens_per_row);
-    }
-  }
-  return scan;
-}
-
 // A header integer as written: digits only (no sign, no exponent), or nothing.
 std::optional<long long> header_count(const std::string& word) {
   if (word.empty() || word.size() > 18) return std::nullopt;
@@ -92,6 +54,22 @@ struct Declarations {
   std::string data;
 };
 
+// VIEWPOINT is the sensor pose: tx ty tz qw qx qy qz. PCL reads it with operator>>, which leaves
+// the pose uninitialised at "nan", so that every run of `find` saw another sensor origin.
+void check_viewpoint(const std::string& path, const std::string& line,
+                     const std::vector<std::string>& values) {
+  bool good = values.size() == 7;
+  for (std::size_t i = 0; good && i < values.size(); ++i) {
+    char* end = nullptr;
+    const double v = std::strtod(values[i].c_str(), &end);
+    good = end != values[i].c_str() && *end == '\0' && std::isfinite(v);
+  }
+  if (!good) {
+    throw Error(path + ": header '" + printable(line) +
+                "' is not seven finite numbers (VIEWPOINT tx ty tz qw qx qy qz)");
+  }
+}
+
 Declarations read_declarations(const std::string& path, const std::string& header_text) {
   Declarations d;
   std::istringstream header(header_text);
@@ -103,12 +81,13 @@ Declarations read_declarations(const std::string& path, const std::string& heade
     while (words >> word) values.push_back(word);
     if (key == "FIELDS") d.fields = values.size();
     if (key == "DATA" && !values.empty()) d.data = values[0];
+    if (key == "VIEWPOINT") check_viewpoint(path, line, values);
     if (key != "SIZE" && key != "COUNT" && key != "WIDTH" && key != "HEIGHT" && key != "POINTS") {
       continue;
     }
     for (const std::string& v : values) {
       const std::optional<long long> n = header_count(v);
-      if (!n) throw Error(path + ": header " + key + " '" + v + "' is not a count");
+      if (!n) throw Error(path + ": header " + key + " '" + printable(v) + "' is not a count");
       if (key == "SIZE" && *n != 1 && *n != 2 && *n != 4 && *n != 8) {
         throw Error(path + ": header SIZE " + v + " is not 1, 2, 4 or 8 bytes");
       }
@@ -169,8 +148,8 @@ void check_declared_body(const std::string& path, Declarations d, std::size_t av
 CloudFile read_pcd(const std::string& path, const std::string& bytes) {
   pcl::PCDReader reader;
   pcl::PCLPointCloud2 blob;
-  Eigen::Vector4f origin;
-  Eigen::Quaternionf orientation;
+  Eigen::Vector4f origin = Eigen::Vector4f::Zero();
+  Eigen::Quaternionf orientation = Eigen::Quaternionf::Identity();
   int version = 0, data_type = 0;
   unsigned int pcl_data_idx = 0;  // unused: lmk finds the body itself, for its size checks
   std::istringstream header(bytes);
@@ -201,7 +180,7 @@ CloudFile read_pcd(const std::string& path, const std::string& bytes) {
     std::size_t tokens_per_row = 0;
     for (const pcl::PCLPointField& f : blob.fields) tokens_per_row += f.count;
     // A count mismatch is reported first: a file cut mid-row is truncated, not malformed.
-    const AsciiBodyScan scan = scan_ascii_body(bytes, offset, tokens_per_row);
+    const AsciiBodyScan scan = scan_ascii_body(bytes, offset, tokens_per_row, declared);
     if (scan.rows != declared) count_mismatch(path, declared, scan.rows);
     if (!scan.first_problem.empty()) throw Error(path + ": " + scan.first_problem);
     std::istringstream body(bytes);

@@ -77,12 +77,21 @@ PlyHeader parse_header(const std::string& path, const std::string& bytes) {
       h.encoding = kind == "ascii" ? Encoding::kAscii : Encoding::kBinary;
       h.big_endian = kind == "binary_big_endian";
       if (kind != "ascii" && kind != "binary_little_endian" && !h.big_endian) {
-        throw Error(path + ": unknown PLY format '" + kind + "'");
+        throw Error(path + ": unknown PLY format '" + printable(kind) + "'");
       }
     } else if (key == "element") {
       PlyElement e;
-      words >> e.name >> e.count;
-      if (!words) throw Error(path + ": malformed PLY element line: '" + line + "'");
+      std::string count;
+      words >> e.name >> count;
+      if (!words || count.empty() || count.size() > 18 ||
+          count.find_first_not_of("0123456789") != std::string::npos) {
+        throw Error(path + ": malformed PLY element line: '" + printable(line) + "'");
+      }
+      e.count = std::stoull(count);
+      if (e.count > kMaxCloudPoints) {
+        throw Error(path + ": header declares " + count + " " + printable(e.name) +
+                    " entries, over lmk's limit of " + std::to_string(kMaxCloudPoints) + " points");
+      }
       h.elements.push_back(e);
     } else if (key == "property" && !h.elements.empty()) {
       PlyProperty p;
@@ -92,7 +101,7 @@ PlyHeader parse_header(const std::string& path, const std::string& bytes) {
         std::string count_type, item_type;
         words >> count_type >> item_type;
       } else if (ply_type_size(p.type) == 0) {
-        throw Error(path + ": unknown PLY property type '" + p.type + "'");
+        throw Error(path + ": unknown PLY property type '" + printable(p.type) + "'");
       }
       words >> p.name;
       h.elements.back().properties.push_back(p);
@@ -179,20 +188,25 @@ std::optional<Eigen::Isometry3d> read_camera(const PlyHeader& h, const std::stri
   return T;
 }
 
-// Non-blank lines from byte `offset` on: in an ASCII PLY one vertex a line.
-std::size_t count_data_rows(const std::string& bytes, std::size_t offset) {
-  std::size_t rows = 0;
-  bool at_line_start = true;
-  for (std::size_t i = offset; i < bytes.size(); ++i) {
-    const char c = bytes[i];
-    if (c == '\n') {
-      at_line_start = true;
-    } else if (c != ' ' && c != '\t' && c != '\r') {
-      if (at_line_start) ++rows;
-      at_line_start = false;
-    }
+// An ASCII body holds one line per element entry: the vertices first, then any other element
+// (PCL adds a "camera" line). Every row is counted and every vertex row checked, before PCL, which
+// would read a row "foo bar baz" as a NaN point and ignore rows beyond the declared count.
+void check_ascii_rows(const std::string& path, const PlyHeader& h, const std::string& bytes) {
+  const PlyElement& vertex = h.elements.front();
+  std::size_t rows_declared = 0;
+  for (const PlyElement& e : h.elements) rows_declared += e.count;
+  const bool fixed_rows = element_stride(vertex) > 0;  // no list property
+  const AsciiBodyScan scan = scan_ascii_body(bytes, h.body_offset, vertex.properties.size(),
+                                             fixed_rows ? vertex.count : 0);
+  if (scan.rows < vertex.count) {
+    throw Error(path + ": truncated: header declares " + std::to_string(vertex.count) +
+                " vertices but the data holds " + std::to_string(scan.rows));
   }
-  return rows;
+  if (!scan.first_problem.empty()) throw Error(path + ": " + scan.first_problem);
+  if (scan.rows > rows_declared) {
+    throw Error(path + ": header declares " + std::to_string(rows_declared) +
+                " data rows but the data holds " + std::to_string(scan.rows));
+  }
 }
 
 }  // namespace
@@ -204,7 +218,8 @@ CloudFile read_ply(const std::string& path, const std::string& bytes) {
   if (!h.elements.empty() && h.elements.front().name == "vertex") {
     const PlyElement& vertex = h.elements.front();
     const std::size_t stride = element_stride(vertex);
-    const std::size_t held = h.encoding == Encoding::kAscii ? count_data_rows(bytes, h.body_offset)
+    if (h.encoding == Encoding::kAscii) check_ascii_rows(path, h, bytes);
+    const std::size_t held = h.encoding == Encoding::kAscii ? vertex.count
                              : stride > 0                   ? available / stride
                                                             : vertex.count;  // lists: unknown
     if (held < vertex.count) {

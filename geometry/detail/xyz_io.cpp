@@ -33,7 +33,7 @@ CloudFile read_xyz(const std::string& path, const std::string& bytes) {
       p[a] = std::strtof(cursor, &end);
       if (end == cursor) {
         throw Error(path + ": line " + std::to_string(number) +
-                    " does not start with three numbers x y z: '" + line.substr(0, 60) + "'");
+                    " does not start with three numbers x y z: '" + printable(line) + "'");
       }
       cursor = end;
     }

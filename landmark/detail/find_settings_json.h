@@ -42,10 +42,13 @@ inline void find_settings_from_json(const nlohmann::json& j, const std::string& 
                                     FindSettings& settings) {
   if (!j.is_object()) throw Error(where + ": must be an object");
   nlohmann::json top = nlohmann::json::object();
-  for (const auto& [key, value] : j.items()) {
+  for (const auto& item : j.items()) {
+    // Named copies, not structured bindings: C++17 lambdas cannot capture bindings (clang).
+    const std::string& key = item.key();
+    const nlohmann::json& value = item.value();
     bool group_found = false;
-    for_each_settings_group(settings, [&, k = key](const char* name, auto& group) {
-      if (k != name) return;
+    for_each_settings_group(settings, [&](const char* name, auto& group) {
+      if (key != name) return;
       group_found = true;
       settings_from_json(value, where + "." + name, group);
     });

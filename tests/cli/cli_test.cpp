@@ -1,12 +1,15 @@
 // The lmk command line end to end: exit codes, one-line errors, JSON output. Runs the real binary.
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "geometry/pose.h"
 #include "tests/support/test_support.h"
@@ -183,7 +186,11 @@ TEST_F(CliLandmark, CaptureShowExportImportFind) {
   // Seeds spread one per cell, coarser until they fit the cap: at most 150, and not far below.
   EXPECT_LE(j["stats"]["seeds"].get<int>(), 150);
   EXPECT_GE(j["stats"]["seeds"].get<int>(), 120);
-  EXPECT_GT(j["stats"]["seconds"].get<double>(), 0.0);
+  EXPECT_FALSE(j["stats"].contains("seconds"));  // wall-clock times only with --timings
+  const CommandResult timed = lmk("find " + path("scene.pcd") + " " + path("carton.lmk") +
+                                  " --max-seeds 150 --timings --json -");
+  ASSERT_EQ(timed.exit_code, 0) << timed.err;
+  EXPECT_GT(nlohmann::json::parse(timed.out)["stats"]["seconds"].get<double>(), 0.0);
 
   const CommandResult table =
       lmk("find " + path("scene.pcd") + " " + path("carton.lmk") + " --max-seeds 150");
@@ -255,6 +262,24 @@ TEST_F(CliLandmark, BadInputToCaptureAndFind) {
                    "--threshold: 'inf' is not a finite number");
   expect_bad_input("find " + scene + " " + path("c.lmk") + " --coarse-leaf 0.001",
                    "the coarse leaf (--coarse-leaf, 0.001 m) must be at least the leaf size");
+}
+
+// Outputs and inputs of the wrong kind are refused before any work: a landmark is never written
+// under a point-cloud name, and a directory or a pipe is never read as a file.
+TEST_F(CliLandmark, WrongKindsOfFilesAreRefusedUpFront) {
+  const std::string scene = path("scene.pcd");
+  expect_bad_input("capture " + scene + " " + carton_ + " --name c -o " + path("c.pcd"),
+                   "--output: '" + dir_.file("c.pcd") + "': a landmark file must end in .lmk");
+  EXPECT_FALSE(std::filesystem::exists(dir_.file("c.pcd")));
+  std::filesystem::create_directory(dir_.file("box"));
+  expect_bad_input(
+      "capture " + scene + " --box-json " + path("box") + " --name c -o " + path("c.lmk"),
+      "box: is a directory, not a JSON file");
+  ASSERT_EQ(::mkfifo(dir_.file("pipe.lmk").c_str(), 0600), 0);
+  expect_bad_input("find " + scene + " " + path("pipe.lmk"),
+                   "pipe.lmk: is a named pipe, not a landmark file");
+  expect_bad_input("landmark import " + path("box") + " " + path("x.xyz"),
+                   "a landmark file must end in .lmk");
 }
 
 TEST_F(Cli, RobotFkIkRoundTripAndRefusals) {
@@ -389,6 +414,95 @@ TEST_F(Cli, GenPresetEvalAndAblateOnASmallDataset) {
   EXPECT_NE(ablate.out.find("vdb"), std::string::npos);
   EXPECT_TRUE(std::filesystem::exists(dir_.path() / "ablation" / "ablation.json"));
   EXPECT_TRUE(std::filesystem::exists(dir_.path() / "ablation" / "ablation.md"));
+}
+
+// The same inputs and settings give byte-identical JSON: across thread counts, across runs, and
+// for eval across a cold cache and a resumed one (issue #17). Wall-clock times, which differ by
+// nature, are left out unless --timings asks for them.
+TEST_F(Cli, JsonOutputIsByteIdenticalAcrossThreadsRunsAndTheCache) {
+  ASSERT_EQ(lmk("gen --preset paper --types simple/three_balls,cluttered/spray_with_clutter " +
+                path("data"))
+                .exit_code,
+            0);
+  // A cold cache first, then resumed from it, then no cache at all, on 1, 2 and 8 threads.
+  const std::string cache = " --cache " + path("cache");
+  const std::vector<std::string> runs = {cache + " --threads 1", cache + " --threads 2",
+                                         cache + " --threads 8", " --no-cache --threads 8",
+                                         " --no-cache --threads 2"};
+  std::string first;
+  for (std::size_t run = 0; run < runs.size(); ++run) {
+    SCOPED_TRACE("eval" + runs[run]);
+    const std::string out = "eval-" + std::to_string(run) + ".json";
+    const CommandResult r =
+        lmk("eval --dataset " + path("data") + runs[run] + " --json " + path(out));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const std::string json = slurp(dir_.file(out));
+    ASSERT_FALSE(json.empty());
+    if (first.empty()) {
+      first = json;
+    } else {
+      EXPECT_EQ(json, first);
+    }
+  }
+  EXPECT_EQ(first.find("seconds"), std::string::npos);
+
+  // find on one of the scenes, with a landmark from the dataset.
+  const nlohmann::json dataset = nlohmann::json::parse(slurp(dir_.file("data/dataset.json")));
+  const std::string scene = path("data/" + dataset["scenes"][1]["file"].get<std::string>());
+  const std::string landmark = path("data/" + dataset["landmarks"][0]["file"].get<std::string>());
+  std::string found;
+  for (const std::string threads : {"1", "2", "8", "8"}) {
+    SCOPED_TRACE("find --threads " + threads);
+    const CommandResult r =
+        lmk("find " + scene + " " + landmark + " --threads " + threads + " --json -");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    if (found.empty()) {
+      found = r.out;
+    } else {
+      EXPECT_EQ(r.out, found);
+    }
+  }
+}
+
+// Ctrl-C during eval: the searches under way finish and are cached, the run says what it kept
+// and exits 130; the same command then resumes, and its results are those of an uninterrupted run.
+TEST_F(Cli, EvalStopsOnSigintAndResumes) {
+  ASSERT_EQ(lmk("gen --preset paper --types simple/three_balls,cluttered/spray_with_clutter " +
+                path("data"))
+                .exit_code,
+            0);
+  const std::string eval = std::string("'") + LMK_BINARY + "' eval --dataset " + path("data") +
+                           " --threads 1 --cache " + path("cache");
+  // Wait for the first finished pair in the cache, then interrupt.
+  test::write_text(dir_.file("stop.sh"),
+                   eval + " --json " + path("stopped.json") + " >" + path("out") + " 2>" +
+                       path("err") +
+                       " &\npid=$!\nfor i in $(seq 1 1200); do\n"
+                       "  [ -n \"$(find " +
+                       path("cache") +
+                       " -name '[0-9a-f]*.json' 2>/dev/null)\" ] && break\n"
+                       "  sleep 0.05\ndone\nkill -INT $pid\nwait $pid\necho $? >" +
+                       path("rc") + "\n");
+  ASSERT_EQ(std::system(("sh " + path("stop.sh")).c_str()), 0);
+  EXPECT_EQ(slurp(dir_.file("rc")), "130\n") << slurp(dir_.file("err"));
+  const std::string err = slurp(dir_.file("err"));
+  EXPECT_NE(err.find("lmk: interrupted after "), std::string::npos) << err;
+  EXPECT_NE(err.find(": the same command resumes from them"), std::string::npos) << err;
+  EXPECT_FALSE(std::filesystem::exists(dir_.file("stopped.json")));  // no partial results
+
+  const CommandResult resumed = lmk("eval --dataset " + path("data") + " --threads 1 --cache " +
+                                    path("cache") + " --json " + path("resumed.json"));
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  const std::regex summary(R"(\(([0-9]+) searched, ([0-9]+) from the cache\))");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(resumed.err, m, summary)) << resumed.err;
+  EXPECT_GE(std::stoi(m[2]), 1);
+  EXPECT_GE(std::stoi(m[1]), 1);  // it was stopped before the end
+  ASSERT_EQ(
+      lmk("eval --dataset " + path("data") + " --threads 1 --no-cache --json " + path("whole.json"))
+          .exit_code,
+      0);
+  EXPECT_EQ(slurp(dir_.file("resumed.json")), slurp(dir_.file("whole.json")));
 }
 
 TEST_F(Cli, EvaluationErrorsAreOneLine) {

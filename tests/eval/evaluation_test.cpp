@@ -115,6 +115,35 @@ TEST_F(EvaluationTest, ResumesFromTheCacheAfterAnInterruption) {
   for (const PairResult& p : other.pairs) EXPECT_FALSE(p.from_cache);
 }
 
+// A stop request (Ctrl-C in the CLI) lets no further search start: evaluate() throws
+// lmk::Interrupted naming what is kept, and the next run resumes from exactly those pairs.
+TEST_F(EvaluationTest, StopsOnRequestKeepingWhatIsDone) {
+  test::ScratchDir cache;
+  EvaluationSettings settings;
+  settings.threads = 1;
+  settings.cache_dir = cache.path().string();
+  std::size_t done = 0;
+  settings.progress = [&done](std::size_t d, std::size_t, std::size_t) { done = d; };
+  settings.stop_requested = [&done] { return done >= 2; };
+  try {
+    run(settings);
+    ADD_FAILURE() << "the evaluation did not stop";
+  } catch (const Interrupted& e) {
+    EXPECT_NE(std::string(e.what()).find("interrupted after 2 of 6 pairs; they are cached in"),
+              std::string::npos)
+        << e.what();
+  }
+  settings.progress = nullptr;
+  settings.stop_requested = nullptr;
+  const Evaluation resumed = run(settings);
+  std::size_t cached = 0;
+  for (const PairResult& p : resumed.pairs) cached += p.from_cache ? 1 : 0;
+  EXPECT_EQ(cached, 2u);
+  EvaluationSettings fresh;
+  fresh.threads = 1;
+  expect_same_results(resumed, run(fresh));
+}
+
 TEST_F(EvaluationTest, InContextPairsOnlyForAssumptionsTwoAndThree) {
   EvaluationSettings settings;
   settings.in_context_only = true;

@@ -1,11 +1,14 @@
 // Every kind of bad input file gives an lmk::Error that names the file and the problem.
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <fstream>
 
 #include "geometry/cloud_io.h"
 #include "geometry/error.h"
+#include "geometry/input_file.h"
 #include "tests/support/test_support.h"
 
 namespace lmk {
@@ -161,6 +164,86 @@ TEST_F(BadInput, NonNumericAsciiData) {
   expect_error(dir_.file("short.pcd"), "data row 2 has 2 values");
   test::write_text(dir_.file("word.xyz"), "1 2 3\n4 x 6\n");
   expect_error(dir_.file("word.xyz"), "line 2 does not start with three numbers");
+}
+
+std::string ply_header(int vertices) {
+  return "ply\nformat ascii 1.0\nelement vertex " + std::to_string(vertices) +
+         "\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
+}
+
+// PCL's ASCII PLY reader read "foo bar baz" as a NaN point and ignored rows beyond the count.
+TEST_F(BadInput, AsciiPlyRowsAreNumbersAndAsManyAsDeclared) {
+  test::write_text(dir_.file("word.ply"), ply_header(2) + "1 2 3\nfoo bar baz\n");
+  expect_error(dir_.file("word.ply"), "data row 2: 'foo' is not a number");
+  test::write_text(dir_.file("extra.ply"), ply_header(1) + "1 2 3\n4 5 6\n7 8 9\n");
+  expect_error(dir_.file("extra.ply"), "header declares 1 data rows but the data holds 3");
+  test::write_text(dir_.file("short.ply"), ply_header(2) + "1 2 3\n4 5\n");
+  expect_error(dir_.file("short.ply"), "data row 2 has 2 values");
+  test::write_text(dir_.file("negative.ply"), ply_header(-3) + "1 2 3\n");
+  expect_error(dir_.file("negative.ply"), "malformed PLY element line: 'element vertex -3'");
+  test::write_text(dir_.file("huge.ply"), ply_header(2000000000) + "1 2 3\n");
+  expect_error(dir_.file("huge.ply"), "over lmk's limit of 50000000 points");
+  // A well-formed file still reads.
+  test::write_text(dir_.file("good.ply"), ply_header(2) + "1 2 3\n4 5 6\n");
+  EXPECT_EQ(read_cloud(dir_.file("good.ply")).size(), 2u);
+}
+
+// PCL's header reader left the sensor pose uninitialised at "VIEWPOINT nan ...": every run saw
+// another sensor origin.
+TEST_F(BadInput, ViewpointMustBeSevenFiniteNumbers) {
+  const std::string body = "1 2 3\n";
+  for (const std::string viewpoint : {"nan 0 0 1 0 0 0", "0 0 0 1 0 0", "0 0 inf 1 0 0 0"}) {
+    std::string header = pcd_header("ascii", 1, 1);
+    header.replace(header.find("VIEWPOINT 0 0 0 1 0 0 0"), 23, "VIEWPOINT " + viewpoint);
+    test::write_text(dir_.file("viewpoint.pcd"), header + body);
+    expect_error(dir_.file("viewpoint.pcd"), "is not seven finite numbers");
+  }
+}
+
+// A file's bytes quoted in a message are escaped: the message stays one printable line.
+TEST_F(BadInput, BinaryBytesAreEscapedInMessages) {
+  test::write_text(dir_.file("junk.xyz"), std::string("1 2 3\n\x01\xff\xfe\x1b[31m junk\n"));
+  const std::string message = read_error(dir_.file("junk.xyz"));
+  EXPECT_NE(message.find("'\\x01\\xff\\xfe\\x1b[31m junk'"), std::string::npos) << message;
+  for (const char c : message) EXPECT_GE(static_cast<unsigned char>(c), 0x20) << message;
+  // UTF-8 text is kept as it is.
+  EXPECT_EQ(printable("tasse \xc3\xa0 caf\xc3\xa9"), "tasse \xc3\xa0 caf\xc3\xa9");
+  EXPECT_EQ(printable(std::string(100, 'a'), 10), "aaaaaaaaaa...");
+}
+
+// A named pipe blocked the open forever; a device could stream without end. Both are refused
+// before anything opens them (the test would hang otherwise).
+TEST_F(BadInput, SpecialFilesAreRefusedBeforeOpening) {
+  const std::string pipe = dir_.file("pipe.pcd");
+  ASSERT_EQ(::mkfifo(pipe.c_str(), 0600), 0);
+  expect_error(pipe, "is a named pipe, not a point-cloud file");
+  expect_error("/dev/zero", "is a character device");
+  try {
+    read_input_file(pipe, kProgramInput);
+    ADD_FAILURE() << "a pipe was read";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("is a named pipe, not a program file"), std::string::npos);
+  }
+}
+
+// A file over its kind's ceiling is refused by its size, before it is read: a sparse file costs
+// no disk.
+TEST_F(BadInput, FilesOverTheirCeilingAreRefusedWithTheLimitNamed) {
+  const std::string big = dir_.file("big.pcd");
+  test::write_text(big, "x");
+  ASSERT_EQ(::truncate(big.c_str(), static_cast<off_t>(kMaxCloudFileBytes + 1)), 0);
+  expect_error(big, "is 4294967297 bytes, over lmk's limit of 4 GiB for a point-cloud file");
+  const std::string json = dir_.file("big.json");
+  test::write_text(json, "{}");
+  ASSERT_EQ(::truncate(json.c_str(), static_cast<off_t>(kMaxTextFileBytes + 1)), 0);
+  try {
+    read_input_file(json, kDatasetInput);
+    ADD_FAILURE() << "an oversized dataset file was read";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("over lmk's limit of 256 MiB for a dataset file"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace

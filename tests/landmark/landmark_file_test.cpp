@@ -5,12 +5,14 @@
 #include <openvdb/points/PointCount.h>
 #include <openvdb/points/PointDataGrid.h>
 
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
 #include "geometry/cloud_io.h"
 #include "geometry/error.h"
 #include "geometry/pose.h"
+#include "landmark/detail/landmark_container.h"
 #include "tests/support/test_support.h"
 
 namespace lmk {
@@ -149,6 +151,35 @@ TEST(LandmarkFile, FlippedByteIsCaught) {
   bytes[bytes.size() / 2] ^= 0x10;
   test::write_text(dir.file("a.lmk"), bytes);
   EXPECT_NE(load_error(dir.file("a.lmk")).find("does not match the checksum"), std::string::npos);
+}
+
+// Behind a valid checksum, a length that OpenVDB would trust is checked against the bytes first:
+// a metadata string declared 4 GB long made OpenVDB allocate 18 GB and take a minute.
+TEST(LandmarkFile, DeclaredLengthsAreCheckedBeforeOpenVdbReadsThem) {
+  test::ScratchDir dir;
+  save_landmark(dir.file("a.lmk"), sample_landmark());
+  std::string data;
+  {
+    std::ifstream in(dir.file("a.lmk"), std::ios::binary);
+    data.assign((std::istreambuf_iterator<char>(in)), {});
+  }
+  data.resize(data.size() - detail::kLandmarkTrailerSize);
+  // The name's metadata entry: "lmk_name", its type "string", then the value's 32-bit length.
+  const std::size_t name = data.find("lmk_name\x06\x00\x00\x00string");
+  ASSERT_NE(name, std::string::npos);
+  const std::size_t length_at = name + 8 + 4 + 6;
+  for (const std::uint32_t length : {0xfffffff0u, 0x7fffffffu}) {
+    std::string bad = data;
+    std::memcpy(&bad[length_at], &length, sizeof(length));
+    test::write_text(dir.file("bad.lmk"), bad + detail::landmark_trailer(bad));
+    EXPECT_NE(
+        load_error(dir.file("bad.lmk")).find("grid metadata declares more bytes than the file"),
+        std::string::npos)
+        << load_error(dir.file("bad.lmk"));
+  }
+  // The same file resealed unchanged still loads: the walk accepts what OpenVDB writes.
+  test::write_text(dir.file("same.lmk"), data + detail::landmark_trailer(data));
+  EXPECT_EQ(load_landmark(dir.file("same.lmk")).name, "test landmark");
 }
 
 TEST(LandmarkFile, ImportValidates) {

@@ -96,6 +96,8 @@ TEST(ProgramFile, EveryValidationErrorSaysWhatAndWhere) {
       {"bad quaternion", "\"quaternion\": [", "\"quaternion\": [2.0, ",
        "landmarks[1].demonstration.quaternion"},
       {"wrong version", "\"version\": 1", "\"version\": 7", "version 7 is not supported"},
+      {"version as text", "\"version\": 1", "\"version\": \"1\"",
+       "version: must be a whole number such as 1, not \"1\""},
       {"missing version", ",\n  \"version\": 1", "", "missing field 'version'"},
       {"wrong format", "\"lmk-program\"", "\"lmk-dataset\"", "format"},
       {"bad gripper", "\"gripper\": \"close\"", "\"gripper\": \"half\"",

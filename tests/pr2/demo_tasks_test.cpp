@@ -13,6 +13,7 @@
 #include "geometry/pose.h"
 #include "pr2/demo_world.h"
 #include "pr2/head_pointing.h"
+#include "tests/support/test_support.h"
 
 namespace lmk {
 namespace {
@@ -80,6 +81,14 @@ TEST(DemoWorld, AFreePatchIsLevelledOntoFreeTableAndNotOntoObjects) {
   EXPECT_FALSE(w.free_patch_near("other", found));
 }
 
+// The report's JSON without its wall-clock times, which differ from run to run.
+std::string json_without_seconds(const std::string& json) {
+  nlohmann::json j = nlohmann::json::parse(json);
+  j.erase("seconds");
+  for (auto& s : j["scenarios"]) s.erase("seconds");
+  return j.dump();
+}
+
 // All six tasks once, shared by the tests below (about 15 s on two cores).
 const DemoTasksReport& report() {
   static const DemoTasksReport r = run_demo_tasks();
@@ -134,6 +143,34 @@ TEST(DemoTasks, JsonHoldsEveryScenario) {
       EXPECT_TRUE(s.contains(key)) << key;
     }
   }
+}
+
+// Ctrl-C: the run stops after the scenario under way; finished tasks are cached, and the next
+// run with the same cache takes them from there, with the same results.
+TEST(DemoTasks, StopOnRequestAndResumeFromTheCache) {
+  test::ScratchDir cache;
+  DemoTasksSettings settings;
+  settings.tasks = {3};
+  settings.cache_dir = cache.path().string();
+  settings.stop_requested = [] { return true; };
+  try {
+    run_demo_tasks(settings);
+    ADD_FAILURE() << "the run did not stop";
+  } catch (const Interrupted& e) {
+    EXPECT_NE(std::string(e.what()).find("no task was finished"), std::string::npos) << e.what();
+  }
+  settings.stop_requested = nullptr;
+  const DemoTasksReport first = run_demo_tasks(settings);
+  ASSERT_FALSE(first.scenarios.empty());
+  // Everything is cached now: a stop request has nothing left to interrupt.
+  settings.stop_requested = [] { return true; };
+  std::vector<std::string> lines;
+  settings.progress = [&lines](const std::string& line) { lines.push_back(line); };
+  const DemoTasksReport resumed = run_demo_tasks(settings);
+  EXPECT_EQ(lines, std::vector<std::string>{"task 3: from the cache"});
+  // The cache holds what the run computed.
+  EXPECT_EQ(json_without_seconds(demo_tasks_json(resumed)),
+            json_without_seconds(demo_tasks_json(first)));
 }
 
 TEST(DemoTasks, AnUnknownTaskIsAnError) {

@@ -1,0 +1,72 @@
+#include "pr2/demo_task_cache.h"
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "geometry/atomic_file.h"
+#include "geometry/error.h"
+#include "geometry/hash.h"
+#include "geometry/input_file.h"
+#include "geometry/version.h"
+#include "landmark/find_landmark.h"
+#include "pr2/detail/demo_tasks_json.h"
+
+namespace lmk {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Keyed by everything that decides a task's results: the lmk version and search revision (the
+// code), the task, and the success criterion. Threads do not change results.
+fs::path cache_file(const DemoTasksSettings& settings, int task) {
+  const std::string key = Fnv1a()
+                              .add(kVersion)
+                              .add_value(kSearchRevision)
+                              .add_value(task)
+                              .add_value(settings.max_position_error)
+                              .add_value(settings.max_rotation_error)
+                              .hex();
+  return fs::path(settings.cache_dir) / "demo-tasks" /
+         ("task" + std::to_string(task) + "-" + key + ".json");
+}
+
+}  // namespace
+
+std::optional<std::vector<DemoScenarioResult>> read_cached_demo_task(
+    const DemoTasksSettings& settings, int task) {
+  if (settings.cache_dir.empty()) return std::nullopt;
+  const fs::path file = cache_file(settings, task);
+  std::error_code ec;
+  if (!fs::exists(file, ec)) return std::nullopt;
+  try {
+    const nlohmann::json j = nlohmann::json::parse(read_input_file(file.string(), kJsonInput));
+    std::vector<DemoScenarioResult> results;
+    for (const nlohmann::json& s : j.at("scenarios"))
+      results.push_back(detail::scenario_from_json(s));
+    if (results.empty()) return std::nullopt;
+    for (const DemoScenarioResult& r : results) {
+      if (r.task != task) return std::nullopt;
+    }
+    return results;
+  } catch (const std::exception&) {
+    return std::nullopt;  // damaged (an interrupted write cannot leave one) or foreign: run again
+  }
+}
+
+void write_cached_demo_task(const DemoTasksSettings& settings, int task,
+                            const std::vector<DemoScenarioResult>& results) {
+  if (settings.cache_dir.empty()) return;
+  const fs::path file = cache_file(settings, task);
+  std::error_code ec;
+  fs::create_directories(file.parent_path(), ec);
+  if (ec) {
+    throw Error(file.parent_path().string() + ": cannot create the cache directory (" +
+                ec.message() + ")");
+  }
+  nlohmann::json scenarios = nlohmann::json::array();
+  for (const DemoScenarioResult& r : results) scenarios.push_back(detail::scenario_to_json(r));
+  write_text_atomically(file, nlohmann::json{{"scenarios", scenarios}}.dump(2) + "\n");
+}
+
+}  // namespace lmk

@@ -1,0 +1,9 @@
+#!/usr/bin/env bash
+# Configures the sanitizer build shared by scripts/test.sh and scripts/fuzz.sh: clang-14 with
+# AddressSanitizer, UndefinedBehaviorSanitizer and libFuzzer's coverage on every target
+# (LMK_FUZZ, cmake/LmkSanitizers.cmake). Usage: configure-sanitize.sh BUILD_DIR
+set -euo pipefail
+cd "$(dirname "$0")/.."
+cmake -S . -B "${1:?build directory}" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 -DLMK_FUZZ=ON \
+  -DLMK_BUILD_BENCH=OFF >/dev/null
