@@ -24,6 +24,10 @@ if(LMK_SANITIZE)
   # -fno-sanitize-recover: an undefined-behaviour report fails the run instead of scrolling by.
   set(lmk_sanitizer_flags -fsanitize=address,undefined -fno-sanitize-recover=undefined
                           -fno-omit-frame-pointer)
+  if(CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+    list(APPEND lmk_sanitizer_flags
+         -fsanitize-ignorelist=${PROJECT_SOURCE_DIR}/cmake/sanitizer-ignorelist.txt)
+  endif()
 elseif(LMK_TSAN)
   set(lmk_sanitizer_flags -fsanitize=thread -fno-omit-frame-pointer)
 endif()

@@ -37,6 +37,10 @@ CloudFile read_xyz(const std::string& path, const std::string& bytes) {
       }
       cursor = end;
     }
+    if (file.cloud.points.size() == kMaxCloudPoints) {
+      throw Error(path + ": holds more than lmk's limit of " + std::to_string(kMaxCloudPoints) +
+                  " points");
+    }
     file.cloud.points.push_back(p);
   }
   file.cloud.set_unorganized();

@@ -29,7 +29,10 @@ void expect_key_follows_every_setting(const std::string& method) {
     }
     changed[field] = changed[field] || differs;
   });
-  for (const auto& [field, differs] : changed) {
+  for (const auto& entry : changed) {
+    // Named copies, not structured bindings: C++17 lambdas cannot capture bindings (clang).
+    const std::string& field = entry.first;
+    const bool differs = entry.second;
     const std::string stage =
         field.find('.') == std::string::npos ? "" : field.substr(0, field.find('.'));
     FindSettings probe;
