@@ -64,16 +64,25 @@ CloudFile read_cloud_file(const std::string& path) {
   const CloudFormat format = format_from_path(path);
   const std::string bytes = read_cloud_bytes(path);
   CloudFile file;
-  switch (format) {
-    case CloudFormat::kPcd:
-      file = detail::read_pcd(path, bytes);
-      break;
-    case CloudFormat::kPly:
-      file = detail::read_ply(path, bytes);
-      break;
-    case CloudFormat::kXyz:
-      file = detail::read_xyz(path, bytes);
-      break;
+  try {
+    switch (format) {
+      case CloudFormat::kPcd:
+        file = detail::read_pcd(path, bytes);
+        break;
+      case CloudFormat::kPly:
+        file = detail::read_ply(path, bytes);
+        break;
+      case CloudFormat::kXyz:
+        file = detail::read_xyz(path, bytes);
+        break;
+    }
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    // PCL's parsers throw on some malformed headers (std::out_of_range from a DATA line without
+    // its kind, found by fuzzing): a bad file, not an internal error.
+    throw Error(path + ": not a valid " + to_string(format) + " file (" + printable(e.what()) +
+                ")");
   }
   file.format = format;
   file.cloud.validate(path);

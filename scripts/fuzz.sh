@@ -3,6 +3,8 @@
 #
 #   bash scripts/fuzz.sh [SECONDS]     each target for SECONDS (default 60), two at a time
 #   bash scripts/fuzz.sh --runs N      each target for N executions
+#   --seed S                           libFuzzer's random seed (default: random); with --runs and
+#                                      a fresh build directory a run is reproducible (CI's smoke)
 #
 # Targets: fuzz_pcd, fuzz_ply, fuzz_xyz (cloud readers), fuzz_landmark (.lmk as a user hands it
 # over), fuzz_vdb_layout (lmk's walk of a landmark's OpenVDB container, behind the checksum),
@@ -17,32 +19,42 @@ cd "$(dirname "$0")/.."
 
 seconds=60
 runs=
-case "${1:-}" in
-  --runs) runs=${2:?--runs needs a count} ;;
-  -h|--help) sed -n '2,14p' "$0"; exit 0 ;;
-  "") ;;
-  *) seconds=$1 ;;
-esac
-if ! [[ "${runs:-$seconds}" =~ ^[0-9]+$ ]]; then
-  echo "fuzz.sh: '${runs:-$seconds}' is not a whole number (see --help)" >&2
-  exit 2
-fi
+seed=0  # libFuzzer's 0: a random seed
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --runs) runs=${2:?--runs needs a count}; shift ;;
+    --seed) seed=${2:?--seed needs a number}; shift ;;
+    -h|--help) sed -n '2,16p' "$0"; exit 0 ;;
+    *) seconds=$1 ;;
+  esac
+  shift
+done
+for n in "${runs:-$seconds}" "$seed"; do
+  if ! [[ "$n" =~ ^[0-9]+$ ]]; then
+    echo "fuzz.sh: '$n' is not a whole number (see --help)" >&2
+    exit 2
+  fi
+done
 
 bash scripts/install-deps.sh
 build=${LMK_SANITIZE_BUILD_DIR:-build-sanitize}
 bash scripts/configure-sanitize.sh "$build"
-targets=(fuzz_pcd fuzz_ply fuzz_xyz fuzz_landmark fuzz_vdb_layout fuzz_program fuzz_dataset)
-cmake --build "$build" -j2 --target "${targets[@]}"
+cmake --build "$build" -j2 --target fuzz_all
+targets=()
+for binary in "$build"/tests/fuzz/fuzz_*; do
+  [ -x "$binary" ] && [ -f "$binary" ] && targets+=("$(basename "$binary")")
+done
 
 fuzz_one() {
   local target=$1 corpus=${target#fuzz_}
   local work="$build/fuzz/corpus/$target" findings="$build/fuzz/findings/$target/"
+  rm -rf "$findings"  # this run's findings only; earlier ones are in the regressions or fixed
   mkdir -p "$work" "$findings"
   local budget=(-max_total_time="$seconds")
   [ -n "$runs" ] && budget=(-runs="$runs")
   # ASan's leak check stays on; OpenVDB's and TBB's process-lifetime singletons are not leaks.
   LSAN_OPTIONS=suppressions=$PWD/tests/fuzz/lsan.supp ASAN_OPTIONS=detect_leaks=1 \
-    "$build/tests/fuzz/$target" "${budget[@]}" -timeout=10 -rss_limit_mb=4096 \
+    "$build/tests/fuzz/$target" "${budget[@]}" -seed="$seed" -timeout=10 -rss_limit_mb=4096 \
     -malloc_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$findings" \
     "$work" "tests/fuzz/corpus/$corpus" >"$build/fuzz/$target.log" 2>&1
 }

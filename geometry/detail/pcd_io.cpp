@@ -25,7 +25,7 @@ std::size_t body_offset(const std::string& bytes) {
   std::size_t line = 0;
   while (line < bytes.size()) {
     const std::size_t end = bytes.find('\n', line);
-    if (bytes.compare(line, 4, "DATA") == 0)
+    if (bytes.compare(line, 5, "DATA ") == 0)
       return end == std::string::npos ? bytes.size() : end + 1;
     if (end == std::string::npos) break;
     line = end + 1;
@@ -80,7 +80,13 @@ Declarations read_declarations(const std::string& path, const std::string& heade
     std::vector<std::string> values;
     while (words >> word) values.push_back(word);
     if (key == "FIELDS") d.fields = values.size();
-    if (key == "DATA" && !values.empty()) d.data = values[0];
+    if (key == "DATA") {
+      d.data = values.empty() ? "" : values[0];
+      if (d.data != "ascii" && d.data != "binary" && d.data != "binary_compressed") {
+        throw Error(path + ": header '" + printable(line) +
+                    "' is not DATA ascii, binary or binary_compressed");
+      }
+    }
     if (key == "VIEWPOINT") check_viewpoint(path, line, values);
     if (key != "SIZE" && key != "COUNT" && key != "WIDTH" && key != "HEIGHT" && key != "POINTS") {
       continue;

@@ -1,6 +1,8 @@
 #include "geometry/detail/pcl_conversion.h"
 
+#include <algorithm>
 #include <cstring>
+#include <limits>
 #include <optional>
 
 #include "geometry/error.h"
@@ -85,6 +87,16 @@ void require_xyz(const pcl::PCLPointCloud2& blob, const std::string& path) {
   throw Error(path + ": no x/y/z fields (the file has: " + (names.empty() ? "none" : names) + ")");
 }
 
+// A file's number as a whole number of type T: NaN gives 0 and values beyond T's range its
+// limits. A plain cast of either is undefined behaviour (UBSan caught a NaN "rgb" double).
+template <typename T>
+T whole_number(double value) {
+  if (!(value == value)) return T{0};
+  const double low = static_cast<double>(std::numeric_limits<T>::lowest());
+  const double high = static_cast<double>(std::numeric_limits<T>::max());
+  return static_cast<T>(std::clamp(value, low, high));
+}
+
 PointCloud from_pcl(const pcl::PCLPointCloud2& blob, const std::string& path) {
   require_xyz(blob, path);
   const auto x = find_field(blob, "x"), y = find_field(blob, "y"), z = find_field(blob, "z");
@@ -100,14 +112,20 @@ PointCloud from_pcl(const pcl::PCLPointCloud2& blob, const std::string& path) {
   if (blob.data.size() < n * blob.point_step) {
     throw Error(path + ": data holds fewer bytes than width x height points need");
   }
+  const std::size_t row_step =
+      blob.row_step != 0 ? blob.row_step : static_cast<std::size_t>(blob.width) * blob.point_step;
+  // The rows must lie within the data too: a PLY camera element sets the organisation, and a
+  // damaged one gave a height of billions over a width of 0 (a loop of billions of empty rows).
+  if (n > 0 &&
+      (blob.height - 1) * row_step + std::size_t{blob.width} * blob.point_step > blob.data.size()) {
+    throw Error(path + ": data holds fewer bytes than its rows of points need");
+  }
   PointCloud cloud;
   cloud.points.resize(n);
   if (has_normals) cloud.normals.resize(n);
   if (color) cloud.colors.resize(n);
   if (label) cloud.labels.resize(n);
-  const std::size_t row_step =
-      blob.row_step != 0 ? blob.row_step : static_cast<std::size_t>(blob.width) * blob.point_step;
-  for (std::size_t r = 0; r < blob.height; ++r) {
+  for (std::size_t r = 0; n > 0 && r < blob.height; ++r) {
     for (std::size_t c = 0; c < blob.width; ++c) {
       const std::size_t i = r * blob.width + c;
       const std::uint8_t* p = blob.data.data() + r * row_step + c * blob.point_step;
@@ -127,12 +145,12 @@ PointCloud from_pcl(const pcl::PCLPointCloud2& blob, const std::string& path) {
             (color->datatype == Field::FLOAT32 || color->datatype == Field::UINT32 ||
              color->datatype == Field::INT32)
                 ? load<std::uint32_t>(p + color->offset)
-                : static_cast<std::uint32_t>(load_scalar(p + color->offset, color->datatype));
+                : whole_number<std::uint32_t>(load_scalar(p + color->offset, color->datatype));
         cloud.colors[i] = unpack_color(packed, has_alpha);
       }
       if (label) {
         cloud.labels[i] =
-            static_cast<std::int32_t>(load_scalar(p + label->offset, label->datatype));
+            whole_number<std::int32_t>(load_scalar(p + label->offset, label->datatype));
       }
     }
   }

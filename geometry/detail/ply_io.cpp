@@ -214,6 +214,15 @@ void check_ascii_rows(const std::string& path, const PlyHeader& h, const std::st
 CloudFile read_ply(const std::string& path, const std::string& bytes) {
   const PlyHeader h = parse_header(path, bytes);
   const std::size_t available = bytes.size() - std::min(h.body_offset, bytes.size());
+  // PCL's reader asserts (and so aborts) on a list property of the vertices: refuse it first.
+  for (const PlyElement& e : h.elements) {
+    for (const PlyProperty& p : e.properties) {
+      if (e.name == "vertex" && p.is_list) {
+        throw Error(path + ": vertex property '" + printable(p.name) +
+                    "' is a list; lmk reads scalar vertex properties only");
+      }
+    }
+  }
   // Check the data really holds the vertices, when they come first (as every writer puts them).
   if (!h.elements.empty() && h.elements.front().name == "vertex") {
     const PlyElement& vertex = h.elements.front();
