@@ -16,7 +16,7 @@ cd "$(dirname "$0")/.."
 mode=${1:---all}
 case "$mode" in
   --all|--suite|--sanitize|--tsan) ;;
-  -h|--help) sed -n '2,14p' "$0"; exit 0 ;;
+  -h|--help) sed -n '2,13p' "$0"; exit 0 ;;
   *) echo "test.sh: unknown option '$mode' (see --help)" >&2; exit 2 ;;
 esac
 

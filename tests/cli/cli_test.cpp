@@ -356,7 +356,7 @@ TEST_F(Cli, PbdShowPlanRunAndRefusals) {
   EXPECT_EQ(refused.out.find("executed"), std::string::npos) << refused.out;
 
   expect_bad_input("pbd run " + program + " --scene '" + dir + "demonstration.pcd'", "only --sim");
-  expect_bad_input("pbd show " + path("missing.json"), "cannot open the program file");
+  expect_bad_input("pbd show " + path("missing.json"), "missing.json: no such file");
   expect_bad_input("pbd plan " + program + " --scene " + path("missing.pcd"), "missing.pcd");
   expect_bad_input(
       "pbd plan " + program + " --policy closest --scene '" + dir + "demonstration.pcd'",
