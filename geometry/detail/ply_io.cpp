@@ -57,7 +57,20 @@ std::size_t element_stride(const PlyElement& e) {
 
 PlyHeader parse_header(const std::string& path, const std::string& bytes) {
   if (bytes.compare(0, 3, "ply") != 0) throw Error(path + ": not a PLY file (no 'ply' magic line)");
-  const std::size_t end = bytes.find("end_header");
+  // The header ends at the first line that is exactly "end_header", as PCL's parser reads it: a
+  // line merely containing it had lmk and PCL see different headers (found by fuzzing).
+  std::size_t end = std::string::npos;
+  for (std::size_t line = 0; line < bytes.size();) {
+    const std::size_t newline = bytes.find('\n', line);
+    std::string text = bytes.substr(line, newline == std::string::npos ? newline : newline - line);
+    while (!text.empty() && (text.back() == '\r' || text.back() == ' ')) text.pop_back();
+    if (text == "end_header") {
+      end = line;
+      break;
+    }
+    if (newline == std::string::npos) break;
+    line = newline + 1;
+  }
   if (end == std::string::npos) throw Error(path + ": not a valid PLY file (no end_header line)");
   PlyHeader h;
   const std::size_t newline = bytes.find('\n', end);
@@ -93,6 +106,9 @@ PlyHeader parse_header(const std::string& path, const std::string& bytes) {
                     " entries, over lmk's limit of " + std::to_string(kMaxCloudPoints) + " points");
       }
       h.elements.push_back(e);
+    } else if (!key.empty() && key != "ply" && key != "format" && key != "comment" &&
+               key != "obj_info" && key != "element" && key != "property") {
+      throw Error(path + ": unknown PLY header line '" + printable(line) + "'");
     } else if (key == "property" && !h.elements.empty()) {
       PlyProperty p;
       words >> p.type;
