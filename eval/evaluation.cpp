@@ -77,7 +77,7 @@ class PairCache {
       std::error_code ec;
       if (!fs::exists(path, ec)) return std::nullopt;
       const nlohmann::json j = nlohmann::json::parse(read_input_file(path, kJsonInput));
-      PairResult r = detail::pair_result_from_json(j, file(scene, landmark).string());
+      PairResult r = detail::pair_result_from_json(j, path);
       if (r.scene != scene || r.landmark != landmark) return std::nullopt;  // a hash collision
       r.from_cache = true;
       return r;
@@ -86,10 +86,11 @@ class PairCache {
     }
   }
 
-  void write(const PairResult& r, double threshold, const MatchTolerance& tolerance) const {
+  /// Stores `entry`, what pair_result_to_json wrote for the pair (scene, landmark).
+  void write(const std::string& scene, const std::string& landmark,
+             const nlohmann::json& entry) const {
     if (dir_.empty()) return;
-    const fs::path path = file(r.scene, r.landmark);
-    write_text_atomically(path, detail::pair_result_to_json(r, threshold, tolerance).dump() + "\n");
+    write_text_atomically(file(scene, landmark), entry.dump() + "\n");
   }
 
  private:
@@ -230,11 +231,11 @@ Evaluation evaluate(const std::string& dir, const Dataset& dataset,
         const DatasetLandmark& entry = dataset.landmarks[jobs[k].landmark];
         const PairResult searched = search_pair(cloud, scene, landmarks[jobs[k].landmark], entry,
                                                 dataset.pair(scene, entry.name), settings.find);
-        cache.write(searched, threshold, settings.tolerance);
-        // Kept as the cache holds it: a box pose goes through its quaternion there, which is not
-        // bit-exact, so a fresh result and a resumed one must take the same way to be identical.
         const nlohmann::json as_stored =
             detail::pair_result_to_json(searched, threshold, settings.tolerance);
+        cache.write(searched.scene, searched.landmark, as_stored);
+        // Kept as the cache holds it: a box pose goes through its quaternion there, which is not
+        // bit-exact, so a fresh result and a resumed one must take the same way to be identical.
         evaluation.pairs[k] = detail::pair_result_from_json(as_stored, scene.name);
         finished(false);
       });

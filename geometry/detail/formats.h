@@ -3,6 +3,7 @@
 // Readers get the whole file in memory and the path for messages; they throw lmk::Error.
 
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "geometry/cloud_io.h"
@@ -19,6 +20,16 @@ struct AsciiBodyScan {
 };
 AsciiBodyScan scan_ascii_body(const std::string& bytes, std::size_t offset,
                               std::size_t tokens_per_row, std::size_t rows_to_check);
+
+// A count in a file's header as written: digits only (no sign, no exponent, at most 18 of
+// them), or nothing. PCD's SIZE, COUNT, WIDTH, HEIGHT, POINTS and PLY's element counts.
+inline std::optional<long long> header_count(const std::string& word) {
+  if (word.empty() || word.size() > 18) return std::nullopt;
+  for (char c : word) {
+    if (c < '0' || c > '9') return std::nullopt;
+  }
+  return std::stoll(word);
+}
 
 CloudFile read_pcd(const std::string& path, const std::string& bytes);
 CloudFile read_ply(const std::string& path, const std::string& bytes);

@@ -16,6 +16,7 @@
 #include "geometry/detail/formats.h"
 #include "geometry/detail/pcl_conversion.h"
 #include "geometry/error.h"
+#include "geometry/settings_schema.h"
 
 namespace lmk::detail {
 namespace {
@@ -31,15 +32,6 @@ std::size_t body_offset(const std::string& bytes) {
     line = end + 1;
   }
   return std::string::npos;
-}
-
-// A header integer as written: digits only (no sign, no exponent), or nothing.
-std::optional<long long> header_count(const std::string& word) {
-  if (word.empty() || word.size() > 18) return std::nullopt;
-  for (char c : word) {
-    if (!std::isdigit(static_cast<unsigned char>(c))) return std::nullopt;
-  }
-  return std::stoll(word);
 }
 
 // What the header declares, as written. Each SIZE, COUNT, WIDTH, HEIGHT and POINTS value is
@@ -60,9 +52,7 @@ void check_viewpoint(const std::string& path, const std::string& line,
                      const std::vector<std::string>& values) {
   bool good = values.size() == 7;
   for (std::size_t i = 0; good && i < values.size(); ++i) {
-    char* end = nullptr;
-    const double v = std::strtod(values[i].c_str(), &end);
-    good = end != values[i].c_str() && *end == '\0' && std::isfinite(v);
+    good = read_finite_number(values[i]).has_value();
   }
   if (!good) {
     throw Error(path + ": header '" + printable(line) +

@@ -96,11 +96,11 @@ PlyHeader parse_header(const std::string& path, const std::string& bytes) {
       PlyElement e;
       std::string count;
       words >> e.name >> count;
-      if (!words || count.empty() || count.size() > 18 ||
-          count.find_first_not_of("0123456789") != std::string::npos) {
+      const std::optional<long long> n = header_count(count);
+      if (!words || !n) {
         throw Error(path + ": malformed PLY element line: '" + printable(line) + "'");
       }
-      e.count = std::stoull(count);
+      e.count = static_cast<std::size_t>(*n);
       if (e.count > kMaxCloudPoints) {
         throw Error(path + ": header declares " + count + " " + printable(e.name) +
                     " entries, over lmk's limit of " + std::to_string(kMaxCloudPoints) + " points");

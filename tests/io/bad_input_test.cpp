@@ -4,8 +4,6 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <fstream>
-
 #include "geometry/cloud_io.h"
 #include "geometry/error.h"
 #include "geometry/input_file.h"
@@ -40,8 +38,7 @@ void expect_error(const std::string& path, const std::string& problem) {
 }
 
 std::string truncate(const std::string& path, std::size_t keep) {
-  std::ifstream in(path, std::ios::binary);
-  std::string bytes((std::istreambuf_iterator<char>(in)), {});
+  const std::string bytes = test::read_bytes(path);
   const std::string out =
       path.substr(0, path.rfind('.')) + "_truncated" + path.substr(path.rfind('.'));
   test::write_text(out, bytes.substr(0, keep));

@@ -108,8 +108,7 @@ TEST(LandmarkFile, BadFilesGiveClearErrors) {
   EXPECT_NE(load_error(dir.file("cloud.lmk")).find("not an OpenVDB file"), std::string::npos);
   // Truncated: every prefix of a real file is refused, never a crash.
   save_landmark(dir.file("a.lmk"), sample_landmark());
-  std::ifstream in(dir.file("a.lmk"), std::ios::binary);
-  const std::string bytes((std::istreambuf_iterator<char>(in)), {});
+  const std::string bytes = test::read_bytes(dir.file("a.lmk"));
   // 40 cut points across the file, and the last byte: each is refused with the file's name.
   std::vector<std::size_t> cuts = {bytes.size() - 1};
   for (std::size_t k = 1; k <= 40; ++k) cuts.push_back(bytes.size() * k / 41);
@@ -143,11 +142,7 @@ TEST(LandmarkFile, IsStillAPlainOpenVdbFile) {
 TEST(LandmarkFile, FlippedByteIsCaught) {
   test::ScratchDir dir;
   save_landmark(dir.file("a.lmk"), sample_landmark());
-  std::string bytes;
-  {
-    std::ifstream in(dir.file("a.lmk"), std::ios::binary);
-    bytes.assign((std::istreambuf_iterator<char>(in)), {});
-  }
+  std::string bytes = test::read_bytes(dir.file("a.lmk"));
   bytes[bytes.size() / 2] ^= 0x10;
   test::write_text(dir.file("a.lmk"), bytes);
   EXPECT_NE(load_error(dir.file("a.lmk")).find("does not match the checksum"), std::string::npos);
@@ -158,16 +153,14 @@ TEST(LandmarkFile, FlippedByteIsCaught) {
 TEST(LandmarkFile, DeclaredLengthsAreCheckedBeforeOpenVdbReadsThem) {
   test::ScratchDir dir;
   save_landmark(dir.file("a.lmk"), sample_landmark());
-  std::string data;
-  {
-    std::ifstream in(dir.file("a.lmk"), std::ios::binary);
-    data.assign((std::istreambuf_iterator<char>(in)), {});
-  }
+  std::string data = test::read_bytes(dir.file("a.lmk"));
   data.resize(data.size() - detail::kLandmarkTrailerSize);
-  // The name's metadata entry: "lmk_name", its type "string", then the value's 32-bit length.
-  const std::size_t name = data.find("lmk_name\x06\x00\x00\x00string");
+  // The name's metadata entry: "lmk_name", its type "string" (a 32-bit length first), then the
+  // value's 32-bit length. The pattern holds NULs, so it is built with its length.
+  const std::string entry("lmk_name\x06\x00\x00\x00string", 18);
+  const std::size_t name = data.find(entry);
   ASSERT_NE(name, std::string::npos);
-  const std::size_t length_at = name + 8 + 4 + 6;
+  const std::size_t length_at = name + entry.size();
   for (const std::uint32_t length : {0xfffffff0u, 0x7fffffffu}) {
     std::string bad = data;
     std::memcpy(&bad[length_at], &length, sizeof(length));

@@ -46,6 +46,11 @@ void write_text(const std::string& path, const std::string& text) {
   out << text;
 }
 
+std::string read_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), {});
+}
+
 std::optional<fs::path> shared_data_dir() {
   const char* env = std::getenv("LMK_SHARED_DATA");
   const fs::path dir = env && *env ? fs::path(env) : fs::path(LMK_SHARED_DATA_DIR);

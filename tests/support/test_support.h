@@ -41,6 +41,9 @@ std::string error_of(F&& f) {
 /// Writes `text` to `path` as is.
 void write_text(const std::string& path, const std::string& text);
 
+/// The bytes of the file at `path`, as is (empty when it cannot be read).
+std::string read_bytes(const std::string& path);
+
 /// The real data directory (../shared/data, or $LMK_SHARED_DATA), or nothing when absent.
 std::optional<std::filesystem::path> shared_data_dir();
 
