@@ -10,15 +10,13 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 
 #include "eval/benchmark_dataset.h"
 #include "eval/detail/evaluation_json.h"
-#include "geometry/atomic_file.h"
+#include "eval/detail/pair_cache.h"
 #include "geometry/cloud_io.h"
 #include "geometry/error.h"
 #include "geometry/hash.h"
-#include "geometry/input_file.h"
 #include "geometry/statistics.h"
 #include "geometry/version.h"
 #include "landmark/detail/find_settings_json.h"
@@ -56,49 +54,6 @@ FindSettings pair_search(const FindSettings& find, const DatasetScene& scene) {
   if (scene.up) f.scene.up = scene.up;
   return f;
 }
-
-// The cache: one JSON file per pair under CACHE/evaluations/KEY/, named by a hash of the pair's
-// names (scene names are free text), which the file repeats.
-class PairCache {
- public:
-  PairCache(const std::string& cache_dir, const std::string& key)
-      : dir_(cache_dir.empty() ? fs::path() : fs::path(cache_dir) / "evaluations" / key) {
-    if (dir_.empty()) return;
-    std::error_code ec;
-    fs::create_directories(dir_, ec);
-    if (ec)
-      throw Error(dir_.string() + ": cannot create the cache directory (" + ec.message() + ")");
-  }
-
-  std::optional<PairResult> read(const std::string& scene, const std::string& landmark) const {
-    if (dir_.empty()) return std::nullopt;
-    try {
-      const std::string path = file(scene, landmark).string();
-      std::error_code ec;
-      if (!fs::exists(path, ec)) return std::nullopt;
-      const nlohmann::json j = nlohmann::json::parse(read_input_file(path, kJsonInput));
-      PairResult r = detail::pair_result_from_json(j, path);
-      if (r.scene != scene || r.landmark != landmark) return std::nullopt;  // a hash collision
-      r.from_cache = true;
-      return r;
-    } catch (const std::exception&) {
-      return std::nullopt;  // a damaged entry (an interrupted write cannot leave one) is re-run
-    }
-  }
-
-  /// Stores `entry`, what pair_result_to_json wrote for the pair (scene, landmark).
-  void write(const std::string& scene, const std::string& landmark,
-             const nlohmann::json& entry) const {
-    if (dir_.empty()) return;
-    write_text_atomically(file(scene, landmark), entry.dump() + "\n");
-  }
-
- private:
-  fs::path file(const std::string& scene, const std::string& landmark) const {
-    return dir_ / (Fnv1a().add(scene).add(landmark).hex() + ".json");
-  }
-  fs::path dir_;
-};
 
 PairResult search_pair(const PointCloud& cloud, const DatasetScene& scene, const Landmark& landmark,
                        const DatasetLandmark& entry, const DatasetPair& truth,
@@ -184,8 +139,8 @@ Evaluation evaluate(const std::string& dir, const Dataset& dataset,
     landmarks.push_back(load_landmark((fs::path(dir) / entry.file).string()));
 
   evaluation.fingerprint = dataset_fingerprint(dir, dataset, landmarks);
-  const PairCache cache(settings.cache_dir,
-                        evaluation_cache_key(settings.find, evaluation.fingerprint));
+  const detail::PairCache cache(settings.cache_dir,
+                                evaluation_cache_key(settings.find, evaluation.fingerprint));
   const double threshold = effective_threshold(settings.find);
 
   evaluation.pairs.resize(jobs.size());

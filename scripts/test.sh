@@ -24,7 +24,7 @@ esac
 # 3 min on 2 cores), and the fuzz targets' corpora. The searches of test_landmark (a rotated-scene
 # search alone takes 5 min under ASan), the dataset generation of test_eval, the CLI end to end
 # and the six demo tasks run in the Release suite; `--sanitize` runs everything.
-unit_modules=(test_geometry test_io test_occupancy test_registration test_pbd test_pr2)
+unit_modules=(test_geometry test_io test_occupancy test_registration test_pbd test_pr2 test_crash_safety)
 unit_label="^($(IFS='|'; echo "${unit_modules[*]}")|fuzz)\$"
 # The tests that run searches and evaluations on several threads.
 threaded='ThreadCount|DoNotDependOnThreads|Concurrent|Parallel'

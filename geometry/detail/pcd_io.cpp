@@ -8,6 +8,7 @@
 #include <cctype>
 #include <cstdlib>
 #include <cstring>
+#include <iterator>
 #include <optional>
 #include <sstream>
 #include <vector>
@@ -42,6 +43,7 @@ std::size_t body_offset(const std::string& bytes) {
 struct Declarations {
   std::size_t fields = 0;
   std::vector<long long> sizes, counts;
+  std::vector<std::string> types;
   long long width = -1, height = -1, points = -1;
   std::string data;
 };
@@ -60,16 +62,48 @@ void check_viewpoint(const std::string& path, const std::string& line,
   }
 }
 
+// PCL's header parser splits lines at spaces, tabs and carriage returns, and recognises a keyword
+// by its first letters: "SIZEF 1 1 1" is a SIZE line to PCL, and a line beginning with a space is
+// nothing. lmk reads a header only if PCL cannot read it otherwise: every line begins with a
+// keyword spelt exactly, or with '#', each keyword comes once, and no other control character
+// appears (a fuzzed "SIZEF" line after SIZE had PCL lay out 1-byte floats that lmk then read as 4).
+void check_header_line(const std::string& path, const std::string& line, const std::string& key,
+                       std::vector<std::string>& seen) {
+  static const char* const kKeywords[] = {"VERSION",   "FIELDS", "COLUMNS", "SIZE",
+                                          "TYPE",      "COUNT",  "WIDTH",   "HEIGHT",
+                                          "VIEWPOINT", "POINTS", "DATA"};
+  for (const char c : line) {
+    if (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\r') {
+      throw Error(path + ": header line '" + printable(line) + "' holds a control character");
+    }
+  }
+  if (key[0] == '#') return;
+  if (line.compare(0, key.size(), key) != 0) {
+    throw Error(path + ": header line '" + printable(line) + "' does not begin with its keyword");
+  }
+  if (std::find(std::begin(kKeywords), std::end(kKeywords), key) == std::end(kKeywords)) {
+    throw Error(path + ": unknown header line '" + printable(line) + "'");
+  }
+  if (std::find(seen.begin(), seen.end(), key) != seen.end()) {
+    throw Error(path + ": header " + key + " is given twice");
+  }
+  seen.push_back(key);
+}
+
 Declarations read_declarations(const std::string& path, const std::string& header_text) {
   Declarations d;
   std::istringstream header(header_text);
   std::string line, key, word;
+  std::vector<std::string> seen;
   while (std::getline(header, line)) {
     std::istringstream words(line);
-    if (!(words >> key) || key[0] == '#') continue;
+    if (!(words >> key)) continue;
+    check_header_line(path, line, key, seen);
+    if (key[0] == '#') continue;
     std::vector<std::string> values;
     while (words >> word) values.push_back(word);
-    if (key == "FIELDS") d.fields = values.size();
+    if (key == "FIELDS" || key == "COLUMNS") d.fields = values.size();
+    if (key == "TYPE") d.types = values;
     if (key == "DATA") {
       d.data = values.empty() ? "" : values[0];
       if (d.data != "ascii" && d.data != "binary" && d.data != "binary_compressed") {
@@ -112,6 +146,17 @@ void check_declared_body(const std::string& path, Declarations d, std::size_t av
                 std::to_string(d.sizes.size()) + " sizes and " + std::to_string(d.counts.size()) +
                 " counts");
   }
+  // PCL gives a field of another type or size no layout: lmk would read it with the wrong width.
+  for (std::size_t f = 0; f < d.types.size() && f < d.sizes.size(); ++f) {
+    const std::string& t = d.types[f];
+    if (t != "F" && t != "U" && t != "I") {
+      throw Error(path + ": header TYPE '" + printable(t) + "' is not F, U or I");
+    }
+    if (t == "F" && d.sizes[f] != 4 && d.sizes[f] != 8) {
+      throw Error(path + ": header TYPE F with SIZE " + std::to_string(d.sizes[f]) +
+                  ": a float is 4 or 8 bytes");
+    }
+  }
   std::size_t point_bytes = 0;
   for (std::size_t f = 0; f < d.fields; ++f) {
     point_bytes += static_cast<std::size_t>(d.sizes[f]) *
@@ -150,11 +195,12 @@ CloudFile read_pcd(const std::string& path, const std::string& bytes) {
   unsigned int pcl_data_idx = 0;  // unused: lmk finds the body itself, for its size checks
   std::istringstream header(bytes);
   const std::size_t offset = body_offset(bytes);
-  const Declarations header_says =
-      read_declarations(path, bytes.substr(0, std::min(offset, bytes.size())));
-  if (offset != std::string::npos) check_declared_body(path, header_says, bytes.size() - offset);
-  if (offset == std::string::npos ||
-      reader.readHeader(header, blob, origin, orientation, version, data_type, pcl_data_idx) < 0) {
+  if (offset == std::string::npos) {
+    throw Error(path + ": not a valid PCD file (its header has no DATA line)");
+  }
+  const Declarations header_says = read_declarations(path, bytes.substr(0, offset));
+  check_declared_body(path, header_says, bytes.size() - offset);
+  if (reader.readHeader(header, blob, origin, orientation, version, data_type, pcl_data_idx) < 0) {
     const Declarations& c = header_says;
     if (c.width >= 0 && c.height >= 0 && c.points >= 0 && c.width * c.height != c.points) {
       throw Error(path + ": inconsistent header: WIDTH x HEIGHT = " + std::to_string(c.width) +

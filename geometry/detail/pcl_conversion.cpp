@@ -26,6 +26,41 @@ T load(const std::uint8_t* p) {
   return v;
 }
 
+// Bytes of one value of a PCL datatype; 0 for a datatype lmk does not read.
+std::size_t datatype_bytes(std::uint8_t datatype) {
+  switch (datatype) {
+    case Field::INT8:
+    case Field::UINT8:
+      return 1;
+    case Field::INT16:
+    case Field::UINT16:
+      return 2;
+    case Field::INT32:
+    case Field::UINT32:
+    case Field::FLOAT32:
+      return 4;
+    case Field::FLOAT64:
+      return 8;
+  }
+  return 0;
+}
+
+// Every field lmk reads must lie within a point: the file readers check the header against PCL's
+// way of reading it, and this is the last guard of the memory it reads (a fuzzed PCD header had
+// PCL lay out 1-byte fields that were then read as floats, past the end of the data).
+void require_within_point(const pcl::PCLPointCloud2& blob, const std::optional<Field>& field,
+                          const std::string& path) {
+  if (!field) return;
+  const std::size_t bytes = datatype_bytes(field->datatype);
+  if (bytes == 0) {
+    throw Error(path + ": field '" + printable(field->name) + "' has a type lmk does not read");
+  }
+  if (field->offset + bytes > blob.point_step) {
+    throw Error(path + ": field '" + printable(field->name) + "' does not fit in its point (" +
+                std::to_string(blob.point_step) + " bytes)");
+  }
+}
+
 double load_scalar(const std::uint8_t* p, std::uint8_t datatype) {
   switch (datatype) {
     case Field::INT8:
@@ -108,6 +143,10 @@ PointCloud from_pcl(const pcl::PCLPointCloud2& blob, const std::string& path) {
   if (!color) color = find_field(blob, "rgb");
   const auto label = find_field(blob, "label");
 
+  for (const auto& field : {x, y, z, color, label}) require_within_point(blob, field, path);
+  if (has_normals) {
+    for (const auto& field : {nx, ny, nz}) require_within_point(blob, field, path);
+  }
   const std::size_t n = static_cast<std::size_t>(blob.width) * blob.height;
   if (blob.data.size() < n * blob.point_step) {
     throw Error(path + ": data holds fewer bytes than width x height points need");

@@ -204,6 +204,51 @@ std::optional<Eigen::Isometry3d> read_camera(const PlyHeader& h, const std::stri
   return T;
 }
 
+// The colour channel a property is to PCL's reader (0 red, 1 green, 2 blue, 3 alpha), or -1: PCL
+// packs 8-bit red, green, blue and alpha properties into one colour field.
+int color_channel(const PlyProperty& p) {
+  if (p.type != "uchar" && p.type != "uint8") return -1;
+  const std::string name = p.name.rfind("diffuse_", 0) == 0 ? p.name.substr(8) : p.name;
+  const char* channels[] = {"red", "green", "blue", "alpha"};
+  for (int c = 0; c < 4; ++c) {
+    if (name == channels[c]) return c;
+  }
+  return -1;
+}
+
+// PCL's reader asserts (and so aborts the process) on vertex properties it cannot place: a list,
+// and colour channels other than red, green, blue (alpha) one after another, since it writes the
+// colour when it meets blue, at the place where it met red (a fuzzed file with green and blue
+// alone aborted). Refused here first, with repeated names, which no writer produces.
+void check_vertex_properties(const std::string& path, const PlyElement& vertex) {
+  // The colour properties' channels in order, and where the first of them stands.
+  std::vector<int> channels;
+  std::size_t first_color = 0;
+  for (std::size_t i = 0; i < vertex.properties.size(); ++i) {
+    const PlyProperty& p = vertex.properties[i];
+    if (p.is_list) {
+      throw Error(path + ": vertex property '" + printable(p.name) +
+                  "' is a list; lmk reads scalar vertex properties only");
+    }
+    for (std::size_t k = 0; k < i; ++k) {
+      if (vertex.properties[k].name == p.name) {
+        throw Error(path + ": vertex property '" + printable(p.name) + "' is declared twice");
+      }
+    }
+    const int channel = color_channel(p);
+    if (channel < 0) continue;
+    if (channels.empty()) first_color = i;
+    // One after another, in channel order: the channel is its distance from the first.
+    channels.push_back(i - first_color == static_cast<std::size_t>(channel) ? channel : -1);
+  }
+  const std::vector<int> rgb = {0, 1, 2}, rgba = {0, 1, 2, 3};
+  if (!channels.empty() && channels != rgb && channels != rgba) {
+    throw Error(path +
+                ": vertex colour properties must be red, green and blue (then alpha), one after "
+                "another");
+  }
+}
+
 // An ASCII body holds one line per element entry: the vertices first, then any other element
 // (PCL adds a "camera" line). Every row is counted and every vertex row checked, before PCL, which
 // would read a row "foo bar baz" as a NaN point and ignore rows beyond the declared count.
@@ -230,14 +275,8 @@ void check_ascii_rows(const std::string& path, const PlyHeader& h, const std::st
 CloudFile read_ply(const std::string& path, const std::string& bytes) {
   const PlyHeader h = parse_header(path, bytes);
   const std::size_t available = bytes.size() - std::min(h.body_offset, bytes.size());
-  // PCL's reader asserts (and so aborts) on a list property of the vertices: refuse it first.
   for (const PlyElement& e : h.elements) {
-    for (const PlyProperty& p : e.properties) {
-      if (e.name == "vertex" && p.is_list) {
-        throw Error(path + ": vertex property '" + printable(p.name) +
-                    "' is a list; lmk reads scalar vertex properties only");
-      }
-    }
+    if (e.name == "vertex") check_vertex_properties(path, e);
   }
   // Check the data really holds the vertices, when they come first (as every writer puts them).
   if (!h.elements.empty() && h.elements.front().name == "vertex") {

@@ -4,36 +4,20 @@
 #include "geometry/atomic_file.h"
 
 #include <gtest/gtest.h>
-#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <array>
 #include <fstream>
-#include <random>
-#include <sstream>
 
 #include "geometry/error.h"
+#include "tests/support/kill_loop.h"
 #include "tests/support/test_support.h"
 
 namespace lmk {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string read_all(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-std::size_t temporaries_in(const fs::path& dir) {
-  std::size_t n = 0;
-  for (const auto& entry : fs::directory_iterator(dir)) {
-    if (entry.path().filename().string().find(".tmp") != std::string::npos) ++n;
-  }
-  return n;
-}
 
 // A process id that no process holds: a child's, once it has exited and been reaped.
 pid_t dead_pid() {
@@ -52,7 +36,7 @@ TEST(AtomicFile, WritingOntoADirectorySaysSo) {
       error_of([&] { write_text_atomically(dir.path() / "target.json", "{}"); });
   EXPECT_NE(message.find("target.json: cannot write: it is a directory"), std::string::npos)
       << message;
-  EXPECT_EQ(temporaries_in(dir.path()), 0u);
+  EXPECT_EQ(test::temporaries_in(dir.path()), 0u);
 }
 
 TEST(AtomicFile, AWritersErrorNamesTheTargetNotTheTemporary) {
@@ -64,7 +48,7 @@ TEST(AtomicFile, AWritersErrorNamesTheTargetNotTheTemporary) {
     });
   });
   EXPECT_EQ(message, target.string() + ": cannot open for writing");
-  EXPECT_EQ(temporaries_in(dir.path()), 0u);
+  EXPECT_EQ(test::temporaries_in(dir.path()), 0u);
 }
 
 TEST(AtomicFile, TheNextWriteRemovesTheTemporariesOfDeadWritersOnly) {
@@ -78,32 +62,27 @@ TEST(AtomicFile, TheNextWriteRemovesTheTemporariesOfDeadWritersOnly) {
   EXPECT_FALSE(fs::exists(stale));
   EXPECT_TRUE(fs::exists(live));   // a writer still running may finish
   EXPECT_TRUE(fs::exists(other));  // another target's
-  EXPECT_EQ(read_all(target), "{\"steps\": []}");
+  EXPECT_EQ(test::read_bytes(target), "{\"steps\": []}");
 }
 
-// A child rewrites the target in a loop, alternating two contents of 2 MB; it is killed with
-// SIGKILL at a random moment, 50 times. Every time, the target holds one of the two contents
-// whole, and after the next write no temporary is left.
+// A child rewrites a 2 MB target in a loop and is killed with SIGKILL at a random moment, 50
+// times: the target always holds one of the two contents whole, and after the next write no
+// temporary is left. (tests/crash_safety kills each of lmk's writers the same way.)
 TEST(AtomicFile, ASigkilledWriterLeavesTheOldFileOrTheNewOne) {
   test::ScratchDir dir;
   const fs::path target = dir.path() / "scene.pcd";
-  const std::string first(2 << 20, 'a'), second(2 << 20, 'b');
-  write_text_atomically(target, first);
-  std::mt19937 random(7);
-  for (int run = 0; run < 50; ++run) {
-    const pid_t writer = ::fork();
-    if (writer == 0) {
-      for (int k = 0;; ++k) write_text_atomically(target, k % 2 ? first : second);
-    }
-    ::usleep(std::uniform_int_distribution<unsigned>(0, 20000)(random));
-    ::kill(writer, SIGKILL);
-    ::waitpid(writer, nullptr, 0);
-    const std::string now = read_all(target);
-    EXPECT_TRUE(now == first || now == second) << "run " << run << ": " << now.size() << " bytes";
-  }
-  write_text_atomically(target, first);
-  EXPECT_EQ(temporaries_in(dir.path()), 0u);
-  EXPECT_EQ(read_all(target), first);
+  const std::array<std::string, 2> contents = {std::string(2 << 20, 'a'),
+                                               std::string(2 << 20, 'b')};
+  const auto write = [&](int version) { write_text_atomically(target, contents[version]); };
+  test::expect_crash_safe(test::kill_writer_repeatedly(write, [&] {
+    const std::string now = test::read_bytes(target);
+    if (now == contents[0]) return 0;
+    if (now == contents[1]) return 1;
+    throw Error("the target holds " + std::to_string(now.size()) + " bytes of neither");
+  }));
+  write(0);
+  EXPECT_EQ(test::temporaries_in(dir.path()), 0u);
+  EXPECT_EQ(test::read_bytes(target), contents[0]);
 }
 
 }  // namespace

@@ -197,6 +197,53 @@ TEST_F(BadInput, ViewpointMustBeSevenFiniteNumbers) {
   }
 }
 
+// PCL recognises a header keyword by its first letters: a fuzzed "SIZEF 1 1 1" line was a second
+// SIZE to PCL, which laid out 1-byte floats that were then read as 4 bytes, past the data. lmk
+// accepts a header only when PCL cannot read it another way.
+TEST_F(BadInput, PcdHeaderLinesAreKeywordsSpeltExactlyOnce) {
+  const std::string body = "1 2 3\n";
+  const auto with = [&](const std::string& from, const std::string& to) {
+    std::string header = pcd_header("ascii", 1, 1);
+    header.replace(header.find(from), from.size(), to);
+    test::write_text(dir_.file("header.pcd"), header + body);
+    return dir_.file("header.pcd");
+  };
+  expect_error(with("COUNT 1 1 1", "SIZEF 1 1 1"), "unknown header line 'SIZEF 1 1 1'");
+  expect_error(with("COUNT 1 1 1", "SIZE 4 4 4"), "header SIZE is given twice");
+  expect_error(with("COUNT 1 1 1", " COUNT 1 1 1"), "does not begin with its keyword");
+  expect_error(with("COUNT 1 1 1", "COUNT\v1 1 1"), "holds a control character");
+  expect_error(with("TYPE F F F", "TYPE F F X"), "header TYPE 'X' is not F, U or I");
+  expect_error(with("SIZE 4 4 4", "SIZE 4 4 1"), "header TYPE F with SIZE 1: a float is 4 or 8");
+  // Comments, carriage returns and the keywords of older files still read.
+  test::write_text(dir_.file("crlf.pcd"), "# made by hand\r\n" + pcd_header("ascii", 1, 1) + body);
+  EXPECT_EQ(read_cloud(dir_.file("crlf.pcd")).size(), 1u);
+}
+
+// PCL's PLY reader writes a colour when it meets blue, where it met red: green and blue alone made
+// it fail an assertion and abort (found by fuzzing).
+TEST_F(BadInput, PlyColourPropertiesAreRedGreenBlueInOrder) {
+  const auto ply_with = [&](const std::string& properties, const std::string& row) {
+    test::write_text(dir_.file("colour.ply"),
+                     "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float "
+                     "y\nproperty float z\n" +
+                         properties + "end_header\n1 2 3 " + row + "\n");
+    return dir_.file("colour.ply");
+  };
+  const std::string problem = "vertex colour properties must be red, green and blue";
+  expect_error(ply_with("property uchar green\nproperty uchar blue\n", "1 2"), problem);
+  expect_error(ply_with("property uchar blue\nproperty uchar green\nproperty uchar red\n", "1 2 3"),
+               problem);
+  expect_error(
+      ply_with("property uchar red\nproperty float q\nproperty uchar green\nproperty uchar blue\n",
+               "1 0 2 3"),
+      problem);
+  expect_error(ply_with("property float q\nproperty float q\n", "1 2"), "'q' is declared twice");
+  const PointCloud cloud = read_cloud(
+      ply_with("property uchar red\nproperty uchar green\nproperty uchar blue\n", "10 20 30"));
+  ASSERT_EQ(cloud.colors.size(), 1u);
+  EXPECT_EQ(cloud.colors[0].g, 20);
+}
+
 // A file's bytes quoted in a message are escaped: the message stays one printable line.
 TEST_F(BadInput, BinaryBytesAreEscapedInMessages) {
   test::write_text(dir_.file("junk.xyz"), std::string("1 2 3\n\x01\xff\xfe\x1b[31m junk\n"));
