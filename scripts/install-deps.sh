@@ -17,6 +17,8 @@ packages=(
   chromium
   # the sanitizer build and the fuzz targets (scripts/fuzz.sh): clang with libFuzzer's runtime
   clang-14 libclang-rt-14-dev
+  # the ThreadSanitizer run fetches and builds Debian's oneTBB source (scripts/build-tbb-tsan.sh)
+  curl xz-utils
 )
 
 missing=()

@@ -26,8 +26,9 @@ esac
 # and the six demo tasks run in the Release suite; `--sanitize` runs everything.
 unit_modules=(test_geometry test_io test_occupancy test_registration test_pbd test_pr2 test_crash_safety)
 unit_label="^($(IFS='|'; echo "${unit_modules[*]}")|fuzz)\$"
-# The tests that run searches and evaluations on several threads.
+# The tests that run searches and evaluations on several threads, and their executables.
 threaded='ThreadCount|DoNotDependOnThreads|Concurrent|Parallel'
+threaded_modules=(test_geometry test_eval test_occupancy test_landmark)
 
 run_suite() {
   bash scripts/build.sh
@@ -53,11 +54,16 @@ run_sanitized() {  # all | unit
 run_tsan() {
   bash scripts/install-deps.sh
   local build=${LMK_TSAN_BUILD_DIR:-build-tsan}
+  # oneTBB built with ThreadSanitizer, loaded in place of Debian's (see build-tbb-tsan.sh).
+  local tbb="$PWD/$build/tbb-tsan"
+  bash scripts/build-tbb-tsan.sh "$tbb"
+  export LD_LIBRARY_PATH="$tbb/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
   cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang-14 \
     -DCMAKE_CXX_COMPILER=clang++-14 -DLMK_TSAN=ON -DLMK_BUILD_BENCH=OFF >/dev/null
-  cmake --build "$build" -j2
-  TSAN_OPTIONS="halt_on_error=1 suppressions=$PWD/tests/tsan.supp" \
-    ctest --test-dir "$build" -j2 --output-on-failure --timeout 1800 -R "$threaded"
+  # The options apply to the build too: it runs each test executable to list its tests.
+  export TSAN_OPTIONS="halt_on_error=1 suppressions=$PWD/tests/tsan.supp"
+  cmake --build "$build" -j2 --target "${threaded_modules[@]}"
+  ctest --test-dir "$build" -j2 --output-on-failure --timeout 1800 -R "$threaded"
 }
 
 timed() {  # label command...: runs it and says how long it took

@@ -193,11 +193,14 @@ CloudFile read_pcd(const std::string& path, const std::string& bytes) {
   Eigen::Quaternionf orientation = Eigen::Quaternionf::Identity();
   int version = 0, data_type = 0;
   unsigned int pcl_data_idx = 0;  // unused: lmk finds the body itself, for its size checks
-  std::istringstream header(bytes);
   const std::size_t offset = body_offset(bytes);
   if (offset == std::string::npos) {
     throw Error(path + ": not a valid PCD file (its header has no DATA line)");
   }
+  // PCL's header parser reads on after the DATA line while lines look like header lines: a fuzzed
+  // ASCII body beginning "COLUMNS..." and "POINTS 8277990003" made it allocate a terabyte. It is
+  // given the header alone.
+  std::istringstream header(bytes.substr(0, offset));
   const Declarations header_says = read_declarations(path, bytes.substr(0, offset));
   check_declared_body(path, header_says, bytes.size() - offset);
   if (reader.readHeader(header, blob, origin, orientation, version, data_type, pcl_data_idx) < 0) {

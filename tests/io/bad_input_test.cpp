@@ -214,6 +214,10 @@ TEST_F(BadInput, PcdHeaderLinesAreKeywordsSpeltExactlyOnce) {
   expect_error(with("COUNT 1 1 1", "COUNT\v1 1 1"), "holds a control character");
   expect_error(with("TYPE F F F", "TYPE F F X"), "header TYPE 'X' is not F, U or I");
   expect_error(with("SIZE 4 4 4", "SIZE 4 4 1"), "header TYPE F with SIZE 1: a float is 4 or 8");
+  // PCL read on past DATA while lines looked like header lines: a body line "POINTS 2000000000"
+  // made it allocate for two billion points (found by fuzzing). It is given the header alone.
+  test::write_text(dir_.file("body.pcd"), pcd_header("ascii", 1, 1) + "POINTS 2000000000\n");
+  expect_error(dir_.file("body.pcd"), "'POINTS' is not a number");
   // Comments, carriage returns and the keywords of older files still read.
   test::write_text(dir_.file("crlf.pcd"), "# made by hand\r\n" + pcd_header("ascii", 1, 1) + body);
   EXPECT_EQ(read_cloud(dir_.file("crlf.pcd")).size(), 1u);
