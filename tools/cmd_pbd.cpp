@@ -10,13 +10,13 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "demos/demo_tasks.h"
 #include "geometry/atomic_file.h"
 #include "geometry/cloud_io.h"
 #include "geometry/detail/pose_json.h"
 #include "geometry/error.h"
 #include "pbd/execute.h"
 #include "pbd/plan.h"
-#include "pr2/demo_tasks.h"
 #include "pr2/simulated_pr2.h"
 #include "tools/cli_common.h"
 #include "tools/interrupt.h"

@@ -1,14 +1,24 @@
 #!/usr/bin/env bash
 # Installs this build into a scratch prefix, then configures, builds and runs a separate consumer
-# project against it with find_package(lmk).
-# Usage: consumer_test.sh BUILD_DIR CONSUMER_SOURCE_DIR CMAKE
+# project against it with find_package(lmk). With FORBIDDEN (an extended regex), the consumer must
+# not load any library whose name matches it: a robot deployment links no benchmark code.
+# Usage: consumer_test.sh BUILD_DIR CONSUMER_SOURCE_DIR CMAKE [FORBIDDEN]
 set -eu
 build=$1
 source=$2
 cmake=$3
+forbidden=${4:-}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 "$cmake" --install "$build" --prefix "$work/prefix" >"$work/install.log"
 "$cmake" -S "$source" -B "$work/build" -DCMAKE_PREFIX_PATH="$work/prefix" >"$work/configure.log"
 "$cmake" --build "$work/build" -j2 >"$work/build.log"
 "$work/build/consumer"
+if [ -n "$forbidden" ]; then
+  loaded=$(ldd "$work/build/consumer")
+  if grep -E "$forbidden" <<<"$loaded"; then
+    echo "consumer_test.sh: the consumer loads libraries matching '$forbidden' (above)" >&2
+    exit 1
+  fi
+  echo "consumer_test.sh: nothing matching '$forbidden' among its $(wc -l <<<"$loaded") libraries"
+fi

@@ -8,6 +8,7 @@
 
 #include <stdexcept>
 
+#include "demos/demo_task_cache.h"
 #include "eval/dataset.h"
 #include "eval/detail/evaluation_json.h"
 #include "eval/detail/pair_cache.h"
@@ -17,7 +18,6 @@
 #include "landmark/landmark.h"
 #include "landmark/landmark_file.h"
 #include "pbd/program.h"
-#include "pr2/demo_task_cache.h"
 #include "tests/support/kill_loop.h"
 #include "tests/support/test_support.h"
 

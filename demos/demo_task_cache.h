@@ -5,7 +5,7 @@
 #include <optional>
 #include <vector>
 
-#include "pr2/demo_tasks.h"
+#include "demos/demo_tasks.h"
 
 namespace lmk {
 

@@ -1,4 +1,4 @@
-#include "pr2/demo_tasks.h"
+#include "demos/demo_tasks.h"
 
 #include <algorithm>
 #include <chrono>
@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <map>
 
+#include "demos/demo_task_cache.h"
+#include "demos/detail/demo_task_definitions.h"
 #include "geometry/cloud_io.h"
 #include "geometry/error.h"
 #include "geometry/filters.h"
@@ -16,8 +18,6 @@
 #include "pbd/joint_motion.h"
 #include "pbd/plan.h"
 #include "pbd/recorder.h"
-#include "pr2/demo_task_cache.h"
-#include "pr2/detail/demo_task_definitions.h"
 #include "pr2/head_pointing.h"
 #include "pr2/simulated_pr2.h"
 

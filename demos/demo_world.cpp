@@ -1,4 +1,4 @@
-#include "pr2/demo_world.h"
+#include "demos/demo_world.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,17 +1,17 @@
 #pragma once
 // The paper's six PbD demonstration tasks (its Tables IV-IX) as data: each task's demonstration
 // world, the landmark boxes a user draws in it, the arm poses the user demonstrates, and the test
-// scenarios. pr2/demo_tasks.cpp records and runs them; nothing here knows the answers the runs
+// scenarios. demos/demo_tasks.cpp records and runs them; nothing here knows the answers the runs
 // will give.
 
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "demos/demo_world.h"
 #include "geometry/pose.h"
 #include "geometry/symmetry.h"
 #include "pbd/program.h"
-#include "pr2/demo_world.h"
 
 namespace lmk::detail {
 

@@ -3,7 +3,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "pr2/demo_tasks.h"
+#include "demos/demo_tasks.h"
 
 namespace lmk::detail {
 

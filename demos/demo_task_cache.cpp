@@ -1,15 +1,15 @@
-#include "pr2/demo_task_cache.h"
+#include "demos/demo_task_cache.h"
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "demos/detail/demo_tasks_json.h"
 #include "geometry/atomic_file.h"
 #include "geometry/error.h"
 #include "geometry/hash.h"
 #include "geometry/input_file.h"
 #include "geometry/version.h"
 #include "landmark/find_landmark.h"
-#include "pr2/detail/demo_tasks_json.h"
 
 namespace lmk {
 

@@ -3,9 +3,9 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
+#include "demos/demo_tasks.h"
+#include "demos/detail/demo_tasks_json.h"
 #include "eval/text_table.h"
-#include "pr2/demo_tasks.h"
-#include "pr2/detail/demo_tasks_json.h"
 
 namespace lmk {
 
