@@ -1,5 +1,5 @@
 #pragma once
-// A simulated Kinect v1 (DESIGN.md, "Simulated sensor"): a 640x480 pinhole camera that ray-casts
+// A simulated Kinect v1 (docs/datasets.md, "The simulated Kinect"): a 640x480 pinhole camera that ray-casts
 // a triangle mesh with CGAL's AABB tree and degrades the depth as the real sensor does.
 
 #include <cstdint>

@@ -1,5 +1,5 @@
 #pragma once
-// Batch evaluation of a search method over a dataset (DESIGN.md, "Evaluation protocol"): every
+// Batch evaluation of a search method over a dataset (docs/evaluation.md): every
 // (scene, landmark) pair searched, each result matched to the ground truth, and the paper's
 // precision/recall table under its three assumptions, per setting.
 //

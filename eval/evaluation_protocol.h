@@ -1,5 +1,5 @@
 #pragma once
-// The evaluation protocol of DESIGN.md ("Evaluation protocol"): matching returned landmark poses
+// The evaluation protocol (docs/datasets.md, "Matching and precision/recall"): matching returned landmark poses
 // to ground truth, and the paper's precision/recall under its three assumptions.
 
 #include <Eigen/Geometry>

@@ -1,5 +1,5 @@
 #pragma once
-// The procedural object library of the synthetic benchmark (DESIGN.md, "Synthetic benchmark"):
+// The procedural object library of the synthetic benchmark (docs/datasets.md, "The synthetic benchmark"):
 // the objects of the paper's 17 scenes, built from a few mesh primitives. Shapes only need to be
 // recognisable, and to pose the same difficulties as the real ones: a bowl's rim, a spray bottle's
 // trigger head, a backrest's corners, a handle proud of a drawer front.

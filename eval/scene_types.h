@@ -1,5 +1,5 @@
 #pragma once
-// The paper's 17 evaluation scenes (its Tables I-III, DESIGN.md "Synthetic benchmark") as seeded
+// The paper's 17 evaluation scenes (its Tables I-III, docs/datasets.md, "The synthetic benchmark") as seeded
 // generators over the object library, with exact ground truth: every landmark instance's box in
 // the world frame.
 //

@@ -1,5 +1,5 @@
 #pragma once
-// The distinctiveness check (DESIGN.md, "Distinctiveness check"): a landmark is searched for in its
+// The distinctiveness check (docs/landmarks.md, "The distinctiveness check"): a landmark is searched for in its
 // own capture scene. Any match away from the captured instance means that a robot could mistake
 // that place for the landmark, so the user should hear about it while the scene is still at hand
 // and can draw a better box (more empty margin, more context).

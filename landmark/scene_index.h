@@ -1,6 +1,6 @@
 #pragma once
 // SceneIndex: everything the fast search needs from a scene, built once and shared by every
-// landmark searched in it (DESIGN.md, "Build once per scene").
+// landmark searched in it (docs/landmarks.md, "The fast search").
 //
 // - coarse: the scene voxel-downsampled at coarse_leaf, with normals, and its k-d tree: the
 //   candidates' seeds and coarse alignment;

@@ -4,7 +4,7 @@
 //
 // Why not KDL or Ceres: the PR2 arm is a 7-joint chain whose FK and Jacobian cost about a
 // microsecond, so a small dedicated solver meets the 2 ms budget, needs no dependency beyond
-// DESIGN.md's list, and can say precisely why a target failed (workspace or joint limits).
+// the dependencies of docs/developing.md, and can say precisely why a target failed (workspace or joint limits).
 
 #include <cstdint>
 

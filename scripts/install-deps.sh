@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   # toolchain
   build-essential cmake pkg-config git clang-format
-  # libraries named in DESIGN.md
+  # the libraries lmk is built on (docs/developing.md)
   libeigen3-dev libopenvdb-dev libceres-dev libpcl-dev libcgal-dev liburdfdom-dev
   libnanoflann-dev libtbb-dev nlohmann-json3-dev libcli11-dev
   # Debian's PCL config pulls in VTK, whose config needs MPI's C bindings

@@ -1,6 +1,6 @@
 #pragma once
-// The fast search (method "fast"), coarse to fine (DESIGN.md, "How the fast search should go
-// beyond the paper"). Internal.
+// The fast search (method "fast"), coarse to fine (docs/landmarks.md, "The fast search").
+// Internal.
 //
 // 1. Seeds: each seed scene point votes with point pair features for full 6-DoF poses
 //    (point_pair_voting.h), so every orientation is reachable; poses tilted beyond the limit are
