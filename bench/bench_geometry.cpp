@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Voxel downsampling and k-d tree build/query on a 640x480 frame: lmk against PCL's VoxelGrid and
 // KdTreeFLANN, on the same rendered tabletop frame (eval/tabletop_scene.h), in the same run.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // IK time per target for the PR2 arms: 1000 random reachable targets (FK of random joint vectors
 // within limits), each solved from another random seed. Prints the success rate and the median
 // and 95th-percentile time per target.

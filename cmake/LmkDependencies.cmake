@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Every third-party library lmk uses, all from Debian 12 packages (scripts/install-deps.sh).
 
 find_package(Eigen3 3.4 REQUIRED NO_MODULE)

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Installs the export set so that a consumer can write find_package(lmk) and link lmk::landmark.
 include(CMakePackageConfigHelpers)
 set(LMK_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/lmk)

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Sanitizer and fuzzing builds (issue #17, docs/reliability.md). Each applies to every target of
 # the build, lmk's libraries included, so that a finding is reported where it happens:
 #   LMK_SANITIZE  AddressSanitizer + UndefinedBehaviorSanitizer; any finding aborts the test.

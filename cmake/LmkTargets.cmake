@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # lmk_add_library(NAME SOURCES ... [PUBLIC_DEPS ...] [PRIVATE_DEPS ...])
 # One library per top-level folder, exported as lmk::NAME. Headers live beside the sources. Inside
 # the tree they are included as "NAME/header.h"; installed, as <lmk/NAME/header.h>.

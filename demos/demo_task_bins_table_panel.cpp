@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Tasks 4-6 of the paper's PbD demonstrations: trash versus recycling bins, an empty spot on a
 // crowded table, a control panel. Poses are in the PR2's base frame (x forward, y left, z up; the
 // floor at -0.051 m).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The demo tasks' cache (DemoTasksSettings::cache_dir): a finished task's scenario results, kept
 // so that an interrupted `lmk pbd demo-tasks --cache DIR` resumes with the tasks it did not finish.

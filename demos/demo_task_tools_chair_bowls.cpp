@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Tasks 1-3 of the paper's PbD demonstrations: hanging tools, grasping a chair, picking bowls from
 // a shelf. Poses are in the PR2's base frame (x forward, y left, z up; the floor at -0.051 m).
 

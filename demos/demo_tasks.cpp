@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "demos/demo_tasks.h"
 
 #include <algorithm>

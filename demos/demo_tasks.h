@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The paper's six PbD demonstration tasks, end to end on the simulated PR2 (`lmk pbd demo-tasks`):
 // for each task, a demonstration scene seen by the head Kinect, landmarks captured with the boxes

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The demo tasks' table, as the paper prints its Tables IV-IX, and their JSON.
 
 #include <cstdio>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A simulated world for the PbD demonstrations: objects of the synthetic benchmark's library
 // placed around the PR2, in its base frame, with exact ground truth, seen through the head Kinect.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Ablations: the evaluation of every combination of a few search settings over one dataset, and
 // one table comparing them. Each variant is an ordinary evaluation, so each resumes from the

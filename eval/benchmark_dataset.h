@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The synthetic benchmark as a dataset on disk (docs/datasets.md): the paper's 17 scene types
 // rendered by the simulated Kinect for a run of seeds, and its 11 landmarks, each captured once in

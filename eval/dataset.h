@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Scene datasets for batch evaluation (docs/datasets.md): a directory holding dataset.json,
 // scene clouds, landmark files and the ground truth of every (scene, landmark) pair.

@@ -1,6 +1,7 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
-// A simulated Kinect v1 (docs/datasets.md, "The simulated Kinect"): a 640x480 pinhole camera that ray-casts
-// a triangle mesh with CGAL's AABB tree and degrades the depth as the real sensor does.
+// A simulated Kinect v1 (docs/datasets.md, "The simulated Kinect"): a 640x480 pinhole camera that
+// ray-casts a triangle mesh with CGAL's AABB tree and degrades the depth as the real sensor does.
 
 #include <cstdint>
 #include <vector>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Batch evaluation of a search method over a dataset (docs/evaluation.md): every
 // (scene, landmark) pair searched, each result matched to the ground truth, and the paper's

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "eval/evaluation_protocol.h"
 
 #include <algorithm>

@@ -1,6 +1,7 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
-// The evaluation protocol (docs/datasets.md, "Matching and precision/recall"): matching returned landmark poses
-// to ground truth, and the paper's precision/recall under its three assumptions.
+// The evaluation protocol (docs/datasets.md, "Matching and precision/recall"): matching returned
+// landmark poses to ground truth, and the paper's precision/recall under its three assumptions.
 
 #include <Eigen/Geometry>
 #include <array>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // An evaluation's report directory: report.json (everything), report.md (the tables) and a
 // self-contained report.html with SVG plots: precision and recall against the error threshold per

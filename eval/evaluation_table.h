@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The paper's precision/recall table of an evaluation, as lmk eval prints it and reports hold it.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "eval/failure_pictures.h"
 
 #include <algorithm>

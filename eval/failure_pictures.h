@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The report's failure pictures (issue #16): for each pair where an instance was missed or a
 // false match accepted, the scene's depth image with the true and the found boxes drawn through

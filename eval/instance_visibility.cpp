@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "eval/instance_visibility.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // How much of a landmark instance a sensor sees: the ground truth that the range, viewpoint and
 // occlusion benchmarks record with each instance (issue #16), so that their tables can be split

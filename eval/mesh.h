@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Triangle meshes for synthetic scenes: primitives centred at their origin, composed by rigid
 // transforms. Shapes only need to be recognisable, so the primitives are simple.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A real-data dataset from the labelled Kinect frames of the mOSD "learn" set
 // (../shared/data/mosd/learn): landmarks cut around labelled objects, searched in rigidly

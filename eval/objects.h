@@ -1,8 +1,9 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
-// The procedural object library of the synthetic benchmark (docs/datasets.md, "The synthetic benchmark"):
-// the objects of the paper's 17 scenes, built from a few mesh primitives. Shapes only need to be
-// recognisable, and to pose the same difficulties as the real ones: a bowl's rim, a spray bottle's
-// trigger head, a backrest's corners, a handle proud of a drawer front.
+// The procedural object library of the synthetic benchmark (docs/datasets.md, "The synthetic
+// benchmark"): the objects of the paper's 17 scenes, built from a few mesh primitives. Shapes only
+// need to be recognisable, and to pose the same difficulties as the real ones: a bowl's rim, a
+// spray bottle's trigger head, a backrest's corners, a handle proud of a drawer front.
 //
 // Every object is a mesh in its own frame: z up, resting on z = 0 (walls and panels stand on it),
 // the front facing -y. Each lists the landmarks a user would cut from it, as the boxes they would

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "eval/real_data.h"
 
 #include "geometry/cloud_io.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Landmarks defined on the real data in ../shared/data, shared by tests and benchmarks so that
 // every measurement uses the same definition.

@@ -1,7 +1,8 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
-// The paper's 17 evaluation scenes (its Tables I-III, docs/datasets.md, "The synthetic benchmark") as seeded
-// generators over the object library, with exact ground truth: every landmark instance's box in
-// the world frame.
+// The paper's 17 evaluation scenes (its Tables I-III, docs/datasets.md, "The synthetic benchmark")
+// as seeded generators over the object library, with exact ground truth: every landmark instance's
+// box in the world frame.
 //
 // Worlds are z up, in metres, with the floor at z = 0. A seed varies object positions and yaws,
 // clutter and the sensor's viewpoint; `hard` adds what the paper's method could not handle: larger

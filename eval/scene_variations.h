@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The viewpoint and occlusion benchmarks' scenes (issue #16): a generated scene seen from a new
 // place, or with objects that hide part of each landmark instance. Both change only what the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The simulated Kinect checked against real frames: planar patches of real Kinect clouds (tables,
 // walls, floors) are fitted, then the very same pixels are re-measured by the sensor model

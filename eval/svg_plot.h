@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Small self-contained SVG charts for reports: line plots and histograms, no script, no external
 // resource, so a report opens anywhere.

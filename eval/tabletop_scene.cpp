@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "eval/tabletop_scene.h"
 
 #include "geometry/pose.h"

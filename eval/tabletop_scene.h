@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A seeded tabletop scene for the built-in demo and for tests that need a realistic frame: a table
 // with a carton, a cup and a ball, seen by the simulated Kinect from a robot-like head height.

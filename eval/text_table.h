@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A table of strings rendered as aligned plain text (terminals, logs) or as Markdown (reports),
 // so that every table lmk prints looks the same in both.

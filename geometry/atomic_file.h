@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Atomic file writes: write to a temporary file beside the target, then rename it over the target.
 // A reader never sees a half-written file, and a failed write leaves the old file untouched.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Box: an oriented box given by the pose of its centre and its full side lengths.
 //

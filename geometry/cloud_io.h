@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Reading and writing point clouds: PCD (ascii, binary, binary_compressed), PLY (ascii, binary)
 // and plain XYZ text. The format follows the file extension.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The third-party libraries each lmk module is built on, with the versions compiled in. `lmk
 // --version` prints them, so a bug report states exactly what it ran against.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The expected depth error of a structured-light sensor at a given depth (Kinect v1 by default):
 // the unit in which the sensor-aware metric measures residuals (issue #16, part 3), so that one

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The one exception type of lmk. Library code throws it for bad input (a file, an argument, a
 // setting); algorithm outcomes such as "nothing found" go in result structs instead.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Point filters that return new clouds and leave their input untouched. Every filter keeps the
 // attributes of the points it keeps and the sensor pose; its output is unorganised.

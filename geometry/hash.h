@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A stable 64-bit FNV-1a hash. Unlike std::hash it is the same on every platform and run, so it
 // can seed random streams, check file integrity and key caches that outlive the process.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Reading an input file whole, safely: lmk refuses what is not a regular file (a named pipe would
 // block the open forever, a device could stream without end) and any file over a documented

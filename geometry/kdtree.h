@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // KdTree: nearest-neighbour queries over the finite points of a PointCloud (nanoflann).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Surface normals by principal component analysis of each point's k nearest neighbours: the normal
 // is the eigenvector of the neighbourhood covariance with the smallest eigenvalue, flipped to

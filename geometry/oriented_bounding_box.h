@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Oriented bounding box of a cloud: the box of (approximately) smallest volume that holds every
 // finite point, from CGAL's Optimal_bounding_box (Chang, Gorissen & Melchior 2011). It is the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Pose helpers on Eigen::Isometry3d. Names carry frames: T_a_b maps coordinates in frame b to
 // frame a. Angles are radians; roll/pitch/yaw are the URDF convention, R = Rz(yaw) Ry(pitch)

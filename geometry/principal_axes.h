@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Principal axes of a point set: its mean and the eigen-decomposition of its covariance. Normals
 // (the axis of least spread of a neighbourhood) and the landmark shape check (is it flat, is it

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Free space seen through a structured-light sensor's shadow.
 //

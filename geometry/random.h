@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A small seeded generator whose sequence is fixed by its definition, not by the standard
 // library: std::uniform_int_distribution differs between implementations, and lmk promises the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // What a scene's sensor saw along each of its rays: the depth image behind projective visibility
 // (issue #16, part 3). A point placed in the scene by a candidate pose is seen when the image holds

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Settings described once. A settings struct lists its fields, each with its name, help line,
 // unit and limits, in one static function; validation, JSON, the evaluation cache key,

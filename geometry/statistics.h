@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Summary statistics shared by the benchmark and the evaluation.
 

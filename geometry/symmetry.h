@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Rotational symmetry of a landmark, in its box frame. A symmetric landmark's pose is fixed only up
 // to its symmetry: a bowl's rim found at any turn about its axis is the same rim. Evaluation

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Voxel downsampling: one point per occupied voxel, the centroid of the points that fall in it.
 // Step 2 of the paper's FindLandmark (leaf 0.005 m).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Voxel downsampling that also gives each centroid a surface normal, from one pass over the raw
 // points. The scene index needs both for every frame; a k-nearest-neighbour normal search over the

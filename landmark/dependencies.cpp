@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "landmark/dependencies.h"
 
 #include <pcl/pcl_config.h>

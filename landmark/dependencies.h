@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // lmk::landmark: landmark model, storage, metrics and search.
 // Its dependency report: the libraries this module is built on, with their compiled-in versions.

@@ -1,8 +1,9 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
-// The distinctiveness check (docs/landmarks.md, "The distinctiveness check"): a landmark is searched for in its
-// own capture scene. Any match away from the captured instance means that a robot could mistake
-// that place for the landmark, so the user should hear about it while the scene is still at hand
-// and can draw a better box (more empty margin, more context).
+// The distinctiveness check (docs/landmarks.md, "The distinctiveness check"): a landmark is
+// searched for in its own capture scene. Any match away from the captured instance means that a
+// robot could mistake that place for the landmark, so the user should hear about it while the scene
+// is still at hand and can draw a better box (more empty margin, more context).
 
 #include <vector>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Candidate error metrics (CandidateError, Algorithm 2 of Huang & Cakmak, and variants), in a
 // registry so that ablations select them by name.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "landmark/find_landmark.h"
 
 #include <tbb/task_arena.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // FindLandmark: every instance of a landmark in a scene, with its 6-DoF pose.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The settings of FindLandmark, one struct per stage of the search, each field described once
 // (geometry/settings_schema.h) with its unit, its limits and its reason:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The custom landmark of Huang & Cakmak: l = (P, B), the points a user cut out of a scene with a
 // box, and the box itself. The box's empty margins say where space must stay free.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "landmark/landmark_file.h"
 
 #include <openvdb/io/File.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // One self-contained file per landmark, NAME.lmk: an OpenVDB file.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Non-max suppression of FindLandmark (Algorithm 1, line 9): "remove all candidates that do not
 // have the lowest error within a certain radius".

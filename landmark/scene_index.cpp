@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "landmark/scene_index.h"
 
 #include <tbb/parallel_invoke.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // SceneIndex: everything the fast search needs from a scene, built once and shared by every
 // landmark searched in it (docs/landmarks.md, "The fast search").

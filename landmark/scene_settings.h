@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // SceneSettings: steps 1-2 of the search, the scene's crop, leaves and grids, and which way is up
 // (geometry/settings_schema.h describes each field once for validation, JSON and the CLI).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "occupancy/dependencies.h"
 
 #include <openvdb/version.h>

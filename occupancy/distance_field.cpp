@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "occupancy/distance_field.h"
 
 #include <openvdb/tree/LeafManager.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // DistanceField: the unsigned distance to the nearest point of a point set, in a sparse OpenVDB
 // grid that covers only a narrow band around the points.

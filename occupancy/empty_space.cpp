@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "occupancy/empty_space.h"
 
 #include <openvdb/math/DDA.h>

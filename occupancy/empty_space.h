@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // EmptySpaceGrid: the voxels of a landmark's box that the sensor observed to be free at capture.
 //

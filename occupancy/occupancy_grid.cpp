@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "occupancy/occupancy_grid.h"
 
 #include <Eigen/Geometry>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // OccupancyGrid: which voxels of a scene hold at least one point. A landmark's empty voxels, moved
 // into a scene, must land on unoccupied voxels; this grid answers that in O(1) per voxel.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // lmk::pbd: programs, recording and safe execution through RobotInterface.
 // Its dependency report: the libraries this module is built on, with their compiled-in versions.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Executing a plan through RobotInterface (any robot: the simulated PR2, the real one). Only a
 // valid plan moves anything, and only from the joints it was planned from; execution stops at the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Joint-space motions for a group: straight lines between two joint vectors, timed so that no
 // joint exceeds a fraction of its speed limit. Continuous joints go the shorter way round.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "pbd/plan.h"
 
 #include <algorithm>

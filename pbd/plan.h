@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Planning a PbD program in a new scene (paper, Section III-B, and the original PR2 PbD's
 // execution): locate every landmark the program uses, compose each landmark-relative target with

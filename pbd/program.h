@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A PbD program (paper, Section III-B): a named sequence of steps, each a target end-effector pose
 // per arm, in the robot base frame or relative to a named landmark, with a gripper state. The

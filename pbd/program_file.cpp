@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Program files: {"format": "lmk-program", "version": 1, "name": ..., "landmarks": [...],
 // "steps": [...]} (docs/programs.md).
 

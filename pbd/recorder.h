@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Recording a demonstration (paper, Section III-B; the original PR2 PbD): the person moves the
 // arms, and each "save pose" appends a step. Each arm's pose is stored relative to the nearest

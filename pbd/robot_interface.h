@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The generic robot interface PbD drives. pbd knows no particular robot: the same program runs on a
 // simulated PR2 in tests, on the real PR2, or on another arm, behind these two interfaces.

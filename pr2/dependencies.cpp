@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "pr2/dependencies.h"
 
 namespace lmk {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Pointing the PR2's head: the pan and tilt that put a target on the head Kinect's optical axis,
 // so that the scene the robot sees holds what a program needs.

@@ -1,10 +1,12 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Inverse kinematics for a serial chain by damped least squares (Levenberg-Marquardt on the
 // geometric Jacobian), with joint limits, continuous joints and seeded restarts.
 //
 // Why not KDL or Ceres: the PR2 arm is a 7-joint chain whose FK and Jacobian cost about a
 // microsecond, so a small dedicated solver meets the 2 ms budget, needs no dependency beyond
-// the dependencies of docs/developing.md, and can say precisely why a target failed (workspace or joint limits).
+// the dependencies of docs/developing.md, and can say precisely why a target failed (workspace or
+// joint limits).
 
 #include <cstdint>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "pr2/pr2_kinematics.h"
 
 #include "geometry/error.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The PR2's kinematics behind the generic KinematicsInterface. Groups follow the PR2 SRDF:
 // "left_arm" and "right_arm" (7 joints each, torso_lift_link to *_gripper_tool_frame) and "head"

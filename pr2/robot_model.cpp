@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "pr2/robot_model.h"
 
 #include <urdf_parser/urdf_parser.h>

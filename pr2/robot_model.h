@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A robot's kinematic model from URDF (urdfdom): kinematic chains between two links and forward
 // kinematics over revolute, continuous, prismatic and fixed joints.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "pr2/simulated_pr2.h"
 
 #include <algorithm>

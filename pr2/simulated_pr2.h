@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A simulated PR2 behind RobotInterface, for tests and for running PbD programs without hardware.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "registration/dependencies.h"
 
 #include <ceres/version.h>

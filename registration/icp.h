@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Iterative closest point: the rigid motion that best aligns a source point set to a target, by
 // Gauss-Newton on point-to-point or point-to-plane residuals, reweighted by a robust kernel.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "registration/refine_pose.h"
 
 #include <ceres/ceres.h>

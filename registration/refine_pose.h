@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Robust pose refinement on SE(3) with Ceres: the final polish of a search candidate.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "registration/robust_loss.h"
 
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Robust kernels shared by ICP (as iteratively reweighted least squares) and the Ceres refinement
 // (as Ceres loss functions), so that one setting means the same thing in both.

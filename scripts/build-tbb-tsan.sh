@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Builds oneTBB with ThreadSanitizer, from Debian's source of the version installed (libtbb-dev),
 # for `scripts/test.sh --tsan`. Debian's libtbb is not instrumented: ThreadSanitizer would not see
 # its task hand-offs, and every parallel loop would report races that are not there. Loaded in its

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Installs the dependencies (if missing) and builds lmk in Release into ${LMK_BUILD_DIR:-build}.
 # Extra arguments go to CMake's configure step, e.g. -DLMK_BUILD_BENCH=OFF.
 set -euo pipefail

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Configures the sanitizer build shared by scripts/test.sh and scripts/fuzz.sh: clang-14 with
 # AddressSanitizer, UndefinedBehaviorSanitizer and libFuzzer's coverage on every target
 # (LMK_FUZZ, cmake/LmkSanitizers.cmake). Usage: configure-sanitize.sh BUILD_DIR

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Quick start 1: install, build, and run lmk's main job on built-in data: the paper's evaluation.
 # `lmk eval` renders the built-in 'paper' benchmark (the paper's 17 scene types seen by a simulated
 # Kinect, 11 landmarks captured in their demonstration scenes) on first use, searches every

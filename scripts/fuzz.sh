@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Fuzzes lmk's readers of user files with libFuzzer (clang-14) under ASan and UBSan.
 #
 #   bash scripts/fuzz.sh [SECONDS]     each target for SECONDS (default 60), two at a time
@@ -24,7 +25,7 @@ while [ $# -gt 0 ]; do
   case "$1" in
     --runs) runs=${2:?--runs needs a count}; shift ;;
     --seed) seed=${2:?--seed needs a number}; shift ;;
-    -h|--help) sed -n '2,16p' "$0"; exit 0 ;;
+    -h|--help) awk 'NR > 2 && /^#/ { sub(/^# ?/, ""); print; next } NR > 2 { exit }' "$0"; exit 0 ;;
     *) seconds=$1 ;;
   esac
   shift

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Installs every Debian 12 package lmk needs to build, test and benchmark.
 # Idempotent: when every package is already installed it does nothing (no apt-get update).
 set -euo pipefail

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # A walk through one landmark: render a tabletop scene with the simulated Kinect, capture the carton
 # on it as a landmark, and find it again with the fast search.
 set -euo pipefail

@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Quick start 2: install, build and run every test CI runs.
 #   1. the Release build and the whole suite (CTest, 2 jobs);
 #   2. the sanitizer build (clang-14: AddressSanitizer, UndefinedBehaviorSanitizer, libFuzzer
 #      coverage) and the unit tests of the geometry, I/O, occupancy, registration, PbD and PR2
-#      modules under it, with the fuzz targets' corpora;
+#      modules and of crash safety under it, with the fuzz targets' corpora;
 #   3. a fuzz smoke run: each fuzz target for 5000 executions, seed 1 (scripts/fuzz.sh).
 # Tests that need ../shared/data skip cleanly when it is absent. Timings: docs/reliability.md.
 #
@@ -16,7 +17,7 @@ cd "$(dirname "$0")/.."
 mode=${1:---all}
 case "$mode" in
   --all|--suite|--sanitize|--tsan) ;;
-  -h|--help) sed -n '2,13p' "$0"; exit 0 ;;
+  -h|--help) awk 'NR > 2 && /^#/ { sub(/^# ?/, ""); print; next } NR > 2 { exit }' "$0"; exit 0 ;;
   *) echo "test.sh: unknown option '$mode' (see --help)" >&2; exit 2 ;;
 esac
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // What every lmk subcommand shares: exit codes and the shape of a subcommand.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // lmk ablate [--dataset DIR | --preset NAME] --vary KEY=V1,V2,... [--vary ...] [search options]
 //            [--pairs all|in-context] [--threads N] [--out DIR] [--cache DIR | --no-cache]
 // Every combination of the varied settings, evaluated and compared in one table.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // lmk bench [SCENE LANDMARK] [--repeats N] [--reference-seeds N] [--threads N] [--json FILE]:
 // the fast search and the paper's reference search side by side, on the same scene and landmark
 // in one run: median seconds per search, their ratio, and peak memory.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // lmk capture SCENE (--box-center X Y Z --box-rpy R P Y --box-size SX SY SZ | --box-json FILE)
 //             --name NAME -o OUT.lmk [--up X Y Z] [--base-frame] [--no-check]: cut a landmark out
 //             of a scene with a box, and check that it is distinctive in that scene.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // lmk convert IN OUT [--encoding E]: between PCD, PLY and XYZ, keeping what the target can hold.
 
 #include <cstdio>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // lmk eval [--dataset DIR | --preset NAME] [search options] [--pairs all|in-context]
 //          [--threads N] [--json FILE] [--report DIR] [--cache DIR | --no-cache]
 // The paper's precision/recall table of a search method on a dataset (docs/evaluation.md).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // lmk find SCENE LANDMARK [search settings: --method M --metric NAME --threshold T ...]
 //          [--threads N] [--json FILE|-]: every instance of a landmark, with its pose and error.
 

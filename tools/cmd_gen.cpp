@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // lmk gen: render synthetic data with the simulated Kinect.
 //   lmk gen OUT.pcd [--seed S] [--no-noise]            one tabletop frame (the demo scene)
 //   lmk gen --preset NAME OUT_DIR [--seeds N] [--hard]  a benchmark dataset (docs/datasets.md)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // lmk info FILE [--json]: what a point-cloud file holds.
 
 #include <cstdio>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // lmk landmark show FILE | export FILE OUTDIR | import DIR OUT.lmk
 
 #include <cstdio>

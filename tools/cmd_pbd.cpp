@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // lmk pbd show | plan | run | demo-tasks: PbD programs relative to landmarks, planned in a scene,
 // executed on the simulated PR2, and the paper's six demonstration tasks end to end.
 

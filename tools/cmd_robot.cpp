@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // lmk robot info | fk | ik: the PR2's groups, forward and inverse kinematics. Every pose is the
 // group's tool frame in base_link, for the torso height given by --torso (m, default 0).
 

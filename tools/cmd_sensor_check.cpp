@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // lmk sensor-check [--data DIR] [--json FILE]: the simulated Kinect against the real Kinect frames
 // of the shared data, per depth range: the residual spread of planes and the spacing of the depth
 // levels (eval/sensor_validation.h, docs/datasets.md).

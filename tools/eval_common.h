@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // What lmk eval and lmk ablate share: choosing the dataset (a directory, or a built-in preset
 // generated once into the cache), the evaluation options, and a run with progress.

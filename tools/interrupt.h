@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Ctrl-C for the long runs (eval, ablate, pbd demo-tasks): the first SIGINT asks the run to stop
 // after the work under way, which is then cached, so that the same command resumes; a second

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // lmk: custom perceptual landmarks for robot programming by demonstration.
 // Dispatches to one subcommand; every error becomes one line on stderr and a non-zero exit.
 

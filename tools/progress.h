@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A progress bar on stderr for long runs, drawn only when stderr is a terminal so that logs and
 // pipes stay clean. Safe to call from several threads.

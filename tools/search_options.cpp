@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The search's command-line flags, one per described setting (landmark/find_settings.h): the flag
 // is the field's kebab-case name, its help line and limits are the description's, and its value
 // is read and checked by the same code as `lmk ablate --vary` and the JSON.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The paper's six PbD demonstration tasks (its Tables IV-IX) as data: each task's demonstration
 // world, the landmark boxes a user draws in it, the arm poses the user demonstrates, and the test

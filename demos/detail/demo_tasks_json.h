@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // One demo-task scenario's result as JSON, for the report and for the demo-task cache. Internal.
 

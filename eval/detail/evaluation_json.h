@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The JSON forms of evaluation results: a pair's result (the cache's file and the report's
 // per-scene entries), the table rows and the settings. Internal: lmk's public headers never expose

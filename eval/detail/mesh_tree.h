@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A CGAL AABB tree over a TriangleMesh, shared by the depth sensor's ray casting and the
 // distance queries of the ground-truth checks. Internal.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "eval/detail/pair_cache.h"
 
 #include "eval/detail/evaluation_json.h"

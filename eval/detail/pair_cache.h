@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The evaluation's cache of pair results: one JSON file per (scene, landmark) pair under
 // CACHE/evaluations/KEY/, written as soon as the pair is searched, so that an interrupted

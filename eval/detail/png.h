@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A minimal PNG writer for the report's failure pictures (8-bit greyscale, deflate "stored"
 // blocks: no compression library needed, and a picture of 160 x 120 pixels is 19 KB). Internal.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The shared scan of ASCII cloud bodies (PCD and PLY), before PCL decodes them.
 
 #include <cstdlib>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Per-format readers and writers behind cloud_io.h. Internal: not installed.
 // Readers get the whole file in memory and the path for messages; they throw lmk::Error.

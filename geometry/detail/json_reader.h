@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A reader for lmk's JSON files (datasets, programs) that names the file and the offending field
 // in every message: "dataset.json: scenes[2].pairs[0]: unknown landmark 'cup'". Header-only and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // PCD through PCL's reader and writer. PCL parses the header and decodes the body; before it
 // touches the body, lmk checks that the data really holds the points the header declares, because
 // PCL's binary decoders trust the header and would read past the end of a truncated file.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // PointCloud <-> pcl::PCLPointCloud2, the field-generic blob that PCL's PCD and PLY readers and
 // writers speak. Internal: not installed, so that lmk's public headers never include PCL.

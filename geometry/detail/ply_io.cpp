@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // PLY through PCL's reader and writer. lmk parses the header itself first, to reject garbage and
 // truncated files with a clear message before PCL's parser sees them, and to read the sensor pose
 // that PCL writes but does not read back.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The JSON form of poses that lmk's files and CLI share: {"position":[x,y,z],
 // "quaternion":[w,x,y,z]}. Header-only and internal (not installed), so that lmk's public headers

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The JSON form of any settings struct described with settings_schema.h: one member per field,
 // named as the field, in the field's own unit; an unset optional is null. Header-only and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Voxel coordinates packed into one 64-bit key, shared by the voxel filters. Internal.
 

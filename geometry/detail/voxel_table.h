@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A hash table from packed voxel keys to dense ids, in order of first insertion. Internal.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Plain XYZ text: one point a line, "x y z" separated by spaces, tabs or commas. Further columns
 // are ignored; blank lines and lines starting with '#' are skipped. Unorganised, no sensor pose.
 

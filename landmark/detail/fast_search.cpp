@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "landmark/detail/fast_search.h"
 
 #include <tbb/parallel_for.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The fast search (method "fast"), coarse to fine (docs/landmarks.md, "The fast search").
 // Internal.

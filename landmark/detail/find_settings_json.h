@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The JSON form of FindSettings: {"method": ..., "scene": {...}, "sampling": {...}, ...}, one
 // object per stage, each derived from the stage's description (find_settings.h). Header-only and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "landmark/detail/grid_metrics.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The metrics that score with grids instead of k-d trees (registered in error_metrics.cpp).
 // Internal.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // What lmk checks in a landmark file before OpenVDB parses it (landmark_file.cpp). Internal; the
 // fuzz target and the tests use it to build files with a valid trailer over chosen contents.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "landmark/detail/point_pair_voting.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Pose hypotheses from point pair features (Drost, Ulrich, Navab & Ilic, CVPR 2010): the fast
 // search's seeds, which cover every orientation instead of the paper's identity rotation. Internal.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "landmark/detail/reference_search.h"
 
 #include <pcl/point_cloud.h>

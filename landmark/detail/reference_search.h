@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Step 4 of the reference FindLandmark: one candidate per seed, by PCL's ICP. Internal.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "landmark/detail/relief_seeds.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "landmark/detail/sensor_metric.h"
 
 #include <algorithm>

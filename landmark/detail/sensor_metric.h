@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The sensor-aware error metric (issue #16, part 3), registered as "sensor". Internal.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Wall-clock timing of search stages, for the statistics every search reports. Internal.
 

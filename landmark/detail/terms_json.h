@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The JSON form of a match's error terms, shared by `lmk find --json` and the evaluation cache and
 // reports. Header-only and internal, like geometry/detail/pose_json.h.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The OpenVDB grids behind the occupancy types, for code that stores or inspects them (the .lmk
 // file). Internal: not installed, since it exposes OpenVDB types.

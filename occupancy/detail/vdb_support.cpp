@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "occupancy/detail/vdb_support.h"
 
 #include <mutex>

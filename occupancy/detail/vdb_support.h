@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // OpenVDB set-up shared by the occupancy types. Internal.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The lmk command line end to end: exit codes, one-line errors, JSON output. Runs the real binary.
 
 #include <gtest/gtest.h>

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Installs this build into a scratch prefix, then configures, builds and runs a separate consumer
 # project against it with find_package(lmk). With FORBIDDEN (an extended regex), the consumer must
 # not load any library whose name matches it: a robot deployment links no benchmark code.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Uses lmk through its installed headers: builds a cloud, crops it with a box, downsamples it.
 #include <lmk/geometry/box.h>
 #include <lmk/geometry/filters.h>

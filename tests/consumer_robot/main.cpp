@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Uses lmk's robot libraries as a PR2 deployment would: the built-in PR2 model and its right arm's
 // forward kinematics at the zero pose.
 #include <lmk/pr2/robot_model.h>

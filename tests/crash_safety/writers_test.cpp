@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Crash safety of every file lmk writes (issue #17): each writer is killed with SIGKILL at random
 // moments, 50 times; its target then holds the old contents or the new, whole and valid as lmk's
 // own reader sees it, and the next write leaves no temporary behind. The writers: point clouds,

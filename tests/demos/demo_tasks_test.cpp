@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The paper's six PbD tasks end to end on the simulated PR2, and the pieces they stand on: the
 // demo world's ground truth and head pointing.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The benchmark datasets: deterministic for a preset and seed, ground truth on the scene surface,
 // landmarks captured as a user would, and clear errors for bad requests.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "eval/depth_sensor.h"
 
 #include <gtest/gtest.h>

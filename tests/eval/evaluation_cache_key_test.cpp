@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The evaluation cache key changes with every setting that can change what the chosen method
 // finds, and with nothing else, so a new setting can never leave a stale cached result in use.
 

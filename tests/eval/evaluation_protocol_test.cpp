@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The paper's three-assumption precision/recall on hand-made confusion cases.
 
 #include "eval/evaluation_protocol.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The evaluator over a small generated dataset: its table, determinism, resuming from the cache
 // after an interruption, its JSON, its report (rendered by headless Chromium when installed), and
 // ablations.

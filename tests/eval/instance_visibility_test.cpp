@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Instance visibility and viewpoints, the ground truth of the range, viewpoint and occlusion
 // benchmarks: a captured landmark is seen whole where it was captured, not at all behind a wall,
 // about half behind half a wall; viewpoints keep to their ranges and look at their target.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The real-data dataset from mOSD's labelled frames: landmarks around the labelled objects, and
 // ground truth that puts each landmark back on its object in the moved copies.
 

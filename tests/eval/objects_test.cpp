@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The procedural object library: sound meshes, landmark parts that hold visible geometry, and the
 // variants (open drawer, lowered chair, full or empty rack) that the scene types rely on.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The failure pictures' PNG writer and base64: the format's fixed parts, checked by hand.
 
 #include "eval/detail/png.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The projector's shadow as observed free space (geometry/projector_shadow.h): the rays through it
 // end in space that is really empty, a no-return strip of the wrong width is not carved, and a
 // landmark captured through a shadowing sensor keeps the free space a shadow-free one sees.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The paper's 17 scene types: each builds, is deterministic, holds its in-context landmarks where
 // the ground truth says, and the hard variant really rotates what the paper could not handle.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The viewpoint and occlusion benchmarks' scenes: deterministic in their seed, within their
 // ranges, and hiding what they are asked to hide (and no more).
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The simulated Kinect against real frames (issue #16, part 1): planes fitted in real Kinect
 // clouds, re-measured by the sensor model from the same pixels, agree on the residual spread and
 // on the spacing of the depth levels within 30% at every range the data covers.

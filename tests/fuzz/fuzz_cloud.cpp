@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Fuzz target for the point-cloud readers (read_cloud_file): built once per format, with
 // LMK_FUZZ_EXTENSION ".pcd", ".ply" or ".xyz". An input must either read as a consistent cloud or
 // be refused with lmk::Error; any other exception, crash, sanitizer report, or allocation over

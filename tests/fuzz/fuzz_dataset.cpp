@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Fuzz target for the dataset loader (load_dataset): the input is a dataset.json in a directory
 // that also holds a scene "scene.pcd" and a landmark "landmark.lmk" (empty files: the loader
 // checks that the files exist, not what they hold), so that inputs naming them reach the checks of

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Shared by the fuzz targets: the readers under test take paths (PCL and OpenVDB open the file
 // themselves), so each input is written to a file in a private temporary directory first.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Fuzz target for the landmark reader (load_landmark), on files as a user would hand them over:
 // the lmk trailer's checksum must catch damage before OpenVDB parses anything, so an input either
 // loads as a valid landmark or is refused with lmk::Error.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Fuzz target for the PbD program loader (load_program): JSON of any shape must either give a
 // program that passes validation or be refused with lmk::Error naming the file and field.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Fuzz target for lmk's walk of the OpenVDB container (detail::check_vdb_layout), the check that
 // stands between a file whose checksum matches and OpenVDB's own reader, which trusts every length
 // it reads. fuzz_landmark rarely gets past the checksum; this target starts behind it.

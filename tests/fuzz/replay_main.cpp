@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A main() for the fuzz targets in builds without libFuzzer: runs every file given, or every file
 // in the directories given, through LLVMFuzzerTestOneInput once. The regular test suite replays
 // the seed corpora and the regression inputs (each a crash the fuzzer once found) this way.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Atomic writes: the target is always the old file or the new one, errors name the target and
 // their real reason, and temporaries of killed writers do not outlive the next write.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geometry/normals.h"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geometry/oriented_bounding_box.h"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The range image behind projective visibility: an organised cloud's intrinsics are recovered from
 // its pixels, a cloud whose pose does not explain its pixels has no image, and an unorganised
 // cloud keeps the nearest point of each pixel.

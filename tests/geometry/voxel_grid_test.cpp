@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geometry/voxel_grid.h"
 
 #include <gtest/gtest.h>

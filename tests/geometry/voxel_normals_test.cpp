@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // VoxelMoments: the same centroids as voxel_downsample, and normals of planes and lines from the
 // pooled moments.
 

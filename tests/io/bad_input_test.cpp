@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Every kind of bad input file gives an lmk::Error that names the file and the problem.
 
 #include <gtest/gtest.h>

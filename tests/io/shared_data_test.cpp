@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Every real PCD under ../shared/data loads and agrees with its own header. Skips when the data is
 // absent (a fresh machine without ../shared).
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The paper's CandidateError (Algorithm 2) and the authors' variant on configurations whose errors
 // can be worked out by hand.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // FindLandmark, both methods, on synthetic scenes built here and on the real milk scene; and the
 // fast method on rotated and tilted landmarks, where the paper failed.
 

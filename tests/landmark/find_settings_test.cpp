@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // FindSettings: every field of every stage reaches the JSON, the text form of its flag and the
 // validation, through the one description each stage gives of its fields.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "tests/landmark/l_shape_scene.h"
 
 #include "eval/depth_sensor.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The synthetic tabletop the landmark tests search in: L-shaped blocks (a post and an arm, with no
 // symmetry that ICP could confuse) on a table, seen by a noiseless half-resolution Kinect, with a

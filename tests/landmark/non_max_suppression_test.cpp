@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "landmark/non_max_suppression.h"
 
 #include <gtest/gtest.h>

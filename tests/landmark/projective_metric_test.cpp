@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The projective visibility metric, worked out by hand on the tiny
 // organised scene: a point hidden behind a nearer surface counts neither way, a point the sensor
 // sees through counts against the match as the visibility metric counts it, and a pose must show

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The search under bad input (NaN poses, empty or tiny scenes, flat landmarks), under concurrent
 // use of one SceneIndex, and the distinctiveness check that capture runs.
 

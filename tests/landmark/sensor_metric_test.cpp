@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The sensor-aware metric's projective visibility, worked out by hand on a tiny organised scene: a
 // 40 x 30 pinhole image of a wall 1 m away, and a landmark of nine of its points. A point behind a
 // nearer surface is unknown, a point the sensor sees through counts the cap against the match.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "tiny_organised_scene.h"
 
 #include <gtest/gtest.h>

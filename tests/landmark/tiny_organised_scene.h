@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A tiny organised scene for checking projective visibility by hand: a 40 x 30 pinhole image of a
 // wall 1 m away, and a landmark of nine of its points (pixels u 18-20, v 13-15) captured from

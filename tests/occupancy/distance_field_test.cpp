@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The distance field against brute-force nearest-point distances, and its band behaviour.
 
 #include "occupancy/distance_field.h"

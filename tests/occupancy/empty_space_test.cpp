@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Free space seen by a sensor in front of a plane: empty in front, unknown behind.
 
 #include "occupancy/empty_space.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Planning and executing on the simulated PR2: landmark-relative targets compose with where the
 // landmark is found, and every refusal (a missing landmark, an unreachable step, a robot that
 // moved) leaves the robot without a single motion.

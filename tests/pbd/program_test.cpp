@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Program files: round trips, and a clear error for every way a program can be wrong.
 
 #include "pbd/program.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Recording: each arm is attached to the nearest landmark instance within the distance, otherwise
 // to the base, and changing a step's frame afterwards keeps the tool where it was.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "pr2/ik_solver.h"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // ICP recovers known motions on a synthetic target, in both directions, with either target type,
 // and resists outliers with a robust kernel.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Ceres refinement on the distance field: it converges from small errors and never makes the
 // cost worse.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A synthetic target for the registration tests: three faces of a box corner and a hemisphere on
 // one of them, with exact normals. It constrains all six degrees of freedom. The samples are

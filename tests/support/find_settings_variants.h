@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Every single-field change of a FindSettings: for each field of each stage (and the method), each
 // valid other value, so that tests over "every setting" cover fields added later by themselves.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "tests/support/kill_loop.h"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Crash safety of lmk's writers (issue #17, docs/reliability.md): a writer is killed with SIGKILL
 // at random moments, and its target must then hold the old contents or the new, whole and valid.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Other valid values of any described setting (geometry/settings_schema.h), for tests that must
 // cover every field of a settings struct, including fields added later.

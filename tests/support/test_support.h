@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Helpers for lmk's tests: seeded random clouds, scratch directories and the optional real data.
 
