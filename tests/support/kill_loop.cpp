@@ -18,8 +18,11 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-[[noreturn]] void write_until_killed(const std::function<void(int)>& write) {
+// Says it has started (a byte on `started`), then rewrites the target until it is killed.
+[[noreturn]] void write_until_killed(const std::function<void(int)>& write, int started) {
   try {
+    const char ready = 1;
+    if (::write(started, &ready, 1) != 1) ::_exit(4);
     for (int k = 1;; ++k) write(k % 2);
   } catch (...) {
     ::_exit(3);  // a writer that fails by itself: the parent reports it
@@ -35,20 +38,30 @@ KillLoopOutcome kill_writer_repeatedly(const std::function<void(int)>& write,
   write(0);
   const auto one_write =
       std::chrono::duration_cast<std::chrono::microseconds>(Clock::now() - start);
-  // A fork costs about a millisecond before the child's first write begins.
-  const auto max_delay = std::chrono::microseconds(1000) + 4 * one_write;
+  // The delay counts from the moment the child has started, so that how long a fork takes to be
+  // scheduled (longer under a sanitizer, or with the other core busy) does not shift the kills.
+  const auto max_delay = std::chrono::microseconds(100) + 4 * one_write;
 
   KillLoopOutcome outcome;
   std::mt19937 random(seed);
   std::uniform_int_distribution<long> delay(0, max_delay.count());
   for (int run = 0; run < runs; ++run) {
+    int started[2];
+    if (::pipe(started) != 0) {
+      outcome.broken.push_back("run " + std::to_string(run) + ": pipe failed");
+      break;
+    }
     const pid_t writer = ::fork();
     if (writer < 0) {
       outcome.broken.push_back("run " + std::to_string(run) + ": fork failed");
       break;
     }
-    if (writer == 0) write_until_killed(write);
-    ::usleep(static_cast<useconds_t>(delay(random)));
+    if (writer == 0) write_until_killed(write, started[1]);
+    char ready = 0;
+    const bool child_started = ::read(started[0], &ready, 1) == 1;
+    ::close(started[0]);
+    ::close(started[1]);
+    if (child_started) ::usleep(static_cast<useconds_t>(delay(random)));
     ::kill(writer, SIGKILL);
     int status = 0;
     ::waitpid(writer, &status, 0);
