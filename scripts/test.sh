@@ -56,7 +56,8 @@ run_tsan() {
   bash scripts/install-deps.sh
   local build=${LMK_TSAN_BUILD_DIR:-build-tsan}
   # oneTBB built with ThreadSanitizer, loaded in place of Debian's (see build-tbb-tsan.sh).
-  local tbb="$PWD/$build/tbb-tsan"
+  local tbb
+  tbb="$(realpath -m "$build")/tbb-tsan"  # absolute: it goes into LD_LIBRARY_PATH
   bash scripts/build-tbb-tsan.sh "$tbb"
   export LD_LIBRARY_PATH="$tbb/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
   cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang-14 \

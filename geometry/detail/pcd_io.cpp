@@ -201,8 +201,9 @@ CloudFile read_pcd(const std::string& path, const std::string& bytes) {
   // PCL's header parser reads on after the DATA line while lines look like header lines: a fuzzed
   // ASCII body beginning "COLUMNS..." and "POINTS 8277990003" made it allocate a terabyte. It is
   // given the header alone.
-  std::istringstream header(bytes.substr(0, offset));
-  const Declarations header_says = read_declarations(path, bytes.substr(0, offset));
+  const std::string header_text = bytes.substr(0, offset);
+  std::istringstream header(header_text);
+  const Declarations header_says = read_declarations(path, header_text);
   check_declared_body(path, header_says, bytes.size() - offset);
   if (reader.readHeader(header, blob, origin, orientation, version, data_type, pcl_data_idx) < 0) {
     const Declarations& c = header_says;
