@@ -10,11 +10,11 @@
 #include <pcl/kdtree/kdtree_flann.h>
 #include <pcl/point_types.h>
 
-#include "eval/depth_sensor.h"
-#include "eval/tabletop_scene.h"
-#include "geometry/filters.h"
-#include "geometry/kdtree.h"
-#include "geometry/voxel_grid.h"
+#include "lmk/eval/depth_sensor.h"
+#include "lmk/eval/tabletop_scene.h"
+#include "lmk/geometry/filters.h"
+#include "lmk/geometry/kdtree.h"
+#include "lmk/geometry/voxel_grid.h"
 
 namespace {
 

@@ -11,8 +11,8 @@
 #include <cstdio>
 #include <string>
 
-#include "geometry/random.h"
-#include "pr2/ik_solver.h"
+#include "lmk/geometry/random.h"
+#include "lmk/pr2/ik_solver.h"
 
 namespace {}  // namespace
 

@@ -4,7 +4,7 @@ include(CMakePackageConfigHelpers)
 set(LMK_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/lmk)
 
 install(EXPORT lmkTargets NAMESPACE lmk:: DESTINATION ${LMK_CMAKE_DIR})
-install(FILES "${PROJECT_BINARY_DIR}/include/geometry/version.h"
+install(FILES "${LMK_GENERATED_INCLUDE_DIR}/lmk/geometry/version.h"
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/lmk/geometry)
 configure_package_config_file(cmake/lmkConfig.cmake.in
   "${PROJECT_BINARY_DIR}/lmkConfig.cmake" INSTALL_DESTINATION ${LMK_CMAKE_DIR})

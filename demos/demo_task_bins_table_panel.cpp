@@ -3,8 +3,8 @@
 // crowded table, a control panel. Poses are in the PR2's base frame (x forward, y left, z up; the
 // floor at -0.051 m).
 
-#include "demos/detail/demo_task_definitions.h"
-#include "geometry/error.h"
+#include "lmk/demos/detail/demo_task_definitions.h"
+#include "lmk/geometry/error.h"
 
 namespace lmk::detail {
 

@@ -1,16 +1,16 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "demos/demo_task_cache.h"
+#include "lmk/demos/demo_task_cache.h"
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
-#include "demos/detail/demo_tasks_json.h"
-#include "geometry/atomic_file.h"
-#include "geometry/error.h"
-#include "geometry/hash.h"
-#include "geometry/input_file.h"
-#include "geometry/version.h"
-#include "landmark/find_landmark.h"
+#include "lmk/demos/detail/demo_tasks_json.h"
+#include "lmk/geometry/atomic_file.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/hash.h"
+#include "lmk/geometry/input_file.h"
+#include "lmk/geometry/version.h"
+#include "lmk/landmark/find_landmark.h"
 
 namespace lmk {
 

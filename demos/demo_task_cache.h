@@ -6,7 +6,7 @@
 #include <optional>
 #include <vector>
 
-#include "demos/demo_tasks.h"
+#include "lmk/demos/demo_tasks.h"
 
 namespace lmk {
 

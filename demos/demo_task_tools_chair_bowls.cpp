@@ -2,8 +2,8 @@
 // Tasks 1-3 of the paper's PbD demonstrations: hanging tools, grasping a chair, picking bowls from
 // a shelf. Poses are in the PR2's base frame (x forward, y left, z up; the floor at -0.051 m).
 
-#include "demos/detail/demo_task_definitions.h"
-#include "geometry/error.h"
+#include "lmk/demos/detail/demo_task_definitions.h"
+#include "lmk/geometry/error.h"
 
 namespace lmk::detail {
 namespace {

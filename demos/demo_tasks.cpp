@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "demos/demo_tasks.h"
+#include "lmk/demos/demo_tasks.h"
 
 #include <algorithm>
 #include <chrono>
@@ -7,20 +7,20 @@
 #include <filesystem>
 #include <map>
 
-#include "demos/demo_task_cache.h"
-#include "demos/detail/demo_task_definitions.h"
-#include "geometry/cloud_io.h"
-#include "geometry/error.h"
-#include "geometry/filters.h"
-#include "geometry/pose.h"
-#include "geometry/voxel_grid.h"
-#include "landmark/landmark_file.h"
-#include "pbd/execute.h"
-#include "pbd/joint_motion.h"
-#include "pbd/plan.h"
-#include "pbd/recorder.h"
-#include "pr2/head_pointing.h"
-#include "pr2/simulated_pr2.h"
+#include "lmk/demos/demo_task_cache.h"
+#include "lmk/demos/detail/demo_task_definitions.h"
+#include "lmk/geometry/cloud_io.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/filters.h"
+#include "lmk/geometry/pose.h"
+#include "lmk/geometry/voxel_grid.h"
+#include "lmk/landmark/landmark_file.h"
+#include "lmk/pbd/execute.h"
+#include "lmk/pbd/joint_motion.h"
+#include "lmk/pbd/plan.h"
+#include "lmk/pbd/recorder.h"
+#include "lmk/pr2/head_pointing.h"
+#include "lmk/pr2/simulated_pr2.h"
 
 namespace lmk {
 

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "landmark/find_landmark.h"
+#include "lmk/landmark/find_landmark.h"
 
 namespace lmk {
 

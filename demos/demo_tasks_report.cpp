@@ -4,9 +4,9 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
-#include "demos/demo_tasks.h"
-#include "demos/detail/demo_tasks_json.h"
-#include "eval/text_table.h"
+#include "lmk/demos/demo_tasks.h"
+#include "lmk/demos/detail/demo_tasks_json.h"
+#include "lmk/eval/text_table.h"
 
 namespace lmk {
 

@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "demos/demo_world.h"
+#include "lmk/demos/demo_world.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "eval/depth_sensor.h"
-#include "geometry/error.h"
+#include "lmk/eval/depth_sensor.h"
+#include "lmk/geometry/error.h"
 
 namespace lmk {
 

@@ -9,8 +9,8 @@
 #include <utility>
 #include <vector>
 
-#include "eval/objects.h"
-#include "geometry/point_cloud.h"
+#include "lmk/eval/objects.h"
+#include "lmk/geometry/point_cloud.h"
 
 namespace lmk {
 

@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "eval/ablation.h"
+#include "lmk/eval/ablation.h"
 
 #include <algorithm>
 #include <set>
 
-#include "eval/evaluation_table.h"
-#include "geometry/error.h"
+#include "lmk/eval/evaluation_table.h"
+#include "lmk/geometry/error.h"
 
 namespace lmk {
 

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "eval/evaluation.h"
-#include "eval/text_table.h"
+#include "lmk/eval/evaluation.h"
+#include "lmk/eval/text_table.h"
 
 namespace lmk {
 

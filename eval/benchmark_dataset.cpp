@@ -1,19 +1,19 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "eval/benchmark_dataset.h"
+#include "lmk/eval/benchmark_dataset.h"
 
 #include <filesystem>
 #include <fstream>
 #include <set>
 
-#include "eval/depth_sensor.h"
-#include "eval/instance_visibility.h"
-#include "eval/scene_variations.h"
-#include "geometry/cloud_io.h"
-#include "geometry/error.h"
-#include "geometry/hash.h"
-#include "geometry/input_file.h"
-#include "geometry/version.h"
-#include "landmark/landmark_file.h"
+#include "lmk/eval/depth_sensor.h"
+#include "lmk/eval/instance_visibility.h"
+#include "lmk/eval/scene_variations.h"
+#include "lmk/geometry/cloud_io.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/hash.h"
+#include "lmk/geometry/input_file.h"
+#include "lmk/geometry/version.h"
+#include "lmk/landmark/landmark_file.h"
 
 namespace lmk {
 

@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "eval/dataset.h"
-#include "eval/scene_types.h"
-#include "landmark/landmark.h"
+#include "lmk/eval/dataset.h"
+#include "lmk/eval/scene_types.h"
+#include "lmk/landmark/landmark.h"
 
 namespace lmk {
 

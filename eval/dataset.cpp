@@ -1,15 +1,15 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "eval/dataset.h"
+#include "lmk/eval/dataset.h"
 
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
 
-#include "geometry/atomic_file.h"
-#include "geometry/detail/json_reader.h"
-#include "geometry/error.h"
-#include "geometry/input_file.h"
+#include "lmk/geometry/atomic_file.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/input_file.h"
+#include "lmk/json/json_reader.h"
 
 namespace lmk {
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "eval/evaluation_protocol.h"
+#include "lmk/eval/evaluation_protocol.h"
 
 namespace lmk {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "eval/dependencies.h"
+#include "lmk/eval/dependencies.h"
 
 #include <CGAL/version.h>
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "eval/depth_sensor.h"
+#include "lmk/eval/depth_sensor.h"
 
 #include <tbb/parallel_for.h>
 
@@ -8,9 +8,9 @@
 #include <utility>
 #include <vector>
 
-#include "eval/detail/mesh_tree.h"
-#include "geometry/error.h"
-#include "geometry/random.h"
+#include "lmk/eval/detail/mesh_tree.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/random.h"
 
 namespace lmk {
 namespace {

@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "eval/mesh.h"
-#include "geometry/point_cloud.h"
+#include "lmk/eval/mesh.h"
+#include "lmk/geometry/point_cloud.h"
 
 namespace lmk {
 

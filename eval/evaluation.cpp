@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "eval/evaluation.h"
+#include "lmk/eval/evaluation.h"
 
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -12,17 +12,17 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "eval/benchmark_dataset.h"
-#include "eval/detail/evaluation_json.h"
-#include "eval/detail/pair_cache.h"
-#include "geometry/cloud_io.h"
-#include "geometry/error.h"
-#include "geometry/hash.h"
-#include "geometry/statistics.h"
-#include "geometry/version.h"
-#include "landmark/detail/find_settings_json.h"
-#include "landmark/error_metrics.h"
-#include "landmark/landmark_file.h"
+#include "lmk/eval/benchmark_dataset.h"
+#include "lmk/eval/detail/evaluation_json.h"
+#include "lmk/eval/detail/pair_cache.h"
+#include "lmk/geometry/cloud_io.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/hash.h"
+#include "lmk/geometry/statistics.h"
+#include "lmk/geometry/version.h"
+#include "lmk/json/find_settings_json.h"
+#include "lmk/landmark/error_metrics.h"
+#include "lmk/landmark/landmark_file.h"
 
 namespace lmk {
 

@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "eval/dataset.h"
-#include "eval/evaluation_protocol.h"
-#include "landmark/find_landmark.h"
+#include "lmk/eval/dataset.h"
+#include "lmk/eval/evaluation_protocol.h"
+#include "lmk/landmark/find_landmark.h"
 
 namespace lmk {
 

@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "eval/detail/evaluation_json.h"
+#include "lmk/eval/detail/evaluation_json.h"
 
 #include <cmath>
 
-#include "geometry/detail/pose_json.h"
-#include "geometry/error.h"
-#include "geometry/version.h"
-#include "landmark/detail/find_settings_json.h"
-#include "landmark/detail/terms_json.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/version.h"
+#include "lmk/json/find_settings_json.h"
+#include "lmk/json/pose_json.h"
+#include "lmk/json/terms_json.h"
 
 namespace lmk::detail {
 

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "eval/evaluation_protocol.h"
+#include "lmk/eval/evaluation_protocol.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "geometry/pose.h"
+#include "lmk/geometry/pose.h"
 
 namespace lmk {
 

@@ -8,7 +8,7 @@
 #include <optional>
 #include <vector>
 
-#include "geometry/symmetry.h"
+#include "lmk/geometry/symmetry.h"
 
 namespace lmk {
 

@@ -1,17 +1,17 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "eval/evaluation_report.h"
+#include "lmk/eval/evaluation_report.h"
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 
-#include "eval/detail/evaluation_json.h"
-#include "eval/evaluation_table.h"
-#include "eval/failure_pictures.h"
-#include "eval/svg_plot.h"
-#include "geometry/atomic_file.h"
-#include "geometry/error.h"
-#include "geometry/version.h"
+#include "lmk/eval/detail/evaluation_json.h"
+#include "lmk/eval/evaluation_table.h"
+#include "lmk/eval/failure_pictures.h"
+#include "lmk/eval/svg_plot.h"
+#include "lmk/geometry/atomic_file.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/version.h"
 
 namespace lmk {
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "eval/evaluation.h"
+#include "lmk/eval/evaluation.h"
 
 namespace lmk {
 

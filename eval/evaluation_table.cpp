@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "eval/evaluation_table.h"
+#include "lmk/eval/evaluation_table.h"
 
 #include <cmath>
 #include <cstdio>

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "eval/failure_pictures.h"
+#include "lmk/eval/failure_pictures.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,11 +7,11 @@
 #include <filesystem>
 #include <map>
 
-#include "eval/dataset.h"
-#include "eval/detail/png.h"
-#include "geometry/cloud_io.h"
-#include "geometry/range_image.h"
-#include "landmark/landmark_file.h"
+#include "lmk/eval/dataset.h"
+#include "lmk/eval/detail/png.h"
+#include "lmk/geometry/cloud_io.h"
+#include "lmk/geometry/range_image.h"
+#include "lmk/landmark/landmark_file.h"
 
 namespace lmk {
 

@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "eval/instance_visibility.h"
+#include "lmk/eval/instance_visibility.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "geometry/error.h"
-#include "geometry/pose.h"
-#include "geometry/random.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/pose.h"
+#include "lmk/geometry/random.h"
 
 namespace lmk {
 

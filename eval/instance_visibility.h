@@ -7,10 +7,10 @@
 #include <Eigen/Geometry>
 #include <vector>
 
-#include "eval/depth_sensor.h"
-#include "geometry/box.h"
-#include "geometry/point_cloud.h"
-#include "landmark/landmark.h"
+#include "lmk/eval/depth_sensor.h"
+#include "lmk/geometry/box.h"
+#include "lmk/geometry/point_cloud.h"
+#include "lmk/landmark/landmark.h"
 
 namespace lmk {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "eval/mesh.h"
+#include "lmk/eval/mesh.h"
 
 #include <cmath>
 

@@ -3,9 +3,9 @@
 
 #include <cmath>
 
-#include "eval/detail/mesh_tree.h"
-#include "eval/mesh.h"
-#include "geometry/error.h"
+#include "lmk/eval/detail/mesh_tree.h"
+#include "lmk/eval/mesh.h"
+#include "lmk/geometry/error.h"
 
 namespace lmk {
 

@@ -1,14 +1,14 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "eval/mosd_dataset.h"
+#include "lmk/eval/mosd_dataset.h"
 
 #include <filesystem>
 #include <map>
 
-#include "geometry/cloud_io.h"
-#include "geometry/error.h"
-#include "geometry/pose.h"
-#include "geometry/random.h"
-#include "landmark/landmark_file.h"
+#include "lmk/geometry/cloud_io.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/pose.h"
+#include "lmk/geometry/random.h"
+#include "lmk/landmark/landmark_file.h"
 
 namespace lmk {
 

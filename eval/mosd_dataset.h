@@ -8,7 +8,7 @@
 #include <functional>
 #include <string>
 
-#include "eval/dataset.h"
+#include "lmk/eval/dataset.h"
 
 namespace lmk {
 

@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "eval/objects.h"
+#include "lmk/eval/objects.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "geometry/error.h"
-#include "geometry/pose.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/pose.h"
 
 namespace lmk {
 namespace {

@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "eval/mesh.h"
-#include "geometry/box.h"
+#include "lmk/eval/mesh.h"
+#include "lmk/geometry/box.h"
 
 namespace lmk {
 

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "eval/real_data.h"
+#include "lmk/eval/real_data.h"
 
-#include "geometry/cloud_io.h"
-#include "geometry/error.h"
+#include "lmk/geometry/cloud_io.h"
+#include "lmk/geometry/error.h"
 
 namespace lmk {
 

@@ -5,9 +5,9 @@
 
 #include <filesystem>
 
-#include "geometry/box.h"
-#include "geometry/point_cloud.h"
-#include "landmark/landmark.h"
+#include "lmk/geometry/box.h"
+#include "lmk/geometry/point_cloud.h"
+#include "lmk/landmark/landmark.h"
 
 namespace lmk {
 

@@ -1,16 +1,16 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "eval/scene_types.h"
+#include "lmk/eval/scene_types.h"
 
 #include <cmath>
 #include <functional>
 #include <initializer_list>
 
-#include "eval/depth_sensor.h"
-#include "eval/objects.h"
-#include "geometry/error.h"
-#include "geometry/hash.h"
-#include "geometry/pose.h"
-#include "geometry/random.h"
+#include "lmk/eval/depth_sensor.h"
+#include "lmk/eval/objects.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/hash.h"
+#include "lmk/geometry/pose.h"
+#include "lmk/geometry/random.h"
 
 namespace lmk {
 namespace {

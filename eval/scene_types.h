@@ -13,10 +13,10 @@
 #include <string>
 #include <vector>
 
-#include "eval/evaluation_protocol.h"
-#include "eval/mesh.h"
-#include "geometry/box.h"
-#include "geometry/point_cloud.h"
+#include "lmk/eval/evaluation_protocol.h"
+#include "lmk/eval/mesh.h"
+#include "lmk/geometry/box.h"
+#include "lmk/geometry/point_cloud.h"
 
 namespace lmk {
 

@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "eval/scene_variations.h"
+#include "lmk/eval/scene_variations.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "eval/depth_sensor.h"
-#include "geometry/error.h"
-#include "geometry/random.h"
+#include "lmk/eval/depth_sensor.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/random.h"
 
 namespace lmk {
 

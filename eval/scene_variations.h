@@ -8,9 +8,9 @@
 #include <map>
 #include <string>
 
-#include "eval/instance_visibility.h"
-#include "eval/scene_types.h"
-#include "landmark/landmark.h"
+#include "lmk/eval/instance_visibility.h"
+#include "lmk/eval/scene_types.h"
+#include "lmk/landmark/landmark.h"
 
 namespace lmk {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "eval/sensor_validation.h"
+#include "lmk/eval/sensor_validation.h"
 
 #include <Eigen/Cholesky>
 #include <algorithm>
@@ -7,10 +7,10 @@
 #include <filesystem>
 #include <limits>
 
-#include "eval/scene_types.h"
-#include "geometry/cloud_io.h"
-#include "geometry/error.h"
-#include "geometry/statistics.h"
+#include "lmk/eval/scene_types.h"
+#include "lmk/geometry/cloud_io.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/statistics.h"
 
 namespace lmk {
 

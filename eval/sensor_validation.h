@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "eval/depth_sensor.h"
-#include "geometry/point_cloud.h"
+#include "lmk/eval/depth_sensor.h"
+#include "lmk/geometry/point_cloud.h"
 
 namespace lmk {
 

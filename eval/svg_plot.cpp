@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "eval/svg_plot.h"
+#include "lmk/eval/svg_plot.h"
 
 #include <algorithm>
 #include <cmath>

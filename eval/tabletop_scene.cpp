@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "eval/tabletop_scene.h"
+#include "lmk/eval/tabletop_scene.h"
 
-#include "geometry/pose.h"
-#include "geometry/random.h"
+#include "lmk/geometry/pose.h"
+#include "lmk/geometry/random.h"
 
 namespace lmk {
 namespace {

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "eval/depth_sensor.h"
-#include "geometry/box.h"
+#include "lmk/eval/depth_sensor.h"
+#include "lmk/geometry/box.h"
 
 namespace lmk {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "eval/text_table.h"
+#include "lmk/eval/text_table.h"
 
 #include <algorithm>
 #include <cstdio>

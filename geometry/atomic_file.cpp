@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "geometry/atomic_file.h"
+#include "lmk/geometry/atomic_file.h"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -12,7 +12,7 @@
 #include <string>
 #include <system_error>
 
-#include "geometry/error.h"
+#include "lmk/geometry/error.h"
 
 namespace lmk {
 

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "geometry/box.h"
+#include "lmk/geometry/box.h"
 
-#include "geometry/pose.h"
+#include "lmk/geometry/pose.h"
 
 namespace lmk {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "geometry/cloud_io.h"
+#include "lmk/geometry/cloud_io.h"
 
 #include <algorithm>
 #include <cctype>
@@ -7,10 +7,10 @@
 #include <fstream>
 #include <sstream>
 
-#include "geometry/atomic_file.h"
-#include "geometry/detail/formats.h"
-#include "geometry/error.h"
-#include "geometry/input_file.h"
+#include "lmk/geometry/atomic_file.h"
+#include "lmk/geometry/detail/formats.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/input_file.h"
 
 namespace lmk {
 

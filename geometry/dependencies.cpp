@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "geometry/dependencies.h"
+#include "lmk/geometry/dependencies.h"
 
 #include <CGAL/version.h>
 #include <oneapi/tbb/version.h>

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "geometry/error.h"
+#include "lmk/geometry/error.h"
 
 #include <cstdio>
 

@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "geometry/filters.h"
+#include "lmk/geometry/filters.h"
 
 #include <algorithm>
 #include <numeric>
 #include <unordered_map>
 
-#include "geometry/error.h"
-#include "geometry/random.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/random.h"
 
 namespace lmk {
 

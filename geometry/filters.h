@@ -5,8 +5,8 @@
 
 #include <cstdint>
 
-#include "geometry/box.h"
-#include "geometry/point_cloud.h"
+#include "lmk/geometry/box.h"
+#include "lmk/geometry/point_cloud.h"
 
 namespace lmk {
 

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "geometry/kdtree.h"
+#include "lmk/geometry/kdtree.h"
 
 #include <nanoflann.hpp>
 
-#include "geometry/error.h"
+#include "lmk/geometry/error.h"
 
 namespace lmk {
 

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "geometry/normals.h"
+#include "lmk/geometry/normals.h"
 
 #include <tbb/parallel_for.h>
 
-#include "geometry/error.h"
-#include "geometry/principal_axes.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/principal_axes.h"
 
 namespace lmk {
 

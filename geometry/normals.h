@@ -4,8 +4,8 @@
 // is the eigenvector of the neighbourhood covariance with the smallest eigenvalue, flipped to
 // face the sensor, because a depth sensor only sees surfaces that face it.
 
-#include "geometry/kdtree.h"
-#include "geometry/point_cloud.h"
+#include "lmk/geometry/kdtree.h"
+#include "lmk/geometry/point_cloud.h"
 
 namespace lmk {
 

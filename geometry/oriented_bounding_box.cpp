@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "geometry/oriented_bounding_box.h"
+#include "lmk/geometry/oriented_bounding_box.h"
 
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/optimal_bounding_box.h>
 
-#include "geometry/error.h"
+#include "lmk/geometry/error.h"
 
 namespace lmk {
 

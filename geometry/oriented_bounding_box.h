@@ -4,8 +4,8 @@
 // finite point, from CGAL's Optimal_bounding_box (Chang, Gorissen & Melchior 2011). It is the
 // seed of the automatic first guess of a landmark box that the paper's users asked for.
 
-#include "geometry/box.h"
-#include "geometry/point_cloud.h"
+#include "lmk/geometry/box.h"
+#include "lmk/geometry/point_cloud.h"
 
 namespace lmk {
 

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "geometry/point_cloud.h"
+#include "lmk/geometry/point_cloud.h"
 
 #include <algorithm>
 #include <string>
 
-#include "geometry/error.h"
+#include "lmk/geometry/error.h"
 
 namespace lmk {
 

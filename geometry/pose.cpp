@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "geometry/pose.h"
+#include "lmk/geometry/pose.h"
 
 #include <algorithm>
 #include <cmath>

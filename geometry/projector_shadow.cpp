@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "geometry/projector_shadow.h"
+#include "lmk/geometry/projector_shadow.h"
 
 #include <cmath>
 

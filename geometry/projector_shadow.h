@@ -20,7 +20,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "geometry/point_cloud.h"
+#include "lmk/geometry/point_cloud.h"
 
 namespace lmk {
 

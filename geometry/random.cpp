@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "geometry/random.h"
+#include "lmk/geometry/random.h"
 
 #include <cmath>
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "geometry/range_image.h"
+#include "lmk/geometry/range_image.h"
 
 #include <cmath>
 #include <limits>

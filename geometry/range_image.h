@@ -10,7 +10,7 @@
 #include <optional>
 #include <vector>
 
-#include "geometry/point_cloud.h"
+#include "lmk/geometry/point_cloud.h"
 
 namespace lmk {
 

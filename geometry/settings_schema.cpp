@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "geometry/settings_schema.h"
+#include "lmk/geometry/settings_schema.h"
 
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
 
-#include "geometry/pose.h"
+#include "lmk/geometry/pose.h"
 
 namespace lmk {
 

@@ -28,8 +28,8 @@
 #include <utility>
 #include <vector>
 
-#include "geometry/box.h"
-#include "geometry/error.h"
+#include "lmk/geometry/box.h"
+#include "lmk/geometry/error.h"
 
 static_assert(std::is_same<std::size_t, std::uint64_t>::value,
               "settings_schema.h treats std::uint64_t fields as std::size_t");

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "geometry/symmetry.h"
+#include "lmk/geometry/symmetry.h"
 
 #include <cmath>
 
-#include "geometry/pose.h"
+#include "lmk/geometry/pose.h"
 
 namespace lmk {
 

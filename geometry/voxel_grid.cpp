@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "geometry/voxel_grid.h"
+#include "lmk/geometry/voxel_grid.h"
 
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
@@ -8,8 +8,8 @@
 #include <string>
 #include <unordered_map>
 
-#include "geometry/detail/voxel_key.h"
-#include "geometry/error.h"
+#include "lmk/geometry/detail/voxel_key.h"
+#include "lmk/geometry/error.h"
 
 namespace lmk {
 namespace {

@@ -3,7 +3,7 @@
 // Voxel downsampling: one point per occupied voxel, the centroid of the points that fall in it.
 // Step 2 of the paper's FindLandmark (leaf 0.005 m).
 
-#include "geometry/point_cloud.h"
+#include "lmk/geometry/point_cloud.h"
 
 namespace lmk {
 

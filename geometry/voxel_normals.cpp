@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "geometry/voxel_normals.h"
+#include "lmk/geometry/voxel_normals.h"
 
 #include <tbb/parallel_for.h>
 
 #include <string>
 
-#include "geometry/detail/voxel_table.h"
-#include "geometry/principal_axes.h"
+#include "lmk/geometry/detail/voxel_table.h"
+#include "lmk/geometry/principal_axes.h"
 
 namespace lmk {
 namespace {

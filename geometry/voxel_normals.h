@@ -6,7 +6,7 @@
 
 #include <memory>
 
-#include "geometry/point_cloud.h"
+#include "lmk/geometry/point_cloud.h"
 
 namespace lmk {
 

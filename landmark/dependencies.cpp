@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "landmark/dependencies.h"
+#include "lmk/landmark/dependencies.h"
 
 #include <pcl/pcl_config.h>
 

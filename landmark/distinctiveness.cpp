@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "landmark/distinctiveness.h"
+#include "lmk/landmark/distinctiveness.h"
 
 namespace lmk {
 

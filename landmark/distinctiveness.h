@@ -7,9 +7,9 @@
 
 #include <vector>
 
-#include "geometry/point_cloud.h"
-#include "landmark/find_landmark.h"
-#include "landmark/landmark.h"
+#include "lmk/geometry/point_cloud.h"
+#include "lmk/landmark/find_landmark.h"
+#include "lmk/landmark/landmark.h"
 
 namespace lmk {
 

@@ -1,16 +1,16 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "landmark/error_metrics.h"
+#include "lmk/landmark/error_metrics.h"
 
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <optional>
 
-#include "geometry/error.h"
-#include "landmark/detail/grid_metrics.h"
-#include "landmark/detail/sensor_metric.h"
-#include "landmark/landmark.h"
-#include "landmark/scene_index.h"
+#include "lmk/geometry/error.h"
+#include "lmk/landmark/detail/grid_metrics.h"
+#include "lmk/landmark/detail/sensor_metric.h"
+#include "lmk/landmark/landmark.h"
+#include "lmk/landmark/scene_index.h"
 
 namespace lmk {
 namespace {

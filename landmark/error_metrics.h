@@ -13,10 +13,10 @@
 #include <string>
 #include <vector>
 
-#include "geometry/box.h"
-#include "geometry/kdtree.h"
-#include "geometry/point_cloud.h"
-#include "occupancy/distance_field.h"
+#include "lmk/geometry/box.h"
+#include "lmk/geometry/kdtree.h"
+#include "lmk/geometry/point_cloud.h"
+#include "lmk/occupancy/distance_field.h"
 
 namespace lmk {
 

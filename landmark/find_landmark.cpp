@@ -1,19 +1,19 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "landmark/find_landmark.h"
+#include "lmk/landmark/find_landmark.h"
 
 #include <tbb/task_arena.h>
 
 #include <cmath>
 
-#include "geometry/error.h"
-#include "geometry/filters.h"
-#include "geometry/voxel_grid.h"
-#include "landmark/detail/fast_search.h"
-#include "landmark/detail/point_pair_voting.h"
-#include "landmark/detail/reference_search.h"
-#include "landmark/detail/relief_seeds.h"
-#include "landmark/detail/stopwatch.h"
-#include "landmark/non_max_suppression.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/filters.h"
+#include "lmk/geometry/voxel_grid.h"
+#include "lmk/landmark/detail/fast_search.h"
+#include "lmk/landmark/detail/point_pair_voting.h"
+#include "lmk/landmark/detail/reference_search.h"
+#include "lmk/landmark/detail/relief_seeds.h"
+#include "lmk/landmark/detail/stopwatch.h"
+#include "lmk/landmark/non_max_suppression.h"
 
 namespace lmk {
 namespace {

@@ -13,11 +13,11 @@
 #include <string>
 #include <vector>
 
-#include "geometry/box.h"
-#include "landmark/error_metrics.h"
-#include "landmark/find_settings.h"
-#include "landmark/landmark.h"
-#include "landmark/scene_index.h"
+#include "lmk/geometry/box.h"
+#include "lmk/landmark/error_metrics.h"
+#include "lmk/landmark/find_settings.h"
+#include "lmk/landmark/landmark.h"
+#include "lmk/landmark/scene_index.h"
 
 namespace lmk {
 

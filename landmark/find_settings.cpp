@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "landmark/find_settings.h"
+#include "lmk/landmark/find_settings.h"
 
 #include <algorithm>
 
-#include "geometry/error.h"
+#include "lmk/geometry/error.h"
 
 namespace lmk {
 

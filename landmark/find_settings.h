@@ -19,9 +19,9 @@
 #include <string>
 #include <vector>
 
-#include "geometry/settings_schema.h"
-#include "landmark/error_metrics.h"
-#include "landmark/scene_settings.h"
+#include "lmk/geometry/settings_schema.h"
+#include "lmk/landmark/error_metrics.h"
+#include "lmk/landmark/scene_settings.h"
 
 namespace lmk {
 

@@ -1,17 +1,17 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "landmark/landmark.h"
+#include "lmk/landmark/landmark.h"
 
 #include <cmath>
 #include <sstream>
 
-#include "geometry/error.h"
-#include "geometry/filters.h"
-#include "geometry/kdtree.h"
-#include "geometry/normals.h"
-#include "geometry/pose.h"
-#include "geometry/principal_axes.h"
-#include "geometry/projector_shadow.h"
-#include "geometry/voxel_grid.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/filters.h"
+#include "lmk/geometry/kdtree.h"
+#include "lmk/geometry/normals.h"
+#include "lmk/geometry/pose.h"
+#include "lmk/geometry/principal_axes.h"
+#include "lmk/geometry/projector_shadow.h"
+#include "lmk/geometry/voxel_grid.h"
 
 namespace lmk {
 namespace {

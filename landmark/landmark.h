@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "geometry/box.h"
-#include "geometry/point_cloud.h"
-#include "occupancy/distance_field.h"
-#include "occupancy/empty_space.h"
+#include "lmk/geometry/box.h"
+#include "lmk/geometry/point_cloud.h"
+#include "lmk/occupancy/distance_field.h"
+#include "lmk/occupancy/empty_space.h"
 
 namespace lmk {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "landmark/landmark_file.h"
+#include "lmk/landmark/landmark_file.h"
 
 #include <openvdb/io/File.h>
 #include <openvdb/openvdb.h>
@@ -13,16 +13,16 @@
 #include <nlohmann/json.hpp>
 #include <numeric>
 
-#include "geometry/atomic_file.h"
-#include "geometry/cloud_io.h"
-#include "geometry/detail/pose_json.h"
-#include "geometry/error.h"
-#include "geometry/filters.h"
-#include "geometry/hash.h"
-#include "geometry/input_file.h"
-#include "geometry/pose.h"
-#include "landmark/detail/landmark_container.h"
-#include "occupancy/detail/grids.h"
+#include "lmk/geometry/atomic_file.h"
+#include "lmk/geometry/cloud_io.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/filters.h"
+#include "lmk/geometry/hash.h"
+#include "lmk/geometry/input_file.h"
+#include "lmk/geometry/pose.h"
+#include "lmk/json/pose_json.h"
+#include "lmk/landmark/detail/landmark_container.h"
+#include "lmk/occupancy/detail/grids.h"
 
 namespace lmk {
 

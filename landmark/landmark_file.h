@@ -26,7 +26,7 @@
 #include <string>
 #include <vector>
 
-#include "landmark/landmark.h"
+#include "lmk/landmark/landmark.h"
 
 namespace lmk {
 

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "landmark/non_max_suppression.h"
+#include "lmk/landmark/non_max_suppression.h"
 
 #include <algorithm>
 #include <numeric>
 
-#include "geometry/error.h"
+#include "lmk/geometry/error.h"
 
 namespace lmk {
 

@@ -1,17 +1,17 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "landmark/scene_index.h"
+#include "lmk/landmark/scene_index.h"
 
 #include <tbb/parallel_invoke.h>
 
 #include <cmath>
 #include <sstream>
 
-#include "geometry/error.h"
-#include "geometry/filters.h"
-#include "geometry/voxel_grid.h"
-#include "geometry/voxel_normals.h"
-#include "landmark/detail/stopwatch.h"
-#include "landmark/landmark.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/filters.h"
+#include "lmk/geometry/voxel_grid.h"
+#include "lmk/geometry/voxel_normals.h"
+#include "lmk/landmark/detail/stopwatch.h"
+#include "lmk/landmark/landmark.h"
 
 namespace lmk {
 

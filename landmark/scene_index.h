@@ -20,12 +20,12 @@
 #include <mutex>
 #include <optional>
 
-#include "geometry/kdtree.h"
-#include "geometry/point_cloud.h"
-#include "geometry/range_image.h"
-#include "landmark/scene_settings.h"
-#include "occupancy/distance_field.h"
-#include "occupancy/occupancy_grid.h"
+#include "lmk/geometry/kdtree.h"
+#include "lmk/geometry/point_cloud.h"
+#include "lmk/geometry/range_image.h"
+#include "lmk/landmark/scene_settings.h"
+#include "lmk/occupancy/distance_field.h"
+#include "lmk/occupancy/occupancy_grid.h"
 
 namespace lmk {
 

@@ -6,10 +6,10 @@
 #include <Eigen/Core>
 #include <optional>
 
-#include "geometry/box.h"
-#include "geometry/depth_noise.h"
-#include "geometry/settings_schema.h"
-#include "geometry/voxel_grid.h"
+#include "lmk/geometry/box.h"
+#include "lmk/geometry/depth_noise.h"
+#include "lmk/geometry/settings_schema.h"
+#include "lmk/geometry/voxel_grid.h"
 
 namespace lmk {
 

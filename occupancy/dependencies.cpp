@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "occupancy/dependencies.h"
+#include "lmk/occupancy/dependencies.h"
 
 #include <openvdb/version.h>
 

@@ -3,7 +3,7 @@
 // lmk::occupancy: OpenVDB distance fields, empty-space and occupancy grids.
 // Its dependency report: the libraries this module is built on, with their compiled-in versions.
 
-#include "geometry/dependencies.h"
+#include "lmk/geometry/dependencies.h"
 
 namespace lmk {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "occupancy/distance_field.h"
+#include "lmk/occupancy/distance_field.h"
 
 #include <openvdb/tree/LeafManager.h>
 #include <tbb/parallel_for.h>
@@ -8,9 +8,9 @@
 #include <cmath>
 #include <limits>
 
-#include "geometry/error.h"
-#include "occupancy/detail/grids.h"
-#include "occupancy/detail/vdb_support.h"
+#include "lmk/geometry/error.h"
+#include "lmk/occupancy/detail/grids.h"
+#include "lmk/occupancy/detail/vdb_support.h"
 
 namespace lmk {
 namespace {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "occupancy/empty_space.h"
+#include "lmk/occupancy/empty_space.h"
 
 #include <openvdb/math/DDA.h>
 #include <openvdb/math/Ray.h>
@@ -7,9 +7,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "geometry/error.h"
-#include "occupancy/detail/grids.h"
-#include "occupancy/detail/vdb_support.h"
+#include "lmk/geometry/error.h"
+#include "lmk/occupancy/detail/grids.h"
+#include "lmk/occupancy/detail/vdb_support.h"
 
 namespace lmk {
 namespace {

@@ -13,8 +13,8 @@
 #include <memory>
 #include <vector>
 
-#include "geometry/box.h"
-#include "occupancy/distance_field.h"
+#include "lmk/geometry/box.h"
+#include "lmk/occupancy/distance_field.h"
 
 namespace lmk {
 

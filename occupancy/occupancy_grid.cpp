@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "occupancy/occupancy_grid.h"
+#include "lmk/occupancy/occupancy_grid.h"
 
 #include <Eigen/Geometry>
 #include <cmath>
 
-#include "geometry/error.h"
-#include "occupancy/detail/vdb_support.h"
+#include "lmk/geometry/error.h"
+#include "lmk/occupancy/detail/vdb_support.h"
 
 namespace lmk {
 

@@ -9,7 +9,7 @@
 #include <memory>
 #include <vector>
 
-#include "geometry/box.h"
+#include "lmk/geometry/box.h"
 
 namespace lmk {
 

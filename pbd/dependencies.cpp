@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "pbd/dependencies.h"
+#include "lmk/pbd/dependencies.h"
 
 #include <nlohmann/json.hpp>
 

@@ -3,7 +3,7 @@
 // lmk::pbd: programs, recording and safe execution through RobotInterface.
 // Its dependency report: the libraries this module is built on, with their compiled-in versions.
 
-#include "geometry/dependencies.h"
+#include "lmk/geometry/dependencies.h"
 
 namespace lmk {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "pbd/execute.h"
+#include "lmk/pbd/execute.h"
 
 #include <cmath>
 #include <cstdio>

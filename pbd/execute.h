@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "pbd/plan.h"
+#include "lmk/pbd/plan.h"
 
 namespace lmk {
 

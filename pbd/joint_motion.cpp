@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "pbd/joint_motion.h"
+#include "lmk/pbd/joint_motion.h"
 
 #include <algorithm>
 #include <cmath>

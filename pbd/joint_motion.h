@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "pbd/robot_interface.h"
+#include "lmk/pbd/robot_interface.h"
 
 namespace lmk {
 

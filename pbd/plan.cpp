@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "pbd/plan.h"
+#include "lmk/pbd/plan.h"
 
 #include <algorithm>
 #include <chrono>
@@ -8,10 +8,10 @@
 #include <numeric>
 #include <set>
 
-#include "geometry/error.h"
-#include "landmark/landmark_file.h"
-#include "landmark/scene_index.h"
-#include "pbd/joint_motion.h"
+#include "lmk/geometry/error.h"
+#include "lmk/landmark/landmark_file.h"
+#include "lmk/landmark/scene_index.h"
+#include "lmk/pbd/joint_motion.h"
 
 namespace lmk {
 

@@ -15,10 +15,10 @@
 #include <variant>
 #include <vector>
 
-#include "landmark/find_landmark.h"
-#include "landmark/landmark.h"
-#include "pbd/program.h"
-#include "pbd/robot_interface.h"
+#include "lmk/landmark/find_landmark.h"
+#include "lmk/landmark/landmark.h"
+#include "lmk/pbd/program.h"
+#include "lmk/pbd/robot_interface.h"
 
 namespace lmk {
 

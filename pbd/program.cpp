@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "pbd/program.h"
+#include "lmk/pbd/program.h"
 
 #include <cmath>
 #include <set>
 
-#include "geometry/error.h"
-#include "geometry/pose.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/pose.h"
 
 namespace lmk {
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/symmetry.h"
+#include "lmk/geometry/symmetry.h"
 
 namespace lmk {
 

@@ -7,11 +7,11 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "geometry/atomic_file.h"
-#include "geometry/detail/json_reader.h"
-#include "geometry/error.h"
-#include "geometry/input_file.h"
-#include "pbd/program.h"
+#include "lmk/geometry/atomic_file.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/input_file.h"
+#include "lmk/json/json_reader.h"
+#include "lmk/pbd/program.h"
 
 namespace lmk {
 

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "pbd/recorder.h"
+#include "lmk/pbd/recorder.h"
 
 #include <cmath>
 #include <limits>
 
-#include "geometry/error.h"
+#include "lmk/geometry/error.h"
 
 namespace lmk {
 

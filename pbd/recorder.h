@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "geometry/box.h"
-#include "pbd/program.h"
+#include "lmk/geometry/box.h"
+#include "lmk/pbd/program.h"
 
 namespace lmk {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "pr2/dependencies.h"
+#include "lmk/pr2/dependencies.h"
 
 namespace lmk {
 

@@ -3,7 +3,7 @@
 // lmk::pr2: PR2 model from URDF, kinematics and a simulated PR2.
 // Its dependency report: the libraries this module is built on, with their compiled-in versions.
 
-#include "geometry/dependencies.h"
+#include "lmk/geometry/dependencies.h"
 
 namespace lmk {
 

@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "pr2/head_pointing.h"
+#include "lmk/pr2/head_pointing.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "geometry/error.h"
-#include "pbd/joint_motion.h"
+#include "lmk/geometry/error.h"
+#include "lmk/pbd/joint_motion.h"
 
 namespace lmk {
 

@@ -6,8 +6,8 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "pbd/robot_interface.h"
-#include "pr2/pr2_kinematics.h"
+#include "lmk/pbd/robot_interface.h"
+#include "lmk/pr2/pr2_kinematics.h"
 
 namespace lmk {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "pr2/ik_solver.h"
+#include "lmk/pr2/ik_solver.h"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <limits>
 
-#include "geometry/random.h"
+#include "lmk/geometry/random.h"
 
 namespace lmk {
 namespace {

@@ -10,7 +10,7 @@
 
 #include <cstdint>
 
-#include "pr2/robot_model.h"
+#include "lmk/pr2/robot_model.h"
 
 namespace lmk {
 

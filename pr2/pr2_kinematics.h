@@ -7,8 +7,8 @@
 
 #include <map>
 
-#include "pr2/ik_solver.h"
-#include "pr2/robot_model.h"
+#include "lmk/pr2/ik_solver.h"
+#include "lmk/pr2/robot_model.h"
 
 namespace lmk {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "pr2/robot_model.h"
+#include "lmk/pr2/robot_model.h"
 
 #include <urdf_parser/urdf_parser.h>
 
@@ -9,8 +9,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "geometry/error.h"
-#include "geometry/input_file.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/input_file.h"
 
 namespace lmk {
 

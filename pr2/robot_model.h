@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "geometry/random.h"
-#include "pbd/robot_interface.h"
+#include "lmk/geometry/random.h"
+#include "lmk/pbd/robot_interface.h"
 
 namespace lmk {
 

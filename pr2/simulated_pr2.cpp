@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "pr2/simulated_pr2.h"
+#include "lmk/pr2/simulated_pr2.h"
 
 #include <algorithm>
 #include <cmath>

@@ -15,7 +15,7 @@
 #include <map>
 #include <optional>
 
-#include "pr2/pr2_kinematics.h"
+#include "lmk/pr2/pr2_kinematics.h"
 
 namespace lmk {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "registration/dependencies.h"
+#include "lmk/registration/dependencies.h"
 
 #include <ceres/version.h>
 

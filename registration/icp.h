@@ -11,10 +11,10 @@
 #include <limits>
 #include <vector>
 
-#include "geometry/kdtree.h"
-#include "geometry/point_cloud.h"
-#include "occupancy/distance_field.h"
-#include "registration/robust_loss.h"
+#include "lmk/geometry/kdtree.h"
+#include "lmk/geometry/point_cloud.h"
+#include "lmk/occupancy/distance_field.h"
+#include "lmk/registration/robust_loss.h"
 
 namespace lmk {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "registration/refine_pose.h"
+#include "lmk/registration/refine_pose.h"
 
 #include <ceres/ceres.h>
 #include <ceres/rotation.h>
@@ -7,8 +7,8 @@
 #include <cmath>
 #include <memory>
 
-#include "geometry/error.h"
-#include "geometry/pose.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/pose.h"
 
 namespace lmk {
 namespace {

@@ -11,8 +11,8 @@
 #include <Eigen/Geometry>
 #include <vector>
 
-#include "occupancy/distance_field.h"
-#include "registration/robust_loss.h"
+#include "lmk/occupancy/distance_field.h"
+#include "lmk/registration/robust_loss.h"
 
 namespace lmk {
 

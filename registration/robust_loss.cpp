@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "registration/robust_loss.h"
+#include "lmk/registration/robust_loss.h"
 
 #include <cmath>
 
-#include "geometry/error.h"
+#include "lmk/geometry/error.h"
 
 namespace lmk {
 

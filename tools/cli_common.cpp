@@ -4,9 +4,9 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "geometry/error.h"
-#include "geometry/pose.h"
-#include "geometry/settings_schema.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/pose.h"
+#include "lmk/geometry/settings_schema.h"
 
 namespace lmk::cli {
 

@@ -10,7 +10,7 @@
 #include <optional>
 #include <vector>
 
-#include "landmark/find_landmark.h"
+#include "lmk/landmark/find_landmark.h"
 
 namespace lmk::cli {
 

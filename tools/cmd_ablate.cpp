@@ -8,13 +8,13 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "eval/ablation.h"
-#include "eval/detail/evaluation_json.h"
-#include "eval/evaluation_table.h"
-#include "geometry/atomic_file.h"
-#include "geometry/error.h"
-#include "geometry/version.h"
-#include "landmark/detail/find_settings_json.h"
+#include "lmk/eval/ablation.h"
+#include "lmk/eval/detail/evaluation_json.h"
+#include "lmk/eval/evaluation_table.h"
+#include "lmk/geometry/atomic_file.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/version.h"
+#include "lmk/json/find_settings_json.h"
 #include "tools/cli_common.h"
 #include "tools/eval_common.h"
 #include "tools/interrupt.h"

@@ -21,15 +21,15 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
-#include "eval/depth_sensor.h"
-#include "eval/real_data.h"
-#include "eval/tabletop_scene.h"
-#include "geometry/atomic_file.h"
-#include "geometry/cloud_io.h"
-#include "geometry/error.h"
-#include "geometry/statistics.h"
-#include "landmark/find_landmark.h"
-#include "landmark/landmark_file.h"
+#include "lmk/eval/depth_sensor.h"
+#include "lmk/eval/real_data.h"
+#include "lmk/eval/tabletop_scene.h"
+#include "lmk/geometry/atomic_file.h"
+#include "lmk/geometry/cloud_io.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/statistics.h"
+#include "lmk/landmark/find_landmark.h"
+#include "lmk/landmark/landmark_file.h"
 #include "tools/cli_common.h"
 
 namespace lmk::cli {

@@ -7,11 +7,11 @@
 #include <cstdio>
 #include <memory>
 
-#include "geometry/cloud_io.h"
-#include "geometry/error.h"
-#include "geometry/pose.h"
-#include "landmark/distinctiveness.h"
-#include "landmark/landmark_file.h"
+#include "lmk/geometry/cloud_io.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/pose.h"
+#include "lmk/landmark/distinctiveness.h"
+#include "lmk/landmark/landmark_file.h"
 #include "tools/cli_common.h"
 
 namespace lmk::cli {

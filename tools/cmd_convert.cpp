@@ -5,7 +5,7 @@
 #include <map>
 #include <memory>
 
-#include "geometry/cloud_io.h"
+#include "lmk/geometry/cloud_io.h"
 #include "tools/cli_common.h"
 
 namespace lmk::cli {

@@ -6,13 +6,13 @@
 #include <cstdio>
 #include <memory>
 
-#include "eval/benchmark_dataset.h"
-#include "eval/detail/evaluation_json.h"
-#include "eval/evaluation.h"
-#include "eval/evaluation_report.h"
-#include "eval/evaluation_table.h"
-#include "geometry/atomic_file.h"
-#include "geometry/error.h"
+#include "lmk/eval/benchmark_dataset.h"
+#include "lmk/eval/detail/evaluation_json.h"
+#include "lmk/eval/evaluation.h"
+#include "lmk/eval/evaluation_report.h"
+#include "lmk/eval/evaluation_table.h"
+#include "lmk/geometry/atomic_file.h"
+#include "lmk/geometry/error.h"
 #include "tools/cli_common.h"
 #include "tools/eval_common.h"
 #include "tools/progress.h"

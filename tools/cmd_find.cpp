@@ -9,14 +9,14 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "geometry/atomic_file.h"
-#include "geometry/cloud_io.h"
-#include "geometry/detail/pose_json.h"
-#include "geometry/error.h"
-#include "geometry/pose.h"
-#include "landmark/detail/terms_json.h"
-#include "landmark/find_landmark.h"
-#include "landmark/landmark_file.h"
+#include "lmk/geometry/atomic_file.h"
+#include "lmk/geometry/cloud_io.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/pose.h"
+#include "lmk/json/pose_json.h"
+#include "lmk/json/terms_json.h"
+#include "lmk/landmark/find_landmark.h"
+#include "lmk/landmark/landmark_file.h"
 #include "tools/cli_common.h"
 #include "tools/progress.h"
 

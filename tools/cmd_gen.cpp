@@ -7,13 +7,13 @@
 #include <cstdio>
 #include <memory>
 
-#include "eval/benchmark_dataset.h"
-#include "eval/depth_sensor.h"
-#include "eval/mosd_dataset.h"
-#include "eval/tabletop_scene.h"
-#include "geometry/cloud_io.h"
-#include "geometry/error.h"
-#include "geometry/pose.h"
+#include "lmk/eval/benchmark_dataset.h"
+#include "lmk/eval/depth_sensor.h"
+#include "lmk/eval/mosd_dataset.h"
+#include "lmk/eval/tabletop_scene.h"
+#include "lmk/geometry/cloud_io.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/pose.h"
 #include "tools/cli_common.h"
 #include "tools/progress.h"
 

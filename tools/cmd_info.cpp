@@ -6,7 +6,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "geometry/cloud_io.h"
+#include "lmk/geometry/cloud_io.h"
 #include "tools/cli_common.h"
 
 namespace lmk::cli {

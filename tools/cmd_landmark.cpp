@@ -4,8 +4,8 @@
 #include <cstdio>
 #include <memory>
 
-#include "geometry/pose.h"
-#include "landmark/landmark_file.h"
+#include "lmk/geometry/pose.h"
+#include "lmk/landmark/landmark_file.h"
 #include "tools/cli_common.h"
 
 namespace lmk::cli {

@@ -11,14 +11,14 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "demos/demo_tasks.h"
-#include "geometry/atomic_file.h"
-#include "geometry/cloud_io.h"
-#include "geometry/detail/pose_json.h"
-#include "geometry/error.h"
-#include "pbd/execute.h"
-#include "pbd/plan.h"
-#include "pr2/simulated_pr2.h"
+#include "lmk/demos/demo_tasks.h"
+#include "lmk/geometry/atomic_file.h"
+#include "lmk/geometry/cloud_io.h"
+#include "lmk/geometry/error.h"
+#include "lmk/json/pose_json.h"
+#include "lmk/pbd/execute.h"
+#include "lmk/pbd/plan.h"
+#include "lmk/pr2/simulated_pr2.h"
 #include "tools/cli_common.h"
 #include "tools/interrupt.h"
 

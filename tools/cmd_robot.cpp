@@ -8,10 +8,10 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "geometry/detail/pose_json.h"
-#include "geometry/error.h"
-#include "geometry/pose.h"
-#include "pr2/pr2_kinematics.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/pose.h"
+#include "lmk/json/pose_json.h"
+#include "lmk/pr2/pr2_kinematics.h"
 #include "tools/cli_common.h"
 
 namespace lmk::cli {

@@ -8,10 +8,10 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "eval/scene_types.h"
-#include "eval/sensor_validation.h"
-#include "geometry/atomic_file.h"
-#include "geometry/error.h"
+#include "lmk/eval/scene_types.h"
+#include "lmk/eval/sensor_validation.h"
+#include "lmk/geometry/atomic_file.h"
+#include "lmk/geometry/error.h"
 #include "tools/cli_common.h"
 #include "tools/progress.h"
 

@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "geometry/error.h"
+#include "lmk/geometry/error.h"
 #include "tools/interrupt.h"
 #include "tools/progress.h"
 

@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <string>
 
-#include "eval/benchmark_dataset.h"
-#include "eval/evaluation.h"
+#include "lmk/eval/benchmark_dataset.h"
+#include "lmk/eval/evaluation.h"
 #include "tools/cli_common.h"
 
 namespace lmk::cli {

@@ -8,14 +8,14 @@
 #include <cstdio>
 #include <exception>
 
-#include "eval/dependencies.h"
-#include "geometry/error.h"
-#include "geometry/version.h"
-#include "landmark/dependencies.h"
-#include "occupancy/dependencies.h"
-#include "pbd/dependencies.h"
-#include "pr2/dependencies.h"
-#include "registration/dependencies.h"
+#include "lmk/eval/dependencies.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/version.h"
+#include "lmk/landmark/dependencies.h"
+#include "lmk/occupancy/dependencies.h"
+#include "lmk/pbd/dependencies.h"
+#include "lmk/pr2/dependencies.h"
+#include "lmk/registration/dependencies.h"
 #include "tools/cli_common.h"
 
 namespace {

@@ -6,7 +6,7 @@
 #include <optional>
 #include <type_traits>
 
-#include "geometry/error.h"
+#include "lmk/geometry/error.h"
 #include "tools/cli_common.h"
 
 namespace lmk::cli {

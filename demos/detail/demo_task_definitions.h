@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "demos/demo_world.h"
-#include "geometry/pose.h"
-#include "geometry/symmetry.h"
-#include "pbd/program.h"
+#include "lmk/demos/demo_world.h"
+#include "lmk/geometry/pose.h"
+#include "lmk/geometry/symmetry.h"
+#include "lmk/pbd/program.h"
 
 namespace lmk::detail {
 

@@ -4,7 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "demos/demo_tasks.h"
+#include "lmk/demos/demo_tasks.h"
 
 namespace lmk::detail {
 

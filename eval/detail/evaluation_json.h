@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "eval/evaluation.h"
+#include "lmk/eval/evaluation.h"
 
 namespace lmk::detail {
 

@@ -10,7 +10,7 @@
 
 #include <vector>
 
-#include "eval/mesh.h"
+#include "lmk/eval/mesh.h"
 
 namespace lmk::detail {
 

@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "eval/detail/pair_cache.h"
+#include "lmk/eval/detail/pair_cache.h"
 
-#include "eval/detail/evaluation_json.h"
-#include "geometry/atomic_file.h"
-#include "geometry/error.h"
-#include "geometry/hash.h"
-#include "geometry/input_file.h"
+#include "lmk/eval/detail/evaluation_json.h"
+#include "lmk/geometry/atomic_file.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/hash.h"
+#include "lmk/geometry/input_file.h"
 
 namespace lmk::detail {
 

@@ -9,7 +9,7 @@
 #include <optional>
 #include <string>
 
-#include "eval/evaluation.h"
+#include "lmk/eval/evaluation.h"
 
 namespace lmk::detail {
 

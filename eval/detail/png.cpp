@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "eval/detail/png.h"
+#include "lmk/eval/detail/png.h"
 
 #include <array>
 
-#include "geometry/error.h"
+#include "lmk/geometry/error.h"
 
 namespace lmk::detail {
 

@@ -4,8 +4,8 @@
 #include <cstdlib>
 #include <sstream>
 
-#include "geometry/detail/formats.h"
-#include "geometry/error.h"
+#include "lmk/geometry/detail/formats.h"
+#include "lmk/geometry/error.h"
 
 namespace lmk::detail {
 

@@ -7,7 +7,7 @@
 #include <optional>
 #include <string>
 
-#include "geometry/cloud_io.h"
+#include "lmk/geometry/cloud_io.h"
 
 namespace lmk::detail {
 

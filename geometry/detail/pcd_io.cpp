@@ -14,11 +14,11 @@
 #include <sstream>
 #include <vector>
 
-#include "geometry/cloud_io.h"
-#include "geometry/detail/formats.h"
-#include "geometry/detail/pcl_conversion.h"
-#include "geometry/error.h"
-#include "geometry/settings_schema.h"
+#include "lmk/geometry/cloud_io.h"
+#include "lmk/geometry/detail/formats.h"
+#include "lmk/geometry/detail/pcl_conversion.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/settings_schema.h"
 
 namespace lmk::detail {
 namespace {

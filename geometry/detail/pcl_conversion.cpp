@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "geometry/detail/pcl_conversion.h"
+#include "lmk/geometry/detail/pcl_conversion.h"
 
 #include <algorithm>
 #include <cstring>
 #include <limits>
 #include <optional>
 
-#include "geometry/error.h"
+#include "lmk/geometry/error.h"
 
 namespace lmk::detail {
 namespace {

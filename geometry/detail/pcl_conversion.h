@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/point_cloud.h"
+#include "lmk/geometry/point_cloud.h"
 
 namespace lmk::detail {
 

@@ -11,9 +11,9 @@
 #include <sstream>
 #include <vector>
 
-#include "geometry/detail/formats.h"
-#include "geometry/detail/pcl_conversion.h"
-#include "geometry/error.h"
+#include "lmk/geometry/detail/formats.h"
+#include "lmk/geometry/detail/pcl_conversion.h"
+#include "lmk/geometry/error.h"
 
 namespace lmk::detail {
 namespace {

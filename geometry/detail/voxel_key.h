@@ -7,7 +7,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include "geometry/error.h"
+#include "lmk/geometry/error.h"
 
 namespace lmk::detail {
 

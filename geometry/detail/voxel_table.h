@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "geometry/detail/voxel_key.h"
+#include "lmk/geometry/detail/voxel_key.h"
 
 namespace lmk::detail {
 

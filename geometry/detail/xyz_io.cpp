@@ -7,8 +7,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "geometry/detail/formats.h"
-#include "geometry/error.h"
+#include "lmk/geometry/detail/formats.h"
+#include "lmk/geometry/error.h"
 
 namespace lmk::detail {
 

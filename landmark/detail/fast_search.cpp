@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "landmark/detail/fast_search.h"
+#include "lmk/landmark/detail/fast_search.h"
 
 #include <tbb/parallel_for.h>
 
@@ -9,16 +9,16 @@
 #include <memory>
 #include <numeric>
 
-#include "geometry/pose.h"
-#include "geometry/voxel_grid.h"
-#include "geometry/voxel_normals.h"
-#include "landmark/detail/grid_metrics.h"
-#include "landmark/detail/point_pair_voting.h"
-#include "landmark/detail/sensor_metric.h"
-#include "landmark/detail/stopwatch.h"
-#include "landmark/non_max_suppression.h"
-#include "registration/icp.h"
-#include "registration/refine_pose.h"
+#include "lmk/geometry/pose.h"
+#include "lmk/geometry/voxel_grid.h"
+#include "lmk/geometry/voxel_normals.h"
+#include "lmk/landmark/detail/grid_metrics.h"
+#include "lmk/landmark/detail/point_pair_voting.h"
+#include "lmk/landmark/detail/sensor_metric.h"
+#include "lmk/landmark/detail/stopwatch.h"
+#include "lmk/landmark/non_max_suppression.h"
+#include "lmk/registration/icp.h"
+#include "lmk/registration/refine_pose.h"
 
 namespace lmk::detail {
 namespace {

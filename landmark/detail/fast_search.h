@@ -16,7 +16,7 @@
 
 #include <vector>
 
-#include "landmark/detail/reference_search.h"
+#include "lmk/landmark/detail/reference_search.h"
 
 namespace lmk::detail {
 

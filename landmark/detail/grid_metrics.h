@@ -3,9 +3,9 @@
 // The metrics that score with grids instead of k-d trees (registered in error_metrics.cpp).
 // Internal.
 
-#include "landmark/error_metrics.h"
-#include "landmark/landmark.h"
-#include "landmark/scene_index.h"
+#include "lmk/landmark/error_metrics.h"
+#include "lmk/landmark/landmark.h"
+#include "lmk/landmark/scene_index.h"
 
 namespace lmk {
 

@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "landmark/detail/landmark_container.h"
+#include "lmk/landmark/detail/landmark_container.h"
 
 #include <cstdint>
 #include <cstring>
 
-#include "geometry/error.h"
-#include "geometry/hash.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/hash.h"
 
 namespace lmk::detail {
 

@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "landmark/detail/point_pair_voting.h"
+#include "lmk/landmark/detail/point_pair_voting.h"
 
 #include <algorithm>
 #include <cmath>
 #include <deque>
 #include <mutex>
 
-#include "geometry/error.h"
+#include "lmk/geometry/error.h"
 
 namespace lmk::detail {
 namespace {

@@ -20,8 +20,8 @@
 #include <memory>
 #include <vector>
 
-#include "geometry/kdtree.h"
-#include "geometry/point_cloud.h"
+#include "lmk/geometry/kdtree.h"
+#include "lmk/geometry/point_cloud.h"
 
 namespace lmk::detail {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "landmark/detail/reference_search.h"
+#include "lmk/landmark/detail/reference_search.h"
 
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>

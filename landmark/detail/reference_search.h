@@ -4,8 +4,8 @@
 
 #include <atomic>
 
-#include "landmark/find_landmark.h"
-#include "landmark/scene_index.h"
+#include "lmk/landmark/find_landmark.h"
+#include "lmk/landmark/scene_index.h"
 
 namespace lmk::detail {
 

@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "landmark/detail/relief_seeds.h"
+#include "lmk/landmark/detail/relief_seeds.h"
 
 #include <algorithm>
 #include <cmath>
 #include <map>
 #include <unordered_map>
 
-#include "geometry/detail/voxel_key.h"
-#include "geometry/random.h"
+#include "lmk/geometry/detail/voxel_key.h"
+#include "lmk/geometry/random.h"
 
 namespace lmk::detail {
 

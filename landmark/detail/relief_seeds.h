@@ -8,7 +8,7 @@
 // and they crowd out the few that fall on a small landmark. Seeds are therefore drawn from the
 // points near relief only: points in or next to a cell whose normals are not all parallel.
 
-#include "geometry/point_cloud.h"
+#include "lmk/geometry/point_cloud.h"
 
 namespace lmk::detail {
 

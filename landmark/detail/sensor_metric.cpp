@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "landmark/detail/sensor_metric.h"
+#include "lmk/landmark/detail/sensor_metric.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "landmark/detail/grid_metrics.h"
-#include "landmark/landmark.h"
-#include "landmark/scene_index.h"
+#include "lmk/landmark/detail/grid_metrics.h"
+#include "lmk/landmark/landmark.h"
+#include "lmk/landmark/scene_index.h"
 
 namespace lmk {
 

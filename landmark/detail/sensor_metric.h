@@ -2,8 +2,8 @@
 #pragma once
 // The sensor-aware error metric (issue #16, part 3), registered as "sensor". Internal.
 
-#include "landmark/error_metrics.h"
-#include "landmark/scene_index.h"
+#include "lmk/landmark/error_metrics.h"
+#include "lmk/landmark/scene_index.h"
 
 namespace lmk {
 

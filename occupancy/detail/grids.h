@@ -5,7 +5,7 @@
 
 #include <openvdb/openvdb.h>
 
-#include "occupancy/distance_field.h"
+#include "lmk/occupancy/distance_field.h"
 
 namespace lmk {
 
@@ -18,7 +18,7 @@ struct DistanceField::Grids {
 
 }  // namespace lmk
 
-#include "occupancy/empty_space.h"
+#include "lmk/occupancy/empty_space.h"
 
 namespace lmk {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "occupancy/detail/vdb_support.h"
+#include "lmk/occupancy/detail/vdb_support.h"
 
 #include <mutex>
 

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/pose.h"
+#include "lmk/geometry/pose.h"
 #include "tests/support/test_support.h"
 
 namespace lmk {

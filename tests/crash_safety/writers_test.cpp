@@ -9,16 +9,16 @@
 
 #include <stdexcept>
 
-#include "demos/demo_task_cache.h"
-#include "eval/dataset.h"
-#include "eval/detail/evaluation_json.h"
-#include "eval/detail/pair_cache.h"
-#include "eval/evaluation_report.h"
-#include "geometry/cloud_io.h"
-#include "geometry/pose.h"
-#include "landmark/landmark.h"
-#include "landmark/landmark_file.h"
-#include "pbd/program.h"
+#include "lmk/demos/demo_task_cache.h"
+#include "lmk/eval/dataset.h"
+#include "lmk/eval/detail/evaluation_json.h"
+#include "lmk/eval/detail/pair_cache.h"
+#include "lmk/eval/evaluation_report.h"
+#include "lmk/geometry/cloud_io.h"
+#include "lmk/geometry/pose.h"
+#include "lmk/landmark/landmark.h"
+#include "lmk/landmark/landmark_file.h"
+#include "lmk/pbd/program.h"
 #include "tests/support/kill_loop.h"
 #include "tests/support/test_support.h"
 

@@ -2,7 +2,7 @@
 // The paper's six PbD tasks end to end on the simulated PR2, and the pieces they stand on: the
 // demo world's ground truth and head pointing.
 
-#include "demos/demo_tasks.h"
+#include "lmk/demos/demo_tasks.h"
 
 #include <gtest/gtest.h>
 
@@ -10,10 +10,10 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
-#include "demos/demo_world.h"
-#include "geometry/error.h"
-#include "geometry/pose.h"
-#include "pr2/head_pointing.h"
+#include "lmk/demos/demo_world.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/pose.h"
+#include "lmk/pr2/head_pointing.h"
 #include "tests/support/test_support.h"
 
 namespace lmk {

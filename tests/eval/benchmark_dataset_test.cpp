@@ -2,15 +2,15 @@
 // The benchmark datasets: deterministic for a preset and seed, ground truth on the scene surface,
 // landmarks captured as a user would, and clear errors for bad requests.
 
-#include "eval/benchmark_dataset.h"
+#include "lmk/eval/benchmark_dataset.h"
 
 #include <gtest/gtest.h>
 
 #include <numeric>
 
-#include "geometry/cloud_io.h"
-#include "geometry/error.h"
-#include "landmark/landmark_file.h"
+#include "lmk/geometry/cloud_io.h"
+#include "lmk/geometry/error.h"
+#include "lmk/landmark/landmark_file.h"
 #include "tests/support/test_support.h"
 
 namespace lmk {

@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "eval/dataset.h"
+#include "lmk/eval/dataset.h"
 
 #include <gtest/gtest.h>
 
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "geometry/error.h"
-#include "geometry/pose.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/pose.h"
 #include "tests/support/test_support.h"
 
 namespace lmk {

@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "eval/depth_sensor.h"
+#include "lmk/eval/depth_sensor.h"
 
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
 
-#include "eval/tabletop_scene.h"
-#include "geometry/error.h"
-#include "geometry/pose.h"
+#include "lmk/eval/tabletop_scene.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/pose.h"
 
 namespace lmk {
 namespace {

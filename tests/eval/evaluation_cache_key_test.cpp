@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "eval/evaluation.h"
+#include "lmk/eval/evaluation.h"
 #include "tests/support/find_settings_variants.h"
 
 namespace lmk {

@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The paper's three-assumption precision/recall on hand-made confusion cases.
 
-#include "eval/evaluation_protocol.h"
+#include "lmk/eval/evaluation_protocol.h"
 
 #include <gtest/gtest.h>
 
-#include "geometry/pose.h"
+#include "lmk/geometry/pose.h"
 
 namespace lmk {
 namespace {

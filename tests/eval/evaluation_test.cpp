@@ -3,7 +3,7 @@
 // after an interruption, its JSON, its report (rendered by headless Chromium when installed), and
 // ablations.
 
-#include "eval/evaluation.h"
+#include "lmk/eval/evaluation.h"
 
 #include <gtest/gtest.h>
 
@@ -12,13 +12,13 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "eval/ablation.h"
-#include "eval/benchmark_dataset.h"
-#include "eval/detail/evaluation_json.h"
-#include "eval/evaluation_report.h"
-#include "eval/evaluation_table.h"
-#include "geometry/error.h"
-#include "geometry/pose.h"
+#include "lmk/eval/ablation.h"
+#include "lmk/eval/benchmark_dataset.h"
+#include "lmk/eval/detail/evaluation_json.h"
+#include "lmk/eval/evaluation_report.h"
+#include "lmk/eval/evaluation_table.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/pose.h"
 #include "tests/support/test_support.h"
 
 namespace lmk {

@@ -3,12 +3,12 @@
 // benchmarks: a captured landmark is seen whole where it was captured, not at all behind a wall,
 // about half behind half a wall; viewpoints keep to their ranges and look at their target.
 
-#include "eval/instance_visibility.h"
+#include "lmk/eval/instance_visibility.h"
 
 #include <gtest/gtest.h>
 
-#include "eval/mesh.h"
-#include "geometry/pose.h"
+#include "lmk/eval/mesh.h"
+#include "lmk/geometry/pose.h"
 
 namespace lmk {
 namespace {

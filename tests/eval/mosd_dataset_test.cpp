@@ -2,16 +2,16 @@
 // The real-data dataset from mOSD's labelled frames: landmarks around the labelled objects, and
 // ground truth that puts each landmark back on its object in the moved copies.
 
-#include "eval/mosd_dataset.h"
+#include "lmk/eval/mosd_dataset.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "geometry/cloud_io.h"
-#include "geometry/error.h"
-#include "geometry/kdtree.h"
-#include "landmark/landmark_file.h"
+#include "lmk/geometry/cloud_io.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/kdtree.h"
+#include "lmk/landmark/landmark_file.h"
 #include "tests/support/test_support.h"
 
 namespace lmk {

@@ -2,15 +2,15 @@
 // The procedural object library: sound meshes, landmark parts that hold visible geometry, and the
 // variants (open drawer, lowered chair, full or empty rack) that the scene types rely on.
 
-#include "eval/objects.h"
+#include "lmk/eval/objects.h"
 
 #include <gtest/gtest.h>
 
 #include <functional>
 
-#include "eval/depth_sensor.h"
-#include "geometry/error.h"
-#include "geometry/pose.h"
+#include "lmk/eval/depth_sensor.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/pose.h"
 
 namespace lmk {
 namespace {

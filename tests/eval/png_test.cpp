@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The failure pictures' PNG writer and base64: the format's fixed parts, checked by hand.
 
-#include "eval/detail/png.h"
+#include "lmk/eval/detail/png.h"
 
 #include <gtest/gtest.h>
 
-#include "geometry/error.h"
+#include "lmk/geometry/error.h"
 
 namespace lmk::detail {
 namespace {

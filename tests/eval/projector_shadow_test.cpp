@@ -3,16 +3,16 @@
 // end in space that is really empty, a no-return strip of the wrong width is not carved, and a
 // landmark captured through a shadowing sensor keeps the free space a shadow-free one sees.
 
-#include "geometry/projector_shadow.h"
+#include "lmk/geometry/projector_shadow.h"
 
 #include <gtest/gtest.h>
 
-#include "eval/benchmark_dataset.h"
-#include "eval/depth_sensor.h"
-#include "eval/mesh.h"
-#include "eval/scene_types.h"
-#include "geometry/pose.h"
-#include "landmark/landmark.h"
+#include "lmk/eval/benchmark_dataset.h"
+#include "lmk/eval/depth_sensor.h"
+#include "lmk/eval/mesh.h"
+#include "lmk/eval/scene_types.h"
+#include "lmk/geometry/pose.h"
+#include "lmk/landmark/landmark.h"
 
 namespace lmk {
 namespace {

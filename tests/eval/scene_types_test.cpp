@@ -2,14 +2,14 @@
 // The paper's 17 scene types: each builds, is deterministic, holds its in-context landmarks where
 // the ground truth says, and the hard variant really rotates what the paper could not handle.
 
-#include "eval/scene_types.h"
+#include "lmk/eval/scene_types.h"
 
 #include <gtest/gtest.h>
 
 #include <set>
 
-#include "geometry/error.h"
-#include "geometry/pose.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/pose.h"
 
 namespace lmk {
 namespace {

@@ -3,15 +3,15 @@
 // clouds, re-measured by the sensor model from the same pixels, agree on the residual spread and
 // on the spacing of the depth levels within 30% at every range the data covers.
 
-#include "eval/sensor_validation.h"
+#include "lmk/eval/sensor_validation.h"
 
 #include <gtest/gtest.h>
 
-#include "eval/depth_sensor.h"
-#include "eval/mesh.h"
-#include "eval/scene_types.h"
-#include "geometry/error.h"
-#include "geometry/pose.h"
+#include "lmk/eval/depth_sensor.h"
+#include "lmk/eval/mesh.h"
+#include "lmk/eval/scene_types.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/pose.h"
 #include "tests/support/test_support.h"
 
 namespace lmk {

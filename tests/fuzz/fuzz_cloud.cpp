@@ -8,8 +8,8 @@
 #include <cstdint>
 #include <cstdlib>
 
-#include "geometry/cloud_io.h"
-#include "geometry/error.h"
+#include "lmk/geometry/cloud_io.h"
+#include "lmk/geometry/error.h"
 #include "tests/fuzz/fuzz_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

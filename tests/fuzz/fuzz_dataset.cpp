@@ -7,8 +7,8 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "eval/dataset.h"
-#include "geometry/error.h"
+#include "lmk/eval/dataset.h"
+#include "lmk/geometry/error.h"
 #include "tests/fuzz/fuzz_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -7,8 +7,8 @@
 #include <cstdint>
 #include <cstdlib>
 
-#include "geometry/error.h"
-#include "landmark/landmark_file.h"
+#include "lmk/geometry/error.h"
+#include "lmk/landmark/landmark_file.h"
 #include "tests/fuzz/fuzz_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -5,8 +5,8 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "geometry/error.h"
-#include "pbd/program.h"
+#include "lmk/geometry/error.h"
+#include "lmk/pbd/program.h"
 #include "tests/fuzz/fuzz_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

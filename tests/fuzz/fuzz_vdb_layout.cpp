@@ -7,8 +7,8 @@
 #include <cstdint>
 #include <string>
 
-#include "geometry/error.h"
-#include "landmark/detail/landmark_container.h"
+#include "lmk/geometry/error.h"
+#include "lmk/landmark/detail/landmark_container.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   try {

@@ -2,7 +2,7 @@
 // Atomic writes: the target is always the old file or the new one, errors name the target and
 // their real reason, and temporaries of killed writers do not outlive the next write.
 
-#include "geometry/atomic_file.h"
+#include "lmk/geometry/atomic_file.h"
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -11,7 +11,7 @@
 #include <array>
 #include <fstream>
 
-#include "geometry/error.h"
+#include "lmk/geometry/error.h"
 #include "tests/support/kill_loop.h"
 #include "tests/support/test_support.h"
 

@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "geometry/box.h"
+#include "lmk/geometry/box.h"
 
 #include <gtest/gtest.h>
 
-#include "geometry/error.h"
-#include "geometry/filters.h"
-#include "geometry/pose.h"
-#include "geometry/random.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/filters.h"
+#include "lmk/geometry/pose.h"
+#include "lmk/geometry/random.h"
 #include "tests/support/test_support.h"
 
 namespace lmk {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "geometry/filters.h"
+#include "lmk/geometry/filters.h"
 
 #include <gtest/gtest.h>
 

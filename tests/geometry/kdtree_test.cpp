@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "geometry/kdtree.h"
+#include "lmk/geometry/kdtree.h"
 
 #include <gtest/gtest.h>
 

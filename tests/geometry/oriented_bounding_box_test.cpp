@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "geometry/oriented_bounding_box.h"
+#include "lmk/geometry/oriented_bounding_box.h"
 
 #include <gtest/gtest.h>
 
-#include "geometry/error.h"
-#include "geometry/pose.h"
-#include "geometry/random.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/pose.h"
+#include "lmk/geometry/random.h"
 
 namespace lmk {
 namespace {

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "geometry/pose.h"
+#include "lmk/geometry/pose.h"
 
 #include <gtest/gtest.h>
 
-#include "geometry/random.h"
+#include "lmk/geometry/random.h"
 
 namespace lmk {
 namespace {

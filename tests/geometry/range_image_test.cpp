@@ -3,11 +3,11 @@
 // its pixels, a cloud whose pose does not explain its pixels has no image, and an unorganised
 // cloud keeps the nearest point of each pixel.
 
-#include "geometry/range_image.h"
+#include "lmk/geometry/range_image.h"
 
 #include <gtest/gtest.h>
 
-#include "geometry/pose.h"
+#include "lmk/geometry/pose.h"
 
 namespace lmk {
 namespace {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "geometry/voxel_grid.h"
+#include "lmk/geometry/voxel_grid.h"
 
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
@@ -8,7 +8,7 @@
 #include <map>
 #include <set>
 
-#include "geometry/error.h"
+#include "lmk/geometry/error.h"
 #include "tests/support/test_support.h"
 
 namespace lmk {

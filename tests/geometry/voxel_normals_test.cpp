@@ -2,15 +2,15 @@
 // VoxelMoments: the same centroids as voxel_downsample, and normals of planes and lines from the
 // pooled moments.
 
-#include "geometry/voxel_normals.h"
+#include "lmk/geometry/voxel_normals.h"
 
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
 
-#include "geometry/error.h"
-#include "geometry/voxel_grid.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/voxel_grid.h"
 #include "tests/support/test_support.h"
 
 namespace lmk {

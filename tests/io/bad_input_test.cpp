@@ -5,9 +5,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "geometry/cloud_io.h"
-#include "geometry/error.h"
-#include "geometry/input_file.h"
+#include "lmk/geometry/cloud_io.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/input_file.h"
 #include "tests/support/test_support.h"
 
 namespace lmk {

@@ -3,10 +3,10 @@
 
 #include <filesystem>
 
-#include "geometry/cloud_io.h"
-#include "geometry/error.h"
-#include "geometry/pose.h"
-#include "geometry/random.h"
+#include "lmk/geometry/cloud_io.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/pose.h"
+#include "lmk/geometry/random.h"
 #include "tests/support/test_support.h"
 
 namespace lmk {

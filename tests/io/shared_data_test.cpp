@@ -7,7 +7,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "geometry/cloud_io.h"
+#include "lmk/geometry/cloud_io.h"
 #include "tests/support/test_support.h"
 
 namespace lmk {

@@ -3,10 +3,10 @@
 
 #include <set>
 
-#include "geometry/error.h"
-#include "geometry/filters.h"
-#include "geometry/pose.h"
-#include "landmark/landmark.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/filters.h"
+#include "lmk/geometry/pose.h"
+#include "lmk/landmark/landmark.h"
 #include "tests/support/test_support.h"
 
 namespace lmk {

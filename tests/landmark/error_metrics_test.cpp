@@ -2,16 +2,16 @@
 // The paper's CandidateError (Algorithm 2) and the authors' variant on configurations whose errors
 // can be worked out by hand.
 
-#include "landmark/error_metrics.h"
+#include "lmk/landmark/error_metrics.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "geometry/error.h"
-#include "geometry/pose.h"
-#include "landmark/landmark.h"
-#include "landmark/scene_index.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/pose.h"
+#include "lmk/landmark/landmark.h"
+#include "lmk/landmark/scene_index.h"
 #include "tests/support/test_support.h"
 
 namespace lmk {

@@ -2,19 +2,19 @@
 // FindLandmark, both methods, on synthetic scenes built here and on the real milk scene; and the
 // fast method on rotated and tilted landmarks, where the paper failed.
 
-#include "landmark/find_landmark.h"
+#include "lmk/landmark/find_landmark.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <filesystem>
 
-#include "eval/real_data.h"
-#include "geometry/cloud_io.h"
-#include "geometry/error.h"
-#include "geometry/pose.h"
-#include "geometry/random.h"
-#include "geometry/voxel_grid.h"
+#include "lmk/eval/real_data.h"
+#include "lmk/geometry/cloud_io.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/pose.h"
+#include "lmk/geometry/random.h"
+#include "lmk/geometry/voxel_grid.h"
 #include "tests/landmark/l_shape_scene.h"
 #include "tests/support/test_support.h"
 

@@ -2,13 +2,13 @@
 // FindSettings: every field of every stage reaches the JSON, the text form of its flag and the
 // validation, through the one description each stage gives of its fields.
 
-#include "landmark/find_settings.h"
+#include "lmk/landmark/find_settings.h"
 
 #include <gtest/gtest.h>
 
 #include <set>
 
-#include "landmark/detail/find_settings_json.h"
+#include "lmk/json/find_settings_json.h"
 #include "tests/support/find_settings_variants.h"
 
 namespace lmk {

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "tests/landmark/l_shape_scene.h"
 
-#include "eval/depth_sensor.h"
-#include "geometry/pose.h"
+#include "lmk/eval/depth_sensor.h"
+#include "lmk/geometry/pose.h"
 
 namespace lmk::test_scenes {
 

@@ -7,9 +7,9 @@
 #include <Eigen/Geometry>
 #include <vector>
 
-#include "eval/mesh.h"
-#include "geometry/box.h"
-#include "geometry/point_cloud.h"
+#include "lmk/eval/mesh.h"
+#include "lmk/geometry/box.h"
+#include "lmk/geometry/point_cloud.h"
 
 namespace lmk::test_scenes {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "landmark/landmark_file.h"
+#include "lmk/landmark/landmark_file.h"
 
 #include <gtest/gtest.h>
 #include <openvdb/openvdb.h>
@@ -10,10 +10,10 @@
 #include <filesystem>
 #include <fstream>
 
-#include "geometry/cloud_io.h"
-#include "geometry/error.h"
-#include "geometry/pose.h"
-#include "landmark/detail/landmark_container.h"
+#include "lmk/geometry/cloud_io.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/pose.h"
+#include "lmk/landmark/detail/landmark_container.h"
 #include "tests/support/test_support.h"
 
 namespace lmk {

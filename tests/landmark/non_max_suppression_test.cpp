@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "landmark/non_max_suppression.h"
+#include "lmk/landmark/non_max_suppression.h"
 
 #include <gtest/gtest.h>
 
-#include "geometry/error.h"
+#include "lmk/geometry/error.h"
 
 namespace lmk {
 namespace {

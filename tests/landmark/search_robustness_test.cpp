@@ -7,12 +7,12 @@
 #include <limits>
 #include <thread>
 
-#include "geometry/error.h"
-#include "geometry/filters.h"
-#include "geometry/pose.h"
-#include "landmark/distinctiveness.h"
-#include "landmark/find_landmark.h"
-#include "landmark/landmark_file.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/filters.h"
+#include "lmk/geometry/pose.h"
+#include "lmk/landmark/distinctiveness.h"
+#include "lmk/landmark/find_landmark.h"
+#include "lmk/landmark/landmark_file.h"
 #include "tests/landmark/l_shape_scene.h"
 #include "tests/support/test_support.h"
 

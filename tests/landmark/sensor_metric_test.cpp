@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-#include "landmark/error_metrics.h"
+#include "lmk/landmark/error_metrics.h"
 #include "tiny_organised_scene.h"
 
 namespace lmk {

@@ -8,8 +8,8 @@
 #include <functional>
 #include <string>
 
-#include "landmark/error_metrics.h"
-#include "landmark/landmark.h"
+#include "lmk/landmark/error_metrics.h"
+#include "lmk/landmark/landmark.h"
 
 namespace lmk {
 

@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The distance field against brute-force nearest-point distances, and its band behaviour.
 
-#include "occupancy/distance_field.h"
+#include "lmk/occupancy/distance_field.h"
 
 #include <gtest/gtest.h>
 
-#include "geometry/error.h"
-#include "geometry/random.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/random.h"
 #include "tests/support/test_support.h"
 
 namespace lmk {

@@ -1,17 +1,17 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Free space seen by a sensor in front of a plane: empty in front, unknown behind.
 
-#include "occupancy/empty_space.h"
+#include "lmk/occupancy/empty_space.h"
 
 #include <gtest/gtest.h>
 
 #include <optional>
 #include <set>
 
-#include "geometry/error.h"
-#include "geometry/pose.h"
-#include "geometry/random.h"
-#include "occupancy/occupancy_grid.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/pose.h"
+#include "lmk/geometry/random.h"
+#include "lmk/occupancy/occupancy_grid.h"
 
 namespace lmk {
 namespace {

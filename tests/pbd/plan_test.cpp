@@ -3,13 +3,13 @@
 // landmark is found, and every refusal (a missing landmark, an unreachable step, a robot that
 // moved) leaves the robot without a single motion.
 
-#include "pbd/plan.h"
+#include "lmk/pbd/plan.h"
 
 #include <gtest/gtest.h>
 
-#include "geometry/pose.h"
-#include "pbd/execute.h"
-#include "pr2/simulated_pr2.h"
+#include "lmk/geometry/pose.h"
+#include "lmk/pbd/execute.h"
+#include "lmk/pr2/simulated_pr2.h"
 #include "tests/landmark/l_shape_scene.h"
 
 namespace lmk {

@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Program files: round trips, and a clear error for every way a program can be wrong.
 
-#include "pbd/program.h"
+#include "lmk/pbd/program.h"
 
 #include <gtest/gtest.h>
 
-#include "geometry/error.h"
-#include "geometry/pose.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/pose.h"
 #include "tests/support/test_support.h"
 
 namespace lmk {

@@ -2,12 +2,12 @@
 // Recording: each arm is attached to the nearest landmark instance within the distance, otherwise
 // to the base, and changing a step's frame afterwards keeps the tool where it was.
 
-#include "pbd/recorder.h"
+#include "lmk/pbd/recorder.h"
 
 #include <gtest/gtest.h>
 
-#include "geometry/error.h"
-#include "geometry/pose.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/pose.h"
 
 namespace lmk {
 namespace {

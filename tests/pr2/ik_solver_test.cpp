@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "pr2/ik_solver.h"
+#include "lmk/pr2/ik_solver.h"
 
 #include <gtest/gtest.h>
 
-#include "geometry/pose.h"
-#include "geometry/random.h"
+#include "lmk/geometry/pose.h"
+#include "lmk/geometry/random.h"
 
 namespace lmk {
 namespace {

@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "pr2/robot_model.h"
+#include "lmk/pr2/robot_model.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "geometry/error.h"
-#include "geometry/pose.h"
-#include "geometry/random.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/pose.h"
+#include "lmk/geometry/random.h"
 #include "tests/support/test_support.h"
 
 namespace lmk {

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "pr2/simulated_pr2.h"
+#include "lmk/pr2/simulated_pr2.h"
 
 #include <gtest/gtest.h>
 
-#include "geometry/error.h"
-#include "geometry/pose.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/pose.h"
 #include "tests/support/test_support.h"
 
 namespace lmk {

@@ -2,13 +2,13 @@
 // ICP recovers known motions on a synthetic target, in both directions, with either target type,
 // and resists outliers with a robust kernel.
 
-#include "registration/icp.h"
+#include "lmk/registration/icp.h"
 
 #include <gtest/gtest.h>
 
-#include "geometry/error.h"
-#include "geometry/pose.h"
-#include "geometry/random.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/pose.h"
+#include "lmk/geometry/random.h"
 #include "tests/registration/registration_fixture.h"
 
 namespace lmk {

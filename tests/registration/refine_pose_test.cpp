@@ -2,13 +2,13 @@
 // Ceres refinement on the distance field: it converges from small errors and never makes the
 // cost worse.
 
-#include "registration/refine_pose.h"
+#include "lmk/registration/refine_pose.h"
 
 #include <gtest/gtest.h>
 
-#include "geometry/error.h"
-#include "geometry/pose.h"
-#include "geometry/random.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/pose.h"
+#include "lmk/geometry/random.h"
 #include "tests/registration/registration_fixture.h"
 
 namespace lmk {

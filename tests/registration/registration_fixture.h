@@ -8,8 +8,8 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
-#include "geometry/point_cloud.h"
-#include "geometry/random.h"
+#include "lmk/geometry/point_cloud.h"
+#include "lmk/geometry/random.h"
 
 namespace lmk::test {
 

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "geometry/pose.h"
-#include "geometry/settings_schema.h"
+#include "lmk/geometry/pose.h"
+#include "lmk/geometry/settings_schema.h"
 
 namespace lmk::test {
 

@@ -8,7 +8,7 @@
 #include <cstdlib>
 #include <fstream>
 
-#include "geometry/random.h"
+#include "lmk/geometry/random.h"
 
 namespace lmk::test {
 

@@ -6,8 +6,8 @@
 #include <optional>
 #include <string>
 
-#include "geometry/error.h"
-#include "geometry/point_cloud.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/point_cloud.h"
 
 namespace lmk::test {
 

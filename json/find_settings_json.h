@@ -2,14 +2,14 @@
 #pragma once
 // The JSON form of FindSettings: {"method": ..., "scene": {...}, "sampling": {...}, ...}, one
 // object per stage, each derived from the stage's description (find_settings.h). Header-only and
-// internal, like geometry/detail/pose_json.h.
+// internal, like json/pose_json.h.
 
 #include <nlohmann/json.hpp>
 #include <string>
 #include <type_traits>
 
-#include "geometry/detail/settings_json.h"
-#include "landmark/find_settings.h"
+#include "lmk/json/settings_json.h"
+#include "lmk/landmark/find_settings.h"
 
 namespace lmk::detail {
 

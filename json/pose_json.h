@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The JSON form of poses that lmk's files and CLI share: {"position":[x,y,z],
-// "quaternion":[w,x,y,z]}. Header-only and internal (not installed), so that lmk's public headers
-// never expose nlohmann-json; the modules that use it link nlohmann-json themselves.
+// "quaternion":[w,x,y,z]}. Part of lmk::json, the internal header-only library of the JSON forms
+// that several modules share (json/CMakeLists.txt): linked privately and never installed, so that
+// lmk's public headers never expose nlohmann-json.
 //
 // Readers take `where`, which names the value in messages ("dataset.json: scenes[0].sensor_pose"),
 // and throw lmk::Error as "<where>.<field>: <problem>".
@@ -12,8 +13,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "geometry/error.h"
-#include "geometry/pose.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/pose.h"
 
 namespace lmk::detail {
 

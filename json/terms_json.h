@@ -1,15 +1,15 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The JSON form of a match's error terms, shared by `lmk find --json` and the evaluation cache and
-// reports. Header-only and internal, like geometry/detail/pose_json.h.
+// reports. Header-only and internal, like json/pose_json.h.
 
 #include <cmath>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "geometry/detail/pose_json.h"
-#include "landmark/error_metrics.h"
+#include "lmk/json/pose_json.h"
+#include "lmk/landmark/error_metrics.h"
 
 namespace lmk::detail {
 

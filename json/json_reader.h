@@ -7,8 +7,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "geometry/detail/pose_json.h"
-#include "geometry/error.h"
+#include "lmk/geometry/error.h"
+#include "lmk/json/pose_json.h"
 
 namespace lmk::detail {
 

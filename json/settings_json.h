@@ -8,8 +8,8 @@
 #include <optional>
 #include <string>
 
-#include "geometry/detail/pose_json.h"
-#include "geometry/settings_schema.h"
+#include "lmk/geometry/settings_schema.h"
+#include "lmk/json/pose_json.h"
 
 namespace lmk::detail {
 
