@@ -20,6 +20,13 @@ packages=(
   clang-14 libclang-rt-14-dev
   # the ThreadSanitizer run fetches and builds Debian's oneTBB source (scripts/build-tbb-tsan.sh)
   curl xz-utils
+  # ROS 1 for lmk::ros and lmk_node (docs/ros.md): roscpp, the message packages and generators,
+  # TF, actionlib, interactive markers, rosbag, and the master and tools its tests start
+  ros-core-dev libroscpp-dev libactionlib-dev libactionlib-msgs-dev libsensor-msgs-dev
+  libgeometry-msgs-dev libvisualization-msgs-dev libtrajectory-msgs-dev libstd-srvs-dev
+  libtf2-ros-dev libtf2-eigen-dev libinteractive-markers-dev librosbag-dev libpcl-conversions-dev
+  python3-gencpp python3-genmsg ros-message-generation python3-rosmaster python3-roslaunch
+  python3-rostest python3-rospy python3-rosbag catkin python3-catkin-pkg
 )
 
 missing=()

@@ -1,0 +1,68 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Poses, boxes and matches as ROS messages.
+#include "lmk/ros/geometry_conversion.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "lmk/geometry/pose.h"
+#include "tests/support/test_support.h"
+
+namespace lmk::ros1 {
+namespace {
+
+TEST(GeometryConversion, PosesRoundTrip) {
+  const Eigen::Isometry3d T =
+      pose_from_xyz_rpy(Eigen::Vector3d(0.4, -0.2, 0.9), Eigen::Vector3d(0.3, -1.1, 2.5));
+  const Eigen::Isometry3d back = from_ros(to_ros(T), "pose");
+  EXPECT_TRUE(back.isApprox(T, 1e-12));
+}
+
+TEST(GeometryConversion, PosesFromTheWireAreChecked) {
+  geometry_msgs::Pose pose;  // all zero: not a rotation
+  EXPECT_NE(test::error_of([&] { from_ros(pose, "box_pose"); }).find("box_pose: orientation"),
+            std::string::npos);
+  pose.orientation.w = 1.0;
+  pose.position.x = std::numeric_limits<double>::infinity();
+  EXPECT_NE(test::error_of([&] { from_ros(pose, "box_pose"); }).find("non-finite"),
+            std::string::npos);
+}
+
+TEST(GeometryConversion, MatchesCarryPoseBoxErrorAndTerms) {
+  Match match;
+  match.T_scene_capture = pose_from_xyz_rpy(Eigen::Vector3d(1, 2, 3), Eigen::Vector3d(0, 0, 0.5));
+  match.box = Box(match.T_scene_capture, Eigen::Vector3d(0.1, 0.2, 0.3));
+  match.terms.scene_to_landmark_sum = 0.5;
+  match.terms.scene_to_landmark_count = 100;
+  match.terms.finish();
+  match.error = match.terms.error;
+  const lmk_msgs::LandmarkMatch msg = to_ros(match, "milk", 2);
+  EXPECT_EQ(msg.landmark, "milk");
+  EXPECT_EQ(msg.rank, 2u);
+  EXPECT_DOUBLE_EQ(msg.error, 0.005);
+  EXPECT_EQ(msg.terms.scene_to_landmark_count, 100u);
+  EXPECT_TRUE(std::isnan(msg.terms.coverage));
+  EXPECT_DOUBLE_EQ(msg.box_size.z, 0.3);
+  EXPECT_TRUE(from_ros(msg.pose, "pose").isApprox(match.T_scene_capture, 1e-12));
+}
+
+TEST(GeometryConversion, MatchMarkersClearTheLastSearchThenDrawEachMatch) {
+  Match match;
+  match.box = Box(Eigen::Isometry3d::Identity(), Eigen::Vector3d(0.1, 0.1, 0.2));
+  match.error = 0.0042;
+  const std::vector<lmk_msgs::LandmarkMatch> matches = {to_ros(match, "cup", 1),
+                                                        to_ros(match, "cup", 2)};
+  const visualization_msgs::MarkerArray array = match_markers(matches, "base_link");
+  ASSERT_EQ(array.markers.size(), 5u);  // DELETEALL, then a box and a label per match
+  EXPECT_EQ(array.markers[0].action, visualization_msgs::Marker::DELETEALL);
+  EXPECT_EQ(array.markers[1].type, visualization_msgs::Marker::CUBE);
+  EXPECT_EQ(array.markers[1].header.frame_id, "base_link");
+  EXPECT_NE(array.markers[1].color.g, array.markers[3].color.g);  // the best one stands out
+  EXPECT_EQ(array.markers[2].text, "cup #1  4.2 mm");
+  EXPECT_NE(array.markers[1].id, array.markers[3].id);
+}
+
+}  // namespace
+}  // namespace lmk::ros1
