@@ -5,8 +5,27 @@
 //
 // Hardware boundary rules (after ros2_control's hardware_interface):
 // - every call returns a Status and a message; nothing throws across the boundary;
-// - a lifecycle: configure, then activate; commands are refused unless active;
+// - a lifecycle: configure, then activate; commands are refused unless active (below);
 // - poses are tool frames in the robot's base frame, T_base_tool.
+//
+// The lifecycle, per method. "error" is a CallResult with Status::kError whose message names the
+// method and the state ("send_trajectory: the robot is inactive; activate it first"); the state
+// does not change on an error, and nothing moves.
+//
+//   method              unconfigured          inactive                  active
+//   configure()         -> inactive           reconfigures; inactive    error (deactivate first)
+//   activate()          error                 -> active                 ok, stays active
+//   deactivate()        ok, stays             ok, stays                 -> inactive; stops motion
+//   read_joint_state()  error                 ok                        ok
+//   gripper_state()     error                 ok                        ok
+//   sensor_pose()       error                 ok                        ok
+//   send_trajectory()   error                 error                     executes
+//   command_gripper()   error                 error                     executes
+//   state()             any state, never fails
+//
+// configure() connects to the hardware (a real robot: its controllers and joint states) and may
+// fail with the reason, staying unconfigured; a failure while active may move the robot to
+// inactive (Status::kDeactivate), and the message says why.
 
 #include <Eigen/Geometry>
 #include <optional>
@@ -21,6 +40,10 @@ enum class Status {
   kDeactivate,  ///< the hardware asks to be deactivated (e.g. a fault); the message says why
 };
 
+enum class LifecycleState { kUnconfigured, kInactive, kActive };
+/// "unconfigured", "inactive" or "active".
+const char* lifecycle_state_name(LifecycleState state);
+
 struct CallResult {
   Status status = Status::kOk;
   std::string message;
@@ -28,6 +51,10 @@ struct CallResult {
   static CallResult success() { return {}; }
   static CallResult error(std::string why) { return {Status::kError, std::move(why)}; }
 };
+
+/// What `method` called in the wrong `state` returns: "send_trajectory: the robot is inactive;
+/// activate it first" (configure it first, or deactivate it first, as the state requires).
+CallResult lifecycle_error(const std::string& method, LifecycleState state);
 
 struct JointState {
   std::vector<std::string> names;
@@ -64,6 +91,8 @@ class RobotInterface {
   virtual CallResult configure() = 0;
   virtual CallResult activate() = 0;
   virtual CallResult deactivate() = 0;
+  /// Where the robot is in its lifecycle (the table above).
+  virtual LifecycleState state() const = 0;
 
   virtual CallResult read_joint_state(JointState& out) const = 0;
   /// Executes the trajectory on the named group ("left_arm", "right_arm"), or refuses it with a

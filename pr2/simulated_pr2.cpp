@@ -26,7 +26,7 @@ SimulatedPr2::SimulatedPr2(Pr2Kinematics kinematics) : kinematics_(std::move(kin
 std::vector<std::string> SimulatedPr2::grippers() { return {"left", "right"}; }
 
 CallResult SimulatedPr2::configure() {
-  if (lifecycle_ == Lifecycle::kActive) return CallResult::error("configure: deactivate first");
+  if (lifecycle_ == LifecycleState::kActive) return lifecycle_error("configure", lifecycle_);
   positions_.clear();
   // Every joint starts at zero, or at the nearest limit when zero is outside its range.
   for (const std::string& name : kinematics_.groups()) {
@@ -37,23 +37,24 @@ CallResult SimulatedPr2::configure() {
   }
   for (const std::string& g : grippers())
     grippers_[g] = GripperState{kGripperMaxOpening, false, false};
-  lifecycle_ = Lifecycle::kInactive;
+  lifecycle_ = LifecycleState::kInactive;
   return CallResult::success();
 }
 
 CallResult SimulatedPr2::activate() {
-  if (lifecycle_ == Lifecycle::kUnconfigured) return CallResult::error("activate: configure first");
-  lifecycle_ = Lifecycle::kActive;
+  if (lifecycle_ == LifecycleState::kUnconfigured) return lifecycle_error("activate", lifecycle_);
+  lifecycle_ = LifecycleState::kActive;
   return CallResult::success();
 }
 
 CallResult SimulatedPr2::deactivate() {
-  if (lifecycle_ == Lifecycle::kActive) lifecycle_ = Lifecycle::kInactive;
+  if (lifecycle_ == LifecycleState::kActive) lifecycle_ = LifecycleState::kInactive;
   return CallResult::success();
 }
 
 CallResult SimulatedPr2::read_joint_state(JointState& out) const {
-  if (lifecycle_ == Lifecycle::kUnconfigured) return CallResult::error("read: configure first");
+  if (lifecycle_ == LifecycleState::kUnconfigured)
+    return lifecycle_error("read_joint_state", lifecycle_);
   out = JointState();
   for (const auto& [name, q] : positions_) {
     out.names.push_back(name);
@@ -122,7 +123,7 @@ CallResult SimulatedPr2::check_trajectory(const GroupInfo& group, const JointTra
 
 CallResult SimulatedPr2::send_trajectory(const std::string& group,
                                          const JointTrajectory& trajectory) {
-  if (lifecycle_ != Lifecycle::kActive) return CallResult::error("robot is not active");
+  if (lifecycle_ != LifecycleState::kActive) return lifecycle_error("send_trajectory", lifecycle_);
   const auto info = kinematics_.group(group);
   if (!info) return CallResult::error("unknown group '" + group + "'");
   const CallResult check = check_trajectory(*info, trajectory);
@@ -140,7 +141,7 @@ CallResult SimulatedPr2::send_trajectory(const std::string& group,
 
 CallResult SimulatedPr2::command_gripper(const std::string& gripper,
                                          const GripperCommand& command) {
-  if (lifecycle_ != Lifecycle::kActive) return CallResult::error("robot is not active");
+  if (lifecycle_ != LifecycleState::kActive) return lifecycle_error("command_gripper", lifecycle_);
   const auto it = grippers_.find(gripper);
   if (it == grippers_.end())
     return CallResult::error("unknown gripper '" + gripper + "' (left, right)");
@@ -162,7 +163,8 @@ CallResult SimulatedPr2::command_gripper(const std::string& gripper,
 }
 
 CallResult SimulatedPr2::gripper_state(const std::string& gripper, GripperState& out) const {
-  if (lifecycle_ == Lifecycle::kUnconfigured) return CallResult::error("read: configure first");
+  if (lifecycle_ == LifecycleState::kUnconfigured)
+    return lifecycle_error("gripper_state", lifecycle_);
   const auto it = grippers_.find(gripper);
   if (it == grippers_.end())
     return CallResult::error("unknown gripper '" + gripper + "' (left, right)");
@@ -171,7 +173,8 @@ CallResult SimulatedPr2::gripper_state(const std::string& gripper, GripperState&
 }
 
 CallResult SimulatedPr2::sensor_pose(Eigen::Isometry3d& T_base_sensor) const {
-  if (lifecycle_ == Lifecycle::kUnconfigured) return CallResult::error("read: configure first");
+  if (lifecycle_ == LifecycleState::kUnconfigured)
+    return lifecycle_error("sensor_pose", lifecycle_);
   return kinematics_.forward("head", group_positions("head"), T_base_sensor);
 }
 

@@ -34,6 +34,7 @@ class SimulatedPr2 : public RobotInterface {
   CallResult configure() override;
   CallResult activate() override;
   CallResult deactivate() override;
+  LifecycleState state() const override { return lifecycle_; }
   CallResult read_joint_state(JointState& out) const override;
   CallResult send_trajectory(const std::string& group, const JointTrajectory& trajectory) override;
   CallResult command_gripper(const std::string& gripper, const GripperCommand& command) override;
@@ -52,11 +53,10 @@ class SimulatedPr2 : public RobotInterface {
   static std::vector<std::string> grippers();
 
  private:
-  enum class Lifecycle { kUnconfigured, kInactive, kActive };
   CallResult check_trajectory(const GroupInfo& group, const JointTrajectory& t) const;
 
   Pr2Kinematics kinematics_;
-  Lifecycle lifecycle_ = Lifecycle::kUnconfigured;
+  LifecycleState lifecycle_ = LifecycleState::kUnconfigured;
   std::map<std::string, double> positions_;  // every group joint, by name
   std::map<std::string, GripperState> grippers_;
   std::vector<ExecutedMotion> history_;

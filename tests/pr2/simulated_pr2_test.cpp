@@ -5,6 +5,7 @@
 
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/pose.h"
+#include "tests/support/lifecycle_conformance.h"
 #include "tests/support/test_support.h"
 
 namespace lmk {
@@ -101,17 +102,9 @@ TEST_F(SimulatedPr2Test, GrippersFollowCommandsAndHoldObjects) {
   EXPECT_EQ(robot_.command_gripper("middle", {0.0}).status, Status::kError);
 }
 
-TEST(SimulatedPr2Lifecycle, RefusesMotionUnlessActive) {
+TEST(SimulatedPr2Lifecycle, AnswersEveryMethodInEveryStateAsTheInterfaceDocuments) {
   SimulatedPr2 robot;
-  JointState state;
-  EXPECT_EQ(robot.read_joint_state(state).status, Status::kError);
-  EXPECT_EQ(robot.activate().status, Status::kError);
-  ASSERT_TRUE(robot.configure().ok());
-  EXPECT_EQ(robot.command_gripper("left", {0.0}).status, Status::kError);
-  ASSERT_TRUE(robot.activate().ok());
-  EXPECT_TRUE(robot.command_gripper("left", {0.0}).ok());
-  ASSERT_TRUE(robot.deactivate().ok());
-  EXPECT_EQ(robot.command_gripper("left", {0.05}).status, Status::kError);
+  test::expect_lifecycle_table(robot, *robot.kinematics().group("left_arm"), "left");
 }
 
 TEST(Pr2Kinematics, BaseFramePosesDependOnTheTorsoAndSensorPoseIsTheHeadKinect) {

@@ -1,0 +1,183 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "lmk/ros/landmark_node.h"
+
+#include <visualization_msgs/MarkerArray.h>
+
+#include <cstdlib>
+#include <nlohmann/json.hpp>
+
+#include "lmk/geometry/error.h"
+#include "lmk/json/find_settings_json.h"
+#include "lmk/landmark/distinctiveness.h"
+#include "lmk/landmark/find_landmark.h"
+#include "lmk/landmark/scene_index.h"
+#include "lmk/ros/geometry_conversion.h"
+#include "lmk/ros/tf_lookup.h"
+
+namespace lmk::ros1 {
+namespace {
+
+std::string default_landmark_directory() {
+  const char* ros_home = std::getenv("ROS_HOME");
+  const char* home = std::getenv("HOME");
+  const std::string base = ros_home ? ros_home : std::string(home ? home : ".") + "/.ros";
+  return base + "/lmk/landmarks";
+}
+
+std::string describe(const Eigen::Vector3d& p) {
+  char text[96];
+  std::snprintf(text, sizeof text, "(%.3f, %.3f, %.3f)", p.x(), p.y(), p.z());
+  return text;
+}
+
+}  // namespace
+
+LandmarkNodeSettings LandmarkNodeSettings::from_parameters(const ::ros::NodeHandle& private_nh) {
+  LandmarkNodeSettings s;
+  private_nh.param("cloud_topic", s.cloud_topic, s.cloud_topic);
+  private_nh.param("base_frame", s.base_frame, s.base_frame);
+  private_nh.param("sensor_frame", s.sensor_frame, s.sensor_frame);
+  private_nh.param("landmark_directory", s.landmark_directory, default_landmark_directory());
+  std::string find_json = "{}";
+  private_nh.param("find_settings", find_json, find_json);
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(find_json);
+  } catch (const nlohmann::json::exception& e) {
+    throw Error("~find_settings: is not JSON (" + std::string(e.what()) + ")");
+  }
+  detail::find_settings_from_json(j, "~find_settings", s.find);
+  if (s.base_frame.empty()) throw Error("~base_frame: must name a frame");
+  return s;
+}
+
+LandmarkNode::LandmarkNode(::ros::NodeHandle nh, ::ros::NodeHandle private_nh,
+                           LandmarkNodeSettings settings)
+    : settings_(std::move(settings)),
+      library_(settings_.landmark_directory),
+      tf_listener_(tf_),
+      latest_(nh, settings_.cloud_topic, tf_, settings_.base_frame, settings_.sensor_frame) {
+  // The node's scenes are in the base frame, whose +z is up (docs/landmarks.md, "Up").
+  settings_.find.scene.base_frame = true;
+  settings_.capture.base_frame = true;
+  markers_ = private_nh.advertise<visualization_msgs::MarkerArray>("matches", 1, /*latch=*/true);
+  capture_service_ = private_nh.advertiseService("capture_landmark", &LandmarkNode::capture, this);
+  find_service_ = private_nh.advertiseService("find_landmark", &LandmarkNode::find, this);
+  list_service_ = private_nh.advertiseService("list_landmarks", &LandmarkNode::list, this);
+  ROS_INFO("lmk: landmarks in %s; frames from %s in %s", library_.directory().c_str(),
+           settings_.cloud_topic.c_str(), settings_.base_frame.c_str());
+}
+
+std::shared_ptr<const Frame> LandmarkNode::frame() const {
+  std::shared_ptr<const Frame> frame = latest_.get();
+  if (!frame) {
+    throw Error("no frame from " + latest_.topic() + " yet (is the camera publishing, and does " +
+                "TF reach " + settings_.base_frame + "?)");
+  }
+  return frame;
+}
+
+// The service handlers answer every failure in the response (success = false and the reason),
+// never by returning false: a false return reaches the caller as a bare "service call failed".
+bool LandmarkNode::capture(lmk_msgs::CaptureLandmark::Request& request,
+                           lmk_msgs::CaptureLandmark::Response& response) {
+  try {
+    LandmarkLibrary::check_name(request.name);
+    if (!request.overwrite && library_.contains(request.name)) {
+      throw Error("a landmark '" + request.name + "' exists already; set overwrite to replace it");
+    }
+    const std::shared_ptr<const Frame> frame = this->frame();
+    response.header.frame_id = frame->base_frame;
+    response.header.stamp = frame->stamp;
+    const std::string& box_frame = request.box_pose.header.frame_id.empty()
+                                       ? frame->base_frame
+                                       : request.box_pose.header.frame_id;
+    const Eigen::Isometry3d T_base_boxframe =
+        lookup_pose(tf_, frame->base_frame, box_frame, ::ros::Time(0), ::ros::Duration(0.5));
+    const Box box(T_base_boxframe * from_ros(request.box_pose.pose, "box_pose"),
+                  from_ros(request.box_size));
+    const Landmark landmark = lmk::capture(frame->scene, box, request.name, settings_.capture);
+
+    FindSettings check = settings_.find;
+    check.scene.up = landmark.up;
+    const DistinctivenessReport report = check_distinctiveness(frame->scene, landmark, check);
+    response.found_itself = report.found_itself;
+    for (std::size_t i = 0; i < report.other_instances.size(); ++i) {
+      response.other_instances.push_back(
+          to_ros(report.other_instances[i], landmark.name, static_cast<std::uint32_t>(i + 1)));
+    }
+    std::string verdict = report.found_itself ? ""
+                                              : "the search does not find it in its own "
+                                                "frame (too few points or too little shape); ";
+    if (!report.other_instances.empty()) {
+      verdict += "it also matches " + std::to_string(report.other_instances.size()) +
+                 " other place(s), the best at " +
+                 describe(report.other_instances.front().box.center()) + "; ";
+    }
+    if (!verdict.empty() && !request.force) {
+      response.success = false;
+      response.message = "not written: " + verdict + "draw the box with more context or more " +
+                         "empty margin, or set force to keep it anyway";
+      return true;
+    }
+    response.file = library_.save(landmark, request.overwrite).string();
+    response.success = true;
+    response.message =
+        "wrote '" + landmark.name + "' (" + std::to_string(landmark.points.size()) + " points)" +
+        (verdict.empty() ? "; distinctive in this frame" : "; kept despite: " + verdict);
+    ROS_INFO("lmk: %s", response.message.c_str());
+  } catch (const Error& e) {
+    response.success = false;
+    response.message = e.what();
+    ROS_WARN("lmk: capture_landmark: %s", e.what());
+  }
+  return true;
+}
+
+bool LandmarkNode::find(lmk_msgs::FindLandmark::Request& request,
+                        lmk_msgs::FindLandmark::Response& response) {
+  try {
+    const std::vector<std::string> names =
+        request.name.empty() ? library_.names() : std::vector<std::string>{request.name};
+    if (names.empty()) throw Error("no landmarks in " + library_.directory().string());
+    const std::shared_ptr<const Frame> frame = this->frame();
+    response.header.frame_id = frame->base_frame;
+    response.header.stamp = frame->stamp;
+    // One index of the frame for every landmark (steps 1-2 of the search).
+    const SceneIndex index(frame->scene, settings_.find.scene);
+    std::string summary;
+    for (const std::string& name : names) {
+      const std::shared_ptr<const Landmark> landmark = library_.load(name);
+      const FindResult result = find_landmark(index, *landmark, settings_.find);
+      for (std::size_t i = 0; i < result.matches.size(); ++i) {
+        response.matches.push_back(
+            to_ros(result.matches[i], name, static_cast<std::uint32_t>(i + 1)));
+      }
+      summary += (summary.empty() ? "" : "; ") + name + ": " +
+                 std::to_string(result.matches.size()) + " match(es)";
+    }
+    response.success = true;
+    response.message = summary;
+    markers_.publish(match_markers(response.matches, frame->base_frame));
+  } catch (const Error& e) {
+    response.success = false;
+    response.message = e.what();
+    ROS_WARN("lmk: find_landmark: %s", e.what());
+  }
+  return true;
+}
+
+bool LandmarkNode::list(lmk_msgs::ListLandmarks::Request&,
+                        lmk_msgs::ListLandmarks::Response& response) {
+  try {
+    for (const std::string& name : library_.names()) {
+      response.names.push_back(name);
+      response.files.push_back(library_.path_of(name).string());
+    }
+  } catch (const Error& e) {
+    ROS_WARN("lmk: list_landmarks: %s", e.what());
+  }
+  return true;
+}
+
+}  // namespace lmk::ros1

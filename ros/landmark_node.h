@@ -1,0 +1,61 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+// lmk_node's work (docs/ros.md, "lmk_node"): keeps the latest camera frame in the base frame and
+// serves capture_landmark, find_landmark and list_landmarks over a landmark directory, publishing
+// the last search's matches as a latched MarkerArray for RViz.
+
+#include <lmk_msgs/CaptureLandmark.h>
+#include <lmk_msgs/FindLandmark.h>
+#include <lmk_msgs/ListLandmarks.h>
+#include <ros/ros.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_listener.h>
+
+#include <memory>
+#include <string>
+
+#include "lmk/landmark/find_settings.h"
+#include "lmk/landmark/landmark.h"
+#include "lmk/landmark/landmark_library.h"
+#include "lmk/ros/latest_frame.h"
+
+namespace lmk::ros1 {
+
+struct LandmarkNodeSettings {
+  std::string cloud_topic = "/head_mount_kinect/depth_registered/points";  ///< the PR2 head Kinect
+  std::string base_frame = "base_link";
+  std::string sensor_frame;        ///< the camera's optical frame; empty: the cloud's frame
+  std::string landmark_directory;  ///< where NAME.lmk files live
+  FindSettings find;               ///< scene.base_frame is always set: scenes are in base_frame
+  CaptureSettings capture;         ///< base_frame is always set likewise
+
+  /// From the private parameters ~cloud_topic, ~base_frame, ~sensor_frame,
+  /// ~landmark_directory (default $ROS_HOME/lmk/landmarks) and ~find_settings (the JSON form of
+  /// FindSettings, as `lmk find --settings-json` takes it). Throws lmk::Error for a bad one.
+  static LandmarkNodeSettings from_parameters(const ::ros::NodeHandle& private_nh);
+};
+
+class LandmarkNode {
+ public:
+  /// Advertises the services and the marker topic in `private_nh`'s namespace.
+  LandmarkNode(::ros::NodeHandle nh, ::ros::NodeHandle private_nh, LandmarkNodeSettings settings);
+
+  bool capture(lmk_msgs::CaptureLandmark::Request& request,
+               lmk_msgs::CaptureLandmark::Response& response);
+  bool find(lmk_msgs::FindLandmark::Request& request, lmk_msgs::FindLandmark::Response& response);
+  bool list(lmk_msgs::ListLandmarks::Request& request, lmk_msgs::ListLandmarks::Response& response);
+
+ private:
+  /// The latest frame; lmk::Error when none has arrived yet.
+  std::shared_ptr<const Frame> frame() const;
+
+  LandmarkNodeSettings settings_;
+  LandmarkLibrary library_;
+  tf2_ros::Buffer tf_;
+  tf2_ros::TransformListener tf_listener_;
+  LatestFrame latest_;
+  ::ros::Publisher markers_;
+  ::ros::ServiceServer capture_service_, find_service_, list_service_;
+};
+
+}  // namespace lmk::ros1

@@ -1,0 +1,50 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "lmk/ros/latest_frame.h"
+
+#include "lmk/geometry/error.h"
+#include "lmk/ros/cloud_conversion.h"
+#include "lmk/ros/tf_lookup.h"
+
+namespace lmk::ros1 {
+
+Frame frame_from_cloud(const sensor_msgs::PointCloud2& msg, const tf2_ros::Buffer& tf,
+                       const std::string& base_frame, const std::string& sensor_frame,
+                       const ::ros::Duration& tf_timeout) {
+  const std::string cloud_frame = msg.header.frame_id;
+  if (cloud_frame.empty()) throw Error("the cloud has no frame_id");
+  PointCloud cloud = from_ros(msg, "cloud in '" + cloud_frame + "'");
+  if (!sensor_frame.empty() && sensor_frame != cloud_frame) {
+    cloud.T_cloud_sensor = lookup_pose(tf, cloud_frame, sensor_frame, msg.header.stamp, tf_timeout);
+  }
+  const Eigen::Isometry3d T_base_cloud =
+      lookup_pose(tf, base_frame, cloud_frame, msg.header.stamp, tf_timeout);
+  return Frame{cloud.transformed(T_base_cloud), base_frame, cloud_frame, msg.header.stamp};
+}
+
+LatestFrame::LatestFrame(::ros::NodeHandle& nh, const std::string& topic, const tf2_ros::Buffer& tf,
+                         std::string base_frame, std::string sensor_frame)
+    : tf_(tf),
+      topic_(topic),
+      base_frame_(std::move(base_frame)),
+      sensor_frame_(std::move(sensor_frame)) {
+  // Queue of one: a search wants the newest frame, never a backlog.
+  subscriber_ = nh.subscribe(topic, 1, &LatestFrame::receive, this);
+}
+
+std::shared_ptr<const Frame> LatestFrame::get() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return latest_;
+}
+
+void LatestFrame::receive(const sensor_msgs::PointCloud2ConstPtr& msg) {
+  try {
+    auto frame = std::make_shared<const Frame>(
+        frame_from_cloud(*msg, tf_, base_frame_, sensor_frame_, ::ros::Duration(0.5)));
+    const std::lock_guard<std::mutex> lock(mutex_);
+    latest_ = std::move(frame);
+  } catch (const Error& e) {
+    ROS_WARN_THROTTLE(5.0, "lmk: frame on %s dropped: %s", topic_.c_str(), e.what());
+  }
+}
+
+}  // namespace lmk::ros1

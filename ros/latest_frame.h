@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+// The latest frame of a depth camera, in the robot's base frame: what lmk_node captures from and
+// searches in. The cloud is moved into the base frame with TF at its own stamp, and its sensor is
+// placed where TF says the camera was, so that the empty-space and sensor metrics see the real
+// viewpoint (docs/ros.md).
+
+#include <ros/ros.h>
+#include <sensor_msgs/PointCloud2.h>
+#include <tf2_ros/buffer.h>
+
+#include <memory>
+#include <mutex>
+#include <string>
+
+#include "lmk/geometry/point_cloud.h"
+
+namespace lmk::ros1 {
+
+struct Frame {
+  PointCloud scene;         ///< in the base frame; T_cloud_sensor is T_base_sensor
+  std::string base_frame;   ///< the frame `scene` is in
+  std::string cloud_frame;  ///< the frame the camera published it in
+  ::ros::Time stamp;        ///< when the camera took it
+};
+
+/// Converts one PointCloud2 into a Frame in `base_frame`. `sensor_frame` is the camera's optical
+/// frame; empty, the cloud's own frame is taken to be it. Throws lmk::Error for a malformed cloud
+/// or a missing transform.
+Frame frame_from_cloud(const sensor_msgs::PointCloud2& msg, const tf2_ros::Buffer& tf,
+                       const std::string& base_frame, const std::string& sensor_frame,
+                       const ::ros::Duration& tf_timeout);
+
+/// Subscribes to a cloud topic and keeps the latest frame that converted. A cloud that does not
+/// convert is reported (throttled) and the previous frame is kept.
+class LatestFrame {
+ public:
+  LatestFrame(::ros::NodeHandle& nh, const std::string& topic, const tf2_ros::Buffer& tf,
+              std::string base_frame, std::string sensor_frame);
+  /// The latest frame, or null before the first one.
+  std::shared_ptr<const Frame> get() const;
+  const std::string& topic() const { return topic_; }
+
+ private:
+  void receive(const sensor_msgs::PointCloud2ConstPtr& msg);
+
+  const tf2_ros::Buffer& tf_;
+  std::string topic_, base_frame_, sensor_frame_;
+  ::ros::Subscriber subscriber_;
+  mutable std::mutex mutex_;
+  std::shared_ptr<const Frame> latest_;
+};
+
+}  // namespace lmk::ros1
