@@ -38,6 +38,8 @@ LandmarkNodeSettings LandmarkNodeSettings::from_parameters(const ::ros::NodeHand
   private_nh.param("base_frame", s.base_frame, s.base_frame);
   private_nh.param("sensor_frame", s.sensor_frame, s.sensor_frame);
   private_nh.param("landmark_directory", s.landmark_directory, default_landmark_directory());
+  private_nh.param("frame_timeout", s.frame_timeout, s.frame_timeout);
+  if (!(s.frame_timeout >= 0.0)) throw Error("~frame_timeout: must be seconds, 0 or more");
   std::string find_json = "{}";
   private_nh.param("find_settings", find_json, find_json);
   nlohmann::json j;
@@ -69,7 +71,14 @@ LandmarkNode::LandmarkNode(::ros::NodeHandle nh, ::ros::NodeHandle private_nh,
 }
 
 std::shared_ptr<const Frame> LandmarkNode::frame() const {
+  // Right after start-up the first frame may still be on its way: wait for it a little.
+  const ::ros::WallTime deadline =
+      ::ros::WallTime::now() + ::ros::WallDuration(settings_.frame_timeout);
   std::shared_ptr<const Frame> frame = latest_.get();
+  while (!frame && ::ros::WallTime::now() < deadline && ::ros::ok()) {
+    ::ros::WallDuration(0.02).sleep();
+    frame = latest_.get();
+  }
   if (!frame) {
     throw Error("no frame from " + latest_.topic() + " yet (is the camera publishing, and does " +
                 "TF reach " + settings_.base_frame + "?)");

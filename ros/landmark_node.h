@@ -26,12 +26,14 @@ struct LandmarkNodeSettings {
   std::string base_frame = "base_link";
   std::string sensor_frame;        ///< the camera's optical frame; empty: the cloud's frame
   std::string landmark_directory;  ///< where NAME.lmk files live
+  double frame_timeout = 3.0;      ///< s a service waits for the first frame
   FindSettings find;               ///< scene.base_frame is always set: scenes are in base_frame
   CaptureSettings capture;         ///< base_frame is always set likewise
 
   /// From the private parameters ~cloud_topic, ~base_frame, ~sensor_frame,
-  /// ~landmark_directory (default $ROS_HOME/lmk/landmarks) and ~find_settings (the JSON form of
-  /// FindSettings, as `lmk find --settings-json` takes it). Throws lmk::Error for a bad one.
+  /// ~landmark_directory (default $ROS_HOME/lmk/landmarks), ~frame_timeout and ~find_settings (the
+  /// JSON form of FindSettings, as `lmk find --settings-json` takes it). Throws lmk::Error for a
+  /// bad one.
   static LandmarkNodeSettings from_parameters(const ::ros::NodeHandle& private_nh);
 };
 

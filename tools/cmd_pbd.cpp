@@ -21,17 +21,10 @@
 #include "lmk/pr2/simulated_pr2.h"
 #include "tools/cli_common.h"
 #include "tools/interrupt.h"
+#include "tools/pbd_common.h"
 
 namespace lmk::cli {
 namespace {
-
-struct PbdOptions {
-  std::string program, scene, json, save_dir, policy, cache_dir;
-  double torso = 0.0;
-  int threads = 0;
-  bool sim = false, json_stdout = false, timings = false;
-  std::vector<int> tasks;
-};
 
 void print_pose(const char* label, const Eigen::Isometry3d& T) {
   const Eigen::Vector3d p = T.translation();
@@ -108,6 +101,8 @@ nlohmann::json plan_json(const Plan& plan) {
   return j;
 }
 
+}  // namespace
+
 void print_plan(const Plan& plan) {
   for (const LocatedLandmark& l : plan.landmarks) {
     std::printf("landmark %-16s ", l.name.c_str());
@@ -126,30 +121,52 @@ void print_plan(const Plan& plan) {
   }
 }
 
-// Plans the program in the scene for a simulated PR2 at rest with the torso at o.torso; the robot
-// is returned configured and active, so that `run` can execute the plan on it.
-Plan plan_program(const PbdOptions& o, SimulatedPr2& robot) {
-  format_from_path(o.scene);
-  const Program program = load_program(o.program);
-  const auto landmarks =
-      load_program_landmarks(program, std::filesystem::path(o.program).parent_path().string());
-  const PointCloud scene = read_cloud(o.scene);
-  if (!robot.configure().ok() || !robot.activate().ok())
-    throw Error("simulated PR2 failed to start");
-  JointState state;
-  robot.read_joint_state(state);
+PlanSettings plan_settings(const PbdOptions& o) {
   PlanSettings settings;
   settings.find.execution.threads = o.threads;
   if (!o.policy.empty()) settings.policy = instance_policy_from_name(o.policy);
   if (isatty(STDERR_FILENO)) {
     settings.progress = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
   }
-  return plan(program, landmarks, scene, robot.kinematics(), state, settings);
+  return settings;
+}
+
+std::map<std::string, Landmark> load_landmarks_of(const PbdOptions& o, const Program& program) {
+  return load_program_landmarks(program, std::filesystem::path(o.program).parent_path().string());
 }
 
 int refused(const Plan& plan) {
   std::fprintf(stderr, "lmk: refused: %s\n", describe(*plan.refusal).c_str());
   return kInternalError;  // exit 1: a valid request the robot will not carry out
+}
+
+int report_execution(const Plan& plan, const ExecutionReport& report, double seconds,
+                     const char* clock) {
+  for (const std::string& line : report.log) std::printf("executed %s\n", line.c_str());
+  if (!report.completed) {
+    std::fprintf(stderr, "lmk: stopped after %zu of %zu steps: %s\n", report.steps_completed,
+                 report.steps_total, report.error.c_str());
+    return kInternalError;
+  }
+  std::printf("program '%s' done: %zu steps in %.1f s of %s\n", plan.program.c_str(),
+              report.steps_completed, seconds, clock);
+  return kOk;
+}
+
+namespace {
+
+// Plans the program in the scene for a simulated PR2 at rest with the torso at o.torso; the robot
+// is returned configured and active, so that `run` can execute the plan on it.
+Plan plan_program(const PbdOptions& o, SimulatedPr2& robot) {
+  format_from_path(o.scene);
+  const Program program = load_program(o.program);
+  const auto landmarks = load_landmarks_of(o, program);
+  const PointCloud scene = read_cloud(o.scene);
+  if (!robot.configure().ok() || !robot.activate().ok())
+    throw Error("simulated PR2 failed to start");
+  JointState state;
+  robot.read_joint_state(state);
+  return plan(program, landmarks, scene, robot.kinematics(), state, plan_settings(o));
 }
 
 int run_plan(const PbdOptions& o) {
@@ -164,25 +181,18 @@ int run_plan(const PbdOptions& o) {
 }
 
 int run_run(const PbdOptions& o) {
-  if (!o.sim) {
+  if (o.ros) return run_on_ros(o);
+  if (!o.sim || o.scene.empty()) {
     throw Error(
-        "pbd run: only --sim is available from the command line; real robots run programs "
-        "through lmk's C++ RobotInterface");
+        "pbd run: give --sim --scene FILE for the simulated PR2, or --ros for a robot "
+        "under ROS 1");
   }
   SimulatedPr2 robot(Pr2Kinematics(RobotModel::pr2(), o.torso));
   const Plan plan = plan_program(o, robot);
   print_plan(plan);
   if (!plan.valid()) return refused(plan);
   const ExecutionReport report = execute(plan, robot);
-  for (const std::string& line : report.log) std::printf("executed %s\n", line.c_str());
-  if (!report.completed) {
-    std::fprintf(stderr, "lmk: stopped after %zu of %zu steps: %s\n", report.steps_completed,
-                 report.steps_total, report.error.c_str());
-    return kInternalError;
-  }
-  std::printf("program '%s' done: %zu steps in %.1f s of robot time\n", plan.program.c_str(),
-              report.steps_completed, robot.time());
-  return kOk;
+  return report_execution(plan, report, robot.time(), "robot time");
 }
 
 int run_demo_tasks_command(const PbdOptions& o) {
@@ -204,10 +214,11 @@ int run_demo_tasks_command(const PbdOptions& o) {
   return kOk;
 }
 
-void add_plan_options(CLI::App* sub, PbdOptions& o) {
+void add_plan_options(CLI::App* sub, PbdOptions& o, bool scene_required) {
   sub->add_option("program", o.program, "Program file (.json)")->required();
-  sub->add_option("--scene", o.scene, "Scene cloud in the robot base frame (.pcd, .ply, .xyz)")
-      ->required();
+  CLI::Option* scene =
+      sub->add_option("--scene", o.scene, "Scene cloud in the robot base frame (.pcd, .ply, .xyz)");
+  if (scene_required) scene->required();
   sub->add_option("--torso", o.torso, "PR2 torso height, m (0 to 0.33)")->capture_default_str();
   sub->add_option("--policy", o.policy,
                   "Instance policy for landmarks whose program sets none: best-error, "
@@ -226,11 +237,22 @@ Subcommand add_pbd(CLI::App& app) {
   show->add_option("program", o->program, "Program file (.json)")->required();
   CLI::App* plan = sub->add_subcommand(
       "plan", "Locate the landmarks, compose the targets and solve IK, or say why not");
-  add_plan_options(plan, *o);
+  add_plan_options(plan, *o, true);
   plan->add_flag("--json", o->json_stdout, "Print the plan (or refusal) as JSON");
-  CLI::App* run = sub->add_subcommand("run", "Plan, then execute on the simulated PR2");
-  add_plan_options(run, *o);
-  run->add_flag("--sim", o->sim, "Execute on the simulated PR2 (the only robot the CLI drives)");
+  CLI::App* run = sub->add_subcommand(
+      "run", "Plan, then execute on the simulated PR2 (--sim) or a robot under ROS 1 (--ros)");
+  add_plan_options(run, *o, false);
+  CLI::Option* sim = run->add_flag("--sim", o->sim, "Execute on the simulated PR2 (needs --scene)");
+  CLI::Option* ros = run->add_flag(
+      "--ros", o->ros,
+      "Execute on a robot under ROS 1 (the PR2's controllers; docs/ros.md): plan on the latest "
+      "camera frame, in the base frame from TF");
+  sim->excludes(ros);
+  run->add_option("--cloud-topic", o->cloud_topic, "With --ros: the camera's cloud topic")
+      ->capture_default_str();
+  run->add_option("--frame-timeout", o->frame_timeout,
+                  "With --ros: seconds to wait for a camera frame and the robot")
+      ->capture_default_str();
   CLI::App* demo = sub->add_subcommand(
       "demo-tasks", "The paper's six demonstration tasks, end to end on the simulated PR2");
   demo->add_option("--json", o->json, "Also write the results as JSON to FILE");

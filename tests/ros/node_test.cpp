@@ -1,0 +1,295 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// lmk on ROS 1, end to end against a real rosmaster of the test's own (tests/ros/support):
+// lmk_node's services on a fake PR2's camera, `lmk pbd run --ros` driving the fake PR2's
+// controllers, and RosRobot's lifecycle. The scenes, landmark and program are the paper's task 3
+// ("bowls on a shelf") from lmk's demo tasks: its demonstration frame, a frame where the bowl can
+// be picked, and one with only cups, where the robot must not act.
+#include <gtest/gtest.h>
+#include <lmk_msgs/CaptureLandmark.h>
+#include <lmk_msgs/FindLandmark.h>
+#include <lmk_msgs/ListLandmarks.h>
+#include <ros/ros.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_listener.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "lmk/demos/demo_tasks.h"
+#include "lmk/geometry/cloud_io.h"
+#include "lmk/landmark/landmark_file.h"
+#include "lmk/pbd/plan.h"
+#include "lmk/pr2/pr2_kinematics.h"
+#include "lmk/ros/cloud_conversion.h"
+#include "lmk/ros/geometry_conversion.h"
+#include "lmk/ros/latest_frame.h"
+#include "lmk/ros/ros_robot.h"
+#include "tests/ros/support/fake_pr2.h"
+#include "tests/ros/support/ros_harness.h"
+#include "tests/support/lifecycle_conformance.h"
+#include "tests/support/test_support.h"
+
+namespace lmk::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+const bool kRosMaster = (use_ros_master("lmk_ros_test"), true);
+
+/// Task 3 of the demo tasks, written once per test process.
+struct DemoData {
+  ScratchDir dir;
+  fs::path task;
+  PointCloud scene(const std::string& file) const { return read_cloud((task / file).string()); }
+  fs::path landmark() const { return task / "bowl_rim.lmk"; }
+  fs::path program() const { return task / "pick_bowl.json"; }
+};
+
+const DemoData& demo_data() {
+  static const DemoData* data = [] {
+    auto* d = new DemoData;
+    DemoTasksSettings settings;
+    settings.tasks = {3};
+    settings.save_dir = d->dir.path().string();
+    run_demo_tasks(settings);
+    d->task = d->dir.path() / "task3";
+    return d;
+  }();
+  return *data;
+}
+
+FakePr2Settings fake_settings(const std::string& scene_file) {
+  FakePr2Settings s;
+  s.scene = demo_data().scene(scene_file);
+  s.torso_height = 0.0;  // task 3's
+  return s;
+}
+
+/// The frame lmk_node and `lmk pbd run --ros` build from the fake's camera: the same message and
+/// the same TF, through the same conversion, so the same points bit for bit.
+ros1::Frame frame_as_the_node_sees_it() {
+  static tf2_ros::Buffer tf;
+  static tf2_ros::TransformListener listener(tf);
+  const auto msg = ::ros::topic::waitForMessage<sensor_msgs::PointCloud2>(
+      "/head_mount_kinect/depth_registered/points", ::ros::Duration(20));
+  if (!msg) throw std::runtime_error("the fake PR2 publishes no cloud");
+  return ros1::frame_from_cloud(*msg, tf, "base_link", "", ::ros::Duration(2.0));
+}
+
+std::unique_ptr<ChildProcess> start_node(const ScratchDir& dir, const std::string& landmarks) {
+  auto node =
+      std::make_unique<ChildProcess>(std::vector<std::string>{LMK_NODE_BINARY, "__name:=lmk_node",
+                                                              "_landmark_directory:=" + landmarks},
+                                     dir.file("lmk_node.log"));
+  if (!::ros::service::waitForService("/lmk_node/find_landmark", ::ros::Duration(30))) {
+    ADD_FAILURE() << "lmk_node did not come up:\n" << node->log();
+  }
+  return node;
+}
+
+/// Runs the lmk CLI to its end; its exit code and output.
+std::pair<int, std::string> run_lmk(const ScratchDir& dir, std::vector<std::string> args) {
+  args.insert(args.begin(), LMK_BINARY);
+  ChildProcess lmk(args, dir.file("lmk.log"));
+  const int code = lmk.wait(300.0);
+  return {code, lmk.log()};
+}
+
+template <class Service>
+Service call(const std::string& name, Service service) {
+  EXPECT_TRUE(::ros::service::call(name, service)) << name;
+  return service;
+}
+
+TEST(LmkNode, CaptureAndFindThroughTheServicesGiveWhatLmkFindGivesOnTheSameFrame) {
+  const Landmark demonstrated = load_landmark(demo_data().landmark().string());
+  FakePr2 robot(fake_settings("demonstration.pcd"));
+  const ScratchDir dir;
+  const auto node = start_node(dir, dir.file("landmarks"));
+
+  // The box the demonstration used, given in torso_lift_link: capture takes any TF frame.
+  lmk_msgs::CaptureLandmark capture;
+  capture.request.name = "rim";
+  capture.request.box_pose.header.frame_id = "torso_lift_link";
+  const Pr2Kinematics kinematics(RobotModel::pr2(), 0.0);
+  capture.request.box_pose.pose =
+      ros1::to_ros(kinematics.T_base_torso().inverse() * demonstrated.box.pose);
+  capture.request.box_size = ros1::to_ros(demonstrated.box.size);
+  capture = call("/lmk_node/capture_landmark", capture);
+  ASSERT_TRUE(capture.response.success) << capture.response.message << "\n" << node->log();
+  EXPECT_TRUE(capture.response.found_itself);
+  EXPECT_TRUE(fs::exists(capture.response.file));
+  EXPECT_EQ(capture.response.header.frame_id, "base_link");
+
+  lmk_msgs::ListLandmarks list = call("/lmk_node/list_landmarks", lmk_msgs::ListLandmarks());
+  EXPECT_EQ(list.response.names, std::vector<std::string>{"rim"});
+
+  lmk_msgs::FindLandmark find;
+  find.request.name = "rim";
+  find = call("/lmk_node/find_landmark", find);
+  ASSERT_TRUE(find.response.success) << find.response.message;
+  ASSERT_FALSE(find.response.matches.empty());
+
+  // lmk find on the same frame and the file the node wrote.
+  const ros1::Frame frame = frame_as_the_node_sees_it();
+  write_cloud(dir.file("frame.pcd"), frame.scene);
+  const auto [code, out] = run_lmk(dir, {"find", dir.file("frame.pcd"), capture.response.file,
+                                         "--base-frame", "--json", dir.file("find.json")});
+  ASSERT_EQ(code, 0) << out;
+  std::ifstream in(dir.file("find.json"));
+  const nlohmann::json expected = nlohmann::json::parse(in);
+  ASSERT_EQ(expected["matches"].size(), find.response.matches.size());
+  for (std::size_t i = 0; i < find.response.matches.size(); ++i) {
+    const lmk_msgs::LandmarkMatch& got = find.response.matches[i];
+    const nlohmann::json& want = expected["matches"][i];
+    EXPECT_DOUBLE_EQ(got.error, want["error"].get<double>()) << i;
+    // `lmk find --json` gives each match's box pose as position and quaternion [w, x, y, z].
+    const nlohmann::json& p = want["position"];
+    const nlohmann::json& q = want["quaternion"];
+    EXPECT_NEAR(got.box_pose.position.x, p[0].get<double>(), 1e-9);
+    EXPECT_NEAR(got.box_pose.position.y, p[1].get<double>(), 1e-9);
+    EXPECT_NEAR(got.box_pose.position.z, p[2].get<double>(), 1e-9);
+    EXPECT_NEAR(std::abs(got.box_pose.orientation.w * q[0].get<double>() +
+                         got.box_pose.orientation.x * q[1].get<double>() +
+                         got.box_pose.orientation.y * q[2].get<double>() +
+                         got.box_pose.orientation.z * q[3].get<double>()),
+                1.0, 1e-9);
+    EXPECT_EQ(got.terms.landmark_to_scene_count,
+              want["terms"]["landmark_to_scene_count"].get<std::size_t>());
+    EXPECT_EQ(got.rank, i + 1);
+  }
+}
+
+TEST(LmkNode, BadRequestsAreAnsweredWithTheReason) {
+  FakePr2 robot(fake_settings("demonstration.pcd"));
+  const ScratchDir dir;
+  const auto node = start_node(dir, dir.file("landmarks"));
+
+  lmk_msgs::CaptureLandmark capture;
+  capture.request.name = "../outside";
+  capture.request.box_pose.pose.orientation.w = 1.0;
+  capture.request.box_size.x = capture.request.box_size.y = capture.request.box_size.z = 0.1;
+  capture = call("/lmk_node/capture_landmark", capture);
+  EXPECT_FALSE(capture.response.success);
+  EXPECT_NE(capture.response.message.find("landmark name"), std::string::npos);
+
+  capture.request.name = "tilted";
+  capture.request.box_pose.pose.orientation.w = 0.5;  // not a unit quaternion
+  capture = call("/lmk_node/capture_landmark", capture);
+  EXPECT_FALSE(capture.response.success);
+  EXPECT_NE(capture.response.message.find("unit quaternion"), std::string::npos);
+
+  capture.request.box_pose.pose.orientation.w = 1.0;
+  capture.request.box_pose.header.frame_id = "no_such_frame";
+  capture = call("/lmk_node/capture_landmark", capture);
+  EXPECT_FALSE(capture.response.success);
+  EXPECT_NE(capture.response.message.find("no_such_frame"), std::string::npos);
+
+  lmk_msgs::FindLandmark find;
+  find.request.name = "missing";
+  find = call("/lmk_node/find_landmark", find);
+  EXPECT_FALSE(find.response.success);
+  EXPECT_NE(find.response.message.find("no landmark 'missing'"), std::string::npos);
+  EXPECT_TRUE(node->running());
+}
+
+/// The plan `lmk pbd run --ros` makes: the same frame, joint state, torso and settings.
+Plan expected_plan(const FakePr2& robot) {
+  const Program program = load_program(demo_data().program().string());
+  const auto landmarks = load_program_landmarks(program, demo_data().task.string());
+  JointState state;
+  for (const auto& [name, q] : robot.joints()) {
+    state.names.push_back(name);
+    state.positions.push_back(q);
+    state.velocities.push_back(0.0);
+  }
+  const Pr2Kinematics kinematics(RobotModel::pr2(), 0.0);
+  return plan(program, landmarks, frame_as_the_node_sees_it().scene, kinematics, state);
+}
+
+const char* arm_action(Arm arm) {
+  return arm == Arm::kLeft ? "l_arm_controller/joint_trajectory_action"
+                           : "r_arm_controller/joint_trajectory_action";
+}
+
+TEST(PbdRunOnRos, DrivesThePr2WithExactlyThePlannedTrajectories) {
+  FakePr2 robot(fake_settings("scenario3.pcd"));
+  const Plan plan = expected_plan(robot);
+  ASSERT_TRUE(plan.valid()) << describe(*plan.refusal);
+  ASSERT_FALSE(plan.steps.empty());
+  const ScratchDir dir;
+  const auto [code, out] = run_lmk(dir, {"pbd", "run", demo_data().program().string(), "--ros"});
+  ASSERT_EQ(code, 0) << out;
+  EXPECT_NE(out.find("done"), std::string::npos) << out;
+
+  std::map<std::string, std::size_t> next;
+  for (const PlannedStep& step : plan.steps) {
+    for (const PlannedArm& a : step.arms) {
+      const auto sent = robot.trajectories(arm_action(a.arm));
+      const std::size_t k = next[arm_action(a.arm)]++;
+      ASSERT_LT(k, sent.size()) << "step " << step.index << ": no goal for " << arm_name(a.arm);
+      const trajectory_msgs::JointTrajectory& got = sent[k];
+      EXPECT_EQ(got.joint_names, a.trajectory.joint_names);
+      ASSERT_EQ(got.points.size(), a.trajectory.points.size());
+      for (std::size_t p = 0; p < got.points.size(); ++p) {
+        EXPECT_EQ(got.points[p].positions, a.trajectory.points[p].positions);
+        EXPECT_NEAR(got.points[p].time_from_start.toSec(), a.trajectory.points[p].time_from_start,
+                    1e-9);
+      }
+    }
+  }
+  ASSERT_FALSE(next.empty());
+  for (const auto& [action, used] : next) EXPECT_EQ(robot.goals(action), static_cast<int>(used));
+  // Each step's gripper too, on the arm that moved.
+  EXPECT_EQ(robot.goals("r_gripper_controller/gripper_action"),
+            static_cast<int>(next["r_arm_controller/joint_trajectory_action"]));
+}
+
+TEST(PbdRunOnRos, AMissingLandmarkSendsNoGoalAtAll) {
+  FakePr2 robot(fake_settings("scenario5.pcd"));  // only cups
+  const ScratchDir dir;
+  const auto [code, out] = run_lmk(dir, {"pbd", "run", demo_data().program().string(), "--ros"});
+  EXPECT_EQ(code, 1) << out;
+  EXPECT_NE(out.find("refused: landmark 'bowl_rim' not found"), std::string::npos) << out;
+  EXPECT_EQ(robot.total_goals(), 0);
+}
+
+TEST(PbdRunOnRos, AnAbortedArmGoalStopsTheRunAndNamesTheStep) {
+  FakePr2 robot(fake_settings("scenario3.pcd"));
+  robot.abort_arm_goal(2);
+  const ScratchDir dir;
+  const auto [code, out] = run_lmk(dir, {"pbd", "run", demo_data().program().string(), "--ros"});
+  EXPECT_EQ(code, 1) << out;
+  EXPECT_NE(out.find("stopped after 1 of"), std::string::npos) << out;
+  EXPECT_NE(out.find("step 1: right_arm: r_arm_controller/joint_trajectory_action: the "
+                     "controller aborted the goal (fake PR2: the test asked for an abort)"),
+            std::string::npos)
+      << out;
+  int arm_goals = 0;
+  for (Arm arm : {Arm::kLeft, Arm::kRight}) arm_goals += robot.goals(arm_action(arm));
+  EXPECT_EQ(arm_goals, 2);  // nothing after the abort
+}
+
+TEST(RosRobot, AnswersEveryMethodInEveryStateAsTheInterfaceDocuments) {
+  FakePr2 fake(fake_settings("demonstration.pcd"));
+  ros1::RosRobot robot{::ros::NodeHandle()};
+  expect_lifecycle_table(robot, *Pr2Kinematics().group("left_arm"), "left");
+  EXPECT_GE(fake.goals("l_arm_controller/joint_trajectory_action"), 1);
+}
+
+TEST(RosRobot, ConfigureNamesWhatDoesNotAnswer) {
+  ros1::RosRobotSettings settings;
+  settings.connect_timeout = 1.0;
+  ros1::RosRobot robot(::ros::NodeHandle(), settings);
+  const CallResult r = robot.configure();
+  EXPECT_EQ(r.status, Status::kError);
+  EXPECT_NE(r.message.find("l_arm_controller/joint_trajectory_action"), std::string::npos)
+      << r.message;
+  EXPECT_NE(r.message.find("joint_states"), std::string::npos) << r.message;
+  EXPECT_EQ(robot.state(), LifecycleState::kUnconfigured);
+}
+
+}  // namespace
+}  // namespace lmk::test

@@ -1,0 +1,112 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// lmk pbd run PROGRAM --ros: a PbD program on a robot under ROS 1 (docs/ros.md, "Run on the PR2").
+// The plan is made on the latest camera frame, in the base frame from TF, from the robot's own
+// joint state and torso height; a refusal sends no goal at all; a controller's abort stops the run
+// and names the step. Ctrl-C cancels the goal under way.
+
+#include <ros/ros.h>
+#include <tf2_ros/transform_listener.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <thread>
+
+#include "lmk/geometry/error.h"
+#include "lmk/pr2/pr2_kinematics.h"
+#include "lmk/ros/latest_frame.h"
+#include "lmk/ros/ros_robot.h"
+#include "tools/cli_common.h"
+#include "tools/interrupt.h"
+#include "tools/pbd_common.h"
+
+namespace lmk::cli {
+namespace {
+
+/// Starts this process as a ROS node, or says why it cannot.
+void start_ros_node() {
+  int argc = 0;
+  ros::init(argc, nullptr, "lmk_pbd",
+            ros::init_options::NoSigintHandler | ros::init_options::AnonymousName);
+  if (!ros::master::check()) {
+    throw Error("pbd run --ros: no ROS master at " + ros::master::getURI() +
+                " (start roscore, or set ROS_MASTER_URI)");
+  }
+}
+
+std::shared_ptr<const ros1::Frame> wait_for_frame(const ros1::LatestFrame& latest, double timeout) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout);
+  while (std::chrono::steady_clock::now() < deadline && ros::ok()) {
+    if (auto frame = latest.get()) return frame;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  throw Error("pbd run --ros: no usable frame on " + latest.topic() + " within " +
+              std::to_string(static_cast<int>(timeout)) +
+              " s (is the camera publishing, and does TF reach the base frame?)");
+}
+
+double torso_height(const JointState& state) {
+  for (std::size_t i = 0; i < state.names.size(); ++i) {
+    if (state.names[i] == "torso_lift_joint") return state.positions[i];
+  }
+  throw Error("pbd run --ros: the robot's joint state has no torso_lift_joint (is it a PR2?)");
+}
+
+}  // namespace
+
+int run_on_ros(const PbdOptions& o) {
+  const Program program = load_program(o.program);
+  const auto landmarks = load_landmarks_of(o, program);
+  start_ros_node();
+  ros::AsyncSpinner spinner(2);
+  spinner.start();
+  ros::NodeHandle nh;
+  // Settings from the parameter server under /lmk_pbd (docs/ros.md), e.g. arm_action_type.
+  const ros1::RosRobotSettings robot_settings =
+      ros1::RosRobotSettings::from_parameters(ros::NodeHandle("lmk_pbd"));
+  ros1::RosRobot robot(nh, robot_settings);
+  tf2_ros::Buffer tf;
+  tf2_ros::TransformListener tf_listener(tf);
+  const ros1::LatestFrame latest(nh, o.cloud_topic, tf, robot_settings.base_frame, "");
+
+  const CallResult configured = robot.configure();
+  if (!configured.ok()) throw Error("pbd run --ros: " + configured.message);
+  const std::shared_ptr<const ros1::Frame> frame = wait_for_frame(latest, o.frame_timeout);
+  JointState state;
+  const CallResult read = robot.read_joint_state(state);
+  if (!read.ok()) throw Error("pbd run --ros: " + read.message);
+  const Pr2Kinematics kinematics(RobotModel::pr2(), torso_height(state));
+  std::printf("planning on the frame of %.3f s from %s (%zu points), torso at %.3f m\n",
+              frame->stamp.toSec(), o.cloud_topic.c_str(), frame->scene.size(),
+              kinematics.torso_height());
+  const Plan plan =
+      lmk::plan(program, landmarks, frame->scene, kinematics, state, plan_settings(o));
+  print_plan(plan);
+  if (!plan.valid()) return refused(plan);  // nothing was sent to the robot
+
+  const CallResult activated = robot.activate();
+  if (!activated.ok()) throw Error("pbd run --ros: " + activated.message);
+  // Ctrl-C: deactivating cancels the goal under way, which ends the run at that step.
+  const StopOnSigint sigint;
+  std::atomic<bool> done{false};
+  std::thread watcher([&] {
+    while (!done) {
+      if (StopOnSigint::requested()) {
+        robot.deactivate();
+        return;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+  });
+  const auto start = std::chrono::steady_clock::now();
+  const ExecutionReport report = execute(plan, robot);
+  done = true;
+  watcher.join();
+  robot.deactivate();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  spinner.stop();
+  return report_execution(plan, report, seconds, "wall time");
+}
+
+}  // namespace lmk::cli

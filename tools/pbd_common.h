@@ -1,0 +1,40 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+// What lmk pbd's simulated and ROS runs share (tools/cmd_pbd.cpp, tools/cmd_pbd_ros.cpp): the
+// options, the planner's settings, and how plans, refusals and executions are printed.
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "lmk/pbd/execute.h"
+#include "lmk/pbd/plan.h"
+
+namespace lmk::cli {
+
+struct PbdOptions {
+  std::string program, scene, json, save_dir, policy, cache_dir;
+  double torso = 0.0;
+  int threads = 0;
+  bool sim = false, ros = false, json_stdout = false, timings = false;
+  std::vector<int> tasks;
+  std::string cloud_topic = "/head_mount_kinect/depth_registered/points";
+  double frame_timeout = 10.0;  ///< s
+};
+
+PlanSettings plan_settings(const PbdOptions& o);
+/// The program's landmarks, their files relative to the program's folder.
+std::map<std::string, Landmark> load_landmarks_of(const PbdOptions& o, const Program& program);
+void print_plan(const Plan& plan);
+/// Prints the refusal; the exit code of a refused run.
+int refused(const Plan& plan);
+/// Prints what was executed, or where it stopped and why; the exit code. `seconds` of `clock`
+/// ("robot time", "wall time") is the run's duration.
+int report_execution(const Plan& plan, const ExecutionReport& report, double seconds,
+                     const char* clock);
+
+/// lmk pbd run --ros: plans on the robot's latest frame and executes through RosRobot. Without ROS
+/// (LMK_WITH_ROS=OFF) it throws lmk::Error saying so.
+int run_on_ros(const PbdOptions& o);
+
+}  // namespace lmk::cli
