@@ -17,6 +17,7 @@
 #include "lmk/json/terms_json.h"
 #include "lmk/landmark/find_landmark.h"
 #include "lmk/landmark/landmark_file.h"
+#include "tools/bag_input.h"
 #include "tools/cli_common.h"
 #include "tools/progress.h"
 
@@ -24,6 +25,7 @@ namespace lmk::cli {
 namespace {
 
 struct FindOptions {
+  BagOptions bag;
   std::string scene, landmark, json;
   bool timings = false;
   FindSettings settings;
@@ -101,10 +103,19 @@ void print_table(const FindResult& r, const std::string& name) {
   }
 }
 
+PointCloud read_scene(FindOptions& o) {
+  if (!is_bag(o.scene)) return read_cloud(o.scene);
+  bool in_base_frame = false;
+  PointCloud scene = read_bag_scene(o.scene, o.bag, in_base_frame);
+  // A scene in the robot's base frame has +z up, as --base-frame says, unless --up says otherwise.
+  if (in_base_frame && !o.settings.scene.up) o.settings.scene.base_frame = true;
+  return scene;
+}
+
 int run_find(FindOptions& o) {
-  format_from_path(o.scene);
+  if (!is_bag(o.scene)) format_from_path(o.scene);
   const Landmark landmark = load_landmark(o.landmark);
-  const PointCloud scene = read_cloud(o.scene);
+  const PointCloud scene = read_scene(o);
   ProgressBar bar("find " + landmark.name);
   o.settings.execution.progress = [&bar](std::size_t done, std::size_t total) {
     bar.update(done, total);
@@ -128,9 +139,11 @@ Subcommand add_find(CLI::App& app) {
   auto o = std::make_shared<FindOptions>();
   FindSettings& s = o->settings;
   CLI::App* sub = app.add_subcommand("find", "Find every instance of a landmark in a scene");
-  sub->add_option("scene", o->scene, "Scene cloud (.pcd, .ply, .xyz)")->required();
+  sub->add_option("scene", o->scene, "Scene cloud (.pcd, .ply, .xyz) or ROS bag (.bag)")
+      ->required();
   sub->add_option("landmark", o->landmark, "Landmark file (.lmk)")->required();
   add_search_options(sub, s, true);
+  add_bag_options(sub, o->bag, true);
   sub->add_option("--json", o->json,
                   "Write the matches and statistics as JSON to FILE, or - for stdout");
   add_timings_flag(sub, o->timings);

@@ -14,6 +14,7 @@
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/pose.h"
+#include "tools/bag_input.h"
 #include "tools/cli_common.h"
 #include "tools/progress.h"
 
@@ -30,6 +31,10 @@ struct GenOptions {
   std::string types;  ///< comma-separated
   std::string from_mosd;
   int copies = 2, frames = 0;
+  std::string from_bag;
+  BagOptions bag;
+  std::vector<std::string> landmarks;
+  std::size_t stride = 1;
 };
 
 std::vector<std::string> split_commas(const std::string& text) {
@@ -143,7 +148,23 @@ Subcommand add_gen(CLI::App& app) {
   sub->add_option("--frames", options->frames, "With --from-mosd: the first N frames only (0: all)")
       ->check(CLI::NonNegativeNumber);
   sub->add_flag("--no-noise", options->no_noise, "Exact depth: no sensor noise or quantisation");
+  sub->add_option("--from-bag", options->from_bag,
+                  "Write a dataset of a recorded session's frames (ROS bag): scenes in base_link "
+                  "when its TF has it, the --landmark files, no labelled instance yet")
+      ->check(CLI::ExistingFile);
+  sub->add_option("--landmark", options->landmarks, "With --from-bag: a landmark file (.lmk)")
+      ->check(CLI::ExistingFile);
+  sub->add_option("--stride", options->stride, "With --from-bag: every N-th frame")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  add_bag_options(sub, options->bag, false);
   return {sub, [options] {
+            if (!options->from_bag.empty()) {
+              if (!options->preset.empty() || !options->from_mosd.empty())
+                throw Error("--from-bag excludes --preset and --from-mosd");
+              return write_bag_dataset(options->from_bag, options->bag, options->stride,
+                                       options->landmarks, options->output);
+            }
             if (!options->from_mosd.empty()) {
               if (!options->preset.empty())
                 throw Error("--from-mosd and --preset exclude each other");

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "lmk/geometry/cloud_io.h"
+#include "tools/bag_input.h"
 #include "tools/cli_common.h"
 
 namespace lmk::cli {
@@ -21,6 +22,7 @@ nlohmann::json to_json(const Eigen::Vector3f& v) { return {v.x(), v.y(), v.z()};
 nlohmann::json to_json(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
 int run_info(const InfoOptions& options) {
+  if (is_bag(options.file)) return print_bag_info(options.file, options.json);
   const CloudFile file = read_cloud_file(options.file);
   const PointCloud& cloud = file.cloud;
   const Eigen::AlignedBox3f bounds =
@@ -62,8 +64,9 @@ int run_info(const InfoOptions& options) {
 
 Subcommand add_info(CLI::App& app) {
   auto options = std::make_shared<InfoOptions>();
-  CLI::App* sub = app.add_subcommand("info", "Describe a point-cloud file (.pcd, .ply, .xyz)");
-  sub->add_option("file", options->file, "Point-cloud file")->required();
+  CLI::App* sub = app.add_subcommand(
+      "info", "Describe a point-cloud file (.pcd, .ply, .xyz) or a ROS bag (.bag)");
+  sub->add_option("file", options->file, "Point-cloud file or ROS bag")->required();
   sub->add_flag("--json", options->json, "Print JSON instead of a table");
   return {sub, [options] { return run_info(*options); }};
 }

@@ -1,0 +1,187 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "lmk/ros/bag_reader.h"
+
+#include <rosbag/bag.h>
+#include <rosbag/exceptions.h>
+#include <rosbag/view.h>
+#include <sensor_msgs/PointCloud2.h>
+#include <tf2_msgs/TFMessage.h>
+#include <tf2_ros/buffer.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <set>
+
+#include "lmk/geometry/error.h"
+
+namespace lmk::ros1 {
+namespace {
+
+constexpr const char* kCloudType = "sensor_msgs/PointCloud2";
+
+void open_bag(rosbag::Bag& bag, const std::string& path) {
+  try {
+    bag.open(path, rosbag::bagmode::Read);
+  } catch (const rosbag::BagException& e) {
+    throw Error(path + ": is not a readable ROS bag (" + e.what() + ")");
+  }
+}
+
+/// The bag's whole TF history, for lookups at any recorded stamp.
+void load_tf(rosbag::Bag& bag, tf2_ros::Buffer& tf) {
+  rosbag::View view(bag, rosbag::TopicQuery(std::vector<std::string>{"/tf", "/tf_static"}));
+  for (const rosbag::MessageInstance& m : view) {
+    const auto msg = m.instantiate<tf2_msgs::TFMessage>();
+    if (!msg) continue;
+    const bool is_static = m.getTopic() == "/tf_static";
+    for (const geometry_msgs::TransformStamped& t : msg->transforms) {
+      tf.setTransform(t, "bag", is_static);
+    }
+  }
+}
+
+/// Calls f(time from start, message) for each cloud of the topic, in record order, until f
+/// returns false.
+template <class F>
+void for_each_cloud(rosbag::Bag& bag, const std::string& topic, F&& f) {
+  rosbag::View all(bag);
+  const double start = all.getBeginTime().toSec();
+  rosbag::View view(bag, rosbag::TopicQuery(topic));
+  for (const rosbag::MessageInstance& m : view) {
+    const auto msg = m.instantiate<sensor_msgs::PointCloud2>();
+    if (msg && !f(m.getTime().toSec() - start, *msg)) return;
+  }
+}
+
+struct OpenBag {
+  rosbag::Bag bag;
+  std::string topic;
+  std::unique_ptr<tf2_ros::Buffer> tf;
+
+  OpenBag(const std::string& path, const BagFrameOptions& options) {
+    const BagSummary summary = summarize_bag(path);
+    topic = bag_cloud_topic(summary, path, options.topic);
+    open_bag(bag, path);
+    // ros::Time drives tf2_ros's lookups, even with no ROS master: wall time is enough here.
+    if (!::ros::Time::isValid()) ::ros::Time::init();
+    tf = std::make_unique<tf2_ros::Buffer>(::ros::Duration(summary.duration() + 60.0));
+    load_tf(bag, *tf);
+  }
+
+  Frame frame(const sensor_msgs::PointCloud2& msg, const BagFrameOptions& options) const {
+    const std::string target =
+        options.target_frame.empty() ? msg.header.frame_id : options.target_frame;
+    return frame_from_cloud(msg, *tf, target, options.sensor_frame, ::ros::Duration(0));
+  }
+};
+
+}  // namespace
+
+BagSummary summarize_bag(const std::string& path) {
+  rosbag::Bag bag;
+  open_bag(bag, path);
+  BagSummary summary;
+  rosbag::View view(bag);
+  if (view.size() == 0) return summary;
+  summary.start = view.getBeginTime().toSec();
+  summary.end = view.getEndTime().toSec();
+  std::map<std::string, BagTopic> topics;
+  for (const rosbag::ConnectionInfo* c : view.getConnections()) {
+    BagTopic& t = topics[c->topic];
+    t.name = c->topic;
+    t.type = c->datatype;
+  }
+  for (auto& [name, topic] : topics) {
+    rosbag::View one(bag, rosbag::TopicQuery(name));
+    topic.messages = one.size();
+    summary.topics.push_back(topic);
+  }
+  std::set<std::string> frames;
+  rosbag::View tf(bag, rosbag::TopicQuery(std::vector<std::string>{"/tf", "/tf_static"}));
+  for (const rosbag::MessageInstance& m : tf) {
+    if (const auto msg = m.instantiate<tf2_msgs::TFMessage>()) {
+      for (const auto& t : msg->transforms) {
+        frames.insert(t.header.frame_id);
+        frames.insert(t.child_frame_id);
+      }
+    }
+  }
+  summary.frames.assign(frames.begin(), frames.end());
+  return summary;
+}
+
+std::string bag_cloud_topic(const BagSummary& bag, const std::string& path,
+                            const std::string& topic) {
+  std::vector<std::string> clouds;
+  for (const BagTopic& t : bag.topics) {
+    if (t.type == kCloudType) clouds.push_back(t.name);
+  }
+  std::string list;
+  for (const std::string& c : clouds) list += (list.empty() ? "" : ", ") + c;
+  if (!topic.empty()) {
+    if (std::find(clouds.begin(), clouds.end(), topic) != clouds.end()) return topic;
+    throw Error(path + ": no PointCloud2 topic '" + topic + "' (it has " +
+                (list.empty() ? "none" : list) + ")");
+  }
+  if (clouds.size() == 1) return clouds.front();
+  throw Error(path + (clouds.empty() ? ": holds no PointCloud2 topic"
+                                     : ": holds several PointCloud2 topics; choose one with "
+                                       "--topic (" +
+                                           list + ")"));
+}
+
+std::vector<double> bag_frame_times(const std::string& path, const BagFrameOptions& options) {
+  const BagSummary summary = summarize_bag(path);
+  rosbag::Bag bag;
+  open_bag(bag, path);
+  std::vector<double> times;
+  for_each_cloud(bag, bag_cloud_topic(summary, path, options.topic),
+                 [&](double t, const sensor_msgs::PointCloud2&) {
+                   times.push_back(t);
+                   return true;
+                 });
+  return times;
+}
+
+Frame read_bag_frame(const std::string& path, const BagFrameOptions& options, double seconds) {
+  OpenBag open(path, options);
+  std::optional<sensor_msgs::PointCloud2> nearest;
+  double best = std::numeric_limits<double>::infinity();
+  for_each_cloud(open.bag, open.topic, [&](double t, const sensor_msgs::PointCloud2& msg) {
+    if (std::abs(t - seconds) < best) {
+      best = std::abs(t - seconds);
+      nearest = msg;
+      return true;
+    }
+    return t < seconds;  // record times increase: past the nearest, stop
+  });
+  if (!nearest) throw Error(path + ": no cloud on " + open.topic);
+  try {
+    return open.frame(*nearest, options);
+  } catch (const Error& e) {
+    throw Error(path + ": " + e.what());
+  }
+}
+
+std::vector<Frame> read_bag_frames(const std::string& path, const BagFrameOptions& options,
+                                   std::size_t stride) {
+  if (stride == 0) throw Error("the stride between bag frames must be at least 1");
+  OpenBag open(path, options);
+  std::vector<Frame> frames;
+  std::size_t index = 0;
+  for_each_cloud(open.bag, open.topic, [&](double, const sensor_msgs::PointCloud2& msg) {
+    if (index++ % stride == 0) {
+      try {
+        frames.push_back(open.frame(msg, options));
+      } catch (const Error& e) {
+        throw Error(path + ": cloud " + std::to_string(index - 1) + ": " + e.what());
+      }
+    }
+    return true;
+  });
+  return frames;
+}
+
+}  // namespace lmk::ros1

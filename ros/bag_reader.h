@@ -1,0 +1,50 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+// Recorded sessions as lmk input (docs/ros.md, "Bags"): what a rosbag holds, and its camera frames
+// moved into a frame of its TF tree with the bag's own /tf and /tf_static, as lmk_node would have
+// seen them live.
+
+#include <string>
+#include <vector>
+
+#include "lmk/ros/latest_frame.h"
+
+namespace lmk::ros1 {
+
+struct BagTopic {
+  std::string name, type;
+  std::size_t messages = 0;
+};
+
+struct BagSummary {
+  double start = 0.0, end = 0.0;    ///< s, the first and last message's record time
+  std::vector<BagTopic> topics;     ///< sorted by name
+  std::vector<std::string> frames;  ///< every frame the bag's TF names, sorted
+  double duration() const { return end - start; }
+};
+
+/// Throws lmk::Error naming the file when it is no readable bag.
+BagSummary summarize_bag(const std::string& path);
+
+/// The PointCloud2 topic to read: `topic` when given (it must hold PointCloud2 messages), else the
+/// bag's only PointCloud2 topic; lmk::Error naming the candidates otherwise.
+std::string bag_cloud_topic(const BagSummary& bag, const std::string& path,
+                            const std::string& topic);
+
+struct BagFrameOptions {
+  std::string topic;         ///< see bag_cloud_topic
+  std::string target_frame;  ///< frame to express clouds in; empty: the cloud's own
+  std::string sensor_frame;  ///< the camera's optical frame; empty: the cloud's own
+};
+
+/// Record times (s from the bag's start) of the clouds on the topic.
+std::vector<double> bag_frame_times(const std::string& path, const BagFrameOptions& options);
+
+/// The cloud recorded nearest `seconds` after the bag's start, as a Frame in target_frame.
+Frame read_bag_frame(const std::string& path, const BagFrameOptions& options, double seconds);
+
+/// Every `stride`-th cloud of the topic (1: all), as Frames in target_frame.
+std::vector<Frame> read_bag_frames(const std::string& path, const BagFrameOptions& options,
+                                   std::size_t stride = 1);
+
+}  // namespace lmk::ros1

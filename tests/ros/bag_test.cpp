@@ -1,0 +1,160 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// ROS bags as lmk input: a bag this test writes (three noisy frames of a rendered tabletop in the
+// camera's optical frame, and TF placing the camera in base_link) is read back by `lmk find
+// --topic --time`, `lmk info` and `lmk gen --from-bag`. No ROS master is involved: bags are files.
+#include <gtest/gtest.h>
+#include <rosbag/bag.h>
+#include <tf2_eigen/tf2_eigen.h>
+#include <tf2_msgs/TFMessage.h>
+#include <tf2_ros/buffer.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "lmk/eval/dataset.h"
+#include "lmk/eval/depth_sensor.h"
+#include "lmk/eval/tabletop_scene.h"
+#include "lmk/geometry/cloud_io.h"
+#include "lmk/landmark/landmark_file.h"
+#include "lmk/ros/cloud_conversion.h"
+#include "lmk/ros/latest_frame.h"
+#include "tests/ros/support/ros_harness.h"
+#include "tests/support/test_support.h"
+
+namespace lmk::test {
+namespace {
+
+constexpr const char* kTopic = "/head_mount_kinect/depth_registered/points";
+constexpr const char* kOptical = "head_mount_kinect_rgb_optical_frame";
+const ::ros::Time kStart(1700000000, 0);
+
+/// A session: three frames of one tabletop, each with its own depth noise, one second apart, and
+/// the camera's pose on /tf_static; plus the carton captured from the first frame.
+struct Session {
+  ScratchDir dir;
+  std::string bag, landmark;
+  std::vector<sensor_msgs::PointCloud2> clouds;
+  geometry_msgs::TransformStamped camera;
+
+  Session() {
+    const SyntheticScene scene = make_tabletop_scene(3);
+    camera = tf2::eigenToTransform(scene.T_world_sensor);
+    camera.header.frame_id = "base_link";
+    camera.header.stamp = kStart;
+    camera.child_frame_id = kOptical;
+    rosbag::Bag out(dir.file("session.bag"), rosbag::bagmode::Write);
+    tf2_msgs::TFMessage tf;
+    tf.transforms.push_back(camera);
+    out.write("/tf_static", kStart, tf);
+    for (int k = 0; k < 3; ++k) {
+      DepthSensorSettings sensor;
+      sensor.seed = 10 + k;
+      const PointCloud world = render_depth(scene.mesh, scene.T_world_sensor, sensor);
+      if (k == 0) {
+        CaptureSettings capture;
+        capture.base_frame = true;
+        const Landmark carton = lmk::capture(world, scene.objects.front().box, "carton", capture);
+        landmark = dir.file("carton.lmk");
+        save_landmark(landmark, carton);
+      }
+      sensor_msgs::PointCloud2 msg =
+          ros1::to_ros(world.transformed(scene.T_world_sensor.inverse()), kOptical);
+      msg.header.stamp = kStart + ::ros::Duration(k);
+      out.write(kTopic, msg.header.stamp, msg);
+      clouds.push_back(msg);
+    }
+    out.write("/chatter", kStart + ::ros::Duration(2.5), camera);  // another topic, not a cloud
+    bag = dir.file("session.bag");
+  }
+};
+
+const Session& session() {
+  static const Session* s = new Session;
+  return *s;
+}
+
+std::pair<int, std::string> run_lmk(const ScratchDir& dir, std::vector<std::string> args) {
+  args.insert(args.begin(), LMK_BINARY);
+  ChildProcess lmk(args, dir.file("lmk.log"));
+  const int code = lmk.wait(300.0);
+  return {code, lmk.log()};
+}
+
+nlohmann::json read_json(const std::string& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+TEST(Bags, FindOnABagFrameEqualsFindOnThatFrameInTheBaseFrame) {
+  const Session& s = session();
+  const ScratchDir dir;
+  // The frame recorded nearest 1.3 s is the second; TF from the bag puts it in base_link.
+  const auto [code, out] = run_lmk(dir, {"find", s.bag, s.landmark, "--topic", kTopic, "--time",
+                                         "1.3", "--json", dir.file("bag.json")});
+  ASSERT_EQ(code, 0) << out;
+  EXPECT_NE(out.find("in base_link"), std::string::npos) << out;
+
+  ::ros::Time::init();
+  tf2_ros::Buffer tf;
+  tf.setTransform(s.camera, "test", true);
+  const ros1::Frame frame =
+      ros1::frame_from_cloud(s.clouds[1], tf, "base_link", "", ::ros::Duration(0));
+  write_cloud(dir.file("frame.pcd"), frame.scene);
+  const auto [code2, out2] = run_lmk(dir, {"find", dir.file("frame.pcd"), s.landmark,
+                                           "--base-frame", "--json", dir.file("pcd.json")});
+  ASSERT_EQ(code2, 0) << out2;
+  const nlohmann::json from_bag = read_json(dir.file("bag.json"));
+  ASSERT_FALSE(from_bag["matches"].empty());
+  EXPECT_EQ(from_bag["matches"], read_json(dir.file("pcd.json"))["matches"]);
+
+  // Another frame gives other matches (its own noise): the time chose the frame.
+  const auto [code3, out3] =
+      run_lmk(dir, {"find", s.bag, s.landmark, "--time", "0", "--json", dir.file("first.json")});
+  ASSERT_EQ(code3, 0) << out3;
+  EXPECT_NE(read_json(dir.file("first.json"))["matches"], from_bag["matches"]);
+}
+
+TEST(Bags, InfoListsTopicsTfFramesAndDuration) {
+  const ScratchDir dir;
+  const auto [code, out] = run_lmk(dir, {"info", session().bag, "--json"});
+  ASSERT_EQ(code, 0) << out;
+  const nlohmann::json info = nlohmann::json::parse(out);
+  EXPECT_NEAR(info["duration"].get<double>(), 2.5, 1e-9);
+  ASSERT_EQ(info["topics"].size(), 3u);
+  EXPECT_EQ(info["topics"][1]["name"], kTopic);
+  EXPECT_EQ(info["topics"][1]["type"], "sensor_msgs/PointCloud2");
+  EXPECT_EQ(info["topics"][1]["messages"], 3);
+  EXPECT_EQ(info["frames"], (nlohmann::json{"base_link", kOptical}));
+}
+
+TEST(Bags, GenFromBagWritesADatasetOfItsFrames) {
+  const ScratchDir dir;
+  const auto [code, out] = run_lmk(dir, {"gen", dir.file("dataset"), "--from-bag", session().bag,
+                                         "--landmark", session().landmark, "--stride", "2"});
+  ASSERT_EQ(code, 0) << out;
+  const Dataset dataset = load_dataset(dir.file("dataset"));
+  ASSERT_EQ(dataset.scenes.size(), 2u);  // frames 0 and 2
+  EXPECT_EQ(dataset.scenes[1].name, "frame-00002");
+  ASSERT_TRUE(dataset.scenes[0].up);
+  EXPECT_TRUE(dataset.scenes[0].up->isApprox(Eigen::Vector3d::UnitZ()));
+  ASSERT_EQ(dataset.landmarks.size(), 1u);
+  EXPECT_EQ(dataset.landmarks[0].name, "carton");
+}
+
+TEST(Bags, BadBagsAndTopicsAreRefusedWithTheReason) {
+  const ScratchDir dir;
+  write_text(dir.file("fake.bag"), "not a bag at all\n");
+  const auto [code, out] = run_lmk(dir, {"find", dir.file("fake.bag"), session().landmark});
+  EXPECT_EQ(code, 2) << out;
+  EXPECT_NE(out.find("is not a readable ROS bag"), std::string::npos) << out;
+
+  const auto [code2, out2] =
+      run_lmk(dir, {"find", session().bag, session().landmark, "--topic", "/chatter"});
+  EXPECT_EQ(code2, 2) << out2;
+  EXPECT_NE(out2.find(std::string("no PointCloud2 topic '/chatter' (it has ") + kTopic + ")"),
+            std::string::npos)
+      << out2;
+}
+
+}  // namespace
+}  // namespace lmk::test

@@ -1,0 +1,117 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Bags through lmk::ros's reader (ros/bag_reader.h).
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "lmk/eval/dataset.h"
+#include "lmk/geometry/cloud_io.h"
+#include "lmk/geometry/error.h"
+#include "lmk/landmark/landmark_file.h"
+#include "lmk/ros/bag_reader.h"
+#include "tools/bag_input.h"
+
+namespace lmk::cli {
+namespace {
+
+constexpr const char* kBaseFrame = "base_link";
+
+/// The frame to express the bag's scenes in, and whether it is the robot's base frame.
+ros1::BagFrameOptions frame_options(const std::string& path, const BagOptions& options,
+                                    bool& in_base_frame) {
+  ros1::BagFrameOptions out;
+  out.topic = options.topic;
+  out.target_frame = options.frame;
+  if (out.target_frame.empty()) {
+    const ros1::BagSummary summary = ros1::summarize_bag(path);
+    const bool has_base =
+        std::find(summary.frames.begin(), summary.frames.end(), kBaseFrame) != summary.frames.end();
+    if (has_base) out.target_frame = kBaseFrame;
+  }
+  in_base_frame = out.target_frame == kBaseFrame;
+  return out;
+}
+
+}  // namespace
+
+PointCloud read_bag_scene(const std::string& path, const BagOptions& options, bool& in_base_frame) {
+  const ros1::BagFrameOptions frame = frame_options(path, options, in_base_frame);
+  const ros1::Frame scene = ros1::read_bag_frame(path, frame, options.time);
+  std::fprintf(stderr, "%s: the frame of %.3f s on %s, in %s\n", path.c_str(), scene.stamp.toSec(),
+               options.topic.empty() ? "its cloud topic" : options.topic.c_str(),
+               scene.base_frame.c_str());
+  return scene.scene;
+}
+
+int print_bag_info(const std::string& path, bool json) {
+  const ros1::BagSummary bag = ros1::summarize_bag(path);
+  if (json) {
+    nlohmann::json topics = nlohmann::json::array();
+    for (const ros1::BagTopic& t : bag.topics) {
+      topics.push_back({{"name", t.name}, {"type", t.type}, {"messages", t.messages}});
+    }
+    std::cout << nlohmann::json({{"file", path},
+                                 {"start", bag.start},
+                                 {"duration", bag.duration()},
+                                 {"topics", topics},
+                                 {"frames", bag.frames}})
+                     .dump(2)
+              << "\n";
+    return 0;
+  }
+  std::printf("file           %s\n", path.c_str());
+  std::printf("format         ROS bag\n");
+  std::printf("duration       %.3f s (from %.3f)\n", bag.duration(), bag.start);
+  for (const ros1::BagTopic& t : bag.topics) {
+    std::printf("topic          %-40s %-28s %zu messages\n", t.name.c_str(), t.type.c_str(),
+                t.messages);
+  }
+  std::string frames;
+  for (const std::string& f : bag.frames) frames += (frames.empty() ? "" : " ") + f;
+  std::printf("TF frames      %s\n", frames.empty() ? "(no TF)" : frames.c_str());
+  return 0;
+}
+
+int write_bag_dataset(const std::string& path, const BagOptions& options, std::size_t stride,
+                      const std::vector<std::string>& landmarks, const std::string& output) {
+  if (landmarks.empty()) throw Error("gen --from-bag: name the landmarks with --landmark FILE");
+  namespace fs = std::filesystem;
+  bool in_base_frame = false;
+  const ros1::BagFrameOptions frame = frame_options(path, options, in_base_frame);
+  const std::vector<ros1::Frame> frames = ros1::read_bag_frames(path, frame, stride);
+  if (frames.empty()) throw Error(path + ": no frame to write");
+  fs::create_directories(fs::path(output) / "scenes");
+  fs::create_directories(fs::path(output) / "landmarks");
+
+  Dataset dataset;
+  dataset.name = fs::path(path).stem().string();
+  for (const std::string& file : landmarks) {
+    const Landmark landmark = load_landmark(file);  // checks it before copying
+    const std::string relative = "landmarks/" + landmark.name + ".lmk";
+    save_landmark((fs::path(output) / relative).string(), landmark);
+    dataset.landmarks.push_back({landmark.name, relative, Symmetry()});
+  }
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    char name[32];
+    std::snprintf(name, sizeof name, "frame-%05zu", i * stride);
+    DatasetScene scene;
+    scene.name = name;
+    scene.file = std::string("scenes/") + name + ".pcd";
+    scene.setting = "bag";
+    scene.T_scene_sensor = frames[i].scene.T_cloud_sensor;
+    if (in_base_frame) scene.up = Eigen::Vector3d::UnitZ();
+    write_cloud((fs::path(output) / scene.file).string(), frames[i].scene);
+    dataset.scenes.push_back(scene);
+  }
+  save_dataset(output, dataset);
+  std::printf(
+      "wrote dataset '%s' to %s: %zu frames of %s (every %zu), %zu landmarks, no labelled "
+      "instances yet (docs/datasets.md: add them as pairs)\n",
+      dataset.name.c_str(), output.c_str(), frames.size(), path.c_str(), stride,
+      dataset.landmarks.size());
+  return 0;
+}
+
+}  // namespace lmk::cli
