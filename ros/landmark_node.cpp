@@ -8,6 +8,7 @@
 
 #include "lmk/geometry/error.h"
 #include "lmk/json/find_settings_json.h"
+#include "lmk/landmark/box_guess.h"
 #include "lmk/landmark/distinctiveness.h"
 #include "lmk/landmark/find_landmark.h"
 #include "lmk/landmark/scene_index.h"
@@ -39,6 +40,9 @@ LandmarkNodeSettings LandmarkNodeSettings::from_parameters(const ::ros::NodeHand
   private_nh.param("sensor_frame", s.sensor_frame, s.sensor_frame);
   private_nh.param("landmark_directory", s.landmark_directory, default_landmark_directory());
   private_nh.param("frame_timeout", s.frame_timeout, s.frame_timeout);
+  private_nh.param("interactive", s.interactive, s.interactive);
+  private_nh.param("capture_name", s.capture_name, s.capture_name);
+  LandmarkLibrary::check_name(s.capture_name);
   if (!(s.frame_timeout >= 0.0)) throw Error("~frame_timeout: must be seconds, 0 or more");
   std::string find_json = "{}";
   private_nh.param("find_settings", find_json, find_json);
@@ -66,6 +70,19 @@ LandmarkNode::LandmarkNode(::ros::NodeHandle nh, ::ros::NodeHandle private_nh,
   capture_service_ = private_nh.advertiseService("capture_landmark", &LandmarkNode::capture, this);
   find_service_ = private_nh.advertiseService("find_landmark", &LandmarkNode::find, this);
   list_service_ = private_nh.advertiseService("list_landmarks", &LandmarkNode::list, this);
+  if (settings_.interactive) {
+    BoxCaptureMarkers::Actions actions;
+    actions.guess = [this](const std::string& f, const Eigen::Vector3d& p) {
+      return guess_at(f, p);
+    };
+    actions.capture = [this](const Box& box, bool force) { capture_from_rviz(box, force); };
+    actions.find = [this](const Box& box) { find_from_rviz(box); };
+    // The box starts 0.8 m ahead of the robot at table height, until a click places it.
+    const Box initial(Eigen::Isometry3d(Eigen::Translation3d(0.8, 0.0, 0.8)),
+                      Eigen::Vector3d(0.2, 0.2, 0.2));
+    rviz_box_ = std::make_unique<BoxCaptureMarkers>(private_nh, "capture_box", settings_.base_frame,
+                                                    settings_.capture_name, actions, initial);
+  }
   ROS_INFO("lmk: landmarks in %s; frames from %s in %s", library_.directory().c_str(),
            settings_.cloud_topic.c_str(), settings_.base_frame.c_str());
 }
@@ -95,52 +112,103 @@ bool LandmarkNode::capture(lmk_msgs::CaptureLandmark::Request& request,
     if (!request.overwrite && library_.contains(request.name)) {
       throw Error("a landmark '" + request.name + "' exists already; set overwrite to replace it");
     }
-    const std::shared_ptr<const Frame> frame = this->frame();
-    response.header.frame_id = frame->base_frame;
-    response.header.stamp = frame->stamp;
+    // The request is checked whole before anything waits for a frame.
+    const Eigen::Isometry3d T_boxframe_box = from_ros(request.box_pose.pose, "box_pose");
+    const Eigen::Vector3d box_size = from_ros(request.box_size);
     const std::string& box_frame = request.box_pose.header.frame_id.empty()
-                                       ? frame->base_frame
+                                       ? settings_.base_frame
                                        : request.box_pose.header.frame_id;
     const Eigen::Isometry3d T_base_boxframe =
-        lookup_pose(tf_, frame->base_frame, box_frame, ::ros::Time(0), ::ros::Duration(0.5));
-    const Box box(T_base_boxframe * from_ros(request.box_pose.pose, "box_pose"),
-                  from_ros(request.box_size));
-    const Landmark landmark = lmk::capture(frame->scene, box, request.name, settings_.capture);
-
-    FindSettings check = settings_.find;
-    check.scene.up = landmark.up;
-    const DistinctivenessReport report = check_distinctiveness(frame->scene, landmark, check);
-    response.found_itself = report.found_itself;
-    for (std::size_t i = 0; i < report.other_instances.size(); ++i) {
-      response.other_instances.push_back(
-          to_ros(report.other_instances[i], landmark.name, static_cast<std::uint32_t>(i + 1)));
-    }
-    std::string verdict = report.found_itself ? ""
-                                              : "the search does not find it in its own "
-                                                "frame (too few points or too little shape); ";
-    if (!report.other_instances.empty()) {
-      verdict += "it also matches " + std::to_string(report.other_instances.size()) +
-                 " other place(s), the best at " +
-                 describe(report.other_instances.front().box.center()) + "; ";
-    }
-    if (!verdict.empty() && !request.force) {
-      response.success = false;
-      response.message = "not written: " + verdict + "draw the box with more context or more " +
-                         "empty margin, or set force to keep it anyway";
-      return true;
-    }
-    response.file = library_.save(landmark, request.overwrite).string();
-    response.success = true;
-    response.message =
-        "wrote '" + landmark.name + "' (" + std::to_string(landmark.points.size()) + " points)" +
-        (verdict.empty() ? "; distinctive in this frame" : "; kept despite: " + verdict);
-    ROS_INFO("lmk: %s", response.message.c_str());
+        lookup_pose(tf_, settings_.base_frame, box_frame, ::ros::Time(0), ::ros::Duration(0.5));
+    capture_box(request.name, Box(T_base_boxframe * T_boxframe_box, box_size), request.force,
+                request.overwrite, response);
   } catch (const Error& e) {
     response.success = false;
     response.message = e.what();
     ROS_WARN("lmk: capture_landmark: %s", e.what());
   }
   return true;
+}
+
+void LandmarkNode::capture_box(const std::string& name, const Box& box, bool force, bool overwrite,
+                               lmk_msgs::CaptureLandmark::Response& response) {
+  const std::shared_ptr<const Frame> frame = this->frame();
+  response.header.frame_id = frame->base_frame;
+  response.header.stamp = frame->stamp;
+  const Landmark landmark = lmk::capture(frame->scene, box, name, settings_.capture);
+
+  FindSettings check = settings_.find;
+  check.scene.up = landmark.up;
+  const DistinctivenessReport report = check_distinctiveness(frame->scene, landmark, check);
+  response.found_itself = report.found_itself;
+  for (std::size_t i = 0; i < report.other_instances.size(); ++i) {
+    response.other_instances.push_back(
+        to_ros(report.other_instances[i], landmark.name, static_cast<std::uint32_t>(i + 1)));
+  }
+  std::string verdict = report.found_itself ? ""
+                                            : "the search does not find it in its own frame (too "
+                                              "few points or too little shape); ";
+  if (!report.other_instances.empty()) {
+    verdict += "it also matches " + std::to_string(report.other_instances.size()) +
+               " other place(s), the best at " +
+               describe(report.other_instances.front().box.center()) + "; ";
+  }
+  if (!verdict.empty() && !force) {
+    response.success = false;
+    response.message = "not written: " + verdict + "draw the box with more context or more " +
+                       "empty margin, or set force to keep it anyway";
+    return;
+  }
+  response.file = library_.save(landmark, overwrite).string();
+  response.success = true;
+  response.message =
+      "wrote '" + landmark.name + "' (" + std::to_string(landmark.points.size()) + " points)" +
+      (verdict.empty() ? "; distinctive in this frame" : "; kept despite: " + verdict);
+  ROS_INFO("lmk: %s", response.message.c_str());
+}
+
+Box LandmarkNode::guess_at(const std::string& frame_id, const Eigen::Vector3d& point) {
+  const std::string& from = frame_id.empty() ? settings_.base_frame : frame_id;
+  const Eigen::Isometry3d T_base_from =
+      lookup_pose(tf_, settings_.base_frame, from, ::ros::Time(0), ::ros::Duration(0.5));
+  return guess_box(frame()->scene, T_base_from * point).box;
+}
+
+void LandmarkNode::capture_from_rviz(const Box& box, bool force) {
+  // The first free name of NAME, NAME-2, NAME-3, ...: a menu cannot ask for one.
+  std::string name = settings_.capture_name;
+  for (int n = 2; library_.contains(name); ++n) {
+    name = settings_.capture_name + "-" + std::to_string(n);
+  }
+  lmk_msgs::CaptureLandmark::Response response;
+  try {
+    capture_box(name, box, force, false, response);
+  } catch (const Error& e) {
+    ROS_WARN("lmk: capture from RViz: %s", e.what());
+    return;
+  }
+  if (!response.success) ROS_WARN("lmk: capture from RViz: %s", response.message.c_str());
+  if (!response.other_instances.empty()) publish_matches(response.other_instances);
+}
+
+void LandmarkNode::find_from_rviz(const Box& box) {
+  try {
+    const std::shared_ptr<const Frame> frame = this->frame();
+    const Landmark landmark = lmk::capture(frame->scene, box, "this", settings_.capture);
+    const FindResult result = find_landmark(frame->scene, landmark, settings_.find);
+    std::vector<lmk_msgs::LandmarkMatch> matches;
+    for (std::size_t i = 0; i < result.matches.size(); ++i) {
+      matches.push_back(to_ros(result.matches[i], "this", static_cast<std::uint32_t>(i + 1)));
+    }
+    publish_matches(matches);
+    ROS_INFO("lmk: the box's contents match %zu place(s) in this frame", matches.size());
+  } catch (const Error& e) {
+    ROS_WARN("lmk: find from RViz: %s", e.what());
+  }
+}
+
+void LandmarkNode::publish_matches(const std::vector<lmk_msgs::LandmarkMatch>& matches) {
+  markers_.publish(match_markers(matches, settings_.base_frame));
 }
 
 bool LandmarkNode::find(lmk_msgs::FindLandmark::Request& request,
@@ -167,7 +235,7 @@ bool LandmarkNode::find(lmk_msgs::FindLandmark::Request& request,
     }
     response.success = true;
     response.message = summary;
-    markers_.publish(match_markers(response.matches, frame->base_frame));
+    publish_matches(response.matches);
   } catch (const Error& e) {
     response.success = false;
     response.message = e.what();

@@ -17,6 +17,7 @@
 #include "lmk/landmark/find_settings.h"
 #include "lmk/landmark/landmark.h"
 #include "lmk/landmark/landmark_library.h"
+#include "lmk/ros/box_capture_markers.h"
 #include "lmk/ros/latest_frame.h"
 
 namespace lmk::ros1 {
@@ -28,10 +29,13 @@ struct LandmarkNodeSettings {
   std::string landmark_directory;  ///< where NAME.lmk files live
   double frame_timeout = 3.0;      ///< s a service waits for the first frame
   FindSettings find;               ///< scene.base_frame is always set: scenes are in base_frame
-  CaptureSettings capture;         ///< base_frame is always set likewise
+  bool interactive = true;         ///< serve the RViz capture box (box_capture_markers.h)
+  std::string capture_name = "landmark";  ///< RViz captures are NAME, NAME-2, NAME-3, ...
+  CaptureSettings capture;                ///< base_frame is always set likewise
 
   /// From the private parameters ~cloud_topic, ~base_frame, ~sensor_frame,
-  /// ~landmark_directory (default $ROS_HOME/lmk/landmarks), ~frame_timeout and ~find_settings (the
+  /// ~landmark_directory (default $ROS_HOME/lmk/landmarks), ~frame_timeout, ~interactive,
+  /// ~capture_name and ~find_settings (the
   /// JSON form of FindSettings, as `lmk find --settings-json` takes it). Throws lmk::Error for a
   /// bad one.
   static LandmarkNodeSettings from_parameters(const ::ros::NodeHandle& private_nh);
@@ -50,6 +54,15 @@ class LandmarkNode {
  private:
   /// The latest frame; lmk::Error when none has arrived yet.
   std::shared_ptr<const Frame> frame() const;
+  /// Captures `box` (base frame) from the latest frame as `name` into the library, unless the
+  /// distinctiveness check objects and `force` is off; fills the response either way.
+  void capture_box(const std::string& name, const Box& box, bool force, bool overwrite,
+                   lmk_msgs::CaptureLandmark::Response& response);
+  /// The RViz menu's actions.
+  Box guess_at(const std::string& frame_id, const Eigen::Vector3d& point);
+  void capture_from_rviz(const Box& box, bool force);
+  void find_from_rviz(const Box& box);
+  void publish_matches(const std::vector<lmk_msgs::LandmarkMatch>& matches);
 
   LandmarkNodeSettings settings_;
   LandmarkLibrary library_;
@@ -58,6 +71,7 @@ class LandmarkNode {
   LatestFrame latest_;
   ::ros::Publisher markers_;
   ::ros::ServiceServer capture_service_, find_service_, list_service_;
+  std::unique_ptr<BoxCaptureMarkers> rviz_box_;
 };
 
 }  // namespace lmk::ros1

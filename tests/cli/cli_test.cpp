@@ -356,7 +356,8 @@ TEST_F(Cli, PbdShowPlanRunAndRefusals) {
       << refused.err;
   EXPECT_EQ(refused.out.find("executed"), std::string::npos) << refused.out;
 
-  expect_bad_input("pbd run " + program + " --scene '" + dir + "demonstration.pcd'", "only --sim");
+  expect_bad_input("pbd run " + program + " --scene '" + dir + "demonstration.pcd'",
+                   "give --sim --scene FILE for the simulated PR2, or --ros");
   expect_bad_input("pbd show " + path("missing.json"), "missing.json: no such file");
   expect_bad_input("pbd plan " + program + " --scene " + path("missing.pcd"), "missing.pcd");
   expect_bad_input(

@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "lmk/geometry/pose.h"
+#include "lmk/ros/box_capture_markers.h"
 #include "tests/support/test_support.h"
 
 namespace lmk::ros1 {
@@ -62,6 +63,23 @@ TEST(GeometryConversion, MatchMarkersClearTheLastSearchThenDrawEachMatch) {
   EXPECT_NE(array.markers[1].color.g, array.markers[3].color.g);  // the best one stands out
   EXPECT_EQ(array.markers[2].text, "cup #1  4.2 mm");
   EXPECT_NE(array.markers[1].id, array.markers[3].id);
+}
+
+TEST(BoxCaptureMarkers, DraggingAFaceResizesTheBoxAndKeepsTheOppositeFace) {
+  const Box box(pose_from_xyz_rpy(Eigen::Vector3d(1, 0, 0.5), Eigen::Vector3d(0, 0, M_PI / 2)),
+                Eigen::Vector3d(0.2, 0.4, 0.6));
+  // The +x face dragged from 0.1 to 0.3 from the centre: 0.4 long, centre 0.1 along the box's x.
+  const Box wider = move_box_face(box, 0, 1, 0.3);
+  EXPECT_NEAR(wider.size.x(), 0.4, 1e-12);
+  EXPECT_TRUE(wider.pose.linear().isApprox(box.pose.linear()));
+  EXPECT_TRUE(wider.center().isApprox(box.pose * Eigen::Vector3d(0.1, 0, 0), 1e-12));
+  // The -z face dragged past the +z face stops 1 cm short of it.
+  const Box flat = move_box_face(box, 2, -1, 0.5);
+  EXPECT_NEAR(flat.size.z(), 0.01, 1e-12);
+  EXPECT_TRUE((flat.pose * Eigen::Vector3d(0, 0, 0.005))
+                  .isApprox(box.pose * Eigen::Vector3d(0, 0, 0.3), 1e-12));
+  EXPECT_NE(test::error_of([&] { move_box_face(box, 3, 1, 0.0); }).find("bad face"),
+            std::string::npos);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 // controllers, and RosRobot's lifecycle. The scenes, landmark and program are the paper's task 3
 // ("bowls on a shelf") from lmk's demo tasks: its demonstration frame, a frame where the bowl can
 // be picked, and one with only cups, where the robot must not act.
+#include <geometry_msgs/PointStamped.h>
 #include <gtest/gtest.h>
 #include <lmk_msgs/CaptureLandmark.h>
 #include <lmk_msgs/FindLandmark.h>
@@ -11,6 +12,7 @@
 #include <ros/ros.h>
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_listener.h>
+#include <visualization_msgs/InteractiveMarkerFeedback.h>
 
 #include <filesystem>
 #include <fstream>
@@ -19,6 +21,7 @@
 
 #include "lmk/demos/demo_tasks.h"
 #include "lmk/geometry/cloud_io.h"
+#include "lmk/landmark/box_guess.h"
 #include "lmk/landmark/landmark_file.h"
 #include "lmk/pbd/plan.h"
 #include "lmk/pr2/pr2_kinematics.h"
@@ -160,6 +163,62 @@ TEST(LmkNode, CaptureAndFindThroughTheServicesGiveWhatLmkFindGivesOnTheSameFrame
               want["terms"]["landmark_to_scene_count"].get<std::size_t>());
     EXPECT_EQ(got.rank, i + 1);
   }
+}
+
+TEST(LmkNode, AClickedPointAndTheMenuCaptureTheGuessedBoxAsInRviz) {
+  const Landmark demonstrated = load_landmark(demo_data().landmark().string());
+  FakePr2 robot(fake_settings("demonstration.pcd"));
+  const ScratchDir dir;
+  const auto node = start_node(dir, dir.file("landmarks"));
+  const ros1::Frame frame = frame_as_the_node_sees_it();
+
+  // Where a user would click with RViz's Publish Point: on the bowl's rim.
+  Eigen::Vector3d click = Eigen::Vector3d::Zero();
+  double nearest = 1e9;
+  for (const Eigen::Vector3f& p : frame.scene.points) {
+    const double d = (p.cast<double>() - demonstrated.box.center()).norm();
+    if (is_finite(p) && demonstrated.box.contains(p) && d < nearest) {
+      nearest = d;
+      click = p.cast<double>();
+    }
+  }
+  ASSERT_LT(nearest, 1e9);
+  ::ros::NodeHandle nh;
+  ::ros::Publisher clicked = nh.advertise<geometry_msgs::PointStamped>("/clicked_point", 1, true);
+  ::ros::Publisher feedback = nh.advertise<visualization_msgs::InteractiveMarkerFeedback>(
+      "/lmk_node/capture_box/feedback", 1, true);
+  geometry_msgs::PointStamped point;
+  point.header.frame_id = "base_link";
+  point.point.x = click.x();
+  point.point.y = click.y();
+  point.point.z = click.z();
+  clicked.publish(point);
+  ::ros::WallDuration(1.0).sleep();  // the node guesses the box
+
+  visualization_msgs::InteractiveMarkerFeedback select;  // what RViz sends for the menu's entry 1
+  select.client_id = "/rviz/InteractiveMarkers";
+  select.marker_name = "box";
+  select.event_type = visualization_msgs::InteractiveMarkerFeedback::MENU_SELECT;
+  select.menu_entry_id = 1;  // "Capture as 'landmark'"
+  select.header.frame_id = "base_link";
+  feedback.publish(select);
+  // The bowl is no distinctive landmark in this frame (cups and other bowls match it), so the
+  // node refuses it and says why; "even if not distinctive" (entry 2) keeps it.
+  const fs::path file = dir.path() / "landmarks" / "landmark.lmk";
+  for (int i = 0; i < 300 && node->log().find("not written") == std::string::npos; ++i) {
+    ::ros::WallDuration(0.1).sleep();
+  }
+  EXPECT_NE(node->log().find("not written: it also matches"), std::string::npos) << node->log();
+  EXPECT_FALSE(fs::exists(file));
+  select.menu_entry_id = 2;
+  feedback.publish(select);
+
+  for (int i = 0; i < 300 && !fs::exists(file); ++i) ::ros::WallDuration(0.1).sleep();
+  ASSERT_TRUE(fs::exists(file)) << node->log();
+  const Landmark captured = load_landmark(file.string());
+  const Box expected = guess_box(frame.scene, click).box;
+  EXPECT_TRUE(captured.box.pose.isApprox(expected.pose, 1e-9));
+  EXPECT_TRUE(captured.box.size.isApprox(expected.size, 1e-9));
 }
 
 TEST(LmkNode, BadRequestsAreAnsweredWithTheReason) {
