@@ -7,4 +7,4 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 cmake -S . -B "${1:?build directory}" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 -DLMK_FUZZ=ON \
-  -DLMK_BUILD_BENCH=OFF >/dev/null
+  -DLMK_BUILD_BENCH=OFF -DLMK_WITH_ROS=OFF >/dev/null

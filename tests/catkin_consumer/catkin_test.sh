@@ -60,3 +60,5 @@ set +u
 source "$work/ws/install_isolated/setup.bash"
 set -u
 "$work/ws/install_isolated/lib/lmk_catkin_consumer/lmk_catkin_consumer"
+client="$work/ws/install_isolated/lib/lmk_catkin_consumer/lmk_catkin_consumer_client"
+if [ -x "$client" ]; then "$client"; fi
