@@ -4,11 +4,13 @@
 // controllers, and RosRobot's lifecycle. The scenes, landmark and program are the paper's task 3
 // ("bowls on a shelf") from lmk's demo tasks: its demonstration frame, a frame where the bowl can
 // be picked, and one with only cups, where the robot must not act.
+#include <actionlib/server/action_server.h>
 #include <geometry_msgs/PointStamped.h>
 #include <gtest/gtest.h>
 #include <lmk_msgs/CaptureLandmark.h>
 #include <lmk_msgs/FindLandmark.h>
 #include <lmk_msgs/ListLandmarks.h>
+#include <pr2_controllers_msgs/JointTrajectoryAction.h>
 #include <ros/ros.h>
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_listener.h>
@@ -336,6 +338,64 @@ TEST(RosRobot, AnswersEveryMethodInEveryStateAsTheInterfaceDocuments) {
   ros1::RosRobot robot{::ros::NodeHandle()};
   expect_lifecycle_table(robot, *Pr2Kinematics().group("left_arm"), "left");
   EXPECT_GE(fake.goals("l_arm_controller/joint_trajectory_action"), 1);
+}
+
+TEST(RosRobot, AGoalWithoutResultInTimeIsCancelledAndReturnedAsAnError) {
+  FakePr2 fake(fake_settings("demonstration.pcd"));
+  fake.hang_arm_goal(1);
+  ros1::RosRobotSettings settings;
+  settings.result_margin = 1.0;
+  ros1::RosRobot robot(::ros::NodeHandle(), settings);
+  ASSERT_TRUE(robot.configure().ok());
+  ASSERT_TRUE(robot.activate().ok());
+  JointTrajectory hold;
+  JointTrajectory::Point point;
+  const std::map<std::string, double> joints = fake.joints();
+  const GroupInfo arm = *Pr2Kinematics().group("right_arm");  // alive while its joints are read
+  for (const JointInfo& j : arm.joints) {
+    hold.joint_names.push_back(j.name);
+    point.positions.push_back(joints.at(j.name));
+  }
+  point.time_from_start = 0.5;
+  hold.points.push_back(point);
+  const CallResult r = robot.send_trajectory("right_arm", hold);  // 0.5 s + 1 s margin
+  EXPECT_EQ(r.status, Status::kError);
+  EXPECT_NE(r.message.find("r_arm_controller/joint_trajectory_action: no result within 1.5 s; "
+                           "the goal was cancelled"),
+            std::string::npos)
+      << r.message;
+  for (int i = 0; i < 200 && fake.cancelled_goals() == 0; ++i) ::ros::WallDuration(0.01).sleep();
+  EXPECT_EQ(fake.cancelled_goals(), 1);
+  EXPECT_EQ(robot.state(), LifecycleState::kActive);
+  EXPECT_TRUE(robot.send_trajectory("right_arm", hold).ok());  // the next goal runs
+}
+
+TEST(RosRobot, ARejectedGoalIsReturnedAsAnError) {
+  FakePr2 fake(fake_settings("demonstration.pcd"));
+  // A controller that rejects every goal, standing in for the right arm's.
+  using Server = actionlib::ActionServer<pr2_controllers_msgs::JointTrajectoryAction>;
+  ::ros::NodeHandle nh;
+  Server strict(
+      nh, "strict_arm/joint_trajectory_action",
+      [](Server::GoalHandle goal) {
+        goal.setRejected(pr2_controllers_msgs::JointTrajectoryResult(), "joints out of range");
+      },
+      false);
+  strict.start();
+  ros1::RosRobotSettings settings;
+  settings.arm_actions = {{"left_arm", "l_arm_controller/joint_trajectory_action"},
+                          {"right_arm", "strict_arm/joint_trajectory_action"}};
+  ros1::RosRobot robot(nh, settings);
+  ASSERT_TRUE(robot.configure().ok());
+  ASSERT_TRUE(robot.activate().ok());
+  JointTrajectory t;
+  t.joint_names = {"r_shoulder_pan_joint"};
+  t.points.push_back({{0.0}, 1.0});
+  const CallResult r = robot.send_trajectory("right_arm", t);
+  EXPECT_EQ(r.status, Status::kError);
+  EXPECT_EQ(r.message,
+            "strict_arm/joint_trajectory_action: the controller rejected the goal (joints out of "
+            "range)");
 }
 
 TEST(RosRobot, ConfigureNamesWhatDoesNotAnswer) {

@@ -36,7 +36,7 @@ struct FakePr2::Impl {
   std::map<std::string, double> joints;
   std::map<std::string, int> goal_counts;
   std::map<std::string, std::vector<trajectory_msgs::JointTrajectory>> trajectories;
-  int arm_goals = 0, abort_at = 0;
+  int arm_goals = 0, abort_at = 0, hang_at = 0, cancelled = 0;
   std::vector<std::unique_ptr<ArmServer>> arms;
   std::vector<std::unique_ptr<GripperServer>> grippers;
   std::unique_ptr<HeadServer> head;
@@ -101,12 +101,14 @@ struct FakePr2::Impl {
 
   void execute_arm(const std::string& ns,
                    const pr2_controllers_msgs::JointTrajectoryGoalConstPtr& goal) {
-    bool abort = false;
+    bool abort = false, hang = false;
     {
       const std::lock_guard<std::mutex> lock(mutex);
       ++goal_counts[ns];
       trajectories[ns].push_back(goal->trajectory);
       abort = ++arm_goals == abort_at;
+      hang = arm_goals == hang_at;
+      abort = abort || hang;  // a held goal moves nothing
       // A real controller runs the trajectory; the fake jumps to its end at once.
       if (!abort && !goal->trajectory.points.empty()) {
         const auto& last = goal->trajectory.points.back().positions;
@@ -116,6 +118,16 @@ struct FakePr2::Impl {
       }
     }
     ArmServer& server = *arms[ns[0] == 'l' ? 0 : 1];
+    if (hang) {
+      // Held until the client gives up and cancels, as a stuck controller would.
+      while (running && !server.isPreemptRequested()) ::ros::WallDuration(0.01).sleep();
+      {
+        const std::lock_guard<std::mutex> lock(mutex);
+        ++cancelled;
+      }
+      server.setPreempted();
+      return;
+    }
     if (abort) {
       server.setAborted(pr2_controllers_msgs::JointTrajectoryResult(),
                         "fake PR2: the test asked for an abort");
@@ -214,6 +226,16 @@ std::vector<trajectory_msgs::JointTrajectory> FakePr2::trajectories(const std::s
 void FakePr2::abort_arm_goal(int n) {
   const std::lock_guard<std::mutex> lock(impl_->mutex);
   impl_->abort_at = n;
+}
+
+void FakePr2::hang_arm_goal(int n) {
+  const std::lock_guard<std::mutex> lock(impl_->mutex);
+  impl_->hang_at = n;
+}
+
+int FakePr2::cancelled_goals() const {
+  const std::lock_guard<std::mutex> lock(impl_->mutex);
+  return impl_->cancelled;
 }
 
 std::map<std::string, double> FakePr2::joints() const {

@@ -41,6 +41,10 @@ class FakePr2 {
   std::vector<trajectory_msgs::JointTrajectory> trajectories(const std::string& ns) const;
   /// The n-th arm goal (1-based, both arms counted together) is aborted instead of executed.
   void abort_arm_goal(int n);
+  /// The n-th arm goal never finishes: the server holds it until the client cancels it.
+  void hang_arm_goal(int n);
+  /// Arm goals the clients cancelled.
+  int cancelled_goals() const;
   /// The joint positions now, by name.
   std::map<std::string, double> joints() const;
 
