@@ -29,62 +29,10 @@ void open_bag(rosbag::Bag& bag, const std::string& path) {
   }
 }
 
-/// The bag's whole TF history, for lookups at any recorded stamp.
-void load_tf(rosbag::Bag& bag, tf2_ros::Buffer& tf) {
-  rosbag::View view(bag, rosbag::TopicQuery(std::vector<std::string>{"/tf", "/tf_static"}));
-  for (const rosbag::MessageInstance& m : view) {
-    const auto msg = m.instantiate<tf2_msgs::TFMessage>();
-    if (!msg) continue;
-    const bool is_static = m.getTopic() == "/tf_static";
-    for (const geometry_msgs::TransformStamped& t : msg->transforms) {
-      tf.setTransform(t, "bag", is_static);
-    }
-  }
-}
-
-/// Calls f(time from start, message) for each cloud of the topic, in record order, until f
-/// returns false.
-template <class F>
-void for_each_cloud(rosbag::Bag& bag, const std::string& topic, F&& f) {
-  rosbag::View all(bag);
-  const double start = all.getBeginTime().toSec();
-  rosbag::View view(bag, rosbag::TopicQuery(topic));
-  for (const rosbag::MessageInstance& m : view) {
-    const auto msg = m.instantiate<sensor_msgs::PointCloud2>();
-    if (msg && !f(m.getTime().toSec() - start, *msg)) return;
-  }
-}
-
-struct OpenBag {
-  rosbag::Bag bag;
-  std::string topic;
-  std::unique_ptr<tf2_ros::Buffer> tf;
-
-  OpenBag(const std::string& path, const BagFrameOptions& options) {
-    const BagSummary summary = summarize_bag(path);
-    topic = bag_cloud_topic(summary, path, options.topic);
-    open_bag(bag, path);
-    // ros::Time drives tf2_ros's lookups, even with no ROS master: wall time is enough here.
-    if (!::ros::Time::isValid()) ::ros::Time::init();
-    tf = std::make_unique<tf2_ros::Buffer>(::ros::Duration(summary.duration() + 60.0));
-    load_tf(bag, *tf);
-  }
-
-  Frame frame(const sensor_msgs::PointCloud2& msg, const BagFrameOptions& options) const {
-    const std::string target =
-        options.target_frame.empty() ? msg.header.frame_id : options.target_frame;
-    return frame_from_cloud(msg, *tf, target, options.sensor_frame, ::ros::Duration(0));
-  }
-};
-
-}  // namespace
-
-BagSummary summarize_bag(const std::string& path) {
-  rosbag::Bag bag;
-  open_bag(bag, path);
-  BagSummary summary;
+/// The bag's topics with their types and message counts, sorted by name, and its time span.
+void read_topics(rosbag::Bag& bag, BagSummary& summary) {
   rosbag::View view(bag);
-  if (view.size() == 0) return summary;
+  if (view.size() == 0) return;
   summary.start = view.getBeginTime().toSec();
   summary.end = view.getEndTime().toSec();
   std::map<std::string, BagTopic> topics;
@@ -98,6 +46,63 @@ BagSummary summarize_bag(const std::string& path) {
     topic.messages = one.size();
     summary.topics.push_back(topic);
   }
+}
+
+/// The bag's whole TF history, for lookups at any recorded stamp.
+void load_tf(rosbag::Bag& bag, tf2_ros::Buffer& tf) {
+  rosbag::View view(bag, rosbag::TopicQuery(std::vector<std::string>{"/tf", "/tf_static"}));
+  for (const rosbag::MessageInstance& m : view) {
+    const auto msg = m.instantiate<tf2_msgs::TFMessage>();
+    if (!msg) continue;
+    const bool is_static = m.getTopic() == "/tf_static";
+    for (const geometry_msgs::TransformStamped& t : msg->transforms) {
+      tf.setTransform(t, "bag", is_static);
+    }
+  }
+}
+
+/// The bag opened once for reading frames: its topics, the cloud topic chosen, and its TF.
+struct OpenBag {
+  rosbag::Bag bag;
+  BagSummary summary;  // topics and time span; frames are not collected
+  std::string topic;
+  std::unique_ptr<tf2_ros::Buffer> tf;
+
+  OpenBag(const std::string& path, const BagFrameOptions& options) {
+    open_bag(bag, path);
+    read_topics(bag, summary);
+    topic = bag_cloud_topic(summary, path, options.topic);
+    // ros::Time drives tf2_ros's lookups, even with no ROS master: wall time is enough here.
+    if (!::ros::Time::isValid()) ::ros::Time::init();
+    tf = std::make_unique<tf2_ros::Buffer>(::ros::Duration(summary.duration() + 60.0));
+    load_tf(bag, *tf);
+  }
+
+  /// Calls f(time from the bag's start, message) for each cloud of the topic, in record order,
+  /// until f returns false.
+  template <class F>
+  void for_each_cloud(F&& f) {
+    rosbag::View view(bag, rosbag::TopicQuery(topic));
+    for (const rosbag::MessageInstance& m : view) {
+      const auto msg = m.instantiate<sensor_msgs::PointCloud2>();
+      if (msg && !f(m.getTime().toSec() - summary.start, *msg)) return;
+    }
+  }
+
+  Frame frame(const sensor_msgs::PointCloud2& msg, const BagFrameOptions& options) const {
+    std::string target = options.target_frame.empty() ? msg.header.frame_id : options.target_frame;
+    if (options.target_frame_optional && !tf->_frameExists(target)) target = msg.header.frame_id;
+    return frame_from_cloud(msg, *tf, target, options.sensor_frame, ::ros::Duration(0));
+  }
+};
+
+}  // namespace
+
+BagSummary summarize_bag(const std::string& path) {
+  rosbag::Bag bag;
+  open_bag(bag, path);
+  BagSummary summary;
+  read_topics(bag, summary);
   std::set<std::string> frames;
   rosbag::View tf(bag, rosbag::TopicQuery(std::vector<std::string>{"/tf", "/tf_static"}));
   for (const rosbag::MessageInstance& m : tf) {
@@ -132,24 +137,11 @@ std::string bag_cloud_topic(const BagSummary& bag, const std::string& path,
                                            list + ")"));
 }
 
-std::vector<double> bag_frame_times(const std::string& path, const BagFrameOptions& options) {
-  const BagSummary summary = summarize_bag(path);
-  rosbag::Bag bag;
-  open_bag(bag, path);
-  std::vector<double> times;
-  for_each_cloud(bag, bag_cloud_topic(summary, path, options.topic),
-                 [&](double t, const sensor_msgs::PointCloud2&) {
-                   times.push_back(t);
-                   return true;
-                 });
-  return times;
-}
-
 Frame read_bag_frame(const std::string& path, const BagFrameOptions& options, double seconds) {
   OpenBag open(path, options);
   std::optional<sensor_msgs::PointCloud2> nearest;
   double best = std::numeric_limits<double>::infinity();
-  for_each_cloud(open.bag, open.topic, [&](double t, const sensor_msgs::PointCloud2& msg) {
+  open.for_each_cloud([&](double t, const sensor_msgs::PointCloud2& msg) {
     if (std::abs(t - seconds) < best) {
       best = std::abs(t - seconds);
       nearest = msg;
@@ -171,7 +163,7 @@ std::vector<Frame> read_bag_frames(const std::string& path, const BagFrameOption
   OpenBag open(path, options);
   std::vector<Frame> frames;
   std::size_t index = 0;
-  for_each_cloud(open.bag, open.topic, [&](double, const sensor_msgs::PointCloud2& msg) {
+  open.for_each_cloud([&](double, const sensor_msgs::PointCloud2& msg) {
     if (index++ % stride == 0) {
       try {
         frames.push_back(open.frame(msg, options));

@@ -34,13 +34,13 @@ std::string bag_cloud_topic(const BagSummary& bag, const std::string& path,
 struct BagFrameOptions {
   std::string topic;         ///< see bag_cloud_topic
   std::string target_frame;  ///< frame to express clouds in; empty: the cloud's own
+  /// When the bag's TF does not know target_frame, use the cloud's own frame instead of failing.
+  bool target_frame_optional = false;
   std::string sensor_frame;  ///< the camera's optical frame; empty: the cloud's own
 };
 
-/// Record times (s from the bag's start) of the clouds on the topic.
-std::vector<double> bag_frame_times(const std::string& path, const BagFrameOptions& options);
-
-/// The cloud recorded nearest `seconds` after the bag's start, as a Frame in target_frame.
+/// The cloud recorded nearest `seconds` after the bag's start, as a Frame in target_frame
+/// (Frame::base_frame says which frame it is in).
 Frame read_bag_frame(const std::string& path, const BagFrameOptions& options, double seconds);
 
 /// Every `stride`-th cloud of the topic (1: all), as Frames in target_frame.

@@ -1,6 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Bags through lmk::ros's reader (ros/bag_reader.h).
-#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -18,27 +17,21 @@ namespace {
 
 constexpr const char* kBaseFrame = "base_link";
 
-/// The frame to express the bag's scenes in, and whether it is the robot's base frame.
-ros1::BagFrameOptions frame_options(const std::string& path, const BagOptions& options,
-                                    bool& in_base_frame) {
+/// Scenes in options.frame, or by default in base_link when the bag's TF has it (+z up there),
+/// else in the camera's own frame.
+ros1::BagFrameOptions frame_options(const BagOptions& options) {
   ros1::BagFrameOptions out;
   out.topic = options.topic;
-  out.target_frame = options.frame;
-  if (out.target_frame.empty()) {
-    const ros1::BagSummary summary = ros1::summarize_bag(path);
-    const bool has_base =
-        std::find(summary.frames.begin(), summary.frames.end(), kBaseFrame) != summary.frames.end();
-    if (has_base) out.target_frame = kBaseFrame;
-  }
-  in_base_frame = out.target_frame == kBaseFrame;
+  out.target_frame = options.frame.empty() ? kBaseFrame : options.frame;
+  out.target_frame_optional = options.frame.empty();
   return out;
 }
 
 }  // namespace
 
 PointCloud read_bag_scene(const std::string& path, const BagOptions& options, bool& in_base_frame) {
-  const ros1::BagFrameOptions frame = frame_options(path, options, in_base_frame);
-  const ros1::Frame scene = ros1::read_bag_frame(path, frame, options.time);
+  const ros1::Frame scene = ros1::read_bag_frame(path, frame_options(options), options.time);
+  in_base_frame = scene.base_frame == kBaseFrame;
   std::fprintf(stderr, "%s: the frame of %.3f s on %s, in %s\n", path.c_str(), scene.stamp.toSec(),
                options.topic.empty() ? "its cloud topic" : options.topic.c_str(),
                scene.base_frame.c_str());
@@ -78,10 +71,10 @@ int write_bag_dataset(const std::string& path, const BagOptions& options, std::s
                       const std::vector<std::string>& landmarks, const std::string& output) {
   if (landmarks.empty()) throw Error("gen --from-bag: name the landmarks with --landmark FILE");
   namespace fs = std::filesystem;
-  bool in_base_frame = false;
-  const ros1::BagFrameOptions frame = frame_options(path, options, in_base_frame);
-  const std::vector<ros1::Frame> frames = ros1::read_bag_frames(path, frame, stride);
+  const std::vector<ros1::Frame> frames =
+      ros1::read_bag_frames(path, frame_options(options), stride);
   if (frames.empty()) throw Error(path + ": no frame to write");
+  const bool in_base_frame = frames.front().base_frame == kBaseFrame;
   fs::create_directories(fs::path(output) / "scenes");
   fs::create_directories(fs::path(output) / "landmarks");
 
