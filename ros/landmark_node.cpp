@@ -88,14 +88,7 @@ LandmarkNode::LandmarkNode(::ros::NodeHandle nh, ::ros::NodeHandle private_nh,
 }
 
 std::shared_ptr<const Frame> LandmarkNode::frame() const {
-  // Right after start-up the first frame may still be on its way: wait for it a little.
-  const ::ros::WallTime deadline =
-      ::ros::WallTime::now() + ::ros::WallDuration(settings_.frame_timeout);
-  std::shared_ptr<const Frame> frame = latest_.get();
-  while (!frame && ::ros::WallTime::now() < deadline && ::ros::ok()) {
-    ::ros::WallDuration(0.02).sleep();
-    frame = latest_.get();
-  }
+  std::shared_ptr<const Frame> frame = latest_.wait(settings_.frame_timeout);
   if (!frame) {
     throw Error("no frame from " + latest_.topic() + " yet (is the camera publishing, and does " +
                 "TF reach " + settings_.base_frame + "?)");

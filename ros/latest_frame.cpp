@@ -36,6 +36,16 @@ std::shared_ptr<const Frame> LatestFrame::get() const {
   return latest_;
 }
 
+std::shared_ptr<const Frame> LatestFrame::wait(double seconds) const {
+  const ::ros::WallTime deadline = ::ros::WallTime::now() + ::ros::WallDuration(seconds);
+  std::shared_ptr<const Frame> frame = get();
+  while (!frame && ::ros::WallTime::now() < deadline && ::ros::ok()) {
+    ::ros::WallDuration(0.02).sleep();
+    frame = get();
+  }
+  return frame;
+}
+
 void LatestFrame::receive(const sensor_msgs::PointCloud2ConstPtr& msg) {
   try {
     auto frame = std::make_shared<const Frame>(

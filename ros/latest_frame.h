@@ -39,6 +39,9 @@ class LatestFrame {
               std::string base_frame, std::string sensor_frame);
   /// The latest frame, or null before the first one.
   std::shared_ptr<const Frame> get() const;
+  /// The latest frame, waiting up to `seconds` for the first one (right after start-up it may
+  /// still be on its way); null if none arrived by then. Needs the node to be spinning.
+  std::shared_ptr<const Frame> wait(double seconds) const;
   const std::string& topic() const { return topic_; }
 
  private:

@@ -35,11 +35,7 @@ void start_ros_node() {
 }
 
 std::shared_ptr<const ros1::Frame> wait_for_frame(const ros1::LatestFrame& latest, double timeout) {
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout);
-  while (std::chrono::steady_clock::now() < deadline && ros::ok()) {
-    if (auto frame = latest.get()) return frame;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
+  if (auto frame = latest.wait(timeout)) return frame;
   throw Error("pbd run --ros: no usable frame on " + latest.topic() + " within " +
               std::to_string(static_cast<int>(timeout)) +
               " s (is the camera publishing, and does TF reach the base frame?)");
