@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "lmk/geometry/error.h"
+
 namespace lmk {
 
 Eigen::Isometry3d pose_from_xyz_rpy(const Eigen::Vector3d& xyz, const Eigen::Vector3d& rpy) {
@@ -22,6 +24,19 @@ Eigen::Isometry3d pose_from_position_quaternion(const Eigen::Vector3d& position,
   T.linear() = q.normalized().toRotationMatrix();
   T.translation() = position;
   return T;
+}
+
+Eigen::Isometry3d pose_from_unit_quaternion(const Eigen::Vector3d& position,
+                                            const Eigen::Vector4d& wxyz, const std::string& where,
+                                            const std::string& field) {
+  if (!position.allFinite() || !wxyz.allFinite())
+    throw Error(where + ": holds a non-finite number");
+  if (std::abs(wxyz.norm() - 1.0) > 1e-3) {
+    throw Error(where + "." + field + ": is not a unit quaternion [w, x, y, z] (norm " +
+                std::to_string(wxyz.norm()) + ")");
+  }
+  return pose_from_position_quaternion(position,
+                                       Eigen::Quaterniond(wxyz[0], wxyz[1], wxyz[2], wxyz[3]));
 }
 
 Eigen::Vector3d rpy_from_rotation(const Eigen::Matrix3d& R) {

@@ -5,12 +5,19 @@
 // Rx(roll).
 
 #include <Eigen/Geometry>
+#include <string>
 
 namespace lmk {
 
 Eigen::Isometry3d pose_from_xyz_rpy(const Eigen::Vector3d& xyz, const Eigen::Vector3d& rpy);
 Eigen::Isometry3d pose_from_position_quaternion(const Eigen::Vector3d& position,
                                                 const Eigen::Quaterniond& q);
+/// The same from a pose read from a file or the wire: `wxyz` is [w, x, y, z] and must have unit
+/// length within 1e-3 (what text and wire formats keep). Throws lmk::Error as "<where>: holds a
+/// non-finite number" or "<where>.<field>: is not a unit quaternion [w, x, y, z] (norm N)".
+Eigen::Isometry3d pose_from_unit_quaternion(const Eigen::Vector3d& position,
+                                            const Eigen::Vector4d& wxyz, const std::string& where,
+                                            const std::string& field);
 /// Roll, pitch, yaw of a rotation, with pitch in [-pi/2, pi/2].
 Eigen::Vector3d rpy_from_rotation(const Eigen::Matrix3d& R);
 /// Angle in [0, pi] of the relative rotation R_a^T R_b.

@@ -9,7 +9,6 @@
 // and throw lmk::Error as "<where>.<field>: <problem>".
 
 #include <Eigen/Geometry>
-#include <cmath>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -52,11 +51,7 @@ inline Eigen::Isometry3d pose_from_json(const nlohmann::json& j, const std::stri
       numbers_from_json(json_field(j, "position", where), 3, where + ".position");
   const Eigen::Vector4d q =
       numbers_from_json(json_field(j, "quaternion", where), 4, where + ".quaternion");
-  if (std::abs(q.norm() - 1.0) > 1e-3) {
-    throw Error(where + ".quaternion: is not a unit quaternion [w, x, y, z] (norm " +
-                std::to_string(q.norm()) + ")");
-  }
-  return pose_from_position_quaternion(p, Eigen::Quaterniond(q[0], q[1], q[2], q[3]));
+  return pose_from_unit_quaternion(p, q, where, "quaternion");
 }
 
 }  // namespace lmk::detail

@@ -1,10 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "lmk/ros/geometry_conversion.h"
 
-#include <cmath>
 #include <cstdio>
 
-#include "lmk/geometry/error.h"
 #include "lmk/geometry/pose.h"
 
 namespace lmk::ros1 {
@@ -31,15 +29,11 @@ geometry_msgs::Vector3 to_ros(const Eigen::Vector3d& v) {
 }
 
 Eigen::Isometry3d from_ros(const geometry_msgs::Pose& pose, const std::string& what) {
-  const Eigen::Vector3d p(pose.position.x, pose.position.y, pose.position.z);
-  const Eigen::Vector4d q(pose.orientation.w, pose.orientation.x, pose.orientation.y,
-                          pose.orientation.z);
-  if (!p.allFinite() || !q.allFinite()) throw Error(what + ": holds a non-finite number");
-  if (std::abs(q.norm() - 1.0) > 1e-3) {
-    throw Error(what + ": orientation is not a unit quaternion (norm " + std::to_string(q.norm()) +
-                ")");
-  }
-  return pose_from_position_quaternion(p, Eigen::Quaterniond(q[0], q[1], q[2], q[3]));
+  return pose_from_unit_quaternion(
+      Eigen::Vector3d(pose.position.x, pose.position.y, pose.position.z),
+      Eigen::Vector4d(pose.orientation.w, pose.orientation.x, pose.orientation.y,
+                      pose.orientation.z),
+      what, "orientation");
 }
 
 Eigen::Vector3d from_ros(const geometry_msgs::Vector3& v) { return {v.x, v.y, v.z}; }

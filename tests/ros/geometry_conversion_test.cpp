@@ -23,7 +23,9 @@ TEST(GeometryConversion, PosesRoundTrip) {
 
 TEST(GeometryConversion, PosesFromTheWireAreChecked) {
   geometry_msgs::Pose pose;  // all zero: not a rotation
-  EXPECT_NE(test::error_of([&] { from_ros(pose, "box_pose"); }).find("box_pose: orientation"),
+  EXPECT_NE(test::error_of([&] {
+              from_ros(pose, "box_pose");
+            }).find("box_pose.orientation: is not a unit quaternion"),
             std::string::npos);
   pose.orientation.w = 1.0;
   pose.position.x = std::numeric_limits<double>::infinity();
