@@ -106,13 +106,16 @@ Box grow_by_empty_margin(const Box& object, const PointCloud& scene, Indices oth
                    others.end());
     }
   }
-  // Nearest first, so that each limit comes from the closest neighbour on its side.
-  std::sort(others.begin(), others.end(), [&](Index a, Index b) {
-    return (T_box_scene * scene.points[a].cast<double>()).cwiseAbs().maxCoeff() <
-           (T_box_scene * scene.points[b].cast<double>()).cwiseAbs().maxCoeff();
-  });
-  for (Index i : others) {
-    const Eigen::Vector3d p = T_box_scene * scene.points[i].cast<double>();
+  // The neighbours in the box frame, moved there once and taken nearest first, so that each
+  // limit comes from the closest neighbour on its side.
+  std::vector<Eigen::Vector3d> neighbours;
+  neighbours.reserve(others.size());
+  for (Index i : others) neighbours.push_back(T_box_scene * scene.points[i].cast<double>());
+  std::sort(neighbours.begin(), neighbours.end(),
+            [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+              return a.cwiseAbs().maxCoeff() < b.cwiseAbs().maxCoeff();
+            });
+  for (const Eigen::Vector3d& p : neighbours) {
     int side = -1;
     double beyond = 0.0;
     bool inside_grown = true;
