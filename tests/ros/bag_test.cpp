@@ -75,9 +75,7 @@ const Session& session() {
 
 std::pair<int, std::string> run_lmk(const ScratchDir& dir, std::vector<std::string> args) {
   args.insert(args.begin(), LMK_BINARY);
-  ChildProcess lmk(args, dir.file("lmk.log"));
-  const int code = lmk.wait(300.0);
-  return {code, lmk.log()};
+  return run_to_end(args, dir.file("lmk.log"));
 }
 
 nlohmann::json read_json(const std::string& path) {

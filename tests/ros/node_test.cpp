@@ -97,9 +97,7 @@ std::unique_ptr<ChildProcess> start_node(const ScratchDir& dir, const std::strin
 /// Runs the lmk CLI to its end; its exit code and output.
 std::pair<int, std::string> run_lmk(const ScratchDir& dir, std::vector<std::string> args) {
   args.insert(args.begin(), LMK_BINARY);
-  ChildProcess lmk(args, dir.file("lmk.log"));
-  const int code = lmk.wait(300.0);
-  return {code, lmk.log()};
+  return run_to_end(args, dir.file("lmk.log"));
 }
 
 template <class Service>

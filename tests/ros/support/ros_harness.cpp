@@ -77,6 +77,13 @@ std::string ChildProcess::log() const {
   return text.str();
 }
 
+std::pair<int, std::string> run_to_end(std::vector<std::string> argv, const std::string& log_path,
+                                       double seconds) {
+  ChildProcess process(std::move(argv), log_path);
+  const int code = process.wait(seconds);
+  return {code, process.log()};
+}
+
 int free_port() {
   const int fd = socket(AF_INET, SOCK_STREAM, 0);
   sockaddr_in addr{};

@@ -7,6 +7,7 @@
 #include <sys/types.h>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace lmk::test {
@@ -34,6 +35,10 @@ class ChildProcess {
   int status_ = -1;
   std::string log_path_;
 };
+
+/// Runs `argv` to its end (at most `seconds`; then it is stopped): its exit code and output.
+std::pair<int, std::string> run_to_end(std::vector<std::string> argv, const std::string& log_path,
+                                       double seconds = 300.0);
 
 /// A rosmaster on a free port, with ROS_HOME and the logs in a directory of its own.
 /// ROS_MASTER_URI and ROS_HOME are set for this process and the children it starts.
