@@ -191,6 +191,8 @@ struct RosRobot::Impl {
 RosRobot::RosRobot(::ros::NodeHandle nh, RosRobotSettings settings)
     : impl_(std::make_unique<Impl>()) {
   impl_->settings = std::move(settings);
+  // Resolved once: every later use reads the namespaces from here.
+  impl_->settings.arm_actions = impl_->settings.resolved_arm_actions();
   impl_->nh = nh;
   impl_->nh.setCallbackQueue(&impl_->queue);
   impl_->spinner.start();
@@ -210,7 +212,7 @@ CallResult RosRobot::configure() {
   m.arms.clear();
   m.grippers.clear();
   const RosRobotSettings& s = m.settings;
-  for (const auto& [group, ns] : s.resolved_arm_actions()) {
+  for (const auto& [group, ns] : s.arm_actions) {
     if (s.arm_action_type == "pr2") {
       m.arms[group] = std::make_unique<Pr2ArmClient>(m.nh, ns);
     } else {
@@ -237,7 +239,7 @@ CallResult RosRobot::configure() {
   const auto note = [&missing](const std::string& what) {
     missing += (missing.empty() ? "" : ", ") + what;
   };
-  for (const auto& [group, ns] : s.resolved_arm_actions()) {
+  for (const auto& [group, ns] : s.arm_actions) {
     if (!m.arms[group]->connect(remaining())) note(ns);
   }
   for (const auto& [gripper, ns] : s.gripper_actions) {
@@ -297,7 +299,7 @@ CallResult RosRobot::send_trajectory(const std::string& group, const JointTrajec
   if (it == impl_->arms.end()) return CallResult::error("no arm group '" + group + "'");
   if (trajectory.points.empty()) return CallResult::error(group + ": the trajectory is empty");
   const double duration = trajectory.points.back().time_from_start;
-  const std::string what = impl_->settings.resolved_arm_actions().at(group);
+  const std::string& what = impl_->settings.arm_actions.at(group);
   return it->second->execute(trajectory, what, duration + impl_->settings.result_margin);
 }
 
