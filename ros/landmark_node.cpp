@@ -44,8 +44,14 @@ LandmarkNodeSettings LandmarkNodeSettings::from_parameters(const ::ros::NodeHand
   private_nh.param("capture_name", s.capture_name, s.capture_name);
   LandmarkLibrary::check_name(s.capture_name);
   if (!(s.frame_timeout >= 0.0)) throw Error("~frame_timeout: must be seconds, 0 or more");
+  // A string of JSON: a YAML map from rosparam would not read as one, and is refused rather than
+  // silently ignored.
   std::string find_json = "{}";
-  private_nh.param("find_settings", find_json, find_json);
+  if (private_nh.hasParam("find_settings") && !private_nh.getParam("find_settings", find_json)) {
+    throw Error(
+        "~find_settings: must be a string of JSON, such as "
+        "'{\"selection\": {\"threshold\": 0.006}}'");
+  }
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(find_json);

@@ -35,9 +35,9 @@ struct LandmarkNodeSettings {
 
   /// From the private parameters ~cloud_topic, ~base_frame, ~sensor_frame,
   /// ~landmark_directory (default $ROS_HOME/lmk/landmarks), ~frame_timeout, ~interactive,
-  /// ~capture_name and ~find_settings (the
-  /// JSON form of FindSettings, as `lmk find --settings-json` takes it). Throws lmk::Error for a
-  /// bad one.
+  /// ~capture_name and ~find_settings (FindSettings as JSON, one object per stage, e.g.
+  /// {"selection": {"threshold": 0.006}}; json/find_settings_json.h). Throws lmk::Error for a bad
+  /// one.
   static LandmarkNodeSettings from_parameters(const ::ros::NodeHandle& private_nh);
 };
 

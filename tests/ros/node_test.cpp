@@ -254,6 +254,30 @@ TEST(LmkNode, BadRequestsAreAnsweredWithTheReason) {
   EXPECT_TRUE(node->running());
 }
 
+TEST(LmkNode, BadParametersStopItWithOneClearLine) {
+  // Each run has a name of its own: parameters stay on the master after a node ends.
+  const ScratchDir dir;
+  const auto [code, out] = run_to_end({LMK_NODE_BINARY, "__name:=lmk_node_bad",
+                                       "_find_settings:={\"selection\": {\"treshold\": 1}}",
+                                       "_landmark_directory:=" + dir.file("landmarks")},
+                                      dir.file("bad.log"), 60.0);
+  EXPECT_EQ(code, 1) << out;
+  EXPECT_NE(out.find("lmk_node: ~find_settings.selection: unknown setting 'treshold'"),
+            std::string::npos)
+      << out;
+  const auto [code2, out2] =
+      run_to_end({LMK_NODE_BINARY, "__name:=lmk_node_bad_name", "_capture_name:=../up"},
+                 dir.file("bad2.log"), 60.0);
+  EXPECT_EQ(code2, 1) << out2;
+  EXPECT_NE(out2.find("landmark name '../up'"), std::string::npos) << out2;
+  // A number where a JSON string belongs (as a rosparam map would be) is refused, not ignored.
+  const auto [code3, out3] =
+      run_to_end({LMK_NODE_BINARY, "__name:=lmk_node_bad_type", "_find_settings:=3"},
+                 dir.file("bad3.log"), 60.0);
+  EXPECT_EQ(code3, 1) << out3;
+  EXPECT_NE(out3.find("~find_settings: must be a string of JSON"), std::string::npos) << out3;
+}
+
 /// The plan `lmk pbd run --ros` makes: the same frame, joint state, torso and settings.
 Plan expected_plan(const FakePr2& robot) {
   const Program program = load_program(demo_data().program().string());
