@@ -181,6 +181,9 @@ int run_plan(const PbdOptions& o) {
 }
 
 int run_run(const PbdOptions& o) {
+  if (o.ros && !o.scene.empty()) {
+    throw Error("pbd run --ros: --scene does not apply; the robot's camera gives the frame");
+  }
   if (o.ros) return run_on_ros(o);
   if (!o.sim || o.scene.empty()) {
     throw Error(

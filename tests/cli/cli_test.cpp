@@ -358,6 +358,8 @@ TEST_F(Cli, PbdShowPlanRunAndRefusals) {
 
   expect_bad_input("pbd run " + program + " --scene '" + dir + "demonstration.pcd'",
                    "give --sim --scene FILE for the simulated PR2, or --ros");
+  expect_bad_input("pbd run " + program + " --ros --scene '" + dir + "demonstration.pcd'",
+                   "pbd run --ros: --scene does not apply");
   expect_bad_input("pbd show " + path("missing.json"), "missing.json: no such file");
   expect_bad_input("pbd plan " + program + " --scene " + path("missing.pcd"), "missing.pcd");
   expect_bad_input(
