@@ -146,6 +146,11 @@ TEST(Bags, BadBagsAndTopicsAreRefusedWithTheReason) {
   EXPECT_EQ(code, 2) << out;
   EXPECT_NE(out.find("is not a readable ROS bag"), std::string::npos) << out;
 
+  const auto [code3, out3] = run_lmk(dir, {"gen", dir.file("ds"), "--from-bag", session().bag});
+  EXPECT_EQ(code3, 2) << out3;
+  EXPECT_NE(out3.find("gen --from-bag: name the landmarks with --landmark FILE"), std::string::npos)
+      << out3;
+
   const auto [code2, out2] =
       run_lmk(dir, {"find", session().bag, session().landmark, "--topic", "/chatter"});
   EXPECT_EQ(code2, 2) << out2;

@@ -355,6 +355,24 @@ TEST(PbdRunOnRos, AnAbortedArmGoalStopsTheRunAndNamesTheStep) {
   EXPECT_EQ(arm_goals, 2);  // nothing after the abort
 }
 
+TEST(PbdRunOnRos, NoMasterOrNoRobotIsOneClearLine) {
+  const ScratchDir dir;
+  const auto [code, out] = run_to_end({"env", "ROS_MASTER_URI=http://127.0.0.1:1/", LMK_BINARY,
+                                       "pbd", "run", demo_data().program().string(), "--ros"},
+                                      dir.file("no_master.log"));
+  EXPECT_EQ(code, 2) << out;
+  EXPECT_NE(out.find("lmk: error: pbd run --ros: no ROS master at http://127.0.0.1:1/"),
+            std::string::npos)
+      << out;
+  // A master, but no robot: configure names every controller and topic that did not answer.
+  const auto [code2, out2] = run_lmk(dir, {"pbd", "run", demo_data().program().string(), "--ros"});
+  EXPECT_EQ(code2, 2) << out2;
+  EXPECT_NE(out2.find("lmk: error: pbd run --ros: configure: no answer within 5.0 s from "
+                      "l_arm_controller/joint_trajectory_action"),
+            std::string::npos)
+      << out2;
+}
+
 TEST(RosRobot, AnswersEveryMethodInEveryStateAsTheInterfaceDocuments) {
   FakePr2 fake(fake_settings("demonstration.pcd"));
   ros1::RosRobot robot{::ros::NodeHandle()};
