@@ -21,32 +21,36 @@ namespace {
 using detail::Clock;
 using detail::seconds_since;
 
+// Why a candidate was turned down, as Rejection::reason and describe_rejections say it.
+constexpr const char* kRejectedError = "error above threshold";
+constexpr const char* kRejectedCoverage = "coverage too low";
+constexpr const char* kRejectedEmptySpace = "empty space occupied";
+
 // Steps 5 and 6: non-max suppression on box centres, then the error threshold (and, for metrics
-// that measure them, the coverage and the empty space).
-std::vector<Match> select(std::vector<Match> candidates, const SelectionSettings& s,
-                          SearchStats& stats) {
+// that measure them, the coverage and the empty space). Candidates turned down go to `rejected`
+// with the first test they failed.
+void select(std::vector<Match> candidates, const SelectionSettings& s, FindResult& result) {
+  SearchStats& stats = result.stats;
   const std::vector<std::size_t> kept = non_max_suppression_of(candidates, s.nms_radius);
   stats.after_nms = kept.size();
-  std::vector<Match> matches;
+  const auto reject = [&](Match& m, std::size_t& count, const char* reason) {
+    ++count;
+    result.rejected.push_back({std::move(m), reason});
+  };
   for (std::size_t i : kept) {
-    const Match& m = candidates[i];
+    Match& m = candidates[i];
     if (!(m.error < stats.threshold)) {
-      ++stats.rejected_error;
-      continue;
+      reject(m, stats.rejected_error, kRejectedError);
+    } else if (!std::isnan(m.terms.coverage) && m.terms.coverage < s.min_coverage) {
+      reject(m, stats.rejected_coverage, kRejectedCoverage);
+    } else if (m.terms.empty_space_probes > 0 &&
+               static_cast<double>(m.terms.empty_space_violations) >
+                   s.max_empty_space_violation * static_cast<double>(m.terms.empty_space_probes)) {
+      reject(m, stats.rejected_empty_space, kRejectedEmptySpace);
+    } else {
+      result.matches.push_back(std::move(m));
     }
-    if (!std::isnan(m.terms.coverage) && m.terms.coverage < s.min_coverage) {
-      ++stats.rejected_coverage;
-      continue;
-    }
-    if (m.terms.empty_space_probes > 0 &&
-        static_cast<double>(m.terms.empty_space_violations) >
-            s.max_empty_space_violation * static_cast<double>(m.terms.empty_space_probes)) {
-      ++stats.rejected_empty_space;
-      continue;
-    }
-    matches.push_back(std::move(candidates[i]));
   }
-  return matches;
 }
 
 // Steps 3 to 6 in an indexed scene, for inputs already checked.
@@ -132,7 +136,7 @@ FindResult search(const SceneIndex& index, const Landmark& landmark, const FindS
   stats.seconds_search = seconds_since(search_start);
 
   const auto select_start = Clock::now();
-  result.matches = select(std::move(candidates), settings.selection, stats);
+  select(std::move(candidates), settings.selection, result);
   if (settings.execution.keep_aligned_points) {
     for (Match& m : result.matches) {
       m.aligned_points = landmark.points.transformed(m.T_scene_capture);
@@ -165,9 +169,9 @@ std::string describe_rejections(const SearchStats& s) {
     if (n == 0) return;
     out += (out.empty() ? "rejected: " : ", ") + std::to_string(n) + " " + why;
   };
-  add(s.rejected_error, "error above threshold");
-  add(s.rejected_coverage, "coverage too low");
-  add(s.rejected_empty_space, "empty space occupied");
+  add(s.rejected_error, kRejectedError);
+  add(s.rejected_coverage, kRejectedCoverage);
+  add(s.rejected_empty_space, kRejectedEmptySpace);
   return out;
 }
 

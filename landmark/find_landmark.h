@@ -66,8 +66,16 @@ struct SearchStats {
   std::string metric;                    ///< the metric applied
 };
 
+/// A candidate that survived non-max suppression and was then turned down (step 6), with the
+/// first test it failed: what a person looks at to see why an instance was not reported.
+struct Rejection {
+  Match candidate;
+  std::string reason;  ///< "error above threshold", "coverage too low" or "empty space occupied"
+};
+
 struct FindResult {
-  std::vector<Match> matches;  ///< sorted by increasing error
+  std::vector<Match> matches;       ///< sorted by increasing error
+  std::vector<Rejection> rejected;  ///< sorted by increasing error
   SearchStats stats;
 };
 

@@ -79,5 +79,6 @@ Subcommand add_eval(CLI::App& app);
 Subcommand add_ablate(CLI::App& app);
 Subcommand add_pbd(CLI::App& app);
 Subcommand add_sensor_check(CLI::App& app);
+Subcommand add_serve(CLI::App& app);
 
 }  // namespace lmk::cli

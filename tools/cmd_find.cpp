@@ -13,8 +13,7 @@
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/pose.h"
-#include "lmk/json/pose_json.h"
-#include "lmk/json/terms_json.h"
+#include "lmk/json/find_result_json.h"
 #include "lmk/landmark/find_landmark.h"
 #include "lmk/landmark/landmark_file.h"
 #include "tools/bag_input.h"
@@ -28,43 +27,9 @@ struct FindOptions {
   BagOptions bag;
   std::string scene, landmark, json;
   bool timings = false;
+  bool rejected = false;
   FindSettings settings;
 };
-
-nlohmann::json result_json(const FindResult& r) {
-  nlohmann::json matches = nlohmann::json::array();
-  for (const Match& m : r.matches) {
-    nlohmann::json match = detail::pose_to_json(m.box.pose);
-    match["error"] = m.error;
-    match["terms"] = detail::terms_to_json(m.terms);
-    match["seed_index"] = m.seed_index;
-    match["icp_iterations"] = m.icp_iterations;
-    match["votes"] = m.votes;
-    matches.push_back(match);
-  }
-  const SearchStats& s = r.stats;
-  return {{"matches", matches},
-          {"stats",
-           {{"seconds", s.seconds_total},
-            {"seconds_preprocess", s.seconds_preprocess},
-            {"seconds_search", s.seconds_search},
-            {"seconds_select", s.seconds_select},
-            {"seeds", s.seeds},
-            {"icp_iterations", s.icp_iterations},
-            {"scene_points", s.scene_points},
-            {"scene_points_used", s.scene_points_used},
-            {"after_nms", s.after_nms},
-            {"poses", s.poses},
-            {"clusters", s.clusters},
-            {"refined", s.refined},
-            {"rejected_error", s.rejected_error},
-            {"rejected_coverage", s.rejected_coverage},
-            {"rejected_empty_space", s.rejected_empty_space},
-            {"threshold", s.threshold},
-            {"method", s.method},
-            {"metric", s.metric},
-            {"rejections", describe_rejections(s)}}}};
-}
 
 void print_table(const FindResult& r, const std::string& name) {
   const SearchStats& s = r.stats;
@@ -123,12 +88,15 @@ int run_find(FindOptions& o) {
   const FindResult result = find_landmark(scene, landmark, o.settings);
   o.settings.execution.progress = nullptr;
   if (o.json == "-") {
-    std::cout << json_output(result_json(result), o.timings).dump(2) << "\n";
+    std::cout << json_output(detail::find_result_to_json(result, o.rejected), o.timings).dump(2)
+              << "\n";
     return kOk;
   }
   print_table(result, landmark.name);
   if (!o.json.empty()) {
-    write_text_atomically(o.json, json_output(result_json(result), o.timings).dump(2) + "\n");
+    write_text_atomically(
+        o.json,
+        json_output(detail::find_result_to_json(result, o.rejected), o.timings).dump(2) + "\n");
   }
   return kOk;
 }
@@ -146,6 +114,9 @@ Subcommand add_find(CLI::App& app) {
   add_bag_options(sub, o->bag, true);
   sub->add_option("--json", o->json,
                   "Write the matches and statistics as JSON to FILE, or - for stdout");
+  sub->add_flag("--rejected", o->rejected,
+                "With --json: also the candidates turned down after non-max suppression, each with "
+                "the test it failed");
   add_timings_flag(sub, o->timings);
   return {sub, [o] { return run_find(*o); }};
 }

@@ -15,7 +15,7 @@
 #include "lmk/geometry/atomic_file.h"
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/error.h"
-#include "lmk/json/pose_json.h"
+#include "lmk/json/plan_json.h"
 #include "lmk/pbd/execute.h"
 #include "lmk/pbd/plan.h"
 #include "lmk/pr2/simulated_pr2.h"
@@ -63,42 +63,6 @@ int run_show(const PbdOptions& o) {
     }
   }
   return kOk;
-}
-
-nlohmann::json plan_json(const Plan& plan) {
-  nlohmann::json landmarks = nlohmann::json::array(), steps = nlohmann::json::array();
-  for (const LocatedLandmark& l : plan.landmarks) {
-    nlohmann::json j = detail::pose_to_json(l.T_base_landmark);
-    j["name"] = l.name;
-    j["error"] = l.match.error;
-    j["found"] = l.found;
-    j["eligible"] = l.eligible;
-    j["policy"] = instance_policy_name(l.policy);
-    j["seconds"] = l.seconds;
-    landmarks.push_back(j);
-  }
-  for (const PlannedStep& s : plan.steps) {
-    nlohmann::json arms = nlohmann::json::array();
-    for (const PlannedArm& a : s.arms) {
-      nlohmann::json j = detail::pose_to_json(a.T_base_ee);
-      j["arm"] = arm_name(a.arm);
-      j["frame"] = a.frame;
-      j["gripper"] = gripper_action_name(a.gripper);
-      j["joints"] = a.ik.joints;
-      j["position_error_m"] = a.ik.position_error;
-      j["rotation_error_rad"] = a.ik.rotation_error;
-      arms.push_back(j);
-    }
-    steps.push_back({{"step", s.index}, {"duration", s.duration}, {"arms", arms}});
-  }
-  nlohmann::json j = {{"program", plan.program},
-                      {"valid", plan.valid()},
-                      {"landmarks", landmarks},
-                      {"steps", steps}};
-  if (plan.refusal) {
-    j["refusal"] = {{"kind", refusal_kind(*plan.refusal)}, {"message", describe(*plan.refusal)}};
-  }
-  return j;
 }
 
 }  // namespace
@@ -173,7 +137,7 @@ int run_plan(const PbdOptions& o) {
   SimulatedPr2 robot(Pr2Kinematics(RobotModel::pr2(), o.torso));
   const Plan plan = plan_program(o, robot);
   if (o.json_stdout) {
-    std::cout << plan_json(plan).dump(2) << "\n";
+    std::cout << detail::plan_to_json(plan).dump(2) << "\n";
   } else {
     print_plan(plan);
   }

@@ -1,0 +1,65 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+// The JSON form of a search's result, which `lmk find --json` prints and `lmk serve` answers with:
+// {"matches": [...], "stats": {...}}, each match its box pose, error and terms; with rejections,
+// also "rejected": the candidates turned down after non-max suppression, each with its reason.
+// Header-only and internal, like pose_json.h.
+
+#include <nlohmann/json.hpp>
+
+#include "lmk/json/pose_json.h"
+#include "lmk/json/terms_json.h"
+#include "lmk/landmark/find_landmark.h"
+
+namespace lmk::detail {
+
+inline nlohmann::json match_to_json(const Match& m) {
+  nlohmann::json match = pose_to_json(m.box.pose);
+  match["error"] = m.error;
+  match["terms"] = terms_to_json(m.terms);
+  match["seed_index"] = m.seed_index;
+  match["icp_iterations"] = m.icp_iterations;
+  match["votes"] = m.votes;
+  return match;
+}
+
+inline nlohmann::json search_stats_to_json(const SearchStats& s) {
+  return {{"seconds", s.seconds_total},
+          {"seconds_preprocess", s.seconds_preprocess},
+          {"seconds_search", s.seconds_search},
+          {"seconds_select", s.seconds_select},
+          {"seeds", s.seeds},
+          {"icp_iterations", s.icp_iterations},
+          {"scene_points", s.scene_points},
+          {"scene_points_used", s.scene_points_used},
+          {"after_nms", s.after_nms},
+          {"poses", s.poses},
+          {"clusters", s.clusters},
+          {"refined", s.refined},
+          {"rejected_error", s.rejected_error},
+          {"rejected_coverage", s.rejected_coverage},
+          {"rejected_empty_space", s.rejected_empty_space},
+          {"threshold", s.threshold},
+          {"method", s.method},
+          {"metric", s.metric},
+          {"rejections", describe_rejections(s)}};
+}
+
+/// The matches and statistics; with `with_rejected`, also every rejected candidate and its reason.
+inline nlohmann::json find_result_to_json(const FindResult& r, bool with_rejected = false) {
+  nlohmann::json matches = nlohmann::json::array();
+  for (const Match& m : r.matches) matches.push_back(match_to_json(m));
+  nlohmann::json j = {{"matches", matches}, {"stats", search_stats_to_json(r.stats)}};
+  if (with_rejected) {
+    nlohmann::json rejected = nlohmann::json::array();
+    for (const Rejection& x : r.rejected) {
+      nlohmann::json candidate = match_to_json(x.candidate);
+      candidate["reason"] = x.reason;
+      rejected.push_back(candidate);
+    }
+    j["rejected"] = rejected;
+  }
+  return j;
+}
+
+}  // namespace lmk::detail

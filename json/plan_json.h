@@ -1,0 +1,50 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+// The JSON form of a PbD plan, which `lmk pbd plan --json` prints and `lmk serve` answers with: the
+// landmarks located, every step's targets in the base frame with their IK solutions, and the
+// refusal if there is one. Header-only and internal, like pose_json.h.
+
+#include <nlohmann/json.hpp>
+
+#include "lmk/json/pose_json.h"
+#include "lmk/pbd/plan.h"
+
+namespace lmk::detail {
+
+inline nlohmann::json plan_to_json(const Plan& plan) {
+  nlohmann::json landmarks = nlohmann::json::array(), steps = nlohmann::json::array();
+  for (const LocatedLandmark& l : plan.landmarks) {
+    nlohmann::json j = pose_to_json(l.T_base_landmark);
+    j["name"] = l.name;
+    j["error"] = l.match.error;
+    j["found"] = l.found;
+    j["eligible"] = l.eligible;
+    j["policy"] = instance_policy_name(l.policy);
+    j["seconds"] = l.seconds;
+    landmarks.push_back(j);
+  }
+  for (const PlannedStep& s : plan.steps) {
+    nlohmann::json arms = nlohmann::json::array();
+    for (const PlannedArm& a : s.arms) {
+      nlohmann::json j = pose_to_json(a.T_base_ee);
+      j["arm"] = arm_name(a.arm);
+      j["frame"] = a.frame;
+      j["gripper"] = gripper_action_name(a.gripper);
+      j["joints"] = a.ik.joints;
+      j["position_error_m"] = a.ik.position_error;
+      j["rotation_error_rad"] = a.ik.rotation_error;
+      arms.push_back(j);
+    }
+    steps.push_back({{"step", s.index}, {"duration", s.duration}, {"arms", arms}});
+  }
+  nlohmann::json j = {{"program", plan.program},
+                      {"valid", plan.valid()},
+                      {"landmarks", landmarks},
+                      {"steps", steps}};
+  if (plan.refusal) {
+    j["refusal"] = {{"kind", refusal_kind(*plan.refusal)}, {"message", describe(*plan.refusal)}};
+  }
+  return j;
+}
+
+}  // namespace lmk::detail

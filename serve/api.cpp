@@ -1,0 +1,76 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "lmk/serve/api.h"
+
+#include <cmath>
+
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/version.h"
+#include "lmk/landmark/error_metrics.h"
+#include "lmk/serve/api_error.h"
+#include "lmk/serve/request_fields.h"
+
+namespace lmk::serve {
+
+Api::Api(ServeSettings settings, const std::filesystem::path& scratch_dir)
+    : settings_(std::move(settings)),
+      scenes_(settings_.max_uploads, scratch_dir),
+      library_(settings_.landmarks_dir) {
+  for (const std::string& path : settings_.scenes) scenes_.add_file(path);
+  if (!settings_.programs_dir.empty()) {
+    if (!std::filesystem::is_directory(settings_.programs_dir)) {
+      throw Error("--programs " + settings_.programs_dir + ": not a directory");
+    }
+    programs_dir_ = std::filesystem::canonical(settings_.programs_dir);
+  }
+  jobs_ = std::make_unique<JobPool>(settings_.workers, settings_.max_queued_jobs);
+}
+
+ApiResponse Api::info() const {
+  FindSettings defaults = scene_find_settings();
+  return {200,
+          {{"version", kVersion},
+           {"landmarks_dir", library_.directory().string()},
+           {"programs_dir", programs_dir_.string()},
+           {"workers", settings_.workers},
+           {"max_upload_bytes", settings_.max_upload_bytes},
+           {"base_frame", defaults.scene.base_frame},
+           {"methods", search_methods()},
+           {"metrics", error_metric_names()},
+           {"setting_keys", find_setting_keys()}}};
+}
+
+FindSettings Api::scene_find_settings() const {
+  FindSettings s;
+  s.scene.base_frame = settings_.base_frame;
+  s.scene.up = settings_.up;
+  return s;
+}
+
+ApiResponse Api::run_job(const std::string& kind, const nlohmann::json& body, JobPool::Work work) {
+  const bool wait = optional_bool(body, "wait", false, kind);
+  const std::string id = jobs_->submit(kind, std::move(work));
+  if (!wait) return {202, {{"job", id}, {"url", "/api/jobs/" + id}}};
+  // Waiting is for scripts: the page polls instead, to show progress.
+  const nlohmann::json job = jobs_->wait(id);
+  if (job["state"] == "failed") return {job["status"].get<int>(), job};
+  return {200, job};
+}
+
+ApiResponse Api::job(const std::string& id, const std::string& wait) const {
+  double seconds = 0.0;
+  if (!wait.empty()) {
+    try {
+      std::size_t used = 0;
+      seconds = std::stod(wait, &used);
+      if (used != wait.size() || !std::isfinite(seconds) || seconds < 0.0) throw bad_request("");
+    } catch (const std::exception&) {
+      throw bad_request("job: wait=" + wait + ": must be a number of seconds, at least 0");
+    }
+    seconds = std::min(seconds, 60.0);  // a long poll, not a hung connection
+  }
+  const auto status = jobs_->status(id, seconds);
+  if (!status) throw not_found("no job '" + id + "' (finished jobs are kept for a while only)");
+  return {200, *status};
+}
+
+}  // namespace lmk::serve

@@ -1,0 +1,74 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+// The JSON API of `lmk serve`, apart from HTTP so that each endpoint is one method (docs/serve.md
+// lists them). The page uses nothing else, and scripts can drive it the same way. Bad requests
+// throw ApiError with their status; nothing a request does can stop the server.
+#include <filesystem>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "lmk/landmark/find_settings.h"
+#include "lmk/landmark/landmark_library.h"
+#include "lmk/serve/job_pool.h"
+#include "lmk/serve/scene_store.h"
+#include "lmk/serve/serve_settings.h"
+
+namespace lmk::serve {
+
+struct ApiResponse {
+  int status = 200;
+  nlohmann::json body;
+};
+
+class Api {
+ public:
+  /// Reads every scene and opens the landmark directory; lmk::Error for a bad scene file or
+  /// directory. Uploads are parsed in `scratch_dir`.
+  Api(ServeSettings settings, const std::filesystem::path& scratch_dir);
+
+  const ServeSettings& settings() const { return settings_; }
+
+  // GET /api/info
+  ApiResponse info() const;
+  // Scenes (api_scenes.cpp): GET /api/scenes, POST /api/scenes?name=F, GET /api/scenes/ID,
+  // GET /api/scenes/ID/cloud?max_points=N
+  ApiResponse scenes() const;
+  ApiResponse upload_scene(const std::string& name, const std::string& bytes);
+  ApiResponse scene(const std::string& id) const;
+  ApiResponse scene_cloud(const std::string& id, const std::string& max_points) const;
+  // Capture (api_capture.cpp): POST /api/guess, POST /api/check, GET /api/landmarks,
+  // GET /api/landmarks/NAME, POST /api/landmarks
+  ApiResponse guess(const std::string& body) const;
+  ApiResponse check(const std::string& body);
+  ApiResponse landmarks() const;
+  ApiResponse landmark(const std::string& name) const;
+  ApiResponse save_landmark(const std::string& body);
+  // Searches (api_find.cpp): POST /api/find, GET /api/jobs/ID?wait=S
+  ApiResponse find(const std::string& body);
+  ApiResponse job(const std::string& id, const std::string& wait) const;
+  // Programs (api_programs.cpp): GET /api/programs, GET /api/programs/NAME,
+  // POST /api/programs/NAME/plan
+  ApiResponse programs() const;
+  ApiResponse program(const std::string& name) const;
+  ApiResponse plan(const std::string& name, const std::string& body);
+
+ private:
+  /// The search settings a scene starts from: its up axis as the server was told.
+  FindSettings scene_find_settings() const;
+  /// Queues `work`; with body["wait"] true, waits for it and answers with the finished job (200),
+  /// otherwise answers 202 with the job's id and where to poll it.
+  ApiResponse run_job(const std::string& kind, const nlohmann::json& body, JobPool::Work work);
+  /// The program file `name` (NAME.json in the programs directory); ApiError 400/403/404.
+  std::filesystem::path program_path(const std::string& name) const;
+
+  ServeSettings settings_;
+  SceneStore scenes_;
+  LandmarkLibrary library_;
+  std::filesystem::path programs_dir_;  ///< canonical; empty: none
+  // Last: destroyed first, so that no job outlives what it uses.
+  std::unique_ptr<JobPool> jobs_;
+};
+
+}  // namespace lmk::serve

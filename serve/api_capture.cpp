@@ -1,0 +1,174 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Capture endpoints: the box guess from a clicked point, the distinctiveness check, and writing
+// the landmark into the library (docs/landmarks.md; the paper's capture step).
+#include "lmk/geometry/error.h"
+#include "lmk/json/find_result_json.h"
+#include "lmk/json/pose_json.h"
+#include "lmk/json/settings_json.h"
+#include "lmk/landmark/box_guess.h"
+#include "lmk/landmark/distinctiveness.h"
+#include "lmk/serve/api.h"
+#include "lmk/serve/api_error.h"
+#include "lmk/serve/request_fields.h"
+
+namespace lmk::serve {
+namespace {
+
+nlohmann::json box_json(const Box& box) { return detail::setting_to_json(box); }
+
+// The landmark cut out of the request's scene with the request's box.
+Landmark capture_from(const Scene& scene, const nlohmann::json& body, const FindSettings& find,
+                      const std::string& name, const std::string& what) {
+  const Box box = required_box(body, "box", what);
+  CaptureSettings settings;
+  settings.base_frame = find.scene.base_frame;
+  settings.up = find.scene.up;
+  settings.allow_flat = optional_bool(body, "allow_flat", false, what);
+  return capture(*scene.cloud, box, name, settings);  // lmk::Error: 422, with the reason
+}
+
+// The verdict the page shows before the file is written (landmark/distinctiveness.h).
+nlohmann::json verdict(const Landmark& landmark, const PointCloud& scene) {
+  if (landmark.settings.allow_flat) {
+    return {{"distinctive", true},
+            {"checked", false},
+            {"message", "a flat patch matches wherever it fits: no distinctiveness check"}};
+  }
+  FindSettings find;
+  find.scene.up = landmark.up;  // the capture frame is the scene frame
+  const DistinctivenessReport report = check_distinctiveness(scene, landmark, find);
+  nlohmann::json others = nlohmann::json::array();
+  for (const Match& m : report.other_instances) {
+    nlohmann::json o = detail::match_to_json(m);
+    o["box"] = box_json(m.box);
+    others.push_back(o);
+  }
+  const bool distinctive = report.found_itself && report.other_instances.empty();
+  std::string message;
+  if (!report.found_itself) {
+    message = "the search does not find '" + landmark.name +
+              "' in its own scene: too few points or too little shape to be found reliably";
+  } else if (!distinctive) {
+    message = "'" + landmark.name + "' also matches " +
+              std::to_string(report.other_instances.size()) +
+              " other place(s) in its own scene: a robot could take them for it; draw the box "
+              "with more context or more empty margin";
+  } else {
+    message = "'" + landmark.name + "' is distinctive in its scene";
+  }
+  return {{"distinctive", distinctive},
+          {"checked", true},
+          {"found_itself", report.found_itself},
+          {"other_instances", others},
+          {"metric", report.search.stats.metric},
+          {"seconds", report.search.stats.seconds_total},
+          {"message", message}};
+}
+
+nlohmann::json landmark_summary(const std::string& name, const Landmark& l) {
+  return {{"name", name},
+          {"points", l.points.size()},
+          {"box", box_json(l.box)},
+          {"up", detail::vector_to_json(l.up)},
+          {"allow_flat", l.settings.allow_flat}};
+}
+
+}  // namespace
+
+ApiResponse Api::guess(const std::string& body_text) const {
+  const nlohmann::json body = parse_body(body_text, "guess");
+  const Scene scene = scenes_.get(required_string(body, "scene", "guess"));
+  BoxGuessSettings settings;
+  settings.margin = optional_number(body, "margin", settings.margin, "guess");
+  if (settings.margin < 0.0) throw bad_request("guess: margin: must be at least 0");
+  const BoxGuess g = guess_box(*scene.cloud, required_point(body, "point", "guess"), settings);
+  nlohmann::json j = {{"box", box_json(g.box)},
+                      {"object_box", box_json(g.object_box)},
+                      {"object_points", g.object.size()}};
+  j["support"] =
+      g.support ? nlohmann::json{g.support->x(), g.support->y(), g.support->z(), g.support->w()}
+                : nlohmann::json(nullptr);
+  return {200, j};
+}
+
+ApiResponse Api::check(const std::string& body_text) {
+  const nlohmann::json body = parse_body(body_text, "check");
+  const Scene scene = scenes_.get(required_string(body, "scene", "check"));
+  const std::string name = body.contains("name") ? required_string(body, "name", "check") : "new";
+  // The box is read now, so that a bad one is a 400 here rather than a failed job.
+  required_box(body, "box", "check");
+  const FindSettings find = scene_find_settings();
+  return run_job("check", body, [scene, body, find, name](JobProgress& progress) {
+    progress.report(0.0, "capturing '" + name + "'");
+    const Landmark landmark = capture_from(scene, body, find, name, "check");
+    progress.report(0.2, "searching '" + name + "' in its own scene");
+    return verdict(landmark, *scene.cloud);
+  });
+}
+
+ApiResponse Api::landmarks() const {
+  nlohmann::json list = nlohmann::json::array();
+  for (const std::string& name : library_.names()) {
+    try {
+      list.push_back(landmark_summary(name, *library_.load(name)));
+    } catch (const Error& e) {
+      list.push_back({{"name", name}, {"error", e.what()}});  // listed, so the user sees why
+    }
+  }
+  return {200, {{"landmarks", list}, {"directory", library_.directory().string()}}};
+}
+
+ApiResponse Api::landmark(const std::string& name) const {
+  try {
+    LandmarkLibrary::check_name(name);
+  } catch (const Error& e) {
+    throw bad_request(e.what());
+  }
+  if (!library_.contains(name)) throw not_found("no landmark '" + name + "'");
+  const auto l = library_.load(name);
+  nlohmann::json j = landmark_summary(name, *l);
+  nlohmann::json points = nlohmann::json::array();
+  for (const Eigen::Vector3f& p : l->points.points)
+    points.push_back(detail::vector_to_json(p.cast<double>()));
+  j["positions"] = points;
+  return {200, j};
+}
+
+ApiResponse Api::save_landmark(const std::string& body_text) {
+  const nlohmann::json body = parse_body(body_text, "capture");
+  const Scene scene = scenes_.get(required_string(body, "scene", "capture"));
+  const std::string name = required_string(body, "name", "capture");
+  try {
+    LandmarkLibrary::check_name(name);
+  } catch (const Error& e) {
+    throw bad_request(std::string("capture: ") + e.what());
+  }
+  const bool overwrite = optional_bool(body, "overwrite", false, "capture");
+  const bool check_first = optional_bool(body, "check", false, "capture");
+  if (!overwrite && library_.contains(name)) {
+    throw conflict("capture: a landmark '" + name +
+                   "' exists already; choose another name or set overwrite");
+  }
+  const Landmark landmark = capture_from(scene, body, scene_find_settings(), name, "capture");
+  nlohmann::json checked;
+  if (check_first) {
+    // The check is a search: it runs on the worker pool like any other.
+    const std::string id = jobs_->submit(
+        "check", [&landmark, &scene](JobProgress&) { return verdict(landmark, *scene.cloud); });
+    const nlohmann::json job = jobs_->wait(id);
+    if (job["state"] == "failed") throw ApiError(job["status"].get<int>(), job["error"]);
+    checked = job["result"];
+    if (!checked["distinctive"].get<bool>()) {
+      return {409,
+              {{"error", "capture: not written: " + checked["message"].get<std::string>()},
+               {"verdict", checked}}};
+    }
+  }
+  const std::filesystem::path file = library_.save(landmark, overwrite);
+  nlohmann::json j = landmark_summary(name, landmark);
+  j["file"] = file.filename().string();
+  if (!checked.is_null()) j["verdict"] = checked;
+  return {201, j};
+}
+
+}  // namespace lmk::serve

@@ -1,0 +1,144 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Program endpoints: the PbD programs of --programs, and their plans on a scene for a simulated
+// PR2 at rest (pbd/plan.h): landmarks located, every step's gripper pose in the base frame, and
+// the refusal exactly as the robot would give it.
+#include "lmk/geometry/error.h"
+#include "lmk/json/plan_json.h"
+#include "lmk/json/pose_json.h"
+#include "lmk/landmark/landmark_library.h"
+#include "lmk/pbd/plan.h"
+#include "lmk/pr2/simulated_pr2.h"
+#include "lmk/serve/api.h"
+#include "lmk/serve/api_error.h"
+#include "lmk/serve/request_fields.h"
+
+namespace lmk::serve {
+namespace {
+
+namespace fs = std::filesystem;
+
+bool inside(const fs::path& path, const fs::path& root) {
+  const fs::path p = fs::weakly_canonical(path);
+  const fs::path r = fs::weakly_canonical(root);
+  auto pi = p.begin();
+  for (auto ri = r.begin(); ri != r.end(); ++ri, ++pi) {
+    if (pi == p.end() || *pi != *ri) return false;
+  }
+  return true;
+}
+
+// Every step's targets where they can be drawn: in the base frame directly, or relative to a
+// landmark the plan located. A target relative to a landmark not found has no pose.
+nlohmann::json targets_json(const Program& program, const Plan& plan) {
+  nlohmann::json targets = nlohmann::json::array();
+  for (std::size_t i = 0; i < program.steps.size(); ++i) {
+    for (Arm arm : {Arm::kLeft, Arm::kRight}) {
+      const auto& target = program.steps[i].arm(arm);
+      if (!target) continue;
+      nlohmann::json t = {{"step", i},
+                          {"arm", arm_name(arm)},
+                          {"frame", target->frame},
+                          {"gripper", gripper_action_name(target->gripper)}};
+      std::optional<Eigen::Isometry3d> T_base_ee;
+      if (!target->relative_to_landmark()) {
+        T_base_ee = target->T_frame_ee;
+      } else if (const LocatedLandmark* l = plan.landmark(target->frame)) {
+        T_base_ee = l->T_base_landmark * target->T_frame_ee;
+      }
+      t["pose"] = T_base_ee ? detail::pose_to_json(*T_base_ee) : nlohmann::json(nullptr);
+      targets.push_back(t);
+    }
+  }
+  return targets;
+}
+
+}  // namespace
+
+fs::path Api::program_path(const std::string& name) const {
+  if (programs_dir_.empty()) throw not_found("no programs: start lmk serve with --programs DIR");
+  try {
+    LandmarkLibrary::check_name(name);  // the same rule: a plain name that cannot leave the dir
+  } catch (const Error& e) {
+    throw bad_request(std::string("program: ") + e.what());
+  }
+  const fs::path path = programs_dir_ / (name + ".json");
+  if (!fs::is_regular_file(path)) throw not_found("no program '" + name + "'");
+  return path;
+}
+
+ApiResponse Api::programs() const {
+  nlohmann::json list = nlohmann::json::array();
+  if (!programs_dir_.empty()) {
+    std::vector<fs::path> files;
+    for (const auto& e : fs::directory_iterator(programs_dir_)) {
+      if (e.is_regular_file() && e.path().extension() == ".json") files.push_back(e.path());
+    }
+    std::sort(files.begin(), files.end());
+    for (const fs::path& f : files) {
+      nlohmann::json j = {{"name", f.stem().string()}};
+      try {
+        const Program p = load_program(f.string());
+        j["program"] = p.name;
+        j["steps"] = p.steps.size();
+        nlohmann::json names = nlohmann::json::array();
+        for (const ProgramLandmark& l : p.landmarks) names.push_back(l.name);
+        j["landmarks"] = names;
+      } catch (const Error& e) {
+        j["error"] = e.what();  // other JSON files, or damaged programs: listed with the reason
+      }
+      list.push_back(j);
+    }
+  }
+  return {200, {{"programs", list}}};
+}
+
+ApiResponse Api::program(const std::string& name) const {
+  const fs::path path = program_path(name);
+  const Program p = load_program(path.string());
+  return {200, {{"name", name}, {"program", nlohmann::json::parse(program_to_json(p))}}};
+}
+
+ApiResponse Api::plan(const std::string& name, const std::string& body_text) {
+  const nlohmann::json body = parse_body(body_text, "plan");
+  const fs::path path = program_path(name);
+  const Scene scene = scenes_.get(required_string(body, "scene", "plan"));
+  const double torso = optional_number(body, "torso", settings_.torso, "plan");
+  const Program program = load_program(path.string());
+  // A program names its landmark files; they must stay within the directories lmk serve was given.
+  for (const ProgramLandmark& l : program.landmarks) {
+    const fs::path file =
+        fs::path(l.file).is_absolute() ? fs::path(l.file) : programs_dir_ / l.file;
+    if (!inside(file, programs_dir_) && !inside(file, library_.directory())) {
+      throw forbidden("plan: program '" + name + "': landmark '" + l.name + "' file " + l.file +
+                      " lies outside --programs and --landmarks");
+    }
+  }
+  const auto landmarks = std::make_shared<const std::map<std::string, Landmark>>(
+      load_program_landmarks(program, programs_dir_.string()));
+  PlanSettings plan_settings;
+  plan_settings.find = scene_find_settings();
+  apply_find_settings(body, "plan", plan_settings.find);
+
+  return run_job("plan", body, [=](JobProgress& progress) mutable {
+    SimulatedPr2 robot(Pr2Kinematics(RobotModel::pr2(), torso));
+    if (!robot.configure().ok() || !robot.activate().ok()) {
+      throw Error("plan: the simulated PR2 failed to start");
+    }
+    JointState start;
+    robot.read_joint_state(start);
+    double done = 0.0;
+    const double steps = static_cast<double>(program.landmarks.size() + 1);
+    plan_settings.progress = [&](const std::string& line) {
+      progress.report(std::min(done++ / steps, 0.99), line);
+    };
+    const Plan p =
+        lmk::plan(program, *landmarks, *scene.cloud, robot.kinematics(), start, plan_settings);
+    progress.report(1.0, "done");
+    return nlohmann::json{{"name", name},
+                          {"scene", scene.id},
+                          {"plan", detail::plan_to_json(p)},
+                          {"targets", targets_json(program, p)}};
+  });
+}
+
+}  // namespace lmk::serve

@@ -1,0 +1,188 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "lmk/serve/http_server.h"
+
+#include <httplib.h>
+#include <stdlib.h>
+
+#include <chrono>
+#include <filesystem>
+#include <mutex>
+
+#include "lmk/geometry/error.h"
+#include "lmk/serve/api_error.h"
+#include "lmk/serve/static_files.h"
+
+namespace lmk::serve {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A private directory for parsing uploads, removed with the server.
+fs::path make_scratch_dir() {
+  std::string pattern = (fs::temp_directory_path() / "lmk-serve-XXXXXX").string();
+  if (mkdtemp(pattern.data()) == nullptr) {
+    throw Error("cannot create a scratch directory in " + fs::temp_directory_path().string());
+  }
+  return pattern;
+}
+
+void send(httplib::Response& res, const ApiResponse& r) {
+  res.status = r.status;
+  res.set_content(r.body.dump(), "application/json");
+}
+
+// Runs a request's handler; whatever it throws becomes the request's JSON error.
+template <class F>
+void guarded(httplib::Response& res, F&& handle) {
+  try {
+    handle();
+  } catch (const ApiError& e) {
+    send(res, {e.status(), {{"error", e.what()}}});
+  } catch (const Error& e) {
+    send(res, {422, {{"error", e.what()}}});
+  } catch (const std::exception& e) {
+    send(res, {500, {{"error", std::string("internal error: ") + e.what()}}});
+  }
+}
+
+std::string reason_for(int status, const ServeSettings& s) {
+  switch (status) {
+    case 404:
+      return "no such page or endpoint (docs/serve.md lists the API)";
+    case 413:
+      return "the upload is larger than the limit of " + std::to_string(s.max_upload_bytes >> 20) +
+             " MiB (lmk serve --max-upload)";
+    case 405:
+      return "method not allowed here";
+    default:
+      return "request failed (HTTP " + std::to_string(status) + ")";
+  }
+}
+
+}  // namespace
+
+struct HttpServer::Impl {
+  Impl(ServeSettings settings, std::ostream* log_in)
+      : scratch(make_scratch_dir()), api(std::move(settings), scratch), log(log_in) {}
+  ~Impl() {
+    std::error_code ignored;
+    fs::remove_all(scratch, ignored);
+  }
+
+  void routes();
+  void api_route(const char* method, const std::string& pattern,
+                 std::function<ApiResponse(const httplib::Request&)> handle);
+
+  fs::path scratch;
+  Api api;
+  std::ostream* log;
+  std::mutex log_mutex;
+  httplib::Server server;
+};
+
+void HttpServer::Impl::api_route(const char* method, const std::string& pattern,
+                                 std::function<ApiResponse(const httplib::Request&)> handle) {
+  auto handler = [handle](const httplib::Request& req, httplib::Response& res) {
+    guarded(res, [&] { send(res, handle(req)); });
+  };
+  if (std::string(method) == "GET") {
+    server.Get(pattern, handler);
+  } else {
+    server.Post(pattern, handler);
+  }
+}
+
+void HttpServer::Impl::routes() {
+  Api& a = api;
+  const auto param = [](const httplib::Request& r, const char* key) {
+    return r.has_param(key) ? r.get_param_value(key) : std::string();
+  };
+  api_route("GET", "/api/info", [&a](const auto&) { return a.info(); });
+  api_route("GET", "/api/scenes", [&a](const auto&) { return a.scenes(); });
+  api_route("POST", "/api/scenes",
+            [&a, param](const auto& r) { return a.upload_scene(param(r, "name"), r.body); });
+  api_route("GET", "/api/scenes/([^/]+)", [&a](const auto& r) { return a.scene(r.matches[1]); });
+  api_route("GET", "/api/scenes/([^/]+)/cloud", [&a, param](const auto& r) {
+    return a.scene_cloud(r.matches[1], param(r, "max_points"));
+  });
+  api_route("POST", "/api/guess", [&a](const auto& r) { return a.guess(r.body); });
+  api_route("POST", "/api/check", [&a](const auto& r) { return a.check(r.body); });
+  api_route("GET", "/api/landmarks", [&a](const auto&) { return a.landmarks(); });
+  api_route("POST", "/api/landmarks", [&a](const auto& r) { return a.save_landmark(r.body); });
+  api_route("GET", "/api/landmarks/(.+)", [&a](const auto& r) { return a.landmark(r.matches[1]); });
+  api_route("POST", "/api/find", [&a](const auto& r) { return a.find(r.body); });
+  api_route("GET", "/api/jobs/(.+)",
+            [&a, param](const auto& r) { return a.job(r.matches[1], param(r, "wait")); });
+  api_route("GET", "/api/programs", [&a](const auto&) { return a.programs(); });
+  api_route("GET", "/api/programs/([^/]+)",
+            [&a](const auto& r) { return a.program(r.matches[1]); });
+  api_route("POST", "/api/programs/([^/]+)/plan",
+            [&a](const auto& r) { return a.plan(r.matches[1], r.body); });
+
+  const auto file = [](httplib::Response& res, const StaticFile& f) {
+    res.set_content(f.body, f.content_type.c_str());
+  };
+  server.Get("/", [file](const httplib::Request&, httplib::Response& res) {
+    guarded(res, [&] { file(res, web_asset("index.html")); });
+  });
+  server.Get("/app/(.+)", [file](const httplib::Request& req, httplib::Response& res) {
+    guarded(res, [&] { file(res, web_asset(req.matches[1])); });
+  });
+  const fs::path three = api.settings().three_dir.empty() ? fs::path(LMK_THREE_DIR)
+                                                          : fs::path(api.settings().three_dir);
+  server.Get("/three/(.*)", [file, three](const httplib::Request& req, httplib::Response& res) {
+    guarded(res, [&] { file(res, confined_file(three, req.matches[1])); });
+  });
+
+  // Statuses httplib sets itself (404 for no route, 413 for an oversized body) get a JSON reason.
+  const ServeSettings& settings = api.settings();
+  server.set_error_handler([&settings](const httplib::Request&, httplib::Response& res) {
+    if (!res.body.empty()) return;
+    send(res, {res.status, {{"error", reason_for(res.status, settings)}}});
+  });
+  server.set_exception_handler(
+      [](const httplib::Request&, httplib::Response& res, std::exception_ptr) {
+        send(res, {500, {{"error", "internal error"}}});
+      });
+  server.set_payload_max_length(settings.max_upload_bytes);
+  if (log != nullptr) {
+    server.set_logger([this](const httplib::Request& req, const httplib::Response& res) {
+      if (req.path.rfind("/api/", 0) != 0 && res.status < 400) return;       // the page's own files
+      if (req.path.rfind("/api/jobs/", 0) == 0 && res.status < 400) return;  // polling
+      std::string line = req.method + " " + req.path + " " + std::to_string(res.status);
+      if (res.status >= 400 && res.body.size() < 400) line += " " + res.body;
+      std::lock_guard<std::mutex> lock(log_mutex);
+      *log << line << std::endl;
+    });
+  }
+  // Enough threads that the page stays answered while requests wait for searches.
+  server.new_task_queue = [] { return new httplib::ThreadPool(16); };
+}
+
+HttpServer::HttpServer(ServeSettings settings, std::ostream* log)
+    : impl_(std::make_unique<Impl>(std::move(settings), log)) {
+  impl_->routes();
+}
+
+HttpServer::~HttpServer() { stop(); }
+
+int HttpServer::bind() {
+  const ServeSettings& s = impl_->api.settings();
+  const int port = s.port == 0 ? impl_->server.bind_to_any_port(s.bind)
+                               : (impl_->server.bind_to_port(s.bind, s.port) ? s.port : -1);
+  if (port < 0) {
+    throw Error("cannot listen on " + s.bind + ":" + std::to_string(s.port) +
+                " (in use, or not an address of this machine); choose another with --port");
+  }
+  return port;
+}
+
+void HttpServer::run() { impl_->server.listen_after_bind(); }
+
+void HttpServer::stop() {
+  if (impl_->server.is_running()) impl_->server.stop();
+}
+
+Api& HttpServer::api() { return impl_->api; }
+
+}  // namespace lmk::serve

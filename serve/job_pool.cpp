@@ -1,0 +1,159 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "lmk/serve/job_pool.h"
+
+#include <chrono>
+
+#include "lmk/geometry/error.h"
+#include "lmk/serve/api_error.h"
+
+namespace lmk::serve {
+
+struct JobPool::Job {
+  std::string id, kind;
+  Work work;
+  std::string state = "queued";
+  JobProgress progress;
+  nlohmann::json result;
+  std::string error;
+  int status = 200;
+  std::chrono::steady_clock::time_point started;
+  double seconds = 0.0;
+};
+
+void JobProgress::report(double fraction, std::string message) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  fraction_ = fraction;
+  message_ = std::move(message);
+}
+
+nlohmann::json JobProgress::to_json() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return {{"fraction", fraction_}, {"message", message_}};
+}
+
+JobPool::JobPool(int workers, std::size_t max_queued, std::size_t max_kept)
+    : max_queued_(max_queued), max_kept_(max_kept) {
+  for (int i = 0; i < std::max(1, workers); ++i) workers_.emplace_back([this] { work_loop(); });
+}
+
+JobPool::~JobPool() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stopping_ = true;
+    for (const auto& job : queue_) finish(*job, {}, "the server is stopping", 503);
+    queue_.clear();
+  }
+  changed_.notify_all();
+  for (std::thread& t : workers_) t.join();
+}
+
+std::string JobPool::submit(const std::string& kind, Work work) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (queue_.size() >= max_queued_) {
+    throw ApiError(503, "busy: " + std::to_string(queue_.size()) +
+                            " jobs are waiting; try again when some have finished");
+  }
+  auto job = std::make_shared<Job>();
+  job->id = "job-" + std::to_string(next_id_++);
+  job->kind = kind;
+  job->work = std::move(work);
+  jobs_[job->id] = job;
+  queue_.push_back(job);
+  changed_.notify_all();
+  return job->id;
+}
+
+void JobPool::work_loop() {
+  for (;;) {
+    std::shared_ptr<Job> job;
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      changed_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
+      if (stopping_) return;
+      job = queue_.front();
+      queue_.pop_front();
+      job->state = "running";
+      job->started = std::chrono::steady_clock::now();
+    }
+    nlohmann::json result;
+    std::string error;
+    int status = 200;
+    // A job's failure is its own: it is reported on the job and never leaves the worker.
+    try {
+      result = job->work(job->progress);
+    } catch (const ApiError& e) {
+      error = e.what();
+      status = e.status();
+    } catch (const Error& e) {
+      error = e.what();
+      status = 422;
+    } catch (const std::exception& e) {
+      error = std::string("internal error: ") + e.what();
+      status = 500;
+    }
+    std::lock_guard<std::mutex> lock(mutex_);
+    job->seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - job->started).count();
+    finish(*job, std::move(result), std::move(error), status);
+  }
+}
+
+// Called with mutex_ held.
+void JobPool::finish(Job& job, nlohmann::json result, std::string error, int status) {
+  job.state = error.empty() ? "done" : "failed";
+  job.result = std::move(result);
+  job.error = std::move(error);
+  job.status = status;
+  job.work = nullptr;  // frees what the work held (scenes, landmarks)
+  finished_.push_back(job.id);
+  while (finished_.size() > max_kept_) {
+    jobs_.erase(finished_.front());
+    finished_.pop_front();
+  }
+  changed_.notify_all();
+}
+
+nlohmann::json JobPool::describe(const Job& job) const {
+  nlohmann::json j = {{"id", job.id},
+                      {"kind", job.kind},
+                      {"state", job.state},
+                      {"progress", job.progress.to_json()}};
+  if (job.state == "done") {
+    j["result"] = job.result;
+    j["seconds"] = job.seconds;
+  } else if (job.state == "failed") {
+    j["error"] = job.error;
+    j["status"] = job.status;
+  } else if (job.state == "queued") {
+    std::size_t ahead = 0;
+    for (const auto& q : queue_) {
+      if (q->id == job.id) break;
+      ++ahead;
+    }
+    j["queue_position"] = ahead;
+  }
+  return j;
+}
+
+std::optional<nlohmann::json> JobPool::status(const std::string& id, double wait_seconds) const {
+  std::unique_lock<std::mutex> lock(mutex_);
+  const auto it = jobs_.find(id);
+  if (it == jobs_.end()) return std::nullopt;
+  const std::shared_ptr<Job> job = it->second;
+  const auto finished = [&job] { return job->state == "done" || job->state == "failed"; };
+  if (wait_seconds > 0.0) {
+    changed_.wait_for(lock, std::chrono::duration<double>(wait_seconds), finished);
+  }
+  return describe(*job);
+}
+
+nlohmann::json JobPool::wait(const std::string& id) const {
+  std::unique_lock<std::mutex> lock(mutex_);
+  const auto it = jobs_.find(id);
+  if (it == jobs_.end()) throw not_found("no job '" + id + "'");
+  const std::shared_ptr<Job> job = it->second;
+  changed_.wait(lock, [&job] { return job->state == "done" || job->state == "failed"; });
+  return describe(*job);
+}
+
+}  // namespace lmk::serve

@@ -1,0 +1,71 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+// The worker pool of `lmk serve`: searches, distinctiveness checks and plans run here, a few at a
+// time, so that the HTTP threads stay free to answer the page while they run. Each job reports
+// its progress, and its result (or error) stays readable by id until newer jobs push it out.
+#include <condition_variable>
+#include <cstddef>
+#include <deque>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace lmk::serve {
+
+/// What a running job tells its watchers. Safe from any thread, as search progress callbacks are.
+class JobProgress {
+ public:
+  void report(double fraction, std::string message);
+  nlohmann::json to_json() const;
+
+ private:
+  mutable std::mutex mutex_;
+  double fraction_ = 0.0;
+  std::string message_;
+};
+
+class JobPool {
+ public:
+  /// The job's work: its result, or it throws (ApiError keeps its status; lmk::Error is 422).
+  using Work = std::function<nlohmann::json(JobProgress&)>;
+
+  /// `workers` threads; at most `max_queued` jobs waiting; the last `max_kept` finished jobs kept.
+  JobPool(int workers, std::size_t max_queued, std::size_t max_kept = 256);
+  /// Waits for the jobs under way; drops those still queued.
+  ~JobPool();
+  JobPool(const JobPool&) = delete;
+  JobPool& operator=(const JobPool&) = delete;
+
+  /// Queues `work` as a job of `kind` ("find", "check", "plan"); its id. ApiError 503 when the
+  /// queue is full.
+  std::string submit(const std::string& kind, Work work);
+  /// The job's state as JSON: {id, kind, state: queued|running|done|failed, progress, result or
+  /// error and status}, after waiting up to `wait_seconds` for it to finish. nullopt: no such job.
+  std::optional<nlohmann::json> status(const std::string& id, double wait_seconds = 0.0) const;
+  /// The job's state once it has finished (done or failed; failed too when the pool stops first).
+  nlohmann::json wait(const std::string& id) const;
+
+ private:
+  struct Job;
+  void work_loop();
+  nlohmann::json describe(const Job& job) const;
+  void finish(Job& job, nlohmann::json result, std::string error, int status);
+
+  mutable std::mutex mutex_;
+  mutable std::condition_variable changed_;
+  std::deque<std::shared_ptr<Job>> queue_;
+  std::map<std::string, std::shared_ptr<Job>> jobs_;
+  std::deque<std::string> finished_;
+  std::size_t max_queued_, max_kept_;
+  std::size_t next_id_ = 1;
+  bool stopping_ = false;
+  std::vector<std::thread> workers_;
+};
+
+}  // namespace lmk::serve

@@ -1,0 +1,118 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "lmk/serve/request_fields.h"
+
+#include "lmk/geometry/error.h"
+#include "lmk/json/settings_json.h"
+#include "lmk/serve/api_error.h"
+
+namespace lmk::serve {
+
+nlohmann::json parse_body(const std::string& body, const std::string& what) {
+  if (body.empty()) return nlohmann::json::object();
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(body);
+  } catch (const nlohmann::json::exception& e) {
+    throw bad_request(what + ": the body is not valid JSON (" + e.what() + ")");
+  }
+  if (!j.is_object()) throw bad_request(what + ": the body must be a JSON object");
+  return j;
+}
+
+std::string required_string(const nlohmann::json& body, const std::string& key,
+                            const std::string& what) {
+  if (!body.contains(key)) throw bad_request(what + ": missing field '" + key + "'");
+  if (!body[key].is_string()) throw bad_request(what + ": " + key + ": must be a string");
+  return body[key].get<std::string>();
+}
+
+bool optional_bool(const nlohmann::json& body, const std::string& key, bool fallback,
+                   const std::string& what) {
+  if (!body.contains(key)) return fallback;
+  if (!body[key].is_boolean()) throw bad_request(what + ": " + key + ": must be true or false");
+  return body[key].get<bool>();
+}
+
+double optional_number(const nlohmann::json& body, const std::string& key, double fallback,
+                       const std::string& what) {
+  if (!body.contains(key)) return fallback;
+  if (!body[key].is_number() || !std::isfinite(body[key].get<double>())) {
+    throw bad_request(what + ": " + key + ": must be a finite number");
+  }
+  return body[key].get<double>();
+}
+
+Eigen::Vector3d required_point(const nlohmann::json& body, const std::string& key,
+                               const std::string& what) {
+  if (!body.contains(key)) throw bad_request(what + ": missing field '" + key + "'");
+  try {
+    return detail::numbers_from_json(body[key], 3, what + ": " + key);
+  } catch (const Error& e) {
+    throw bad_request(e.what());
+  }
+}
+
+Box required_box(const nlohmann::json& body, const std::string& key, const std::string& what) {
+  if (!body.contains(key)) throw bad_request(what + ": missing field '" + key + "'");
+  Box box;
+  try {
+    detail::setting_from_json(body[key], what + ": " + key, box);
+  } catch (const Error& e) {
+    throw bad_request(e.what());
+  }
+  if (!box.is_valid()) throw bad_request(what + ": " + key + ".size: sides must be positive");
+  return box;
+}
+
+std::vector<std::string> optional_names(const nlohmann::json& body, const std::string& key,
+                                        const std::vector<std::string>& all,
+                                        const std::string& what) {
+  if (!body.contains(key)) return all;
+  const nlohmann::json& v = body[key];
+  const std::string expected = what + ": " + key + ": must be an array of names";
+  if (!v.is_array()) throw bad_request(expected);
+  std::vector<std::string> names;
+  for (const auto& n : v) {
+    if (!n.is_string()) throw bad_request(expected);
+    names.push_back(n.get<std::string>());
+  }
+  return names;
+}
+
+namespace {
+
+// A JSON value as the command line would give it: numbers and booleans as written, arrays as
+// space-separated values ("0.3 0 0.8 0.2 0.2 0.2").
+std::string setting_text(const nlohmann::json& v) {
+  if (v.is_string()) return v.get<std::string>();
+  if (v.is_array()) {
+    std::string text;
+    for (const auto& x : v) text += (text.empty() ? "" : " ") + setting_text(x);
+    return text;
+  }
+  return v.dump();
+}
+
+}  // namespace
+
+void apply_find_settings(const nlohmann::json& body, const std::string& what,
+                         FindSettings& settings) {
+  if (!body.contains("settings")) return;
+  const nlohmann::json& s = body["settings"];
+  if (!s.is_object()) throw bad_request(what + ": settings: must be an object of flags");
+  for (const auto& item : s.items()) {
+    if (item.value().is_null()) continue;  // a field left empty in a form: the default
+    try {
+      set_find_setting(settings, item.key(), setting_text(item.value()));
+    } catch (const Error& e) {
+      throw bad_request(what + ": settings." + item.key() + ": " + e.what());
+    }
+  }
+  try {
+    validate(settings);
+  } catch (const Error& e) {
+    throw bad_request(what + ": settings: " + e.what());
+  }
+}
+
+}  // namespace lmk::serve

@@ -1,0 +1,38 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+// Reading an API request's JSON body: each reader names the field in its ApiError 400, so that a
+// script's author sees what to fix ("find: settings.threshold: ...").
+#include <Eigen/Geometry>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "lmk/geometry/box.h"
+#include "lmk/landmark/find_settings.h"
+
+namespace lmk::serve {
+
+/// The body as a JSON object; ApiError 400 for anything else. An empty body is {}.
+nlohmann::json parse_body(const std::string& body, const std::string& what);
+
+std::string required_string(const nlohmann::json& body, const std::string& key,
+                            const std::string& what);
+bool optional_bool(const nlohmann::json& body, const std::string& key, bool fallback,
+                   const std::string& what);
+double optional_number(const nlohmann::json& body, const std::string& key, double fallback,
+                       const std::string& what);
+Eigen::Vector3d required_point(const nlohmann::json& body, const std::string& key,
+                               const std::string& what);
+/// A box {position, quaternion [w,x,y,z], size}: a unit quaternion and positive finite sides.
+Box required_box(const nlohmann::json& body, const std::string& key, const std::string& what);
+/// A list of names, or every name in `all` when the key is absent.
+std::vector<std::string> optional_names(const nlohmann::json& body, const std::string& key,
+                                        const std::vector<std::string>& all,
+                                        const std::string& what);
+
+/// Applies body["settings"], an object of `lmk find` flags without their dashes ({"method":
+/// "reference", "threshold": 0.004, "max-tilt": 30}), in the flags' units, to `settings`.
+void apply_find_settings(const nlohmann::json& body, const std::string& what,
+                         FindSettings& settings);
+
+}  // namespace lmk::serve

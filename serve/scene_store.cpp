@@ -1,0 +1,110 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "lmk/serve/scene_store.h"
+
+#include <algorithm>
+#include <atomic>
+#include <fstream>
+
+#include "lmk/geometry/cloud_io.h"
+#include "lmk/geometry/error.h"
+#include "lmk/serve/api_error.h"
+
+namespace lmk::serve {
+namespace {
+
+// An uploaded file's name is only a label and the key to its format: a plain file name.
+void check_upload_name(const std::string& name) {
+  const bool plain =
+      !name.empty() && name.size() <= 200 && name.front() != '.' &&
+      std::all_of(name.begin(), name.end(), [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.';
+      });
+  if (!plain) {
+    throw bad_request("upload: name '" + name +
+                      "' must be a plain file name (letters, digits, '-', '_', '.') ending in "
+                      ".pcd, .ply or .xyz");
+  }
+}
+
+}  // namespace
+
+SceneStore::SceneStore(std::size_t max_uploads, std::filesystem::path scratch_dir)
+    : max_uploads_(max_uploads), scratch_dir_(std::move(scratch_dir)) {}
+
+Scene& SceneStore::insert(std::string name, std::string source, PointCloud cloud) {
+  Scene scene;
+  scene.id = std::to_string(next_id_++);
+  scene.name = std::move(name);
+  scene.source = std::move(source);
+  scene.cloud = std::make_shared<const PointCloud>(std::move(cloud));
+  scenes_.push_back(std::move(scene));
+  return scenes_.back();
+}
+
+Scene SceneStore::add_file(const std::string& path) {
+  PointCloud cloud = read_cloud(path);
+  std::lock_guard<std::mutex> lock(mutex_);
+  return insert(std::filesystem::path(path).filename().string(), "file", std::move(cloud));
+}
+
+Scene SceneStore::add_upload(const std::string& name, const std::string& bytes) {
+  check_upload_name(name);
+  try {
+    format_from_path(name);
+  } catch (const Error& e) {
+    throw bad_request(std::string("upload: ") + e.what());
+  }
+  // The readers work on files: parse in the private scratch directory under a name of our own,
+  // then remove it, whatever happens.
+  static std::atomic<unsigned> counter{0};
+  const std::filesystem::path file =
+      scratch_dir_ /
+      ("upload-" + std::to_string(counter++) + std::filesystem::path(name).extension().string());
+  PointCloud cloud;
+  try {
+    {
+      std::ofstream out(file, std::ios::binary);
+      out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+      if (!out) throw Error("cannot write the upload to " + scratch_dir_.string());
+    }
+    cloud = read_cloud(file.string());
+  } catch (const Error& e) {
+    std::error_code ignored;
+    std::filesystem::remove(file, ignored);
+    // The reader names our scratch file; the user knows the upload by its own name.
+    std::string message = e.what();
+    const std::string ours = file.string();
+    if (message.rfind(ours, 0) == 0) message = name + message.substr(ours.size());
+    throw bad_request("upload: " + message);
+  }
+  std::error_code ignored;
+  std::filesystem::remove(file, ignored);
+
+  std::lock_guard<std::mutex> lock(mutex_);
+  const auto uploads = [this] {
+    return std::count_if(scenes_.begin(), scenes_.end(),
+                         [](const Scene& s) { return s.source == "upload"; });
+  };
+  while (max_uploads_ > 0 && static_cast<std::size_t>(uploads()) >= max_uploads_) {
+    scenes_.erase(std::find_if(scenes_.begin(), scenes_.end(),
+                               [](const Scene& s) { return s.source == "upload"; }));
+  }
+  return insert(name, "upload", std::move(cloud));
+}
+
+Scene SceneStore::get(const std::string& id) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  for (const Scene& s : scenes_) {
+    if (s.id == id) return s;
+  }
+  std::string ids;
+  for (const Scene& s : scenes_) ids += (ids.empty() ? "" : ", ") + s.id;
+  throw not_found("no scene '" + id + "' (scenes: " + (ids.empty() ? "none" : ids) + ")");
+}
+
+std::vector<Scene> SceneStore::list() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return scenes_;
+}
+
+}  // namespace lmk::serve

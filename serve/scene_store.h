@@ -1,0 +1,47 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+// The scenes `lmk serve` shows: the files it was started with and the clouds uploaded since, each
+// under an id that the API uses instead of a path, so that no request names a file.
+#include <cstddef>
+#include <filesystem>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "lmk/geometry/point_cloud.h"
+
+namespace lmk::serve {
+
+struct Scene {
+  std::string id;      ///< "1", "2", ...: never reused
+  std::string name;    ///< the file's name
+  std::string source;  ///< "file" or "upload"
+  std::shared_ptr<const PointCloud> cloud;
+};
+
+class SceneStore {
+ public:
+  /// Keeps at most `max_uploads` uploaded scenes; uploads are parsed in `scratch_dir`.
+  SceneStore(std::size_t max_uploads, std::filesystem::path scratch_dir);
+
+  /// Reads a scene file given on the command line; lmk::Error for a bad one.
+  Scene add_file(const std::string& path);
+  /// Parses an uploaded cloud named `name` (its extension gives the format). ApiError 400 for a
+  /// bad name or a malformed cloud, with the reader's message.
+  Scene add_upload(const std::string& name, const std::string& bytes);
+  /// The scene `id`; ApiError 404 naming the ids there are.
+  Scene get(const std::string& id) const;
+  std::vector<Scene> list() const;
+
+ private:
+  Scene& insert(std::string name, std::string source, PointCloud cloud);
+
+  std::size_t max_uploads_;
+  std::filesystem::path scratch_dir_;
+  mutable std::mutex mutex_;
+  std::vector<Scene> scenes_;
+  std::size_t next_id_ = 1;
+};
+
+}  // namespace lmk::serve

@@ -1,0 +1,31 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+// What `lmk serve` is given: the scenes, the directories it may read and write, where it listens,
+// and its limits (docs/serve.md, "Safety").
+#include <Eigen/Core>
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace lmk::serve {
+
+struct ServeSettings {
+  std::vector<std::string> scenes;            ///< cloud files shown in the scene picker
+  std::string landmarks_dir = "landmarks";    ///< captures are written here; created if missing
+  std::string programs_dir;                   ///< PbD programs offered; empty: none
+  std::string bind = "127.0.0.1";             ///< loopback only unless the user says otherwise
+  int port = 8080;                            ///< 0: any free port
+  std::string three_dir;                      ///< three.js; empty: Debian's libjs-three
+  std::size_t max_upload_bytes = 256u << 20;  ///< larger uploads get 413
+  std::size_t max_uploads = 16;               ///< uploaded scenes kept; the oldest goes first
+  int workers = 2;                            ///< searches run at once; more wait in the queue
+  std::size_t max_queued_jobs = 64;           ///< beyond it, new searches get 503
+  /// The scenes are in a robot base frame (+z up), as `lmk find --base-frame`; otherwise up is
+  /// `up`, or the sensor's -y.
+  bool base_frame = false;
+  std::optional<Eigen::Vector3d> up;
+  double torso = 0.0;  ///< m: the simulated PR2's torso for program plans
+};
+
+}  // namespace lmk::serve

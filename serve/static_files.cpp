@@ -1,0 +1,57 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "lmk/serve/static_files.h"
+
+#include <fstream>
+#include <sstream>
+
+#include "lmk/serve/api_error.h"
+
+namespace lmk::serve {
+
+namespace fs = std::filesystem;
+
+std::string content_type_for(const std::string& name) {
+  const std::string ext = fs::path(name).extension().string();
+  if (ext == ".html") return "text/html; charset=utf-8";
+  if (ext == ".js" || ext == ".mjs") return "text/javascript; charset=utf-8";
+  if (ext == ".css") return "text/css; charset=utf-8";
+  if (ext == ".json") return "application/json";
+  if (ext == ".png") return "image/png";
+  return "application/octet-stream";
+}
+
+StaticFile web_asset(const std::string& name) {
+  for (const WebAsset& a : web_assets()) {
+    if (name == a.name) return {a.text, content_type_for(name)};
+  }
+  throw not_found("no page file '" + name + "'");
+}
+
+StaticFile confined_file(const fs::path& root, const std::string& relative) {
+  // Refused on the path's text alone, before the file system is asked anything.
+  const fs::path rel(relative);
+  const bool escapes = relative.empty() || rel.is_absolute() ||
+                       relative.find('\\') != std::string::npos ||
+                       relative.find('\0') != std::string::npos;
+  bool dot_segment = false;
+  for (const fs::path& part : rel) {
+    if (part == ".." || part == ".") dot_segment = true;
+  }
+  if (escapes || dot_segment) throw forbidden("'" + relative + "' is outside the served files");
+  // And once resolved: a link inside root must not lead out of it.
+  std::error_code ec;
+  const fs::path canonical_root = fs::canonical(root, ec);
+  if (ec) throw not_found("three.js is not installed at " + root.string());
+  const fs::path file = fs::canonical(canonical_root / rel, ec);
+  if (ec || !fs::is_regular_file(file)) throw not_found("no file '" + relative + "'");
+  const std::string f = file.string(), r = canonical_root.string() + "/";
+  if (f.compare(0, r.size(), r) != 0) {
+    throw forbidden("'" + relative + "' is outside the served files");
+  }
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream body;
+  body << in.rdbuf();
+  return {body.str(), content_type_for(file.string())};
+}
+
+}  // namespace lmk::serve

@@ -1,0 +1,111 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// lmk serve [SCENE...] [--landmarks DIR] [--programs DIR] [--port 8080] [--bind 127.0.0.1]: the
+// local web interface (docs/serve.md): see scenes, capture landmarks with a box, find them, and
+// look at PbD programs' plans, in the browser.
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <thread>
+
+#include "lmk/geometry/cloud_io.h"
+#include "lmk/geometry/error.h"
+#include "lmk/serve/http_server.h"
+#include "tools/cli_common.h"
+#include "tools/interrupt.h"
+
+namespace lmk::cli {
+namespace {
+
+struct ServeOptions {
+  serve::ServeSettings settings;
+  UpOptions up;
+  double max_upload_mib = 256.0;
+  bool quiet = false;
+};
+
+bool is_loopback(const std::string& address) {
+  return address == "127.0.0.1" || address == "localhost" || address == "::1" ||
+         address.rfind("127.", 0) == 0;
+}
+
+int run_serve(ServeOptions& o) {
+  serve::ServeSettings& s = o.settings;
+  for (const std::string& scene : s.scenes) format_from_path(scene);  // before anything is read
+  s.base_frame = o.up.base_frame;
+  s.up = o.up.vector();
+  s.max_upload_bytes = static_cast<std::size_t>(o.max_upload_mib * 1024.0 * 1024.0);
+  if (!is_loopback(s.bind)) {
+    std::fprintf(stderr,
+                 "warning: --bind %s: lmk serve has no authentication; anyone who can reach this "
+                 "address can see your scenes and write landmarks into %s\n",
+                 s.bind.c_str(), s.landmarks_dir.c_str());
+  }
+  if (!s.scenes.empty()) {
+    std::fprintf(stderr, "reading %zu scene%s\n", s.scenes.size(), s.scenes.size() == 1 ? "" : "s");
+  }
+  serve::HttpServer server(s, o.quiet ? nullptr : &std::cerr);
+  const int port = server.bind();
+  const std::string host = s.bind.find(':') != std::string::npos ? "[" + s.bind + "]" : s.bind;
+  std::printf("lmk serve: %zu scene%s, landmarks in %s%s\n", s.scenes.size(),
+              s.scenes.size() == 1 ? "" : "s", s.landmarks_dir.c_str(),
+              s.programs_dir.empty() ? "" : (", programs in " + s.programs_dir).c_str());
+  std::printf("open http://%s:%d/ (Ctrl-C stops)\n", host.c_str(), port);
+  std::fflush(stdout);
+
+  // Ctrl-C stops the server; the searches under way are dropped, nothing is half-written (the
+  // landmark files are written atomically).
+  StopOnSigint sigint;
+  std::thread watcher([&server] {
+    while (!StopOnSigint::requested()) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    server.stop();
+  });
+  server.run();
+  if (!StopOnSigint::requested()) {
+    watcher.detach();  // run() ended on its own: the watcher ends with the process
+    throw Error("the server stopped unexpectedly");
+  }
+  watcher.join();
+  std::printf("lmk serve: stopped\n");
+  return kOk;
+}
+
+}  // namespace
+
+Subcommand add_serve(CLI::App& app) {
+  auto o = std::make_shared<ServeOptions>();
+  serve::ServeSettings& s = o->settings;
+  CLI::App* sub = app.add_subcommand(
+      "serve",
+      "Web interface: view scenes, capture landmarks with a box, find them, plan programs");
+  sub->add_option("scenes", s.scenes, "Scene clouds to offer (.pcd, .ply, .xyz)")
+      ->check(CLI::ExistingFile);
+  sub->add_option("--landmarks", s.landmarks_dir,
+                  "Directory of landmarks (NAME.lmk): listed, searched, and written by captures; "
+                  "created if missing")
+      ->capture_default_str();
+  sub->add_option("--programs", s.programs_dir, "Directory of PbD programs (.json) to plan")
+      ->check(CLI::ExistingDirectory);
+  sub->add_option("--port", s.port, "TCP port; 0 picks a free one")
+      ->check(CLI::Range(0, 65535))
+      ->capture_default_str();
+  sub->add_option("--bind", s.bind,
+                  "Address to listen on; only this machine by default (another address warns)")
+      ->capture_default_str();
+  sub->add_option("--workers", s.workers, "Searches run at once; more wait in a queue")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  sub->add_option("--max-upload", o->max_upload_mib, "Largest uploaded cloud, MiB")
+      ->check(CLI::Range(0.001, 4096.0))
+      ->capture_default_str();
+  sub->add_option("--torso", s.torso, "Simulated PR2 torso height for program plans, m")
+      ->check(CLI::Range(0.0, 0.33))
+      ->capture_default_str();
+  sub->add_option("--three", s.three_dir,
+                  "three.js directory (default: Debian libjs-three's /usr/share/javascript/three)");
+  add_up_options(sub, o->up);
+  sub->add_flag("--quiet", o->quiet, "Do not log requests");
+  return {sub, [o] { return run_serve(*o); }};
+}
+
+}  // namespace lmk::cli
