@@ -14,8 +14,11 @@ packages=(
   mpi-default-dev
   # tests and benchmarks
   googletest libgtest-dev libgmock-dev libbenchmark-dev
-  # the evaluation report's rendering test (headless)
-  chromium
+  # the evaluation report's rendering test and lmk serve's browser test (headless Chromium driven
+  # over the DevTools protocol by Node.js with Debian's WebSocket module)
+  chromium nodejs node-ws
+  # lmk serve: the HTTP server, and three.js for its page (read from /usr/share/javascript/three)
+  libcpp-httplib-dev libjs-three
   # the sanitizer build and the fuzz targets (scripts/fuzz.sh): clang with libFuzzer's runtime
   clang-14 libclang-rt-14-dev
   # the ThreadSanitizer run fetches and builds Debian's oneTBB source (scripts/build-tbb-tsan.sh)

@@ -145,6 +145,7 @@ ApiResponse Api::save_landmark(const std::string& body_text) {
   }
   const bool overwrite = optional_bool(body, "overwrite", false, "capture");
   const bool check_first = optional_bool(body, "check", false, "capture");
+  required_box(body, "box", "capture");  // a bad request is told so before anything else
   if (!overwrite && library_.contains(name)) {
     throw conflict("capture: a landmark '" + name +
                    "' exists already; choose another name or set overwrite");

@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "lmk/serve/http_server.h"
 
-#include <httplib.h>
 #include <stdlib.h>
 
 #include <chrono>
@@ -11,6 +10,9 @@
 #include "lmk/geometry/error.h"
 #include "lmk/serve/api_error.h"
 #include "lmk/serve/static_files.h"
+
+// After Eigen: glibc's <resolv.h>, which httplib includes, defines `_res`, a name Eigen uses.
+#include <httplib.h>
 
 namespace lmk::serve {
 namespace {
@@ -114,9 +116,8 @@ void HttpServer::Impl::routes() {
   api_route("GET", "/api/jobs/(.+)",
             [&a, param](const auto& r) { return a.job(r.matches[1], param(r, "wait")); });
   api_route("GET", "/api/programs", [&a](const auto&) { return a.programs(); });
-  api_route("GET", "/api/programs/([^/]+)",
-            [&a](const auto& r) { return a.program(r.matches[1]); });
-  api_route("POST", "/api/programs/([^/]+)/plan",
+  api_route("GET", "/api/programs/(.+)", [&a](const auto& r) { return a.program(r.matches[1]); });
+  api_route("POST", "/api/programs/(.+)/plan",
             [&a](const auto& r) { return a.plan(r.matches[1], r.body); });
 
   const auto file = [](httplib::Response& res, const StaticFile& f) {

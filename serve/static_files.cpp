@@ -21,6 +21,9 @@ std::string content_type_for(const std::string& name) {
 }
 
 StaticFile web_asset(const std::string& name) {
+  if (name.find('/') != std::string::npos || name.find("..") != std::string::npos) {
+    throw forbidden("'" + name + "' is outside the served files");
+  }
   for (const WebAsset& a : web_assets()) {
     if (name == a.name) return {a.text, content_type_for(name)};
   }

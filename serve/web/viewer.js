@@ -150,8 +150,8 @@ export class Viewer {
   showSensor(pose) {
     const frame = new THREE.Group();
     applyBox(frame, {...pose, size: [1, 1, 1]});
-    frame.add(new THREE.AxesHelper(0.1));
-    const d = 0.12, w = 0.08, h = 0.06;
+    frame.add(new THREE.AxesHelper(0.06));
+    const d = 0.08, w = 0.05, h = 0.04;
     const corners = [[-w, -h, d], [w, -h, d], [w, h, d], [-w, h, d]];
     const lines = [];
     for (let i = 0; i < 4; ++i) {
@@ -171,8 +171,11 @@ export class Viewer {
     const axis = new THREE.Vector3(0, 0, 1).applyQuaternion(new THREE.Quaternion(x, y, z, w));
     const depth = Math.max(0.5, sphere.center.clone().sub(origin).dot(axis));
     this.camera.up.fromArray(info.up);
-    this.camera.position.copy(origin);
-    this.orbit.target.copy(origin.clone().add(axis.multiplyScalar(depth)));
+    // Behind and above the sensor, so that the sensor shows small below the middle of the view.
+    const up = new THREE.Vector3(...info.up);
+    this.camera.position.copy(
+        origin.clone().addScaledVector(axis, -0.3 * depth).addScaledVector(up, 0.15 * depth));
+    this.orbit.target.copy(origin.clone().addScaledVector(axis, depth));
     this.camera.far = Math.max(100, 10 * sphere.radius);
     this.camera.updateProjectionMatrix();
     this.orbit.update();

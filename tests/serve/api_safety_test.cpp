@@ -1,0 +1,103 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// lmk serve's safety (docs/serve.md, "Safety"): files stay confined to the directories given,
+// uploads are bounded, and no request, however bad, stops the server.
+#include <filesystem>
+
+#include "tests/serve/serve_fixture.h"
+
+namespace lmk::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST_F(ServeTest, ThePageAndThreeJsAreServed) {
+  start();
+  const Reply page = get("/");
+  ASSERT_EQ(page.status, 200);
+  EXPECT_NE(page.text.find("<title>lmk serve</title>"), std::string::npos);
+  const auto app = client->Get("/app/app.js");
+  ASSERT_TRUE(app);
+  EXPECT_EQ(app->status, 200);
+  EXPECT_EQ(app->get_header_value("Content-Type"), "text/javascript; charset=utf-8");
+  if (!fs::exists("/usr/share/javascript/three/build/three.module.js")) {
+    GTEST_SKIP() << "libjs-three is not installed (scripts/install-deps.sh installs it)";
+  }
+  const auto three = client->Get("/three/build/three.module.js");
+  ASSERT_TRUE(three);
+  EXPECT_EQ(three->status, 200);
+  EXPECT_NE(three->body.find("REVISION"), std::string::npos);
+  EXPECT_EQ(get("/three/build/none.js").status, 404);
+  EXPECT_EQ(get("/app/none.js").status, 404);
+  EXPECT_EQ(get("/nowhere").status, 404);
+}
+
+TEST_F(ServeTest, PathTraversalIsRefusedAndNeverReadsTheFile) {
+  // three.js from a directory of the test's, holding a link that leads out of it.
+  const fs::path three = dir.path() / "three";
+  fs::create_directories(three / "build");
+  write_text((three / "build" / "three.module.js").string(), "export const REVISION = 'test';");
+  write_text(dir.file("secret.txt"), "SECRET");
+  fs::create_symlink(dir.path() / "secret.txt", three / "build" / "link.js");
+  serve::ServeSettings settings;
+  settings.three_dir = three.string();
+  start(settings);
+  EXPECT_EQ(get("/three/build/three.module.js").status, 200);
+  for (const std::string path :
+       {"/three/../secret.txt", "/three/%2e%2e/secret.txt", "/three/build/%2E%2E/%2E%2E/secret.txt",
+        "/three/build/..%2f..%2fsecret.txt", "/three/build/link.js", "/three/%2fetc%2fpasswd",
+        "/three/build/..\\..\\secret.txt", "/app/..%2f..%2fsecret.txt",
+        "/api/landmarks/..%2f..%2fsecret.txt", "/api/landmarks/%2e%2e",
+        "/api/programs/..%2fsecret"}) {
+    const Reply r = get(path);
+    EXPECT_TRUE(r.status == 400 || r.status == 403) << path << ": " << r.status << " " << r.text;
+    EXPECT_EQ(r.text.find("SECRET"), std::string::npos) << path;
+  }
+  // The same through the JSON bodies: names that would leave the landmark directory.
+  for (const std::string name : {"../secret", "/tmp/x", "a/b", ".hidden", ""}) {
+    const Reply r =
+        post("/api/landmarks", {{"scene", "1"}, {"name", name}, {"box", box_json(carton_box())}});
+    EXPECT_EQ(r.status, 400) << name << ": " << r.text;
+  }
+  EXPECT_EQ(post("/api/find", {{"scene", "1"}, {"landmarks", {"../secret"}}}).status, 400);
+  EXPECT_FALSE(fs::exists(dir.file("secret.lmk")));
+}
+
+TEST_F(ServeTest, AnOversizedUploadIsRefusedWithTheLimitAndTheServerGoesOn) {
+  serve::ServeSettings settings;
+  settings.max_upload_bytes = 1u << 20;
+  start(settings);
+  const std::string big(3u << 20, 'x');
+  const Reply r = post_bytes("/api/scenes?name=big.pcd", big);
+  EXPECT_EQ(r.status, 413) << r.text;
+  if (r.status == 413) {
+    EXPECT_NE(r.body["error"].get<std::string>().find("--max-upload"), std::string::npos);
+  }
+  EXPECT_EQ(get("/api/scenes").body["scenes"].size(), 2u);
+  EXPECT_EQ(get("/api/info").status, 200);
+}
+
+TEST_F(ServeTest, NoBadRequestStopsTheServer) {
+  start();
+  const std::vector<std::pair<std::string, std::string>> bodies = {
+      {"/api/guess", ""},
+      {"/api/guess", "null"},
+      {"/api/guess", "{\"scene\": 1, \"point\": [1, 2, 3]}"},
+      {"/api/guess", "{\"scene\": \"1\", \"point\": [1e400, 0, 0]}"},
+      {"/api/guess", "{\"scene\": \"1\", \"point\": [\"a\", 0, 0]}"},
+      {"/api/check", "{\"scene\": \"1\", \"box\": 5}"},
+      {"/api/landmarks", "{\"scene\": \"1\", \"name\": 7}"},
+      {"/api/find", "{\"scene\": \"1\", \"landmarks\": [1, 2]}"},
+      {"/api/find", std::string(100000, '[')},
+      {"/api/programs/x/plan", "{}"},
+  };
+  for (const auto& [path, body] : bodies) {
+    const Reply r = post_text(path, body);
+    EXPECT_GE(r.status, 400) << path << " " << body.substr(0, 60) << ": " << r.text;
+    EXPECT_LT(r.status, 500) << path << " " << body.substr(0, 60) << ": " << r.text;
+    EXPECT_TRUE(r.body.contains("error")) << r.text;
+  }
+  EXPECT_EQ(get("/api/info").status, 200);
+}
+
+}  // namespace
+}  // namespace lmk::test
