@@ -13,7 +13,8 @@ namespace fs = std::filesystem;
 std::string content_type_for(const std::string& name) {
   const std::string ext = fs::path(name).extension().string();
   if (ext == ".html") return "text/html; charset=utf-8";
-  if (ext == ".js" || ext == ".mjs") return "text/javascript; charset=utf-8";
+  // Not text/javascript: httplib compresses every text/ type with brotli, 2 s for three.js.
+  if (ext == ".js" || ext == ".mjs") return "application/javascript; charset=utf-8";
   if (ext == ".css") return "text/css; charset=utf-8";
   if (ext == ".json") return "application/json";
   if (ext == ".png") return "image/png";

@@ -42,7 +42,8 @@ int run_serve(ServeOptions& o) {
                  s.bind.c_str(), s.landmarks_dir.c_str());
   }
   if (!s.scenes.empty()) {
-    std::fprintf(stderr, "reading %zu scene%s\n", s.scenes.size(), s.scenes.size() == 1 ? "" : "s");
+    std::printf("reading %zu scene%s\n", s.scenes.size(), s.scenes.size() == 1 ? "" : "s");
+    std::fflush(stdout);
   }
   serve::HttpServer server(s, o.quiet ? nullptr : &std::cerr);
   const int port = server.bind();

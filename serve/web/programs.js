@@ -70,8 +70,11 @@ export class ProgramsPanel {
     } else {
       line(`plan valid: ${plan.steps.length} steps`, 'good');
     }
-    this.app.viewer.showTargets(targets.filter((t) => t.pose).map((t) => ({
+    const posed = targets.filter((t) => t.pose);
+    this.app.viewer.showTargets(posed.map((t) => ({
       pose: t.pose, closed: t.gripper === 'close', label: `${t.step} ${t.arm}`,
     })));
+    // Close enough to tell the gripper poses apart.
+    this.app.viewer.focus(posed.map((t) => t.pose.position), 1.0);
   }
 }

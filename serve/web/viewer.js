@@ -93,9 +93,21 @@ export class Viewer {
     this.hoverable = [];  // [{mesh, text}]: tooltips on hover
     this.raycaster = new THREE.Raycaster();
     this.renderer.domElement.addEventListener('pointermove', (e) => this.hover(e));
+    // Drawn on demand, not every frame: a cloud of a few hundred thousand points is slow to draw
+    // in software (headless browsers, remote desktops), and an idle page should cost nothing.
+    this.orbit.addEventListener('change', () => this.requestRender());
+    this.handles.addEventListener('change', () => this.requestRender());
     new ResizeObserver(() => this.resize()).observe(container);
     this.resize();
-    this.renderer.setAnimationLoop(() => this.render());
+  }
+
+  requestRender() {
+    if (this.renderPending) return;
+    this.renderPending = true;
+    requestAnimationFrame(() => {
+      this.renderPending = false;
+      this.render();
+    });
   }
 
   resize() {
@@ -103,10 +115,10 @@ export class Viewer {
     this.renderer.setSize(w, h);
     this.camera.aspect = w / Math.max(h, 1);
     this.camera.updateProjectionMatrix();
+    this.requestRender();
   }
 
   render() {
-    this.orbit.update();
     this.renderer.render(this.scene, this.camera);
     for (const {object, element} of this.labelled) {
       const p = this.project(object.getWorldPosition(new THREE.Vector3()).toArray());
@@ -144,6 +156,7 @@ export class Viewer {
     this.layers.cloud.add(this.points);
     this.showSensor(info.sensor);
     this.lookFromSensor(info, geometry.boundingSphere);
+    this.requestRender();
   }
 
   // The sensor: its axes and a small frustum along its optical axis (+z).
@@ -151,7 +164,7 @@ export class Viewer {
     const frame = new THREE.Group();
     applyBox(frame, {...pose, size: [1, 1, 1]});
     frame.add(new THREE.AxesHelper(0.06));
-    const d = 0.08, w = 0.05, h = 0.04;
+    const d = 0.06, w = 0.04, h = 0.03;
     const corners = [[-w, -h, d], [w, -h, d], [w, h, d], [-w, h, d]];
     const lines = [];
     for (let i = 0; i < 4; ++i) {
@@ -159,7 +172,7 @@ export class Viewer {
     }
     frame.add(new THREE.LineSegments(
         new THREE.BufferGeometry().setFromPoints(lines.map((p) => new THREE.Vector3(...p))),
-        new THREE.LineBasicMaterial({color: 0xffffff})));
+        new THREE.LineBasicMaterial({color: 0x999999})));
     this.layers.sensor.add(frame);
     this.addLabel(frame, 'sensor');
   }
@@ -199,6 +212,7 @@ export class Viewer {
   editBox(box, onChange) {
     this.clear('edit');
     this.handles.detach();
+    this.requestRender();
     if (!box) return;
     const mesh = wireBox(0x33ccff);
     applyBox(mesh, box);
@@ -206,9 +220,13 @@ export class Viewer {
     this.edited = mesh;
     this.handles.attach(mesh);
     this.onBoxChange = onChange;
+    this.requestRender();
   }
 
-  setHandleMode(mode) { this.handles.setMode(mode); }
+  setHandleMode(mode) {
+    this.handles.setMode(mode);
+    this.requestRender();
+  }
 
   /** Draws matches [{box, label, tooltip, rejected}]. */
   showBoxes(items) {
@@ -220,6 +238,7 @@ export class Viewer {
       this.addLabel(mesh, item.label, 'matches');
       this.hoverable.push({mesh: mesh.userData.fill, text: item.tooltip, layer: 'matches'});
     }
+    this.requestRender();
   }
 
   /** Draws a program's gripper targets [{pose, label, closed}]. */
@@ -233,6 +252,19 @@ export class Viewer {
       this.layers.targets.add(frame);
       this.addLabel(frame, t.label, 'targets');
     }
+    this.requestRender();
+  }
+
+  /** Turns the view to the middle of `points`, from `distance` away, keeping its direction. */
+  focus(points, distance) {
+    if (points.length === 0) return;
+    const centre = new THREE.Vector3();
+    for (const p of points) centre.add(new THREE.Vector3(...p));
+    centre.divideScalar(points.length);
+    const back = this.camera.position.clone().sub(this.orbit.target).normalize();
+    this.orbit.target.copy(centre);
+    this.camera.position.copy(centre).addScaledVector(back, distance);
+    this.orbit.update();
   }
 
   addLabel(object, text, layer = 'sensor') {
@@ -252,6 +284,7 @@ export class Viewer {
       return false;
     });
     this.hoverable = this.hoverable.filter((h) => h.layer !== layer);
+    this.requestRender();
   }
 
   hover(event) {

@@ -532,3 +532,42 @@ TEST_F(Cli, EvalOnThePaperPresetPrintsTheTable) {
 
 }  // namespace
 }  // namespace lmk
+
+namespace lmk {
+namespace {
+
+TEST_F(Cli, ServeRefusesBadScenesAndPortsWithOneLine) {
+  expect_bad_input("serve " + path("missing.pcd"), "missing.pcd");
+  test::write_text(dir_.file("notes.txt"), "hello\n");
+  expect_bad_input("serve " + path("notes.txt"), ".pcd");
+  test::write_text(dir_.file("broken.pcd"), "VERSION .7\nFIELDS x y z\nPOINTS 9\n");
+  expect_bad_input("serve " + path("broken.pcd"), "broken.pcd");
+  expect_bad_input("serve --port 70000", "70000");
+  expect_bad_input("serve --workers 0", "workers");
+}
+
+TEST_F(Cli, ServeWarnsOnAnAddressOtherThanLoopbackAndStopsOnCtrlC) {
+  // Runs lmk serve in the background and sends it SIGINT, as Ctrl-C, after `seconds`.
+  const auto serve_then_interrupt = [this](const std::string& args, int seconds) {
+    const std::string out = dir_.file("stdout"), err = dir_.file("stderr");
+    const std::string command = std::string("'") + LMK_BINARY + "' serve " + args + " >'" + out +
+                                "' 2>'" + err + "' & pid=$!; sleep " + std::to_string(seconds) +
+                                "; kill -INT $pid; wait $pid";
+    const int status = std::system(command.c_str());
+    return CommandResult{WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+  };
+  const std::string landmarks = " --landmarks " + path("landmarks");
+  const CommandResult r = serve_then_interrupt("--bind 0.0.0.0 --port 0 --quiet" + landmarks, 3);
+  EXPECT_EQ(r.exit_code, 0) << r.err;  // stopped cleanly
+  EXPECT_NE(r.err.find("warning: --bind 0.0.0.0"), std::string::npos) << r.err;
+  EXPECT_NE(r.out.find("open http://0.0.0.0:"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("lmk serve: stopped"), std::string::npos) << r.out;
+  EXPECT_TRUE(std::filesystem::is_directory(dir_.file("landmarks")));
+  const CommandResult loopback = serve_then_interrupt("--port 0 --quiet" + landmarks, 2);
+  EXPECT_EQ(loopback.exit_code, 0) << loopback.err;
+  EXPECT_NE(loopback.out.find("open http://127.0.0.1:"), std::string::npos) << loopback.out;
+  EXPECT_EQ(loopback.err.find("warning"), std::string::npos) << loopback.err;
+}
+
+}  // namespace
+}  // namespace lmk

@@ -18,7 +18,7 @@ TEST_F(ServeTest, ThePageAndThreeJsAreServed) {
   const auto app = client->Get("/app/app.js");
   ASSERT_TRUE(app);
   EXPECT_EQ(app->status, 200);
-  EXPECT_EQ(app->get_header_value("Content-Type"), "text/javascript; charset=utf-8");
+  EXPECT_EQ(app->get_header_value("Content-Type"), "application/javascript; charset=utf-8");
   if (!fs::exists("/usr/share/javascript/three/build/three.module.js")) {
     GTEST_SKIP() << "libjs-three is not installed (scripts/install-deps.sh installs it)";
   }

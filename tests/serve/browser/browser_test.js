@@ -35,7 +35,8 @@ function check(condition, message) {
   if (!condition) throw new Error(message);
 }
 
-function step(text) { console.log(`- ${text}`); }
+const started = Date.now();
+function step(text) { console.log(`- ${((Date.now() - started) / 1000).toFixed(1)} s: ${text}`); }
 
 // The scene and the point to click: the carton of the real milk frame, or of a synthetic tabletop.
 function chooseScene() {
@@ -104,10 +105,13 @@ async function checkNotBlank(page, png, name) {
   check(stats.covered > 0.1 && stats.colours > 50, `${name} is blank: ${JSON.stringify(stats)}`);
 }
 
+// Keeps the screenshot as PNG (checked), and as a smaller JPEG for docs/serve.md.
 async function saveScreenshot(page, name) {
   const png = await page.screenshot();
   fs.writeFileSync(path.join(workDir, name), png);
   await checkNotBlank(page, png, name);
+  const {data} = await page.send('Page.captureScreenshot', {format: 'jpeg', quality: 80});
+  fs.writeFileSync(path.join(workDir, name.replace(/\.png$/, '.jpg')), Buffer.from(data, 'base64'));
 }
 
 async function main() {
@@ -190,6 +194,46 @@ async function main() {
           `match ${i + 1}: position ${p} != ${m.position}`);
   });
   check(page.errors.length === 0, `the page reported errors: ${page.errors.join('; ')}`);
+
+  // 6. A PbD program (the paper's tool-rack task) planned on one of its scenes: the page's plan
+  // and refusal are lmk pbd plan's.
+  const task = path.join(workDir, 'task1');
+  execFileSync(lmk, ['pbd', 'demo-tasks', '--task', '1', '--save', workDir], {stdio: 'ignore'});
+  for (const [scenario, program] of [['scenario1.pcd', 'pick_tool'], ['scenario3.pcd', 'pick_tool']]) {
+    const taskUrl = await startServer(path.join(task, scenario), task,
+                                      ['--programs', task, '--base-frame']);
+    await page.send('Page.navigate', {url: taskUrl});
+    await page.waitFor('window.lmkReady && window.lmk && window.lmk.sceneId', 'the page');
+    await page.evaluate(`(() => {
+      const s = document.getElementById('program-select');
+      s.value = ${JSON.stringify(program)};
+      s.dispatchEvent(new Event('change'));
+    })()`);
+    await page.clickOn('#plan');
+    const verdict = await page.waitFor(`(() => {
+      const t = document.getElementById('plan-result').textContent;
+      return /plan valid|refused/.test(t) && t;
+    })()`, 'the plan');
+    let cli;
+    try {
+      cli = JSON.parse(execFileSync(lmk, ['pbd', 'plan', path.join(task, `${program}.json`),
+                                          '--scene', path.join(task, scenario), '--json']));
+    } catch (e) {
+      cli = JSON.parse(e.stdout);  // a refused plan exits 1, with the plan's JSON
+    }
+    const refusal = verdict.match(/refused \(([^)]*)\): (.*)$/);
+    step(`${program} on ${scenario}: ${refusal ? `refused: ${refusal[2]}` : 'plan valid'}`);
+    check(Boolean(refusal) === !cli.valid, `page: ${verdict}; lmk pbd plan valid: ${cli.valid}`);
+    if (refusal) {
+      check(refusal[1] === cli.refusal.kind && refusal[2] === cli.refusal.message,
+            `the page's refusal '${refusal[0]}' is not lmk pbd plan's: ${JSON.stringify(cli.refusal)}`);
+    } else {
+      const drawn = await page.evaluate('lmk.viewer.layers.targets.children.length');
+      check(drawn === cli.steps.reduce((n, st) => n + st.arms.length, 0),
+            `${drawn} gripper targets drawn for ${cli.steps.length} steps`);
+    }
+    await saveScreenshot(page, `program-${path.basename(scenario, '.pcd')}.png`);
+  }
   browser.close();
   console.log(`PASS: the page's ${shown.length} match(es) equal lmk find's; screenshots in ` +
               workDir);
