@@ -9,6 +9,7 @@
 namespace lmk::serve {
 
 struct JobPool::Job {
+  explicit Job(const std::atomic<bool>& stopping) : progress(stopping) {}
   std::string id, kind;
   Work work;
   std::string state = "queued";
@@ -21,6 +22,7 @@ struct JobPool::Job {
 };
 
 void JobProgress::report(double fraction, std::string message) {
+  if (stopping_) throw JobCancelled();
   std::lock_guard<std::mutex> lock(mutex_);
   fraction_ = fraction;
   message_ = std::move(message);
@@ -53,7 +55,7 @@ std::string JobPool::submit(const std::string& kind, Work work) {
     throw ApiError(503, "busy: " + std::to_string(queue_.size()) +
                             " jobs are waiting; try again when some have finished");
   }
-  auto job = std::make_shared<Job>();
+  auto job = std::make_shared<Job>(stopping_);
   job->id = "job-" + std::to_string(next_id_++);
   job->kind = kind;
   job->work = std::move(work);
@@ -81,6 +83,9 @@ void JobPool::work_loop() {
     // A job's failure is its own: it is reported on the job and never leaves the worker.
     try {
       result = job->work(job->progress);
+    } catch (const JobCancelled& e) {
+      error = e.what();
+      status = 503;
     } catch (const ApiError& e) {
       error = e.what();
       status = e.status();

@@ -3,6 +3,7 @@
 // The worker pool of `lmk serve`: searches, distinctiveness checks and plans run here, a few at a
 // time, so that the HTTP threads stay free to answer the page while they run. Each job reports
 // its progress, and its result (or error) stays readable by id until newer jobs push it out.
+#include <atomic>
 #include <condition_variable>
 #include <cstddef>
 #include <deque>
@@ -12,19 +13,29 @@
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
 
 namespace lmk::serve {
 
+/// Thrown by JobProgress::report when the pool is stopping: the job ends there.
+struct JobCancelled : std::runtime_error {
+  JobCancelled() : std::runtime_error("the server is stopping") {}
+};
+
 /// What a running job tells its watchers. Safe from any thread, as search progress callbacks are.
 class JobProgress {
  public:
+  explicit JobProgress(const std::atomic<bool>& stopping) : stopping_(stopping) {}
+  /// Records the progress; throws JobCancelled once the pool is stopping, so that a long search
+  /// ends at its next seed instead of holding the server's shutdown.
   void report(double fraction, std::string message);
   nlohmann::json to_json() const;
 
  private:
+  const std::atomic<bool>& stopping_;
   mutable std::mutex mutex_;
   double fraction_ = 0.0;
   std::string message_;
@@ -37,7 +48,7 @@ class JobPool {
 
   /// `workers` threads; at most `max_queued` jobs waiting; the last `max_kept` finished jobs kept.
   JobPool(int workers, std::size_t max_queued, std::size_t max_kept = 256);
-  /// Waits for the jobs under way; drops those still queued.
+  /// Stops the jobs under way at their next progress report, and drops those still queued.
   ~JobPool();
   JobPool(const JobPool&) = delete;
   JobPool& operator=(const JobPool&) = delete;
@@ -64,7 +75,7 @@ class JobPool {
   std::deque<std::string> finished_;
   std::size_t max_queued_, max_kept_;
   std::size_t next_id_ = 1;
-  bool stopping_ = false;
+  std::atomic<bool> stopping_{false};
   std::vector<std::thread> workers_;
 };
 

@@ -193,9 +193,21 @@ async function main() {
     check(p.every((v, k) => Math.abs(v - m.position[k]) < 1e-9),
           `match ${i + 1}: position ${p} != ${m.position}`);
   });
+  // 6. The same file uploaded through the page's file input: a new scene, shown in its place.
+  const {root} = await page.send('DOM.getDocument');
+  const {nodeId} = await page.send('DOM.querySelector', {nodeId: root.nodeId, selector: '#upload'});
+  await page.send('DOM.setFileInputFiles', {nodeId, files: [scene]});
+  await page.waitFor(`lmk.sceneId !== '1' &&
+      document.getElementById('status').textContent.includes('click an object')`, 'the upload');
+  const uploaded = await page.evaluate(`[document.getElementById('scene-select').selectedOptions[0]
+      .textContent, document.getElementById('scene-info').textContent]`);
+  step(`uploaded: ${uploaded[0]}: ${uploaded[1]}`);
+  check(uploaded[0] === `${path.basename(scene)} (uploaded)`, `the picker shows ${uploaded[0]}`);
+  const finite = JSON.parse(execFileSync(lmk, ['info', scene, '--json'])).finite_points;
+  check(uploaded[1].startsWith(`${finite} points`), `the upload shows '${uploaded[1]}'`);
   check(page.errors.length === 0, `the page reported errors: ${page.errors.join('; ')}`);
 
-  // 6. A PbD program (the paper's tool-rack task) planned on one of its scenes: the page's plan
+  // 7. A PbD program (the paper's tool-rack task) planned on one of its scenes: the page's plan
   // and refusal are lmk pbd plan's.
   const task = path.join(workDir, 'task1');
   execFileSync(lmk, ['pbd', 'demo-tasks', '--task', '1', '--save', workDir], {stdio: 'ignore'});
