@@ -13,8 +13,9 @@ class App {
   constructor(info) {
     this.info = info;
     this.sceneId = null;
-    this.viewer = new Viewer(document.getElementById('view'), document.getElementById('labels'),
-                             document.getElementById('tooltip'));
+    this.viewer = new Viewer(
+        document.getElementById('view'), document.getElementById('labels'),
+        document.getElementById('tooltip'));
     this.capture = new CapturePanel(this);
     this.find = new FindPanel(this, info);
     this.programs = new ProgramsPanel(this);
@@ -37,7 +38,9 @@ class App {
         .join('\n');
   }
 
-  project(point) { return this.viewer.project(point); }
+  project(point) {
+    return this.viewer.project(point);
+  }
 
   async loadScenes(select) {
     const {scenes} = await getJSON('/api/scenes');
@@ -56,14 +59,15 @@ class App {
 
   async showScene(id) {
     this.status('loading the scene…');
-    const [info, cloud] = await Promise.all([getJSON(`/api/scenes/${id}`),
-                                             getJSON(`/api/scenes/${id}/cloud`)]);
+    const [info, cloud] =
+        await Promise.all([getJSON(`/api/scenes/${id}`), getJSON(`/api/scenes/${id}/cloud`)]);
     this.sceneId = id;
     this.viewer.setCloud(cloud, info);
     this.viewer.clear('matches');
     this.viewer.clear('targets');
     document.getElementById('scene-info').textContent =
-        `${info.finite_points} points${cloud.stride > 1 ? ` (every ${cloud.stride}th shown)` : ''}` +
+        `${info.finite_points} points${
+            cloud.stride > 1 ? ` (every ${cloud.stride}th shown)` : ''}` +
         `, ${info.has_rgb ? 'RGB' : 'coloured by height'}` +
         `${info.base_frame ? ', robot base frame' : ''}; sensor at ` +
         info.sensor.position.map((v) => v.toFixed(2)).join(', ');
@@ -87,7 +91,9 @@ class App {
   listenForClicks() {
     const canvas = this.viewer.renderer.domElement;
     let down = null;
-    canvas.addEventListener('pointerdown', (e) => { down = {x: e.clientX, y: e.clientY}; });
+    canvas.addEventListener('pointerdown', (e) => {
+      down = {x: e.clientX, y: e.clientY};
+    });
     canvas.addEventListener('pointerup', (e) => {
       const click = down && Math.hypot(e.clientX - down.x, e.clientY - down.y) < 4;
       down = null;

@@ -2,8 +2,8 @@
 // The capture panel: a first box from a clicked point (POST /api/guess), the box's numbers
 // editable beside its handles, the distinctiveness verdict (POST /api/check) before anything is
 // written, then the landmark saved into the library (POST /api/landmarks).
-import * as THREE from '/three/build/three.module.js';
 import {postJSON, runJob} from '/app/api.js';
+import * as THREE from '/three/build/three.module.js';
 
 const DEG = Math.PI / 180;
 
@@ -13,9 +13,15 @@ function boxToFields(box) {
   const [w, x, y, z] = box.quaternion;
   const e = new THREE.Euler().setFromQuaternion(new THREE.Quaternion(x, y, z, w), 'ZYX');
   return {
-    cx: box.position[0], cy: box.position[1], cz: box.position[2],
-    roll: e.x / DEG, pitch: e.y / DEG, yaw: e.z / DEG,
-    sx: box.size[0], sy: box.size[1], sz: box.size[2],
+    cx: box.position[0],
+    cy: box.position[1],
+    cz: box.position[2],
+    roll: e.x / DEG,
+    pitch: e.y / DEG,
+    yaw: e.z / DEG,
+    sx: box.size[0],
+    sy: box.size[1],
+    sz: box.size[2],
   };
 }
 
@@ -55,7 +61,8 @@ export class CapturePanel {
     try {
       const guess = await postJSON('/api/guess', {scene: this.app.sceneId, point});
       this.setBox(guess.box);
-      this.app.status(`box guessed around ${guess.object_points} points; adjust it, name it, check`);
+      this.app.status(
+          `box guessed around ${guess.object_points} points; adjust it, name it, check`);
     } catch (e) {
       this.app.status(e.message, true);
     }
@@ -114,9 +121,11 @@ export class CapturePanel {
       const v = await runJob('/api/check', {scene: this.app.sceneId, box: this.box, name});
       verdict.className = v.distinctive ? 'small good' : 'small warn';
       verdict.textContent = v.message;
-      this.app.viewer.showBoxes((v.other_instances || []).map((m, i) => ({
-        box: m.box, label: `look-alike ${i + 1}`, tooltip: this.app.termsText(m), rejected: true,
-      })));
+      const lookAlike = (m, i) => {
+        return {box: m.box, label: `look-alike ${i + 1}`, tooltip: this.app.termsText(m)};
+      };
+      this.app.viewer.showBoxes(
+          (v.other_instances || []).map((m, i) => ({...lookAlike(m, i), rejected: true})));
       this.verdictFor = key;
       const save = document.getElementById('save');
       save.disabled = false;
@@ -131,7 +140,9 @@ export class CapturePanel {
     const name = this.name.value.trim();
     try {
       const saved = await postJSON('/api/landmarks', {
-        scene: this.app.sceneId, box: this.box, name,
+        scene: this.app.sceneId,
+        box: this.box,
+        name,
         overwrite: document.getElementById('overwrite').checked,
       });
       this.app.status(`wrote ${saved.file}: ${saved.points} points`);

@@ -15,7 +15,7 @@ export class FindPanel {
     const method = document.getElementById('method');
     for (const m of info.methods) method.add(new Option(m, m));
     const metric = document.getElementById('metric');
-    metric.add(new Option("method's own", ''));
+    metric.add(new Option('method\'s own', ''));
     for (const m of info.metrics) metric.add(new Option(m, m));
     document.getElementById('find').addEventListener('click', () => this.find());
   }
@@ -53,8 +53,8 @@ export class FindPanel {
   }
 
   async find() {
-    const landmarks = [...document.querySelectorAll('#landmark-list input:checked')]
-                          .map((i) => i.value);
+    const landmarks =
+        [...document.querySelectorAll('#landmark-list input:checked')].map((i) => i.value);
     const progress = document.getElementById('find-progress');
     const message = document.getElementById('find-message');
     const button = document.getElementById('find');
@@ -65,12 +65,17 @@ export class FindPanel {
     message.className = 'small';
     message.textContent = 'searching…';
     try {
-      this.last = await runJob('/api/find', {
-        scene: this.app.sceneId, landmarks, settings: this.settings(), rejected,
-      }, (p) => {
-        progress.value = p.fraction;
-        message.textContent = p.message;
-      });
+      this.last = await runJob(
+          '/api/find', {
+            scene: this.app.sceneId,
+            landmarks,
+            settings: this.settings(),
+            rejected,
+          },
+          (p) => {
+            progress.value = p.fraction;
+            message.textContent = p.message;
+          });
       this.show(this.last);
     } catch (e) {
       message.className = 'small bad';
@@ -91,27 +96,33 @@ export class FindPanel {
     const boxes = [];
     const lines = [];
     for (const r of result.results) {
-      lines.push(`${r.landmark}: ${r.matches.length} match${r.matches.length === 1 ? '' : 'es'}` +
-                 ` (${r.stats.method}, ${r.stats.metric}, ${r.stats.seeds} seeds)` +
-                 (r.stats.rejections ? `; ${r.stats.rejections}` : ''));
+      lines.push(
+          `${r.landmark}: ${r.matches.length} match${r.matches.length === 1 ? '' : 'es'}` +
+          ` (${r.stats.method}, ${r.stats.metric}, ${r.stats.seeds} seeds)` +
+          (r.stats.rejections ? `; ${r.stats.rejections}` : ''));
       const rows = r.matches.map((m, i) => ({m, rank: `${i + 1}`, rejected: false}));
       for (const m of r.rejected || []) rows.push({m, rank: '–', rejected: true});
       for (const {m, rank, rejected} of rows) {
         const tooltip = `${r.landmark} ${rejected ? `rejected: ${m.reason}` : `#${rank}`}\n` +
-                        `error ${formatError(m.error, r.error_unit)}\n${this.app.termsText(m)}`;
+            `error ${formatError(m.error, r.error_unit)}\n${this.app.termsText(m)}`;
         const row = table.insertRow();
         row.className = rejected ? 'rejected' : 'match';
         row.dataset.landmark = r.landmark;
         row.dataset.error = m.error;
         row.title = tooltip;
-        for (const text of [r.landmark, rank, formatError(m.error, r.error_unit),
-                            ...m.position.map((v) => v.toFixed(3))]) {
+        for (const text
+                 of [r.landmark, rank, formatError(m.error, r.error_unit),
+                     ...m.position.map((v) => v.toFixed(3))]) {
           row.insertCell().textContent = text;
         }
         const box = {position: m.position, quaternion: m.quaternion, size: r.box_size};
-        boxes.push({box, rejected, tooltip,
-                    label: `${r.landmark} ${rejected ? '✗' : `#${rank}`} ` +
-                           formatError(m.error, r.error_unit)});
+        boxes.push({
+          box,
+          rejected,
+          tooltip,
+          label:
+              `${r.landmark} ${rejected ? '✗' : `#${rank}`} ` + formatError(m.error, r.error_unit)
+        });
       }
     }
     document.getElementById('find-message').textContent = lines.join('\n');

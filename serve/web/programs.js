@@ -33,11 +33,11 @@ export class ProgramsPanel {
     out.className = 'small';
     out.textContent = `planning '${name}'…`;
     try {
-      const result = await runJob(`/api/programs/${encodeURIComponent(name)}/plan`,
-                                  {scene: this.app.sceneId}, (p) => {
-                                    progress.value = p.fraction;
-                                    out.textContent = p.message;
-                                  });
+      const result = await runJob(
+          `/api/programs/${encodeURIComponent(name)}/plan`, {scene: this.app.sceneId}, (p) => {
+            progress.value = p.fraction;
+            out.textContent = p.message;
+          });
       this.show(result);
     } catch (e) {
       out.className = 'small bad';
@@ -58,12 +58,14 @@ export class ProgramsPanel {
       out.append(div);
     };
     for (const l of plan.landmarks) {
-      line(`landmark ${l.name}: at ${l.position.map((v) => v.toFixed(3)).join(', ')}, ` +
-           `${l.found} found, ${l.eligible} eligible (${l.policy})`);
+      line(
+          `landmark ${l.name}: at ${l.position.map((v) => v.toFixed(3)).join(', ')}, ` +
+          `${l.found} found, ${l.eligible} eligible (${l.policy})`);
     }
     for (const t of targets) {
-      line(`step ${t.step} ${t.arm} in ${t.frame}: gripper ${t.gripper}` +
-           (t.pose ? '' : ' (landmark not located)'));
+      line(
+          `step ${t.step} ${t.arm} in ${t.frame}: gripper ${t.gripper}` +
+          (t.pose ? '' : ' (landmark not located)'));
     }
     if (plan.refusal) {
       line(`refused (${plan.refusal.kind}): ${plan.refusal.message}`, 'bad');
@@ -72,8 +74,10 @@ export class ProgramsPanel {
     }
     const posed = targets.filter((t) => t.pose);
     this.app.viewer.showTargets(posed.map((t) => ({
-      pose: t.pose, closed: t.gripper === 'close', label: `${t.step} ${t.arm}`,
-    })));
+                                            pose: t.pose,
+                                            closed: t.gripper === 'close',
+                                            label: `${t.step} ${t.arm}`,
+                                          })));
     // Close enough to tell the gripper poses apart.
     this.app.viewer.focus(posed.map((t) => t.pose.position), 1.0);
   }

@@ -29,7 +29,8 @@ function heightColors(positions, up) {
   const heights = new Float32Array(n);
   let lo = Infinity, hi = -Infinity;
   for (let i = 0; i < n; ++i) {
-    const h = positions[3 * i] * up[0] + positions[3 * i + 1] * up[1] + positions[3 * i + 2] * up[2];
+    const h =
+        positions[3 * i] * up[0] + positions[3 * i + 1] * up[1] + positions[3 * i + 2] * up[2];
     heights[i] = h;
     lo = Math.min(lo, h);
     hi = Math.max(hi, h);
@@ -46,10 +47,11 @@ function heightColors(positions, up) {
 function wireBox(color) {
   const group = new THREE.Group();
   const unit = new THREE.BoxBufferGeometry(1, 1, 1);
-  group.add(new THREE.LineSegments(new THREE.EdgesGeometry(unit),
-                                   new THREE.LineBasicMaterial({color})));
-  const fill = new THREE.Mesh(unit, new THREE.MeshBasicMaterial(
-      {color, transparent: true, opacity: 0.12, depthWrite: false}));
+  group.add(
+      new THREE.LineSegments(new THREE.EdgesGeometry(unit), new THREE.LineBasicMaterial({color})));
+  const fill = new THREE.Mesh(
+      unit,
+      new THREE.MeshBasicMaterial({color, transparent: true, opacity: 0.12, depthWrite: false}));
   group.add(fill);
   group.userData.fill = fill;
   return group;
@@ -59,11 +61,17 @@ function wireBox(color) {
 function gripper(color, closed) {
   const gap = closed ? 0.02 : 0.08;
   const points = [
-    [-0.06, 0, 0], [0, 0, 0], [0, -gap / 2, 0], [0, gap / 2, 0],
-    [0, -gap / 2, 0], [0.05, -gap / 2, 0], [0, gap / 2, 0], [0.05, gap / 2, 0],
+    [-0.06, 0, 0],
+    [0, 0, 0],
+    [0, -gap / 2, 0],
+    [0, gap / 2, 0],
+    [0, -gap / 2, 0],
+    [0.05, -gap / 2, 0],
+    [0, gap / 2, 0],
+    [0.05, gap / 2, 0],
   ].map((p) => new THREE.Vector3(...p));
-  return new THREE.LineSegments(new THREE.BufferGeometry().setFromPoints(points),
-                                new THREE.LineBasicMaterial({color}));
+  return new THREE.LineSegments(
+      new THREE.BufferGeometry().setFromPoints(points), new THREE.LineBasicMaterial({color}));
 }
 
 export class Viewer {
@@ -79,7 +87,9 @@ export class Viewer {
     this.camera = new THREE.PerspectiveCamera(55, 1, 0.01, 100);
     this.orbit = new OrbitControls(this.camera, this.renderer.domElement);
     this.handles = new TransformControls(this.camera, this.renderer.domElement);
-    this.handles.addEventListener('dragging-changed', (e) => { this.orbit.enabled = !e.value; });
+    this.handles.addEventListener('dragging-changed', (e) => {
+      this.orbit.enabled = !e.value;
+    });
     this.handles.addEventListener('objectChange', () => {
       if (this.onBoxChange) this.onBoxChange(boxOf(this.edited));
     });
@@ -146,13 +156,12 @@ export class Viewer {
     const positions = Float32Array.from(cloud.positions, (v) => v / 1000);
     const geometry = new THREE.BufferGeometry();
     geometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
-    const colors = cloud.colors ? Float32Array.from(cloud.colors, (v) => v / 255)
-                                : heightColors(positions, info.up);
+    const colors = cloud.colors ? Float32Array.from(cloud.colors, (v) => v / 255) :
+                                  heightColors(positions, info.up);
     geometry.setAttribute('color', new THREE.BufferAttribute(colors, 3));
     geometry.computeBoundingSphere();
-    this.points = new THREE.Points(geometry,
-                                   new THREE.PointsMaterial({size: 2, sizeAttenuation: false,
-                                                             vertexColors: true}));
+    this.points = new THREE.Points(
+        geometry, new THREE.PointsMaterial({size: 2, sizeAttenuation: false, vertexColors: true}));
     this.layers.cloud.add(this.points);
     this.showSensor(info.sensor);
     this.lookFromSensor(info, geometry.boundingSphere);
@@ -194,13 +203,20 @@ export class Viewer {
     this.orbit.update();
   }
 
+  /** Points the raycaster through the mouse event's position; the canvas's rectangle. */
+  aimAt(event) {
+    const rect = this.renderer.domElement.getBoundingClientRect();
+    const ndc = new THREE.Vector2(
+        (event.clientX - rect.left) / rect.width * 2 - 1,
+        -(event.clientY - rect.top) / rect.height * 2 + 1);
+    this.raycaster.setFromCamera(ndc, this.camera);
+    return rect;
+  }
+
   /** The cloud point under a click, nearest the eye; null when the click hit no point. */
   pick(event) {
     if (!this.points) return null;
-    const rect = this.renderer.domElement.getBoundingClientRect();
-    const ndc = new THREE.Vector2((event.clientX - rect.left) / rect.width * 2 - 1,
-                                  -(event.clientY - rect.top) / rect.height * 2 + 1);
-    this.raycaster.setFromCamera(ndc, this.camera);
+    this.aimAt(event);
     // A few pixels' width at the orbit target's distance.
     const distance = this.camera.position.distanceTo(this.orbit.target);
     this.raycaster.params.Points.threshold = 0.004 * distance;
@@ -288,10 +304,7 @@ export class Viewer {
   }
 
   hover(event) {
-    const rect = this.renderer.domElement.getBoundingClientRect();
-    const ndc = new THREE.Vector2((event.clientX - rect.left) / rect.width * 2 - 1,
-                                  -(event.clientY - rect.top) / rect.height * 2 + 1);
-    this.raycaster.setFromCamera(ndc, this.camera);
+    const rect = this.aimAt(event);
     const hit = this.raycaster.intersectObjects(this.hoverable.map((h) => h.mesh))[0];
     const item = hit && this.hoverable.find((h) => h.mesh === hit.object);
     this.tooltip.hidden = !item;

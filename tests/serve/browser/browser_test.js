@@ -36,36 +36,52 @@ function check(condition, message) {
 }
 
 const started = Date.now();
-function step(text) { console.log(`- ${((Date.now() - started) / 1000).toFixed(1)} s: ${text}`); }
+function step(text) {
+  console.log(`- ${((Date.now() - started) / 1000).toFixed(1)} s: ${text}`);
+}
 
 // The scene and the point to click: the carton of the real milk frame, or of a synthetic tabletop.
 function chooseScene() {
   const milk = path.join(sharedData, 'pcl', 'milk_cartoon_all_small_clorox.pcd');
   if (sharedData && fs.existsSync(milk)) {
     // milk.pcd is the carton alone, in the same camera frame: the middle of its bounds.
-    const info = JSON.parse(execFileSync(lmk, ['info', path.join(sharedData, 'pcl', 'milk.pcd'),
-                                               '--json']));
+    const info =
+        JSON.parse(execFileSync(lmk, ['info', path.join(sharedData, 'pcl', 'milk.pcd'), '--json']));
     const target = info.bounds.min.map((v, i) => (v + info.bounds.max[i]) / 2);
-    return {scene: milk, target, flags: [], name: 'carton', what: 'the carton of the real milk frame'};
+    return {
+      scene: milk,
+      target,
+      flags: [],
+      name: 'carton',
+      what: 'the carton of the real milk frame'
+    };
   }
   const scene = path.join(workDir, 'tabletop.pcd');
   const out = execFileSync(lmk, ['gen', scene, '--seed', '1']).toString();
   // The cup: seen nearly face-on, the carton of this frame is a flat face, which capture refuses.
   const m = out.match(/cup\s+centre\s+(\S+)\s+(\S+)\s+(\S+)/);
   check(m, `lmk gen did not name the cup:\n${out}`);
-  return {scene, target: m.slice(1, 4).map(Number), flags: ['--base-frame'], name: 'cup',
-          what: 'the cup of a synthetic tabletop (../shared/data is absent)'};
+  return {
+    scene,
+    target: m.slice(1, 4).map(Number),
+    flags: ['--base-frame'],
+    name: 'cup',
+    what: 'the cup of a synthetic tabletop (../shared/data is absent)'
+  };
 }
 
 function startServer(scene, landmarks, flags) {
-  const child = spawn(lmk, ['serve', scene, '--landmarks', landmarks, '--port', '0', '--quiet',
-                            ...flags], {stdio: ['ignore', 'pipe', 'pipe'], detached: true});
+  const child = spawn(
+      lmk, ['serve', scene, '--landmarks', landmarks, '--port', '0', '--quiet', ...flags],
+      {stdio: ['ignore', 'pipe', 'pipe'], detached: true});
   children.push(child);
   return new Promise((resolve, reject) => {
     let out = '', err = '';
-    const timer = setTimeout(() => reject(new Error(`lmk serve did not start:\n${out}${err}`)),
-                             60000);
-    child.stderr.on('data', (d) => { err += d; });
+    const timer =
+        setTimeout(() => reject(new Error(`lmk serve did not start:\n${out}${err}`)), 60000);
+    child.stderr.on('data', (d) => {
+      err += d;
+    });
     child.on('exit', (code) => reject(new Error(`lmk serve exited (${code}):\n${out}${err}`)));
     child.stdout.on('data', (d) => {
       out += d;
@@ -122,8 +138,8 @@ async function main() {
   step(`scene ${scene}: ${what}, clicked at ${target.map((v) => v.toFixed(3)).join(' ')}`);
 
   const url = await startServer(scene, landmarks, flags);
-  const chrome = await cdp.launchChromium(path.join(workDir, 'chromium-profile'),
-                                          {width: WIDTH, height: HEIGHT});
+  const chrome = await cdp.launchChromium(
+      path.join(workDir, 'chromium-profile'), {width: WIDTH, height: HEIGHT});
   children.push(chrome.process);
   const browser = await cdp.Session.connect(chrome.url);
   const page = await cdp.Page.open(browser, WIDTH, HEIGHT);
@@ -157,20 +173,20 @@ async function main() {
   // 3. Accept the guess: name it, see the verdict, save.
   await page.type('#landmark-name', name);
   await page.clickOn('#check');
-  await page.waitFor("!document.getElementById('save').disabled", 'the verdict');
-  step(`verdict: ${await page.evaluate("document.getElementById('verdict').textContent")}`);
+  await page.waitFor('!document.getElementById(\'save\').disabled', 'the verdict');
+  step(`verdict: ${await page.evaluate('document.getElementById(\'verdict\').textContent')}`);
   await page.clickOn('#save');
-  await page.waitFor("document.getElementById('status').textContent.startsWith('wrote')",
-                     'the capture');
+  await page.waitFor(
+      'document.getElementById(\'status\').textContent.startsWith(\'wrote\')', 'the capture');
   const file = path.join(landmarks, `${name}.lmk`);
   check(fs.existsSync(file), `${file} was not written`);
-  step(`${await page.evaluate("document.getElementById('status').textContent")}`);
+  step(`${await page.evaluate('document.getElementById(\'status\').textContent')}`);
   await saveScreenshot(page, 'capture.png');
 
   // 4. Find it.
   await page.clickOn('#find');
-  await page.waitFor("lmk.find.last && document.getElementById('find-progress').hidden",
-                     'the search');
+  await page.waitFor(
+      'lmk.find.last && document.getElementById(\'find-progress\').hidden', 'the search');
   await page.evaluate('new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r)))');
 
   // 5. What the page shows, against lmk find on the same files.
@@ -180,25 +196,31 @@ async function main() {
   const result = await page.evaluate('lmk.find.last.results[0]');
   await saveScreenshot(page, 'find.png');
   const cli = JSON.parse(execFileSync(lmk, ['find', scene, file, '--json', '-', ...flags]));
-  step(`page: ${shown.length} match(es), errors ${shown.map((m) => m.text).join(', ')}; ` +
-       `lmk find: ${cli.matches.length}`);
+  step(
+      `page: ${shown.length} match(es), errors ${shown.map((m) => m.text).join(', ')}; ` +
+      `lmk find: ${cli.matches.length}`);
   check(shown.length > 0, `the page shows no match for the captured ${name}`);
-  check(shown.length === cli.matches.length,
-        `the page shows ${shown.length} matches, lmk find ${cli.matches.length}`);
+  check(
+      shown.length === cli.matches.length,
+      `the page shows ${shown.length} matches, lmk find ${cli.matches.length}`);
   cli.matches.forEach((m, i) => {
     check(shown[i].error === m.error, `match ${i + 1}: error ${shown[i].error} != ${m.error}`);
-    check(shown[i].text === `${(1000 * m.error).toFixed(3)} mm`,
-          `match ${i + 1}: the page reads '${shown[i].text}' for ${m.error} m`);
+    check(
+        shown[i].text === `${(1000 * m.error).toFixed(3)} mm`,
+        `match ${i + 1}: the page reads '${shown[i].text}' for ${m.error} m`);
     const p = result.matches[i].position;
-    check(p.every((v, k) => Math.abs(v - m.position[k]) < 1e-9),
-          `match ${i + 1}: position ${p} != ${m.position}`);
+    check(
+        p.every((v, k) => Math.abs(v - m.position[k]) < 1e-9),
+        `match ${i + 1}: position ${p} != ${m.position}`);
   });
   // 6. The same file uploaded through the page's file input: a new scene, shown in its place.
   const {root} = await page.send('DOM.getDocument');
   const {nodeId} = await page.send('DOM.querySelector', {nodeId: root.nodeId, selector: '#upload'});
   await page.send('DOM.setFileInputFiles', {nodeId, files: [scene]});
-  await page.waitFor(`lmk.sceneId !== '1' &&
-      document.getElementById('status').textContent.includes('click an object')`, 'the upload');
+  await page.waitFor(
+      `lmk.sceneId !== '1' &&
+      document.getElementById('status').textContent.includes('click an object')`,
+      'the upload');
   const uploaded = await page.evaluate(`[document.getElementById('scene-select').selectedOptions[0]
       .textContent, document.getElementById('scene-info').textContent]`);
   step(`uploaded: ${uploaded[0]}: ${uploaded[1]}`);
@@ -211,9 +233,10 @@ async function main() {
   // and refusal are lmk pbd plan's.
   const task = path.join(workDir, 'task1');
   execFileSync(lmk, ['pbd', 'demo-tasks', '--task', '1', '--save', workDir], {stdio: 'ignore'});
-  for (const [scenario, program] of [['scenario1.pcd', 'pick_tool'], ['scenario3.pcd', 'pick_tool']]) {
-    const taskUrl = await startServer(path.join(task, scenario), task,
-                                      ['--programs', task, '--base-frame']);
+  for (const [scenario, program] of [
+           ['scenario1.pcd', 'pick_tool'], ['scenario3.pcd', 'pick_tool']]) {
+    const taskUrl =
+        await startServer(path.join(task, scenario), task, ['--programs', task, '--base-frame']);
     await page.send('Page.navigate', {url: taskUrl});
     await page.waitFor('window.lmkReady && window.lmk && window.lmk.sceneId', 'the page');
     await page.evaluate(`(() => {
@@ -222,14 +245,18 @@ async function main() {
       s.dispatchEvent(new Event('change'));
     })()`);
     await page.clickOn('#plan');
-    const verdict = await page.waitFor(`(() => {
+    const verdict = await page.waitFor(
+        `(() => {
       const t = document.getElementById('plan-result').textContent;
       return /plan valid|refused/.test(t) && t;
-    })()`, 'the plan');
+    })()`,
+        'the plan');
     let cli;
     try {
-      cli = JSON.parse(execFileSync(lmk, ['pbd', 'plan', path.join(task, `${program}.json`),
-                                          '--scene', path.join(task, scenario), '--json']));
+      cli = JSON.parse(execFileSync(lmk, [
+        'pbd', 'plan', path.join(task, `${program}.json`), '--scene', path.join(task, scenario),
+        '--json'
+      ]));
     } catch (e) {
       cli = JSON.parse(e.stdout);  // a refused plan exits 1, with the plan's JSON
     }
@@ -237,30 +264,39 @@ async function main() {
     step(`${program} on ${scenario}: ${refusal ? `refused: ${refusal[2]}` : 'plan valid'}`);
     check(Boolean(refusal) === !cli.valid, `page: ${verdict}; lmk pbd plan valid: ${cli.valid}`);
     if (refusal) {
-      check(refusal[1] === cli.refusal.kind && refusal[2] === cli.refusal.message,
-            `the page's refusal '${refusal[0]}' is not lmk pbd plan's: ${JSON.stringify(cli.refusal)}`);
+      check(
+          refusal[1] === cli.refusal.kind && refusal[2] === cli.refusal.message,
+          `the page's refusal '${refusal[0]}' is not lmk pbd plan's: ${
+              JSON.stringify(cli.refusal)}`);
     } else {
       const drawn = await page.evaluate('lmk.viewer.layers.targets.children.length');
-      check(drawn === cli.steps.reduce((n, st) => n + st.arms.length, 0),
-            `${drawn} gripper targets drawn for ${cli.steps.length} steps`);
+      check(
+          drawn === cli.steps.reduce((n, st) => n + st.arms.length, 0),
+          `${drawn} gripper targets drawn for ${cli.steps.length} steps`);
     }
     await saveScreenshot(page, `program-${path.basename(scenario, '.pcd')}.png`);
   }
   browser.close();
-  console.log(`PASS: the page's ${shown.length} match(es) equal lmk find's; screenshots in ` +
-              workDir);
+  console.log(
+      `PASS: the page's ${shown.length} match(es) equal lmk find's; screenshots in ` + workDir);
 }
 
 function stopAll() {
   for (const child of children) {
     try {
       process.kill(-child.pid, 'SIGKILL');  // the process group: chromium's helpers too
-    } catch (e) { /* already gone */ }
+    } catch (e) {                           /* already gone */
+    }
   }
 }
 
-main().then(() => { stopAll(); process.exit(0); }, (e) => {
-  console.error(`FAIL: ${e.stack || e.message}`);
-  stopAll();
-  process.exit(1);
-});
+main().then(
+    () => {
+      stopAll();
+      process.exit(0);
+    },
+    (e) => {
+      console.error(`FAIL: ${e.stack || e.message}`);
+      stopAll();
+      process.exit(1);
+    });

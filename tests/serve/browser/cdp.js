@@ -9,17 +9,28 @@ const WebSocket = require('ws');
 /** Starts Chromium; resolves to {browser, process} once its DevTools endpoint is listening. */
 function launchChromium(userDataDir, {width = 1400, height = 850} = {}) {
   const args = [
-    '--headless', '--no-sandbox', '--disable-gpu', '--disable-dev-shm-usage',
+    '--headless',
+    '--no-sandbox',
+    '--disable-gpu',
+    '--disable-dev-shm-usage',
     // WebGL in software: headless machines have no GPU.
-    '--use-angle=swiftshader', '--enable-unsafe-swiftshader',
-    '--no-first-run', '--no-default-browser-check', `--window-size=${width},${height}`,
-    `--user-data-dir=${userDataDir}`, '--remote-debugging-port=0', 'about:blank',
+    '--use-angle=swiftshader',
+    '--enable-unsafe-swiftshader',
+    '--no-first-run',
+    '--no-default-browser-check',
+    `--window-size=${width},${height}`,
+    `--user-data-dir=${userDataDir}`,
+    '--remote-debugging-port=0',
+    'about:blank',
   ];
   const child = spawn('chromium', args, {stdio: ['ignore', 'ignore', 'pipe'], detached: true});
   return new Promise((resolve, reject) => {
     let stderr = '';
     const timer = setTimeout(() => reject(new Error(`chromium did not start:\n${stderr}`)), 30000);
-    child.on('error', (e) => { clearTimeout(timer); reject(e); });
+    child.on('error', (e) => {
+      clearTimeout(timer);
+      reject(e);
+    });
     child.on('exit', (code) => {
       clearTimeout(timer);
       reject(new Error(`chromium exited (${code}):\n${stderr}`));
@@ -46,8 +57,10 @@ class Session {
       if (msg.id && this.pending.has(msg.id)) {
         const {resolve, reject, method} = this.pending.get(msg.id);
         this.pending.delete(msg.id);
-        if (msg.error) reject(new Error(`${method}: ${msg.error.message}`));
-        else resolve(msg.result);
+        if (msg.error)
+          reject(new Error(`${method}: ${msg.error.message}`));
+        else
+          resolve(msg.result);
       } else if (msg.method) {
         for (const l of this.listeners) l(msg);
       }
@@ -56,7 +69,10 @@ class Session {
 
   static async connect(url) {
     const ws = new WebSocket(url, {perMessageDeflate: false, maxPayload: 256 << 20});
-    await new Promise((resolve, reject) => { ws.once('open', resolve); ws.once('error', reject); });
+    await new Promise((resolve, reject) => {
+      ws.once('open', resolve);
+      ws.once('error', reject);
+    });
     return new Session(ws);
   }
 
@@ -66,7 +82,9 @@ class Session {
     return new Promise((resolve, reject) => this.pending.set(id, {resolve, reject, method}));
   }
 
-  close() { this.ws.close(); }
+  close() {
+    this.ws.close();
+  }
 }
 
 /** A page (tab) of the browser, driven through a flattened target session. */
@@ -79,16 +97,16 @@ class Page {
     browser.listeners.push((msg) => {
       if (msg.sessionId !== sessionId) return;
       if (msg.method === 'Runtime.exceptionThrown') {
-        page.errors.push(msg.params.exceptionDetails.exception?.description ||
-                         msg.params.exceptionDetails.text);
+        page.errors.push(
+            msg.params.exceptionDetails.exception?.description || msg.params.exceptionDetails.text);
       } else if (msg.method === 'Runtime.consoleAPICalled' && msg.params.type === 'error') {
         page.errors.push(msg.params.args.map((a) => a.value ?? a.description).join(' '));
       }
     });
     await page.send('Runtime.enable');
     await page.send('Page.enable');
-    await page.send('Emulation.setDeviceMetricsOverride',
-                    {width, height, deviceScaleFactor: 1, mobile: false});
+    await page.send(
+        'Emulation.setDeviceMetricsOverride', {width, height, deviceScaleFactor: 1, mobile: false});
     return page;
   }
 
@@ -97,15 +115,18 @@ class Page {
     this.sessionId = sessionId;
   }
 
-  send(method, params = {}) { return this.browser.send(method, params, this.sessionId); }
+  send(method, params = {}) {
+    return this.browser.send(method, params, this.sessionId);
+  }
 
   /** The value of a JavaScript expression in the page (awaited if it is a promise). */
   async evaluate(expression) {
-    const r = await this.send('Runtime.evaluate',
-                              {expression, awaitPromise: true, returnByValue: true});
+    const r =
+        await this.send('Runtime.evaluate', {expression, awaitPromise: true, returnByValue: true});
     if (r.exceptionDetails) {
-      throw new Error(`in the page: ${expression}: ` +
-                      (r.exceptionDetails.exception?.description || r.exceptionDetails.text));
+      throw new Error(
+          `in the page: ${expression}: ` +
+          (r.exceptionDetails.exception?.description || r.exceptionDetails.text));
     }
     return r.result.value;
   }
@@ -116,7 +137,11 @@ class Page {
     for (;;) {
       const value = await this.evaluate(expression);
       if (value) return value;
-      if (Date.now() > end) throw new Error(`timed out waiting for ${what}`);
+      if (Date.now() > end) {
+        const errors =
+            this.errors && this.errors.length ? `; the page: ${this.errors.join('; ')}` : '';
+        throw new Error(`timed out waiting for ${what}${errors}`);
+      }
       await new Promise((r) => setTimeout(r, 100));
     }
   }
@@ -124,10 +149,12 @@ class Page {
   /** A real mouse click (move, press, release) at page coordinates. */
   async click(x, y) {
     await this.send('Input.dispatchMouseEvent', {type: 'mouseMoved', x, y});
-    await this.send('Input.dispatchMouseEvent',
-                    {type: 'mousePressed', x, y, button: 'left', buttons: 1, clickCount: 1});
-    await this.send('Input.dispatchMouseEvent',
-                    {type: 'mouseReleased', x, y, button: 'left', buttons: 0, clickCount: 1});
+    await this.send(
+        'Input.dispatchMouseEvent',
+        {type: 'mousePressed', x, y, button: 'left', buttons: 1, clickCount: 1});
+    await this.send(
+        'Input.dispatchMouseEvent',
+        {type: 'mouseReleased', x, y, button: 'left', buttons: 0, clickCount: 1});
   }
 
   /** Clicks the middle of the element matched by `selector`. */
@@ -155,4 +182,8 @@ class Page {
   }
 }
 
-module.exports = {launchChromium, Session, Page};
+module.exports = {
+  launchChromium,
+  Session,
+  Page
+};
