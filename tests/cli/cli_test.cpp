@@ -192,6 +192,26 @@ TEST_F(CliLandmark, CaptureShowExportImportFind) {
                                   " --max-seeds 150 --timings --json -");
   ASSERT_EQ(timed.exit_code, 0) << timed.err;
   EXPECT_GT(nlohmann::json::parse(timed.out)["stats"]["seconds"].get<double>(), 0.0);
+  // --rejected adds the candidates turned down, each with its reason, as many as the stats count.
+  EXPECT_FALSE(j.contains("rejected"));
+  const CommandResult rejected = lmk("find " + path("scene.pcd") + " " + path("carton.lmk") +
+                                     " --max-seeds 150 --rejected --json -");
+  ASSERT_EQ(rejected.exit_code, 0) << rejected.err;
+  const auto r = nlohmann::json::parse(rejected.out);
+  EXPECT_EQ(r["matches"], j["matches"]);
+  const auto& stats = r["stats"];
+  EXPECT_EQ(r["rejected"].size(), stats["rejected_error"].get<std::size_t>() +
+                                      stats["rejected_coverage"].get<std::size_t>() +
+                                      stats["rejected_empty_space"].get<std::size_t>());
+  for (const auto& c : r["rejected"]) {
+    const std::string reason = c["reason"];
+    EXPECT_TRUE(reason == "error above threshold" || reason == "coverage too low" ||
+                reason == "empty space occupied")
+        << reason;
+    if (reason == "error above threshold") {
+      EXPECT_GE(c["error"].get<double>(), stats["threshold"].get<double>());
+    }
+  }
 
   const CommandResult table =
       lmk("find " + path("scene.pcd") + " " + path("carton.lmk") + " --max-seeds 150");
