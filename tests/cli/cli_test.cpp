@@ -1,9 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The lmk command line end to end: exit codes, one-line errors, JSON output. Runs the real binary.
 
+#include <arpa/inet.h>
 #include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -587,6 +591,23 @@ TEST_F(Cli, ServeWarnsOnAnAddressOtherThanLoopbackAndStopsOnCtrlC) {
   EXPECT_EQ(loopback.exit_code, 0) << loopback.err;
   EXPECT_NE(loopback.out.find("open http://127.0.0.1:"), std::string::npos) << loopback.out;
   EXPECT_EQ(loopback.err.find("warning"), std::string::npos) << loopback.err;
+}
+
+TEST_F(Cli, ServeOnAPortInUseIsOneLine) {
+  // The test holds a listening socket on a free port of loopback; lmk serve is asked for it.
+  const int socket_fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  ASSERT_GE(socket_fd, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  socklen_t length = sizeof(address);
+  ASSERT_EQ(::bind(socket_fd, reinterpret_cast<sockaddr*>(&address), length), 0);
+  ASSERT_EQ(::listen(socket_fd, 1), 0);
+  ASSERT_EQ(::getsockname(socket_fd, reinterpret_cast<sockaddr*>(&address), &length), 0);
+  const std::string port = std::to_string(ntohs(address.sin_port));
+  expect_bad_input("serve --quiet --landmarks " + path("lm") + " --port " + port,
+                   "cannot listen on 127.0.0.1:" + port);
+  ::close(socket_fd);
 }
 
 }  // namespace
