@@ -90,6 +90,24 @@ PairInput matches_within(const PairResult& pair, double threshold) {
   return in;
 }
 
+int pair_shard(const std::string& scene, const std::string& landmark, int count) {
+  // The names, not the pair's position: a dataset that grows keeps every pair in its shard.
+  const std::uint64_t h = Fnv1a().add(scene).add(landmark).value();
+  return 1 + static_cast<int>(h % static_cast<std::uint64_t>(std::max(count, 1)));
+}
+
+Shard parse_shard(const std::string& text) {
+  Shard shard;
+  char slash = 0, extra = 0;
+  const int read =
+      std::sscanf(text.c_str(), "%d%c%d%c", &shard.index, &slash, &shard.count, &extra);
+  if (read != 3 || slash != '/' || shard.count < 1 || shard.index < 1 ||
+      shard.index > shard.count) {
+    throw Error("shard '" + text + "': must be K/N with 1 <= K <= N, such as 2/8");
+  }
+  return shard;
+}
+
 std::string evaluation_cache_key(const FindSettings& find, const std::string& fingerprint) {
   // The settings as the search applies them, so that spelling out a default keeps the key.
   FindSettings applied = find;
@@ -123,6 +141,9 @@ Evaluation evaluate(const std::string& dir, const Dataset& dataset,
   evaluation.settings.progress = nullptr;
   evaluation.settings.stop_requested = nullptr;
   validate(settings.find);  // bad settings fail before any work
+  if (settings.cached_only && settings.cache_dir.empty()) {
+    throw Error("merge: the pairs come from the cache, and there is none (--no-cache)");
+  }
 
   // Every pair to search, scene by scene, and the landmarks, loaded once.
   struct Job {
@@ -132,7 +153,12 @@ Evaluation evaluate(const std::string& dir, const Dataset& dataset,
   for (std::size_t s = 0; s < dataset.scenes.size(); ++s) {
     for (std::size_t l = 0; l < dataset.landmarks.size(); ++l) {
       const DatasetPair truth = dataset.pair(dataset.scenes[s], dataset.landmarks[l].name);
-      if (!settings.in_context_only || truth.in_context) jobs.push_back({s, l});
+      if (settings.in_context_only && !truth.in_context) continue;
+      if (settings.shard && pair_shard(dataset.scenes[s].name, dataset.landmarks[l].name,
+                                       settings.shard->count) != settings.shard->index) {
+        continue;
+      }
+      jobs.push_back({s, l});
     }
   }
   std::vector<Landmark> landmarks;
@@ -145,6 +171,7 @@ Evaluation evaluate(const std::string& dir, const Dataset& dataset,
   const double threshold = effective_threshold(settings.find);
 
   evaluation.pairs.resize(jobs.size());
+  std::vector<char> missing(jobs.size(), 0);  // cached_only: not in the cache
   std::atomic<std::size_t> done{0}, cached{0};
   std::atomic<bool> stopped{false};
   const auto stopping = [&] {
@@ -179,6 +206,10 @@ Evaluation evaluate(const std::string& dir, const Dataset& dataset,
           to_search.push_back(k);
         }
       }
+      if (settings.cached_only) {
+        for (std::size_t k : to_search) missing[k] = 1;
+        return;
+      }
       if (to_search.empty() || stopping()) return;
       const PointCloud cloud = read_cloud((fs::path(dir) / scene.file).string());
       tbb::parallel_for(std::size_t{0}, to_search.size(), [&](std::size_t i) {
@@ -204,6 +235,17 @@ Evaluation evaluate(const std::string& dir, const Dataset& dataset,
                                                   : "they are cached in " + settings.cache_dir +
                                                         ": the same command resumes from them"));
   }
+  // A merge keeps what the cache had and names the rest.
+  std::vector<PairResult> kept;
+  for (std::size_t k = 0; k < jobs.size(); ++k) {
+    if (!missing[k]) {
+      kept.push_back(std::move(evaluation.pairs[k]));
+    } else {
+      evaluation.missing.emplace_back(dataset.scenes[jobs[k].scene].name,
+                                      dataset.landmarks[jobs[k].landmark].name);
+    }
+  }
+  evaluation.pairs = std::move(kept);
   evaluation.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return evaluation;
 }

@@ -19,6 +19,20 @@
 
 namespace lmk {
 
+/// One machine's share of an evaluation's pairs (docs/cluster.md): shard `index` of `count`,
+/// 1-based. A pair belongs to the shard pair_shard() names, a hash of its scene and landmark
+/// names, so that adding scenes to a dataset moves no other pair to another shard.
+struct Shard {
+  int index = 1;
+  int count = 1;
+};
+
+/// The shard (1 to `count`) of the pair (scene, landmark).
+int pair_shard(const std::string& scene, const std::string& landmark, int count);
+
+/// "K/N" as a Shard; lmk::Error unless 1 <= K <= N.
+Shard parse_shard(const std::string& text);
+
 struct EvaluationSettings {
   /// The search: method, metric, threshold, max_seeds, ... (threads and progress are ignored: the
   /// evaluation runs one search per thread).
@@ -26,6 +40,10 @@ struct EvaluationSettings {
   bool in_context_only = false;  ///< search in-context pairs only (assumptions 2 and 3)
   int threads = 0;               ///< pairs searched at once; 0 uses every core
   std::string cache_dir;         ///< where pair results are cached; empty: no cache
+  std::optional<Shard> shard;    ///< only this shard's pairs; unset: every pair
+  /// Merge: take every pair from the cache and search none; those not there are listed in
+  /// Evaluation::missing. Needs a cache.
+  bool cached_only = false;
   MatchTolerance tolerance;
   /// Called after each pair with (pairs done, pairs in all, of those done how many from the cache),
   /// possibly from several threads at once.
@@ -87,7 +105,9 @@ struct Evaluation {
   std::string fingerprint;  ///< dataset_fingerprint() of it
   EvaluationSettings settings;
   std::vector<PairResult> pairs;  ///< in dataset order: scene by scene, landmark by landmark
-  double seconds = 0.0;           ///< wall time of the whole run
+  /// With settings.cached_only: the pairs (scene, landmark) the cache lacks, in dataset order.
+  std::vector<std::pair<std::string, std::string>> missing;
+  double seconds = 0.0;  ///< wall time of the whole run
 };
 
 /// Searches every pair of the dataset in `dir` (or its in-context pairs only), resuming from the

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // lmk eval [--dataset DIR | --preset NAME] [search options] [--pairs all|in-context]
 //          [--threads N] [--json FILE] [--report DIR] [--cache DIR | --no-cache]
+//          [--shard K/N | --merge]
 // The paper's precision/recall table of a search method on a dataset (docs/evaluation.md).
 
 #include <cstdio>
@@ -24,13 +25,49 @@ struct EvalOptions {
   DatasetOptions dataset;
   EvaluationSettings settings;
   std::string json, report;
-  std::string by;  ///< "range" or "hidden": also the table split by that
+  std::string by;     ///< "range" or "hidden": also the table split by that
+  std::string shard;  ///< --shard K/N
+  bool merge = false;
   bool timings = false;
 };
 
+// One line naming the pairs a merge lacks: the first few, and how many more.
+std::string describe_missing(const Evaluation& e) {
+  const std::size_t total = e.missing.size() + e.pairs.size();
+  std::string names;
+  constexpr std::size_t kNamed = 5;
+  for (std::size_t i = 0; i < std::min(kNamed, e.missing.size()); ++i) {
+    names += (i ? ", " : "") + e.missing[i].first + " x " + e.missing[i].second;
+  }
+  if (e.missing.size() > kNamed)
+    names += ", and " + std::to_string(e.missing.size() - kNamed) + " more";
+  return "merge: " + std::to_string(e.missing.size()) + " of " + std::to_string(total) +
+         " pairs are not in the cache (" + names +
+         "): run their shards again (each computes only what it lacks)";
+}
+
+int run_shard(const LoadedDataset& data, EvalOptions& o) {
+  if (o.settings.cache_dir.empty()) {
+    throw Error("--shard: a shard's results go into the cache, for --merge; --no-cache has none");
+  }
+  const Shard& shard = *o.settings.shard;
+  const std::string label = "shard " + o.shard;
+  const Evaluation evaluation = evaluate_with_progress(data, o.settings, label);
+  std::printf(
+      "%s: its %zu pairs are in the cache %s; once every shard of %d has run, lmk eval --merge "
+      "with the same dataset and settings prints the table\n",
+      label.c_str(), evaluation.pairs.size(), o.settings.cache_dir.c_str(), shard.count);
+  return kOk;
+}
+
 int run_eval(EvalOptions& o) {
+  if (!o.shard.empty()) o.settings.shard = parse_shard(o.shard);
+  o.settings.cached_only = o.merge;
   const LoadedDataset data = load_or_generate(o.dataset, o.settings.cache_dir);
-  const Evaluation evaluation = evaluate_with_progress(data, o.settings, "eval");
+  if (o.settings.shard) return run_shard(data, o);
+  const Evaluation evaluation =
+      evaluate_with_progress(data, o.settings, o.merge ? "merge" : "eval");
+  if (!evaluation.missing.empty()) throw Error(describe_missing(evaluation));
   const std::vector<EvaluationRow> rows = evaluation_rows(evaluation);
   std::printf("%s\n\n%s", evaluation_header(evaluation).c_str(),
               evaluation_table(rows).plain().c_str());
@@ -72,6 +109,13 @@ Subcommand add_eval(CLI::App& app) {
                   "Also split the table by 'range' (the distance from the sensor, 0.5 m bins) or "
                   "'hidden' (the fraction of each instance the sensor does not see, 20% bins)")
       ->check(CLI::IsMember({"range", "hidden"}));
+  auto* shard = sub->add_option("--shard", o->shard,
+                                "Evaluate only shard K of N (K/N): a stable share of the pairs, "
+                                "for one machine of a cluster; results go into the cache");
+  sub->add_flag("--merge", o->merge,
+                "Print the table from the cache alone, searching nothing; names the pairs "
+                "no shard has computed yet")
+      ->excludes(shard);
   sub->add_option("--report", o->report,
                   "Write report.json, report.md and report.html (with plots) into DIR");
   return {sub, [o] { return run_eval(*o); }};

@@ -85,6 +85,8 @@ Evaluation evaluate_with_progress(const LoadedDataset& data, EvaluationSettings 
     };
     return evaluate(data.dir, data.dataset, settings);
   }();
+  // A merge that lacks pairs is refused by its caller, in one line of its own.
+  if (!evaluation.missing.empty()) return evaluation;
   std::size_t cached = 0;
   for (const PairResult& p : evaluation.pairs) cached += p.from_cache ? 1 : 0;
   std::fprintf(stderr, "%s: %zu pairs (%zu searched, %zu from the cache) in %.1f s\n",

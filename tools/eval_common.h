@@ -34,7 +34,7 @@ struct LoadedDataset {
 LoadedDataset load_or_generate(const DatasetOptions& options, const std::string& cache_dir);
 
 /// evaluate() with a progress bar on a terminal and, either way, a summary line on stderr at the
-/// end: pairs searched, from the cache, wall time.
+/// end: pairs searched, from the cache, wall time (none for a merge that lacks pairs).
 Evaluation evaluate_with_progress(const LoadedDataset& data, EvaluationSettings settings,
                                   const std::string& label);
 

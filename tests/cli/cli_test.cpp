@@ -9,6 +9,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <array>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <regex>
@@ -442,6 +444,68 @@ TEST_F(Cli, GenPresetEvalAndAblateOnASmallDataset) {
   EXPECT_NE(ablate.out.find("vdb"), std::string::npos);
   EXPECT_TRUE(std::filesystem::exists(dir_.path() / "ablation" / "ablation.json"));
   EXPECT_TRUE(std::filesystem::exists(dir_.path() / "ablation" / "ablation.md"));
+}
+
+// lmk eval --shard K/N on three "machines", then --merge: the JSON of the single-machine run, byte
+// for byte; a pair lost from the cache is named by the merge and recomputed alone (issue #20).
+TEST_F(Cli, ShardedEvaluationMergesToTheSingleMachineRun) {
+  ASSERT_EQ(lmk("gen --preset paper --types simple/three_balls,simple/bowl_and_cup,"
+                "cluttered/spray_with_clutter " +
+                path("data"))
+                .exit_code,
+            0);
+  const std::string data = " --dataset " + path("data");
+  const CommandResult single =
+      lmk("eval" + data + " --cache " + path("one") + " --json " + path("single.json"));
+  ASSERT_EQ(single.exit_code, 0) << single.err;
+  const std::regex counted(R"(: (\d+) pairs \((\d+) searched, (\d+) from the cache\))");
+  const auto counts = [&counted](const std::string& err) {
+    std::smatch m;
+    return std::regex_search(err, m, counted)
+               ? std::array<int, 3>{std::stoi(m[1]), std::stoi(m[2]), std::stoi(m[3])}
+               : std::array<int, 3>{-1, -1, -1};
+  };
+  const int total = counts(single.err)[0];
+  ASSERT_GT(total, 3);
+  const std::string cluster = data + " --cache " + path("cluster");
+  int sharded = 0;
+  for (int k = 1; k <= 3; ++k) {
+    const CommandResult shard = lmk("eval" + cluster + " --shard " + std::to_string(k) + "/3");
+    ASSERT_EQ(shard.exit_code, 0) << shard.err;
+    sharded += counts(shard.err)[1];
+    EXPECT_NE(shard.out.find("lmk eval --merge"), std::string::npos) << shard.out;
+  }
+  EXPECT_EQ(sharded, total);  // every pair in exactly one shard
+  const CommandResult merged = lmk("eval" + cluster + " --merge --json " + path("merged.json"));
+  ASSERT_EQ(merged.exit_code, 0) << merged.err;
+  EXPECT_EQ(counts(merged.err), (std::array<int, 3>{total, 0, total}));
+  EXPECT_EQ(slurp(dir_.file("merged.json")), slurp(dir_.file("single.json")));
+
+  // A pair lost (a shard that crashed before writing it): the merge names it and refuses.
+  std::filesystem::path lost;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(dir_.file("cluster"))) {
+    if (e.path().parent_path().parent_path().filename() == "evaluations") lost = e.path();
+  }
+  ASSERT_FALSE(lost.empty());
+  const nlohmann::json entry = nlohmann::json::parse(slurp(lost.string()));
+  std::filesystem::remove(lost);
+  expect_bad_input("eval" + cluster + " --merge",
+                   "merge: 1 of " + std::to_string(total) + " pairs are not in the cache (" +
+                       entry.at("scene").get<std::string>() + " x " +
+                       entry.at("landmark").get<std::string>() + ")");
+  // Rerunning every shard computes that pair alone.
+  int searched = 0;
+  for (int k = 1; k <= 3; ++k) {
+    searched += counts(lmk("eval" + cluster + " --shard " + std::to_string(k) + "/3").err)[1];
+  }
+  EXPECT_EQ(searched, 1);
+  ASSERT_EQ(lmk("eval" + cluster + " --merge --json " + path("again.json")).exit_code, 0);
+  EXPECT_EQ(slurp(dir_.file("again.json")), slurp(dir_.file("single.json")));
+
+  expect_bad_input("eval" + data + " --shard 4/3", "shard '4/3'");
+  expect_bad_input("eval" + data + " --shard 1-3", "shard '1-3'");
+  expect_bad_input("eval" + data + " --no-cache --shard 1/3", "--no-cache");
+  expect_bad_input("eval" + data + " --no-cache --merge", "--no-cache");
 }
 
 // The same inputs and settings give byte-identical JSON: across thread counts, across runs, and

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -405,6 +406,45 @@ TEST_F(EvaluationTest, AblationRunsTheGridAndResumes) {
   EXPECT_EQ(table.rows.size(), 4u);
   EXPECT_EQ(table.header[0], "metric");
   EXPECT_EQ(table.header[1], "threshold");
+}
+
+}  // namespace
+}  // namespace lmk
+
+namespace lmk {
+namespace {
+
+// A shard is a function of the pair's names alone (adding scenes moves no other pair), and the
+// pairs spread evenly over the shards.
+TEST(PairShard, DependsOnTheNamesAloneAndSpreadsThePairs) {
+  std::array<int, 4> per_shard{};
+  for (int s = 0; s < 40; ++s) {
+    for (int l = 0; l < 25; ++l) {
+      const std::string scene = "cluttered/scene-" + std::to_string(s);
+      const std::string landmark = "landmark_" + std::to_string(l);
+      const int shard = pair_shard(scene, landmark, 4);
+      ASSERT_GE(shard, 1);
+      ASSERT_LE(shard, 4);
+      EXPECT_EQ(pair_shard(scene, landmark, 4), shard);
+      ++per_shard[static_cast<std::size_t>(shard - 1)];
+    }
+  }
+  for (int n : per_shard) {
+    EXPECT_GT(n, 200);  // 250 each if perfectly even
+    EXPECT_LT(n, 300);
+  }
+  EXPECT_EQ(pair_shard("a", "b", 1), 1);
+  EXPECT_NE(pair_shard("ab", "c", 1 << 20), pair_shard("a", "bc", 1 << 20));
+}
+
+TEST(PairShard, ParsesKOfN) {
+  EXPECT_EQ(parse_shard("2/8").index, 2);
+  EXPECT_EQ(parse_shard("2/8").count, 8);
+  EXPECT_EQ(parse_shard("1/1").count, 1);
+  for (const char* bad : {"0/3", "4/3", "3", "1/0", "a/b", "1/3x", "-1/3", ""}) {
+    EXPECT_NE(test::error_of([&] { parse_shard(bad); }).find("must be K/N"), std::string::npos)
+        << bad;
+  }
 }
 
 }  // namespace
