@@ -68,6 +68,8 @@ const std::vector<BenchmarkPreset>& benchmark_presets() {
   static const std::vector<BenchmarkPreset> all = {
       {"paper", "the paper's 17 scene types, one scene each", 1, false},
       {"paper-x10", "the paper's 17 scene types, ten scenes each", 10, false},
+      // Cluster scale (docs/cluster.md): 1,700 scenes, about 2,700 in-context pairs.
+      {"paper-x100", "the paper's 17 scene types, a hundred scenes each", 100, false},
       {"rotations", "the 17 scene types with strong rotations and tilts, three scenes each", 3,
        true},
       {"viewpoints",

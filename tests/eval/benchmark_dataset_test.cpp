@@ -87,6 +87,7 @@ TEST(BenchmarkDataset, InstancesRecordTheirHiddenFraction) {
 TEST(BenchmarkDataset, PresetsAndTheirSizes) {
   EXPECT_EQ(benchmark_preset("paper").seeds, 1);
   EXPECT_EQ(benchmark_preset("paper-x10").seeds, 10);
+  EXPECT_EQ(benchmark_preset("paper-x100").seeds, 100);
   EXPECT_TRUE(benchmark_preset("rotations").hard);
   try {
     benchmark_preset("papers");
