@@ -17,7 +17,7 @@ std::string assumption_name(int assumption) {
   }
 }
 
-TextTable evaluation_table(const std::vector<EvaluationRow>& rows) {
+TextTable evaluation_table(const std::vector<EvaluationRow>& rows, bool with_times) {
   TextTable table;
   table.header = {"setting", "assumption", "precision", "recall",    "TP",      "FP",
                   "FN",      "pairs",      "t err mm",  "r err deg", "s/search"};
@@ -30,6 +30,11 @@ TextTable evaluation_table(const std::vector<EvaluationRow>& rows) {
          format_optional(r.median_translation_error, 1, 1e3),
          format_optional(r.median_rotation_error, 2, 180.0 / M_PI),
          format_optional(r.median_seconds, 3)});
+  }
+  if (!with_times) {
+    table.header.pop_back();
+    table.numeric.pop_back();
+    for (auto& row : table.rows) row.pop_back();
   }
   return table;
 }

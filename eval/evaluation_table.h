@@ -12,7 +12,9 @@ namespace lmk {
 
 /// One line per row: setting, assumption, precision, recall, TP/FP/FN, median translation (mm)
 /// and rotation (degrees) errors of the true positives, median seconds per search.
-TextTable evaluation_table(const std::vector<EvaluationRow>& rows);
+/// Without `with_times`, the last column (wall time) is left out: the table is then the same
+/// byte for byte for the same inputs and settings, whichever machines searched its pairs.
+TextTable evaluation_table(const std::vector<EvaluationRow>& rows, bool with_times = true);
 
 /// What the table measured, in one line: dataset, method, metric, threshold, seeds, pairs.
 std::string evaluation_header(const Evaluation& evaluation);

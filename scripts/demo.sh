@@ -11,4 +11,6 @@ bash scripts/build.sh
 build=${LMK_BUILD_DIR:-build}
 "$build/tools/lmk" --version
 echo
-"$build/tools/lmk" eval --report "$build/demo/report"
+# --timings: the table's s/search column, the median wall time per search (left out otherwise, so
+# that the table is the same byte for byte from run to run).
+"$build/tools/lmk" eval --timings --report "$build/demo/report"

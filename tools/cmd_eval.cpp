@@ -70,18 +70,18 @@ int run_eval(EvalOptions& o) {
   if (!evaluation.missing.empty()) throw Error(describe_missing(evaluation));
   const std::vector<EvaluationRow> rows = evaluation_rows(evaluation);
   std::printf("%s\n\n%s", evaluation_header(evaluation).c_str(),
-              evaluation_table(rows).plain().c_str());
+              evaluation_table(rows, o.timings).plain().c_str());
   nlohmann::json json = detail::evaluation_to_json(evaluation, rows);
   if (o.by == "range") {
     const std::vector<EvaluationRow> by_range = evaluation_rows_by_range(evaluation);
     std::printf(
         "\nby range (distance from the sensor to each instance, or to a false match):\n\n%s",
-        evaluation_table(by_range).plain().c_str());
+        evaluation_table(by_range, o.timings).plain().c_str());
     json["rows_by_range"] = detail::rows_to_json(by_range);
   } else if (o.by == "hidden") {
     const std::vector<EvaluationRow> by_hidden = evaluation_rows_by_hidden(evaluation);
     std::printf("\nby the hidden fraction of each instance (false matches in no row):\n\n%s",
-                evaluation_table(by_hidden).plain().c_str());
+                evaluation_table(by_hidden, o.timings).plain().c_str());
     json["rows_by_hidden"] = detail::rows_to_json(by_hidden);
   }
   if (!o.json.empty()) write_text_atomically(o.json, json_output(json, o.timings).dump(2) + "\n");

@@ -480,6 +480,9 @@ TEST_F(Cli, ShardedEvaluationMergesToTheSingleMachineRun) {
   ASSERT_EQ(merged.exit_code, 0) << merged.err;
   EXPECT_EQ(counts(merged.err), (std::array<int, 3>{total, 0, total}));
   EXPECT_EQ(slurp(dir_.file("merged.json")), slurp(dir_.file("single.json")));
+  EXPECT_EQ(merged.out, single.out);  // the table too: its times only come with --timings
+  EXPECT_EQ(single.out.find("s/search"), std::string::npos) << single.out;
+  EXPECT_NE(lmk("eval" + cluster + " --merge --timings").out.find("s/search"), std::string::npos);
 
   // A pair lost (a shard that crashed before writing it): the merge names it and refuses.
   std::filesystem::path lost;
