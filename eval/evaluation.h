@@ -72,7 +72,9 @@ struct PairResult {
   /// afterwards, as the search's own selection does it (non-max suppression first, then the
   /// threshold), so that one search also serves the precision/recall curve against the threshold.
   std::vector<FoundBox> found;
-  double seconds = 0.0;    ///< the search's wall time, one thread, scene preprocessing included
+  /// The search's wall time on one thread, with its share of the scene's preprocessing (the scene
+  /// is indexed once for all of its pairs).
+  double seconds = 0.0;
   std::size_t seeds = 0;   ///< seeds the search started from
   std::string rejections;  ///< describe_rejections() of the search
   /// The scene's sensor position, scene frame: the range of each instance and match.
