@@ -119,11 +119,7 @@ ApiResponse Api::landmarks() const {
 }
 
 ApiResponse Api::landmark(const std::string& name) const {
-  try {
-    LandmarkLibrary::check_name(name);
-  } catch (const Error& e) {
-    throw bad_request(e.what());
-  }
+  checked_name(name, "landmark");
   if (!library_.contains(name)) throw not_found("no landmark '" + name + "'");
   const auto l = library_.load(name);
   nlohmann::json j = landmark_summary(name, *l);
@@ -137,12 +133,7 @@ ApiResponse Api::landmark(const std::string& name) const {
 ApiResponse Api::save_landmark(const std::string& body_text) {
   const nlohmann::json body = parse_body(body_text, "capture");
   const Scene scene = scenes_.get(required_string(body, "scene", "capture"));
-  const std::string name = required_string(body, "name", "capture");
-  try {
-    LandmarkLibrary::check_name(name);
-  } catch (const Error& e) {
-    throw bad_request(std::string("capture: ") + e.what());
-  }
+  const std::string name = checked_name(required_string(body, "name", "capture"), "capture");
   const bool overwrite = optional_bool(body, "overwrite", false, "capture");
   const bool check_first = optional_bool(body, "check", false, "capture");
   required_box(body, "box", "capture");  // a bad request is told so before anything else

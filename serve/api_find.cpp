@@ -23,12 +23,8 @@ ApiResponse Api::find(const std::string& body_text) {
   // Everything the search needs is read and checked now: a bad request fails here, not in a job.
   std::vector<std::shared_ptr<const Landmark>> landmarks;
   for (const std::string& name : names) {
-    try {
-      LandmarkLibrary::check_name(name);
-    } catch (const Error& e) {
-      throw bad_request(std::string("find: ") + e.what());
-    }
-    if (!library_.contains(name)) throw not_found("find: no landmark '" + name + "'");
+    if (!library_.contains(checked_name(name, "find")))
+      throw not_found("find: no landmark '" + name + "'");
     landmarks.push_back(library_.load(name));
   }
   FindSettings settings = scene_find_settings();

@@ -5,27 +5,17 @@
 #include "lmk/geometry/error.h"
 #include "lmk/json/plan_json.h"
 #include "lmk/json/pose_json.h"
-#include "lmk/landmark/landmark_library.h"
 #include "lmk/pbd/plan.h"
 #include "lmk/pr2/simulated_pr2.h"
 #include "lmk/serve/api.h"
 #include "lmk/serve/api_error.h"
 #include "lmk/serve/request_fields.h"
+#include "lmk/serve/static_files.h"
 
 namespace lmk::serve {
 namespace {
 
 namespace fs = std::filesystem;
-
-bool inside(const fs::path& path, const fs::path& root) {
-  const fs::path p = fs::weakly_canonical(path);
-  const fs::path r = fs::weakly_canonical(root);
-  auto pi = p.begin();
-  for (auto ri = r.begin(); ri != r.end(); ++ri, ++pi) {
-    if (pi == p.end() || *pi != *ri) return false;
-  }
-  return true;
-}
 
 // Every step's targets where they can be drawn: in the base frame directly, or relative to a
 // landmark the plan located. A target relative to a landmark not found has no pose.
@@ -56,12 +46,7 @@ nlohmann::json targets_json(const Program& program, const Plan& plan) {
 
 fs::path Api::program_path(const std::string& name) const {
   if (programs_dir_.empty()) throw not_found("no programs: start lmk serve with --programs DIR");
-  try {
-    LandmarkLibrary::check_name(name);  // the same rule: a plain name that cannot leave the dir
-  } catch (const Error& e) {
-    throw bad_request(std::string("program: ") + e.what());
-  }
-  const fs::path path = programs_dir_ / (name + ".json");
+  const fs::path path = programs_dir_ / (checked_name(name, "program") + ".json");
   if (!fs::is_regular_file(path)) throw not_found("no program '" + name + "'");
   return path;
 }
@@ -108,7 +93,7 @@ ApiResponse Api::plan(const std::string& name, const std::string& body_text) {
   for (const ProgramLandmark& l : program.landmarks) {
     const fs::path file =
         fs::path(l.file).is_absolute() ? fs::path(l.file) : programs_dir_ / l.file;
-    if (!inside(file, programs_dir_) && !inside(file, library_.directory())) {
+    if (!lies_within(file, programs_dir_) && !lies_within(file, library_.directory())) {
       throw forbidden("plan: program '" + name + "': landmark '" + l.name + "' file " + l.file +
                       " lies outside --programs and --landmarks");
     }

@@ -3,6 +3,7 @@
 
 #include "lmk/geometry/error.h"
 #include "lmk/json/settings_json.h"
+#include "lmk/landmark/landmark_library.h"
 #include "lmk/serve/api_error.h"
 
 namespace lmk::serve {
@@ -77,6 +78,15 @@ std::vector<std::string> optional_names(const nlohmann::json& body, const std::s
     names.push_back(n.get<std::string>());
   }
   return names;
+}
+
+const std::string& checked_name(const std::string& name, const std::string& what) {
+  try {
+    LandmarkLibrary::check_name(name);
+  } catch (const Error& e) {
+    throw bad_request(what + ": " + e.what());
+  }
+  return name;
 }
 
 namespace {

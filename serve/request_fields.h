@@ -30,6 +30,11 @@ std::vector<std::string> optional_names(const nlohmann::json& body, const std::s
                                         const std::vector<std::string>& all,
                                         const std::string& what);
 
+/// `name` itself when it is a plain name that cannot leave a directory
+/// (LandmarkLibrary::check_name, for landmarks and programs alike); ApiError 400 prefixed with
+/// `what` otherwise.
+const std::string& checked_name(const std::string& name, const std::string& what);
+
 /// Applies body["settings"], an object of `lmk find` flags without their dashes ({"method":
 /// "reference", "threshold": 0.004, "max-tilt": 30}), in the flags' units, to `settings`.
 void apply_find_settings(const nlohmann::json& body, const std::string& what,

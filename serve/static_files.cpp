@@ -31,6 +31,16 @@ StaticFile web_asset(const std::string& name) {
   throw not_found("no page file '" + name + "'");
 }
 
+bool lies_within(const fs::path& path, const fs::path& root) {
+  const fs::path p = fs::weakly_canonical(path);
+  const fs::path r = fs::weakly_canonical(root);
+  auto pi = p.begin();
+  for (auto ri = r.begin(); ri != r.end(); ++ri, ++pi) {
+    if (pi == p.end() || *pi != *ri) return false;
+  }
+  return true;
+}
+
 StaticFile confined_file(const fs::path& root, const std::string& relative) {
   // Refused on the path's text alone, before the file system is asked anything.
   const fs::path rel(relative);
@@ -43,15 +53,10 @@ StaticFile confined_file(const fs::path& root, const std::string& relative) {
   }
   if (escapes || dot_segment) throw forbidden("'" + relative + "' is outside the served files");
   // And once resolved: a link inside root must not lead out of it.
-  std::error_code ec;
-  const fs::path canonical_root = fs::canonical(root, ec);
-  if (ec) throw not_found("three.js is not installed at " + root.string());
-  const fs::path file = fs::canonical(canonical_root / rel, ec);
-  if (ec || !fs::is_regular_file(file)) throw not_found("no file '" + relative + "'");
-  const std::string f = file.string(), r = canonical_root.string() + "/";
-  if (f.compare(0, r.size(), r) != 0) {
-    throw forbidden("'" + relative + "' is outside the served files");
-  }
+  if (!fs::is_directory(root)) throw not_found("three.js is not installed at " + root.string());
+  const fs::path file = root / rel;
+  if (!fs::is_regular_file(file)) throw not_found("no file '" + relative + "'");
+  if (!lies_within(file, root)) throw forbidden("'" + relative + "' is outside the served files");
   std::ifstream in(file, std::ios::binary);
   std::ostringstream body;
   body << in.rdbuf();

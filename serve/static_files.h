@@ -27,6 +27,10 @@ std::string content_type_for(const std::string& name);
 /// The page's file `name`; ApiError 404 for no such file.
 StaticFile web_asset(const std::string& name);
 
+/// Whether `path`, its links resolved, is `root` or lies inside it: the one test of confinement
+/// for served files and for the landmark files programs name.
+bool lies_within(const std::filesystem::path& path, const std::filesystem::path& root);
+
 /// The file `relative` (a URL path, already decoded) under `root`. ApiError 403 for any path that
 /// could leave `root` (a ".." segment, an absolute path, a backslash, a NUL) or that resolves
 /// outside it through a link, and 404 for a missing file.

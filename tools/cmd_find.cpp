@@ -87,17 +87,15 @@ int run_find(FindOptions& o) {
   };
   const FindResult result = find_landmark(scene, landmark, o.settings);
   o.settings.execution.progress = nullptr;
+  const auto json_text = [&] {
+    return json_output(detail::find_result_to_json(result, o.rejected), o.timings).dump(2) + "\n";
+  };
   if (o.json == "-") {
-    std::cout << json_output(detail::find_result_to_json(result, o.rejected), o.timings).dump(2)
-              << "\n";
+    std::cout << json_text();
     return kOk;
   }
   print_table(result, landmark.name);
-  if (!o.json.empty()) {
-    write_text_atomically(
-        o.json,
-        json_output(detail::find_result_to_json(result, o.rejected), o.timings).dump(2) + "\n");
-  }
+  if (!o.json.empty()) write_text_atomically(o.json, json_text());
   return kOk;
 }
 
