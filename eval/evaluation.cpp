@@ -10,7 +10,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <deque>
 #include <filesystem>
+#include <memory>
+#include <mutex>
 
 #include "lmk/eval/benchmark_dataset.h"
 #include "lmk/eval/detail/evaluation_json.h"
@@ -45,6 +48,27 @@ double recorded_threshold(const FindSettings& find) {
          std::max(effective_threshold(find), metric_default_threshold(find));
 }
 
+// Each landmark's index, built by the first pair that searches it (a run whose pairs are all cached
+// builds none) and shared by the rest, its build time shared out among them like a scene's.
+class LandmarkIndexes {
+ public:
+  LandmarkIndexes(const std::vector<Landmark>& landmarks, const FindSettings& find)
+      : landmarks_(landmarks), find_(find), built_(landmarks.size()), once_(landmarks.size()) {}
+  const LandmarkIndex& operator[](std::size_t k) {
+    std::call_once(once_[k], [&] {
+      built_[k] = std::make_unique<LandmarkIndex>(
+          std::shared_ptr<const Landmark>(&landmarks_[k], [](const Landmark*) {}), find_);
+    });
+    return *built_[k];
+  }
+
+ private:
+  const std::vector<Landmark>& landmarks_;
+  FindSettings find_;
+  std::vector<std::unique_ptr<LandmarkIndex>> built_;
+  std::deque<std::once_flag> once_;
+};
+
 // The search a pair runs: one thread, no callback, matches kept up to the recorded threshold, and
 // the scene's own up axis where the dataset gives one.
 FindSettings pair_search(const FindSettings& find, const DatasetScene& scene) {
@@ -56,9 +80,9 @@ FindSettings pair_search(const FindSettings& find, const DatasetScene& scene) {
   return f;
 }
 
-PairResult search_pair(const SceneIndex& index, const DatasetScene& scene, const Landmark& landmark,
-                       const DatasetLandmark& entry, const DatasetPair& truth,
-                       const FindSettings& find) {
+PairResult search_pair(const SceneIndex& index, const DatasetScene& scene,
+                       const LandmarkIndex& landmark, const DatasetLandmark& entry,
+                       const DatasetPair& truth, const FindSettings& find) {
   PairResult r;
   r.scene = scene.name;
   r.landmark = entry.name;
@@ -164,6 +188,9 @@ Evaluation evaluate(const std::string& dir, const Dataset& dataset,
   std::vector<Landmark> landmarks;
   for (const DatasetLandmark& entry : dataset.landmarks)
     landmarks.push_back(load_landmark((fs::path(dir) / entry.file).string()));
+  LandmarkIndexes landmark_indexes(landmarks, pair_search(settings.find, DatasetScene()));
+  std::vector<std::size_t> jobs_per_landmark(landmarks.size(), 0);
+  for (const Job& job : jobs) ++jobs_per_landmark[job.landmark];
 
   evaluation.fingerprint = dataset_fingerprint(dir, dataset, landmarks);
   const detail::PairCache cache(settings.cache_dir,
@@ -211,8 +238,9 @@ Evaluation evaluate(const std::string& dir, const Dataset& dataset,
         return;
       }
       if (to_search.empty() || stopping()) return;
-      // The scene is indexed once for all of its landmarks (steps 1-2 of the search), and the
-      // index's build time is shared out among the pairs that use it.
+      // The scene is indexed once for all of its landmarks (steps 1-2 of the search), as each
+      // landmark is for all of its scenes, and the indexes' build times are shared out among the
+      // pairs that use them.
       const PointCloud cloud = read_cloud((fs::path(dir) / scene.file).string());
       const SceneIndex index(cloud, pair_search(settings.find, scene).scene);
       const double index_share = index.seconds_to_build() / static_cast<double>(to_search.size());
@@ -220,9 +248,12 @@ Evaluation evaluate(const std::string& dir, const Dataset& dataset,
         if (stopping()) return;
         const std::size_t k = to_search[i];
         const DatasetLandmark& entry = dataset.landmarks[jobs[k].landmark];
-        PairResult searched = search_pair(index, scene, landmarks[jobs[k].landmark], entry,
+        const LandmarkIndex& landmark = landmark_indexes[jobs[k].landmark];
+        PairResult searched = search_pair(index, scene, landmark, entry,
                                           dataset.pair(scene, entry.name), settings.find);
-        searched.seconds += index_share;
+        searched.seconds +=
+            index_share +
+            landmark.seconds_to_build() / static_cast<double>(jobs_per_landmark[jobs[k].landmark]);
         const nlohmann::json as_stored =
             detail::pair_result_to_json(searched, threshold, settings.tolerance);
         cache.write(searched.scene, searched.landmark, as_stored);

@@ -54,7 +54,11 @@ void select(std::vector<Match> candidates, const SelectionSettings& s, FindResul
 }
 
 // Steps 3 to 6 in an indexed scene, for inputs already checked.
-FindResult search(const SceneIndex& index, const Landmark& landmark, const FindSettings& settings) {
+FindResult search(const SceneIndex& index, const LandmarkIndex& prepared,
+                  const FindSettings& settings) {
+  std::string why;
+  if (!prepared.suits(settings, &why)) throw Error("find: " + why);
+  const Landmark& landmark = prepared.landmark();
   const auto start = Clock::now();
   FindResult result;
   SearchStats& stats = result.stats;
@@ -68,23 +72,18 @@ FindResult search(const SceneIndex& index, const Landmark& landmark, const FindS
   // Seeds: a seeded random sample of the points the method starts from (step 3).
   const PointCloud& points = fast ? index.coarse() : index.fine();
   stats.scene_points_used = points.size();
-  // Fast: the landmark at the scene's coarse leaf, which also sets the seed count.
-  const PointCloud landmark_coarse =
-      fast ? voxel_downsample(landmark.points, index.settings().coarse_leaf) : PointCloud();
   // Fast: seeds near relief only (detail/relief_seeds.h), in cells of half the landmark's size,
   // and as many as put seeds_per_instance on each instance-sized stretch of them.
   Indices seeds;
   if (fast) {
-    const double diameter =
-        std::max(static_cast<double>(landmark.points.bounds().diagonal().norm()),
-                 3.0 * index.settings().coarse_leaf);
+    const double diameter = prepared.diameter();
     const Indices candidates =
         detail::points_near_relief(points, 0.5 * diameter, detail::kCoplanarAngle);
     // One seed per cell of a grid whose cells an instance's surface (about as many coarse
     // leaves as the landmark has coarse points) spans seeds_per_instance times; coarser while the
     // seeds would exceed the cap.
     const double leaf = index.settings().coarse_leaf;
-    double spacing = leaf * std::sqrt(std::max(1.0, static_cast<double>(landmark_coarse.size()) /
+    double spacing = leaf * std::sqrt(std::max(1.0, static_cast<double>(prepared.coarse().size()) /
                                                         settings.fast.seeds_per_instance));
     const std::size_t cap = effective_max_seeds(settings);
     seeds = detail::spread_seeds(points, candidates, spacing, settings.sampling.seed);
@@ -99,20 +98,16 @@ FindResult search(const SceneIndex& index, const Landmark& landmark, const FindS
                                   settings.sampling.seed);
   }
   stats.seeds = seeds.size();
-  const KdTree landmark_tree(landmark.points);
   // The sensor metric tests empty space beyond the noise, which far away exceeds the landmark
   // distance field's band.
-  const std::vector<float> empty_distances = metric.unit == ErrorMetric::Unit::sigma
-                                                 ? empty_space_distances(landmark, landmark_tree)
-                                                 : std::vector<float>();
-  LandmarkView landmark_view{landmark.points, landmark_tree, landmark.box, landmark};
-  if (!empty_distances.empty()) landmark_view.empty_distances = &empty_distances;
+  LandmarkView landmark_view{landmark.points, prepared.tree(), landmark.box, landmark};
+  landmark_view.empty_distances = &prepared.empty_distances();
   stats.seconds_preprocess = seconds_since(start);
 
   // Step 4, in an arena of the requested size: no process-wide thread setting.
   const auto search_start = Clock::now();
   const detail::SearchInput input{
-      index,         points, landmark, landmark_coarse, SceneView{index},
+      index,         points, landmark, prepared,        SceneView{index},
       landmark_view, seeds,  metric,   stats.threshold, settings};
   std::vector<Match> candidates;
   const int threads = settings.execution.threads;
@@ -148,14 +143,10 @@ FindResult search(const SceneIndex& index, const Landmark& landmark, const FindS
   return result;
 }
 
-void check_inputs(const FindSettings& settings, const Landmark& landmark) {
-  validate(settings);
-  const std::string what = "landmark '" + landmark.name + "'";
-  landmark.validate(what);
-  if (const auto why = degenerate_shape(landmark.points, landmark.settings.leaf_size, what,
-                                        landmark.settings.allow_flat)) {
-    throw Error(*why);
-  }
+// The landmark's index for one search: the caller's landmark outlives it, so it is not copied.
+LandmarkIndex index_for_one_search(const Landmark& landmark, const FindSettings& settings) {
+  return LandmarkIndex(std::shared_ptr<const Landmark>(&landmark, [](const Landmark*) {}),
+                       settings);
 }
 
 }  // namespace
@@ -177,18 +168,29 @@ std::string describe_rejections(const SearchStats& s) {
 
 FindResult find_landmark(const PointCloud& scene, const Landmark& landmark,
                          const FindSettings& settings) {
-  check_inputs(settings, landmark);
+  // The landmark first: its errors (flat, invalid) come before the scene's.
+  const LandmarkIndex prepared = index_for_one_search(landmark, settings);
   const SceneIndex index(scene, settings.scene);
-  FindResult result = search(index, landmark, settings);
-  result.stats.seconds_preprocess += index.seconds_to_build();
-  result.stats.seconds_total += index.seconds_to_build();
+  FindResult result = search(index, prepared, settings);
+  const double built = index.seconds_to_build() + prepared.seconds_to_build();
+  result.stats.seconds_preprocess += built;
+  result.stats.seconds_total += built;
   result.stats.scene_points = scene.count_finite();
   return result;
 }
 
 FindResult find_landmark(const SceneIndex& index, const Landmark& landmark,
                          const FindSettings& settings) {
-  check_inputs(settings, landmark);
+  const LandmarkIndex prepared = index_for_one_search(landmark, settings);
+  FindResult result = search(index, prepared, settings);
+  result.stats.seconds_preprocess += prepared.seconds_to_build();
+  result.stats.seconds_total += prepared.seconds_to_build();
+  return result;
+}
+
+FindResult find_landmark(const SceneIndex& index, const LandmarkIndex& landmark,
+                         const FindSettings& settings) {
+  validate(settings);
   return search(index, landmark, settings);
 }
 

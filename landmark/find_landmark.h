@@ -17,6 +17,7 @@
 #include "lmk/landmark/error_metrics.h"
 #include "lmk/landmark/find_settings.h"
 #include "lmk/landmark/landmark.h"
+#include "lmk/landmark/landmark_index.h"
 #include "lmk/landmark/scene_index.h"
 
 namespace lmk {
@@ -89,6 +90,12 @@ FindResult find_landmark(const PointCloud& scene, const Landmark& landmark,
 /// landmarks, or several threads, can share the preprocessing. The index's own settings (work
 /// volume, leaves, up axis) win over settings.scene.
 FindResult find_landmark(const SceneIndex& scene, const Landmark& landmark,
+                         const FindSettings& settings = {});
+
+/// The same with the landmark's own work done once (LandmarkIndex), for a landmark searched in
+/// many scenes or frames: what an evaluation and a robot do. Throws lmk::Error when the index was
+/// built for another method, coarse leaf or vote leaf fraction (LandmarkIndex::suits()).
+FindResult find_landmark(const SceneIndex& scene, const LandmarkIndex& landmark,
                          const FindSettings& settings = {});
 
 /// One line on what the search turned down and why, for users and logs: "" when nothing was, and

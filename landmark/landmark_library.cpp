@@ -78,8 +78,27 @@ std::shared_ptr<const Landmark> LandmarkLibrary::load(const std::string& name) c
   }
   auto landmark = std::make_shared<const Landmark>(load_landmark(path.string()));
   const std::lock_guard<std::mutex> lock(mutex_);
-  cache_[name] = Entry{modified, size, landmark};
+  cache_[name] = Entry{modified, size, landmark, nullptr};
   return landmark;
+}
+
+std::shared_ptr<const LandmarkIndex> LandmarkLibrary::index(const std::string& name,
+                                                            const FindSettings& settings) const {
+  const std::shared_ptr<const Landmark> landmark = load(name);
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    const auto it = cache_.find(name);
+    if (it != cache_.end() && it->second.index && &it->second.index->landmark() == landmark.get() &&
+        it->second.index->suits(settings)) {
+      return it->second.index;
+    }
+  }
+  // Built outside the lock: two threads may build the same index once each, which is harmless.
+  auto built = std::make_shared<const LandmarkIndex>(landmark, settings);
+  const std::lock_guard<std::mutex> lock(mutex_);
+  const auto it = cache_.find(name);
+  if (it != cache_.end() && it->second.landmark == landmark) it->second.index = built;
+  return built;
 }
 
 fs::path LandmarkLibrary::save(const Landmark& landmark, bool overwrite) const {

@@ -2,7 +2,8 @@
 #pragma once
 // A directory of landmarks, NAME.lmk each: what lmk_node serves and what a person captures into.
 // Names are confined to letters, digits, '-', '_' and '.', so that a name from the network can
-// never leave the directory. Loaded landmarks are kept until their file changes.
+// never leave the directory. Loaded landmarks, and their search indexes, are kept until their file
+// changes.
 
 #include <filesystem>
 #include <map>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "lmk/landmark/landmark.h"
+#include "lmk/landmark/landmark_index.h"
 
 namespace lmk {
 
@@ -30,6 +32,11 @@ class LandmarkLibrary {
   /// The landmark `name`, loaded once and again whenever its file changes. Throws lmk::Error for a
   /// bad name, a missing landmark (naming those there are) or a damaged file. Thread-safe.
   std::shared_ptr<const Landmark> load(const std::string& name) const;
+  /// The landmark `name` prepared for searches with `settings` (LandmarkIndex), built once and
+  /// kept until its file changes or a search with another method, coarse leaf or vote leaf
+  /// fraction asks for it. The same errors as load(). Thread-safe.
+  std::shared_ptr<const LandmarkIndex> index(const std::string& name,
+                                             const FindSettings& settings) const;
   /// Writes `landmark` as NAME.lmk atomically; refuses to replace one unless `overwrite`.
   std::filesystem::path save(const Landmark& landmark, bool overwrite) const;
 
@@ -42,6 +49,7 @@ class LandmarkLibrary {
     std::filesystem::file_time_type modified;
     std::uintmax_t size = 0;
     std::shared_ptr<const Landmark> landmark;
+    std::shared_ptr<const LandmarkIndex> index;  ///< of `landmark`, for the last settings asked
   };
   std::filesystem::path directory_;
   mutable std::mutex mutex_;

@@ -223,8 +223,8 @@ bool LandmarkNode::find(lmk_msgs::FindLandmark::Request& request,
     const SceneIndex index(frame->scene, settings_.find.scene);
     std::string summary;
     for (const std::string& name : names) {
-      const std::shared_ptr<const Landmark> landmark = library_.load(name);
-      const FindResult result = find_landmark(index, *landmark, settings_.find);
+      const FindResult result =
+          find_landmark(index, *library_.index(name, settings_.find), settings_.find);
       for (std::size_t i = 0; i < result.matches.size(); ++i) {
         response.matches.push_back(
             to_ros(result.matches[i], name, static_cast<std::uint32_t>(i + 1)));

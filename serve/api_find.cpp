@@ -21,14 +21,15 @@ ApiResponse Api::find(const std::string& body_text) {
     throw bad_request("find: no landmark to search: capture one or name them in 'landmarks'");
   }
   // Everything the search needs is read and checked now: a bad request fails here, not in a job.
-  std::vector<std::shared_ptr<const Landmark>> landmarks;
+  FindSettings settings = scene_find_settings();
+  apply_find_settings(body, "find", settings);
+  // Each landmark prepared once for searches like this one, and kept in the library for the next.
+  std::vector<std::shared_ptr<const LandmarkIndex>> landmarks;
   for (const std::string& name : names) {
     if (!library_.contains(checked_name(name, "find")))
       throw not_found("find: no landmark '" + name + "'");
-    landmarks.push_back(library_.load(name));
+    landmarks.push_back(library_.index(name, settings));
   }
-  FindSettings settings = scene_find_settings();
-  apply_find_settings(body, "find", settings);
   const bool with_rejected = optional_bool(body, "rejected", false, "find");
 
   return run_job("find", body, [=](JobProgress& progress) {
@@ -48,7 +49,8 @@ ApiResponse Api::find(const std::string& body_text) {
       const FindResult found = find_landmark(index, *landmarks[i], run);
       nlohmann::json r = detail::find_result_to_json(found, with_rejected);
       r["landmark"] = name;
-      r["box_size"] = detail::vector_to_json(landmarks[i]->box.size);  // every match's box size
+      r["box_size"] =
+          detail::vector_to_json(landmarks[i]->landmark().box.size);  // every match's box size
       // The unit of every error: metres, or standard deviations of the sensor's depth noise.
       const bool sigma = find_error_metric(found.stats.metric).unit == ErrorMetric::Unit::sigma;
       r["error_unit"] = sigma ? "sd" : "m";

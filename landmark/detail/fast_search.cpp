@@ -11,7 +11,6 @@
 
 #include "lmk/geometry/pose.h"
 #include "lmk/geometry/voxel_grid.h"
-#include "lmk/geometry/voxel_normals.h"
 #include "lmk/landmark/detail/grid_metrics.h"
 #include "lmk/landmark/detail/point_pair_voting.h"
 #include "lmk/landmark/detail/sensor_metric.h"
@@ -80,25 +79,12 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
   const PointCloud& coarse = index.coarse();
   const double leaf = index.settings().coarse_leaf;
 
-  // Voting resolution: a fixed fraction of the landmark's size (Drost et al. sample at 5% of the
-  // diameter), never finer than the coarse leaf. It bounds the model to a few hundred points
-  // whatever the landmark's size, and the scene pairs per seed likewise.
-  const double diameter =
-      std::max(static_cast<double>(landmark.points.bounds().diagonal().norm()), 3.0 * leaf);
-  const double vote_leaf = std::max(leaf, diameter * s.fast.vote_leaf_fraction);
-  const PointCloud& model = in.landmark_coarse;
-  // Model and scene reach the voting resolution the same way, from clouds whose normals were
-  // estimated alike (VoxelMoments over two-leaf blocks). The capture's own normals, averaged, gave
-  // thin parts such as a drawer handle's bar normals the scene never shows: on the paper-x10
-  // preset (400 candidates), precision on unconventional scenes rose from 0.929 to 0.967.
+  const double diameter = in.prepared.diameter();
+  const double vote_leaf = in.prepared.vote_leaf();
+  const PointCloud& model = in.prepared.coarse();
+  const PointPairModel& pairs = in.prepared.point_pairs();
+  // The scene reaches the voting resolution as the landmark's model did (LandmarkIndex).
   const bool own_vote_cloud = vote_leaf > leaf * 1.01;
-  const PointCloud like_scene =
-      downsample_with_normals(landmark.points, leaf, landmark.sensor_origin);
-  const PointCloud vote_model =
-      own_vote_cloud ? voxel_downsample(like_scene, vote_leaf) : like_scene;
-  const std::shared_ptr<const PointPairModel> shared_pairs =
-      shared_point_pair_model(vote_model, vote_leaf, diameter);
-  const PointPairModel& pairs = *shared_pairs;
   const PointCloud vote_scene = own_vote_cloud ? voxel_downsample(coarse, vote_leaf) : PointCloud();
   const PointCloud& voters = own_vote_cloud ? vote_scene : coarse;
   const std::unique_ptr<KdTree> own_tree =
@@ -156,10 +142,7 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
   std::vector<float> quick_probe_distances;
   if (in_sigma) {
     quick_probes = thin(landmark.empty_space.centres(), 300);
-    quick_probe_distances = thin(in.landmark_view.empty_distances
-                                     ? *in.landmark_view.empty_distances
-                                     : empty_space_distances(landmark, in.landmark_view.tree),
-                                 300);
+    quick_probe_distances = thin(in.prepared.empty_distances(), 300);
   }
   std::vector<double> quick(clusters.size());
   std::vector<int> iterations(clusters.size(), 0);

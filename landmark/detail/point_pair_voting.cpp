@@ -3,8 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <deque>
-#include <mutex>
 
 #include "lmk/geometry/error.h"
 
@@ -236,34 +234,6 @@ void PointPairModel::vote(const PointCloud& scene, const KdTree& tree, Index ref
     pv.votes = v;
     out.push_back(pv);
   }
-}
-
-std::shared_ptr<const PointPairModel> shared_point_pair_model(const PointCloud& model,
-                                                              double distance_step,
-                                                              double diameter) {
-  struct Cached {
-    std::vector<Eigen::Vector3f> points, normals;
-    double distance_step, diameter;
-    std::shared_ptr<const PointPairModel> model;
-  };
-  constexpr std::size_t kCapacity = 8;
-  static std::mutex mutex;
-  static std::deque<Cached> cache;  // most recently built last
-  {
-    const std::lock_guard<std::mutex> lock(mutex);
-    for (const Cached& c : cache) {
-      if (c.distance_step == distance_step && c.diameter == diameter && c.points == model.points &&
-          c.normals == model.normals) {
-        return c.model;
-      }
-    }
-  }
-  // Built outside the lock: two threads may build the same model once each, which is harmless.
-  auto built = std::make_shared<const PointPairModel>(model, distance_step, diameter);
-  const std::lock_guard<std::mutex> lock(mutex);
-  cache.push_back({model.points, model.normals, distance_step, diameter, built});
-  if (cache.size() > kCapacity) cache.pop_front();
-  return built;
 }
 
 }  // namespace lmk::detail

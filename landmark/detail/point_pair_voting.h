@@ -17,7 +17,6 @@
 
 #include <Eigen/Geometry>
 #include <cstdint>
-#include <memory>
 #include <vector>
 
 #include "lmk/geometry/kdtree.h"
@@ -76,13 +75,5 @@ class PointPairModel {
   std::vector<std::uint32_t> offsets_;  ///< entries of key k: [offsets_[k], offsets_[k + 1])
   std::vector<Entry> entries_;
 };
-
-/// The model of `model` (same arguments as the constructor), built once and kept for the next
-/// searches of the same landmark: a process-wide cache of the last few models, keyed by the
-/// model's points and normals themselves, so an edited landmark never meets a stale model.
-/// Thread-safe.
-std::shared_ptr<const PointPairModel> shared_point_pair_model(const PointCloud& model,
-                                                              double distance_step,
-                                                              double diameter);
 
 }  // namespace lmk::detail

@@ -5,6 +5,7 @@
 #include <atomic>
 
 #include "lmk/landmark/find_landmark.h"
+#include "lmk/landmark/landmark_index.h"
 #include "lmk/landmark/scene_index.h"
 
 namespace lmk::detail {
@@ -14,7 +15,7 @@ struct SearchInput {
   const SceneIndex& index;
   const PointCloud& scene;  ///< the points the seeds index: fine (reference) or coarse (fast)
   const Landmark& landmark;
-  const PointCloud& landmark_coarse;  ///< fast: the landmark at the scene's coarse leaf
+  const LandmarkIndex& prepared;  ///< the landmark's own work, built for these settings
   SceneView scene_view;
   LandmarkView landmark_view;
   const Indices& seeds;  ///< indices into `scene`
