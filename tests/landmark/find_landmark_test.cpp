@@ -121,6 +121,52 @@ TEST_P(Search, BadSettingsAreErrors) {
   EXPECT_THROW(find_landmark(PointCloud(), *landmark_), Error);
 }
 
+TEST_P(Search, ALandmarkIndexBuiltOnceGivesEverySearchItsOwnResult) {
+  FindSettings s = settings();
+  s.sampling.max_seeds = s.method == "fast" ? 150 : 8;  // the reference's seeds are slow
+  const LandmarkIndex prepared(*landmark_, s);
+  const SceneIndex scene(*scene_, s.scene);
+  // Two searches with one index (and in another scene between them) equal fresh ones.
+  for (int round = 0; round < 2; ++round) {
+    const FindResult fresh = find_landmark(*scene_, *landmark_, s);
+    const FindResult shared = find_landmark(scene, prepared, s);
+    ASSERT_EQ(shared.matches.size(), fresh.matches.size());
+    for (std::size_t i = 0; i < fresh.matches.size(); ++i) {
+      EXPECT_EQ(shared.matches[i].error, fresh.matches[i].error);
+      EXPECT_TRUE(shared.matches[i].box.pose.isApprox(fresh.matches[i].box.pose, 0.0));
+    }
+    EXPECT_EQ(shared.stats.seeds, fresh.stats.seeds);
+    const PointCloud empty_table = render_scene({}, true);
+    EXPECT_TRUE(find_landmark(SceneIndex(empty_table, s.scene), prepared, s).matches.empty());
+  }
+}
+
+TEST_P(Search, ALandmarkIndexRefusesSearchesItWasNotBuiltFor) {
+  const FindSettings s = settings();
+  const LandmarkIndex prepared(*landmark_, s);
+  const SceneIndex scene(*scene_, s.scene);
+  FindSettings other = s;
+  other.method = s.method == "fast" ? "reference" : "fast";
+  std::string why;
+  EXPECT_FALSE(prepared.suits(other, &why));
+  EXPECT_NE(why.find("built for method " + s.method), std::string::npos) << why;
+  EXPECT_THROW(find_landmark(scene, prepared, other), Error);
+  if (s.method == "fast") {
+    other = s;
+    other.fast.vote_leaf_fraction *= 2.0;
+    EXPECT_FALSE(prepared.suits(other));
+    other = s;
+    other.scene.coarse_leaf *= 2.0;
+    EXPECT_FALSE(prepared.suits(other));
+    other = s;
+    other.selection.threshold = 0.002;  // selection and seeds do not matter to the landmark
+    other.sampling.max_seeds = 10;
+    EXPECT_TRUE(prepared.suits(other));
+  } else {
+    EXPECT_THROW(prepared.point_pairs(), Error);  // the reference method votes for nothing
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Methods, Search, ::testing::Values("fast", "reference"),
                          [](const auto& info) { return info.param; });
 
