@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "lmk/eval/benchmark_dataset.h"
 
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -8,6 +10,7 @@
 #include "lmk/eval/depth_sensor.h"
 #include "lmk/eval/instance_visibility.h"
 #include "lmk/eval/scene_variations.h"
+#include "lmk/geometry/atomic_file.h"
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/hash.h"
@@ -60,6 +63,20 @@ std::string join(const std::vector<std::string>& names) {
   std::string out;
   for (const std::string& n : names) out += n + ";";
   return out;
+}
+
+// What decides a generated dataset's content: the preset and the options (not the shard).
+std::string generation_key(const std::string& preset, const GenerateOptions& options) {
+  return Fnv1a()
+      .add(preset)
+      .add_value(options.seeds.value_or(0))
+      .add_value(options.hard)
+      .add_value(options.first_seed)
+      .add_value(options.noise)
+      .add(join(options.types))
+      .add_value(kBenchmarkGeneratorVersion)
+      .add(kVersion)
+      .hex();
 }
 
 }  // namespace
@@ -117,16 +134,20 @@ std::string benchmark_scene_name(const std::string& type, std::uint64_t seed, bo
   return name;
 }
 
-Dataset generate_benchmark_dataset(const std::string& dir, const std::string& preset_name,
-                                   const GenerateOptions& options) {
+Generated generate_benchmark(const std::string& dir, const std::string& preset_name,
+                             const GenerateOptions& options) {
   const BenchmarkPreset& preset = benchmark_preset(preset_name);
   const int seeds = options.seeds.value_or(preset.seeds);
   if (seeds < 1) throw Error("--seeds must be at least 1 (got " + std::to_string(seeds) + ")");
+  if (options.merge && options.shard)
+    throw Error("gen: a merge gathers every shard; give no shard");
   const bool hard = preset.hard || options.hard;
+  const fs::path parts = fs::path(dir) / (".parts-" + generation_key(preset_name, options));
 
   std::error_code ec;
   fs::create_directories(fs::path(dir) / "landmarks", ec);
   fs::create_directories(fs::path(dir) / "scenes", ec);
+  fs::create_directories(parts, ec);
   if (ec) throw Error(dir + ": cannot create the dataset directory (" + ec.message() + ")");
 
   std::vector<std::string> types = options.types.empty() ? scene_types() : options.types;
@@ -139,79 +160,138 @@ Dataset generate_benchmark_dataset(const std::string& dir, const std::string& pr
   for (const BenchmarkLandmark& l : benchmark_landmarks()) {
     if (options.types.empty() || wanted_landmarks.count(l.name)) landmarks.push_back(l);
   }
+  // The scenes, in dataset order, and those this run renders.
+  struct Planned {
+    std::string type, name;
+    std::uint64_t seed;
+  };
+  std::vector<Planned> planned, mine;
+  for (const std::string& type : types) {
+    for (int k = 0; k < seeds; ++k) {
+      const std::uint64_t seed = options.first_seed + static_cast<std::uint64_t>(k);
+      planned.push_back({type, benchmark_scene_name(type, seed, hard, preset.variation), seed});
+      const bool in_shard =
+          !options.shard ||
+          scene_shard(planned.back().name, options.shard->count) == options.shard->index;
+      if (in_shard && !options.merge) mine.push_back(planned.back());
+    }
+  }
 
-  Dataset dataset;
+  Generated out;
+  Dataset& dataset = out.dataset;
   dataset.name = preset.name + (hard && !preset.hard ? "-hard" : "");
-  const std::size_t total = landmarks.size() + types.size() * static_cast<std::size_t>(seeds);
+  const std::size_t total = (options.merge ? 0 : landmarks.size()) + mine.size();
   std::size_t done = 0;
   const auto step = [&] {
     if (options.progress) options.progress(++done, total);
   };
 
+  // Every shard captures the landmarks (the scenes' hidden fractions need them); a capture is
+  // deterministic, so whichever shard's file lands last holds the same landmark.
   std::map<std::string, Landmark> captured;
   for (const BenchmarkLandmark& landmark : landmarks) {
     const std::string file = "landmarks/" + landmark.name + ".lmk";
+    dataset.landmarks.push_back({landmark.name, file, landmark.symmetry});
+    if (options.merge) continue;
     captured[landmark.name] = capture_benchmark_landmark(landmark, options.noise);
     save_landmark((fs::path(dir) / file).string(), captured[landmark.name]);
-    dataset.landmarks.push_back({landmark.name, file, landmark.symmetry});
     step();
   }
-  for (const std::string& type : types) {
-    for (int k = 0; k < seeds; ++k) {
-      const std::uint64_t seed = options.first_seed + static_cast<std::uint64_t>(k);
-      DatasetScene entry;
-      entry.name = benchmark_scene_name(type, seed, hard, preset.variation);
-      GeneratedScene scene = make_scene(type, seed, hard);
-      const std::uint64_t variation_seed = noise_seed(entry.name);
-      if (preset.variation == SceneVariation::viewpoints)
-        view_from_random_viewpoint(scene, captured, variation_seed);
-      if (preset.variation == SceneVariation::occlusion)
-        add_occluders(scene, captured, variation_seed);
-      entry.file = "scenes/" + entry.name + ".pcd";
-      entry.setting = scene.setting;
-      entry.T_scene_sensor = scene.T_world_sensor;
-      entry.up = Eigen::Vector3d::UnitZ();
-      const PointCloud exact = render_scene(scene);
-      for (const DatasetPair& pair : pairs_of(scene, captured, exact)) {
-        const bool listed =
-            std::any_of(landmarks.begin(), landmarks.end(),
-                        [&](const BenchmarkLandmark& l) { return l.name == pair.landmark; });
-        if (listed) entry.pairs.push_back(pair);
-      }
-      write_cloud((fs::path(dir) / entry.file).string(),
-                  render_scene(scene, options.noise, noise_seed(entry.name)));
-      dataset.scenes.push_back(entry);
+  // A scene's entry is written after its cloud, so an entry means a complete scene.
+  const auto part_of = [&](const std::string& name) { return parts / (name + ".json"); };
+  for (const Planned& p : mine) {
+    if (fs::is_regular_file(part_of(p.name))) {
+      ++out.kept;
       step();
+      continue;
     }
+    DatasetScene entry;
+    entry.name = p.name;
+    GeneratedScene scene = make_scene(p.type, p.seed, hard);
+    const std::uint64_t variation_seed = noise_seed(entry.name);
+    if (preset.variation == SceneVariation::viewpoints)
+      view_from_random_viewpoint(scene, captured, variation_seed);
+    if (preset.variation == SceneVariation::occlusion)
+      add_occluders(scene, captured, variation_seed);
+    entry.file = "scenes/" + entry.name + ".pcd";
+    entry.setting = scene.setting;
+    entry.T_scene_sensor = scene.T_world_sensor;
+    entry.up = Eigen::Vector3d::UnitZ();
+    const PointCloud exact = render_scene(scene);
+    for (const DatasetPair& pair : pairs_of(scene, captured, exact)) {
+      const bool listed =
+          std::any_of(landmarks.begin(), landmarks.end(),
+                      [&](const BenchmarkLandmark& l) { return l.name == pair.landmark; });
+      if (listed) entry.pairs.push_back(pair);
+    }
+    write_cloud((fs::path(dir) / entry.file).string(),
+                render_scene(scene, options.noise, noise_seed(entry.name)));
+    write_text_atomically(part_of(entry.name), scene_entry_text(entry));
+    ++out.rendered;
+    step();
+  }
+  if (options.shard) {
+    for (const Planned& p : mine) {
+      const std::string where = part_of(p.name).string();
+      dataset.scenes.push_back(parse_scene_entry(read_input_file(where, kDatasetInput), where));
+    }
+    return out;
+  }
+
+  // The whole dataset: every scene's entry, in dataset order, or the names of those missing.
+  std::vector<std::string> missing;
+  for (const Planned& p : planned) {
+    const std::string where = part_of(p.name).string();
+    if (!fs::is_regular_file(where)) {
+      missing.push_back(p.name);
+      continue;
+    }
+    dataset.scenes.push_back(parse_scene_entry(read_input_file(where, kDatasetInput), where));
+  }
+  if (!missing.empty()) {
+    std::string names;
+    for (std::size_t k = 0; k < missing.size() && k < 10; ++k)
+      names += (k ? ", " : "") + missing[k];
+    if (missing.size() > 10) names += ", ...";
+    throw Error("gen merge: " + std::to_string(missing.size()) + " of " +
+                std::to_string(planned.size()) + " scenes are not rendered yet (" + names +
+                "): run the shards that hold them");
+  }
+  for (const DatasetLandmark& l : dataset.landmarks) {
+    if (!fs::is_regular_file(fs::path(dir) / l.file))
+      throw Error("gen merge: " + (fs::path(dir) / l.file).string() + " is missing: run a shard");
   }
   save_dataset(dir, dataset);
-  return dataset;
+  fs::remove_all(parts, ec);  // the dataset is complete: dataset.json holds every entry
+  return out;
+}
+
+Dataset generate_benchmark_dataset(const std::string& dir, const std::string& preset,
+                                   const GenerateOptions& options) {
+  return generate_benchmark(dir, preset, options).dataset;
 }
 
 std::string cached_benchmark_dataset(const std::string& cache_dir, const std::string& preset,
                                      const GenerateOptions& options) {
   benchmark_preset(preset);
-  const std::string key = Fnv1a()
-                              .add(preset)
-                              .add_value(options.seeds.value_or(0))
-                              .add_value(options.hard)
-                              .add_value(options.first_seed)
-                              .add_value(options.noise)
-                              .add(join(options.types))
-                              .add_value(kBenchmarkGeneratorVersion)
-                              .add(kVersion)
-                              .hex();
-  const fs::path dir = fs::path(cache_dir) / "datasets" / (preset + "-" + key);
+  const fs::path dir =
+      fs::path(cache_dir) / "datasets" / (preset + "-" + generation_key(preset, options));
   if (fs::is_regular_file(dir / "dataset.json")) return dir.string();
-  const fs::path tmp = dir.string() + ".partial";
+  // Each process generates into its own directory and renames it into place: shards of a cluster
+  // job that all find the dataset missing each build it, and the first rename wins.
+  char host[256] = "host";
+  ::gethostname(host, sizeof(host) - 1);
+  const fs::path tmp = dir.string() + ".partial-" + host + "-" + std::to_string(::getpid());
   std::error_code ec;
   fs::remove_all(tmp, ec);
   generate_benchmark_dataset(tmp.string(), preset, options);
-  fs::remove_all(dir, ec);
   fs::rename(tmp, dir, ec);
-  if (ec)
+  if (ec) {
+    fs::remove_all(tmp);
+    if (fs::is_regular_file(dir / "dataset.json")) return dir.string();  // another process won
     throw Error(dir.string() + ": cannot move the generated dataset into place (" + ec.message() +
                 ")");
+  }
   return dir.string();
 }
 

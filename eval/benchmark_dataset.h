@@ -12,6 +12,7 @@
 
 #include "lmk/eval/dataset.h"
 #include "lmk/eval/scene_types.h"
+#include "lmk/eval/shard.h"
 #include "lmk/landmark/landmark.h"
 
 namespace lmk {
@@ -53,8 +54,21 @@ struct GenerateOptions {
   /// Only these scene types (and the landmarks in context in them); empty: every type and every
   /// landmark.
   std::vector<std::string> types;
+  /// Only this shard's scenes (scene_shard() of their names); every shard writes the landmarks.
+  /// The dataset's dataset.json comes from a run with `merge` once every shard has run.
+  std::optional<Shard> shard;
+  /// Render nothing: gather the scenes the shards wrote into dataset.json, or fail naming those
+  /// still missing.
+  bool merge = false;
   /// Called after each file written, with (files done, files in all).
   std::function<void(std::size_t, std::size_t)> progress;
+};
+
+/// What a generation did: the dataset, complete unless a shard ran, and what this run wrote.
+struct Generated {
+  Dataset dataset;           ///< a shard's: its own scenes only, and no dataset.json written
+  std::size_t rendered = 0;  ///< scenes rendered by this run
+  std::size_t kept = 0;      ///< scenes of this run found already rendered (a rerun resumes)
 };
 
 /// Landmark `landmark` captured in its demonstration scene (its demo_scene type, seed 0, not
@@ -69,9 +83,14 @@ std::string benchmark_scene_name(const std::string& type, std::uint64_t seed, bo
 /// Writes the preset into `dir` (created if absent): landmarks/NAME.lmk, scenes/NAME.pcd (organised
 /// 640x480 frames in the world frame, the sensor pose in the PCD VIEWPOINT) and dataset.json,
 /// which lists for every scene its in-context landmarks and every landmark it holds an instance
-/// of. The same preset and options always write the same content.
+/// of. The same preset and options always write the same content, sharded or not: each scene is
+/// written with its dataset entry beside it (in a parts directory of `dir` named after the preset
+/// and options) and found there by a rerun, which renders only what is missing.
 Dataset generate_benchmark_dataset(const std::string& dir, const std::string& preset,
                                    const GenerateOptions& options = {});
+/// The same, saying what this run rendered and what it found done.
+Generated generate_benchmark(const std::string& dir, const std::string& preset,
+                             const GenerateOptions& options = {});
 
 /// The preset's dataset under CACHE_DIR/datasets/, generated there first if it is not yet (into a
 /// temporary directory renamed into place, so an interrupted generation leaves nothing half

@@ -18,6 +18,48 @@ using nlohmann::json;
 
 namespace {
 
+// One scene of dataset.json (its "scenes" array), `where` being its place there.
+DatasetScene scene_from_json(const json& j, const std::string& where, const detail::JsonReader& r) {
+  DatasetScene s;
+  s.name = r.text(j, where, "name");
+  s.file = r.text(j, where, "file");
+  s.setting = r.text(j, where, "setting");
+  s.T_scene_sensor = r.pose(r.field(j, where, "sensor_pose"), where + ".sensor_pose");
+  if (j.contains("up") && !j["up"].is_null()) {
+    const Eigen::Vector3d up = r.numbers(j["up"], where + ".up", 3);
+    if (!(up.norm() > 0.0)) r.fail(where + ".up", "must not be zero");
+    s.up = up.normalized();
+  }
+  const json& pairs = j.contains("pairs") ? j["pairs"] : json::array();
+  if (!pairs.is_array()) r.fail(where + ".pairs", "must be an array");
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    const std::string pw = detail::at(where, "pairs", k);
+    DatasetPair p;
+    p.landmark = r.text(pairs[k], pw, "landmark");
+    const json& in_context = r.field(pairs[k], pw, "in_context");
+    if (!in_context.is_boolean()) r.fail(pw + ".in_context", "must be true or false");
+    p.in_context = in_context.get<bool>();
+    const json& instances = r.field(pairs[k], pw, "instances");
+    if (!instances.is_array()) r.fail(pw + ".instances", "must be an array of poses");
+    for (std::size_t n = 0; n < instances.size(); ++n) {
+      p.instances.push_back(r.pose(instances[n], detail::at(pw, "instances", n)));
+    }
+    if (pairs[k].contains("hidden")) {
+      const json& hidden = pairs[k]["hidden"];
+      if (!hidden.is_array() || hidden.size() != instances.size())
+        r.fail(pw + ".hidden", "must be an array of one fraction per instance");
+      for (std::size_t n = 0; n < hidden.size(); ++n) {
+        if (!hidden[n].is_number() || !(hidden[n].get<double>() >= 0.0) ||
+            !(hidden[n].get<double>() <= 1.0))
+          r.fail(detail::at(pw, "hidden", n), "must be a fraction in [0, 1]");
+        p.hidden.push_back(hidden[n].get<double>());
+      }
+    }
+    s.pairs.push_back(p);
+  }
+  return s;
+}
+
 Dataset parse(const json& j, const detail::JsonReader& r) {
   Dataset d;
   if (!j.is_object()) r.fail("", "must hold a JSON object");
@@ -48,44 +90,7 @@ Dataset parse(const json& j, const detail::JsonReader& r) {
   if (!scenes.is_array()) r.fail("scenes", "must be an array");
   for (std::size_t i = 0; i < scenes.size(); ++i) {
     const std::string where = detail::at("", "scenes", i);
-    DatasetScene s;
-    s.name = r.text(scenes[i], where, "name");
-    s.file = r.text(scenes[i], where, "file");
-    s.setting = r.text(scenes[i], where, "setting");
-    s.T_scene_sensor = r.pose(r.field(scenes[i], where, "sensor_pose"), where + ".sensor_pose");
-    if (scenes[i].contains("up") && !scenes[i]["up"].is_null()) {
-      const Eigen::Vector3d up = r.numbers(scenes[i]["up"], where + ".up", 3);
-      if (!(up.norm() > 0.0)) r.fail(where + ".up", "must not be zero");
-      s.up = up.normalized();
-    }
-    const json& pairs = scenes[i].contains("pairs") ? scenes[i]["pairs"] : json::array();
-    if (!pairs.is_array()) r.fail(where + ".pairs", "must be an array");
-    for (std::size_t k = 0; k < pairs.size(); ++k) {
-      const std::string pw = detail::at(where, "pairs", k);
-      DatasetPair p;
-      p.landmark = r.text(pairs[k], pw, "landmark");
-      const json& in_context = r.field(pairs[k], pw, "in_context");
-      if (!in_context.is_boolean()) r.fail(pw + ".in_context", "must be true or false");
-      p.in_context = in_context.get<bool>();
-      const json& instances = r.field(pairs[k], pw, "instances");
-      if (!instances.is_array()) r.fail(pw + ".instances", "must be an array of poses");
-      for (std::size_t n = 0; n < instances.size(); ++n) {
-        p.instances.push_back(r.pose(instances[n], detail::at(pw, "instances", n)));
-      }
-      if (pairs[k].contains("hidden")) {
-        const json& hidden = pairs[k]["hidden"];
-        if (!hidden.is_array() || hidden.size() != instances.size())
-          r.fail(pw + ".hidden", "must be an array of one fraction per instance");
-        for (std::size_t n = 0; n < hidden.size(); ++n) {
-          if (!hidden[n].is_number() || !(hidden[n].get<double>() >= 0.0) ||
-              !(hidden[n].get<double>() <= 1.0))
-            r.fail(detail::at(pw, "hidden", n), "must be a fraction in [0, 1]");
-          p.hidden.push_back(hidden[n].get<double>());
-        }
-      }
-      s.pairs.push_back(p);
-    }
-    d.scenes.push_back(s);
+    d.scenes.push_back(scene_from_json(scenes[i], where, r));
   }
   return d;
 }
@@ -151,6 +156,43 @@ Dataset load_dataset(const std::string& dir) {
   return d;
 }
 
+namespace {
+
+json scene_to_json(const DatasetScene& s) {
+  json pairs = json::array();
+  for (const DatasetPair& p : s.pairs) {
+    json instances = json::array();
+    for (const auto& T : p.instances) instances.push_back(detail::pose_to_json(T));
+    json pair = {{"landmark", p.landmark}, {"in_context", p.in_context}, {"instances", instances}};
+    if (!p.hidden.empty()) pair["hidden"] = p.hidden;
+    pairs.push_back(pair);
+  }
+  return {{"name", s.name},
+          {"file", s.file},
+          {"setting", s.setting},
+          {"sensor_pose", detail::pose_to_json(s.T_scene_sensor)},
+          {"up", s.up ? detail::vector_to_json(*s.up) : json(nullptr)},
+          {"pairs", pairs}};
+}
+
+}  // namespace
+
+std::string scene_entry_text(const DatasetScene& scene) {
+  return scene_to_json(scene).dump(2) + "\n";
+}
+
+DatasetScene parse_scene_entry(const std::string& text, const std::string& where) {
+  const detail::JsonReader r(where);
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::exception& e) {
+    throw Error(where + ": not JSON (" + std::string(e.what()) + ")");
+  }
+  if (!j.is_object()) r.fail("", "must hold a JSON object");
+  return scene_from_json(j, "", r);
+}
+
 void save_dataset(const std::string& dir, const Dataset& d) {
   const std::string file = (fs::path(dir) / "dataset.json").string();
   json landmarks = json::array(), scenes = json::array();
@@ -163,23 +205,7 @@ void save_dataset(const std::string& dir, const Dataset& d) {
     }
     landmarks.push_back(entry);
   }
-  for (const DatasetScene& s : d.scenes) {
-    json pairs = json::array();
-    for (const DatasetPair& p : s.pairs) {
-      json instances = json::array();
-      for (const auto& T : p.instances) instances.push_back(detail::pose_to_json(T));
-      json pair = {
-          {"landmark", p.landmark}, {"in_context", p.in_context}, {"instances", instances}};
-      if (!p.hidden.empty()) pair["hidden"] = p.hidden;
-      pairs.push_back(pair);
-    }
-    scenes.push_back({{"name", s.name},
-                      {"file", s.file},
-                      {"setting", s.setting},
-                      {"sensor_pose", detail::pose_to_json(s.T_scene_sensor)},
-                      {"up", s.up ? detail::vector_to_json(*s.up) : json(nullptr)},
-                      {"pairs", pairs}});
-  }
+  for (const DatasetScene& s : d.scenes) scenes.push_back(scene_to_json(s));
   const json j = {{"format", "lmk-dataset"},
                   {"version", kDatasetFormatVersion},
                   {"name", d.name},

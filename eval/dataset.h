@@ -51,6 +51,12 @@ struct Dataset {
   DatasetPair pair(const DatasetScene& scene, const std::string& landmark) const;
 };
 
+/// One scene's entry as dataset.json lists it, as JSON text: what a shard of a sharded generation
+/// writes for each scene it renders, for the merge to gather (lmk gen --shard, --merge).
+std::string scene_entry_text(const DatasetScene& scene);
+/// Reads such an entry; lmk::Error naming `where` (its file) and the field that is wrong.
+DatasetScene parse_scene_entry(const std::string& text, const std::string& where);
+
 /// Reads and validates DIR/dataset.json. Throws lmk::Error naming the file, the field path (e.g.
 /// scenes[2].pairs[0].landmark) and the problem: a wrong version, a missing file, a duplicate or
 /// unknown name, a bad pose (non-finite, or a quaternion that is not unit length).

@@ -114,24 +114,6 @@ PairInput matches_within(const PairResult& pair, double threshold) {
   return in;
 }
 
-int pair_shard(const std::string& scene, const std::string& landmark, int count) {
-  // The names, not the pair's position: a dataset that grows keeps every pair in its shard.
-  const std::uint64_t h = Fnv1a().add(scene).add(landmark).value();
-  return 1 + static_cast<int>(h % static_cast<std::uint64_t>(std::max(count, 1)));
-}
-
-Shard parse_shard(const std::string& text) {
-  Shard shard;
-  char slash = 0, extra = 0;
-  const int read =
-      std::sscanf(text.c_str(), "%d%c%d%c", &shard.index, &slash, &shard.count, &extra);
-  if (read != 3 || slash != '/' || shard.count < 1 || shard.index < 1 ||
-      shard.index > shard.count) {
-    throw Error("shard '" + text + "': must be K/N with 1 <= K <= N, such as 2/8");
-  }
-  return shard;
-}
-
 std::string evaluation_cache_key(const FindSettings& find, const std::string& fingerprint) {
   // The settings as the search applies them, so that spelling out a default keeps the key.
   FindSettings applied = find;

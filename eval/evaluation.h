@@ -15,23 +15,10 @@
 
 #include "lmk/eval/dataset.h"
 #include "lmk/eval/evaluation_protocol.h"
+#include "lmk/eval/shard.h"
 #include "lmk/landmark/find_landmark.h"
 
 namespace lmk {
-
-/// One machine's share of an evaluation's pairs (docs/cluster.md): shard `index` of `count`,
-/// 1-based. A pair belongs to the shard pair_shard() names, a hash of its scene and landmark
-/// names, so that adding scenes to a dataset moves no other pair to another shard.
-struct Shard {
-  int index = 1;
-  int count = 1;
-};
-
-/// The shard (1 to `count`) of the pair (scene, landmark).
-int pair_shard(const std::string& scene, const std::string& landmark, int count);
-
-/// "K/N" as a Shard; lmk::Error unless 1 <= K <= N.
-Shard parse_shard(const std::string& text);
 
 struct EvaluationSettings {
   /// The search: method, metric, threshold, max_seeds, ... (threads and progress are ignored: the

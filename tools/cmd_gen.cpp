@@ -29,6 +29,8 @@ struct GenOptions {
   std::optional<int> seeds;
   bool hard = false;
   std::string types;  ///< comma-separated
+  std::string shard;  ///< K/N
+  bool merge = false;
   std::string from_mosd;
   int copies = 2, frames = 0;
   std::string from_bag;
@@ -75,12 +77,26 @@ int run_preset(const GenOptions& options) {
   generate.noise = !options.no_noise;
   generate.types = split_commas(options.types);
   if (options.seed != 0) generate.first_seed = options.seed;
-  ProgressBar bar("gen " + options.preset);
+  if (!options.shard.empty()) generate.shard = parse_shard(options.shard);
+  generate.merge = options.merge;
+  const std::string label =
+      "gen " + options.preset + (options.shard.empty() ? "" : " " + options.shard);
+  ProgressBar bar(label);
   generate.progress = [&bar](std::size_t done, std::size_t total) { bar.update(done, total); };
   const auto start = std::chrono::steady_clock::now();
-  const Dataset dataset = generate_benchmark_dataset(options.output, options.preset, generate);
+  const Generated generated = generate_benchmark(options.output, options.preset, generate);
+  const Dataset& dataset = generated.dataset;
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (generate.shard) {
+    std::printf(
+        "%s: %zu of the dataset's scenes are this shard's: %zu rendered, %zu already there "
+        "(%.1f s); once every shard has run, the same command with --merge in place of --shard "
+        "writes %s/dataset.json\n",
+        label.c_str(), dataset.scenes.size(), generated.rendered, generated.kept, seconds,
+        options.output.c_str());
+    return kOk;
+  }
   std::size_t instances = 0, in_context = 0;
   for (const DatasetScene& scene : dataset.scenes) {
     for (const DatasetPair& pair : scene.pairs) {
@@ -137,6 +153,14 @@ Subcommand add_gen(CLI::App& app) {
   sub->add_option("--types", options->types,
                   "With --preset: only these scene types (comma-separated, e.g. "
                   "simple/three_balls) and the landmarks in context in them");
+  sub->add_option(
+      "--shard", options->shard,
+      "With --preset: render only shard K of N (K/N), a stable share of the scenes, for "
+      "one machine of a cluster; a rerun renders only what is missing (docs/cluster.md)");
+  sub->add_flag("--merge", options->merge,
+                "With --preset: render nothing, write dataset.json once every shard has run, or "
+                "name the scenes still missing")
+      ->excludes("--shard");
   sub->add_option("--from-mosd", options->from_mosd,
                   "Write a real-data dataset from the labelled mOSD learn frames in DIR "
                   "(../shared/data/mosd/learn): landmarks around the labelled objects, searched in "
@@ -171,8 +195,9 @@ Subcommand add_gen(CLI::App& app) {
               return run_mosd(*options);
             }
             if (options->preset.empty()) {
-              if (options->seeds || options->hard || !options->types.empty())
-                throw Error("--seeds, --hard and --types need --preset");
+              if (options->seeds || options->hard || !options->types.empty() ||
+                  !options->shard.empty() || options->merge)
+                throw Error("--seeds, --hard, --types, --shard and --merge need --preset");
               return run_tabletop(*options);
             }
             return run_preset(*options);

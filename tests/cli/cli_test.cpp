@@ -511,6 +511,58 @@ TEST_F(Cli, ShardedEvaluationMergesToTheSingleMachineRun) {
   expect_bad_input("eval" + data + " --no-cache --merge", "--no-cache");
 }
 
+// lmk gen --shard K/N renders a stable share of the scenes; --merge writes the dataset.json of
+// the one-machine generation, or names the scenes no shard has rendered yet (issue #20).
+TEST_F(Cli, ShardedGenerationMergesToTheOneMachineDataset) {
+  const std::string preset =
+      "gen --preset paper --seeds 2 --types simple/three_balls,"
+      "cluttered/spray_with_clutter,unconventional/drawer ";
+  ASSERT_EQ(lmk(preset + path("one")).exit_code, 0);
+  const std::regex counted(
+      R"((\d+) of the dataset's scenes are this shard's: (\d+) rendered, (\d+))");
+  const auto counts = [&counted](const std::string& out) {
+    std::smatch m;
+    return std::regex_search(out, m, counted)
+               ? std::array<int, 3>{std::stoi(m[1]), std::stoi(m[2]), std::stoi(m[3])}
+               : std::array<int, 3>{-1, -1, -1};
+  };
+  int rendered = 0;
+  for (int k = 1; k <= 3; ++k) {
+    const CommandResult shard =
+        lmk(preset + path("sharded") + " --shard " + std::to_string(k) + "/3");
+    ASSERT_EQ(shard.exit_code, 0) << shard.err;
+    const auto c = counts(shard.out);
+    EXPECT_EQ(c[1], c[0]) << shard.out;
+    rendered += c[1];
+    if (k == 2) {
+      // Before the last shard has run, the merge names what is missing and writes nothing.
+      const CommandResult early = lmk(preset + path("sharded") + " --merge");
+      EXPECT_EQ(early.exit_code, 2);
+      EXPECT_NE(early.err.find("scenes are not rendered yet ("), std::string::npos) << early.err;
+      EXPECT_FALSE(std::filesystem::exists(dir_.file("sharded/dataset.json")));
+    }
+  }
+  EXPECT_EQ(rendered, 6);  // every scene in exactly one shard
+  // A rerun of a shard renders nothing again.
+  EXPECT_EQ(counts(lmk(preset + path("sharded") + " --shard 2/3").out)[1], 0);
+  const CommandResult merged = lmk(preset + path("sharded") + " --merge");
+  ASSERT_EQ(merged.exit_code, 0) << merged.err;
+  EXPECT_EQ(slurp(dir_.file("sharded/dataset.json")), slurp(dir_.file("one/dataset.json")));
+  for (const auto& e : std::filesystem::directory_iterator(dir_.file("one/scenes"))) {
+    EXPECT_EQ(slurp(dir_.file("sharded/scenes/" + e.path().filename().string())),
+              slurp(e.path().string()))
+        << e.path();
+  }
+  // Evaluated, the two datasets are one: the same fingerprint, so the same cached results.
+  const CommandResult a = lmk("eval --dataset " + path("one") + " --cache " + path("cache"));
+  const CommandResult b = lmk("eval --dataset " + path("sharded") + " --cache " + path("cache"));
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  EXPECT_NE(b.err.find("(0 searched,"), std::string::npos) << b.err;
+  EXPECT_EQ(a.out, b.out);
+  expect_bad_input(preset + path("x") + " --shard 0/3", "shard '0/3'");
+  expect_bad_input("gen " + path("y.pcd") + " --shard 1/2", "need --preset");
+}
+
 // The same inputs and settings give byte-identical JSON: across thread counts, across runs, and
 // for eval across a cold cache and a resumed one (issue #17). Wall-clock times, which differ by
 // nature, are left out unless --timings asks for them.
