@@ -44,6 +44,17 @@ void add_timings_flag(CLI::App* sub, bool& timings) {
                 "the same inputs and settings, whatever the threads or the cache)");
 }
 
+std::vector<std::string> split_commas(const std::string& text) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  while (start <= text.size() && !text.empty()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    out.push_back(text.substr(start, comma - start));
+    start = comma + 1;
+  }
+  return out;
+}
+
 nlohmann::json json_output(nlohmann::json j, bool timings) {
   if (timings) return j;
   if (j.is_object()) {

@@ -53,6 +53,9 @@ void add_timings_flag(CLI::App* sub, bool& timings);
 /// any depth; unchanged when `timings` is set.
 nlohmann::json json_output(nlohmann::json j, bool timings);
 
+/// "a,b,c" as {"a", "b", "c"}; "" as nothing.
+std::vector<std::string> split_commas(const std::string& text);
+
 /// The scene-frame options that say which way is up: --up X Y Z and --base-frame.
 struct UpOptions {
   std::vector<double> up;
@@ -80,5 +83,6 @@ Subcommand add_ablate(CLI::App& app);
 Subcommand add_pbd(CLI::App& app);
 Subcommand add_sensor_check(CLI::App& app);
 Subcommand add_serve(CLI::App& app);
+Subcommand add_slurm(CLI::App& app);
 
 }  // namespace lmk::cli

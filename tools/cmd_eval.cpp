@@ -87,7 +87,9 @@ int run_eval(EvalOptions& o) {
   if (!o.json.empty()) write_text_atomically(o.json, json_output(json, o.timings).dump(2) + "\n");
   if (!o.report.empty()) {
     write_evaluation_report(o.report, evaluation, data.dir);
-    std::printf("report: %s/report.html (also report.md, report.json)\n", o.report.c_str());
+    // A message, on stderr: stdout holds the table alone, for files and comparisons.
+    std::fprintf(stderr, "report: %s/report.html (also report.md, report.json)\n",
+                 o.report.c_str());
   }
   return kOk;
 }

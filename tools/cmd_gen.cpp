@@ -39,17 +39,6 @@ struct GenOptions {
   std::size_t stride = 1;
 };
 
-std::vector<std::string> split_commas(const std::string& text) {
-  std::vector<std::string> out;
-  std::size_t start = 0;
-  while (start <= text.size() && !text.empty()) {
-    const std::size_t comma = std::min(text.find(',', start), text.size());
-    out.push_back(text.substr(start, comma - start));
-    start = comma + 1;
-  }
-  return out;
-}
-
 int run_tabletop(const GenOptions& options) {
   format_from_path(options.output);  // reject an unknown extension before rendering
   const SyntheticScene scene = make_tabletop_scene(options.seed);

@@ -29,6 +29,10 @@ void add_dataset_options(CLI::App* sub, DatasetOptions& o) {
                   "some seeds is reported on others; 0 is the landmarks' demonstration scene")
       ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1000000000}))
       ->excludes(dataset);
+  sub->add_option("--types", o.types,
+                  "With a preset: only these scene types (comma-separated, e.g. "
+                  "simple/three_balls) and the landmarks in context in them")
+      ->excludes(dataset);
 }
 
 void add_evaluation_options(CLI::App* sub, EvaluationSettings& s) {
@@ -58,6 +62,7 @@ LoadedDataset load_or_generate(const DatasetOptions& o, const std::string& cache
     generate.seeds = o.seeds;
     generate.hard = o.hard;
     generate.first_seed = o.first_seed;
+    generate.types = split_commas(o.types);
     const std::string preset = o.preset.empty() ? "paper" : o.preset;
     benchmark_preset(preset);  // an unknown name fails before anything else
     // Without a cache the dataset still needs a home for the run; the system's temporary

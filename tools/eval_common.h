@@ -18,6 +18,7 @@ struct DatasetOptions {
   std::optional<int> seeds;      ///< --seeds, with a preset
   bool hard = false;             ///< --hard, with a preset
   std::uint64_t first_seed = 1;  ///< --first-seed, with a preset
+  std::string types;             ///< --types, with a preset: comma-separated scene types
 };
 void add_dataset_options(CLI::App* sub, DatasetOptions& options);
 

@@ -511,6 +511,55 @@ TEST_F(Cli, ShardedEvaluationMergesToTheSingleMachineRun) {
   expect_bad_input("eval" + data + " --no-cache --merge", "--no-cache");
 }
 
+// lmk slurm eval writes the job chain (tests/cluster/slurm_test.sh runs it on a real Slurm): a
+// generation array and its merge for a preset, an evaluation array whose tasks run the shards into
+// one cache, a merge after it, and submit.sh chaining them with afterok.
+TEST_F(Cli, SlurmEvalWritesTheJobChainAndChecksTheEvalArguments) {
+  const CommandResult r =
+      lmk("slurm eval --dir " + path("job") + " --tasks 5 --cpus-per-task 3 --time 01:00:00" +
+          " --partition batch --sbatch=--qos=short -- --preset paper-x10 --seeds 2 --hard" +
+          " --metric sensor --json " + path("out.json") + " --timings");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string gen = slurp(dir_.file("job/gen.sbatch"));
+  EXPECT_NE(gen.find("#SBATCH --array=1-5\n"), std::string::npos) << gen;
+  EXPECT_NE(gen.find(" gen --preset paper-x10 " + dir_.file("job/dataset") +
+                     " --seeds 2 --hard --shard \"${SLURM_ARRAY_TASK_ID}/5\""),
+            std::string::npos)
+      << gen;
+  EXPECT_NE(slurp(dir_.file("job/gen-merge.sbatch")).find(" --merge\n"), std::string::npos);
+  const std::string eval = slurp(dir_.file("job/eval.sbatch"));
+  for (const std::string& line :
+       std::vector<std::string>{"#SBATCH --cpus-per-task=3\n", "#SBATCH --time=01:00:00\n",
+                                "#SBATCH --partition=batch\n", "#SBATCH --qos=short\n",
+                                "#SBATCH --output=" + dir_.file("job/logs/eval-%A_%a.out") + "\n",
+                                " eval --dataset " + dir_.file("job/dataset") +
+                                    " --metric sensor --cache " + dir_.file("job/cache") +
+                                    " --threads \"${SLURM_CPUS_PER_TASK:-3}\" --shard "
+                                    "\"${SLURM_ARRAY_TASK_ID}/5\"\n"}) {
+    EXPECT_NE(eval.find(line), std::string::npos) << line << " not in\n" << eval;
+  }
+  EXPECT_EQ(eval.find("--json"), std::string::npos);  // the merge's alone
+  const std::string merge = slurp(dir_.file("job/merge.sbatch"));
+  EXPECT_NE(merge.find(" --merge --json " + dir_.file("out.json") + " --timings --report " +
+                       dir_.file("job/report")),
+            std::string::npos)
+      << merge;
+  const std::string submit = slurp(dir_.file("job/submit.sh"));
+  EXPECT_NE(submit.find("--dependency=afterok:\"${gen%%;*}\" gen-merge.sbatch"), std::string::npos);
+  EXPECT_NE(submit.find("--array=\"$tasks\" eval.sbatch"), std::string::npos);
+  EXPECT_NE(submit.find("--dependency=afterok:\"${evaluation%%;*}\" merge.sbatch"),
+            std::string::npos);
+  EXPECT_NE(r.out.find("submit with: bash " + dir_.file("job/submit.sh")), std::string::npos);
+
+  expect_bad_input("slurm eval --dir " + path("j") + " -- --shard 1/2", "--shard is the job's");
+  expect_bad_input("slurm eval --dir " + path("j") + " -- --threads 4", "--threads is the job's");
+  expect_bad_input("slurm eval --dir " + path("j") + " -- --metric nope", "lmk eval");
+  expect_bad_input("slurm eval --dir " + path("j") + " -- --dataset " + path("none"),
+                   "dataset.json does not exist");
+  expect_bad_input("slurm eval --tasks 0", "--tasks");
+  expect_bad_input("slurm", "A subcommand is required");
+}
+
 // lmk gen --shard K/N renders a stable share of the scenes; --merge writes the dataset.json of
 // the one-machine generation, or names the scenes no shard has rendered yet (issue #20).
 TEST_F(Cli, ShardedGenerationMergesToTheOneMachineDataset) {
