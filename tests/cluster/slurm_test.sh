@@ -28,6 +28,7 @@ done
 
 T=$(mktemp -d /tmp/lmk-slurm-test.XXXXXX)
 pids=()
+steps_before=$(pgrep -x slurmstepd | tr '\n' ' ' || true)
 stop_daemons() {
   local status=$?
   # Jobs first, while the controller still answers; then each daemon by the pid it was given.
@@ -37,12 +38,12 @@ stop_daemons() {
     for _ in $(seq 50); do kill -0 "$pid" 2> /dev/null || break; sleep 0.2; done
     kill -9 "$pid" 2> /dev/null || true
   done
-  # Job step daemons of this cluster (their spool is in $T) outlive slurmd by a moment.
+  # Job step daemons started by this cluster's slurmd (any not there before the test) outlive it
+  # by a few seconds while they report to a controller that is gone.
   for pid in $(pgrep -x slurmstepd || true); do
-    if ls -l "/proc/$pid/fd" 2> /dev/null | grep -q "$T"; then
-      for _ in $(seq 50); do kill -0 "$pid" 2> /dev/null || break; sleep 0.2; done
-      kill -9 "$pid" 2> /dev/null || true
-    fi
+    case " $steps_before " in *" $pid "*) continue ;; esac
+    for _ in $(seq 75); do kill -0 "$pid" 2> /dev/null || break; sleep 0.2; done
+    kill -9 "$pid" 2> /dev/null || true
   done
   if [ "$status" != 0 ]; then
     echo "--- logs of the failed run ($T) ---"
