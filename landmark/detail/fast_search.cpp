@@ -8,7 +8,9 @@
 #include <cmath>
 #include <memory>
 #include <numeric>
+#include <unordered_map>
 
+#include "lmk/geometry/detail/voxel_key.h"
 #include "lmk/geometry/pose.h"
 #include "lmk/geometry/voxel_grid.h"
 #include "lmk/landmark/detail/grid_metrics.h"
@@ -44,24 +46,42 @@ std::vector<T> thin(const std::vector<T>& items, std::size_t cap) {
   return out;
 }
 
-// Step 2: greedy clustering, strongest pose first. A pose joins the first cluster whose centre is
-// within `distance` and whose rotation is within `angle`; clusters are ranked by summed votes.
+// Step 2: greedy clustering, strongest pose first. A pose joins the first cluster (in order of
+// creation) whose centre is within `distance` and whose rotation is within `angle`; clusters are
+// ranked by summed votes. Cluster centres are binned in cells of side `distance`, so a pose looks
+// at the clusters of its 27 cells only instead of at every cluster: thousands of poses met
+// thousands of clusters on a room-sized frame.
 std::vector<Candidate> cluster(std::vector<Candidate> poses, double distance, double angle,
                                std::size_t keep) {
   std::stable_sort(poses.begin(), poses.end(),
                    [](const Candidate& a, const Candidate& b) { return a.votes > b.votes; });
   std::vector<Candidate> clusters;
+  std::unordered_map<std::uint64_t, std::vector<std::size_t>> cells;  // cell -> clusters in it
+  const double inv_cell = 1.0 / distance;
   for (const Candidate& p : poses) {
-    bool merged = false;
-    for (Candidate& c : clusters) {
-      if ((c.centre - p.centre).norm() < distance &&
-          rotation_angle_between(c.T_scene_capture.linear(), p.T_scene_capture.linear()) < angle) {
-        c.votes += p.votes;
-        merged = true;
-        break;
+    const VoxelCoord c = voxel_coord(p.centre.cast<float>(), inv_cell);
+    std::size_t first = clusters.size();
+    for (int dx = -1; dx <= 1; ++dx) {
+      for (int dy = -1; dy <= 1; ++dy) {
+        for (int dz = -1; dz <= 1; ++dz) {
+          const auto it = cells.find(pack_voxel({c[0] + dx, c[1] + dy, c[2] + dz}));
+          if (it == cells.end()) continue;
+          for (std::size_t k : it->second) {
+            if (k < first && (clusters[k].centre - p.centre).norm() < distance &&
+                rotation_angle_between(clusters[k].T_scene_capture.linear(),
+                                       p.T_scene_capture.linear()) < angle) {
+              first = k;
+            }
+          }
+        }
       }
     }
-    if (!merged) clusters.push_back(p);
+    if (first < clusters.size()) {
+      clusters[first].votes += p.votes;
+    } else {
+      cells[pack_voxel(c)].push_back(clusters.size());
+      clusters.push_back(p);
+    }
   }
   std::stable_sort(clusters.begin(), clusters.end(),
                    [](const Candidate& a, const Candidate& b) { return a.votes > b.votes; });
