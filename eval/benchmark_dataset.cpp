@@ -284,7 +284,12 @@ std::string cached_benchmark_dataset(const std::string& cache_dir, const std::st
   const fs::path tmp = dir.string() + ".partial-" + host + "-" + std::to_string(::getpid());
   std::error_code ec;
   fs::remove_all(tmp, ec);
-  generate_benchmark_dataset(tmp.string(), preset, options);
+  try {
+    generate_benchmark_dataset(tmp.string(), preset, options);
+  } catch (...) {
+    fs::remove_all(tmp, ec);  // a failed or interrupted generation leaves nothing behind
+    throw;
+  }
   fs::rename(tmp, dir, ec);
   if (ec) {
     fs::remove_all(tmp);

@@ -557,6 +557,7 @@ TEST_F(Cli, SlurmEvalWritesTheJobChainAndChecksTheEvalArguments) {
   expect_bad_input("slurm eval --dir " + path("j") + " -- --dataset " + path("none"),
                    "dataset.json does not exist");
   expect_bad_input("slurm eval --tasks 0", "--tasks");
+  expect_bad_input("eval --dataset " + path("j") + " --types simple/three_balls", "--types");
   expect_bad_input("slurm", "A subcommand is required");
 }
 

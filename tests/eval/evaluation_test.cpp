@@ -437,6 +437,27 @@ TEST(PairShard, DependsOnTheNamesAloneAndSpreadsThePairs) {
   EXPECT_NE(pair_shard("ab", "c", 1 << 20), pair_shard("a", "bc", 1 << 20));
 }
 
+// Generation shards: paper-x100's 1,700 scene names spread evenly over 8 shards, and a scene's
+// shard is its name's alone (a dataset that grows leaves every scene where it was).
+TEST(SceneShard, SpreadsAPresetsScenesEvenlyByName) {
+  std::array<int, 8> per_shard{};
+  for (const std::string& type : scene_types()) {
+    for (std::uint64_t seed = 1; seed <= 100; ++seed) {
+      const std::string name = benchmark_scene_name(type, seed, false);
+      const int shard = scene_shard(name, 8);
+      ASSERT_GE(shard, 1);
+      ASSERT_LE(shard, 8);
+      EXPECT_EQ(scene_shard(name, 8), shard);
+      ++per_shard[static_cast<std::size_t>(shard - 1)];
+    }
+  }
+  for (int n : per_shard) {
+    EXPECT_GT(n, 170);  // 212.5 each if perfectly even
+    EXPECT_LT(n, 255);
+  }
+  EXPECT_EQ(scene_shard("anything", 1), 1);
+}
+
 TEST(PairShard, ParsesKOfN) {
   EXPECT_EQ(parse_shard("2/8").index, 2);
   EXPECT_EQ(parse_shard("2/8").count, 8);
