@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 
 #include "lmk/eval/depth_sensor.h"
@@ -199,8 +200,14 @@ Generated generate_benchmark(const std::string& dir, const std::string& preset_n
   }
   // A scene's entry is written after its cloud, so an entry means a complete scene.
   const auto part_of = [&](const std::string& name) { return parts / (name + ".json"); };
+  const auto read_part = [&](const std::string& name) {
+    const std::string where = part_of(name).string();
+    return parse_scene_entry(read_input_file(where, kDatasetInput), where);
+  };
+  std::map<std::string, DatasetScene> entries;  // this run's scenes, rendered or found done
   for (const Planned& p : mine) {
     if (fs::is_regular_file(part_of(p.name))) {
+      entries[p.name] = read_part(p.name);
       ++out.kept;
       step();
       continue;
@@ -226,27 +233,31 @@ Generated generate_benchmark(const std::string& dir, const std::string& preset_n
     }
     write_cloud((fs::path(dir) / entry.file).string(),
                 render_scene(scene, options.noise, noise_seed(entry.name)));
-    write_text_atomically(part_of(entry.name), scene_entry_text(entry));
+    // Kept as its part holds it: a pose goes through its quaternion there, which is not
+    // bit-exact, so a scene rendered now and one a shard rendered must take the same way for
+    // dataset.json to be the same whichever ran.
+    const std::string text = scene_entry_text(entry);
+    write_text_atomically(part_of(entry.name), text);
+    entries[entry.name] = parse_scene_entry(text, part_of(entry.name).string());
     ++out.rendered;
     step();
   }
   if (options.shard) {
-    for (const Planned& p : mine) {
-      const std::string where = part_of(p.name).string();
-      dataset.scenes.push_back(parse_scene_entry(read_input_file(where, kDatasetInput), where));
-    }
+    for (const Planned& p : mine) dataset.scenes.push_back(entries[p.name]);
     return out;
   }
 
-  // The whole dataset: every scene's entry, in dataset order, or the names of those missing.
+  // The whole dataset: every scene's entry, in dataset order, from this run or from the shards'
+  // parts, or the names of those missing.
   std::vector<std::string> missing;
   for (const Planned& p : planned) {
-    const std::string where = part_of(p.name).string();
-    if (!fs::is_regular_file(where)) {
+    if (const auto it = entries.find(p.name); it != entries.end()) {
+      dataset.scenes.push_back(it->second);
+    } else if (fs::is_regular_file(part_of(p.name))) {
+      dataset.scenes.push_back(read_part(p.name));
+    } else {
       missing.push_back(p.name);
-      continue;
     }
-    dataset.scenes.push_back(parse_scene_entry(read_input_file(where, kDatasetInput), where));
   }
   if (!missing.empty()) {
     std::string names;
@@ -292,7 +303,8 @@ std::string cached_benchmark_dataset(const std::string& cache_dir, const std::st
   }
   fs::rename(tmp, dir, ec);
   if (ec) {
-    fs::remove_all(tmp);
+    std::error_code ignored;
+    fs::remove_all(tmp, ignored);
     if (fs::is_regular_file(dir / "dataset.json")) return dir.string();  // another process won
     throw Error(dir.string() + ": cannot move the generated dataset into place (" + ec.message() +
                 ")");

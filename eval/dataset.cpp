@@ -145,13 +145,7 @@ Dataset load_dataset(const std::string& dir) {
   const detail::JsonReader r(file);
   if (!fs::is_directory(dir)) r.fail("", "no such file (is '" + dir + "' a dataset directory?)");
   const std::string text = read_input_file(file, kDatasetInput);
-  json j;
-  try {
-    j = json::parse(text);
-  } catch (const json::exception& e) {
-    r.fail("", std::string("not valid JSON (") + e.what() + ")");
-  }
-  const Dataset d = parse(j, r);
+  const Dataset d = parse(r.parse(text), r);
   check_consistency(d, dir, r);
   return d;
 }
@@ -183,12 +177,7 @@ std::string scene_entry_text(const DatasetScene& scene) {
 
 DatasetScene parse_scene_entry(const std::string& text, const std::string& where) {
   const detail::JsonReader r(where);
-  json j;
-  try {
-    j = json::parse(text);
-  } catch (const json::exception& e) {
-    throw Error(where + ": not JSON (" + std::string(e.what()) + ")");
-  }
+  const json j = r.parse(text);
   if (!j.is_object()) r.fail("", "must hold a JSON object");
   return scene_from_json(j, "", r);
 }

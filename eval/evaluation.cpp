@@ -56,8 +56,7 @@ class LandmarkIndexes {
       : landmarks_(landmarks), find_(find), built_(landmarks.size()), once_(landmarks.size()) {}
   const LandmarkIndex& operator[](std::size_t k) {
     std::call_once(once_[k], [&] {
-      built_[k] = std::make_unique<LandmarkIndex>(
-          std::shared_ptr<const Landmark>(&landmarks_[k], [](const Landmark*) {}), find_);
+      built_[k] = std::make_unique<LandmarkIndex>(LandmarkIndex::borrowing(landmarks_[k], find_));
     });
     return *built_[k];
   }

@@ -25,6 +25,15 @@ class JsonReader {
     throw Error(file_ + ": " + (where.empty() ? "" : where + ": ") + problem);
   }
 
+  /// The file's text as JSON; lmk::Error "file: not valid JSON (...)" when it is not.
+  nlohmann::json parse(const std::string& text) const {
+    try {
+      return nlohmann::json::parse(text);
+    } catch (const nlohmann::json::exception& e) {
+      fail("", std::string("not valid JSON (") + e.what() + ")");
+    }
+  }
+
   /// "file: where", the context the shared JSON readers prefix to their messages.
   std::string in(const std::string& where) const {
     return file_ + (where.empty() ? "" : ": " + where);

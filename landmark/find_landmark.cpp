@@ -101,7 +101,8 @@ FindResult search(const SceneIndex& index, const LandmarkIndex& prepared,
   // The sensor metric tests empty space beyond the noise, which far away exceeds the landmark
   // distance field's band.
   LandmarkView landmark_view{landmark.points, prepared.tree(), landmark.box, landmark};
-  landmark_view.empty_distances = &prepared.empty_distances();
+  if (metric.unit == ErrorMetric::Unit::sigma)
+    landmark_view.empty_distances = &prepared.empty_distances();
   stats.seconds_preprocess = seconds_since(start);
 
   // Step 4, in an arena of the requested size: no process-wide thread setting.
@@ -143,12 +144,6 @@ FindResult search(const SceneIndex& index, const LandmarkIndex& prepared,
   return result;
 }
 
-// The landmark's index for one search: the caller's landmark outlives it, so it is not copied.
-LandmarkIndex index_for_one_search(const Landmark& landmark, const FindSettings& settings) {
-  return LandmarkIndex(std::shared_ptr<const Landmark>(&landmark, [](const Landmark*) {}),
-                       settings);
-}
-
 }  // namespace
 
 std::string describe_rejections(const SearchStats& s) {
@@ -169,7 +164,7 @@ std::string describe_rejections(const SearchStats& s) {
 FindResult find_landmark(const PointCloud& scene, const Landmark& landmark,
                          const FindSettings& settings) {
   // The landmark first: its errors (flat, invalid) come before the scene's.
-  const LandmarkIndex prepared = index_for_one_search(landmark, settings);
+  const LandmarkIndex prepared = LandmarkIndex::borrowing(landmark, settings);
   const SceneIndex index(scene, settings.scene);
   FindResult result = search(index, prepared, settings);
   const double built = index.seconds_to_build() + prepared.seconds_to_build();
@@ -181,7 +176,7 @@ FindResult find_landmark(const PointCloud& scene, const Landmark& landmark,
 
 FindResult find_landmark(const SceneIndex& index, const Landmark& landmark,
                          const FindSettings& settings) {
-  const LandmarkIndex prepared = index_for_one_search(landmark, settings);
+  const LandmarkIndex prepared = LandmarkIndex::borrowing(landmark, settings);
   FindResult result = search(index, prepared, settings);
   result.stats.seconds_preprocess += prepared.seconds_to_build();
   result.stats.seconds_total += prepared.seconds_to_build();

@@ -2,6 +2,7 @@
 #include "lmk/landmark/landmark_index.h"
 
 #include <algorithm>
+#include <mutex>
 #include <sstream>
 
 #include "lmk/geometry/error.h"
@@ -12,6 +13,11 @@
 #include "lmk/landmark/error_metrics.h"
 
 namespace lmk {
+
+struct LandmarkIndex::Lazy {
+  std::once_flag empty_once;
+  std::vector<float> empty_distances;
+};
 
 struct LandmarkIndex::Fast {
   PointCloud coarse;
@@ -28,6 +34,11 @@ LandmarkIndex::LandmarkIndex(std::shared_ptr<const Landmark> landmark, const Fin
 
 LandmarkIndex::LandmarkIndex(Landmark landmark, const FindSettings& settings)
     : LandmarkIndex(std::make_shared<const Landmark>(std::move(landmark)), settings) {}
+
+LandmarkIndex LandmarkIndex::borrowing(const Landmark& landmark, const FindSettings& settings) {
+  return LandmarkIndex(std::shared_ptr<const Landmark>(&landmark, [](const Landmark*) {}),
+                       settings);
+}
 
 LandmarkIndex::~LandmarkIndex() = default;
 LandmarkIndex::LandmarkIndex(LandmarkIndex&&) noexcept = default;
@@ -47,7 +58,7 @@ void LandmarkIndex::build(const FindSettings& settings) {
   coarse_leaf_ = settings.scene.coarse_leaf;
   vote_leaf_fraction_ = settings.fast.vote_leaf_fraction;
   tree_ = std::make_unique<KdTree>(landmark.points);
-  empty_distances_ = empty_space_distances(landmark, *tree_);
+  lazy_ = std::make_unique<Lazy>();
 
   if (method_ == "fast") {
     auto fast = std::make_unique<Fast>();
@@ -95,6 +106,12 @@ bool LandmarkIndex::suits(const FindSettings& settings, std::string* why) const 
     *why = text.str();
   }
   return same;
+}
+
+const std::vector<float>& LandmarkIndex::empty_distances() const {
+  std::call_once(lazy_->empty_once,
+                 [this] { lazy_->empty_distances = empty_space_distances(*landmark_, *tree_); });
+  return lazy_->empty_distances;
 }
 
 const LandmarkIndex::Fast& LandmarkIndex::fast() const {

@@ -6,7 +6,7 @@
 //
 // - tree: the landmark's points in a k-d tree (the metrics' closest points);
 // - empty distances: each observed-empty voxel's distance to the nearest landmark point (the
-//   sensor metric's empty-space test beyond the distance field's band);
+//   sensor metric's empty-space test beyond the distance field's band), built on first use;
 // - fast method only: the landmark at the scene's coarse leaf (coarse alignment, the seed
 //   spacing), its diameter, and the point pair model it votes with (Drost et al.'s hash table of
 //   the landmark's point pair features), which costs more than a search's voting in a small scene.
@@ -38,14 +38,17 @@ class LandmarkIndex {
   explicit LandmarkIndex(std::shared_ptr<const Landmark> landmark,
                          const FindSettings& settings = {});
   explicit LandmarkIndex(Landmark landmark, const FindSettings& settings = {});
+  /// The index of a landmark the caller keeps alive for as long as the index: no copy is made.
+  static LandmarkIndex borrowing(const Landmark& landmark, const FindSettings& settings = {});
   ~LandmarkIndex();
   LandmarkIndex(LandmarkIndex&&) noexcept;
   LandmarkIndex& operator=(LandmarkIndex&&) noexcept;
 
   const Landmark& landmark() const { return *landmark_; }
   const KdTree& tree() const { return *tree_; }
-  /// Each of landmark().empty_space.centres()' distance to the nearest landmark point, m.
-  const std::vector<float>& empty_distances() const { return empty_distances_; }
+  /// Each of landmark().empty_space.centres()' distance to the nearest landmark point, m. Built
+  /// on the first call: only the sensor metric needs it.
+  const std::vector<float>& empty_distances() const;
 
   /// Whether a search with `settings` can use this index: the same method, coarse leaf and vote
   /// leaf fraction as it was built for. When not, `why` (if given) says what differs.
@@ -69,7 +72,8 @@ class LandmarkIndex {
 
   std::shared_ptr<const Landmark> landmark_;
   std::unique_ptr<KdTree> tree_;
-  std::vector<float> empty_distances_;
+  struct Lazy;
+  std::unique_ptr<Lazy> lazy_;  ///< what is built on first use (behind a pointer: movable)
   std::string method_;
   double coarse_leaf_ = 0.0, vote_leaf_fraction_ = 0.0;
   std::unique_ptr<const Fast> fast_;

@@ -149,12 +149,7 @@ std::string program_to_json(const Program& program) {
 
 Program program_from_json(const std::string& text, const std::string& source) {
   const detail::JsonReader r(source);
-  json j;
-  try {
-    j = json::parse(text);
-  } catch (const json::exception& e) {
-    r.fail("", std::string("not valid JSON (") + e.what() + ")");
-  }
+  const json j = r.parse(text);
   Program p = parse(j, r);
   try {
     validate_program(p);
