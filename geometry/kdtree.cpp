@@ -97,8 +97,10 @@ void KdTree::radius_search(const Eigen::Vector3f& query, float radius, bool sort
                            std::vector<Neighbor>& out) const {
   out.clear();
   if (!(radius >= 0.0f) || impl_->points.empty()) return;
-  std::vector<std::pair<Index, float>> matches;
-  // nanoflann's L2_Simple metric works in squared distances.
+  // nanoflann's L2_Simple metric works in squared distances. Its result buffer is kept per thread:
+  // the fast search asks a thousand radius queries of a thousand neighbours each per search.
+  thread_local std::vector<std::pair<Index, float>> matches;
+  matches.clear();
   impl_->tree->radiusSearch(query.data(), radius * radius, matches,
                             nanoflann::SearchParams(32, 0.0f, sorted));
   out.reserve(matches.size());

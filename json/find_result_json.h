@@ -42,6 +42,7 @@ inline nlohmann::json search_stats_to_json(const SearchStats& s) {
           {"rejected_error", s.rejected_error},
           {"rejected_coverage", s.rejected_coverage},
           {"rejected_empty_space", s.rejected_empty_space},
+          {"rejected_overlap", s.rejected_overlap},
           {"threshold", s.threshold},
           {"method", s.method},
           {"metric", s.metric},

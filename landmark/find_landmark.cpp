@@ -25,11 +25,14 @@ using detail::seconds_since;
 constexpr const char* kRejectedError = "error above threshold";
 constexpr const char* kRejectedCoverage = "coverage too low";
 constexpr const char* kRejectedEmptySpace = "empty space occupied";
+constexpr const char* kRejectedOverlap = "inside a better match";
 
 // Steps 5 and 6: non-max suppression on box centres, then the error threshold (and, for metrics
-// that measure them, the coverage and the empty space). Candidates turned down go to `rejected`
-// with the first test they failed.
-void select(std::vector<Match> candidates, const SelectionSettings& s, FindResult& result) {
+// that measure them, the coverage and the empty space), then, with `suppress_overlaps` (the fast
+// method's, not the paper's), the matches inside a better match's box (exclusive_boxes).
+// Candidates turned down go to `rejected` with the first test they failed.
+void select(std::vector<Match> candidates, const SelectionSettings& s, bool suppress_overlaps,
+            FindResult& result) {
   SearchStats& stats = result.stats;
   const std::vector<std::size_t> kept = non_max_suppression_of(candidates, s.nms_radius);
   stats.after_nms = kept.size();
@@ -51,6 +54,19 @@ void select(std::vector<Match> candidates, const SelectionSettings& s, FindResul
       result.matches.push_back(std::move(m));
     }
   }
+  if (!suppress_overlaps) return;
+  // The matches come best first (non_max_suppression's order).
+  std::vector<Box> boxes;
+  for (const Match& m : result.matches) boxes.push_back(m.box);
+  std::vector<Match> accepted;
+  std::size_t next = 0;
+  for (std::size_t i : exclusive_boxes(boxes)) {
+    for (; next < i; ++next) reject(result.matches[next], stats.rejected_overlap, kRejectedOverlap);
+    accepted.push_back(std::move(result.matches[next++]));
+  }
+  for (; next < result.matches.size(); ++next)
+    reject(result.matches[next], stats.rejected_overlap, kRejectedOverlap);
+  result.matches = std::move(accepted);
 }
 
 // Steps 3 to 6 in an indexed scene, for inputs already checked.
@@ -77,8 +93,12 @@ FindResult search(const SceneIndex& index, const LandmarkIndex& prepared,
   Indices seeds;
   if (fast) {
     const double diameter = prepared.diameter();
-    const Indices candidates =
-        detail::points_near_relief(points, 0.5 * diameter, detail::kCoplanarAngle);
+    detail::ReliefTest relief;
+    relief.cell = 0.5 * diameter;
+    relief.angle = detail::kCoplanarAngle;
+    relief.T_cloud_sensor = index.T_scene_sensor();
+    relief.noise = index.settings().depth_noise();
+    const Indices candidates = detail::points_near_relief(points, relief);
     // One seed per cell of a grid whose cells an instance's surface (about as many coarse
     // leaves as the landmark has coarse points) spans seeds_per_instance times; coarser while the
     // seeds would exceed the cap.
@@ -132,7 +152,8 @@ FindResult search(const SceneIndex& index, const LandmarkIndex& prepared,
   stats.seconds_search = seconds_since(search_start);
 
   const auto select_start = Clock::now();
-  select(std::move(candidates), settings.selection, result);
+  select(std::move(candidates), settings.selection, fast && settings.fast.suppress_overlaps,
+         result);
   if (settings.execution.keep_aligned_points) {
     for (Match& m : result.matches) {
       m.aligned_points = landmark.points.transformed(m.T_scene_capture);
@@ -158,6 +179,7 @@ std::string describe_rejections(const SearchStats& s) {
   add(s.rejected_error, kRejectedError);
   add(s.rejected_coverage, kRejectedCoverage);
   add(s.rejected_empty_space, kRejectedEmptySpace);
+  add(s.rejected_overlap, kRejectedOverlap);
   return out;
 }
 

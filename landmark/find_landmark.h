@@ -63,6 +63,7 @@ struct SearchStats {
   std::size_t rejected_error = 0;        ///< error at or above the threshold
   std::size_t rejected_coverage = 0;     ///< coverage below selection.min_coverage
   std::size_t rejected_empty_space = 0;  ///< empty space occupied beyond the allowance
+  std::size_t rejected_overlap = 0;      ///< centre inside a better match's box
   std::string method;                    ///< the search method run
   std::string metric;                    ///< the metric applied
 };
@@ -71,7 +72,8 @@ struct SearchStats {
 /// first test it failed: what a person looks at to see why an instance was not reported.
 struct Rejection {
   Match candidate;
-  std::string reason;  ///< "error above threshold", "coverage too low" or "empty space occupied"
+  std::string reason;  ///< "error above threshold", "coverage too low", "empty space occupied"
+                       ///< or "inside a better match"
 };
 
 struct FindResult {

@@ -76,11 +76,17 @@ struct FastSettings {
   /// Point pair voting samples the landmark and the scene at this fraction of the landmark's
   /// diameter (at least the coarse leaf). Drost et al.'s 5% found the same poses at twice the cost.
   double vote_leaf_fraction = 0.07;
-  int poses_per_seed = 3;            ///< best-voted poses kept per seed
-  std::size_t max_candidates = 400;  ///< pose clusters aligned coarsely
-  double prune_error = 0.015;        ///< coarse fit beyond which a candidate is dropped, m
-  std::size_t max_refined = 16;      ///< candidates refined fully
-  bool refine = true;                ///< Ceres robust refinement of the finalists
+  int poses_per_seed = 3;  ///< best-voted poses kept per seed
+  /// Pose clusters aligned coarsely. 250 since seeds keep off noisy planes: their poses no longer
+  /// take slots, and 400 spent a third of a search's time aligning look-alikes (docs/cluster.md).
+  std::size_t max_candidates = 250;
+  double prune_error = 0.015;    ///< coarse fit beyond which a candidate is dropped, m
+  std::size_t max_refined = 16;  ///< candidates refined fully
+  bool refine = true;            ///< Ceres robust refinement of the finalists
+  /// Drop a match whose box centre lies in a better match's box (exclusive_boxes): the same object
+  /// found twice. Not in the paper, whose non-max suppression looks at box centres only, so the
+  /// reference method, which keeps to the paper, does not apply it.
+  bool suppress_overlaps = true;
 
   template <class Self, class Visit>
   static void describe(Self& s, Visit&& visit) {
@@ -109,6 +115,9 @@ struct FastSettings {
           s.prune_error);
     visit(SettingInfo("max_refined", "Fast: candidates refined fully").at_least(1), s.max_refined);
     visit(SettingInfo("refine", "Fast: Ceres robust refinement of the finalists"), s.refine);
+    visit(SettingInfo("suppress_overlaps",
+                      "Fast: drop a match whose centre lies in a better match's box"),
+          s.suppress_overlaps);
   }
 };
 

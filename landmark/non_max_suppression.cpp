@@ -32,4 +32,15 @@ std::vector<std::size_t> non_max_suppression(const std::vector<Eigen::Vector3d>&
   return kept;
 }
 
+std::vector<std::size_t> exclusive_boxes(const std::vector<Box>& boxes) {
+  std::vector<std::size_t> kept;
+  for (std::size_t i = 0; i < boxes.size(); ++i) {
+    if (std::none_of(kept.begin(), kept.end(),
+                     [&](std::size_t k) { return boxes[k].contains(boxes[i].center()); })) {
+      kept.push_back(i);
+    }
+  }
+  return kept;
+}
+
 }  // namespace lmk

@@ -6,6 +6,8 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "lmk/geometry/box.h"
+
 namespace lmk {
 
 /// Indices of the candidates that have the lowest error among all candidates whose centre lies
@@ -26,5 +28,12 @@ std::vector<std::size_t> non_max_suppression_of(const std::vector<Match>& matche
   }
   return non_max_suppression(centres, errors, radius);
 }
+
+/// Of matches given best first, those whose box centre lies in the box of no better match kept
+/// before it: two instances of a landmark cannot fill one space, so a match inside a better one's
+/// box is the same object found again, not a second instance. A match dropped this way drops no
+/// other (as non_max_suppression keeps only the best within its radius, this keeps the first of
+/// each overlapping run). Indices into `boxes`, in order.
+std::vector<std::size_t> exclusive_boxes(const std::vector<Box>& boxes);
 
 }  // namespace lmk

@@ -89,6 +89,16 @@ std::vector<Candidate> cluster(std::vector<Candidate> poses, double distance, do
   return clusters;
 }
 
+// Whether a pose keeps the landmark's up axis within the tilt limit (always, without a limit).
+// Voting applies the limit to the poses it proposes; alignment can still slide a shape with a
+// symmetry into a tilted pose (a chair's corner, three planes at right angles, onto a corner
+// turned on its side), which an upright search has said it will not report.
+bool within_tilt(const TiltLimit* limit, const Eigen::Isometry3d& T_scene_model) {
+  if (!limit) return true;
+  const Eigen::Vector3f up = T_scene_model.linear().cast<float>() * limit->model_up;
+  return up.dot(limit->scene_up) >= limit->min_cos;
+}
+
 }  // namespace
 
 std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats) {
@@ -196,6 +206,7 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
   };
   for (std::size_t c : order) {
     if (quick[c] > prune || survivors.size() >= s.fast.max_refined) continue;
+    if (!within_tilt(limit, aligned[c])) continue;
     if (std::none_of(survivors.begin(), survivors.end(),
                      [&](std::size_t kept) { return same_pose(kept, c); })) {
       survivors.push_back(c);
@@ -236,6 +247,13 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
     m.error = m.terms.error;
     m.box = landmark.box.transformed(m.T_scene_capture);
   });
+
+  // Fine alignment can tilt a candidate too: those beyond the limit go before they can suppress
+  // an upright one.
+  aligned_matches.erase(
+      std::remove_if(aligned_matches.begin(), aligned_matches.end(),
+                     [&](const Match& m) { return !within_tilt(limit, m.T_scene_capture); }),
+      aligned_matches.end());
 
   // Step 5 comes early for the polish: of candidates within the suppression radius of each other
   // only the best survives selection, so only it is worth Ceres' time.

@@ -50,23 +50,42 @@ float angle_about_x(const Eigen::Matrix3f& R, const Eigen::Vector3f& d) {
   return fast_atan2(v.z(), v.y());
 }
 
+// The coplanarity test in cosines, so that the voting loop can skip a coplanar pair before any
+// arc cosine: both normals within the tolerance of each other and of perpendicular to d.
+const float kCoplanarCos = std::cos(kCoplanarTolerance);
+const float kCoplanarSin = std::sin(kCoplanarTolerance);
+
 struct Feature {
   float distance, a1, a2, a3;
   bool coplanar;
 };
 
-bool feature(const Eigen::Vector3f& p1, const Eigen::Vector3f& n1, const Eigen::Vector3f& p2,
-             const Eigen::Vector3f& n2, Feature& f) {
+// The cosines of F's three angles; false for coincident points.
+inline bool cosines(const Eigen::Vector3f& p1, const Eigen::Vector3f& n1, const Eigen::Vector3f& p2,
+                    const Eigen::Vector3f& n2, Feature& f, float c[3]) {
   const Eigen::Vector3f d = p2 - p1;
   f.distance = d.norm();
   if (!(f.distance > 1e-6f)) return false;
   const Eigen::Vector3f u = d / f.distance;
-  f.a1 = fast_acos(n1.dot(u));
-  f.a2 = fast_acos(n2.dot(u));
-  f.a3 = fast_acos(n1.dot(n2));
-  const float right = 0.5f * kPi;
-  f.coplanar = f.a3 < kCoplanarTolerance && std::abs(f.a1 - right) < kCoplanarTolerance &&
-               std::abs(f.a2 - right) < kCoplanarTolerance;
+  c[0] = n1.dot(u);
+  c[1] = n2.dot(u);
+  c[2] = n1.dot(n2);
+  f.coplanar =
+      c[2] > kCoplanarCos && std::abs(c[0]) < kCoplanarSin && std::abs(c[1]) < kCoplanarSin;
+  return true;
+}
+
+inline void angles(const float c[3], Feature& f) {
+  f.a1 = fast_acos(c[0]);
+  f.a2 = fast_acos(c[1]);
+  f.a3 = fast_acos(c[2]);
+}
+
+bool feature(const Eigen::Vector3f& p1, const Eigen::Vector3f& n1, const Eigen::Vector3f& p2,
+             const Eigen::Vector3f& n2, Feature& f) {
+  float c[3];
+  if (!cosines(p1, n1, p2, n2, f, c)) return false;
+  angles(c, f);
   return true;
 }
 
@@ -176,14 +195,17 @@ void PointPairModel::vote(const PointCloud& scene, const KdTree& tree, Index ref
     const Eigen::Vector3f& si = scene.points[nb.index];
     const Eigen::Vector3f& ni = scene.normals[nb.index];
     if (!ni.allFinite()) continue;
+    // The cheap rejections first: most neighbours of a seed on a plane are coplanar with it.
     Feature f;
-    if (!feature(sr, nr, si, ni, f)) continue;
+    float c[3];
+    if (!cosines(sr, nr, si, ni, f, c)) continue;
     if (skip_coplanar_ && f.coplanar) continue;
+    const int db = static_cast<int>(f.distance / step);
+    if (db >= distance_bins_) continue;
+    angles(c, f);
     const int a1 = std::min(static_cast<int>(f.a1 / kAngleStep), kAngleBins - 1);
     const int a2 = std::min(static_cast<int>(f.a2 / kAngleStep), kAngleBins - 1);
     const int a3 = std::min(static_cast<int>(f.a3 / kAngleStep), kAngleBins - 1);
-    const int db = static_cast<int>(f.distance / step);
-    if (db >= distance_bins_) continue;
     const std::uint32_t k = key(db, a1, a2, a3);
     const std::uint32_t begin = offsets_[k], end = offsets_[k + 1];
     if (begin == end) continue;

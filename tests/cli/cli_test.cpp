@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <Eigen/Core>
 #include <array>
 #include <filesystem>
 #include <fstream>
@@ -146,17 +147,19 @@ TEST_F(CliLandmark, CaptureShowExportImportFind) {
                                      " --name carton -o " + path("carton.lmk"));
   ASSERT_EQ(captured.exit_code, 0) << captured.err;
   // The distinctiveness check: seen from this camera, the table's square leg under the table top
-  // (a 7 x 7 cm post at x = y = 0) has the carton's visible faces, and capture names the places,
-  // one or more heights along the post.
+  // (a 7 x 7 cm post at x = y = 0) has the carton's visible faces, and capture names the places:
+  // one or more heights along the post (and, as the search finds them, other right-angled edges
+  // such as the table top's), never the carton itself.
   EXPECT_NE(captured.err.find("'carton' also matches"), std::string::npos) << captured.err;
   const std::regex place(R"(at (-?[0-9.]+) (-?[0-9.]+) (-?[0-9.]+) m)");
-  int places = 0;
+  int on_the_leg = 0;
   for (std::sregex_iterator it(captured.err.begin(), captured.err.end(), place), end; it != end;
-       ++it, ++places) {
-    EXPECT_LT(std::abs(std::stod((*it)[1])), 0.01) << it->str();
-    EXPECT_LT(std::abs(std::stod((*it)[2])), 0.01) << it->str();
+       ++it) {
+    const Eigen::Vector2d xy(std::stod((*it)[1]), std::stod((*it)[2]));
+    on_the_leg += xy.norm() < 0.01 ? 1 : 0;
+    EXPECT_GT((xy - Eigen::Vector2d(-0.301, 0.236)).norm(), 0.05) << it->str();
   }
-  EXPECT_GE(places, 1) << captured.err;
+  EXPECT_GE(on_the_leg, 1) << captured.err;
   const CommandResult unchecked = lmk("capture " + path("scene.pcd") + " " + carton_ +
                                       " --name carton -o " + path("unchecked.lmk") + " --no-check");
   ASSERT_EQ(unchecked.exit_code, 0) << unchecked.err;
@@ -208,11 +211,12 @@ TEST_F(CliLandmark, CaptureShowExportImportFind) {
   const auto& stats = r["stats"];
   EXPECT_EQ(r["rejected"].size(), stats["rejected_error"].get<std::size_t>() +
                                       stats["rejected_coverage"].get<std::size_t>() +
-                                      stats["rejected_empty_space"].get<std::size_t>());
+                                      stats["rejected_empty_space"].get<std::size_t>() +
+                                      stats["rejected_overlap"].get<std::size_t>());
   for (const auto& c : r["rejected"]) {
     const std::string reason = c["reason"];
     EXPECT_TRUE(reason == "error above threshold" || reason == "coverage too low" ||
-                reason == "empty space occupied")
+                reason == "empty space occupied" || reason == "inside a better match")
         << reason;
     if (reason == "error above threshold") {
       EXPECT_GE(c["error"].get<double>(), stats["threshold"].get<double>());

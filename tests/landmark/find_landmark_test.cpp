@@ -225,6 +225,41 @@ TEST(FastSearchRotation, FindsRotatedAndTiltedLandmarks) {
   EXPECT_GE(found, 95);
 }
 
+// An upright search reports no pose beyond its tilt limit, even where alignment could slide a
+// candidate there. An L-shape tipped by 45 degrees floats above the table, seen by a camera tipped
+// with it (as in the test above): within a limit of 60 degrees it is found, and at a limit of 30
+// degrees nothing tipped further comes back, it included.
+TEST(FastSearchRotation, AnUprightSearchReportsNoPoseBeyondItsTiltLimit) {
+  const PointCloud capture_scene = render_scene(kCopies, true);
+  CaptureSettings in_base_frame;
+  in_base_frame.base_frame = true;
+  const Landmark landmark = capture(capture_scene, box_at(kCopies[0]), "L", in_base_frame);
+  const Eigen::Isometry3d T_world_l0 =
+      pose_from_xyz_rpy({kCopies[0].x(), kCopies[0].y(), kTable}, {0, 0, 0});
+  const Eigen::Isometry3d T_world_tipped =
+      pose_from_xyz_rpy({0.05, 0.05, kTable + 0.15}, {M_PI / 4.0, 0.0, 0.3});
+  const Eigen::Isometry3d T_scene_capture = T_world_tipped * T_world_l0.inverse();
+  const Box tipped = box_at(kCopies[0]).transformed(T_scene_capture);
+  const PointCloud scene =
+      render_scene({}, true, {T_world_tipped}, T_scene_capture * capture_camera());
+  FindSettings settings;
+  settings.scene.base_frame = true;
+  const auto found_tipped = [&](const FindResult& r) {
+    return std::any_of(r.matches.begin(), r.matches.end(), [&](const Match& m) {
+      return (m.box.center() - tipped.center()).norm() < 0.01;
+    });
+  };
+  EXPECT_TRUE(found_tipped(find_landmark(scene, landmark, settings)));
+  settings.fast.max_tilt = M_PI / 6.0;
+  const FindResult limited = find_landmark(scene, landmark, settings);
+  EXPECT_FALSE(found_tipped(limited));
+  for (const Match& m : limited.matches) {
+    const double cos_tilt =
+        (m.T_scene_capture.linear() * landmark.up).dot(Eigen::Vector3d::UnitZ());
+    EXPECT_GE(cos_tilt, std::cos(settings.fast.max_tilt) - 1e-9);
+  }
+}
+
 // Issue acceptance, real data: the milk carton captured in its Kinect frame is searched in 50
 // copies of that frame, each picked up and put down by a random rigid motion (any yaw about the
 // camera's up axis, a tilt of up to 30 degrees about a random horizontal axis, a translation of up
