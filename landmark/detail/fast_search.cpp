@@ -160,6 +160,10 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
   coarse_icp.max_iterations = 8;
   coarse_icp.max_correspondence_distance = index.field().band();
   coarse_icp.loss = {RobustKernel::huber, leaf};
+  // A coarse pose only has to reach the fine alignment's basin: a step under a tenth of a leaf
+  // and half a degree ends it (the fine alignment keeps its own, tight tolerances).
+  coarse_icp.translation_tolerance = 0.1 * leaf;
+  coarse_icp.rotation_tolerance = 0.01;
   // A few hundred points fix a coarse pose as well as all of them; the candidates are many.
   const std::vector<Eigen::Vector3f> coarse_points = thin(model.points, 400);
   std::vector<Eigen::Isometry3d> aligned(clusters.size());
@@ -219,6 +223,8 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
 
   // Step 4 and 5, in parallel over the survivors.
   IcpSettings fine_icp = coarse_icp;
+  fine_icp.translation_tolerance = IcpSettings().translation_tolerance;
+  fine_icp.rotation_tolerance = IcpSettings().rotation_tolerance;
   fine_icp.max_iterations = 10;
   fine_icp.max_correspondence_distance = 0.5 * index.field().band();
   fine_icp.loss = {RobustKernel::huber, 0.5 * leaf};

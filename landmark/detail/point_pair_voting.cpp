@@ -13,6 +13,7 @@ constexpr float kPi = 3.14159265358979f;
 constexpr float kAngleStep = kPi / 15.0f;  // 12 degrees, as Drost et al.
 constexpr int kAngleBins = 15;
 constexpr int kAlphaBins = 30;
+constexpr float kAlphaBinsPerRad = kAlphaBins / (2.0f * kPi);
 constexpr float kCoplanarTolerance = static_cast<float>(kCoplanarAngle);
 
 // acos to about 7e-5 rad (Abramowitz & Stegun 4.4.45): the voting loop calls it three times per
@@ -133,8 +134,8 @@ PointPairModel::PointPairModel(const PointCloud& model, double distance_step, do
   const float step = static_cast<float>(distance_step);
   for_each_pair([&](std::size_t i, std::size_t j, const Feature& f) {
     if (skip_coplanar_ && f.coplanar) return;
-    const Entry entry{static_cast<std::uint32_t>(i),
-                      angle_about_x(to_x_axis_[i], points_[j] - points_[i])};
+    const Entry entry{static_cast<std::uint32_t>(i * kAlphaBins),
+                      angle_about_x(to_x_axis_[i], points_[j] - points_[i]) * kAlphaBinsPerRad};
     // Hash into the bin of each quantity and, near a bin edge, into its neighbour too.
     const float c[4] = {f.distance / step, f.a1 / kAngleStep, f.a2 / kAngleStep, f.a3 / kAngleStep};
     int lo[4], hi[4];
@@ -189,7 +190,6 @@ void PointPairModel::vote(const PointCloud& scene, const KdTree& tree, Index ref
   tree.radius_unsorted(sr, static_cast<float>(diameter_), neighbours);
   votes.assign(points_.size() * kAlphaBins, 0.0f);
   const float step = static_cast<float>(distance_step_);
-  const float alpha_bin = kAlphaBins / (2.0f * kPi);
   for (const Neighbor& nb : neighbours) {
     if (nb.index == reference) continue;
     const Eigen::Vector3f& si = scene.points[nb.index];
@@ -209,20 +209,19 @@ void PointPairModel::vote(const PointCloud& scene, const KdTree& tree, Index ref
     const std::uint32_t k = key(db, a1, a2, a3);
     const std::uint32_t begin = offsets_[k], end = offsets_[k + 1];
     if (begin == end) continue;
-    const float alpha_s = angle_about_x(Rs, si - sr);
+    const float alpha_s = angle_about_x(Rs, si - sr) * kAlphaBinsPerRad;
     for (std::uint32_t e = begin; e < end; ++e) {
       const Entry& entry = entries_[e];
       // Rotating the model pair by alpha = alpha_s - alpha_m about x aligns it with the scene's.
-      float alpha = alpha_s - entry.alpha;
-      if (alpha < 0.0f) alpha += 2.0f * kPi;
-      const int bin = std::min(static_cast<int>(alpha * alpha_bin), kAlphaBins - 1);
-      votes[entry.model_point * kAlphaBins + bin] += 1.0f;
+      float alpha = alpha_s - entry.alpha_in_bins;
+      if (alpha < 0.0f) alpha += static_cast<float>(kAlphaBins);
+      votes[entry.first_vote + std::min(static_cast<int>(alpha), kAlphaBins - 1)] += 1.0f;
     }
   }
 
   // x_scene = Ts^-1 Rx(alpha) Tm x_model, with Tm x = Rm (x - m), Ts x = Rs (x - s_r).
   const auto rotation = [&](std::uint32_t k) -> Eigen::Matrix3f {
-    const float alpha = (static_cast<float>(k % kAlphaBins) + 0.5f) / alpha_bin;
+    const float alpha = (static_cast<float>(k % kAlphaBins) + 0.5f) / kAlphaBinsPerRad;
     return Rs.transpose() * Eigen::AngleAxisf(alpha, Eigen::Vector3f::UnitX()) *
            to_x_axis_[k / kAlphaBins];
   };

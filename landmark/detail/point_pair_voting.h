@@ -61,9 +61,12 @@ class PointPairModel {
   bool skips_coplanar() const { return skip_coplanar_; }
 
  private:
+  /// A model pair as the voting loop reads it: where its reference point's votes start in the
+  /// accumulator (model point x alpha bins), and its angle about x in alpha bins, so that a vote
+  /// costs a subtraction and no multiplication.
   struct Entry {
-    std::uint32_t model_point;
-    float alpha;
+    std::uint32_t first_vote;
+    float alpha_in_bins;
   };
   std::uint32_t key(int distance_bin, int a1, int a2, int a3) const;
 
