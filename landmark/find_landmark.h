@@ -25,7 +25,9 @@ namespace lmk {
 /// Bumped whenever a search's results change for the same settings and inputs (how seeds are
 /// drawn, how candidates are scored), so that cached evaluations are searched again.
 /// 2: seeds spread one per cell instead of a uniform random sample.
-inline constexpr int kSearchRevision = 2;
+/// 3: relief beyond the sensor's noise; the tilt limit on aligned poses; no match inside a better
+///    one's box.
+inline constexpr int kSearchRevision = 3;
 
 struct Match {
   /// The matched box in the scene frame: the capture box moved by T_scene_capture.
