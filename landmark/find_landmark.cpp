@@ -58,14 +58,16 @@ void select(std::vector<Match> candidates, const SelectionSettings& s, bool supp
   // The matches come best first (non_max_suppression's order).
   std::vector<Box> boxes;
   for (const Match& m : result.matches) boxes.push_back(m.box);
+  std::vector<char> exclusive(boxes.size(), 0);
+  for (std::size_t i : exclusive_boxes(boxes)) exclusive[i] = 1;
   std::vector<Match> accepted;
-  std::size_t next = 0;
-  for (std::size_t i : exclusive_boxes(boxes)) {
-    for (; next < i; ++next) reject(result.matches[next], stats.rejected_overlap, kRejectedOverlap);
-    accepted.push_back(std::move(result.matches[next++]));
+  for (std::size_t i = 0; i < result.matches.size(); ++i) {
+    if (exclusive[i]) {
+      accepted.push_back(std::move(result.matches[i]));
+    } else {
+      reject(result.matches[i], stats.rejected_overlap, kRejectedOverlap);
+    }
   }
-  for (; next < result.matches.size(); ++next)
-    reject(result.matches[next], stats.rejected_overlap, kRejectedOverlap);
   result.matches = std::move(accepted);
 }
 

@@ -94,9 +94,7 @@ std::vector<Candidate> cluster(std::vector<Candidate> poses, double distance, do
 // symmetry into a tilted pose (a chair's corner, three planes at right angles, onto a corner
 // turned on its side), which an upright search has said it will not report.
 bool within_tilt(const TiltLimit* limit, const Eigen::Isometry3d& T_scene_model) {
-  if (!limit) return true;
-  const Eigen::Vector3f up = T_scene_model.linear().cast<float>() * limit->model_up;
-  return up.dot(limit->scene_up) >= limit->min_cos;
+  return !limit || limit->admits(T_scene_model.linear().cast<float>());
 }
 
 }  // namespace
@@ -222,9 +220,7 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
   const auto fine_start = Clock::now();
 
   // Step 4 and 5, in parallel over the survivors.
-  IcpSettings fine_icp = coarse_icp;
-  fine_icp.translation_tolerance = IcpSettings().translation_tolerance;
-  fine_icp.rotation_tolerance = IcpSettings().rotation_tolerance;
+  IcpSettings fine_icp;  // the default, tight convergence tolerances
   fine_icp.max_iterations = 10;
   fine_icp.max_correspondence_distance = 0.5 * index.field().band();
   fine_icp.loss = {RobustKernel::huber, 0.5 * leaf};

@@ -226,9 +226,7 @@ void PointPairModel::vote(const PointCloud& scene, const KdTree& tree, Index ref
            to_x_axis_[k / kAlphaBins];
   };
   // The tilt is tested only for bins strong enough to enter the best list, a handful per seed.
-  const auto admissible = [&](std::uint32_t k) {
-    return !tilt || (rotation(k) * tilt->model_up).dot(tilt->scene_up) >= tilt->min_cos;
-  };
+  const auto admissible = [&](std::uint32_t k) { return !tilt || tilt->admits(rotation(k)); };
 
   // The best admissible bins, strongest first; ties go to the lower index, so the result is
   // deterministic.

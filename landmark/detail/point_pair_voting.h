@@ -40,6 +40,11 @@ struct PoseVote {
 struct TiltLimit {
   Eigen::Vector3f model_up, scene_up;  ///< unit
   float min_cos = -1.0f;
+
+  /// Whether the rotation R_scene_model keeps the model's up axis within the limit.
+  bool admits(const Eigen::Matrix3f& R_scene_model) const {
+    return (R_scene_model * model_up).dot(scene_up) >= min_cos;
+  }
 };
 
 class PointPairModel {
