@@ -240,11 +240,24 @@ float DistanceField::Sampler::distance(const Eigen::Vector3f& p, Eigen::Vector3f
                       static_cast<int>(base.z()));
   double v[2][2][2];
   bool any = false;
+  // Two times in three the 8 corners lie in one leaf node: read them from its buffer directly
+  // instead of through the accessor eight times.
+  const vdb::Coord c1 = c0.offsetBy(1, 1, 1);
+  const FloatLeaf* leaf = (c0 & ~(FloatLeaf::DIM - 1)) == (c1 & ~(FloatLeaf::DIM - 1))
+                              ? impl_->distance.probeConstLeaf(c0)
+                              : nullptr;
   for (int i = 0; i < 2; ++i)
     for (int j = 0; j < 2; ++j)
       for (int k = 0; k < 2; ++k) {
+        const vdb::Coord ijk = c0.offsetBy(i, j, k);
         float value = impl_->band;
-        any |= impl_->distance.probeValue(c0.offsetBy(i, j, k), value);
+        if (leaf) {
+          const vdb::Index offset = FloatLeaf::coordToOffset(ijk);
+          value = leaf->getValue(offset);
+          any |= leaf->isValueOn(offset);
+        } else {
+          any |= impl_->distance.probeValue(ijk, value);
+        }
         v[i][j][k] = value;
       }
   if (!any) return impl_->band;

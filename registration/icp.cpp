@@ -67,6 +67,9 @@ IcpResult icp(const std::vector<Eigen::Vector3f>& source, const IcpTarget& targe
   const bool to_plane = settings.mode == IcpMode::point_to_plane;
 
   for (int iteration = 0; iteration <= settings.max_iterations; ++iteration) {
+    // The pass after the last step would only measure the error at the final pose.
+    const bool last_step_taken = iteration == settings.max_iterations || result.converged;
+    if (last_step_taken && !settings.measure_final) break;
     NormalEquations eq;
     const Eigen::Isometry3f T = result.T_target_source.cast<float>();
     Eigen::Vector3f p, n;
@@ -101,8 +104,7 @@ IcpResult icp(const std::vector<Eigen::Vector3f>& source, const IcpTarget& targe
     result.inliers = eq.count;
     result.final_error = eq.count > 0 ? eq.abs_residual_sum / static_cast<double>(eq.count)
                                       : std::numeric_limits<double>::infinity();
-    // The last pass only measures the error at the final pose.
-    if (iteration == settings.max_iterations || result.converged || eq.count < 6) break;
+    if (last_step_taken || eq.count < 6) break;
 
     // Levenberg-style damping keeps planar or linear targets (rank-deficient) from diverging.
     Eigen::Matrix<double, 6, 6> A = eq.JtJ;

@@ -6,12 +6,12 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <memory>
 #include <numeric>
 #include <unordered_map>
 
 #include "lmk/geometry/detail/voxel_key.h"
 #include "lmk/geometry/pose.h"
+#include "lmk/geometry/radius_grid.h"
 #include "lmk/geometry/voxel_grid.h"
 #include "lmk/landmark/detail/grid_metrics.h"
 #include "lmk/landmark/detail/point_pair_voting.h"
@@ -111,17 +111,18 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
   const double vote_leaf = in.prepared.vote_leaf();
   const PointCloud& model = in.prepared.coarse();
   const PointPairModel& pairs = in.prepared.point_pairs();
-  // The scene reaches the voting resolution as the landmark's model did (LandmarkIndex).
+  // The scene reaches the voting resolution as the landmark's model did (LandmarkIndex), and is
+  // bucketed for the seeds' neighbourhoods: one radius, the diameter, for every seed.
   const bool own_vote_cloud = vote_leaf > leaf * 1.01;
   const PointCloud vote_scene = own_vote_cloud ? voxel_downsample(coarse, vote_leaf) : PointCloud();
   const PointCloud& voters = own_vote_cloud ? vote_scene : coarse;
-  const std::unique_ptr<KdTree> own_tree =
-      own_vote_cloud ? std::make_unique<KdTree>(vote_scene) : nullptr;
-  const KdTree& voter_tree = own_vote_cloud ? *own_tree : index.coarse_tree();
-  // Each seed votes at the voting point nearest to it.
+  const RadiusGrid voter_grid(voters, 0.5 * diameter);
+  // Each seed votes at the voting point nearest to it: the centroid of its own voting voxel, no
+  // farther than that voxel's diagonal, is a candidate.
+  const auto reach = static_cast<float>(1.01 * std::sqrt(3.0) * std::max(vote_leaf, leaf));
   std::vector<Index> references(in.seeds.size());
   for (std::size_t k = 0; k < in.seeds.size(); ++k) {
-    const auto n = voter_tree.nearest(coarse.points[in.seeds[k]]);
+    const auto n = voter_grid.nearest_within(coarse.points[in.seeds[k]], reach);
     references[k] = n ? n->index : 0;
   }
 
@@ -135,7 +136,7 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
   std::vector<std::vector<PoseVote>> votes(in.seeds.size());
   std::atomic<std::size_t> done{0};
   tbb::parallel_for(std::size_t{0}, in.seeds.size(), [&](std::size_t k) {
-    pairs.vote(voters, voter_tree, references[k], s.fast.poses_per_seed, 0.75, votes[k], limit);
+    pairs.vote(voters, voter_grid, references[k], s.fast.poses_per_seed, 0.75, votes[k], limit);
     if (s.execution.progress) s.execution.progress(++done, in.seeds.size());
   });
   std::vector<Candidate> poses;
@@ -162,6 +163,7 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
   // and half a degree ends it (the fine alignment keeps its own, tight tolerances).
   coarse_icp.translation_tolerance = 0.1 * leaf;
   coarse_icp.rotation_tolerance = 0.01;
+  coarse_icp.measure_final = false;  // the candidates are scored below, by the metric's unit
   // A few hundred points fix a coarse pose as well as all of them; the candidates are many.
   const std::vector<Eigen::Vector3f> coarse_points = thin(model.points, 400);
   std::vector<Eigen::Isometry3d> aligned(clusters.size());
@@ -224,6 +226,7 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
   fine_icp.max_iterations = 10;
   fine_icp.max_correspondence_distance = 0.5 * index.field().band();
   fine_icp.loss = {RobustKernel::huber, 0.5 * leaf};
+  fine_icp.measure_final = false;  // the metric scores the result
   const std::vector<Eigen::Vector3f> icp_points = thin(landmark.points.points, 1000);
   const std::vector<Eigen::Vector3f> refine_points = thin(landmark.points.points, 400);
   const std::vector<Eigen::Vector3f> empty_probes = thin(landmark.empty_space.centres(), 300);

@@ -14,6 +14,7 @@ constexpr float kAngleStep = kPi / 15.0f;  // 12 degrees, as Drost et al.
 constexpr int kAngleBins = 15;
 constexpr int kAlphaBins = 30;
 constexpr float kAlphaBinsPerRad = kAlphaBins / (2.0f * kPi);
+constexpr std::uint32_t kScanBlock = 64;  // accumulator bins per block of the best-pose scan
 constexpr float kCoplanarTolerance = static_cast<float>(kCoplanarAngle);
 
 // acos to about 7e-5 rad (Abramowitz & Stegun 4.4.45): the voting loop calls it three times per
@@ -174,7 +175,7 @@ std::uint32_t PointPairModel::key(int distance_bin, int a1, int a2, int a3) cons
          static_cast<std::uint32_t>(a3);
 }
 
-void PointPairModel::vote(const PointCloud& scene, const KdTree& tree, Index reference,
+void PointPairModel::vote(const PointCloud& scene, const RadiusGrid& grid, Index reference,
                           int max_poses, double min_fraction, std::vector<PoseVote>& out,
                           const TiltLimit* tilt) const {
   out.clear();
@@ -185,10 +186,11 @@ void PointPairModel::vote(const PointCloud& scene, const KdTree& tree, Index ref
 
   // Per-thread scratch: a search votes for a thousand seeds, and fresh buffers for each would cost
   // more in allocation than the voting itself.
+  // Votes are counts: integers add without a floating-point latency in the loop's chain.
   thread_local std::vector<Neighbor> neighbours;
-  thread_local std::vector<float> votes;
-  tree.radius_unsorted(sr, static_cast<float>(diameter_), neighbours);
-  votes.assign(points_.size() * kAlphaBins, 0.0f);
+  thread_local std::vector<std::uint32_t> votes;
+  grid.radius_unsorted(sr, static_cast<float>(diameter_), neighbours);
+  votes.assign(points_.size() * kAlphaBins, 0);
   const float step = static_cast<float>(distance_step_);
   for (const Neighbor& nb : neighbours) {
     if (nb.index == reference) continue;
@@ -215,7 +217,7 @@ void PointPairModel::vote(const PointCloud& scene, const KdTree& tree, Index ref
       // Rotating the model pair by alpha = alpha_s - alpha_m about x aligns it with the scene's.
       float alpha = alpha_s - entry.alpha_in_bins;
       if (alpha < 0.0f) alpha += static_cast<float>(kAlphaBins);
-      votes[entry.first_vote + std::min(static_cast<int>(alpha), kAlphaBins - 1)] += 1.0f;
+      ++votes[entry.first_vote + std::min(static_cast<int>(alpha), kAlphaBins - 1)];
     }
   }
 
@@ -229,22 +231,35 @@ void PointPairModel::vote(const PointCloud& scene, const KdTree& tree, Index ref
   const auto admissible = [&](std::uint32_t k) { return !tilt || tilt->admits(rotation(k)); };
 
   // The best admissible bins, strongest first; ties go to the lower index, so the result is
-  // deterministic.
-  std::vector<std::pair<float, std::uint32_t>> best;
+  // deterministic. The scan goes a block of bins at a time: once the list is full, a block whose
+  // strongest bin does not beat the list's weakest holds no candidate (the blocks' maxima are one
+  // vectorised pass; most blocks are skipped).
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> best;
   best.reserve(static_cast<std::size_t>(max_poses) + 1);
-  for (std::uint32_t k = 0; k < votes.size(); ++k) {
-    if (votes[k] <= 0.0f) continue;
+  const auto consider = [&](std::uint32_t k) {
+    if (votes[k] == 0) return;
     if (static_cast<int>(best.size()) < max_poses || votes[k] > best.back().first) {
-      if (!admissible(k)) continue;
+      if (!admissible(k)) return;
       best.emplace_back(votes[k], k);
       std::stable_sort(best.begin(), best.end(),
                        [](const auto& a, const auto& b) { return a.first > b.first; });
       if (static_cast<int>(best.size()) > max_poses) best.pop_back();
     }
+  };
+  const auto bins = static_cast<std::uint32_t>(votes.size());
+  for (std::uint32_t block = 0; block < bins; block += kScanBlock) {
+    const std::uint32_t end = std::min(block + kScanBlock, bins);
+    std::uint32_t strongest = 0;
+    for (std::uint32_t k = block; k < end; ++k) strongest = std::max(strongest, votes[k]);
+    if (strongest == 0) continue;
+    if (static_cast<int>(best.size()) >= max_poses && strongest <= best.back().first) continue;
+    for (std::uint32_t k = block; k < end; ++k) consider(k);
   }
   if (best.empty()) return;
-  const float floor_votes = static_cast<float>(min_fraction) * best.front().first;
-  for (const auto& [v, k] : best) {
+  const float floor_votes =
+      static_cast<float>(min_fraction) * static_cast<float>(best.front().first);
+  for (const auto& [count, k] : best) {
+    const auto v = static_cast<float>(count);
     if (v < floor_votes) break;
     const Eigen::Matrix3f R = rotation(k);
     PoseVote pv;

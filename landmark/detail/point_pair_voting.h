@@ -19,8 +19,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "lmk/geometry/kdtree.h"
 #include "lmk/geometry/point_cloud.h"
+#include "lmk/geometry/radius_grid.h"
 
 namespace lmk::detail {
 
@@ -54,10 +54,11 @@ class PointPairModel {
   PointPairModel(const PointCloud& model, double distance_step, double diameter);
 
   /// The best-voted poses for the reference scene point `reference` of `scene` (which needs
-  /// normals), paired with its neighbours within the model diameter found through `tree`. At most
+  /// normals), paired with its neighbours within the model diameter found through `grid` (built
+  /// over `scene`). At most
   /// `max_poses`, each with at least `min_fraction` of the best one's votes; with `tilt`, only
   /// poses within its limit.
-  void vote(const PointCloud& scene, const KdTree& tree, Index reference, int max_poses,
+  void vote(const PointCloud& scene, const RadiusGrid& grid, Index reference, int max_poses,
             double min_fraction, std::vector<PoseVote>& out, const TiltLimit* tilt = nullptr) const;
 
   std::size_t size() const { return points_.size(); }

@@ -62,6 +62,27 @@ TEST(Icp, DistanceFieldTargetRecoversAKnownMotion) {
   EXPECT_LT(rotation_angle_between(r.T_target_source.linear(), T.inverse().linear()), 0.02);
 }
 
+// The fast search skips the measuring pass: the pose, its steps and convergence must not change,
+// whether the run ends by converging or at its iteration cap.
+TEST(Icp, SkippingTheMeasuringPassChangesNothingButTheMeasurement) {
+  const PointCloud target = test::corner_with_bump();
+  const DistanceField field(target.points, {0.005, 0.05});
+  const DistanceFieldTarget grid(field, &target.normals);
+  const std::vector<Eigen::Vector3f> source = moved(target, test::small_motion());
+  for (const int cap : {3, 60}) {
+    IcpSettings measured;
+    measured.max_iterations = cap;
+    IcpSettings unmeasured = measured;
+    unmeasured.measure_final = false;
+    const IcpResult a = icp(source, grid, Eigen::Isometry3d::Identity(), measured);
+    const IcpResult b = icp(source, grid, Eigen::Isometry3d::Identity(), unmeasured);
+    EXPECT_TRUE(a.T_target_source.isApprox(b.T_target_source, 0.0)) << "cap " << cap;
+    EXPECT_EQ(a.iterations, b.iterations);
+    EXPECT_EQ(a.converged, b.converged);
+    EXPECT_EQ(a.converged, cap == 60);
+  }
+}
+
 TEST(Icp, ARobustKernelResistsThirtyPercentOutliers) {
   const PointCloud target = test::corner_with_bump();
   const KdTree tree(target);

@@ -1,0 +1,107 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "lmk/geometry/radius_grid.h"
+
+#include <cmath>
+
+#include "lmk/geometry/error.h"
+
+namespace lmk {
+
+RadiusGrid::RadiusGrid(const PointCloud& cloud, double cell)
+    : inv_cell_(1.0 / cell), cells_(cloud.size() / 8) {
+  if (!(cell > 0.0) || !std::isfinite(cell)) {
+    throw Error("radius grid: the cell size must be positive and finite");
+  }
+  // Cell ids in order of first appearance, then a counting sort of the points by cell.
+  std::vector<std::uint32_t> cell_of(cloud.size(), detail::VoxelTable::kAbsent);
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    if (!cloud.points[i].allFinite()) continue;
+    const std::uint32_t id =
+        cells_.insert(detail::pack_voxel(detail::voxel_coord(cloud.points[i], inv_cell_)));
+    if (id + 1 >= begin_.size()) begin_.resize(id + 2, 0);
+    ++begin_[id + 1];
+    cell_of[i] = id;
+  }
+  for (std::size_t c = 1; c < begin_.size(); ++c) begin_[c] += begin_[c - 1];
+  const std::size_t finite = begin_.empty() ? 0 : begin_.back();
+  points_.resize(finite);
+  indices_.resize(finite);
+  std::vector<std::uint32_t> fill(begin_);
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    if (cell_of[i] == detail::VoxelTable::kAbsent) continue;
+    const std::uint32_t slot = fill[cell_of[i]]++;
+    points_[slot] = cloud.points[i];
+    indices_[slot] = static_cast<Index>(i);
+  }
+}
+
+// Calls visit(slot, squared distance) for every point strictly closer than `radius`. The cells
+// scanned are those between the cells of query -/+ radius on each axis: a point within the ball
+// lies between those bounds, and flooring the scaled coordinate is monotonic, so its cell is among
+// them.
+template <class Visit>
+void RadiusGrid::for_each_within(const Eigen::Vector3f& query, float radius, Visit&& visit) const {
+  if (points_.empty() || !(radius > 0.0f) || !query.allFinite()) return;
+  const float r2 = radius * radius;  // as KdTree squares it
+  detail::VoxelCoord lo, hi;
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = static_cast<std::int64_t>(
+        std::floor((static_cast<double>(query[a]) - static_cast<double>(radius)) * inv_cell_));
+    hi[a] = static_cast<std::int64_t>(
+        std::floor((static_cast<double>(query[a]) + static_cast<double>(radius)) * inv_cell_));
+  }
+  const double cell = 1.0 / inv_cell_;
+  const auto gap = [&](int a, std::int64_t c) {  // from the query to cell c along axis a, m
+    const double low = static_cast<double>(c) * cell, high = low + cell;
+    return query[a] < low ? low - query[a] : (query[a] > high ? query[a] - high : 0.0);
+  };
+  for (std::int64_t x = lo[0]; x <= hi[0]; ++x) {
+    const double gx = gap(0, x);
+    for (std::int64_t y = lo[1]; y <= hi[1]; ++y) {
+      const double gy = gap(1, y);
+      for (std::int64_t z = lo[2]; z <= hi[2]; ++z) {
+        const double gz = gap(2, z);
+        // Cells wholly outside the ball (with a margin for rounding) are not looked up.
+        if (gx * gx + gy * gy + gz * gz > 1.0001 * static_cast<double>(r2)) continue;
+        if (x < -detail::kVoxelKeyOffset || x >= detail::kVoxelKeyOffset ||
+            y < -detail::kVoxelKeyOffset || y >= detail::kVoxelKeyOffset ||
+            z < -detail::kVoxelKeyOffset || z >= detail::kVoxelKeyOffset) {
+          continue;
+        }
+        const std::uint32_t id = cells_.find(detail::pack_voxel({x, y, z}));
+        if (id == detail::VoxelTable::kAbsent) continue;
+        for (std::uint32_t slot = begin_[id]; slot < begin_[id + 1]; ++slot) {
+          const Eigen::Vector3f& p = points_[slot];
+          float d2 = 0.0f;
+          for (int a = 0; a < 3; ++a) {
+            const float diff = query[a] - p[a];
+            d2 += diff * diff;
+          }
+          if (d2 < r2) visit(slot, d2);
+        }
+      }
+    }
+  }
+}
+
+void RadiusGrid::radius_unsorted(const Eigen::Vector3f& query, float radius,
+                                 std::vector<Neighbor>& out) const {
+  out.clear();
+  for_each_within(query, radius, [&](std::uint32_t slot, float d2) {
+    out.push_back({indices_[slot], d2});
+  });
+}
+
+std::optional<Neighbor> RadiusGrid::nearest_within(const Eigen::Vector3f& query,
+                                                   float radius) const {
+  std::optional<Neighbor> best;
+  for_each_within(query, radius, [&](std::uint32_t slot, float d2) {
+    if (!best || d2 < best->squared_distance ||
+        (d2 == best->squared_distance && indices_[slot] < best->index)) {
+      best = Neighbor{indices_[slot], d2};
+    }
+  });
+  return best;
+}
+
+}  // namespace lmk
