@@ -51,8 +51,9 @@ struct NormalEquations {
   std::size_t count = 0;
 
   void add(const Eigen::Matrix<double, 6, 1>& J, double r, double w) {
-    JtJ += w * J * J.transpose();
-    Jtr += w * J * r;
+    const Eigen::Matrix<double, 6, 1> wJ = w * J;
+    JtJ.noalias() += wJ * J.transpose();  // no 6x6 temporary: this runs once per correspondence
+    Jtr.noalias() += wJ * r;
   }
 };
 

@@ -22,6 +22,7 @@ class VoxelTable {
     while (capacity < 2 * expected_voxels) capacity *= 2;
     keys_.assign(capacity, kNoVoxel);
     ids_.assign(capacity, kAbsent);
+    shift_ = shift_for(capacity);
   }
 
   /// The id of `key`, inserting it with the next id when new.
@@ -47,12 +48,22 @@ class VoxelTable {
 
  private:
   // The slot holding `key`, or the empty slot where it would go. The table is never more than
-  // half full, so the probe ends.
+  // half full, so the probe ends. Fibonacci hashing: the top bits of key x 2^64/phi, which depend
+  // on every bit of the key. (Middle bits depend on the key's low bits only, which leave out the
+  // x coordinate of a packed voxel: all voxels of a row along x shared one slot, and the probes
+  // ran long.)
   std::size_t find_slot(std::uint64_t key) const {
     const std::size_t mask = keys_.size() - 1;
-    std::size_t slot = static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> 20) & mask;
+    std::size_t slot = static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> shift_);
     while (keys_[slot] != key && keys_[slot] != kNoVoxel) slot = (slot + 1) & mask;
     return slot;
+  }
+
+  // 64 - log2(capacity): the shift that leaves a slot index.
+  static int shift_for(std::size_t capacity) {
+    int bits = 0;
+    while ((std::size_t{1} << bits) < capacity) ++bits;
+    return 64 - bits;
   }
 
   void grow() {
@@ -60,6 +71,7 @@ class VoxelTable {
     std::vector<std::uint32_t> ids(2 * ids_.size(), kAbsent);
     keys.swap(keys_);
     ids.swap(ids_);
+    shift_ = shift_for(keys_.size());
     for (std::size_t k = 0; k < keys.size(); ++k) {
       if (keys[k] == kNoVoxel) continue;
       const std::size_t slot = find_slot(keys[k]);
@@ -71,6 +83,7 @@ class VoxelTable {
   std::vector<std::uint64_t> keys_;
   std::vector<std::uint32_t> ids_;
   std::size_t size_ = 0;
+  int shift_ = 64;
 };
 
 }  // namespace lmk::detail

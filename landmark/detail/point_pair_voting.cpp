@@ -2,6 +2,7 @@
 #include "lmk/landmark/detail/point_pair_voting.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "lmk/geometry/error.h"
@@ -50,6 +51,19 @@ Eigen::Matrix3f rotation_to_x(const Eigen::Vector3f& n) {
 float angle_about_x(const Eigen::Matrix3f& R, const Eigen::Vector3f& d) {
   const Eigen::Vector3f v = R * d;
   return fast_atan2(v.z(), v.y());
+}
+
+// Rx(alpha) at the centre of each alpha bin, computed once: the poses of every seed use them.
+const std::array<Eigen::Matrix3f, kAlphaBins>& alpha_rotations() {
+  static const std::array<Eigen::Matrix3f, kAlphaBins> rotations = [] {
+    std::array<Eigen::Matrix3f, kAlphaBins> out;
+    for (int b = 0; b < kAlphaBins; ++b) {
+      const float alpha = (static_cast<float>(b) + 0.5f) / kAlphaBinsPerRad;
+      out[b] = Eigen::AngleAxisf(alpha, Eigen::Vector3f::UnitX()).toRotationMatrix();
+    }
+    return out;
+  }();
+  return rotations;
 }
 
 // The coplanarity test in cosines, so that the voting loop can skip a coplanar pair before any
@@ -223,9 +237,7 @@ void PointPairModel::vote(const PointCloud& scene, const RadiusGrid& grid, Index
 
   // x_scene = Ts^-1 Rx(alpha) Tm x_model, with Tm x = Rm (x - m), Ts x = Rs (x - s_r).
   const auto rotation = [&](std::uint32_t k) -> Eigen::Matrix3f {
-    const float alpha = (static_cast<float>(k % kAlphaBins) + 0.5f) / kAlphaBinsPerRad;
-    return Rs.transpose() * Eigen::AngleAxisf(alpha, Eigen::Vector3f::UnitX()) *
-           to_x_axis_[k / kAlphaBins];
+    return Rs.transpose() * alpha_rotations()[k % kAlphaBins] * to_x_axis_[k / kAlphaBins];
   };
   // The tilt is tested only for bins strong enough to enter the best list, a handful per seed.
   const auto admissible = [&](std::uint32_t k) { return !tilt || tilt->admits(rotation(k)); };
