@@ -5,25 +5,20 @@
 #include <tbb/parallel_sort.h>
 
 #include <cmath>
+#include <numeric>
 #include <string>
 #include <unordered_map>
 
 #include "lmk/geometry/detail/voxel_key.h"
+#include "lmk/geometry/detail/voxel_table.h"
 #include "lmk/geometry/error.h"
 
 namespace lmk {
 namespace {
 
-struct KeyedIndex {
-  std::uint64_t key;
-  Index index;
-  bool operator<(const KeyedIndex& o) const { return key != o.key ? key < o.key : index < o.index; }
-};
-
-std::int32_t most_frequent_label(const PointCloud& cloud, const KeyedIndex* begin,
-                                 const KeyedIndex* end) {
+std::int32_t most_frequent_label(const PointCloud& cloud, const Index* begin, const Index* end) {
   std::unordered_map<std::int32_t, int> counts;
-  for (const KeyedIndex* it = begin; it != end; ++it) ++counts[cloud.labels[it->index]];
+  for (const Index* it = begin; it != end; ++it) ++counts[cloud.labels[*it]];
   std::int32_t best = 0;
   int best_count = 0;
   for (const auto& [label, n] : counts) {
@@ -41,21 +36,34 @@ PointCloud voxel_downsample(const PointCloud& cloud, double leaf_size) {
   }
   const double inv_leaf = 1.0 / leaf_size;
 
-  std::vector<KeyedIndex> keyed;
-  keyed.reserve(cloud.size());
+  // The points of each voxel in index order: voxels numbered as they first appear (a hash table,
+  // one probe per point), then a counting sort of the points by voxel. Only the voxels, far fewer
+  // than the points, are sorted by key for the output order.
+  detail::VoxelTable table(cloud.size() / 8);
+  std::vector<std::uint64_t> keys;  // by voxel id
+  std::vector<std::uint32_t> voxel_of(cloud.size(), detail::VoxelTable::kAbsent);
   for (Index i = 0; i < cloud.size(); ++i) {
-    if (is_finite(cloud.points[i]))
-      keyed.push_back({detail::pack_voxel(detail::voxel_coord(cloud.points[i], inv_leaf)), i});
+    if (!is_finite(cloud.points[i])) continue;
+    const std::uint64_t key = detail::pack_voxel(detail::voxel_coord(cloud.points[i], inv_leaf));
+    voxel_of[i] = table.insert(key);
+    if (voxel_of[i] == keys.size()) keys.push_back(key);
   }
-  // Sorting by (key, index) is a total order, so the parallel sort is deterministic.
-  tbb::parallel_sort(keyed.begin(), keyed.end());
-
-  std::vector<std::size_t> starts;  // first entry of each voxel run, plus the end
-  for (std::size_t k = 0; k < keyed.size(); ++k) {
-    if (k == 0 || keyed[k].key != keyed[k - 1].key) starts.push_back(k);
+  const std::size_t voxels = keys.size();
+  std::vector<std::size_t> starts(voxels + 1,
+                                  0);  // members of voxel id: [starts[id], starts[id + 1])
+  for (const std::uint32_t id : voxel_of) {
+    if (id != detail::VoxelTable::kAbsent) ++starts[id + 1];
   }
-  const std::size_t voxels = starts.size();
-  starts.push_back(keyed.size());
+  for (std::size_t v = 0; v < voxels; ++v) starts[v + 1] += starts[v];
+  std::vector<Index> members(starts.back());
+  std::vector<std::size_t> fill(starts.begin(), starts.end() - 1);
+  for (Index i = 0; i < cloud.size(); ++i) {
+    if (voxel_of[i] != detail::VoxelTable::kAbsent) members[fill[voxel_of[i]]++] = i;
+  }
+  std::vector<std::uint32_t> order(voxels);  // voxel ids by key: x slowest, z fastest
+  std::iota(order.begin(), order.end(), 0u);
+  tbb::parallel_sort(order.begin(), order.end(),
+                     [&](std::uint32_t a, std::uint32_t b) { return keys[a] < keys[b]; });
 
   PointCloud out;
   out.T_cloud_sensor = cloud.T_cloud_sensor;
@@ -65,19 +73,19 @@ PointCloud voxel_downsample(const PointCloud& cloud, double leaf_size) {
   if (cloud.has_labels()) out.labels.resize(voxels);
 
   tbb::parallel_for(std::size_t{0}, voxels, [&](std::size_t v) {
-    const KeyedIndex* begin = keyed.data() + starts[v];
-    const KeyedIndex* end = keyed.data() + starts[v + 1];
+    const Index* begin = members.data() + starts[order[v]];
+    const Index* end = members.data() + starts[order[v] + 1];
     const double n = static_cast<double>(end - begin);
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
     Eigen::Vector3d normal_sum = Eigen::Vector3d::Zero();
     Eigen::Vector4d color_sum = Eigen::Vector4d::Zero();
-    for (const KeyedIndex* it = begin; it != end; ++it) {
-      sum += cloud.points[it->index].cast<double>();
-      if (cloud.has_normals() && is_finite(cloud.normals[it->index])) {
-        normal_sum += cloud.normals[it->index].cast<double>();
+    for (const Index* it = begin; it != end; ++it) {
+      sum += cloud.points[*it].cast<double>();
+      if (cloud.has_normals() && is_finite(cloud.normals[*it])) {
+        normal_sum += cloud.normals[*it].cast<double>();
       }
       if (cloud.has_colors()) {
-        const Color& c = cloud.colors[it->index];
+        const Color& c = cloud.colors[*it];
         color_sum += Eigen::Vector4d(c.r, c.g, c.b, c.a);
       }
     }
