@@ -63,10 +63,14 @@ SceneIndex::SceneIndex(const PointCloud& scene, const SceneSettings& settings)
                                // cm): fine enough for a carton's edges, and pooled from the raw
                                // points rather than the centroids.
                                coarse_.normals = moments.normals(scene.sensor_origin());
-                               coarse_tree_ = std::make_unique<KdTree>(coarse_);
                              });
       });
   seconds_ = detail::seconds_since(start);
+}
+
+const KdTree& SceneIndex::coarse_tree() const {
+  std::call_once(coarse_tree_once_, [this] { coarse_tree_ = std::make_unique<KdTree>(coarse_); });
+  return *coarse_tree_;
 }
 
 void SceneIndex::build_fine() const {

@@ -3,8 +3,8 @@
 // SceneIndex: everything the fast search needs from a scene, built once and shared by every
 // landmark searched in it (docs/landmarks.md, "The fast search").
 //
-// - coarse: the scene voxel-downsampled at coarse_leaf, with normals, and its k-d tree: the
-//   candidates' seeds and coarse alignment;
+// - coarse: the scene voxel-downsampled at coarse_leaf, with normals: the candidates' seeds,
+//   voting and coarse alignment; its k-d tree is built on first use (the search needs none);
 // - field: the distance field of the coarse points (voxel = coarse_leaf), with its closest-point
 //   grid: ICP correspondences and the Ceres residuals in O(1);
 // - occupancy: the voxels (side leaf_size) that hold a scene point: the empty-space test;
@@ -13,7 +13,7 @@
 //   inside a box ("paper", "rapid", "vdb"). It is built on first use.
 //
 // Thread safety: const after construction; any number of searches may share one index at once
-// (the lazy fine level is built under std::call_once).
+// (the lazy coarse tree and fine level are built under std::call_once).
 
 #include <Eigen/Geometry>
 #include <memory>
@@ -40,7 +40,8 @@ class SceneIndex {
   std::size_t input_points() const { return input_points_; }  ///< finite, after the crop
 
   const PointCloud& coarse() const { return coarse_; }
-  const KdTree& coarse_tree() const { return *coarse_tree_; }
+  /// The coarse points' k-d tree; built on the first call.
+  const KdTree& coarse_tree() const;
   const DistanceField& field() const { return field_; }
   const OccupancyGrid& occupancy() const { return occupancy_; }
   /// What the scene's sensor saw along each ray (the whole scene, before the crop), for
@@ -61,12 +62,13 @@ class SceneIndex {
   std::size_t input_points_ = 0;
   PointCloud cropped_;
   PointCloud coarse_;
-  std::unique_ptr<KdTree> coarse_tree_;
   DistanceField field_;
   OccupancyGrid occupancy_;
   std::optional<RangeImage> range_image_;
   double seconds_ = 0.0;
 
+  mutable std::once_flag coarse_tree_once_;
+  mutable std::unique_ptr<KdTree> coarse_tree_;
   mutable std::once_flag fine_once_;
   mutable PointCloud fine_;
   mutable std::unique_ptr<KdTree> fine_tree_;

@@ -285,7 +285,7 @@ float DistanceField::Sampler::distance(const Eigen::Vector3f& p, Eigen::Vector3f
 
 int DistanceField::Sampler::closest(const Eigen::Vector3f& p) const {
   if (!p.allFinite()) return -1;
-  return impl_->closest.getValue(detail::nearest_voxel(p.cast<double>(), impl_->voxel));
+  return impl_->closest.getValue(detail::nearest_voxel(p.cast<double>(), impl_->inverse_voxel));
 }
 
 }  // namespace lmk

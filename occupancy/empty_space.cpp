@@ -152,10 +152,10 @@ struct EmptySpaceGrid::Sampler::Impl {
   explicit Impl(std::shared_ptr<const Grid> g)
       : grid(std::move(g)),
         access(grid->grid->getConstAccessor()),
-        voxel(grid->grid->voxelSize()[0]) {}
+        inverse_voxel(1.0 / grid->grid->voxelSize()[0]) {}
   std::shared_ptr<const Grid> grid;
   vdb::BoolGrid::ConstAccessor access;
-  double voxel;
+  double inverse_voxel;
 };
 
 EmptySpaceGrid::Sampler::Sampler(const EmptySpaceGrid& grid)
@@ -165,7 +165,7 @@ EmptySpaceGrid::Sampler::Sampler(Sampler&&) noexcept = default;
 
 bool EmptySpaceGrid::Sampler::is_empty(const Eigen::Vector3f& p) const {
   return p.allFinite() &&
-         impl_->access.isValueOn(detail::nearest_voxel(p.cast<double>(), impl_->voxel));
+         impl_->access.isValueOn(detail::nearest_voxel(p.cast<double>(), impl_->inverse_voxel));
 }
 
 const EmptySpaceGrid::Grid& EmptySpaceGrid::grid() const { return *grid_; }

@@ -26,8 +26,10 @@ OccupancyGrid::OccupancyGrid(const std::vector<Eigen::Vector3f>& points, double 
   g->grid = openvdb::BoolGrid::create(false);
   g->grid->setTransform(openvdb::math::Transform::createLinearTransform(voxel_size));
   auto access = g->grid->getAccessor();
+  const double inverse_voxel = 1.0 / voxel_size;
   for (const auto& p : points) {
-    if (p.allFinite()) access.setValueOn(detail::nearest_voxel(p.cast<double>(), voxel_size), true);
+    if (p.allFinite())
+      access.setValueOn(detail::nearest_voxel(p.cast<double>(), inverse_voxel), true);
   }
   grid_ = std::move(g);
 }
@@ -45,8 +47,8 @@ std::vector<Eigen::Vector3f> OccupancyGrid::occupied_in(const Box& box) const {
   const double voxel = grid_->voxel;
   Eigen::AlignedBox3d bounds;
   for (const Eigen::Vector3d& c : box.corners()) bounds.extend(c);
-  const openvdb::Coord first = detail::nearest_voxel(bounds.min(), voxel);
-  const openvdb::Coord last = detail::nearest_voxel(bounds.max(), voxel);
+  const openvdb::Coord first = detail::nearest_voxel(bounds.min(), 1.0 / voxel);
+  const openvdb::Coord last = detail::nearest_voxel(bounds.max(), 1.0 / voxel);
   const auto leaf_origin = [](int v) { return v & ~static_cast<int>(Leaf::DIM - 1); };
   const auto access = grid_->grid->getConstAccessor();
   for (int x = leaf_origin(first.x()); x <= last.x(); x += Leaf::DIM) {
@@ -66,9 +68,9 @@ std::vector<Eigen::Vector3f> OccupancyGrid::occupied_in(const Box& box) const {
 }
 
 struct OccupancyGrid::Sampler::Impl {
-  explicit Impl(const Grid& g) : access(g.grid->getConstAccessor()), voxel(g.voxel) {}
+  explicit Impl(const Grid& g) : access(g.grid->getConstAccessor()), inverse_voxel(1.0 / g.voxel) {}
   openvdb::BoolGrid::ConstAccessor access;
-  double voxel;
+  double inverse_voxel;
 };
 
 OccupancyGrid::Sampler::Sampler(const OccupancyGrid& grid)
@@ -78,7 +80,7 @@ OccupancyGrid::Sampler::Sampler(Sampler&&) noexcept = default;
 
 bool OccupancyGrid::Sampler::occupied(const Eigen::Vector3f& p) const {
   return p.allFinite() &&
-         impl_->access.isValueOn(detail::nearest_voxel(p.cast<double>(), impl_->voxel));
+         impl_->access.isValueOn(detail::nearest_voxel(p.cast<double>(), impl_->inverse_voxel));
 }
 
 }  // namespace lmk

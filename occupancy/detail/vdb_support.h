@@ -20,11 +20,12 @@ inline int round_to_int(double v) {
   return truncated - (shifted < static_cast<double>(truncated) ? 1 : 0);  // floor
 }
 
-/// The voxel coordinate whose centre is nearest to `p` on a grid of side `voxel` anchored at the
-/// origin (OpenVDB's cell-centred convention).
-inline openvdb::Coord nearest_voxel(const Eigen::Vector3d& p, double voxel) {
-  return openvdb::Coord(round_to_int(p.x() / voxel), round_to_int(p.y() / voxel),
-                        round_to_int(p.z() / voxel));
+/// The voxel coordinate whose centre is nearest to `p` on a grid of side 1 / `inverse_voxel`
+/// anchored at the origin (OpenVDB's cell-centred convention). The inverse, not the side: the
+/// lookups run millions of times per search, and a multiplication costs a fraction of a division.
+inline openvdb::Coord nearest_voxel(const Eigen::Vector3d& p, double inverse_voxel) {
+  return openvdb::Coord(round_to_int(p.x() * inverse_voxel), round_to_int(p.y() * inverse_voxel),
+                        round_to_int(p.z() * inverse_voxel));
 }
 
 }  // namespace lmk::detail
