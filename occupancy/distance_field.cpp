@@ -32,7 +32,7 @@ class LeafCache {
     float* squared_data = nullptr;
     std::int32_t* closest_data = nullptr;
   };
-  LeafCache(vdb::FloatGrid::Accessor& squared, vdb::Int32Grid::Accessor& closest)
+  LeafCache(vdb::FloatGrid::UnsafeAccessor& squared, vdb::Int32Grid::UnsafeAccessor& closest)
       : squared_(squared), closest_(closest), entries_(kSize) {}
 
   const Entry& leaf(const vdb::Coord& ijk) {
@@ -52,8 +52,8 @@ class LeafCache {
 
  private:
   static constexpr unsigned kSize = 4096;
-  vdb::FloatGrid::Accessor& squared_;
-  vdb::Int32Grid::Accessor& closest_;
+  vdb::FloatGrid::UnsafeAccessor& squared_;
+  vdb::Int32Grid::UnsafeAccessor& closest_;
   std::vector<Entry> entries_;
 };
 
@@ -68,8 +68,9 @@ struct SlabGrids {
 SlabGrids build_slab(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& members,
                      double voxel, double band, int x0, int x1) {
   SlabGrids g{vdb::FloatGrid::create(static_cast<float>(band * band)), vdb::Int32Grid::create(-1)};
-  auto squared = g.squared->getAccessor();
-  auto closest = g.closest->getAccessor();
+  // Unregistered accessors: only they modify these slab grids, which no one else sees yet.
+  auto squared = g.squared->getUnsafeAccessor();
+  auto closest = g.closest->getUnsafeAccessor();
   const int reach = static_cast<int>(std::ceil(band / voxel));
   // Leaf pointers are cached in a direct-mapped table: a point's neighbourhood spans a few leaves,
   // neighbouring points share them, and finding leaves through the tree dominated the build time.
@@ -207,14 +208,17 @@ DistanceField DistanceField::from_grids(std::vector<Eigen::Vector3f> points, Gri
 struct DistanceField::Sampler::Impl {
   explicit Impl(std::shared_ptr<const Grids> g)
       : grids(std::move(g)),
-        distance(grids->distance->getConstAccessor()),
-        closest(grids->closest->getConstAccessor()),
+        distance(grids->distance->getConstUnsafeAccessor()),
+        closest(grids->closest->getConstUnsafeAccessor()),
         voxel(grids->distance->voxelSize()[0]),
         inverse_voxel(1.0 / voxel),
         band(static_cast<float>(grids->band)) {}
   std::shared_ptr<const Grids> grids;  // a sampler keeps its grids alive
-  vdb::FloatGrid::ConstAccessor distance;
-  vdb::Int32Grid::ConstAccessor closest;
+  // Unregistered accessors: the grids never change after the field is built, and registering
+  // with the tree takes a lock, twice per sampler, for a few hundred lookups (the fast search makes
+  // samplers per candidate).
+  vdb::FloatGrid::ConstUnsafeAccessor distance;
+  vdb::Int32Grid::ConstUnsafeAccessor closest;
   double voxel;
   double inverse_voxel;
   float band;

@@ -151,10 +151,10 @@ bool EmptySpaceGrid::is_empty(const Eigen::Vector3f& p) const { return sampler()
 struct EmptySpaceGrid::Sampler::Impl {
   explicit Impl(std::shared_ptr<const Grid> g)
       : grid(std::move(g)),
-        access(grid->grid->getConstAccessor()),
+        access(grid->grid->getConstUnsafeAccessor()),
         inverse_voxel(1.0 / grid->grid->voxelSize()[0]) {}
   std::shared_ptr<const Grid> grid;
-  vdb::BoolGrid::ConstAccessor access;
+  vdb::BoolGrid::ConstUnsafeAccessor access;  // unregistered: the grid never changes once built
   double inverse_voxel;
 };
 

@@ -68,8 +68,10 @@ std::vector<Eigen::Vector3f> OccupancyGrid::occupied_in(const Box& box) const {
 }
 
 struct OccupancyGrid::Sampler::Impl {
-  explicit Impl(const Grid& g) : access(g.grid->getConstAccessor()), inverse_voxel(1.0 / g.voxel) {}
-  openvdb::BoolGrid::ConstAccessor access;
+  // Unregistered: the grid never changes once built.
+  explicit Impl(const Grid& g)
+      : access(g.grid->getConstUnsafeAccessor()), inverse_voxel(1.0 / g.voxel) {}
+  openvdb::BoolGrid::ConstUnsafeAccessor access;
   double inverse_voxel;
 };
 

@@ -37,6 +37,27 @@ TEST(RefinePose, ImprovesASmallErrorAndNeverMakesTheCostWorse) {
   }
 }
 
+// The rotation's closed-form Jacobian (through SO(3)'s right Jacobian) has to be right for the
+// solver to undo a rotation: translation alone would leave it.
+TEST(RefinePose, UndoesARotationAboutAnyAxis) {
+  const PointCloud target = test::corner_with_bump();
+  const DistanceField field(target.points, {0.0025, 0.03});
+  SplitMix64 rng(5);
+  for (int trial = 0; trial < 10; ++trial) {
+    const Eigen::Vector3d axis =
+        Eigen::Vector3d(rng.normal(), rng.normal(), rng.normal()).normalized();
+    const double angle = 0.03 + 0.03 * rng.uniform01();
+    Eigen::Isometry3d start = Eigen::Isometry3d::Identity();
+    start.linear() = Eigen::AngleAxisd(angle, axis).toRotationMatrix();
+    RefineSettings s;
+    s.max_iterations = 30;
+    const RefineResult r = refine_pose(target.points, field, start, s);
+    EXPECT_LT(rotation_angle_between(r.T_target_source.linear(), Eigen::Matrix3d::Identity()),
+              0.25 * angle)
+        << "trial " << trial;
+  }
+}
+
 TEST(RefinePose, EmptySpacePushesAwayFromOccupiedSpace) {
   // Probes placed on the surface itself: the penalty must raise the cost at the start.
   const PointCloud target = test::corner_with_bump();
