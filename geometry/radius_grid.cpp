@@ -3,12 +3,13 @@
 
 #include <cmath>
 
+#include "lmk/geometry/detail/voxel_table.h"
 #include "lmk/geometry/error.h"
 
 namespace lmk {
 
 RadiusGrid::RadiusGrid(const PointCloud& cloud, double cell)
-    : inv_cell_(1.0 / cell), cells_(cloud.size() / 8) {
+    : inv_cell_(1.0 / cell), cells_(std::make_unique<detail::VoxelTable>(cloud.size() / 8)) {
   if (!(cell > 0.0) || !std::isfinite(cell)) {
     throw Error("radius grid: the cell size must be positive and finite");
   }
@@ -17,7 +18,7 @@ RadiusGrid::RadiusGrid(const PointCloud& cloud, double cell)
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     if (!cloud.points[i].allFinite()) continue;
     const std::uint32_t id =
-        cells_.insert(detail::pack_voxel(detail::voxel_coord(cloud.points[i], inv_cell_)));
+        cells_->insert(detail::pack_voxel(detail::voxel_coord(cloud.points[i], inv_cell_)));
     if (id + 1 >= begin_.size()) begin_.resize(id + 2, 0);
     ++begin_[id + 1];
     cell_of[i] = id;
@@ -34,6 +35,10 @@ RadiusGrid::RadiusGrid(const PointCloud& cloud, double cell)
     indices_[slot] = static_cast<Index>(i);
   }
 }
+
+RadiusGrid::~RadiusGrid() = default;
+RadiusGrid::RadiusGrid(RadiusGrid&&) noexcept = default;
+RadiusGrid& RadiusGrid::operator=(RadiusGrid&&) noexcept = default;
 
 // Calls visit(slot, squared distance) for every point strictly closer than `radius`. The cells
 // scanned are those between the cells of query -/+ radius on each axis: a point within the ball
@@ -68,7 +73,7 @@ void RadiusGrid::for_each_within(const Eigen::Vector3f& query, float radius, Vis
             z < -detail::kVoxelKeyOffset || z >= detail::kVoxelKeyOffset) {
           continue;
         }
-        const std::uint32_t id = cells_.find(detail::pack_voxel({x, y, z}));
+        const std::uint32_t id = cells_->find(detail::pack_voxel({x, y, z}));
         if (id == detail::VoxelTable::kAbsent) continue;
         for (std::uint32_t slot = begin_[id]; slot < begin_[id + 1]; ++slot) {
           const Eigen::Vector3f& p = points_[slot];

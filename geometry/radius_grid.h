@@ -14,14 +14,17 @@
 // Lifetime: the grid copies the points it indexes. Thread safety: const after construction; any
 // number of threads may query one grid.
 
+#include <memory>
 #include <optional>
 #include <vector>
 
-#include "lmk/geometry/detail/voxel_table.h"
 #include "lmk/geometry/kdtree.h"
 #include "lmk/geometry/point_cloud.h"
 
 namespace lmk {
+namespace detail {
+class VoxelTable;
+}
 
 class RadiusGrid {
  public:
@@ -29,6 +32,9 @@ class RadiusGrid {
   /// about (2r / cell + 1)^3 cells: a cell of half the usual radius is a good choice. Throws
   /// lmk::Error for a cell that is not positive and finite.
   RadiusGrid(const PointCloud& cloud, double cell);
+  ~RadiusGrid();
+  RadiusGrid(RadiusGrid&&) noexcept;
+  RadiusGrid& operator=(RadiusGrid&&) noexcept;
 
   std::size_t size() const { return points_.size(); }
 
