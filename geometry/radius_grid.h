@@ -50,10 +50,10 @@ class RadiusGrid {
   void for_each_within(const Eigen::Vector3f& query, float radius, Visit&& visit) const;
 
   double inv_cell_;
-  detail::VoxelTable cells_;             ///< cell key -> cell id
-  std::vector<std::uint32_t> begin_;     ///< points of cell c: [begin_[c], begin_[c + 1])
-  std::vector<Eigen::Vector3f> points_;  ///< by cell
-  std::vector<Index> indices_;           ///< their indices in the cloud
+  std::unique_ptr<detail::VoxelTable> cells_;  ///< cell key -> cell id
+  std::vector<std::uint32_t> begin_;           ///< points of cell c: [begin_[c], begin_[c + 1])
+  std::vector<Eigen::Vector3f> points_;        ///< by cell
+  std::vector<Index> indices_;                 ///< their indices in the cloud
 };
 
 }  // namespace lmk
