@@ -2,38 +2,23 @@
 #include "lmk/geometry/radius_grid.h"
 
 #include <cmath>
+#include <utility>
 
-#include "lmk/geometry/detail/voxel_table.h"
+#include "lmk/geometry/detail/voxel_buckets.h"
 #include "lmk/geometry/error.h"
 
 namespace lmk {
 
-RadiusGrid::RadiusGrid(const PointCloud& cloud, double cell)
-    : inv_cell_(1.0 / cell), cells_(std::make_unique<detail::VoxelTable>(cloud.size() / 8)) {
+RadiusGrid::RadiusGrid(const PointCloud& cloud, double cell) : inv_cell_(1.0 / cell) {
   if (!(cell > 0.0) || !std::isfinite(cell)) {
     throw Error("radius grid: the cell size must be positive and finite");
   }
-  // Cell ids in order of first appearance, then a counting sort of the points by cell.
-  std::vector<std::uint32_t> cell_of(cloud.size(), detail::VoxelTable::kAbsent);
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    if (!cloud.points[i].allFinite()) continue;
-    const std::uint32_t id =
-        cells_->insert(detail::pack_voxel(detail::voxel_coord(cloud.points[i], inv_cell_)));
-    if (id + 1 >= begin_.size()) begin_.resize(id + 2, 0);
-    ++begin_[id + 1];
-    cell_of[i] = id;
-  }
-  for (std::size_t c = 1; c < begin_.size(); ++c) begin_[c] += begin_[c - 1];
-  const std::size_t finite = begin_.empty() ? 0 : begin_.back();
-  points_.resize(finite);
-  indices_.resize(finite);
-  std::vector<std::uint32_t> fill(begin_);
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    if (cell_of[i] == detail::VoxelTable::kAbsent) continue;
-    const std::uint32_t slot = fill[cell_of[i]]++;
-    points_[slot] = cloud.points[i];
-    indices_[slot] = static_cast<Index>(i);
-  }
+  detail::VoxelBuckets buckets = detail::bucket_by_voxel(cloud, inv_cell_);
+  begin_ = std::move(buckets.starts);
+  indices_ = std::move(buckets.members);
+  points_.reserve(indices_.size());
+  for (const Index i : indices_) points_.push_back(cloud.points[i]);  // contiguous by cell
+  cells_ = std::make_unique<detail::VoxelTable>(std::move(buckets.table));
 }
 
 RadiusGrid::~RadiusGrid() = default;
@@ -75,7 +60,7 @@ void RadiusGrid::for_each_within(const Eigen::Vector3f& query, float radius, Vis
         }
         const std::uint32_t id = cells_->find(detail::pack_voxel({x, y, z}));
         if (id == detail::VoxelTable::kAbsent) continue;
-        for (std::uint32_t slot = begin_[id]; slot < begin_[id + 1]; ++slot) {
+        for (std::size_t slot = begin_[id]; slot < begin_[id + 1]; ++slot) {
           const Eigen::Vector3f& p = points_[slot];
           float d2 = 0.0f;
           for (int a = 0; a < 3; ++a) {
@@ -92,7 +77,7 @@ void RadiusGrid::for_each_within(const Eigen::Vector3f& query, float radius, Vis
 void RadiusGrid::radius_unsorted(const Eigen::Vector3f& query, float radius,
                                  std::vector<Neighbor>& out) const {
   out.clear();
-  for_each_within(query, radius, [&](std::uint32_t slot, float d2) {
+  for_each_within(query, radius, [&](std::size_t slot, float d2) {
     out.push_back({indices_[slot], d2});
   });
 }
@@ -100,7 +85,7 @@ void RadiusGrid::radius_unsorted(const Eigen::Vector3f& query, float radius,
 std::optional<Neighbor> RadiusGrid::nearest_within(const Eigen::Vector3f& query,
                                                    float radius) const {
   std::optional<Neighbor> best;
-  for_each_within(query, radius, [&](std::uint32_t slot, float d2) {
+  for_each_within(query, radius, [&](std::size_t slot, float d2) {
     if (!best || d2 < best->squared_distance ||
         (d2 == best->squared_distance && indices_[slot] < best->index)) {
       best = Neighbor{indices_[slot], d2};

@@ -51,7 +51,7 @@ class RadiusGrid {
 
   double inv_cell_;
   std::unique_ptr<detail::VoxelTable> cells_;  ///< cell key -> cell id
-  std::vector<std::uint32_t> begin_;           ///< points of cell c: [begin_[c], begin_[c + 1])
+  std::vector<std::size_t> begin_;             ///< points of cell c: [begin_[c], begin_[c + 1])
   std::vector<Eigen::Vector3f> points_;        ///< by cell
   std::vector<Index> indices_;                 ///< their indices in the cloud
 };

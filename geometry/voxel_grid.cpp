@@ -9,8 +9,8 @@
 #include <string>
 #include <unordered_map>
 
+#include "lmk/geometry/detail/voxel_buckets.h"
 #include "lmk/geometry/detail/voxel_key.h"
-#include "lmk/geometry/detail/voxel_table.h"
 #include "lmk/geometry/error.h"
 
 namespace lmk {
@@ -36,30 +36,13 @@ PointCloud voxel_downsample(const PointCloud& cloud, double leaf_size) {
   }
   const double inv_leaf = 1.0 / leaf_size;
 
-  // The points of each voxel in index order: voxels numbered as they first appear (a hash table,
-  // one probe per point), then a counting sort of the points by voxel. Only the voxels, far fewer
-  // than the points, are sorted by key for the output order.
-  detail::VoxelTable table(cloud.size() / 8);
-  std::vector<std::uint64_t> keys;  // by voxel id
-  std::vector<std::uint32_t> voxel_of(cloud.size(), detail::VoxelTable::kAbsent);
-  for (Index i = 0; i < cloud.size(); ++i) {
-    if (!is_finite(cloud.points[i])) continue;
-    const std::uint64_t key = detail::pack_voxel(detail::voxel_coord(cloud.points[i], inv_leaf));
-    voxel_of[i] = table.insert(key);
-    if (voxel_of[i] == keys.size()) keys.push_back(key);
-  }
+  // The points of each voxel in index order, with no sort of the points; only the voxels, far
+  // fewer, are sorted by key for the output order.
+  const detail::VoxelBuckets buckets = detail::bucket_by_voxel(cloud, inv_leaf);
+  const std::vector<std::uint64_t>& keys = buckets.keys;
+  const std::vector<std::size_t>& starts = buckets.starts;
+  const std::vector<Index>& members = buckets.members;
   const std::size_t voxels = keys.size();
-  std::vector<std::size_t> starts(voxels + 1,
-                                  0);  // members of voxel id: [starts[id], starts[id + 1])
-  for (const std::uint32_t id : voxel_of) {
-    if (id != detail::VoxelTable::kAbsent) ++starts[id + 1];
-  }
-  for (std::size_t v = 0; v < voxels; ++v) starts[v + 1] += starts[v];
-  std::vector<Index> members(starts.back());
-  std::vector<std::size_t> fill(starts.begin(), starts.end() - 1);
-  for (Index i = 0; i < cloud.size(); ++i) {
-    if (voxel_of[i] != detail::VoxelTable::kAbsent) members[fill[voxel_of[i]]++] = i;
-  }
   std::vector<std::uint32_t> order(voxels);  // voxel ids by key: x slowest, z fastest
   std::iota(order.begin(), order.end(), 0u);
   tbb::parallel_sort(order.begin(), order.end(),

@@ -210,8 +210,7 @@ struct DistanceField::Sampler::Impl {
       : grids(std::move(g)),
         distance(grids->distance->getConstUnsafeAccessor()),
         closest(grids->closest->getConstUnsafeAccessor()),
-        voxel(grids->distance->voxelSize()[0]),
-        inverse_voxel(1.0 / voxel),
+        inverse_voxel(1.0 / grids->distance->voxelSize()[0]),
         band(static_cast<float>(grids->band)) {}
   std::shared_ptr<const Grids> grids;  // a sampler keeps its grids alive
   // Unregistered accessors: the grids never change after the field is built, and registering
@@ -219,7 +218,6 @@ struct DistanceField::Sampler::Impl {
   // samplers per candidate).
   vdb::FloatGrid::ConstUnsafeAccessor distance;
   vdb::Int32Grid::ConstUnsafeAccessor closest;
-  double voxel;
   double inverse_voxel;
   float band;
 };

@@ -119,7 +119,7 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
   const RadiusGrid voter_grid(voters, 0.5 * diameter);
   // Each seed votes at the voting point nearest to it: the centroid of its own voting voxel, no
   // farther than that voxel's diagonal, is a candidate.
-  const auto reach = static_cast<float>(1.01 * std::sqrt(3.0) * std::max(vote_leaf, leaf));
+  const auto reach = static_cast<float>(1.01 * std::sqrt(3.0) * vote_leaf);
   std::vector<Index> references(in.seeds.size());
   for (std::size_t k = 0; k < in.seeds.size(); ++k) {
     const auto n = voter_grid.nearest_within(coarse.points[in.seeds[k]], reach);
