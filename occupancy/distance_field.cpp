@@ -1,13 +1,17 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "lmk/occupancy/distance_field.h"
 
-#include <openvdb/tree/LeafManager.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <sstream>
 
+#include "lmk/geometry/detail/voxel_key.h"
+#include "lmk/geometry/detail/voxel_table.h"
 #include "lmk/geometry/error.h"
 #include "lmk/occupancy/detail/grids.h"
 #include "lmk/occupancy/detail/vdb_support.h"
@@ -17,103 +21,140 @@ namespace {
 
 namespace vdb = openvdb;
 
-// Voxels along x handled by one task: a whole number of leaf nodes, so that the grids built by
-// different tasks never share a leaf and merge by moving nodes.
+// Voxels along x handled by one task: a whole number of leaf nodes, so that the leaves built by
+// different tasks never overlap and go into the grids as they are.
 constexpr int kSlabVoxels = 8 * vdb::FloatTree::LeafNodeType::DIM;
 
 using FloatLeaf = vdb::FloatTree::LeafNodeType;
+using IndexLeaf = vdb::Int32Tree::LeafNodeType;
+constexpr int kLeafLog2 = static_cast<int>(FloatLeaf::LOG2DIM);
+constexpr int kLeafMask = static_cast<int>(FloatLeaf::DIM) - 1;
 
-// A direct-mapped cache from leaf origin to the leaf nodes of both grids being built.
-class LeafCache {
- public:
-  struct Entry {
-    vdb::Coord origin{std::numeric_limits<int>::max()};
-    FloatLeaf* squared = nullptr;
-    float* squared_data = nullptr;
-    std::int32_t* closest_data = nullptr;
-  };
-  LeafCache(vdb::FloatGrid::UnsafeAccessor& squared, vdb::Int32Grid::UnsafeAccessor& closest)
-      : squared_(squared), closest_(closest), entries_(kSize) {}
+// Leaf coordinates (voxel >> 3) are packed into voxel keys, 21 bits an axis: points farther than
+// this many voxels from the origin along an axis are refused rather than wrapped.
+constexpr double kMaxVoxelCoordinate =
+    static_cast<double>(detail::kVoxelKeyOffset - 1) * FloatLeaf::DIM;
 
-  const Entry& leaf(const vdb::Coord& ijk) {
-    const vdb::Coord origin = ijk & ~(FloatLeaf::DIM - 1);
-    const unsigned hash = (static_cast<unsigned>(origin.x()) * 73856093u) ^
-                          (static_cast<unsigned>(origin.y()) * 19349663u) ^
-                          (static_cast<unsigned>(origin.z()) * 83492791u);
-    Entry& e = entries_[(hash >> 3) & (kSize - 1)];
-    if (e.origin != origin) {
-      e.origin = origin;
-      e.squared = squared_.touchLeaf(ijk);
-      e.squared_data = e.squared->buffer().data();
-      e.closest_data = closest_.touchLeaf(ijk)->buffer().data();
-    }
-    return e;
-  }
-
- private:
-  static constexpr unsigned kSize = 4096;
-  vdb::FloatGrid::UnsafeAccessor& squared_;
-  vdb::Int32Grid::UnsafeAccessor& closest_;
-  std::vector<Entry> entries_;
+// One leaf of a slab while it is built: plain arrays, indexed as OpenVDB indexes a leaf, so that
+// the splat's inner loop reads and writes memory without a tree in between.
+struct LeafBlock {
+  static constexpr std::int32_t kUnclaimed = std::numeric_limits<std::int32_t>::max();
+  vdb::Coord origin;
+  std::array<float, FloatLeaf::SIZE> squared;  // squared distance to the nearest point so far
+  std::array<std::int32_t, FloatLeaf::SIZE> closest;
 };
 
-struct SlabGrids {
-  vdb::FloatGrid::Ptr squared;  // squared distance during the build
-  vdb::Int32Grid::Ptr closest;
+// The leaf blocks of one slab, found by leaf coordinate.
+class SlabBlocks {
+ public:
+  SlabBlocks(std::size_t expected_points, float background)
+      : table_(expected_points / 16 + 16), background_(background) {}
+
+  LeafBlock* at(int lx, int ly, int lz) {
+    const std::uint32_t id = table_.insert(detail::pack_voxel({lx, ly, lz}));
+    if (id == blocks_.size()) {
+      auto block = std::make_unique<LeafBlock>();
+      block->origin = vdb::Coord(lx, ly, lz) << kLeafLog2;
+      block->squared.fill(background_);
+      block->closest.fill(LeafBlock::kUnclaimed);
+      blocks_.push_back(std::move(block));
+    }
+    return blocks_[id].get();
+  }
+  const std::vector<std::unique_ptr<LeafBlock>>& blocks() const { return blocks_; }
+
+ private:
+  detail::VoxelTable table_;
+  float background_;
+  std::vector<std::unique_ptr<LeafBlock>> blocks_;
+};
+
+// A slab's leaves as OpenVDB leaf nodes: distances (square roots taken) active where a point
+// claimed the voxel, and the closest-point indices, -1 elsewhere.
+struct SlabLeaves {
+  std::vector<std::unique_ptr<FloatLeaf>> distance;
+  std::vector<std::unique_ptr<IndexLeaf>> closest;
 };
 
 // Splats every point onto the voxel centres within the band whose x index lies in [x0, x1), keeping
 // for each voxel the nearest point; ties go to the smaller index, so the result does not depend on
 // the order in which slabs or points are visited.
-SlabGrids build_slab(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& members,
-                     double voxel, double band, int x0, int x1) {
-  SlabGrids g{vdb::FloatGrid::create(static_cast<float>(band * band)), vdb::Int32Grid::create(-1)};
-  // Unregistered accessors: only they modify these slab grids, which no one else sees yet.
-  auto squared = g.squared->getUnsafeAccessor();
-  auto closest = g.closest->getUnsafeAccessor();
+SlabLeaves build_slab(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& members,
+                      double voxel, double band, int x0, int x1) {
+  const auto background = static_cast<float>(band * band);
+  SlabBlocks blocks(members.size(), background);
   const int reach = static_cast<int>(std::ceil(band / voxel));
-  // Leaf pointers are cached in a direct-mapped table: a point's neighbourhood spans a few leaves,
-  // neighbouring points share them, and finding leaves through the tree dominated the build time.
-  LeafCache cache(squared, closest);
   const double band_voxels2 = (band / voxel) * (band / voxel);
+  // The leaves a point's box of 2 reach + 1 voxels a side can touch, per axis; the point's leaves
+  // are looked up once, not once per row (the lookups dominated the build time).
+  const int span = 2 * reach / static_cast<int>(FloatLeaf::DIM) + 2;
+  std::vector<LeafBlock*> near(static_cast<std::size_t>(span * span * span));
   for (int index : members) {
     const Eigen::Vector3d p = points[index].cast<double>() / voxel;  // in voxel units
     const Eigen::Vector3i c = p.array().round().cast<int>();
-    for (int x = std::max(c.x() - reach, x0); x <= std::min(c.x() + reach, x1 - 1); ++x) {
+    const Eigen::Vector3i first(std::max(c.x() - reach, x0), c.y() - reach, c.z() - reach);
+    const Eigen::Vector3i last(std::min(c.x() + reach, x1 - 1), c.y() + reach, c.z() + reach);
+    const Eigen::Vector3i leaf0 = first.unaryExpr([](int v) { return v >> kLeafLog2; });
+    const Eigen::Vector3i leaves =
+        last.unaryExpr([](int v) { return v >> kLeafLog2; }) - leaf0 + Eigen::Vector3i::Ones();
+    for (int i = 0; i < leaves.x(); ++i) {
+      for (int j = 0; j < leaves.y(); ++j) {
+        for (int k = 0; k < leaves.z(); ++k) {
+          near[(i * span + j) * span + k] = blocks.at(leaf0.x() + i, leaf0.y() + j, leaf0.z() + k);
+        }
+      }
+    }
+    for (int x = first.x(); x <= last.x(); ++x) {
       const double ex2 = (x - p.x()) * (x - p.x());
-      for (int y = c.y() - reach; y <= c.y() + reach; ++y) {
-        // The voxels of this row within the band: |z - p.z| <= sqrt(band^2 - ex^2 - ey^2).
-        const double rest = band_voxels2 - ex2 - (y - p.y()) * (y - p.y());
+      for (int y = first.y(); y <= last.y(); ++y) {
+        const double ey2 = (y - p.y()) * (y - p.y());
+        const double rest = band_voxels2 - ex2 - ey2;  // the row lies within the band where >= 0
         if (rest < 0.0) continue;
-        const double half = std::sqrt(rest);
-        const int z_begin = static_cast<int>(std::ceil(p.z() - half));
-        const int z_end = static_cast<int>(std::floor(p.z() + half));
-        const LeafCache::Entry* leaf = nullptr;
-        for (int z = z_begin; z <= z_end; ++z) {
-          const vdb::Coord ijk(x, y, z);
-          // A row crosses a leaf boundary at most once: look the leaf up again only there.
-          if (leaf == nullptr || (z & (FloatLeaf::DIM - 1)) == 0) leaf = &cache.leaf(ijk);
-          float* squared_data = leaf->squared_data;
-          std::int32_t* closest_data = leaf->closest_data;
-          FloatLeaf* squared_leaf = leaf->squared;
-          const vdb::Index offset = FloatLeaf::coordToOffset(ijk);
-          const float d2 = static_cast<float>(
-              (ex2 + (y - p.y()) * (y - p.y()) + (z - p.z()) * (z - p.z())) * voxel * voxel);
-          // Inactive voxels hold the background, band^2, which every in-band distance matches or
-          // beats.
-          const float current = squared_data[offset];
-          if (d2 > current ||
-              (d2 == current && squared_leaf->isValueOn(offset) && index > closest_data[offset])) {
-            continue;
-          }
-          squared_data[offset] = d2;
-          closest_data[offset] = index;
-          squared_leaf->setActiveState(offset, true);
+        LeafBlock* const* row =
+            &near[(((x >> kLeafLog2) - leaf0.x()) * span + (y >> kLeafLog2) - leaf0.y()) * span];
+        const int row_offset =
+            ((x & kLeafMask) << (2 * kLeafLog2)) | ((y & kLeafMask) << kLeafLog2);
+        // The whole row, with the voxels beyond the band masked out rather than skipped: a fixed
+        // trip count and a branch-free update, where the data-dependent branches of a row clipped
+        // to the band mispredicted on every row.
+        for (int z = first.z(); z <= last.z(); ++z) {
+          LeafBlock& b = *row[(z >> kLeafLog2) - leaf0.z()];
+          const int offset = row_offset | (z & kLeafMask);
+          const double ez2 = (z - p.z()) * (z - p.z());
+          const auto d2 = static_cast<float>((ex2 + ey2 + ez2) * voxel * voxel);
+          const float current = b.squared[offset];
+          const std::int32_t holder = b.closest[offset];
+          const bool nearer =
+              (ez2 <= rest) & ((d2 < current) | ((d2 == current) & (index <= holder)));
+          b.squared[offset] = nearer ? d2 : current;
+          b.closest[offset] = nearer ? index : holder;
         }
       }
     }
   }
-  return g;
+
+  // Blocks whose box corner no point reached stay out of the grids.
+  SlabLeaves out;
+  const float outside = std::sqrt(background);  // what the square-root pass made of band^2
+  for (const auto& block : blocks.blocks()) {
+    if (std::all_of(block->closest.begin(), block->closest.end(),
+                    [](std::int32_t i) { return i == LeafBlock::kUnclaimed; })) {
+      continue;
+    }
+    auto distance = std::make_unique<FloatLeaf>(block->origin, outside);
+    auto closest = std::make_unique<IndexLeaf>(block->origin, -1);
+    float* distance_data = distance->buffer().data();
+    std::int32_t* closest_data = closest->buffer().data();
+    for (vdb::Index k = 0; k < FloatLeaf::SIZE; ++k) {
+      if (block->closest[k] == LeafBlock::kUnclaimed) continue;
+      distance_data[k] = std::sqrt(block->squared[k]);
+      distance->setActiveState(k, true);
+      closest_data[k] = block->closest[k];
+    }
+    out.distance.push_back(std::move(distance));
+    out.closest.push_back(std::move(closest));
+  }
+  return out;
 }
 
 }  // namespace
@@ -139,10 +180,18 @@ DistanceField::DistanceField(const std::vector<Eigen::Vector3f>& points,
   const auto slab_of = [&](int x) {
     return static_cast<int>(std::floor(static_cast<double>(x) / kSlabVoxels));
   };
+  const double limit = (kMaxVoxelCoordinate - reach) * voxel;
   int first = 0, last = -1;
   std::vector<std::pair<int, int>> reach_of(points.size(), {0, -1});
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (!points[i].allFinite()) continue;
+    if (points[i].cast<double>().cwiseAbs().maxCoeff() > limit) {
+      std::ostringstream message;
+      message << "distance field: a point lies more than " << limit
+              << " m from the origin along an axis, beyond what voxels of " << voxel
+              << " m can index; crop the cloud";
+      throw Error(message.str());
+    }
     const int cx = detail::round_to_int(points[i].x() / voxel);
     reach_of[i] = {slab_of(cx - reach), slab_of(cx + reach)};
     if (last < first) {
@@ -158,28 +207,22 @@ DistanceField::DistanceField(const std::vector<Eigen::Vector3f>& points,
       members[s - first].push_back(static_cast<int>(i));
     }
   }
-  std::vector<SlabGrids> parts(slabs);
+  std::vector<SlabLeaves> parts(slabs);
   tbb::parallel_for(0, slabs, [&](int s) {
     const int x0 = (first + s) * kSlabVoxels;
     parts[s] = build_slab(points, members[s], voxel, band, x0, x0 + kSlabVoxels);
   });
 
   const auto transform = vdb::math::Transform::createLinearTransform(voxel);
-  // The parts' background, band^2, until the square roots are taken.
+  // The leaves' inactive voxels hold sqrt(band^2); the background, and the inactive tiles above
+  // the leaves, start at band^2 and become band below (a tile left at band^2 would read as a
+  // surface 0.4 mm away).
   grids->distance = vdb::FloatGrid::create(static_cast<float>(band * band));
   grids->closest = vdb::Int32Grid::create(-1);
-  for (SlabGrids& part : parts) {  // disjoint leaves: merging moves nodes
-    grids->distance->tree().merge(part.squared->tree());
-    grids->closest->tree().merge(part.closest->tree());
+  for (SlabLeaves& part : parts) {  // the slabs' leaves are disjoint
+    for (auto& leaf : part.distance) grids->distance->tree().addLeaf(leaf.release());
+    for (auto& leaf : part.closest) grids->closest->tree().addLeaf(leaf.release());
   }
-  // Squared distances to distances, a whole leaf buffer at a time: inactive voxels hold band^2
-  // and become band. Then the background and the inactive tiles above the leaves, still band^2,
-  // become band too (a tile left at band^2 would read as a surface 0.4 mm away).
-  vdb::tree::LeafManager<vdb::FloatTree> leaves(grids->distance->tree());
-  leaves.foreach ([](FloatLeaf& leaf, std::size_t) {
-    float* data = leaf.buffer().data();
-    for (vdb::Index k = 0; k < FloatLeaf::SIZE; ++k) data[k] = std::sqrt(data[k]);
-  });
   grids->distance->tree().root().setBackground(static_cast<float>(band), /*updateChildNodes=*/true);
   grids->distance->setTransform(transform);
   grids->closest->setTransform(transform->copy());

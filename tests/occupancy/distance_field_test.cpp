@@ -77,6 +77,48 @@ TEST(DistanceField, ClosestPointIsTheNearestOneForVoxelCentres) {
   }
 }
 
+TEST(DistanceField, ABandWiderThanALeafNodeHoldsExactlyTheVoxelsWithinIt) {
+  // A band of 12 voxels reaches across several 8-voxel leaf nodes from each point: every voxel
+  // centre within the band of a point, and no other, is active, and holds its nearest point.
+  const PointCloud cloud = test::random_cloud(20, 17, 0.2f);
+  const double voxel = 0.01, band = 0.12;
+  const DistanceField field(cloud.points, {voxel, band});
+  const auto sampler = field.sampler();
+  std::size_t within = 0;
+  for (int x = -35; x <= 35; ++x) {
+    for (int y = -35; y <= 35; ++y) {
+      for (int z = -35; z <= 35; ++z) {
+        const Eigen::Vector3f q = Eigen::Vector3f(x, y, z) * static_cast<float>(voxel);
+        const float truth = brute_force_distance(cloud.points, q);
+        const int index = sampler.closest(q);
+        if (truth > band + 1e-5) {
+          ASSERT_EQ(index, -1) << q.transpose();
+          continue;
+        }
+        if (truth > band - 1e-5) continue;  // at the band's edge itself, either way
+        ++within;
+        ASSERT_GE(index, 0) << q.transpose() << " is " << truth << " m from its nearest point";
+        EXPECT_NEAR((cloud.points[static_cast<std::size_t>(index)] - q).norm(), truth, 1e-5);
+      }
+    }
+  }
+  EXPECT_GT(within, 10000u);
+  EXPECT_NEAR(static_cast<double>(field.active_voxels()), static_cast<double>(within),
+              0.001 * within);
+}
+
+TEST(DistanceField, PointsBeyondWhatVoxelsCanIndexAreRefused) {
+  // 1 mm voxels index about 8 km along an axis; a wild point farther out is refused, not wrapped.
+  const std::vector<Eigen::Vector3f> far = {{0.0f, 0.0f, 0.0f}, {0.0f, 2.0e4f, 0.0f}};
+  try {
+    DistanceField(far, {0.001, 0.004});
+    FAIL() << "a point 20 km away was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("crop the cloud"), std::string::npos) << e.what();
+  }
+  EXPECT_NO_THROW(DistanceField(far, {0.01, 0.04}));  // 1 cm voxels reach 80 km
+}
+
 TEST(DistanceField, BeyondTheBandIsTheBandValueAndGradientsPointAway) {
   const std::vector<Eigen::Vector3f> one = {{0.0f, 0.0f, 0.0f}};
   const DistanceField field(one, {0.01, 0.05});
