@@ -30,13 +30,20 @@ std::optional<RangeImage> RangeImage::from_cloud(const PointCloud& cloud,
     // u = fx x/z + cx and v = fy y/z + cy, fitted over every pixel with a point in front.
     double n = 0, sa = 0, su = 0, saa = 0, sau = 0, sb = 0, sv = 0, sbb = 0, sbv = 0;
     const std::uint32_t w = cloud.width;
-    for (std::size_t i = 0; i < cloud.size(); ++i) {
-      const Eigen::Vector3f p = image.T_sensor_cloud_ * cloud.points[i];
-      if (!p.allFinite() || !(p.z() > 0.0f)) continue;
-      const double a = p.x() / p.z(), b = p.y() / p.z();
-      const double u = static_cast<double>(i % w), v = static_cast<double>(i / w);
-      n += 1, sa += a, su += u, saa += a * a, sau += a * u;
-      sb += b, sv += v, sbb += b * b, sbv += b * v;
+    if (w == 0) return std::nullopt;  // a malformed layout: no rows to fit
+    // Rows and columns as loop counters: a division and a modulo per pixel, twice over 300 000
+    // pixels, cost more than the rest of the fit.
+    const std::size_t size = cloud.size();
+    for (std::size_t row = 0, i = 0; i < size; ++row) {
+      const auto v = static_cast<double>(row);
+      for (std::uint32_t column = 0; column < w && i < size; ++column, ++i) {
+        const Eigen::Vector3f p = image.T_sensor_cloud_ * cloud.points[i];
+        if (!p.allFinite() || !(p.z() > 0.0f)) continue;
+        const double a = p.x() / p.z(), b = p.y() / p.z();
+        const auto u = static_cast<double>(column);
+        n += 1, sa += a, su += u, saa += a * a, sau += a * u;
+        sb += b, sv += v, sbb += b * b, sbv += b * v;
+      }
     }
     PinholeIntrinsics& k = image.k_;
     if (n < 100 || !fit_line(n, sa, su, saa, sau, k.fx, k.cx) ||
@@ -46,13 +53,15 @@ std::optional<RangeImage> RangeImage::from_cloud(const PointCloud& cloud,
     k.height = static_cast<int>(cloud.height);
     double squared = 0.0;
     image.depth_.assign(cloud.size(), kNothing);
-    for (std::size_t i = 0; i < cloud.size(); ++i) {
-      const Eigen::Vector3f p = image.T_sensor_cloud_ * cloud.points[i];
-      if (!p.allFinite() || !(p.z() > 0.0f)) continue;
-      const double du = k.fx * p.x() / p.z() + k.cx - static_cast<double>(i % w);
-      const double dv = k.fy * p.y() / p.z() + k.cy - static_cast<double>(i / w);
-      squared += du * du + dv * dv;
-      image.depth_[i] = p.z();
+    for (std::size_t row = 0, i = 0; i < size; ++row) {
+      for (std::uint32_t column = 0; column < w && i < size; ++column, ++i) {
+        const Eigen::Vector3f p = image.T_sensor_cloud_ * cloud.points[i];
+        if (!p.allFinite() || !(p.z() > 0.0f)) continue;
+        const double du = k.fx * p.x() / p.z() + k.cx - static_cast<double>(column);
+        const double dv = k.fy * p.y() / p.z() + k.cy - static_cast<double>(row);
+        squared += du * du + dv * dv;
+        image.depth_[i] = p.z();
+      }
     }
     if (!(std::sqrt(squared / n) <= max_fit_rms)) return std::nullopt;
     image.organised_ = true;

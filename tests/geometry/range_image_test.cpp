@@ -53,6 +53,12 @@ TEST(RangeImage, ACloudItsPoseDoesNotExplainHasNoImage) {
   EXPECT_FALSE(RangeImage::from_cloud(moved).has_value());
 }
 
+TEST(RangeImage, AnOrganisedCloudWithoutColumnsHasNoImage) {
+  PointCloud broken = view(Eigen::Isometry3d::Identity());
+  broken.width = 0;  // rows of nothing: no pixel to fit intrinsics to
+  EXPECT_FALSE(RangeImage::from_cloud(broken).has_value());
+}
+
 TEST(RangeImage, AnUnorganisedCloudKeepsTheNearestPointOfEachPixel) {
   PinholeIntrinsics k;
   PointCloud cloud(std::vector<Eigen::Vector3f>{{0, 0, 2.0f}, {0, 0, 1.0f}, {0, 0, 3.0f}});
