@@ -333,4 +333,17 @@ int DistanceField::Sampler::closest(const Eigen::Vector3f& p) const {
   return impl_->closest.getValue(detail::nearest_voxel(p.cast<double>(), impl_->inverse_voxel));
 }
 
+void DistanceField::Sampler::closest(const std::vector<Eigen::Vector3f>& points,
+                                     std::vector<int>& indices) const {
+  indices.resize(points.size());
+  auto& access = impl_->closest;
+  const double inverse_voxel = impl_->inverse_voxel;
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    indices[k] =
+        points[k].allFinite()
+            ? access.getValue(detail::nearest_voxel(points[k].cast<double>(), inverse_voxel))
+            : -1;
+  }
+}
+
 }  // namespace lmk

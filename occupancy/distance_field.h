@@ -50,6 +50,9 @@ class DistanceField {
     float distance(const Eigen::Vector3f& p, Eigen::Vector3f* gradient) const;
     /// Index of the point nearest to the centre of the voxel holding `p`, or -1 beyond the band.
     int closest(const Eigen::Vector3f& p) const;
+    /// closest() of each point, into `indices` (resized): one call for a point set, so that the
+    /// lookups' memory reads overlap instead of waiting for each other.
+    void closest(const std::vector<Eigen::Vector3f>& points, std::vector<int>& indices) const;
 
    private:
     struct Impl;

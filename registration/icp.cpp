@@ -27,6 +27,35 @@ bool DistanceFieldTarget::nearest(const Eigen::Vector3f& query, Eigen::Vector3f&
   return true;
 }
 
+void IcpTarget::nearest_all(const std::vector<Eigen::Vector3f>& queries,
+                            std::vector<Eigen::Vector3f>& points,
+                            std::vector<Eigen::Vector3f>& normals, std::vector<char>& found) const {
+  points.resize(queries.size());
+  normals.resize(queries.size());
+  found.resize(queries.size());
+  for (std::size_t k = 0; k < queries.size(); ++k) {
+    found[k] = nearest(queries[k], points[k], normals[k]);
+  }
+}
+
+void DistanceFieldTarget::nearest_all(const std::vector<Eigen::Vector3f>& queries,
+                                      std::vector<Eigen::Vector3f>& points,
+                                      std::vector<Eigen::Vector3f>& normals,
+                                      std::vector<char>& found) const {
+  indices_.resize(queries.size());
+  sampler_.closest(queries, indices_);
+  points.resize(queries.size());
+  normals.resize(queries.size());
+  found.resize(queries.size());
+  for (std::size_t k = 0; k < queries.size(); ++k) {
+    const int index = indices_[k];
+    found[k] = index >= 0;
+    if (index < 0) continue;
+    points[k] = field_.points()[static_cast<std::size_t>(index)];
+    if (normals_) normals[k] = (*normals_)[static_cast<std::size_t>(index)];
+  }
+}
+
 namespace {
 
 void check(const IcpSettings& s, const IcpTarget& target) {
@@ -66,6 +95,15 @@ IcpResult icp(const std::vector<Eigen::Vector3f>& source, const IcpTarget& targe
   result.T_target_source = T_target_source;
   const double max_d2 = settings.max_correspondence_distance * settings.max_correspondence_distance;
   const bool to_plane = settings.mode == IcpMode::point_to_plane;
+  std::vector<Eigen::Vector3f> finite_source;
+  finite_source.reserve(source.size());
+  for (const auto& s : source) {
+    if (s.allFinite()) finite_source.push_back(s);
+  }
+  // Each step's correspondences, looked up together (IcpTarget::nearest_all).
+  std::vector<Eigen::Vector3f> queries, matches, match_normals;
+  std::vector<char> found;
+  queries.reserve(finite_source.size());
 
   for (int iteration = 0; iteration <= settings.max_iterations; ++iteration) {
     // The pass after the last step would only measure the error at the final pose.
@@ -73,12 +111,14 @@ IcpResult icp(const std::vector<Eigen::Vector3f>& source, const IcpTarget& targe
     if (last_step_taken && !settings.measure_final) break;
     NormalEquations eq;
     const Eigen::Isometry3f T = result.T_target_source.cast<float>();
-    Eigen::Vector3f p, n;
-    for (const auto& s : source) {
-      if (!s.allFinite()) continue;
-      const Eigen::Vector3f q = T * s;
-      if (!target.nearest(q, p, n)) continue;
-      const Eigen::Vector3d qd = q.cast<double>(), pd = p.cast<double>();
+    queries.clear();
+    for (const auto& s : finite_source) queries.push_back(T * s);
+    target.nearest_all(queries, matches, match_normals, found);
+    for (std::size_t k = 0; k < queries.size(); ++k) {
+      if (!found[k]) continue;
+      const Eigen::Vector3f& q = queries[k];
+      const Eigen::Vector3f& n = match_normals[k];
+      const Eigen::Vector3d qd = q.cast<double>(), pd = matches[k].cast<double>();
       if ((qd - pd).squaredNorm() > max_d2) continue;
       if (to_plane) {
         if (!n.allFinite()) continue;

@@ -54,6 +54,12 @@ class IcpTarget {
   virtual bool nearest(const Eigen::Vector3f& query, Eigen::Vector3f& point,
                        Eigen::Vector3f& normal) const = 0;
   virtual bool has_normals() const = 0;
+  /// nearest() for each query in turn: `found[k]` says whether `points[k]` (and `normals[k]`, with
+  /// normals) hold its answer. A target whose lookups are independent memory reads overrides it:
+  /// issued together they overlap, where one lookup per ICP step waited for each in turn.
+  virtual void nearest_all(const std::vector<Eigen::Vector3f>& queries,
+                           std::vector<Eigen::Vector3f>& points,
+                           std::vector<Eigen::Vector3f>& normals, std::vector<char>& found) const;
 };
 
 /// Exact nearest neighbours. `cloud` and `tree` must outlive the target; normals are optional.
@@ -79,11 +85,15 @@ class DistanceFieldTarget : public IcpTarget {
   bool nearest(const Eigen::Vector3f& query, Eigen::Vector3f& point,
                Eigen::Vector3f& normal) const override;
   bool has_normals() const override { return normals_ != nullptr; }
+  void nearest_all(const std::vector<Eigen::Vector3f>& queries,
+                   std::vector<Eigen::Vector3f>& points, std::vector<Eigen::Vector3f>& normals,
+                   std::vector<char>& found) const override;
 
  private:
   const DistanceField& field_;
   DistanceField::Sampler sampler_;
   const std::vector<Eigen::Vector3f>* normals_;
+  mutable std::vector<int> indices_;  // nearest_all's scratch: the target is per thread already
 };
 
 /// Aligns `source` (points, and for point-to-plane nothing more: the target's normals are used)

@@ -62,6 +62,42 @@ TEST(Icp, DistanceFieldTargetRecoversAKnownMotion) {
   EXPECT_LT(rotation_angle_between(r.T_target_source.linear(), T.inverse().linear()), 0.02);
 }
 
+// ICP asks for a step's correspondences all at once; each target must answer exactly as it does
+// one query at a time, beyond the band and for non-finite queries too.
+TEST(Icp, LookingUpAllCorrespondencesAtOnceAnswersAsOneAtATime) {
+  const PointCloud target = test::corner_with_bump();
+  const DistanceField field(target.points, {0.005, 0.02});
+  const DistanceFieldTarget grid(field, &target.normals);
+  const KdTree tree(target);
+  const KdTreeTarget exact(target, tree);
+  std::vector<Eigen::Vector3f> queries = moved(target, test::small_motion());
+  for (auto& q : queries) q += Eigen::Vector3f(0.01f, -0.02f, 0.015f);  // some beyond the band
+  queries.push_back(Eigen::Vector3f::Constant(std::nanf("")));
+  queries.push_back(Eigen::Vector3f(5.0f, 5.0f, 5.0f));
+  for (const IcpTarget* t :
+       {static_cast<const IcpTarget*>(&grid), static_cast<const IcpTarget*>(&exact)}) {
+    std::vector<Eigen::Vector3f> points, normals;
+    std::vector<char> found;
+    t->nearest_all(queries, points, normals, found);
+    ASSERT_EQ(found.size(), queries.size());
+    std::size_t hits = 0, misses = 0;
+    for (std::size_t k = 0; k < queries.size(); ++k) {
+      Eigen::Vector3f p, n;
+      const bool one = t->nearest(queries[k], p, n);
+      ASSERT_EQ(static_cast<bool>(found[k]), one) << "query " << k;
+      if (!one) {
+        ++misses;
+        continue;
+      }
+      ++hits;
+      EXPECT_EQ(points[k], p);
+      EXPECT_EQ(normals[k], n);
+    }
+    EXPECT_GT(hits, 100u);
+    if (t == &grid) EXPECT_GT(misses, 2u);
+  }
+}
+
 // The fast search skips the measuring pass: the pose, its steps and convergence must not change,
 // whether the run ends by converging or at its iteration cap.
 TEST(Icp, SkippingTheMeasuringPassChangesNothingButTheMeasurement) {
