@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <memory>
 #include <sstream>
@@ -35,13 +36,31 @@ constexpr int kLeafMask = static_cast<int>(FloatLeaf::DIM) - 1;
 constexpr double kMaxVoxelCoordinate =
     static_cast<double>(detail::kVoxelKeyOffset - 1) * FloatLeaf::DIM;
 
-// One leaf of a slab while it is built: plain arrays, indexed as OpenVDB indexes a leaf, so that
-// the splat's inner loop reads and writes memory without a tree in between.
+// One leaf of a slab while it is built: a plain array, indexed as OpenVDB indexes a leaf, so that
+// the splat's inner loop reads and writes memory without a tree in between. Each voxel holds its
+// nearest point so far as one key, the squared distance's bits above the point's index: squared
+// distances are never negative, and the bits of non-negative floats order as the floats do, so the
+// smaller key is the nearer point, the smaller index on a tie. The update is then an integer
+// minimum, which compiles without branches (the float comparisons of distance and index did not,
+// and mispredicted).
 struct LeafBlock {
   static constexpr std::int32_t kUnclaimed = std::numeric_limits<std::int32_t>::max();
+  static std::uint64_t key(float squared, std::int32_t index) {
+    std::uint32_t bits;
+    std::memcpy(&bits, &squared, sizeof bits);
+    return (std::uint64_t{bits} << 32) | static_cast<std::uint32_t>(index);
+  }
+  static float squared_of(std::uint64_t key) {
+    const auto bits = static_cast<std::uint32_t>(key >> 32);
+    float squared;
+    std::memcpy(&squared, &bits, sizeof squared);
+    return squared;
+  }
+  static std::int32_t index_of(std::uint64_t key) {
+    return static_cast<std::int32_t>(key & 0xffffffffu);
+  }
   vdb::Coord origin;
-  std::array<float, FloatLeaf::SIZE> squared;  // squared distance to the nearest point so far
-  std::array<std::int32_t, FloatLeaf::SIZE> closest;
+  std::array<std::uint64_t, FloatLeaf::SIZE> nearest;
 };
 
 // The leaf blocks of one slab, found by leaf coordinate.
@@ -55,8 +74,7 @@ class SlabBlocks {
     if (id == blocks_.size()) {
       auto block = std::make_unique<LeafBlock>();
       block->origin = vdb::Coord(lx, ly, lz) << kLeafLog2;
-      block->squared.fill(background_);
-      block->closest.fill(LeafBlock::kUnclaimed);
+      block->nearest.fill(LeafBlock::key(background_, LeafBlock::kUnclaimed));
       blocks_.push_back(std::move(block));
     }
     return blocks_[id].get();
@@ -122,12 +140,9 @@ SlabLeaves build_slab(const std::vector<Eigen::Vector3f>& points, const std::vec
           const int offset = row_offset | (z & kLeafMask);
           const double ez2 = (z - p.z()) * (z - p.z());
           const auto d2 = static_cast<float>((ex2 + ey2 + ez2) * voxel * voxel);
-          const float current = b.squared[offset];
-          const std::int32_t holder = b.closest[offset];
-          const bool nearer =
-              (ez2 <= rest) & ((d2 < current) | ((d2 == current) & (index <= holder)));
-          b.squared[offset] = nearer ? d2 : current;
-          b.closest[offset] = nearer ? index : holder;
+          const std::uint64_t candidate =
+              ez2 <= rest ? LeafBlock::key(d2, index) : ~std::uint64_t{0};
+          b.nearest[offset] = std::min(b.nearest[offset], candidate);
         }
       }
     }
@@ -137,8 +152,9 @@ SlabLeaves build_slab(const std::vector<Eigen::Vector3f>& points, const std::vec
   SlabLeaves out;
   const float outside = std::sqrt(background);  // what the square-root pass made of band^2
   for (const auto& block : blocks.blocks()) {
-    if (std::all_of(block->closest.begin(), block->closest.end(),
-                    [](std::int32_t i) { return i == LeafBlock::kUnclaimed; })) {
+    if (std::all_of(block->nearest.begin(), block->nearest.end(), [](std::uint64_t k) {
+          return LeafBlock::index_of(k) == LeafBlock::kUnclaimed;
+        })) {
       continue;
     }
     auto distance = std::make_unique<FloatLeaf>(block->origin, outside);
@@ -146,10 +162,11 @@ SlabLeaves build_slab(const std::vector<Eigen::Vector3f>& points, const std::vec
     float* distance_data = distance->buffer().data();
     std::int32_t* closest_data = closest->buffer().data();
     for (vdb::Index k = 0; k < FloatLeaf::SIZE; ++k) {
-      if (block->closest[k] == LeafBlock::kUnclaimed) continue;
-      distance_data[k] = std::sqrt(block->squared[k]);
+      const std::int32_t closest_index = LeafBlock::index_of(block->nearest[k]);
+      if (closest_index == LeafBlock::kUnclaimed) continue;
+      distance_data[k] = std::sqrt(LeafBlock::squared_of(block->nearest[k]));
       distance->setActiveState(k, true);
-      closest_data[k] = block->closest[k];
+      closest_data[k] = closest_index;
     }
     out.distance.push_back(std::move(distance));
     out.closest.push_back(std::move(closest));
