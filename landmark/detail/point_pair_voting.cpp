@@ -229,8 +229,10 @@ void PointPairModel::vote(const PointCloud& scene, const RadiusGrid& grid, Index
     for (std::uint32_t e = begin; e < end; ++e) {
       const Entry& entry = entries_[e];
       // Rotating the model pair by alpha = alpha_s - alpha_m about x aligns it with the scene's.
+      // Wrapped into [0, bins) by adding 0 or a full turn: the same sum as a conditional add,
+      // without the branch, which mispredicted on every other entry.
       float alpha = alpha_s - entry.alpha_in_bins;
-      if (alpha < 0.0f) alpha += static_cast<float>(kAlphaBins);
+      alpha += static_cast<float>(alpha < 0.0f) * static_cast<float>(kAlphaBins);
       ++votes[entry.first_vote + std::min(static_cast<int>(alpha), kAlphaBins - 1)];
     }
   }
