@@ -79,7 +79,9 @@ struct NormalEquations {
   double abs_residual_sum = 0.0;
   std::size_t count = 0;
 
-  void add(const Eigen::Matrix<double, 6, 1>& J, double r, double w) {
+  // Inlined by force: it runs once per correspondence, and out of line its 6x6 sum spilled to the
+  // stack on every call.
+  [[gnu::always_inline]] inline void add(const Eigen::Matrix<double, 6, 1>& J, double r, double w) {
     const Eigen::Matrix<double, 6, 1> wJ = w * J;
     JtJ.noalias() += wJ * J.transpose();  // no 6x6 temporary: this runs once per correspondence
     Jtr.noalias() += wJ * r;
