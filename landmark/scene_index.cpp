@@ -3,6 +3,7 @@
 
 #include <tbb/parallel_invoke.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -37,34 +38,47 @@ SceneIndex::SceneIndex(const PointCloud& scene, const SceneSettings& settings)
   up_ = settings.up ? settings.up->normalized()
                     : default_up(scene.T_cloud_sensor, settings.base_frame);
 
-  cropped_ = settings.work_volume ? crop(scene, *settings.work_volume) : remove_non_finite(scene);
-  input_points_ = cropped_.size();
-  if (cropped_.empty()) {
-    throw Error(settings.work_volume ? "scene: the work volume holds no scene point"
-                                     : "scene: the scene holds no finite point");
+  // The grids skip non-finite points themselves, so without a work volume they are built from the
+  // frame as it is, and its finite points are copied (for the fine level, built on first use)
+  // beside them rather than before them.
+  const bool whole_frame = !settings.work_volume;
+  if (whole_frame) {
+    if (std::none_of(scene.points.begin(), scene.points.end(),
+                     [](const Eigen::Vector3f& p) { return is_finite(p); })) {
+      throw Error("scene: the scene holds no finite point");
+    }
+  } else {
+    cropped_ = crop(scene, *settings.work_volume);
+    if (cropped_.empty()) throw Error("scene: the work volume holds no scene point");
   }
-  // The grids are built side by side: the occupancy (raw points) beside the voxel moments, then
-  // the distance field from the centroids beside the normals and the k-d tree, so that neither
-  // thread waits on the other's serial steps.
+  const PointCloud& source = whole_frame ? scene : cropped_;
+  // The grids are built side by side: the range image, the finite points and the occupancy (raw
+  // points) beside the voxel moments, then the distance field from the centroids beside the
+  // normals, so that neither thread waits on the other's serial steps.
   const DistanceFieldSettings field_settings{settings.coarse_leaf, settings.effective_field_band()};
   tbb::parallel_invoke(
       [&] {
-        occupancy_ = OccupancyGrid(cropped_.points, settings.leaf_size);
         range_image_ = RangeImage::from_cloud(scene);
+        if (whole_frame) cropped_ = remove_non_finite(scene);
+        occupancy_ = OccupancyGrid(source.points, settings.leaf_size);
       },
       [&] {
-        const VoxelMoments moments(cropped_, settings.coarse_leaf);
+        const VoxelMoments moments(source, settings.coarse_leaf);
         coarse_.points = moments.centroids();
         coarse_.set_unorganized();
         coarse_.T_cloud_sensor = scene.T_cloud_sensor;
-        tbb::parallel_invoke([&] { field_ = DistanceField(coarse_.points, field_settings); },
-                             [&] {
-                               // Normals from a block of two leaves (about 2 cm at the default 1
-                               // cm): fine enough for a carton's edges, and pooled from the raw
-                               // points rather than the centroids.
-                               coarse_.normals = moments.normals(scene.sensor_origin());
-                             });
+        // This thread builds the field (the last task given to parallel_invoke runs on the
+        // calling thread at once), which splits into a few slabs; the normals, finely divisible,
+        // wait for the other thread and fill in around the field's slowest slab.
+        tbb::parallel_invoke(
+            [&] {
+              // Normals from a block of two leaves (about 2 cm at the default 1 cm): fine enough
+              // for a carton's edges, and pooled from the raw points rather than the centroids.
+              coarse_.normals = moments.normals(scene.sensor_origin());
+            },
+            [&] { field_ = DistanceField(coarse_.points, field_settings); });
       });
+  input_points_ = cropped_.size();
   seconds_ = detail::seconds_since(start);
 }
 

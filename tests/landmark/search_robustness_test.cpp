@@ -74,6 +74,25 @@ TEST_F(SearchInput, EmptyScenesAreClearErrors) {
             std::string::npos);
 }
 
+// SceneIndex builds its grids from a whole frame as it is, relying on them to skip the pixels
+// without a return: the index of the frame and that of its finite points alone must agree.
+TEST_F(SearchInput, AFrameIsIndexedAsItsFinitePointsAre) {
+  ASSERT_LT(scene_->count_finite(), scene_->size());  // the rendered frame has empty pixels
+  const SceneIndex frame(*scene_);
+  const SceneIndex finite(remove_non_finite(*scene_));
+  EXPECT_EQ(frame.input_points(), finite.input_points());
+  EXPECT_EQ(frame.coarse().points, finite.coarse().points);
+  ASSERT_EQ(frame.coarse().normals.size(), finite.coarse().normals.size());
+  for (std::size_t k = 0; k < frame.coarse().normals.size(); ++k) {
+    const Eigen::Vector3f& a = frame.coarse().normals[k];
+    const Eigen::Vector3f& b = finite.coarse().normals[k];
+    EXPECT_TRUE(a == b || (!a.allFinite() && !b.allFinite())) << "normal " << k;
+  }
+  EXPECT_EQ(frame.occupancy().occupied_voxels(), finite.occupancy().occupied_voxels());
+  EXPECT_EQ(frame.field().active_voxels(), finite.field().active_voxels());
+  EXPECT_EQ(frame.fine().points, finite.fine().points);
+}
+
 // A scene smaller than the landmark (a 6 cm patch of the table, then a handful of points) has
 // nothing that could be the landmark: the result is empty, with the reason, for both methods.
 TEST_F(SearchInput, ScenesSmallerThanTheLandmarkGiveNoMatchAndAReason) {
