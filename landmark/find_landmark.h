@@ -27,7 +27,10 @@ namespace lmk {
 /// 2: seeds spread one per cell instead of a uniform random sample.
 /// 3: relief beyond the sensor's noise; the tilt limit on aligned poses; no match inside a better
 ///    one's box.
-inline constexpr int kSearchRevision = 3;
+/// 4: not used (docs/cluster.md's revision 4 changed no result).
+/// 5: the coarse score over the coarse alignment's points (at most 400) instead of every point of
+///    the landmark's coarse cloud.
+inline constexpr int kSearchRevision = 5;
 
 struct Match {
   /// The matched box in the scene frame: the capture box moved by T_scene_capture.

@@ -35,14 +35,21 @@ struct Candidate {
   std::size_t seed = 0;
 };
 
-// Every k-th element, so that at most `cap` remain (deterministic: two vectors of one length keep
+// Every k-th index below n, so that at most `cap` remain (deterministic: two sets of one size keep
 // the same indices).
+Indices thin_indices(std::size_t n, std::size_t cap) {
+  Indices out;
+  const std::size_t kept = std::min(n, cap);
+  const double step = static_cast<double>(n) / static_cast<double>(std::max<std::size_t>(kept, 1));
+  for (std::size_t k = 0; k < kept; ++k) out.push_back(static_cast<Index>(k * step));
+  return out;
+}
+
 template <class T>
 std::vector<T> thin(const std::vector<T>& items, std::size_t cap) {
   if (items.size() <= cap) return items;
   std::vector<T> out;
-  const double step = static_cast<double>(items.size()) / static_cast<double>(cap);
-  for (std::size_t k = 0; k < cap; ++k) out.push_back(items[static_cast<std::size_t>(k * step)]);
+  for (Index i : thin_indices(items.size(), cap)) out.push_back(items[i]);
   return out;
 }
 
@@ -164,8 +171,10 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
   coarse_icp.translation_tolerance = 0.1 * leaf;
   coarse_icp.rotation_tolerance = 0.01;
   coarse_icp.measure_final = false;  // the candidates are scored below, by the metric's unit
-  // A few hundred points fix a coarse pose as well as all of them; the candidates are many.
-  const std::vector<Eigen::Vector3f> coarse_points = thin(model.points, 400);
+  // A few hundred points fix a coarse pose as well as all of them, and score it as well: the
+  // candidates are many, and the score only ranks them for the fine stage, which scores the
+  // finalists with every point.
+  const PointCloud coarse_model = model.select(thin_indices(model.size(), 400));
   std::vector<Eigen::Isometry3d> aligned(clusters.size());
   // The cheap score in the metric's unit: for the sensor metric, its own fit (sigma residuals,
   // projective visibility), so that a far instance, noisy in millimetres, still ranks first.
@@ -182,7 +191,7 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
   std::vector<int> iterations(clusters.size(), 0);
   tbb::parallel_for(std::size_t{0}, clusters.size(), [&](std::size_t c) {
     const DistanceFieldTarget target(index.field(), &coarse.normals);
-    const IcpResult r = icp(coarse_points, target, clusters[c].T_scene_capture, coarse_icp);
+    const IcpResult r = icp(coarse_model.points, target, clusters[c].T_scene_capture, coarse_icp);
     aligned[c] = r.T_target_source;
     iterations[c] = r.iterations;
     const Eigen::Isometry3f T = aligned[c].cast<float>();
@@ -193,8 +202,8 @@ std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats
                  empty_space_penalty(index, landmark, quick_probes, quick_probe_distances, T);
       return;
     }
-    quick[c] =
-        mean_surface_distance(index, model, T, in.metric.hides_occluded ? &landmark.box : nullptr);
+    quick[c] = mean_surface_distance(index, coarse_model, T,
+                                     in.metric.hides_occluded ? &landmark.box : nullptr);
   });
 
   // Prune: only candidates whose coarse fit could still pass go on, the best first.
