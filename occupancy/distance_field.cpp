@@ -73,7 +73,9 @@ class SlabBlocks {
     const std::uint32_t id = table_.insert(detail::pack_voxel({lx, ly, lz}));
     if (id == blocks_.size()) {
       auto block = std::make_unique<LeafBlock>();
-      block->origin = vdb::Coord(lx, ly, lz) << kLeafLog2;
+      // Leaf coordinates times the leaf's side (a left shift of a negative one is undefined).
+      constexpr int kSide = static_cast<int>(FloatLeaf::DIM);
+      block->origin = vdb::Coord(lx * kSide, ly * kSide, lz * kSide);
       block->nearest.fill(LeafBlock::key(background_, LeafBlock::kUnclaimed));
       blocks_.push_back(std::move(block));
     }
