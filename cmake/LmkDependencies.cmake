@@ -8,6 +8,8 @@ find_package(CLI11 REQUIRED)
 find_package(Ceres 2 REQUIRED)
 find_package(CGAL 5 REQUIRED)
 find_package(urdfdom REQUIRED)
+# RGB-D depth and colour images (libpng-dev).
+find_package(PNG REQUIRED)
 
 # nanoflann is header-only; Debian ships its CMake config.
 find_package(nanoflann REQUIRED)

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "lmk/eval/dataset.h"
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -54,6 +55,17 @@ DatasetScene scene_from_json(const json& j, const std::string& where, const deta
           r.fail(detail::at(pw, "hidden", n), "must be a fraction in [0, 1]");
         p.hidden.push_back(hidden[n].get<double>());
       }
+    }
+    if (pairs[k].contains("pose_check")) {
+      const json& check = pairs[k]["pose_check"];
+      const std::string cw = pw + ".pose_check";
+      const auto disagreement = [&](const char* key) {
+        const json& v = r.field(check, cw, key);
+        if (!v.is_number() || !(v.get<double>() >= 0.0) || !std::isfinite(v.get<double>()))
+          r.fail(cw + "." + key, "must be a finite number of at least 0");
+        return v.get<double>();
+      };
+      p.pose_check = PoseCheck{disagreement("translation_m"), disagreement("rotation_rad")};
     }
     s.pairs.push_back(p);
   }
@@ -159,6 +171,10 @@ json scene_to_json(const DatasetScene& s) {
     for (const auto& T : p.instances) instances.push_back(detail::pose_to_json(T));
     json pair = {{"landmark", p.landmark}, {"in_context", p.in_context}, {"instances", instances}};
     if (!p.hidden.empty()) pair["hidden"] = p.hidden;
+    if (p.pose_check) {
+      pair["pose_check"] = {{"translation_m", p.pose_check->translation},
+                            {"rotation_rad", p.pose_check->rotation}};
+    }
     pairs.push_back(pair);
   }
   return {{"name", s.name},

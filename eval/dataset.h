@@ -20,6 +20,13 @@ struct DatasetLandmark {
   Symmetry symmetry;
 };
 
+/// How far a pair's ground truth moved when its two frames were registered: real sequences, whose
+/// camera poses come from reconstruction, record it (lmk gen --from-rgbd).
+struct PoseCheck {
+  double translation = 0.0;  ///< at the landmark's box centre, m
+  double rotation = 0.0;     ///< rad
+};
+
 /// The ground truth of one (scene, landmark) pair. Pairs a scene does not list are out of context
 /// and hold no instance.
 struct DatasetPair {
@@ -29,6 +36,7 @@ struct DatasetPair {
   /// Optional: for each instance, the fraction of the landmark the scene's sensor does not see
   /// (eval/instance_visibility.h), in [0, 1]; empty when the dataset does not record it.
   std::vector<double> hidden;
+  std::optional<PoseCheck> pose_check;  ///< optional: the registration's disagreement
 };
 
 struct DatasetScene {

@@ -39,13 +39,11 @@ using Clock = std::chrono::steady_clock;
 // for the curve against the threshold; every threshold up to the default then shares one search.
 constexpr double kRecordedThresholdFactor = 2.0;
 
-double metric_default_threshold(const FindSettings& find) {
-  return find_error_metric(effective_metric(find)).default_threshold;
-}
-
+// For resolved settings.
 double recorded_threshold(const FindSettings& find) {
   return kRecordedThresholdFactor *
-         std::max(effective_threshold(find), metric_default_threshold(find));
+         std::max(*find.selection.threshold,
+                  find_error_metric(find.selection.metric).default_threshold);
 }
 
 // Each landmark's index, built by the first pair that searches it (a run whose pairs are all cached
@@ -67,17 +65,6 @@ class LandmarkIndexes {
   std::vector<std::unique_ptr<LandmarkIndex>> built_;
   std::deque<std::once_flag> once_;
 };
-
-// The search a pair runs: one thread, no callback, matches kept up to the recorded threshold, and
-// the scene's own up axis where the dataset gives one.
-FindSettings pair_search(const FindSettings& find, const DatasetScene& scene) {
-  FindSettings f = find;
-  f.execution = ExecutionSettings();
-  f.execution.threads = 1;
-  f.selection.threshold = recorded_threshold(find);
-  if (scene.up) f.scene.up = scene.up;
-  return f;
-}
 
 PairResult search_pair(const SceneIndex& index, const DatasetScene& scene,
                        const LandmarkIndex& landmark, const DatasetLandmark& entry,
@@ -101,6 +88,15 @@ PairResult search_pair(const SceneIndex& index, const DatasetScene& scene,
 
 }  // namespace
 
+FindSettings pair_search(const FindSettings& find, const DatasetScene& scene) {
+  FindSettings f = find;
+  f.execution = ExecutionSettings();
+  f.execution.threads = 1;
+  f.selection.threshold = recorded_threshold(find);
+  if (scene.up) f.scene.up = scene.up;
+  return f;
+}
+
 PairInput matches_within(const PairResult& pair, double threshold) {
   PairInput in;
   in.truth = pair.truth;
@@ -115,10 +111,8 @@ PairInput matches_within(const PairResult& pair, double threshold) {
 
 std::string evaluation_cache_key(const FindSettings& find, const std::string& fingerprint) {
   // The settings as the search applies them, so that spelling out a default keeps the key.
-  FindSettings applied = find;
-  applied.selection.metric = effective_metric(find);
-  applied.selection.threshold = recorded_threshold(find);
-  applied.sampling.max_seeds = effective_max_seeds(find);
+  FindSettings applied = find.resolved();
+  applied.selection.threshold = recorded_threshold(applied);
   const nlohmann::json settings = detail::result_settings_to_json(applied);
   return Fnv1a()
       .add(settings.dump())
@@ -142,10 +136,12 @@ Evaluation evaluate(const std::string& dir, const Dataset& dataset,
   const auto start = Clock::now();
   Evaluation evaluation;
   evaluation.dataset = dataset.name;
+  validate(settings.find);  // bad settings fail before any work
   evaluation.settings = settings;
+  evaluation.settings.find = settings.find.resolved();
   evaluation.settings.progress = nullptr;
   evaluation.settings.stop_requested = nullptr;
-  validate(settings.find);  // bad settings fail before any work
+  const FindSettings& find = evaluation.settings.find;
   if (settings.cached_only && settings.cache_dir.empty()) {
     throw Error("merge: the pairs come from the cache, and there is none (--no-cache)");
   }
@@ -169,14 +165,14 @@ Evaluation evaluate(const std::string& dir, const Dataset& dataset,
   std::vector<Landmark> landmarks;
   for (const DatasetLandmark& entry : dataset.landmarks)
     landmarks.push_back(load_landmark((fs::path(dir) / entry.file).string()));
-  LandmarkIndexes landmark_indexes(landmarks, pair_search(settings.find, DatasetScene()));
+  LandmarkIndexes landmark_indexes(landmarks, pair_search(find, DatasetScene()));
   std::vector<std::size_t> jobs_per_landmark(landmarks.size(), 0);
   for (const Job& job : jobs) ++jobs_per_landmark[job.landmark];
 
   evaluation.fingerprint = dataset_fingerprint(dir, dataset, landmarks);
   const detail::PairCache cache(settings.cache_dir,
-                                evaluation_cache_key(settings.find, evaluation.fingerprint));
-  const double threshold = effective_threshold(settings.find);
+                                evaluation_cache_key(find, evaluation.fingerprint));
+  const double threshold = *find.selection.threshold;
 
   evaluation.pairs.resize(jobs.size());
   std::vector<char> missing(jobs.size(), 0);  // cached_only: not in the cache
@@ -223,15 +219,15 @@ Evaluation evaluate(const std::string& dir, const Dataset& dataset,
       // landmark is for all of its scenes, and the indexes' build times are shared out among the
       // pairs that use them.
       const PointCloud cloud = read_cloud((fs::path(dir) / scene.file).string());
-      const SceneIndex index(cloud, pair_search(settings.find, scene).scene);
+      const SceneIndex index(cloud, pair_search(find, scene).scene);
       const double index_share = index.seconds_to_build() / static_cast<double>(to_search.size());
       tbb::parallel_for(std::size_t{0}, to_search.size(), [&](std::size_t i) {
         if (stopping()) return;
         const std::size_t k = to_search[i];
         const DatasetLandmark& entry = dataset.landmarks[jobs[k].landmark];
         const LandmarkIndex& landmark = landmark_indexes[jobs[k].landmark];
-        PairResult searched = search_pair(index, scene, landmark, entry,
-                                          dataset.pair(scene, entry.name), settings.find);
+        PairResult searched =
+            search_pair(index, scene, landmark, entry, dataset.pair(scene, entry.name), find);
         searched.seconds +=
             index_share +
             landmark.seconds_to_build() / static_cast<double>(jobs_per_landmark[jobs[k].landmark]);
@@ -354,7 +350,7 @@ std::vector<EvaluationRow> evaluation_rows_by_range(const Evaluation& evaluation
         std::floor((pose.translation() - p.sensor_position).norm() / bin_width));
   };
   return rows_by_bin(
-      evaluation, threshold.value_or(effective_threshold(evaluation.settings.find)),
+      evaluation, threshold.value_or(*evaluation.settings.find.selection.threshold),
       static_cast<int>(std::ceil(10.0 / bin_width)),  // up to 10 m: beyond any depth sensor
       [&](const PairResult& p, std::size_t k) { return bin_of(p, p.truth[k]); }, bin_of,
       [bin_width](int b) {
@@ -380,7 +376,7 @@ std::vector<EvaluationRow> evaluation_rows_by_hidden(const Evaluation& evaluatio
   }
   const int bins = static_cast<int>(std::ceil(1.0 / bin_width - 1e-9));
   return rows_by_bin(
-      evaluation, threshold.value_or(effective_threshold(evaluation.settings.find)), bins,
+      evaluation, threshold.value_or(*evaluation.settings.find.selection.threshold), bins,
       [&](const PairResult& p, std::size_t k) {
         if (k >= p.truth_hidden.size()) return -1;  // a pair without the record
         return std::min(static_cast<int>(std::floor(p.truth_hidden[k] / bin_width)), bins - 1);
@@ -396,7 +392,7 @@ std::vector<EvaluationRow> evaluation_rows_by_hidden(const Evaluation& evaluatio
 
 std::vector<EvaluationRow> evaluation_rows(const Evaluation& evaluation,
                                            std::optional<double> threshold) {
-  const double t = threshold.value_or(effective_threshold(evaluation.settings.find));
+  const double t = threshold.value_or(*evaluation.settings.find.selection.threshold);
   std::vector<EvaluationRow> rows;
   for (const std::string& setting : evaluation_settings(evaluation)) {
     for (int assumption = evaluation.settings.in_context_only ? 2 : 1; assumption <= 3;

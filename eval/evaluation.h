@@ -74,6 +74,11 @@ struct PairResult {
 /// the view, so neither a miss nor, when found, a false positive.
 inline constexpr double kIgnoredHiddenFraction = 0.8;
 
+/// The search each pair runs, from the evaluation's resolved settings: one thread, no callback,
+/// matches kept up to twice the larger of the threshold and the metric's default (see
+/// PairResult::found), and the scene's own up axis where the dataset gives one.
+FindSettings pair_search(const FindSettings& find, const DatasetScene& scene);
+
 /// The matches of `pair` with an error below `threshold`, as PairInput for the protocol, with
 /// instances hidden at least kIgnoredHiddenFraction ignored.
 PairInput matches_within(const PairResult& pair, double threshold);
@@ -90,9 +95,9 @@ struct EvaluationRow {
 };
 
 struct Evaluation {
-  std::string dataset;      ///< the dataset's name
-  std::string fingerprint;  ///< dataset_fingerprint() of it
-  EvaluationSettings settings;
+  std::string dataset;            ///< the dataset's name
+  std::string fingerprint;        ///< dataset_fingerprint() of it
+  EvaluationSettings settings;    ///< as run: settings.find resolved (FindSettings::resolved())
   std::vector<PairResult> pairs;  ///< in dataset order: scene by scene, landmark by landmark
   /// With settings.cached_only: the pairs (scene, landmark) the cache lacks, in dataset order.
   std::vector<std::pair<std::string, std::string>> missing;

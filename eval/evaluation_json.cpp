@@ -117,8 +117,8 @@ json rows_to_json(const std::vector<EvaluationRow>& rows) {
 }
 
 json evaluation_to_json(const Evaluation& e, const std::vector<EvaluationRow>& rows) {
-  const FindSettings& f = e.settings.find;
-  const double threshold = effective_threshold(f);
+  const FindSettings& f = e.settings.find;  // resolved
+  const double threshold = *f.selection.threshold;
   json pairs = json::array();
   for (const PairResult& p : e.pairs)
     pairs.push_back(pair_result_to_json(p, threshold, e.settings.tolerance));
@@ -127,10 +127,10 @@ json evaluation_to_json(const Evaluation& e, const std::vector<EvaluationRow>& r
           {"lmk_version", kVersion},
           {"dataset", e.dataset},
           {"dataset_fingerprint", e.fingerprint},
-          {"method", f.method},
-          {"metric", effective_metric(f)},
+          {"method", setting_name(f.method)},
+          {"metric", f.selection.metric},
           {"threshold", threshold},
-          {"max_seeds", effective_max_seeds(f)},
+          {"max_seeds", *f.sampling.max_seeds},
           {"pairs_searched", e.settings.in_context_only ? "in-context" : "all"},
           {"tolerance",
            {{"translation_m", e.settings.tolerance.translation},
@@ -139,6 +139,46 @@ json evaluation_to_json(const Evaluation& e, const std::vector<EvaluationRow>& r
           {"seconds", e.seconds},
           {"rows", rows_to_json(rows)},
           {"pairs", pairs}};
+}
+
+namespace {
+
+json cause_rows_to_json(const std::vector<CauseRow>& rows) {
+  json out = json::array();
+  for (const CauseRow& r : rows) {
+    json missed = json::object(), false_matches = json::object();
+    for (std::size_t k = 0; k < r.missed.size(); ++k) missed[miss_causes()[k]] = r.missed[k];
+    for (std::size_t k = 0; k < r.false_matches.size(); ++k)
+      false_matches[false_match_causes()[k]] = r.false_matches[k];
+    out.push_back({{"group", r.group},
+                   {"missed", missed},
+                   {"false_matches", false_matches},
+                   {"median_error_at_truth", optional_number(r.median_truth_error)},
+                   {"median_error_of_wrong_winner", optional_number(r.median_winner_error)}});
+  }
+  return out;
+}
+
+}  // namespace
+
+json explanation_to_json(const std::vector<ExplainedCase>& cases) {
+  json list = json::array();
+  for (const ExplainedCase& c : cases) {
+    list.push_back({{"scene", c.scene},
+                    {"landmark", c.landmark},
+                    {"setting", c.setting},
+                    {"kind", c.missed ? "missed" : "false match"},
+                    {"cause", c.cause},
+                    {"box", box_to_json(c.box)},
+                    {"range_m", c.range},
+                    {"error_at_truth", optional_number(c.truth_error)},
+                    {"error_of_wrong_winner", optional_number(c.winner_error)},
+                    {"nearest_candidate_m", optional_number(c.nearest_candidate_translation)},
+                    {"nearest_candidate_rad", optional_number(c.nearest_candidate_rotation)}});
+  }
+  return {{"cases", list},
+          {"by_setting", cause_rows_to_json(cause_rows(cases))},
+          {"by_range", cause_rows_to_json(cause_rows(cases, 0.5))}};
 }
 
 }  // namespace lmk::detail

@@ -31,12 +31,12 @@ int curve_assumption(const Evaluation& e) { return e.settings.in_context_only ? 
 
 // Whether the evaluation's metric measures errors in sigma rather than metres.
 bool errors_in_sigma(const Evaluation& e) {
-  return find_error_metric(effective_metric(e.settings.find)).unit == ErrorMetric::Unit::sigma;
+  return find_error_metric(e.settings.find.selection.metric).unit == ErrorMetric::Unit::sigma;
 }
 
 // One line per pair: what was there, what was found, how good the best match was, how long.
 TextTable pair_table(const Evaluation& e) {
-  const double threshold = effective_threshold(e.settings.find);
+  const double threshold = *e.settings.find.selection.threshold;
   const bool in_sigma = errors_in_sigma(e);
   TextTable t;
   t.header = {"scene",
@@ -88,7 +88,7 @@ std::string threshold_plot(const Evaluation& e) {
   const bool in_sigma = errors_in_sigma(e);
   const double scale = in_sigma ? 1.0 : 1e3;  // plotted in sigma or in millimetres
   plot.x_label = in_sigma ? "error threshold (sigma)" : "error threshold (mm)";
-  plot.marker_x = scale * effective_threshold(e.settings.find);
+  plot.marker_x = scale * *e.settings.find.selection.threshold;
   std::size_t k = 0;
   for (const std::string& setting : evaluation_settings(e)) {
     const std::string colour = kColours[k++ % (sizeof(kColours) / sizeof(kColours[0]))];
@@ -126,7 +126,48 @@ struct ReportTables {
   std::vector<EvaluationRow> rows, by_range;
   std::vector<EvaluationRow> by_hidden;     ///< empty when the dataset records no hidden fraction
   std::optional<FailurePictures> failures;  ///< when the dataset's directory was given
+  const std::vector<ExplainedCase>* explained = nullptr;  ///< with lmk eval --explain
 };
+
+constexpr const char* kExplainNote =
+    "Each missed instance and each false match in one cause, from the candidates the search "
+    "kept, turned down or suppressed within the protocol's tolerance of the truth (lmk eval "
+    "--explain; docs/evaluation.md). 'at truth' is the median metric value at the true poses of "
+    "the misses, aligned and polished from the truth as a candidate there would be; 'wrong "
+    "winner' the median of the wrong matches their pairs reported.";
+
+// One line per case.
+TextTable case_table(const std::vector<ExplainedCase>& cases, const std::string& metric) {
+  TextTable t;
+  t.header = {"scene", "landmark", "kind", "cause", "range m", "at truth", "wrong winner"};
+  t.numeric = {false, false, false, false, true, true, true};
+  const auto error = [&](const std::optional<double>& v) {
+    return v ? format_error(*v, metric) : std::string("-");
+  };
+  for (const ExplainedCase& c : cases) {
+    t.rows.push_back({c.scene, c.landmark, c.missed ? "missed" : "false match", c.cause,
+                      format_optional(c.range, 2), error(c.truth_error), error(c.winner_error)});
+  }
+  return t;
+}
+
+std::string explain_markdown(const Evaluation& e, const ReportTables& t) {
+  if (!t.explained) return "";
+  const std::string& metric = e.settings.find.selection.metric;
+  return "\n## Why\n\n" + std::string(kExplainNote) + "\n\n" +
+         cause_table(cause_rows(*t.explained), metric).markdown() + "\n" +
+         cause_table(cause_rows(*t.explained, 0.5), metric).markdown() + "\n" +
+         case_table(*t.explained, metric).markdown();
+}
+
+std::string explain_html(const Evaluation& e, const ReportTables& t) {
+  if (!t.explained) return "";
+  const std::string& metric = e.settings.find.selection.metric;
+  return "<h2>Why</h2>\n<p>" + escape_html(kExplainNote) + "</p>\n" +
+         html_table(cause_table(cause_rows(*t.explained), metric)) + "<h3>By range</h3>\n" +
+         html_table(cause_table(cause_rows(*t.explained, 0.5), metric)) + "<h3>Every case</h3>\n" +
+         html_table(case_table(*t.explained, metric));
+}
 
 // What the failure pictures hold beyond the limit, in words.
 std::string failures_summary(const FailurePictures& f) {
@@ -165,7 +206,8 @@ std::string markdown(const Evaluation& e, const ReportTables& t) {
          (t.by_hidden.empty() ? std::string()
                               : "\n## By hidden fraction\n\n" + std::string(kHiddenNote) + "\n\n" +
                                     evaluation_table(t.by_hidden).markdown()) +
-         failures_markdown(t) + "\n## Pairs\n\n" + pair_table(e).markdown();
+         explain_markdown(e, t) + failures_markdown(t) + "\n## Pairs\n\n" +
+         pair_table(e).markdown();
 }
 
 std::string html(const Evaluation& e, const ReportTables& t) {
@@ -186,8 +228,8 @@ std::string html(const Evaluation& e, const ReportTables& t) {
                               : "<h2>By hidden fraction</h2>\n<p>" + escape_html(kHiddenNote) +
                                     "</p>\n" + html_table(evaluation_table(t.by_hidden))) +
          "<h2>Plots</h2>\n<figure>\n" + threshold_plot(e) + "</figure>\n<figure>\n" +
-         times_plot(e) + "</figure>\n" + failures_html(t) + "<h2>Pairs</h2>\n" +
-         html_table(pair_table(e)) + "</body>\n</html>\n";
+         times_plot(e) + "</figure>\n" + explain_html(e, t) + failures_html(t) +
+         "<h2>Pairs</h2>\n" + html_table(pair_table(e)) + "</body>\n</html>\n";
 }
 
 }  // namespace
@@ -195,7 +237,7 @@ std::string html(const Evaluation& e, const ReportTables& t) {
 std::vector<ThresholdPoint> threshold_curve(const Evaluation& e, const std::string& setting,
                                             int assumption, int steps) {
   std::vector<ThresholdPoint> curve;
-  const double t = effective_threshold(e.settings.find);
+  const double t = *e.settings.find.selection.threshold;
   for (int i = 0; i < steps; ++i) {
     ThresholdPoint point;
     point.threshold = t * (0.1 + 1.9 * i / std::max(1, steps - 1));
@@ -208,7 +250,8 @@ std::vector<ThresholdPoint> threshold_curve(const Evaluation& e, const std::stri
 }
 
 void write_evaluation_report(const std::string& dir, const Evaluation& e,
-                             const std::string& dataset_dir) {
+                             const std::string& dataset_dir,
+                             const std::vector<ExplainedCase>* explained) {
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) throw Error(dir + ": cannot create the report directory (" + ec.message() + ")");
@@ -217,7 +260,9 @@ void write_evaluation_report(const std::string& dir, const Evaluation& e,
   tables.by_range = evaluation_rows_by_range(e);
   if (records_hidden_fractions(e)) tables.by_hidden = evaluation_rows_by_hidden(e);
   if (!dataset_dir.empty()) tables.failures = failure_pictures(e, dataset_dir);
+  tables.explained = explained;
   json j = detail::evaluation_to_json(e, tables.rows);
+  if (explained) j["explain"] = detail::explanation_to_json(*explained);
   json curves = json::array();
   for (const std::string& setting : evaluation_settings(e)) {
     json points = json::array();

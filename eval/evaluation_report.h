@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "lmk/eval/evaluation.h"
+#include "lmk/eval/explain.h"
 
 namespace lmk {
 
@@ -28,8 +29,10 @@ std::vector<ThresholdPoint> threshold_curve(const Evaluation& evaluation,
 /// Writes DIR/report.json, DIR/report.md and DIR/report.html (creating DIR), each atomically.
 /// With the evaluated dataset's directory, the report also pictures its failures
 /// (eval/failure_pictures.h): each pair with a missed instance or a false match, drawn on its
-/// scene's depth image.
+/// scene's depth image. With `explained` (lmk eval --explain), the report gives the cause of every
+/// miss and false match, per setting and per range, and lists each case.
 void write_evaluation_report(const std::string& dir, const Evaluation& evaluation,
-                             const std::string& dataset_dir = "");
+                             const std::string& dataset_dir = "",
+                             const std::vector<ExplainedCase>* explained = nullptr);
 
 }  // namespace lmk

@@ -40,8 +40,8 @@ TextTable evaluation_table(const std::vector<EvaluationRow>& rows, bool with_tim
 }
 
 std::string evaluation_header(const Evaluation& e) {
-  const FindSettings& f = e.settings.find;
-  const std::string metric = effective_metric(f);
+  const FindSettings& f = e.settings.find;  // resolved
+  const std::string& metric = f.selection.metric;
   std::size_t scenes = 0;
   std::string last;
   for (const PairResult& p : e.pairs) {
@@ -52,8 +52,9 @@ std::string evaluation_header(const Evaluation& e) {
                 "dataset %s (%zu scenes, %zu pairs, %s pairs searched), method %s, metric %s, "
                 "threshold %s, max seeds %zu; times per search on 1 thread",
                 e.dataset.c_str(), scenes, e.pairs.size(),
-                e.settings.in_context_only ? "in-context" : "all", f.method.c_str(), metric.c_str(),
-                format_error(effective_threshold(f), metric).c_str(), effective_max_seeds(f));
+                e.settings.in_context_only ? "in-context" : "all", setting_name(f.method).c_str(),
+                metric.c_str(), format_error(*f.selection.threshold, metric).c_str(),
+                *f.sampling.max_seeds);
   return text;
 }
 

@@ -8,8 +8,9 @@
 #include <map>
 
 #include "lmk/eval/dataset.h"
-#include "lmk/eval/detail/png.h"
+#include "lmk/eval/detail/base64.h"
 #include "lmk/geometry/cloud_io.h"
+#include "lmk/geometry/depth_image.h"
 #include "lmk/geometry/range_image.h"
 #include "lmk/landmark/landmark_file.h"
 
@@ -51,7 +52,7 @@ std::string depth_png(const RangeImage& image) {
       }
     }
   }
-  return detail::greyscale_png(grey, w, h);
+  return greyscale_png(grey, w, h);
 }
 
 // The box's twelve edges as SVG lines in image pixels (edges with an end behind the sensor are
@@ -101,8 +102,8 @@ FailurePictures failure_pictures(const Evaluation& evaluation, const std::string
       if (l.name == name) size = load_landmark((fs::path(dataset_dir) / l.file).string()).box.size;
     return box_sizes[name] = size;
   };
-  const double threshold = effective_threshold(evaluation.settings.find);
-  const std::string metric = effective_metric(evaluation.settings.find);
+  const double threshold = *evaluation.settings.find.selection.threshold;
+  const std::string& metric = evaluation.settings.find.selection.metric;
 
   for (const PairResult& p : evaluation.pairs) {
     const PairInput in = matches_within(p, threshold);

@@ -15,6 +15,8 @@ namespace lmk {
 inline constexpr std::uintmax_t kMaxCloudFileBytes = std::uintmax_t{4} << 30;
 /// A landmark file is a few MB (points, distance field, free space); 1 GiB is far beyond any box.
 inline constexpr std::uintmax_t kMaxLandmarkFileBytes = std::uintmax_t{1} << 30;
+/// An image (depth or colour) is decoded whole; 512 MiB is far beyond a 16K x 16K 16-bit PNG.
+inline constexpr std::uintmax_t kMaxImageFileBytes = std::uintmax_t{512} << 20;
 /// Programs, datasets, boxes, settings, URDFs and cache entries: JSON or XML text.
 inline constexpr std::uintmax_t kMaxTextFileBytes = std::uintmax_t{256} << 20;
 
@@ -30,6 +32,8 @@ inline constexpr InputKind kJsonInput{"JSON file", kMaxTextFileBytes};
 inline constexpr InputKind kProgramInput{"program file", kMaxTextFileBytes};
 inline constexpr InputKind kDatasetInput{"dataset file", kMaxTextFileBytes};
 inline constexpr InputKind kRobotInput{"robot description", kMaxTextFileBytes};
+inline constexpr InputKind kImageInput{"image file", kMaxImageFileBytes};
+inline constexpr InputKind kTextInput{"text file", kMaxTextFileBytes};
 
 /// Throws lmk::Error, with one line starting with the path, unless `path` names an existing
 /// regular file (after symbolic links) of at most `kind.max_bytes`. Never opens the file.

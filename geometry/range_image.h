@@ -10,15 +10,10 @@
 #include <optional>
 #include <vector>
 
+#include "lmk/geometry/pinhole_intrinsics.h"
 #include "lmk/geometry/point_cloud.h"
 
 namespace lmk {
-
-/// A pinhole model's intrinsics, pixels.
-struct PinholeIntrinsics {
-  double fx = 525.0, fy = 525.0, cx = 319.5, cy = 239.5;
-  int width = 640, height = 480;
-};
 
 class RangeImage {
  public:

@@ -16,8 +16,13 @@
 //   };
 //
 // `Self` is the struct or the const struct. Field types: double, int, std::size_t (which is also
-// std::uint64_t on the LP64 platforms lmk builds on), bool, std::string, and std::optional of
-// double, std::size_t, Eigen::Vector3d and Box (unset: the documented default, null in JSON).
+// std::uint64_t on the LP64 platforms lmk builds on), bool, std::string, a scoped enum with names
+// (below), and std::optional of double, std::size_t, Eigen::Vector3d and Box (unset: the documented
+// default, null in JSON).
+//
+// A scoped enum is a setting once a free function `setting_names(E)` beside it lists the names of
+// its values in order: the flags, the JSON and the cache key write those names, never numbers, and
+// the description takes its choices from the same list (SettingInfo::names_of<E>()).
 
 #include <Eigen/Core>
 #include <cstdint>
@@ -76,6 +81,11 @@ struct SettingInfo {
     choices = std::move(values);
     return *this;
   }
+  /// The choices of an enum field: the names its setting_names() lists.
+  template <class E>
+  SettingInfo& names_of() {
+    return one_of(setting_names(E{}));
+  }
   SettingInfo& or_default() {
     empty_means_default = true;
     return *this;
@@ -99,6 +109,28 @@ struct SettingInfo {
   bool answers_to(const std::string& key_or_alias) const;
 };
 
+/// Whether E is an enum with setting names (the overloads below are for those alone).
+template <class E>
+using IfSettingEnum = std::enable_if_t<std::is_enum<E>::value, int>;
+
+/// The name of an enum setting's value; "" for a value outside its names.
+template <class E, IfSettingEnum<E> = 0>
+std::string setting_name(E value) {
+  const std::vector<std::string>& names = setting_names(value);
+  const auto i = static_cast<std::size_t>(value);
+  return i < names.size() ? names[i] : std::string();
+}
+
+/// The value of an enum setting named `name`; nothing for an unknown name.
+template <class E, IfSettingEnum<E> = 0>
+std::optional<E> setting_value_named(const std::string& name) {
+  const std::vector<std::string>& names = setting_names(E{});
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (names[i] == name) return static_cast<E>(i);
+  }
+  return std::nullopt;
+}
+
 /// `text` as one finite number, the whole word ("1e-3"); nothing for "nan", "inf" or "1x".
 std::optional<double> read_finite_number(const std::string& text);
 /// `text` as a whole number of at least 0 that fits 64 bits; nothing for "-1", "1.5" or "x".
@@ -109,6 +141,9 @@ std::optional<std::uint64_t> read_non_negative_whole(const std::string& text);
 /// "find: fast."; parsers throw "--flag: '<text>' <problem>".
 namespace settings_detail {
 
+/// The problem with a value, for messages: "must be in [0, 1]".
+std::string limits(const SettingInfo& info);
+
 void check(const SettingInfo& info, double v, const std::string& where);
 void check(const SettingInfo& info, int v, const std::string& where);
 void check(const SettingInfo& info, std::size_t v, const std::string& where);
@@ -116,6 +151,10 @@ void check(const SettingInfo& info, bool v, const std::string& where);
 void check(const SettingInfo& info, const std::string& v, const std::string& where);
 void check(const SettingInfo& info, const Eigen::Vector3d& v, const std::string& where);
 void check(const SettingInfo& info, const Box& v, const std::string& where);
+template <class E, IfSettingEnum<E> = 0>
+void check(const SettingInfo& info, E v, const std::string& where) {
+  check(info, setting_name(v), where);  // a value without a name is refused as ''
+}
 template <class T>
 void check(const SettingInfo& info, const std::optional<T>& v, const std::string& where) {
   if (v) check(info, *v, where);
@@ -130,6 +169,13 @@ void parse(const SettingInfo& info, const std::string& text, std::string& out);
 void parse(const SettingInfo& info, const std::string& text, Eigen::Vector3d& out);
 /// "CX CY CZ SX SY SZ [ROLL PITCH YAW]": centre and sides in m, angles in degrees.
 void parse(const SettingInfo& info, const std::string& text, Box& out);
+/// An enum by its name; another word is refused with the names.
+template <class E, IfSettingEnum<E> = 0>
+void parse(const SettingInfo& info, const std::string& text, E& out) {
+  const std::optional<E> value = setting_value_named<E>(text);
+  if (!value) throw Error(info.flag() + ": '" + text + "' " + limits(info));
+  out = *value;
+}
 template <class T>
 void parse(const SettingInfo& info, const std::string& text, std::optional<T>& out) {
   T value{};
@@ -145,6 +191,10 @@ std::string to_text(const SettingInfo& info, bool v);
 std::string to_text(const SettingInfo& info, const std::string& v);
 std::string to_text(const SettingInfo& info, const Eigen::Vector3d& v);
 std::string to_text(const SettingInfo& info, const Box& v);
+template <class E, IfSettingEnum<E> = 0>
+std::string to_text(const SettingInfo&, E v) {
+  return setting_name(v);
+}
 template <class T>
 std::string to_text(const SettingInfo& info, const std::optional<T>& v) {
   return v ? to_text(info, *v) : std::string();
@@ -161,9 +211,6 @@ template <class T>
 std::pair<int, int> word_count(const std::optional<T>&) {
   return word_count(T{});
 }
-
-/// The problem with a value, for messages: "must be in [0, 1]".
-std::string limits(const SettingInfo& info);
 
 }  // namespace settings_detail
 

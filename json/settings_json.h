@@ -23,7 +23,11 @@ inline nlohmann::json setting_to_json(const Box& box) {
 
 template <class T>
 nlohmann::json setting_to_json(const T& v) {
-  return nlohmann::json(v);
+  if constexpr (std::is_enum<T>::value) {
+    return nlohmann::json(setting_name(v));  // by name: numbers would change with the order
+  } else {
+    return nlohmann::json(v);
+  }
 }
 
 template <class T>
@@ -51,15 +55,27 @@ inline void setting_from_json(const nlohmann::json& j, const std::string& where,
 
 template <class T>
 void setting_from_json(const nlohmann::json& j, const std::string& where, T& out) {
-  // Integers must be integers of the right sign; a double accepts any number.
-  const bool ok = std::is_same<T, bool>::value          ? j.is_boolean()
-                  : std::is_same<T, std::string>::value ? j.is_string()
-                  : std::is_floating_point<T>::value    ? j.is_number()
-                  : std::is_unsigned<T>::value
-                      ? j.is_number_unsigned() || (j.is_number_integer() && j.get<long long>() >= 0)
-                      : j.is_number_integer();
-  if (!ok) throw Error(where + ": has the wrong type (" + std::string(j.type_name()) + ")");
-  out = j.get<T>();
+  if constexpr (std::is_enum<T>::value) {
+    if (!j.is_string()) throw Error(where + ": has the wrong type (" + j.type_name() + ")");
+    const std::optional<T> value = setting_value_named<T>(j.get<std::string>());
+    if (!value) {
+      std::string names;
+      for (const std::string& n : setting_names(T{})) names += (names.empty() ? "" : ", ") + n;
+      throw Error(where + ": '" + j.get<std::string>() + "' must be one of " + names);
+    }
+    out = *value;
+  } else {
+    // Integers must be integers of the right sign; a double accepts any number.
+    const bool ok =
+        std::is_same<T, bool>::value          ? j.is_boolean()
+        : std::is_same<T, std::string>::value ? j.is_string()
+        : std::is_floating_point<T>::value    ? j.is_number()
+        : std::is_unsigned<T>::value
+            ? j.is_number_unsigned() || (j.is_number_integer() && j.get<long long>() >= 0)
+            : j.is_number_integer();
+    if (!ok) throw Error(where + ": has the wrong type (" + std::string(j.type_name()) + ")");
+    out = j.get<T>();
+  }
 }
 
 template <class T>

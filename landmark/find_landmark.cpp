@@ -6,12 +6,8 @@
 #include <cmath>
 
 #include "lmk/geometry/error.h"
-#include "lmk/geometry/filters.h"
-#include "lmk/geometry/voxel_grid.h"
 #include "lmk/landmark/detail/fast_search.h"
-#include "lmk/landmark/detail/point_pair_voting.h"
-#include "lmk/landmark/detail/reference_search.h"
-#include "lmk/landmark/detail/relief_seeds.h"
+#include "lmk/landmark/detail/search_method.h"
 #include "lmk/landmark/detail/stopwatch.h"
 #include "lmk/landmark/non_max_suppression.h"
 
@@ -26,16 +22,25 @@ constexpr const char* kRejectedError = "error above threshold";
 constexpr const char* kRejectedCoverage = "coverage too low";
 constexpr const char* kRejectedEmptySpace = "empty space occupied";
 constexpr const char* kRejectedOverlap = "inside a better match";
+constexpr const char* kSuppressed = "suppressed by a better match";
 
 // Steps 5 and 6: non-max suppression on box centres, then the error threshold (and, for metrics
 // that measure them, the coverage and the empty space), then, with `suppress_overlaps` (the fast
 // method's, not the paper's), the matches inside a better match's box (exclusive_boxes).
-// Candidates turned down go to `rejected` with the first test they failed.
+// Candidates turned down go to `rejected` with the first test they failed; with `keep_suppressed`,
+// those non-max suppression removed go to `suppressed`.
 void select(std::vector<Match> candidates, const SelectionSettings& s, bool suppress_overlaps,
-            FindResult& result) {
+            bool keep_suppressed, FindResult& result) {
   SearchStats& stats = result.stats;
   const std::vector<std::size_t> kept = non_max_suppression_of(candidates, s.nms_radius);
   stats.after_nms = kept.size();
+  if (keep_suppressed) {
+    std::vector<char> is_kept(candidates.size(), 0);
+    for (std::size_t i : kept) is_kept[i] = 1;
+    for (std::size_t i = 0; i < candidates.size(); ++i) {
+      if (!is_kept[i]) result.suppressed.push_back({candidates[i], kSuppressed});
+    }
+  }
   const auto reject = [&](Match& m, std::size_t& count, const char* reason) {
     ++count;
     result.rejected.push_back({std::move(m), reason});
@@ -71,94 +76,67 @@ void select(std::vector<Match> candidates, const SelectionSettings& s, bool supp
   result.matches = std::move(accepted);
 }
 
+// What a search of `prepared` in `index` works with once its settings are resolved: the metric
+// and the landmark's view of it.
+struct Prepared {
+  Prepared(const LandmarkIndex& prepared, const FindSettings& requested)
+      : settings(requested.resolved()),
+        metric(find_error_metric(settings.selection.metric)),
+        landmark(prepared.landmark()),
+        view{landmark.points, prepared.tree(), landmark.box, landmark} {
+    // The sensor metric tests empty space beyond the noise, which far away exceeds the landmark
+    // distance field's band.
+    if (metric.unit == ErrorMetric::Unit::sigma) view.empty_distances = &prepared.empty_distances();
+  }
+
+  const FindSettings settings;  ///< resolved: what follows reads plain fields
+  const ErrorMetric& metric;
+  const Landmark& landmark;
+  LandmarkView view;
+};
+
 // Steps 3 to 6 in an indexed scene, for inputs already checked.
 FindResult search(const SceneIndex& index, const LandmarkIndex& prepared,
-                  const FindSettings& settings) {
+                  const FindSettings& requested) {
   std::string why;
-  if (!prepared.suits(settings, &why)) throw Error("find: " + why);
-  const Landmark& landmark = prepared.landmark();
+  if (!prepared.suits(requested, &why)) throw Error("find: " + why);
   const auto start = Clock::now();
+  const Prepared p(prepared, requested);
+  const FindSettings& settings = p.settings;
+  const detail::SearchMethodSteps& method = detail::search_method_steps(settings.method);
   FindResult result;
   SearchStats& stats = result.stats;
-  const bool fast = settings.method == "fast";
-  stats.method = settings.method;
-  stats.metric = effective_metric(settings);
-  const ErrorMetric& metric = find_error_metric(stats.metric);
-  stats.threshold = effective_threshold(settings);
+  stats.method = setting_name(settings.method);
+  stats.metric = settings.selection.metric;
+  stats.threshold = *settings.selection.threshold;
   stats.scene_points = index.input_points();
 
-  // Seeds: a seeded random sample of the points the method starts from (step 3).
-  const PointCloud& points = fast ? index.coarse() : index.fine();
+  // Seeds: the points the method starts from (step 3).
+  const PointCloud& points = method.seed_cloud(index);
   stats.scene_points_used = points.size();
-  // Fast: seeds near relief only (detail/relief_seeds.h), in cells of half the landmark's size,
-  // and as many as put seeds_per_instance on each instance-sized stretch of them.
-  Indices seeds;
-  if (fast) {
-    const double diameter = prepared.diameter();
-    detail::ReliefTest relief;
-    relief.cell = 0.5 * diameter;
-    relief.angle = detail::kCoplanarAngle;
-    relief.T_cloud_sensor = index.T_scene_sensor();
-    relief.noise = index.settings().depth_noise();
-    const Indices candidates = detail::points_near_relief(points, relief);
-    // One seed per cell of a grid whose cells an instance's surface (about as many coarse
-    // leaves as the landmark has coarse points) spans seeds_per_instance times; coarser while the
-    // seeds would exceed the cap.
-    const double leaf = index.settings().coarse_leaf;
-    double spacing = leaf * std::sqrt(std::max(1.0, static_cast<double>(prepared.coarse().size()) /
-                                                        settings.fast.seeds_per_instance));
-    const std::size_t cap = effective_max_seeds(settings);
-    seeds = detail::spread_seeds(points, candidates, spacing, settings.sampling.seed);
-    while (seeds.size() > cap) {
-      spacing *= 1.02 * std::sqrt(static_cast<double>(seeds.size()) / static_cast<double>(cap));
-      seeds = detail::spread_seeds(points, candidates, spacing, settings.sampling.seed);
-    }
-  } else {
-    const auto wanted = static_cast<std::size_t>(
-        std::ceil(settings.reference.sample_fraction * static_cast<double>(points.size())));
-    seeds = random_sample_indices(points.size(), std::min(effective_max_seeds(settings), wanted),
-                                  settings.sampling.seed);
-  }
+  const Indices seeds = method.seeds(index, prepared, settings);
   stats.seeds = seeds.size();
-  // The sensor metric tests empty space beyond the noise, which far away exceeds the landmark
-  // distance field's band.
-  LandmarkView landmark_view{landmark.points, prepared.tree(), landmark.box, landmark};
-  if (metric.unit == ErrorMetric::Unit::sigma)
-    landmark_view.empty_distances = &prepared.empty_distances();
   stats.seconds_preprocess = seconds_since(start);
 
   // Step 4, in an arena of the requested size: no process-wide thread setting.
   const auto search_start = Clock::now();
-  const detail::SearchInput input{
-      index,         points, landmark, prepared,        SceneView{index},
-      landmark_view, seeds,  metric,   stats.threshold, settings};
-  std::vector<Match> candidates;
+  const detail::SearchInput input{index,  points, p.landmark, prepared,        SceneView{index},
+                                  p.view, seeds,  p.metric,   stats.threshold, settings};
+  detail::CandidateSet candidates;
   const int threads = settings.execution.threads;
   tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
-  arena.execute([&] {
-    if (fast) {
-      detail::FastSearchStats fast_stats;
-      candidates = detail::fast_candidates(input, fast_stats);
-      stats.poses = fast_stats.poses;
-      stats.clusters = fast_stats.clusters;
-      stats.refined = fast_stats.refined;
-      stats.seconds_vote = fast_stats.seconds_vote;
-      stats.seconds_coarse = fast_stats.seconds_coarse;
-      stats.seconds_fine = fast_stats.seconds_fine;
-    } else {
-      candidates = detail::reference_candidates(input);
-    }
-  });
-  for (const Match& m : candidates)
+  arena.execute([&] { candidates = method.candidates(input, stats); });
+  for (const Match& m : candidates.kept)
     stats.icp_iterations += static_cast<std::size_t>(m.icp_iterations);
   stats.seconds_search = seconds_since(search_start);
 
   const auto select_start = Clock::now();
-  select(std::move(candidates), settings.selection, fast && settings.fast.suppress_overlaps,
-         result);
+  for (Match& m : candidates.suppressed) result.suppressed.push_back({std::move(m), kSuppressed});
+  select(std::move(candidates.kept), settings.selection, method.suppresses_overlaps(settings),
+         settings.execution.keep_suppressed, result);
   if (settings.execution.keep_aligned_points) {
     for (Match& m : result.matches) {
-      m.aligned_points = landmark.points.transformed(m.T_scene_capture);
+      m.aligned_points = p.landmark.points.transformed(m.T_scene_capture);
       m.aligned_points.T_cloud_sensor = index.T_scene_sensor();
     }
   }
@@ -211,6 +189,21 @@ FindResult find_landmark(const SceneIndex& index, const LandmarkIndex& landmark,
                          const FindSettings& settings) {
   validate(settings);
   return search(index, landmark, settings);
+}
+
+Match score_pose(const SceneIndex& index, const LandmarkIndex& prepared,
+                 const FindSettings& requested, const Eigen::Isometry3d& T_scene_capture) {
+  validate(requested);
+  std::string why;
+  if (!prepared.suits(requested, &why)) throw Error("find: " + why);
+  if (!T_scene_capture.matrix().allFinite()) throw Error("score pose: the pose is not finite");
+  const Prepared p(prepared, requested);
+  const Indices no_seeds;
+  const detail::SearchInput input{index,     index.coarse(),   p.landmark,
+                                  prepared,  SceneView{index}, p.view,
+                                  no_seeds,  p.metric,         *p.settings.selection.threshold,
+                                  p.settings};
+  return detail::fast_align_and_polish(input, T_scene_capture);
 }
 
 }  // namespace lmk

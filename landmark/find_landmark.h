@@ -84,6 +84,9 @@ struct Rejection {
 struct FindResult {
   std::vector<Match> matches;       ///< sorted by increasing error
   std::vector<Rejection> rejected;  ///< sorted by increasing error
+  /// Only with execution.keep_suppressed: the candidates non-max suppression removed (within
+  /// nms_radius of a better candidate), reason "suppressed by a better match", in no set order.
+  std::vector<Rejection> suppressed;
   SearchStats stats;
 };
 
@@ -104,6 +107,14 @@ FindResult find_landmark(const SceneIndex& scene, const Landmark& landmark,
 /// built for another method, coarse leaf or vote leaf fraction (LandmarkIndex::suits()).
 FindResult find_landmark(const SceneIndex& scene, const LandmarkIndex& landmark,
                          const FindSettings& settings = {});
+
+/// The pose T_scene_capture as the fast search would leave it had a candidate started there: its
+/// fine alignment (ICP against the scene's distance field) and its Ceres polish, scored by the
+/// settings' metric (FindSettings::resolved()). Not selected: the match's error and terms say how
+/// it would fare. What `lmk eval --explain` measures at the true pose, beside the match that won.
+/// Throws lmk::Error as find_landmark does for bad settings or an index built for others.
+Match score_pose(const SceneIndex& scene, const LandmarkIndex& landmark,
+                 const FindSettings& settings, const Eigen::Isometry3d& T_scene_capture);
 
 /// One line on what the search turned down and why, for users and logs: "" when nothing was, and
 /// "no candidate pose ..." when the scene offered none.

@@ -7,11 +7,19 @@
 
 namespace lmk {
 
-std::vector<std::string> search_methods() { return {"fast", "reference"}; }
+const std::vector<std::string>& setting_names(SearchMethod) {
+  static const std::vector<std::string> names{"fast", "reference"};
+  return names;
+}
 
-bool settings_group_affects(const std::string& method, const std::string& group) {
+const std::vector<std::string>& setting_names(Orientations) {
+  static const std::vector<std::string> names{"upright", "full"};
+  return names;
+}
+
+bool settings_group_affects(SearchMethod method, const std::string& group) {
   if (group == "execution") return false;
-  if (group == "reference" || group == "fast") return group == method;
+  if (group == "reference" || group == "fast") return group == setting_name(method);
   return true;
 }
 
@@ -49,20 +57,16 @@ std::vector<std::string> find_setting_keys(bool results_only) {
   return keys;
 }
 
-std::size_t effective_max_seeds(const FindSettings& settings) {
-  if (settings.sampling.max_seeds) return *settings.sampling.max_seeds;
-  return settings.method == "reference" ? 1000 : 2000;
-}
-
-std::string effective_metric(const FindSettings& settings) {
-  if (!settings.selection.metric.empty()) return settings.selection.metric;
-  return settings.method == "fast" ? "visibility" : "paper";
-}
-
-double effective_threshold(const FindSettings& settings) {
-  return settings.selection.threshold
-             ? *settings.selection.threshold
-             : find_error_metric(effective_metric(settings)).default_threshold;
+FindSettings FindSettings::resolved() const {
+  FindSettings r = *this;
+  const bool fast = method == SearchMethod::fast;
+  r.scene = scene.resolved();
+  // The paper's 1000 for the reference; 2000 for fast, whose seeds cost little.
+  if (!r.sampling.max_seeds) r.sampling.max_seeds = fast ? 2000 : 1000;
+  if (r.selection.metric.empty()) r.selection.metric = fast ? "visibility" : "paper";
+  if (!r.selection.threshold)
+    r.selection.threshold = find_error_metric(r.selection.metric).default_threshold;
+  return r;
 }
 
 }  // namespace lmk

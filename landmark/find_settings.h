@@ -25,15 +25,26 @@
 
 namespace lmk {
 
-/// The search methods find_landmark accepts.
-std::vector<std::string> search_methods();
+/// The search methods find_landmark accepts: the fast search (detail/fast_search.h) and the
+/// paper's Algorithm 1 as published (detail/reference_search.h).
+enum class SearchMethod { fast, reference };
+/// "fast", "reference": the method's name in flags, JSON and results.
+const std::vector<std::string>& setting_names(SearchMethod);
+
+/// The names of the search methods, in order.
+inline const std::vector<std::string>& search_methods() { return setting_names(SearchMethod{}); }
+
+/// Which orientations the fast search tries: "upright", any rotation about the up axis and a tilt
+/// of the landmark's capture up axis up to a limit; "full", all of SO(3).
+enum class Orientations { upright, full };
+const std::vector<std::string>& setting_names(Orientations);
 
 /// Step 3: which scene points seed the search.
 struct SamplingSettings {
   std::uint64_t seed = 0;  ///< random seed of the sampling
-  /// At most this many seeds. Unset: the method's own, effective_max_seeds(): the paper's 1000 for
-  /// the reference; 2000 for fast, whose seeds cost little and whose seed count otherwise follows
-  /// seeds_per_instance (a small landmark in a large scene wants more than 1000).
+  /// At most this many seeds. Unset: the method's own (FindSettings::resolved()): the paper's 1000
+  /// for the reference; 2000 for fast, whose seeds cost little and whose seed count otherwise
+  /// follows seeds_per_instance (a small landmark in a large scene wants more than 1000).
   std::optional<std::size_t> max_seeds;
 
   template <class Self, class Visit>
@@ -69,10 +80,8 @@ struct FastSettings {
   /// handful leave room for a half-occluded instance and for seeds on its edges, whose normals are
   /// poor, while a search costs a few hundred seeds rather than a thousand (docs/evaluation.md).
   double seeds_per_instance = 8.0;
-  /// "upright": any rotation about the up axis, and tilts of the landmark's capture up axis up to
-  /// max_tilt; "full": all of SO(3).
-  std::string orientations = "upright";
-  double max_tilt = 1.0471975511965976;  ///< rad (60 degrees)
+  Orientations orientations = Orientations::upright;  ///< tilts up to max_tilt when upright
+  double max_tilt = 1.0471975511965976;               ///< rad (60 degrees)
   /// Point pair voting samples the landmark and the scene at this fraction of the landmark's
   /// diameter (at least the coarse leaf). Drost et al.'s 5% found the same poses at twice the cost.
   double vote_leaf_fraction = 0.07;
@@ -95,7 +104,7 @@ struct FastSettings {
           s.seeds_per_instance);
     visit(SettingInfo("orientations",
                       "Fast: 'upright' (any yaw, tilt up to --max-tilt) or 'full' (all of SO(3))")
-              .one_of({"upright", "full"}),
+              .names_of<Orientations>(),
           s.orientations);
     visit(SettingInfo("max_tilt", "Fast, upright: largest tilt of the landmark's up axis")
               .within(0.0, 3.14159265358979323846)
@@ -167,6 +176,9 @@ struct ExecutionSettings {
   /// Return each match's landmark points in the scene frame. A request of C++ callers for more
   /// output, not a setting: like progress, it has no description, JSON or flag.
   bool keep_aligned_points = false;
+  /// Return the candidates non-max suppression removed (FindResult::suppressed): what a diagnosis
+  /// of a miss looks at (lmk eval --explain). Like keep_aligned_points, a request for more output.
+  bool keep_suppressed = false;
   /// Called after each seed with (seeds done, seeds in all), possibly from several threads at once.
   std::function<void(std::size_t, std::size_t)> progress;
 
@@ -180,7 +192,7 @@ struct ExecutionSettings {
 };
 
 struct FindSettings {
-  std::string method = "fast";  ///< search method: "fast" or "reference"
+  SearchMethod method = SearchMethod::fast;
   SceneSettings scene;
   SamplingSettings sampling;
   ReferenceSettings reference;
@@ -190,9 +202,15 @@ struct FindSettings {
 
   template <class Self, class Visit>
   static void describe(Self& s, Visit&& visit) {
-    visit(SettingInfo("method", "Search method: fast or reference").one_of(search_methods()),
+    visit(SettingInfo("method", "Search method: fast or reference").names_of<SearchMethod>(),
           s.method);
   }
+
+  /// These settings as the search applies them: every default that depends on the method or on
+  /// another setting spelt out (selection.metric, selection.threshold, sampling.max_seeds,
+  /// scene.field_band). A search resolves its settings once, at entry; what follows, and what
+  /// reports a search (stats, tables, the evaluation's cache key), reads the fields.
+  FindSettings resolved() const;
 };
 
 /// Calls f(name, group) for each stage's settings, in the order of the search.
@@ -208,7 +226,7 @@ void for_each_settings_group(Find& s, F&& f) {
 
 /// Whether the stage named `group` can change what `method` finds: scene, sampling and selection
 /// always; reference and fast only for their own method; execution never.
-bool settings_group_affects(const std::string& method, const std::string& group);
+bool settings_group_affects(SearchMethod method, const std::string& group);
 
 /// Throws lmk::Error naming the stage, the field and its flag for the first setting out of its
 /// limits, in the flag's unit ("find: fast.max_tilt (--max-tilt): 229.18 must be finite and in
@@ -224,15 +242,5 @@ void set_find_setting(FindSettings& settings, const std::string& key, const std:
 /// Every key set_find_setting accepts, in stage order; with `results_only`, only those of settings
 /// that can change what is found (not threads).
 std::vector<std::string> find_setting_keys(bool results_only = false);
-
-/// The metric a search applies: selection.metric, or the method's own when it is empty
-/// ("visibility" for fast, "paper" for reference).
-std::string effective_metric(const FindSettings& settings);
-
-/// The error threshold a search applies: selection.threshold, or its metric's default.
-double effective_threshold(const FindSettings& settings);
-
-/// The seed cap a search applies: sampling.max_seeds, or its method's own.
-std::size_t effective_max_seeds(const FindSettings& settings);
 
 }  // namespace lmk

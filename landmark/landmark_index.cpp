@@ -60,7 +60,7 @@ void LandmarkIndex::build(const FindSettings& settings) {
   tree_ = std::make_unique<KdTree>(landmark.points);
   lazy_ = std::make_unique<Lazy>();
 
-  if (method_ == "fast") {
+  if (method_ == SearchMethod::fast) {
     auto fast = std::make_unique<Fast>();
     const double leaf = coarse_leaf_;
     fast->coarse = voxel_downsample(landmark.points, leaf);
@@ -87,18 +87,19 @@ void LandmarkIndex::build(const FindSettings& settings) {
 }
 
 bool LandmarkIndex::suits(const FindSettings& settings, std::string* why) const {
-  const bool fast = settings.method == "fast";
+  const bool fast = settings.method == SearchMethod::fast;
   const bool same = settings.method == method_ &&
                     (!fast || (settings.scene.coarse_leaf == coarse_leaf_ &&
                                settings.fast.vote_leaf_fraction == vote_leaf_fraction_));
   if (!same && why) {
     std::ostringstream text;
-    text << "the index of landmark '" << landmark_->name << "' was built for method " << method_;
-    if (method_ == "fast") {
+    text << "the index of landmark '" << landmark_->name << "' was built for method "
+         << setting_name(method_);
+    if (method_ == SearchMethod::fast) {
       text << ", coarse leaf " << coarse_leaf_ << " m and vote leaf fraction "
            << vote_leaf_fraction_;
     }
-    text << "; the search asks for method " << settings.method;
+    text << "; the search asks for method " << setting_name(settings.method);
     if (fast) {
       text << ", coarse leaf " << settings.scene.coarse_leaf << " m and vote leaf fraction "
            << settings.fast.vote_leaf_fraction;
@@ -116,8 +117,8 @@ const std::vector<float>& LandmarkIndex::empty_distances() const {
 
 const LandmarkIndex::Fast& LandmarkIndex::fast() const {
   if (!fast_) {
-    throw Error("landmark index of '" + landmark_->name + "': built for method " + method_ +
-                ", not fast");
+    throw Error("landmark index of '" + landmark_->name + "': built for method " +
+                setting_name(method_) + ", not fast");
   }
   return *fast_;
 }

@@ -74,7 +74,7 @@ class LandmarkIndex {
   std::unique_ptr<KdTree> tree_;
   struct Lazy;
   std::unique_ptr<Lazy> lazy_;  ///< what is built on first use (behind a pointer: movable)
-  std::string method_;
+  SearchMethod method_ = SearchMethod::fast;
   double coarse_leaf_ = 0.0, vote_leaf_fraction_ = 0.0;
   std::unique_ptr<const Fast> fast_;
   double seconds_ = 0.0;

@@ -24,13 +24,13 @@ void validate(const SceneSettings& settings) {
             << " m) must be at least the leaf size (--leaf-size, " << settings.leaf_size << " m)";
     throw Error(message.str());
   }
-  if (settings.effective_field_band() < settings.coarse_leaf) {
+  if (settings.field_band && *settings.field_band < settings.coarse_leaf) {
     throw Error("scene: the distance-field band (--field-band) must be at least the coarse leaf");
   }
 }
 
 SceneIndex::SceneIndex(const PointCloud& scene, const SceneSettings& settings)
-    : settings_(settings), T_scene_sensor_(scene.T_cloud_sensor) {
+    : settings_(settings.resolved()), T_scene_sensor_(scene.T_cloud_sensor) {
   const auto start = detail::Clock::now();
   validate(settings);
   if (!scene.T_cloud_sensor.matrix().allFinite())
@@ -55,7 +55,7 @@ SceneIndex::SceneIndex(const PointCloud& scene, const SceneSettings& settings)
   // The grids are built side by side: the range image, the finite points and the occupancy (raw
   // points) beside the voxel moments, then the distance field from the centroids beside the
   // normals, so that neither thread waits on the other's serial steps.
-  const DistanceFieldSettings field_settings{settings.coarse_leaf, settings.effective_field_band()};
+  const DistanceFieldSettings field_settings{settings_.coarse_leaf, *settings_.field_band};
   tbb::parallel_invoke(
       [&] {
         range_image_ = RangeImage::from_cloud(scene);

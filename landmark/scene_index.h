@@ -34,7 +34,7 @@ class SceneIndex {
   /// Throws lmk::Error for bad settings or a scene (after the crop) without a finite point.
   explicit SceneIndex(const PointCloud& scene, const SceneSettings& settings = {});
 
-  const SceneSettings& settings() const { return settings_; }
+  const SceneSettings& settings() const { return settings_; }  ///< as built: resolved()
   const Eigen::Vector3d& up() const { return up_; }
   const Eigen::Isometry3d& T_scene_sensor() const { return T_scene_sensor_; }
   std::size_t input_points() const { return input_points_; }  ///< finite, after the crop

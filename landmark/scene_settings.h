@@ -28,7 +28,12 @@ struct SceneSettings {
   double noise_axial = DepthNoise().axial;
   double noise_floor = DepthNoise().floor;
 
-  double effective_field_band() const { return field_band.value_or(2.0 * coarse_leaf); }
+  /// These settings with field_band spelt out: what a SceneIndex applies.
+  SceneSettings resolved() const {
+    SceneSettings r = *this;
+    if (!r.field_band) r.field_band = 2.0 * coarse_leaf;
+    return r;
+  }
   DepthNoise depth_noise() const {
     DepthNoise noise;
     noise.axial = noise_axial;

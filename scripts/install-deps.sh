@@ -10,6 +10,8 @@ packages=(
   # the libraries lmk is built on (docs/developing.md)
   libeigen3-dev libopenvdb-dev libceres-dev libpcl-dev libcgal-dev liburdfdom-dev
   libnanoflann-dev libtbb-dev nlohmann-json3-dev libcli11-dev
+  # RGB-D depth and colour images (geometry/depth_image.h)
+  libpng-dev
   # Debian's PCL config pulls in VTK, whose config needs MPI's C bindings
   mpi-default-dev
   # tests and benchmarks

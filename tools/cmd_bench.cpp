@@ -140,13 +140,13 @@ int run_bench(const BenchOptions& o) {
 
   // Reference: a capped run, extrapolated to the full seed count.
   FindSettings reference;
-  reference.method = "reference";
+  reference.method = SearchMethod::reference;
   reference.execution.threads = o.threads;
-  const FindSettings full = reference;
+  const FindSettings full = reference.resolved();
   reference.sampling.max_seeds = o.reference_seeds;
   const FindResult r = find_landmark(w.scene, w.landmark, reference);
   const std::size_t full_seeds =
-      std::min(effective_max_seeds(full),
+      std::min(*full.sampling.max_seeds,
                static_cast<std::size_t>(std::ceil(full.reference.sample_fraction *
                                                   static_cast<double>(r.stats.scene_points_used))));
   const double per_seed = r.stats.seconds_search / static_cast<double>(r.stats.seeds);

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // lmk eval [--dataset DIR | --preset NAME] [search options] [--pairs all|in-context]
 //          [--threads N] [--json FILE] [--report DIR] [--cache DIR | --no-cache]
-//          [--shard K/N | --merge]
+//          [--shard K/N | --merge] [--explain]
 // The paper's precision/recall table of a search method on a dataset (docs/evaluation.md).
 
 #include <cstdio>
@@ -12,6 +12,7 @@
 #include "lmk/eval/evaluation.h"
 #include "lmk/eval/evaluation_report.h"
 #include "lmk/eval/evaluation_table.h"
+#include "lmk/eval/explain.h"
 #include "lmk/geometry/atomic_file.h"
 #include "lmk/geometry/error.h"
 #include "tools/cli_common.h"
@@ -29,7 +30,27 @@ struct EvalOptions {
   std::string shard;  ///< --shard K/N
   bool merge = false;
   bool timings = false;
+  bool explain = false;
 };
+
+// --explain: the cause of every miss and false match, as tables on stdout and in the JSON.
+std::vector<ExplainedCase> explain(const LoadedDataset& data, const Evaluation& evaluation,
+                                   bool by_range) {
+  ProgressBar bar("explain");
+  const std::vector<ExplainedCase> cases =
+      explain_evaluation(data.dir, data.dataset, evaluation,
+                         [&bar](std::size_t done, std::size_t total) { bar.update(done, total); });
+  const std::string& metric = evaluation.settings.find.selection.metric;
+  std::printf(
+      "\nwhy (each missed instance and false match in one cause; the metric at the true pose, "
+      "aligned and polished from it, beside the wrong matches reported):\n\n%s",
+      cause_table(cause_rows(cases), metric).plain().c_str());
+  if (by_range) {
+    std::printf("\nwhy, by range:\n\n%s",
+                cause_table(cause_rows(cases, 0.5), metric).plain().c_str());
+  }
+  return cases;
+}
 
 // One line naming the pairs a merge lacks: the first few, and how many more.
 std::string describe_missing(const Evaluation& e) {
@@ -84,9 +105,14 @@ int run_eval(EvalOptions& o) {
                 evaluation_table(by_hidden, o.timings).plain().c_str());
     json["rows_by_hidden"] = detail::rows_to_json(by_hidden);
   }
+  std::vector<ExplainedCase> explained;
+  if (o.explain) {
+    explained = explain(data, evaluation, o.by == "range");
+    json["explain"] = detail::explanation_to_json(explained);
+  }
   if (!o.json.empty()) write_text_atomically(o.json, json_output(json, o.timings).dump(2) + "\n");
   if (!o.report.empty()) {
-    write_evaluation_report(o.report, evaluation, data.dir);
+    write_evaluation_report(o.report, evaluation, data.dir, o.explain ? &explained : nullptr);
     // A message, on stderr: stdout holds the table alone, for files and comparisons.
     std::fprintf(stderr, "report: %s/report.html (also report.md, report.json)\n",
                  o.report.c_str());
@@ -117,6 +143,12 @@ Subcommand add_eval(CLI::App& app) {
   sub->add_flag("--merge", o->merge,
                 "Print the table from the cache alone, searching nothing; names the pairs "
                 "no shard has computed yet")
+      ->excludes(shard);
+  sub->add_flag("--explain", o->explain,
+                "Put each missed instance and false match in one cause (no candidate near the "
+                "truth, suppressed by a wrong one, over the threshold, coverage, empty space; a "
+                "false match displacing the truth, off the pose, a look-alike), with the metric "
+                "at the true pose: searches the failed pairs again")
       ->excludes(shard);
   sub->add_option("--report", o->report,
                   "Write report.json, report.md and report.html (with plots) into DIR");

@@ -2,6 +2,7 @@
 // lmk gen: render synthetic data with the simulated Kinect.
 //   lmk gen OUT.pcd [--seed S] [--no-noise]            one tabletop frame (the demo scene)
 //   lmk gen --preset NAME OUT_DIR [--seeds N] [--hard]  a benchmark dataset (docs/datasets.md)
+//   lmk gen OUT_DIR --from-rgbd SEQ                      real cross-view pairs of an RGB-D sequence
 
 #include <chrono>
 #include <cstdio>
@@ -10,6 +11,7 @@
 #include "lmk/eval/benchmark_dataset.h"
 #include "lmk/eval/depth_sensor.h"
 #include "lmk/eval/mosd_dataset.h"
+#include "lmk/eval/rgbd_dataset.h"
 #include "lmk/eval/tabletop_scene.h"
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/error.h"
@@ -36,7 +38,12 @@ struct GenOptions {
   std::string from_bag;
   BagOptions bag;
   std::vector<std::string> landmarks;
-  std::size_t stride = 1;
+  std::optional<std::size_t> stride;  ///< default: 1 for a bag, 5 for an RGB-D sequence
+  std::string from_rgbd;
+  std::vector<double> intrinsics;  ///< fx fy cx cy
+  bool registered_colour = false;
+  std::optional<double> box_side;
+  std::vector<std::size_t> gap;  ///< min max, frames
 };
 
 int run_tabletop(const GenOptions& options) {
@@ -116,6 +123,42 @@ int run_mosd(const GenOptions& options) {
   return kOk;
 }
 
+int run_rgbd(const GenOptions& options) {
+  RgbdDatasetOptions rgbd;
+  if (!options.intrinsics.empty()) {
+    rgbd.read.intrinsics = PinholeIntrinsics{options.intrinsics[0], options.intrinsics[1],
+                                             options.intrinsics[2], options.intrinsics[3]};
+  }
+  if (options.registered_colour) rgbd.read.colour_registered = true;
+  rgbd.box_side = options.box_side;
+  if (options.stride) rgbd.frame_stride = *options.stride;
+  if (!options.gap.empty()) {
+    rgbd.min_gap = options.gap[0];
+    rgbd.max_gap = options.gap[1];
+  }
+  ProgressBar bar("gen rgbd");
+  rgbd.progress = [&bar](std::size_t done, std::size_t total) { bar.update(done, total); };
+  const auto start = std::chrono::steady_clock::now();
+  const RgbdImport import = generate_rgbd_dataset(options.from_rgbd, options.output, rgbd);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::size_t refused = 0;
+  std::string reasons;
+  for (const auto& [why, n] : import.refused) {
+    refused += n;
+    reasons += (reasons.empty() ? "" : ", ") + std::to_string(n) + " " + why;
+  }
+  std::printf(
+      "wrote dataset '%s' to %s (%s layout): %zu boxes of %.0f cm drawn, %zu refused%s%s%s, %zu "
+      "landmarks; %zu scenes, %zu pairs, %zu left out as their poses disagree with the frames' "
+      "registration (import.json; %.1f s); evaluate it with --pairs in-context\n",
+      import.dataset.name.c_str(), options.output.c_str(), import.layout.c_str(), import.boxes,
+      100.0 * import.box_side, refused, reasons.empty() ? "" : " (", reasons.c_str(),
+      reasons.empty() ? "" : ")", import.dataset.landmarks.size(), import.dataset.scenes.size(),
+      import.pairs, import.pairs_left_out, seconds);
+  return kOk;
+}
+
 }  // namespace
 
 Subcommand add_gen(CLI::App& app) {
@@ -167,30 +210,57 @@ Subcommand add_gen(CLI::App& app) {
       ->check(CLI::ExistingFile);
   sub->add_option("--landmark", options->landmarks, "With --from-bag: a landmark file (.lmk)")
       ->check(CLI::ExistingFile);
-  sub->add_option("--stride", options->stride, "With --from-bag: every N-th frame")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
+  sub->add_option("--stride", options->stride,
+                  "With --from-bag: every N-th frame (default 1); with --from-rgbd: landmarks and "
+                  "scenes from every N-th frame (default 5)")
+      ->check(CLI::PositiveNumber);
   add_bag_options(sub, options->bag, false);
-  return {sub, [options] {
-            if (!options->from_bag.empty()) {
-              if (!options->preset.empty() || !options->from_mosd.empty())
-                throw Error("--from-bag excludes --preset and --from-mosd");
-              return write_bag_dataset(options->from_bag, options->bag, options->stride,
-                                       options->landmarks, options->output);
-            }
-            if (!options->from_mosd.empty()) {
-              if (!options->preset.empty())
-                throw Error("--from-mosd and --preset exclude each other");
-              return run_mosd(*options);
-            }
-            if (options->preset.empty()) {
-              if (options->seeds || options->hard || !options->types.empty() ||
-                  !options->shard.empty() || options->merge)
-                throw Error("--seeds, --hard, --types, --shard and --merge need --preset");
-              return run_tabletop(*options);
-            }
-            return run_preset(*options);
-          }};
+  sub->add_option("--from-rgbd", options->from_rgbd,
+                  "Write a real-data dataset from an RGB-D sequence with camera poses in DIR "
+                  "(frame-N.depth.png + .pose.txt as in ../shared/data/real, 7-Scenes and 3DMatch; "
+                  "TUM RGB-D; BOP): landmarks cut with user-like boxes in every --stride-th frame "
+                  "(default 5), searched in the frames --gap frames away")
+      ->check(CLI::ExistingDirectory);
+  sub->add_option("--intrinsics", options->intrinsics,
+                  "With --from-rgbd: the depth camera's FX FY CX CY, pixels (default: the "
+                  "sequence's intrinsics file)")
+      ->expected(4);
+  sub->add_flag("--registered-colour,--registered-color", options->registered_colour,
+                "With --from-rgbd: the frames layout's colour images are registered to depth "
+                "(3DMatch's SUN3D frames; 7-Scenes' are not)");
+  sub->add_option("--box-side", options->box_side,
+                  "With --from-rgbd: side of the landmark boxes, m (default: 0.15 x the median "
+                  "depth, within 0.08-0.4)")
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--gap", options->gap,
+                  "With --from-rgbd: MIN MAX frames between a landmark's frame and its scenes "
+                  "(default 10 40)")
+      ->expected(2);
+  return {
+      sub, [options] {
+        if (!options->from_rgbd.empty()) {
+          if (!options->preset.empty() || !options->from_mosd.empty() || !options->from_bag.empty())
+            throw Error("--from-rgbd excludes --preset, --from-mosd and --from-bag");
+          return run_rgbd(*options);
+        }
+        if (!options->from_bag.empty()) {
+          if (!options->preset.empty() || !options->from_mosd.empty())
+            throw Error("--from-bag excludes --preset and --from-mosd");
+          return write_bag_dataset(options->from_bag, options->bag, options->stride.value_or(1),
+                                   options->landmarks, options->output);
+        }
+        if (!options->from_mosd.empty()) {
+          if (!options->preset.empty()) throw Error("--from-mosd and --preset exclude each other");
+          return run_mosd(*options);
+        }
+        if (options->preset.empty()) {
+          if (options->seeds || options->hard || !options->types.empty() ||
+              !options->shard.empty() || options->merge)
+            throw Error("--seeds, --hard, --types, --shard and --merge need --preset");
+          return run_tabletop(*options);
+        }
+        return run_preset(*options);
+      }};
 }
 
 }  // namespace lmk::cli

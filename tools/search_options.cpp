@@ -25,7 +25,7 @@ const char* group_title(const std::string& group) {
 // What a flag takes, for --help.
 template <class T>
 std::string value_name(const SettingInfo& info, const T&) {
-  if constexpr (std::is_same<T, std::string>::value) {
+  if constexpr (std::is_same<T, std::string>::value || std::is_enum<T>::value) {
     std::string names;
     for (const std::string& c : info.choices) names += (names.empty() ? "" : "|") + c;
     return names.empty() ? "TEXT" : names;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "lmk/eval/evaluation.h"
+#include "lmk/eval/explain.h"
 
 namespace lmk::detail {
 
@@ -23,5 +24,9 @@ nlohmann::json rows_to_json(const std::vector<EvaluationRow>& rows);
 /// schema, with the dataset, the settings and the run's times.
 nlohmann::json evaluation_to_json(const Evaluation& evaluation,
                                   const std::vector<EvaluationRow>& rows);
+
+/// {"cases": [...], "by_setting": [...], "by_range": [...]}: lmk eval --explain's diagnosis, every
+/// case with its cause and errors, and the counts per cause.
+nlohmann::json explanation_to_json(const std::vector<ExplainedCase>& cases);
 
 }  // namespace lmk::detail

@@ -15,6 +15,7 @@
 #include "lmk/geometry/voxel_grid.h"
 #include "lmk/landmark/detail/grid_metrics.h"
 #include "lmk/landmark/detail/point_pair_voting.h"
+#include "lmk/landmark/detail/relief_seeds.h"
 #include "lmk/landmark/detail/sensor_metric.h"
 #include "lmk/landmark/detail/stopwatch.h"
 #include "lmk/landmark/non_max_suppression.h"
@@ -104,193 +105,339 @@ bool within_tilt(const TiltLimit* limit, const Eigen::Isometry3d& T_scene_model)
   return !limit || limit->admits(T_scene_model.linear().cast<float>());
 }
 
-}  // namespace
+// What the stages share: the search's input, the scene's coarse points and leaf, and the tilt
+// limit of an upright search (none when every orientation is searched).
+struct Stages {
+  explicit Stages(const SearchInput& input)
+      : in(input),
+        s(input.settings),
+        landmark(input.landmark),
+        index(input.index),
+        coarse(input.index.coarse()),
+        leaf(input.index.settings().coarse_leaf) {
+    tilt.model_up = landmark.up.cast<float>();
+    tilt.scene_up = index.up().cast<float>();
+    tilt.min_cos = static_cast<float>(std::cos(s.fast.max_tilt));
+    limit = s.fast.orientations == Orientations::upright ? &tilt : nullptr;
+  }
+  Stages(const Stages&) = delete;
+  Stages& operator=(const Stages&) = delete;
 
-std::vector<Match> fast_candidates(const SearchInput& in, FastSearchStats& stats) {
-  const auto start = Clock::now();
-  const FindSettings& s = in.settings;
-  const Landmark& landmark = in.landmark;
-  const SceneIndex& index = in.index;
-  const PointCloud& coarse = index.coarse();
-  const double leaf = index.settings().coarse_leaf;
+  const SearchInput& in;
+  const FindSettings& s;
+  const Landmark& landmark;
+  const SceneIndex& index;
+  const PointCloud& coarse;
+  const double leaf;
+  TiltLimit tilt;
+  const TiltLimit* limit = nullptr;
+};
 
-  const double diameter = in.prepared.diameter();
+// Step 1: poses from every seed, in parallel, each into its own slot. Upright searches vote only
+// for poses within the tilt limit.
+std::vector<Candidate> vote(const Stages& st) {
+  const SearchInput& in = st.in;
   const double vote_leaf = in.prepared.vote_leaf();
-  const PointCloud& model = in.prepared.coarse();
-  const PointPairModel& pairs = in.prepared.point_pairs();
   // The scene reaches the voting resolution as the landmark's model did (LandmarkIndex), and is
   // bucketed for the seeds' neighbourhoods: one radius, the diameter, for every seed.
-  const bool own_vote_cloud = vote_leaf > leaf * 1.01;
-  const PointCloud vote_scene = own_vote_cloud ? voxel_downsample(coarse, vote_leaf) : PointCloud();
-  const PointCloud& voters = own_vote_cloud ? vote_scene : coarse;
-  const RadiusGrid voter_grid(voters, 0.5 * diameter);
+  const bool own_vote_cloud = vote_leaf > st.leaf * 1.01;
+  const PointCloud vote_scene =
+      own_vote_cloud ? voxel_downsample(st.coarse, vote_leaf) : PointCloud();
+  const PointCloud& voters = own_vote_cloud ? vote_scene : st.coarse;
+  const RadiusGrid voter_grid(voters, 0.5 * in.prepared.diameter());
   // Each seed votes at the voting point nearest to it: the centroid of its own voting voxel, no
   // farther than that voxel's diagonal, is a candidate.
   const auto reach = static_cast<float>(1.01 * std::sqrt(3.0) * vote_leaf);
   std::vector<Index> references(in.seeds.size());
   for (std::size_t k = 0; k < in.seeds.size(); ++k) {
-    const auto n = voter_grid.nearest_within(coarse.points[in.seeds[k]], reach);
+    const auto n = voter_grid.nearest_within(st.coarse.points[in.seeds[k]], reach);
     references[k] = n ? n->index : 0;
   }
-
-  // Step 1: poses from every seed, in parallel, each into its own slot. Upright searches vote
-  // only for poses within the tilt limit.
-  TiltLimit tilt;
-  tilt.model_up = landmark.up.cast<float>();
-  tilt.scene_up = index.up().cast<float>();
-  tilt.min_cos = static_cast<float>(std::cos(s.fast.max_tilt));
-  const TiltLimit* limit = s.fast.orientations == "upright" ? &tilt : nullptr;
+  const PointPairModel& pairs = in.prepared.point_pairs();
+  const auto& progress = st.s.execution.progress;
   std::vector<std::vector<PoseVote>> votes(in.seeds.size());
   std::atomic<std::size_t> done{0};
   tbb::parallel_for(std::size_t{0}, in.seeds.size(), [&](std::size_t k) {
-    pairs.vote(voters, voter_grid, references[k], s.fast.poses_per_seed, 0.75, votes[k], limit);
-    if (s.execution.progress) s.execution.progress(++done, in.seeds.size());
+    pairs.vote(voters, voter_grid, references[k], st.s.fast.poses_per_seed, 0.75, votes[k],
+               st.limit);
+    if (progress) progress(++done, in.seeds.size());
   });
   std::vector<Candidate> poses;
   for (std::size_t k = 0; k < votes.size(); ++k) {
     for (const PoseVote& v : votes[k]) {
-      poses.push_back({v.T_scene_model, v.T_scene_model * landmark.box.center(), v.votes, k});
+      poses.push_back({v.T_scene_model, v.T_scene_model * st.landmark.box.center(), v.votes, k});
     }
   }
-  stats.poses = poses.size();
+  return poses;
+}
 
-  // Step 2.
-  const std::vector<Candidate> clusters =
-      cluster(std::move(poses), std::max(2.0 * leaf, 0.1 * diameter), 0.35, s.fast.max_candidates);
-  stats.clusters = clusters.size();
-  stats.seconds_vote = seconds_since(start);
-  const auto coarse_start = Clock::now();
+// Step 3, first half: every cluster aligned coarsely and scored cheaply, in parallel.
+struct CoarseAlignment {
+  std::vector<Eigen::Isometry3d> aligned;  ///< per cluster
+  std::vector<int> iterations;             ///< ICP iterations per cluster
+  std::vector<double> quick;               ///< the cheap score, in the metric's unit
+};
 
-  // Step 3: coarse alignment and a cheap score, in parallel.
-  IcpSettings coarse_icp;
-  coarse_icp.max_iterations = 8;
-  coarse_icp.max_correspondence_distance = index.field().band();
-  coarse_icp.loss = {RobustKernel::huber, leaf};
+CoarseAlignment coarse_align(const Stages& st, const std::vector<Candidate>& clusters) {
+  const SearchInput& in = st.in;
+  IcpSettings icp_settings;
+  icp_settings.max_iterations = 8;
+  icp_settings.max_correspondence_distance = st.index.field().band();
+  icp_settings.loss = {RobustKernel::huber, st.leaf};
   // A coarse pose only has to reach the fine alignment's basin: a step under a tenth of a leaf
   // and half a degree ends it (the fine alignment keeps its own, tight tolerances).
-  coarse_icp.translation_tolerance = 0.1 * leaf;
-  coarse_icp.rotation_tolerance = 0.01;
-  coarse_icp.measure_final = false;  // the candidates are scored below, by the metric's unit
+  icp_settings.translation_tolerance = 0.1 * st.leaf;
+  icp_settings.rotation_tolerance = 0.01;
+  icp_settings.measure_final = false;  // the candidates are scored below, by the metric's unit
   // A few hundred points fix a coarse pose as well as all of them, and score it as well: the
   // candidates are many, and the score only ranks them for the fine stage, which scores the
   // finalists with every point.
+  const PointCloud& model = in.prepared.coarse();
   const PointCloud coarse_model = model.select(thin_indices(model.size(), 400));
-  std::vector<Eigen::Isometry3d> aligned(clusters.size());
   // The cheap score in the metric's unit: for the sensor metric, its own fit (sigma residuals,
   // projective visibility), so that a far instance, noisy in millimetres, still ranks first.
   const bool in_sigma = in.metric.unit == ErrorMetric::Unit::sigma;
-  const Eigen::Vector3f capture_sensor = landmark.sensor_origin.cast<float>();
-  const double prune = in_sigma ? kSigmaPrune : s.fast.prune_error;
+  const Eigen::Vector3f capture_sensor = st.landmark.sensor_origin.cast<float>();
   std::vector<Eigen::Vector3f> quick_probes;
   std::vector<float> quick_probe_distances;
   if (in_sigma) {
-    quick_probes = thin(landmark.empty_space.centres(), 300);
+    quick_probes = thin(st.landmark.empty_space.centres(), 300);
     quick_probe_distances = thin(in.prepared.empty_distances(), 300);
   }
-  std::vector<double> quick(clusters.size());
-  std::vector<int> iterations(clusters.size(), 0);
+  CoarseAlignment out;
+  out.aligned.resize(clusters.size());
+  out.iterations.assign(clusters.size(), 0);
+  out.quick.resize(clusters.size());
   tbb::parallel_for(std::size_t{0}, clusters.size(), [&](std::size_t c) {
-    const DistanceFieldTarget target(index.field(), &coarse.normals);
-    const IcpResult r = icp(coarse_model.points, target, clusters[c].T_scene_capture, coarse_icp);
-    aligned[c] = r.T_target_source;
-    iterations[c] = r.iterations;
-    const Eigen::Isometry3f T = aligned[c].cast<float>();
+    const DistanceFieldTarget target(st.index.field(), &st.coarse.normals);
+    const IcpResult r = icp(coarse_model.points, target, clusters[c].T_scene_capture, icp_settings);
+    out.aligned[c] = r.T_target_source;
+    out.iterations[c] = r.iterations;
+    const Eigen::Isometry3f T = out.aligned[c].cast<float>();
     if (in_sigma) {
       // Space the landmark needs free but the scene's sensor measured a surface in is the
       // sharpest test at range, where the fit's residuals drown in noise.
-      quick[c] = sensor_fit(index, model, capture_sensor, T).mean_cost() +
-                 empty_space_penalty(index, landmark, quick_probes, quick_probe_distances, T);
+      out.quick[c] =
+          sensor_fit(st.index, model, capture_sensor, T).mean_cost() +
+          empty_space_penalty(st.index, st.landmark, quick_probes, quick_probe_distances, T);
       return;
     }
-    quick[c] = mean_surface_distance(index, coarse_model, T,
-                                     in.metric.hides_occluded ? &landmark.box : nullptr);
+    out.quick[c] = mean_surface_distance(st.index, coarse_model, T,
+                                         in.metric.hides_occluded ? &st.landmark.box : nullptr);
   });
+  return out;
+}
 
-  // Prune: only candidates whose coarse fit could still pass go on, the best first.
-  std::vector<std::size_t> order(clusters.size());
+// Step 3, second half: only candidates whose coarse fit could still pass go on, best first, at
+// most max_refined, one per pose; returned in cluster rank, a deterministic order.
+std::vector<std::size_t> prune(const Stages& st, const CoarseAlignment& coarse) {
+  const double prune_at =
+      st.in.metric.unit == ErrorMetric::Unit::sigma ? kSigmaPrune : st.s.fast.prune_error;
+  const std::vector<double>& quick = coarse.quick;
+  const std::vector<Eigen::Isometry3d>& aligned = coarse.aligned;
+  std::vector<std::size_t> order(quick.size());
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t a, std::size_t b) { return quick[a] < quick[b]; });
-  std::vector<std::size_t> survivors;
+  const Eigen::Vector3d centre = st.landmark.box.center();
   const auto same_pose = [&](std::size_t a, std::size_t b) {
-    return (aligned[a] * landmark.box.center() - aligned[b] * landmark.box.center()).norm() <
-               leaf &&
+    return (aligned[a] * centre - aligned[b] * centre).norm() < st.leaf &&
            rotation_angle_between(aligned[a].linear(), aligned[b].linear()) < 0.2;
   };
+  std::vector<std::size_t> survivors;
   for (std::size_t c : order) {
-    if (quick[c] > prune || survivors.size() >= s.fast.max_refined) continue;
-    if (!within_tilt(limit, aligned[c])) continue;
+    if (quick[c] > prune_at || survivors.size() >= st.s.fast.max_refined) continue;
+    if (!within_tilt(st.limit, aligned[c])) continue;
     if (std::none_of(survivors.begin(), survivors.end(),
                      [&](std::size_t kept) { return same_pose(kept, c); })) {
       survivors.push_back(c);
     }
   }
-  std::sort(survivors.begin(), survivors.end());  // back to cluster rank: deterministic order
-  stats.refined = survivors.size();
-  stats.seconds_coarse = seconds_since(coarse_start);
-  const auto fine_start = Clock::now();
+  std::sort(survivors.begin(), survivors.end());
+  return survivors;
+}
 
-  // Step 4 and 5, in parallel over the survivors.
-  IcpSettings fine_icp;  // the default, tight convergence tolerances
-  fine_icp.max_iterations = 10;
-  fine_icp.max_correspondence_distance = 0.5 * index.field().band();
-  fine_icp.loss = {RobustKernel::huber, 0.5 * leaf};
-  fine_icp.measure_final = false;  // the metric scores the result
-  const std::vector<Eigen::Vector3f> icp_points = thin(landmark.points.points, 1000);
-  const std::vector<Eigen::Vector3f> refine_points = thin(landmark.points.points, 400);
-  const std::vector<Eigen::Vector3f> empty_probes = thin(landmark.empty_space.centres(), 300);
-  RefineSettings refine;
-  refine.empty_space_weight = 1.0;
-  refine.empty_space_margin = index.settings().leaf_size;
-  // Ceres polishes the finalists only: candidates whose error after ICP is within half again of
-  // the threshold. Further out, a few millimetres of polish cannot make a match of them.
-  const double worth_refining = 1.5 * in.threshold;
-  std::vector<Match> aligned_matches(survivors.size());
+// Step 4's alignment of one candidate: ICP on up to 1000 landmark points from `start`, scored by
+// the metric.
+struct FineAlignment {
+  explicit FineAlignment(const Stages& st) : points(thin(st.landmark.points.points, 1000)) {
+    icp_settings.max_iterations = 10;  // otherwise the default, tight convergence tolerances
+    icp_settings.max_correspondence_distance = 0.5 * st.index.field().band();
+    icp_settings.loss = {RobustKernel::huber, 0.5 * st.leaf};
+    icp_settings.measure_final = false;  // the metric scores the result
+  }
+
+  Match align(const Stages& st, const Eigen::Isometry3d& start) const {
+    const DistanceFieldTarget target(st.index.field(), &st.coarse.normals);
+    const IcpResult r = icp(points, target, start, icp_settings);
+    Match m;
+    m.T_scene_capture = r.T_target_source;
+    m.terms = st.in.metric.evaluate(st.in.scene_view, st.in.landmark_view, m.T_scene_capture);
+    m.icp_iterations = r.iterations;
+    m.icp_converged = r.converged;
+    m.error = m.terms.error;
+    m.box = st.landmark.box.transformed(m.T_scene_capture);
+    return m;
+  }
+
+  IcpSettings icp_settings;
+  std::vector<Eigen::Vector3f> points;
+};
+
+// Step 4: the survivors aligned finely and scored, in parallel; those the alignment tilted beyond
+// the limit are dropped before they can suppress an upright one.
+std::vector<Match> fine_align(const Stages& st, const std::vector<Candidate>& clusters,
+                              const CoarseAlignment& coarse,
+                              const std::vector<std::size_t>& survivors) {
+  const FineAlignment fine(st);
+  std::vector<Match> matches(survivors.size());
   tbb::parallel_for(std::size_t{0}, survivors.size(), [&](std::size_t k) {
     const std::size_t c = survivors[k];
-    const DistanceFieldTarget target(index.field(), &coarse.normals);
-    const IcpResult r = icp(icp_points, target, aligned[c], fine_icp);
-    Match& m = aligned_matches[k];
-    m.T_scene_capture = r.T_target_source;
-    m.terms = in.metric.evaluate(in.scene_view, in.landmark_view, m.T_scene_capture);
-    m.icp_iterations = iterations[c] + r.iterations;
-    m.icp_converged = r.converged;
-    m.seed_index = clusters[c].seed;
-    m.seed_point = coarse.points[in.seeds[clusters[c].seed]];
-    m.votes = clusters[c].votes;
-    m.error = m.terms.error;
-    m.box = landmark.box.transformed(m.T_scene_capture);
-  });
-
-  // Fine alignment can tilt a candidate too: those beyond the limit go before they can suppress
-  // an upright one.
-  aligned_matches.erase(
-      std::remove_if(aligned_matches.begin(), aligned_matches.end(),
-                     [&](const Match& m) { return !within_tilt(limit, m.T_scene_capture); }),
-      aligned_matches.end());
-
-  // Step 5 comes early for the polish: of candidates within the suppression radius of each other
-  // only the best survives selection, so only it is worth Ceres' time.
-  std::vector<std::size_t> kept = non_max_suppression_of(aligned_matches, s.selection.nms_radius);
-  std::sort(kept.begin(), kept.end());  // cluster rank again: a deterministic order
-  std::vector<Match> matches;
-  for (std::size_t k : kept) matches.push_back(std::move(aligned_matches[k]));
-  tbb::parallel_for(std::size_t{0}, matches.size(), [&](std::size_t k) {
     Match& m = matches[k];
-    if (!s.fast.refine || !(m.terms.error < worth_refining)) return;
+    m = fine.align(st, coarse.aligned[c]);
+    m.icp_iterations += coarse.iterations[c];
+    m.seed_index = clusters[c].seed;
+    m.seed_point = st.coarse.points[st.in.seeds[clusters[c].seed]];
+    m.votes = clusters[c].votes;
+  });
+  matches.erase(
+      std::remove_if(matches.begin(), matches.end(),
+                     [&](const Match& m) { return !within_tilt(st.limit, m.T_scene_capture); }),
+      matches.end());
+  return matches;
+}
+
+// Step 5's refinement of one candidate: Ceres with the empty-space penalty, kept when it scores no
+// worse.
+struct Polish {
+  explicit Polish(const Stages& st)
+      : points(thin(st.landmark.points.points, 400)),
+        empty_probes(thin(st.landmark.empty_space.centres(), 300)) {
+    refine.empty_space_weight = 1.0;
+    refine.empty_space_margin = st.index.settings().leaf_size;
+  }
+
+  void apply(const Stages& st, Match& m) const {
     const Eigen::Isometry3d polished =
-        refine_pose(refine_points, index.field(), m.T_scene_capture, refine, empty_probes)
+        refine_pose(points, st.index.field(), m.T_scene_capture, refine, empty_probes)
             .T_target_source;
-    ErrorTerms terms = in.metric.evaluate(in.scene_view, in.landmark_view, polished);
+    ErrorTerms terms = st.in.metric.evaluate(st.in.scene_view, st.in.landmark_view, polished);
     if (terms.error <= m.terms.error) {
       m.T_scene_capture = polished;
       m.terms = terms;
       m.error = terms.error;
-      m.box = landmark.box.transformed(polished);
+      m.box = st.landmark.box.transformed(polished);
     }
+  }
+
+  std::vector<Eigen::Vector3f> points, empty_probes;
+  RefineSettings refine;
+};
+
+// Step 5, early: of candidates within the suppression radius of each other only the best survives
+// selection, so only it is worth Ceres' time. The winners within half again of the threshold are
+// polished. The suppressed go to `suppressed` when the search keeps them.
+std::vector<Match> polish(const Stages& st, std::vector<Match> aligned,
+                          std::vector<Match>& suppressed) {
+  std::vector<std::size_t> kept = non_max_suppression_of(aligned, st.s.selection.nms_radius);
+  std::sort(kept.begin(), kept.end());  // cluster rank again: a deterministic order
+  std::vector<Match> matches;
+  std::vector<char> is_kept(aligned.size(), 0);
+  for (std::size_t k : kept) is_kept[k] = 1;
+  for (std::size_t k = 0; k < aligned.size(); ++k) {
+    if (is_kept[k]) {
+      matches.push_back(std::move(aligned[k]));
+    } else if (st.s.execution.keep_suppressed) {
+      suppressed.push_back(std::move(aligned[k]));
+    }
+  }
+  if (!st.s.fast.refine) return matches;
+  const Polish refiner(st);
+  // Further out than half again the threshold, a few millimetres of polish cannot make a match.
+  const double worth_refining = 1.5 * st.in.threshold;
+  tbb::parallel_for(std::size_t{0}, matches.size(), [&](std::size_t k) {
+    if (matches[k].terms.error < worth_refining) refiner.apply(st, matches[k]);
   });
-  stats.seconds_fine = seconds_since(fine_start);
   return matches;
+}
+
+// Candidates in a deterministic order (by cluster rank), whatever the thread count.
+CandidateSet fast_candidates(const SearchInput& in, SearchStats& stats) {
+  const Stages st(in);
+  const auto start = Clock::now();
+  std::vector<Candidate> poses = vote(st);
+  stats.poses = poses.size();
+  // Step 2.
+  const std::vector<Candidate> clusters =
+      cluster(std::move(poses), std::max(2.0 * st.leaf, 0.1 * in.prepared.diameter()), 0.35,
+              st.s.fast.max_candidates);
+  stats.clusters = clusters.size();
+  stats.seconds_vote = seconds_since(start);
+
+  const auto coarse_start = Clock::now();
+  const CoarseAlignment coarse = coarse_align(st, clusters);
+  const std::vector<std::size_t> survivors = prune(st, coarse);
+  stats.refined = survivors.size();
+  stats.seconds_coarse = seconds_since(coarse_start);
+
+  const auto fine_start = Clock::now();
+  CandidateSet out;
+  out.kept = polish(st, fine_align(st, clusters, coarse, survivors), out.suppressed);
+  stats.seconds_fine = seconds_since(fine_start);
+  return out;
+}
+
+class FastSearch final : public SearchMethodSteps {
+ public:
+  const PointCloud& seed_cloud(const SceneIndex& index) const override { return index.coarse(); }
+
+  // Step 3: seeds near relief only (relief_seeds.h), in cells of half the landmark's size, and as
+  // many as put seeds_per_instance on each instance-sized stretch of them.
+  Indices seeds(const SceneIndex& index, const LandmarkIndex& landmark,
+                const FindSettings& settings) const override {
+    const PointCloud& points = seed_cloud(index);
+    ReliefTest relief;
+    relief.cell = 0.5 * landmark.diameter();
+    relief.angle = kCoplanarAngle;
+    relief.T_cloud_sensor = index.T_scene_sensor();
+    relief.noise = index.settings().depth_noise();
+    const Indices candidates = points_near_relief(points, relief);
+    // One seed per cell of a grid whose cells an instance's surface (about as many coarse
+    // leaves as the landmark has coarse points) spans seeds_per_instance times; coarser while the
+    // seeds would exceed the cap.
+    const double leaf = index.settings().coarse_leaf;
+    double spacing = leaf * std::sqrt(std::max(1.0, static_cast<double>(landmark.coarse().size()) /
+                                                        settings.fast.seeds_per_instance));
+    const std::size_t cap = *settings.sampling.max_seeds;
+    Indices seeds = spread_seeds(points, candidates, spacing, settings.sampling.seed);
+    while (seeds.size() > cap) {
+      spacing *= 1.02 * std::sqrt(static_cast<double>(seeds.size()) / static_cast<double>(cap));
+      seeds = spread_seeds(points, candidates, spacing, settings.sampling.seed);
+    }
+    return seeds;
+  }
+
+  CandidateSet candidates(const SearchInput& input, SearchStats& stats) const override {
+    return fast_candidates(input, stats);
+  }
+
+  bool suppresses_overlaps(const FindSettings& settings) const override {
+    return settings.fast.suppress_overlaps;
+  }
+};
+
+}  // namespace
+
+Match fast_align_and_polish(const SearchInput& input, const Eigen::Isometry3d& T_scene_capture) {
+  const Stages st(input);
+  Match m = FineAlignment(st).align(st, T_scene_capture);
+  Polish(st).apply(st, m);
+  return m;
+}
+
+const SearchMethodSteps& fast_search_steps() {
+  static const FastSearch steps;
+  return steps;
 }
 
 }  // namespace lmk::detail

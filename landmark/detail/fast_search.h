@@ -11,25 +11,20 @@
 //    scene's closest-point grid, then a cheap score; hopeless candidates are pruned.
 // 4. Fine alignment of the survivors (ICP on up to 1000 landmark points) and scoring with the
 //    chosen metric.
-// 5. Non-max suppression, then Ceres robust refinement with the empty-space penalty for the
-//    suppression's winners that are near the threshold.
+// 5. Polish: non-max suppression, then Ceres robust refinement with the empty-space penalty for
+//    the suppression's winners that are near the threshold.
+//
+// Each stage is one function of fast_search.cpp that returns a small stage result.
 
-#include <vector>
-
-#include "lmk/landmark/detail/reference_search.h"
+#include "lmk/landmark/detail/search_method.h"
 
 namespace lmk::detail {
 
-struct FastSearchStats {
-  std::size_t poses = 0;        ///< poses voted by the seeds (after the tilt limit)
-  std::size_t clusters = 0;     ///< after merging
-  std::size_t refined = 0;      ///< survivors of the coarse pruning
-  double seconds_vote = 0.0;    ///< steps 1 and 2
-  double seconds_coarse = 0.0;  ///< step 3
-  double seconds_fine = 0.0;    ///< steps 4 and 5
-};
+/// The fast method's steps: seeds near relief (relief_seeds.h), then the stages above.
+const SearchMethodSteps& fast_search_steps();
 
-/// Candidates in a deterministic order (by cluster rank), whatever the thread count.
-std::vector<Match> fast_candidates(const SearchInput& input, FastSearchStats& stats);
+/// Stages 4 and 5 for one pose: fine alignment from T_scene_capture, then the Ceres polish
+/// whatever the error, scored by input.metric. `input.seeds` may be empty.
+Match fast_align_and_polish(const SearchInput& input, const Eigen::Isometry3d& T_scene_capture);
 
 }  // namespace lmk::detail

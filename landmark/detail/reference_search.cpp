@@ -7,6 +7,11 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
+#include <atomic>
+#include <cmath>
+
+#include "lmk/geometry/filters.h"
+
 namespace lmk::detail {
 namespace {
 
@@ -38,8 +43,7 @@ struct Worker {
   PclCloud aligned;
 };
 
-}  // namespace
-
+// One candidate per seed, in seed order (Algorithm 1, lines 4-8).
 std::vector<Match> reference_candidates(const SearchInput& in) {
   const PclCloud::Ptr scene = to_pcl_xyz(in.scene);
   const PclCloud::Ptr source = to_pcl_xyz(in.landmark.points);
@@ -75,6 +79,34 @@ std::vector<Match> reference_candidates(const SearchInput& in) {
     if (in.settings.execution.progress) in.settings.execution.progress(++done, in.seeds.size());
   });
   return candidates;
+}
+
+class ReferenceSearch final : public SearchMethodSteps {
+ public:
+  const PointCloud& seed_cloud(const SceneIndex& index) const override { return index.fine(); }
+
+  // Step 3: a seeded random sample of sample_fraction of the points, at most max_seeds.
+  Indices seeds(const SceneIndex& index, const LandmarkIndex&,
+                const FindSettings& settings) const override {
+    const std::size_t n = seed_cloud(index).size();
+    const auto wanted = static_cast<std::size_t>(
+        std::ceil(settings.reference.sample_fraction * static_cast<double>(n)));
+    return random_sample_indices(n, std::min(*settings.sampling.max_seeds, wanted),
+                                 settings.sampling.seed);
+  }
+
+  CandidateSet candidates(const SearchInput& input, SearchStats&) const override {
+    return {reference_candidates(input), {}};
+  }
+
+  bool suppresses_overlaps(const FindSettings&) const override { return false; }
+};
+
+}  // namespace
+
+const SearchMethodSteps& reference_search_steps() {
+  static const ReferenceSearch steps;
+  return steps;
 }
 
 }  // namespace lmk::detail

@@ -280,11 +280,11 @@ TEST_F(CliLandmark, BadInputToCaptureAndFind) {
   expect_bad_input("find " + scene + " " + path("c.lmk") + " --metric nope",
                    "selection.metric (--metric): 'nope' must be one of paper, rapid");
   expect_bad_input("find " + scene + " " + path("c.lmk") + " --method magic",
-                   "method (--method): 'magic' must be one of fast, reference");
+                   "--method: 'magic' must be one of fast, reference");
   expect_bad_input("find " + scene + " " + path("c.lmk") + " --up 0 0 0",
                    "scene.up (--up): must be a finite non-zero vector");
   expect_bad_input("find " + scene + " " + path("c.lmk") + " --orientations sideways",
-                   "fast.orientations (--orientations): 'sideways' must be one of upright");
+                   "--orientations: 'sideways' must be one of upright, full");
   expect_bad_input("find " + scene + " " + path("c.lmk") + " --max-tilt 200",
                    "fast.max_tilt (--max-tilt): 200 must be finite and in [0, 180] degrees");
   expect_bad_input("find " + scene + " " + path("c.lmk") + " --max-seeds -3",

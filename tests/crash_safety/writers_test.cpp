@@ -107,7 +107,7 @@ TEST(CrashSafety, Datasets) {
       scene.name = "scene " + std::to_string(k);
       scene.file = "scene.pcd";
       scene.setting = "simple";
-      scene.pairs = {{"box", true, {pose_from_xyz_rpy({0.1 * k, 0, 1}, {0, 0, 0.1 * k})}, {}}};
+      scene.pairs = {{"box", true, {pose_from_xyz_rpy({0.1 * k, 0, 1}, {0, 0, 0.1 * k})}, {}, {}}};
       datasets[v].scenes.push_back(scene);
     }
   }
@@ -161,6 +161,7 @@ TEST(CrashSafety, EvaluationReports) {
   const std::array<PairResult, 2> results = two_results_of_a_pair();
   std::array<Evaluation, 2> evaluations;
   for (int v : {0, 1}) {
+    evaluations[v].settings.find = FindSettings().resolved();  // as evaluate() leaves it
     evaluations[v].dataset = v ? "new" : "old";
     evaluations[v].fingerprint = "fingerprint";
     evaluations[v].pairs = {results[v]};

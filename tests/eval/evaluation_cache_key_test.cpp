@@ -11,11 +11,11 @@ namespace lmk {
 namespace {
 
 // Whether the stage's field can change what `method` finds, as the descriptions declare it.
-bool matters(const std::string& method, const std::string& stage, const SettingInfo& info) {
+bool matters(SearchMethod method, const std::string& stage, const SettingInfo& info) {
   return info.affects_results && (stage.empty() || settings_group_affects(method, stage));
 }
 
-void expect_key_follows_every_setting(const std::string& method) {
+void expect_key_follows_every_setting(SearchMethod method) {
   FindSettings base;
   base.method = method;
   const std::string key = evaluation_cache_key(base, "dataset");
@@ -25,7 +25,7 @@ void expect_key_follows_every_setting(const std::string& method) {
     const std::string field = (stage.empty() ? "" : stage + ".") + info.name;
     const bool differs = evaluation_cache_key(variant, "dataset") != key;
     if (!matters(method, stage, info)) {
-      EXPECT_FALSE(differs) << method << ": " << field << " = '" << text
+      EXPECT_FALSE(differs) << setting_name(method) << ": " << field << " = '" << text
                             << "' is declared not to matter, yet changes the key";
     }
     changed[field] = changed[field] || differs;
@@ -45,24 +45,27 @@ void expect_key_follows_every_setting(const std::string& method) {
       });
     });
     if (declared) {
-      EXPECT_TRUE(differs) << method << ": no change of " << field << " changes the cache key";
+      EXPECT_TRUE(differs) << setting_name(method) << ": no change of " << field
+                           << " changes the cache key";
     }
   }
   EXPECT_NE(evaluation_cache_key(base, "other dataset"), key);
 }
 
 TEST(EvaluationCacheKey, FollowsEverySettingOfTheFastMethod) {
-  expect_key_follows_every_setting("fast");
+  expect_key_follows_every_setting(SearchMethod::fast);
 }
 
 TEST(EvaluationCacheKey, FollowsEverySettingOfTheReferenceMethod) {
-  expect_key_follows_every_setting("reference");
+  expect_key_follows_every_setting(SearchMethod::reference);
 }
 
 TEST(EvaluationCacheKey, SpellingOutADefaultKeepsTheKey) {
   FindSettings implicit, spelled;
   spelled.selection.metric = "visibility";
   spelled.sampling.max_seeds = 2000;
+  spelled.selection.threshold = find_error_metric("visibility").default_threshold;
+  spelled.scene.field_band = 2.0 * spelled.scene.coarse_leaf;
   EXPECT_EQ(evaluation_cache_key(implicit, "d"), evaluation_cache_key(spelled, "d"));
 }
 

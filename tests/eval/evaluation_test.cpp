@@ -20,32 +20,14 @@
 #include "lmk/eval/evaluation_table.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/pose.h"
+#include "tests/eval/simple_scenes_fixture.h"
 #include "tests/support/test_support.h"
 
 namespace lmk {
 namespace {
 
 // Two simple scenes (a bowl and a cup; three balls) and their three landmarks: 6 pairs.
-class EvaluationTest : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() {
-    dir_ = new test::ScratchDir();
-    GenerateOptions options;
-    options.types = {"simple/bowl_and_cup", "simple/three_balls"};
-    dataset_ = new Dataset(generate_benchmark_dataset(dir_->path().string(), "paper", options));
-  }
-  static void TearDownTestSuite() {
-    delete dataset_;
-    delete dir_;
-  }
-  static Evaluation run(EvaluationSettings settings) {
-    return evaluate(dir_->path().string(), *dataset_, settings);
-  }
-  static test::ScratchDir* dir_;
-  static Dataset* dataset_;
-};
-test::ScratchDir* EvaluationTest::dir_ = nullptr;
-Dataset* EvaluationTest::dataset_ = nullptr;
+class EvaluationTest : public test::SimpleScenes {};
 
 void expect_same_results(const Evaluation& a, const Evaluation& b) {
   ASSERT_EQ(a.pairs.size(), b.pairs.size());
@@ -181,6 +163,7 @@ TEST_F(EvaluationTest, RowsByRangeAddUpToTheWholeTable) {
 // Hand-made results: no search, so the JSON and the report can be checked exactly.
 Evaluation hand_made() {
   Evaluation e;
+  e.settings.find = FindSettings().resolved();  // as evaluate() leaves it
   e.dataset = "hand";
   e.fingerprint = "0123456789abcdef";
   PairResult found;

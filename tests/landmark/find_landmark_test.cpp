@@ -19,11 +19,14 @@
 #include "tests/support/test_support.h"
 
 namespace lmk {
+// Test names and messages show the method by name.
+void PrintTo(SearchMethod method, std::ostream* out) { *out << setting_name(method); }
+
 namespace {
 
 using namespace test_scenes;
 
-class Search : public ::testing::TestWithParam<std::string> {
+class Search : public ::testing::TestWithParam<SearchMethod> {
  protected:
   static void SetUpTestSuite() {
     scene_ = new PointCloud(render_scene(kCopies, true));
@@ -59,14 +62,14 @@ TEST_P(Search, FindsEveryCopyOnceAndNothingElse) {
   EXPECT_EQ(found, std::vector<int>(kCopies.size(), 1));
   EXPECT_TRUE(std::is_sorted(r.matches.begin(), r.matches.end(),
                              [](const Match& a, const Match& b) { return a.error < b.error; }));
-  if (GetParam() == "reference") {
+  if (GetParam() == SearchMethod::reference) {
     EXPECT_EQ(r.stats.seeds,
               std::min<std::size_t>(1000, (r.stats.scene_points_used * 5 + 99) / 100));
   } else {  // about 12 seeds per instance: a few dozen for the three copies here, not hundreds
     EXPECT_GE(r.stats.seeds, 3 * 12u);
     EXPECT_LE(r.stats.seeds, 1000u);
   }
-  EXPECT_EQ(r.stats.metric, GetParam() == "fast" ? "visibility" : "paper");
+  EXPECT_EQ(r.stats.metric, GetParam() == SearchMethod::fast ? "visibility" : "paper");
   EXPECT_GT(r.stats.icp_iterations, 0u);
 }
 
@@ -107,7 +110,7 @@ TEST_P(Search, WorkVolumeAndAlignedPoints) {
 
 TEST_P(Search, BadSettingsAreErrors) {
   FindSettings s = settings();
-  s.method = "magic";
+  s.method = static_cast<SearchMethod>(7);  // a value without a name
   EXPECT_THROW(find_landmark(*scene_, *landmark_, s), Error);
   s = FindSettings();
   s.selection.metric = "nope";
@@ -123,7 +126,8 @@ TEST_P(Search, BadSettingsAreErrors) {
 
 TEST_P(Search, ALandmarkIndexBuiltOnceGivesEverySearchItsOwnResult) {
   FindSettings s = settings();
-  s.sampling.max_seeds = s.method == "fast" ? 150 : 8;  // the reference's seeds are slow
+  s.sampling.max_seeds =
+      s.method == SearchMethod::fast ? 150 : 8;  // the reference's seeds are slow
   const LandmarkIndex prepared(*landmark_, s);
   const SceneIndex scene(*scene_, s.scene);
   // Two searches with one index (and in another scene between them) equal fresh ones.
@@ -146,12 +150,12 @@ TEST_P(Search, ALandmarkIndexRefusesSearchesItWasNotBuiltFor) {
   const LandmarkIndex prepared(*landmark_, s);
   const SceneIndex scene(*scene_, s.scene);
   FindSettings other = s;
-  other.method = s.method == "fast" ? "reference" : "fast";
+  other.method = s.method == SearchMethod::fast ? SearchMethod::reference : SearchMethod::fast;
   std::string why;
   EXPECT_FALSE(prepared.suits(other, &why));
-  EXPECT_NE(why.find("built for method " + s.method), std::string::npos) << why;
+  EXPECT_NE(why.find("built for method " + setting_name(s.method)), std::string::npos) << why;
   EXPECT_THROW(find_landmark(scene, prepared, other), Error);
-  if (s.method == "fast") {
+  if (s.method == SearchMethod::fast) {
     other = s;
     other.fast.vote_leaf_fraction *= 2.0;
     EXPECT_FALSE(prepared.suits(other));
@@ -167,8 +171,9 @@ TEST_P(Search, ALandmarkIndexRefusesSearchesItWasNotBuiltFor) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Methods, Search, ::testing::Values("fast", "reference"),
-                         [](const auto& info) { return info.param; });
+INSTANTIATE_TEST_SUITE_P(Methods, Search,
+                         ::testing::Values(SearchMethod::fast, SearchMethod::reference),
+                         [](const auto& info) { return setting_name(info.param); });
 
 // The issues' acceptance for one trial: does a match lie within 1 cm and 5 degrees of `truth`?
 // Returns 1 if so; otherwise says which trial missed, and returns 0.

@@ -64,7 +64,7 @@ TEST(LandmarkLibrary, IndexRefusesBadNamesAndMissingLandmarks) {
             std::string::npos);
   EXPECT_THROW(library.index("../block", FindSettings()), Error);
   FindSettings bad;
-  bad.method = "magic";
+  bad.method = static_cast<SearchMethod>(7);  // a value without a name
   EXPECT_THROW(library.index("block", bad), Error);
 }
 

@@ -99,7 +99,7 @@ TEST_F(SearchInput, ScenesSmallerThanTheLandmarkGiveNoMatchAndAReason) {
   const Box patch(pose_from_xyz_rpy({0.2, 0.2, kTable}, {0, 0, 0}), {0.06, 0.06, 0.02});
   const PointCloud small = crop(*scene_, patch);
   ASSERT_GT(small.size(), 20u);
-  for (const std::string method : {"fast", "reference"}) {
+  for (const SearchMethod method : {SearchMethod::fast, SearchMethod::reference}) {
     FindSettings s;
     s.method = method;
     for (std::size_t n : {std::size_t{1}, std::size_t{3}, small.size()}) {
@@ -107,8 +107,9 @@ TEST_F(SearchInput, ScenesSmallerThanTheLandmarkGiveNoMatchAndAReason) {
       scene.points.resize(n);
       scene.width = static_cast<std::uint32_t>(n);
       const FindResult r = find_landmark(scene, *landmark_, s);
-      EXPECT_TRUE(r.matches.empty()) << method << ", " << n << " points";
-      EXPECT_FALSE(describe_rejections(r.stats).empty()) << method << ", " << n << " points";
+      EXPECT_TRUE(r.matches.empty()) << setting_name(method) << ", " << n << " points";
+      EXPECT_FALSE(describe_rejections(r.stats).empty())
+          << setting_name(method) << ", " << n << " points";
     }
   }
 }

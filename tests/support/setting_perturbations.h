@@ -47,6 +47,8 @@ std::vector<T> other_values(const SettingInfo& info, const T& v) {
       if (c != v) out.push_back(c);
     }
     if (info.choices.empty()) out.push_back(v + "x");
+  } else if constexpr (std::is_enum<T>::value) {
+    for (const std::string& name : info.choices) out.push_back(*setting_value_named<T>(name));
   } else if constexpr (std::is_same<T, Eigen::Vector3d>::value) {
     out = {Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(1, 0, 0)};
   } else if constexpr (std::is_same<T, Box>::value) {

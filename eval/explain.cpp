@@ -1,0 +1,311 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "lmk/eval/explain.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <memory>
+
+#include "lmk/geometry/cloud_io.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/statistics.h"
+#include "lmk/landmark/landmark_file.h"
+
+namespace lmk {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kNoCandidate = "no candidate";
+constexpr const char* kSuppressed = "suppressed";
+constexpr const char* kOverThreshold = "over threshold";
+constexpr const char* kCoverage = "coverage";
+constexpr const char* kEmptySpace = "empty space";
+constexpr const char* kDisplacedTruth = "displaced truth";
+constexpr const char* kOffPose = "off pose";
+constexpr const char* kLookAlike = "look-alike";
+
+// A candidate of the search again, and what became of it.
+struct Candidate {
+  const Match* match;
+  std::string fate;  ///< "accepted", or a Rejection's reason
+};
+
+// What a pair's search again left: every candidate, best first.
+std::vector<Candidate> candidates_of(const FindResult& r) {
+  std::vector<Candidate> out;
+  for (const Match& m : r.matches) out.push_back({&m, "accepted"});
+  for (const Rejection& j : r.rejected) out.push_back({&j.candidate, j.reason});
+  for (const Rejection& j : r.suppressed) out.push_back({&j.candidate, j.reason});
+  std::stable_sort(out.begin(), out.end(), [](const Candidate& a, const Candidate& b) {
+    return a.match->error < b.match->error;
+  });
+  return out;
+}
+
+bool within(const Eigen::Isometry3d& truth, const Eigen::Isometry3d& pose, const Symmetry& symmetry,
+            const MatchTolerance& tolerance, double factor = 1.0) {
+  return (truth.translation() - pose.translation()).norm() <= factor * tolerance.translation &&
+         rotation_error(truth.linear(), pose.linear(), symmetry) <= factor * tolerance.rotation;
+}
+
+ExplainedCase case_of(const PairResult& p, bool missed) {
+  ExplainedCase c;
+  c.scene = p.scene;
+  c.landmark = p.landmark;
+  c.setting = p.setting;
+  c.missed = missed;
+  return c;
+}
+
+// Everything a pair needs to be explained.
+struct FailedPair {
+  const PairResult* result;
+  const DatasetScene* scene;
+  const DatasetLandmark* landmark;
+  PairInput input;  ///< matches within the threshold
+  std::vector<std::optional<std::size_t>> assigned;
+};
+
+std::vector<ExplainedCase> explain_pair(const FailedPair& f, const SceneIndex& index,
+                                        const LandmarkIndex& landmark, const FindSettings& find,
+                                        const MatchTolerance& tolerance) {
+  const PairResult& p = *f.result;
+  const double t = *find.selection.threshold;
+  FindSettings settings = pair_search(find, *f.scene);
+  settings.execution.keep_suppressed = true;
+  const FindResult again = find_landmark(index, landmark, settings);
+  const std::vector<Candidate> all = candidates_of(again);
+  const Box& capture_box = landmark.landmark().box;
+  const auto truth_error = [&](std::size_t k) {
+    return score_pose(index, landmark, settings, p.truth[k] * capture_box.pose.inverse()).error;
+  };
+  const auto range = [&](const Eigen::Isometry3d& pose) {
+    return (pose.translation() - p.sensor_position).norm();
+  };
+  std::optional<double> best_wrong;  // the best reported match assigned to no instance
+  for (std::size_t i = 0; i < f.assigned.size(); ++i) {
+    if (!f.assigned[i])
+      best_wrong = best_wrong ? std::min(*best_wrong, p.found[i].error) : p.found[i].error;
+  }
+  std::vector<ExplainedCase> out;
+  std::vector<char> matched(p.truth.size(), 0);
+  for (const auto& a : f.assigned)
+    if (a) matched[*a] = 1;
+  std::vector<std::size_t> suppressed_truths;
+  for (std::size_t k = 0; k < p.truth.size(); ++k) {
+    if (matched[k] || f.input.is_ignored(k)) continue;
+    ExplainedCase c = case_of(p, true);
+    std::vector<const Candidate*> near;
+    for (const Candidate& cand : all) {
+      const Eigen::Isometry3d& pose = cand.match->box.pose;
+      if (within(p.truth[k], pose, p.symmetry, tolerance)) near.push_back(&cand);
+      const double d = (p.truth[k].translation() - pose.translation()).norm();
+      if (!c.nearest_candidate_translation || d < *c.nearest_candidate_translation) {
+        c.nearest_candidate_translation = d;
+        c.nearest_candidate_rotation =
+            rotation_error(p.truth[k].linear(), pose.linear(), p.symmetry);
+      }
+    }
+    std::vector<CandidateFate> fates;
+    for (const Candidate* n : near) fates.push_back({n->match->error, n->fate});
+    c.cause = miss_cause(fates, t);
+    if (c.cause == kSuppressed) suppressed_truths.push_back(k);
+    c.box = Box(p.truth[k], capture_box.size);
+    c.range = range(p.truth[k]);
+    c.truth_error = truth_error(k);
+    c.winner_error = best_wrong;
+    out.push_back(std::move(c));
+  }
+  for (std::size_t i = 0; i < f.assigned.size(); ++i) {
+    if (f.assigned[i]) continue;
+    const FoundBox& found = p.found[i];
+    ExplainedCase c = case_of(p, false);
+    c.box = found.box;
+    c.range = range(found.box.pose);
+    c.winner_error = found.error;
+    if (!p.truth.empty()) c.truth_error = truth_error(0);
+    const double radius = find.selection.nms_radius;
+    const bool displaced =
+        std::any_of(suppressed_truths.begin(), suppressed_truths.end(), [&](std::size_t k) {
+          return (p.truth[k].translation() - found.box.center()).norm() < radius ||
+                 found.box.contains(Eigen::Vector3d(p.truth[k].translation()));
+        });
+    const bool on_instance = std::any_of(p.truth.begin(), p.truth.end(), [&](const auto& truth) {
+      return within(truth, found.box.pose, p.symmetry, tolerance, 2.0);
+    });
+    c.cause = displaced ? kDisplacedTruth : on_instance ? kOffPose : kLookAlike;
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string miss_cause(const std::vector<CandidateFate>& near, double t) {
+  if (near.empty()) return kNoCandidate;
+  for (const CandidateFate& c : near) {
+    if (c.fate == "suppressed by a better match") continue;
+    if (c.fate == "accepted") return c.error < t ? kSuppressed : kOverThreshold;
+    if (c.fate == "error above threshold") return kOverThreshold;
+    if (c.fate == "coverage too low") return kCoverage;
+    if (c.fate == "empty space occupied") return kEmptySpace;
+    return kSuppressed;  // inside a better match
+  }
+  return kSuppressed;
+}
+
+const std::vector<std::string>& miss_causes() {
+  static const std::vector<std::string> causes{kNoCandidate, kSuppressed, kOverThreshold, kCoverage,
+                                               kEmptySpace};
+  return causes;
+}
+
+const std::vector<std::string>& false_match_causes() {
+  static const std::vector<std::string> causes{kDisplacedTruth, kOffPose, kLookAlike};
+  return causes;
+}
+
+std::vector<ExplainedCase> explain_evaluation(
+    const std::string& dataset_dir, const Dataset& dataset, const Evaluation& evaluation,
+    const std::function<void(std::size_t, std::size_t)>& progress) {
+  const FindSettings& find = evaluation.settings.find;  // resolved
+  const MatchTolerance& tolerance = evaluation.settings.tolerance;
+  std::map<std::string, const DatasetScene*> scenes;
+  for (const DatasetScene& s : dataset.scenes) scenes[s.name] = &s;
+  std::map<std::string, const DatasetLandmark*> landmarks;
+  for (const DatasetLandmark& l : dataset.landmarks) landmarks[l.name] = &l;
+
+  // The pairs with a miss or a false match, scene by scene.
+  std::map<std::string, std::vector<FailedPair>> failed;
+  std::size_t to_explain = 0;
+  for (const PairResult& p : evaluation.pairs) {
+    FailedPair f{&p, nullptr, nullptr, matches_within(p, *find.selection.threshold), {}};
+    f.assigned = assign_matches(f.input, tolerance);
+    const Counts counts = count_all_matches(f.input, tolerance);
+    if (counts.fn == 0 && counts.fp == 0) continue;
+    const auto scene = scenes.find(p.scene);
+    const auto landmark = landmarks.find(p.landmark);
+    if (scene == scenes.end() || landmark == landmarks.end()) {
+      throw Error("explain: the evaluation's pair " + p.scene + " x " + p.landmark +
+                  " is not in dataset '" + dataset.name + "'");
+    }
+    f.scene = scene->second;
+    f.landmark = landmark->second;
+    failed[p.scene].push_back(std::move(f));
+    ++to_explain;
+  }
+
+  std::map<std::string, std::unique_ptr<Landmark>> loaded;
+  std::map<std::string, std::unique_ptr<LandmarkIndex>> indexes;
+  const FindSettings landmark_settings = pair_search(find, DatasetScene());
+  std::vector<ExplainedCase> cases;
+  std::atomic<std::size_t> done{0};
+  for (const auto& [scene_name, pairs] : failed) {
+    for (const FailedPair& f : pairs) {
+      if (indexes.count(f.landmark->name)) continue;
+      loaded[f.landmark->name] = std::make_unique<Landmark>(
+          load_landmark((fs::path(dataset_dir) / f.landmark->file).string()));
+      indexes[f.landmark->name] = std::make_unique<LandmarkIndex>(
+          LandmarkIndex::borrowing(*loaded[f.landmark->name], landmark_settings));
+    }
+    const DatasetScene& scene = *pairs.front().scene;
+    const PointCloud cloud = read_cloud((fs::path(dataset_dir) / scene.file).string());
+    const SceneIndex index(cloud, pair_search(find, scene).scene);
+    std::vector<std::vector<ExplainedCase>> per_pair(pairs.size());
+    tbb::parallel_for(std::size_t{0}, pairs.size(), [&](std::size_t i) {
+      per_pair[i] =
+          explain_pair(pairs[i], index, *indexes.at(pairs[i].landmark->name), find, tolerance);
+      if (progress) progress(++done, to_explain);
+    });
+    for (auto& c : per_pair) cases.insert(cases.end(), c.begin(), c.end());
+  }
+  // Dataset order: as the evaluation lists its pairs.
+  std::map<std::pair<std::string, std::string>, std::size_t> order;
+  for (std::size_t i = 0; i < evaluation.pairs.size(); ++i)
+    order[{evaluation.pairs[i].scene, evaluation.pairs[i].landmark}] = i;
+  std::stable_sort(cases.begin(), cases.end(), [&](const ExplainedCase& a, const ExplainedCase& b) {
+    return order[{a.scene, a.landmark}] < order[{b.scene, b.landmark}];
+  });
+  return cases;
+}
+
+std::vector<CauseRow> cause_rows(const std::vector<ExplainedCase>& cases,
+                                 std::optional<double> bin_width) {
+  std::map<std::string, std::size_t> index;
+  std::vector<CauseRow> rows;
+  const auto row = [&](const std::string& group) -> CauseRow& {
+    auto it = index.find(group);
+    if (it == index.end()) {
+      it = index.emplace(group, rows.size()).first;
+      rows.push_back({group,
+                      std::vector<std::size_t>(miss_causes().size(), 0),
+                      std::vector<std::size_t>(false_match_causes().size(), 0),
+                      {},
+                      {}});
+    }
+    return rows[it->second];
+  };
+  const auto group_of = [&](const ExplainedCase& c) {
+    if (!bin_width) return c.setting;
+    const int b = static_cast<int>(std::floor(c.range / *bin_width));
+    char label[32];
+    std::snprintf(label, sizeof(label), "%.1f-%.1f m", b * *bin_width, (b + 1) * *bin_width);
+    return std::string(label);
+  };
+  std::map<std::string, std::vector<double>> truth_errors, winner_errors;
+  std::vector<const ExplainedCase*> sorted;
+  for (const ExplainedCase& c : cases) sorted.push_back(&c);
+  if (bin_width) {
+    std::stable_sort(sorted.begin(), sorted.end(),
+                     [](const auto* a, const auto* b) { return a->range < b->range; });
+  }
+  for (const ExplainedCase* c : sorted) {
+    for (const std::string& group : {group_of(*c), std::string("all")}) {
+      CauseRow& r = row(group);
+      const auto& causes = c->missed ? miss_causes() : false_match_causes();
+      const auto k = static_cast<std::size_t>(std::find(causes.begin(), causes.end(), c->cause) -
+                                              causes.begin());
+      (c->missed ? r.missed : r.false_matches).at(k) += 1;
+      if (c->missed && c->truth_error) truth_errors[group].push_back(*c->truth_error);
+      if (c->missed && c->winner_error) winner_errors[group].push_back(*c->winner_error);
+    }
+  }
+  // "all" last.
+  std::stable_partition(rows.begin(), rows.end(),
+                        [](const CauseRow& r) { return r.group != "all"; });
+  for (CauseRow& r : rows) {
+    if (!truth_errors[r.group].empty()) r.median_truth_error = median(truth_errors[r.group]);
+    if (!winner_errors[r.group].empty()) r.median_winner_error = median(winner_errors[r.group]);
+  }
+  return rows;
+}
+
+TextTable cause_table(const std::vector<CauseRow>& rows, const std::string& metric) {
+  TextTable table;
+  table.header = {""};
+  for (const std::string& c : miss_causes()) table.header.push_back("missed: " + c);
+  for (const std::string& c : false_match_causes()) table.header.push_back("false: " + c);
+  table.header.push_back("at truth");
+  table.header.push_back("wrong winner");
+  table.numeric.assign(table.header.size(), true);
+  table.numeric[0] = false;
+  const auto error = [&](const std::optional<double>& v) {
+    return v ? format_error(*v, metric) : std::string("-");
+  };
+  for (const CauseRow& r : rows) {
+    std::vector<std::string> line{r.group};
+    for (std::size_t n : r.missed) line.push_back(std::to_string(n));
+    for (std::size_t n : r.false_matches) line.push_back(std::to_string(n));
+    line.push_back(error(r.median_truth_error));
+    line.push_back(error(r.median_winner_error));
+    table.rows.push_back(std::move(line));
+  }
+  return table;
+}
+
+}  // namespace lmk

@@ -1,0 +1,88 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+// `lmk eval --explain`: one cause for every missed instance and every false match of an
+// evaluation (docs/evaluation.md, "Why a search missed"), so that a researcher sees whether the
+// metric or the search limits recall. Each pair that failed is searched again, keeping every
+// candidate (those selection turned down and those non-max suppression removed), and the metric is
+// measured at the true pose, aligned and polished from the truth as a candidate there would be.
+//
+// A missed instance's cause, from the candidates within the protocol's tolerance of it:
+//   no candidate        none came near the truth: the search (seeds, voting, alignment) limits
+//   suppressed          the near ones were removed by non-max suppression or lay inside a
+//                       better-scoring wrong match's box: the score ranks a wrong pose first
+//   over threshold      the best near one scored above the threshold
+//   coverage            it failed the coverage test
+//   empty space         it failed the empty-space test
+// A false match's cause:
+//   displaced truth     it suppressed a true candidate of the same pair (within the suppression
+//                       radius of the truth, or holding the truth's centre in its box)
+//   off pose            it lies on an instance, within twice the tolerance, but beyond it
+//   look-alike          elsewhere: a look-alike that passed every test
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "lmk/eval/dataset.h"
+#include "lmk/eval/evaluation.h"
+#include "lmk/eval/text_table.h"
+
+namespace lmk {
+
+/// The causes, in the order tables list them.
+const std::vector<std::string>& miss_causes();
+const std::vector<std::string>& false_match_causes();
+
+/// What became of a candidate near a missed instance: "accepted", or the reason selection or
+/// non-max suppression gave (Rejection::reason), with its error.
+struct CandidateFate {
+  double error = 0.0;
+  std::string fate;
+};
+
+/// The cause of a miss from the candidates within tolerance of the truth, best (lowest error)
+/// first, at `threshold`: the best one that reached selection decides (non-max suppression keeps
+/// the best of neighbours, so one it removed lost to a better one); none near is "no candidate",
+/// and near ones all removed by suppression, or accepted below the threshold yet not reported,
+/// lost to a wrong one.
+std::string miss_cause(const std::vector<CandidateFate>& near, double threshold);
+
+struct ExplainedCase {
+  std::string scene, landmark, setting;
+  bool missed = true;  ///< a missed instance; false: a false match
+  std::string cause;
+  Box box;             ///< the instance's box (missed) or the match's (false match), scene frame
+  double range = 0.0;  ///< from the scene's sensor to the box centre, m
+  /// The metric at the pair's true pose (for a false match, at its pair's first instance, if
+  /// any), aligned and polished from the truth (score_pose).
+  std::optional<double> truth_error;
+  /// A missed instance: the best wrong match of its pair that was reported; a false match: its own.
+  std::optional<double> winner_error;
+  /// A missed instance: the nearest candidate of any fate, m and rad (modulo symmetry).
+  std::optional<double> nearest_candidate_translation, nearest_candidate_rotation;
+};
+
+/// The causes of every miss and false match of `evaluation` (assumption 2 when it searched the
+/// in-context pairs only, else 1), searching the pairs that failed again in `dataset_dir`.
+/// `progress` gets (pairs done, pairs to explain).
+std::vector<ExplainedCase> explain_evaluation(
+    const std::string& dataset_dir, const Dataset& dataset, const Evaluation& evaluation,
+    const std::function<void(std::size_t, std::size_t)>& progress = {});
+
+/// A count of each cause per group: rows by setting ("all" last), or by range in bins of
+/// `bin_width` m when it is given.
+struct CauseRow {
+  std::string group;
+  std::vector<std::size_t> missed;                                ///< by miss_causes()
+  std::vector<std::size_t> false_matches;                         ///< by false_match_causes()
+  std::optional<double> median_truth_error, median_winner_error;  ///< over the group's misses
+};
+std::vector<CauseRow> cause_rows(const std::vector<ExplainedCase>& cases,
+                                 std::optional<double> bin_width = std::nullopt);
+
+/// The rows as a table: a column per cause, then the median metric value at the true poses of the
+/// misses beside the median of the wrong matches that were reported, in `metric`'s unit.
+TextTable cause_table(const std::vector<CauseRow>& rows, const std::string& metric);
+
+}  // namespace lmk

@@ -1,0 +1,56 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+// A dataset of real cross-view pairs from an RGB-D sequence with camera poses (lmk gen --from-rgbd,
+// docs/datasets.md "Real RGB-D sequences"): landmarks cut in one frame with user-like boxes
+// (user_like_boxes.h), searched in the frames min_gap to max_gap frames away, the ground truth
+// from the camera poses, and every pair's poses checked by registering the two whole frames.
+
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "lmk/eval/dataset.h"
+#include "lmk/eval/rgbd_sequence.h"
+#include "lmk/eval/user_like_boxes.h"
+
+namespace lmk {
+
+struct RgbdDatasetOptions {
+  RgbdReadOptions read;
+  std::string name;              ///< the dataset's name and setting; default: the folder's
+  std::size_t frame_stride = 5;  ///< landmarks and scenes come from every this-many-th frame
+  std::size_t min_gap = 10;      ///< a landmark is searched in frames this many frames away,
+  std::size_t max_gap = 40;      ///< up to this many
+  /// The boxes' side, m. Unset: 0.15 times the median depth of the frames used, within 8-40 cm
+  /// (30 cm at 2 m, as a user boxes furniture; 8 cm on a desk at half a metre).
+  std::optional<double> box_side;
+  std::size_t boxes_per_frame = 6;
+  /// A pair whose camera poses and the whole-frame registration disagree beyond these, at the
+  /// landmark's centre, is left out: its ground truth cannot be trusted to the protocol's 25.4 mm
+  /// and 15 degrees. Half of each.
+  double max_pose_disagreement = 0.0127;                   ///< m
+  double max_pose_rotation_disagreement = 0.1309;          ///< rad (7.5 degrees)
+  std::function<void(std::size_t, std::size_t)> progress;  ///< (frames done, frames in all)
+};
+
+/// What an import did beside the dataset: what it refused and left out, and why.
+struct RgbdImport {
+  Dataset dataset;
+  std::string layout;
+  double box_side = 0.0;
+  std::size_t boxes = 0;                       ///< boxes the rule drew
+  std::map<std::string, std::size_t> refused;  ///< by reason: boxes the capture refused
+  std::size_t pairs = 0;                       ///< pairs kept
+  std::size_t pairs_left_out = 0;              ///< beyond the pose-disagreement bound
+};
+
+/// Reads the sequence in `sequence_dir` and writes the dataset into `out_dir` (scenes/*.pcd in each
+/// camera's optical frame, landmarks/*.lmk, dataset.json, and import.json: the rule, the
+/// refusals and every pair's pose check). Evaluate it with --pairs in-context: the pairs the
+/// dataset lists are the ones whose ground truth is known.
+RgbdImport generate_rgbd_dataset(const std::string& sequence_dir, const std::string& out_dir,
+                                 const RgbdDatasetOptions& options = {});
+
+}  // namespace lmk

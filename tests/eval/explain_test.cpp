@@ -1,0 +1,147 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// lmk eval --explain: each cause produced on a small generated dataset (a bowl and a cup; three
+// balls) whose ground truth or settings are changed to make it, every miss and false match of the
+// table explained once, and the classification of a miss's candidates case by case.
+
+#include "lmk/eval/explain.h"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "lmk/eval/benchmark_dataset.h"
+#include "lmk/eval/detail/evaluation_json.h"
+#include "lmk/geometry/pose.h"
+#include "tests/eval/simple_scenes_fixture.h"
+
+namespace lmk {
+namespace {
+
+class Explain : public test::SimpleScenes {
+ protected:
+  // The cases of an evaluation of `dataset` (the generated one, changed) with `settings`, checked
+  // against the table: one case per missed instance and per false match, each with a known cause.
+  static std::vector<ExplainedCase> explain(const Dataset& dataset,
+                                            const EvaluationSettings& settings = {}) {
+    const Evaluation e = evaluate(dir_->path().string(), dataset, settings);
+    const std::vector<ExplainedCase> cases = explain_evaluation(dir_->path().string(), dataset, e);
+    const std::vector<EvaluationRow> rows = evaluation_rows(e);
+    const EvaluationRow& all = rows[rows.size() - 3];  // "all", assumption 1
+    std::size_t missed = 0, false_matches = 0;
+    for (const ExplainedCase& c : cases) {
+      (c.missed ? missed : false_matches) += 1;
+      const auto& causes = c.missed ? miss_causes() : false_match_causes();
+      EXPECT_NE(std::find(causes.begin(), causes.end(), c.cause), causes.end()) << c.cause;
+    }
+    EXPECT_EQ(missed, all.counts.fn);
+    EXPECT_EQ(false_matches, all.counts.fp);
+    return cases;
+  }
+  // The pair of `landmark` in the scene holding it, in a copy of the dataset.
+  static DatasetPair& pair_of(Dataset& d, const std::string& landmark) {
+    for (DatasetScene& s : d.scenes)
+      for (DatasetPair& p : s.pairs)
+        if (p.landmark == landmark && !p.instances.empty()) return p;
+    throw Error("no in-context pair of " + landmark);
+  }
+  static const ExplainedCase* find_case(const std::vector<ExplainedCase>& cases,
+                                        const std::string& landmark, bool missed) {
+    for (const ExplainedCase& c : cases)
+      if (c.landmark == landmark && c.missed == missed) return &c;
+    return nullptr;
+  }
+};
+
+TEST_F(Explain, NothingToExplainWhenEverythingIsFound) { EXPECT_TRUE(explain(*dataset_).empty()); }
+
+// An instance where nothing stands: no candidate comes near it.
+TEST_F(Explain, AnInstanceInEmptySpaceHasNoCandidate) {
+  Dataset d = *dataset_;
+  DatasetPair& cup = pair_of(d, "cup");
+  cup.instances.push_back(pose_from_xyz_rpy({0.0, 0.0, 2.5}, {0, 0, 0}));
+  const auto cases = explain(d);
+  const ExplainedCase* c = find_case(cases, "cup", true);
+  ASSERT_NE(c, nullptr);
+  EXPECT_EQ(c->cause, "no candidate");
+  ASSERT_TRUE(c->nearest_candidate_translation);
+  EXPECT_GT(*c->nearest_candidate_translation, 0.5);
+}
+
+// A threshold below every true match's error: the true candidates are over it, and the metric at
+// the true pose, polished from the truth, is over it too.
+TEST_F(Explain, ATinyThresholdLeavesTheTruthOverIt) {
+  EvaluationSettings s;
+  s.find.selection.threshold = 0.0002;
+  const auto cases = explain(*dataset_, s);
+  ASSERT_FALSE(cases.empty());
+  for (const ExplainedCase& c : cases) {
+    EXPECT_TRUE(c.missed);
+    EXPECT_EQ(c.cause, "over threshold") << c.scene << " " << c.landmark;
+    ASSERT_TRUE(c.truth_error);
+    EXPECT_GT(*c.truth_error, 0.0002);
+    EXPECT_LT(*c.truth_error, 0.006);  // a true pose: within the default threshold
+  }
+}
+
+// Full coverage demanded: no real match has every landmark point supported.
+TEST_F(Explain, FullCoverageDemandedFailsTheTruthOnCoverage) {
+  EvaluationSettings s;
+  s.find.selection.min_coverage = 1.0;
+  const auto cases = explain(*dataset_, s);
+  ASSERT_FALSE(cases.empty());
+  for (const ExplainedCase& c : cases) EXPECT_EQ(c.cause, "coverage") << c.landmark;
+}
+
+// The truth moved 3 cm: the match is off the pose (a false match on the instance), and the moved
+// truth has no candidate near it. The truth removed: the match is a look-alike.
+TEST_F(Explain, FalseMatchesAreOffThePoseOrLookAlikes) {
+  Dataset moved = *dataset_;
+  pair_of(moved, "bowl").instances[0].translation().x() += 0.03;
+  auto cases = explain(moved);
+  const ExplainedCase* false_match = find_case(cases, "bowl", false);
+  ASSERT_NE(false_match, nullptr);
+  EXPECT_EQ(false_match->cause, "off pose");
+  ASSERT_NE(find_case(cases, "bowl", true), nullptr);
+  EXPECT_EQ(find_case(cases, "bowl", true)->cause, "no candidate");
+
+  Dataset removed = *dataset_;
+  pair_of(removed, "bowl").instances.clear();
+  cases = explain(removed);
+  ASSERT_NE(find_case(cases, "bowl", false), nullptr);
+  EXPECT_EQ(find_case(cases, "bowl", false)->cause, "look-alike");
+  EXPECT_FALSE(find_case(cases, "bowl", false)->truth_error);  // no instance to measure at
+}
+
+TEST_F(Explain, TablesAndJsonCountEachCause) {
+  EvaluationSettings s;
+  s.find.selection.threshold = 0.0002;
+  const Evaluation e = evaluate(dir_->path().string(), *dataset_, s);
+  const auto cases = explain_evaluation(dir_->path().string(), *dataset_, e);
+  const std::vector<CauseRow> rows = cause_rows(cases);
+  ASSERT_EQ(rows.back().group, "all");
+  EXPECT_EQ(rows.back().missed[2], cases.size());  // "over threshold"
+  EXPECT_TRUE(rows.back().median_truth_error);
+  const std::string table = cause_table(rows, "visibility").plain();
+  EXPECT_NE(table.find("missed: over threshold"), std::string::npos) << table;
+  const nlohmann::json j = detail::explanation_to_json(cases);
+  EXPECT_EQ(j["cases"].size(), cases.size());
+  EXPECT_EQ(j["by_setting"].back()["missed"]["over threshold"], cases.size());
+  EXPECT_FALSE(j["by_range"].empty());
+}
+
+// The best near candidate that reached selection decides; one removed by suppression lost to a
+// better neighbour.
+TEST(MissCause, TheBestNearCandidateThatReachedSelectionDecides) {
+  const double t = 0.006;
+  EXPECT_EQ(miss_cause({}, t), "no candidate");
+  EXPECT_EQ(miss_cause({{0.003, "suppressed by a better match"}}, t), "suppressed");
+  EXPECT_EQ(miss_cause({{0.003, "inside a better match"}}, t), "suppressed");
+  EXPECT_EQ(miss_cause({{0.003, "empty space occupied"}, {0.004, "accepted"}}, t), "empty space");
+  EXPECT_EQ(miss_cause({{0.003, "suppressed by a better match"}, {0.004, "coverage too low"}}, t),
+            "coverage");
+  EXPECT_EQ(miss_cause({{0.007, "error above threshold"}}, t), "over threshold");
+  EXPECT_EQ(miss_cause({{0.008, "accepted"}}, t), "over threshold");  // kept up to twice t
+}
+
+}  // namespace
+}  // namespace lmk
