@@ -11,6 +11,7 @@
 #include "lmk/geometry/pose.h"
 #include "lmk/geometry/principal_axes.h"
 #include "lmk/geometry/projector_shadow.h"
+#include "lmk/geometry/veil_points.h"
 #include "lmk/geometry/voxel_grid.h"
 
 namespace lmk {
@@ -32,6 +33,9 @@ void check_settings(const CaptureSettings& s, const std::string& what) {
   }
   if (!(s.empty_space_margin >= 0.0) || !std::isfinite(s.empty_space_margin)) {
     throw Error(what + ": the empty-space margin must be finite and non-negative");
+  }
+  if (!(s.veil_angle >= 0.0) || !(s.veil_angle < 1.5)) {
+    throw Error(what + ": the veil angle must be in [0, 1.5) rad (0: keep veil points)");
   }
   if (!(s.projector_baseline >= 0.0) || !std::isfinite(s.projector_baseline)) {
     throw Error(what + ": the projector baseline must be finite and non-negative (0: none)");
@@ -85,7 +89,13 @@ Landmark capture(const PointCloud& scene, const Box& box, const std::string& nam
   if (name.empty()) throw Error("capture: the landmark needs a name");
   check_settings(settings, what);
   check_box(box, settings, what);
-  const PointCloud inside = crop(scene, box);
+  PointCloud unveiled;
+  if (settings.veil_angle > 0.0 && scene.is_organized()) {
+    unveiled = scene;
+    remove_veil_points(unveiled, settings.veil_angle);
+  }
+  const PointCloud& frame = unveiled.empty() ? scene : unveiled;
+  const PointCloud inside = crop(frame, box);
   if (inside.empty()) {
     const Eigen::Vector3d c = box.center();
     std::ostringstream s;
@@ -112,7 +122,7 @@ Landmark capture(const PointCloud& scene, const Box& box, const std::string& nam
   landmark.up = settings.up ? settings.up->normalized()
                             : default_up(scene.T_cloud_sensor, settings.base_frame);
   // Rays to every scene point (non-finite ones are skipped), and through the projector's shadow.
-  std::vector<Eigen::Vector3f> rays = scene.points;
+  std::vector<Eigen::Vector3f> rays = frame.points;
   const std::vector<Eigen::Vector3f> shadow =
       projector_shadow_ray_ends(scene, {settings.projector_baseline});
   rays.insert(rays.end(), shadow.begin(), shadow.end());

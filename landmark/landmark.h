@@ -35,6 +35,11 @@ struct CaptureSettings {
   /// free, so it matches wherever it fits; the programs that use one choose among the matches by
   /// a cue such as the demonstrated height. Thin straight shapes stay refused.
   bool allow_flat = false;
+  /// The capture frame's veil points (geometry/veil_points.h) are dropped before the landmark is
+  /// cut, rad (0 keeps them), as a search drops the scene's (SceneSettings::veil_angle): the
+  /// fringe along a silhouette is the capture view's alone. Used at capture only; off by default,
+  /// as SceneSettings::veil_angle.
+  double veil_angle = 0.0;
   /// A structured-light sensor's projector offset along the camera's +x, m (the Kinect v1's 7.5
   /// cm): the camera's rays through the projector's shadow count as observed free up to the
   /// surface casting it (geometry/projector_shadow.h). 0 for a sensor without one (stereo, time

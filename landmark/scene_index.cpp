@@ -9,6 +9,7 @@
 
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/filters.h"
+#include "lmk/geometry/veil_points.h"
 #include "lmk/geometry/voxel_grid.h"
 #include "lmk/geometry/voxel_normals.h"
 #include "lmk/landmark/detail/stopwatch.h"
@@ -38,28 +39,36 @@ SceneIndex::SceneIndex(const PointCloud& scene, const SceneSettings& settings)
   up_ = settings.up ? settings.up->normalized()
                     : default_up(scene.T_cloud_sensor, settings.base_frame);
 
+  // A real frame's veil points first (geometry/veil_points.h): nothing else may see them.
+  PointCloud unveiled;
+  if (settings.veil_angle > 0.0 && scene.is_organized()) {
+    unveiled = scene;
+    remove_veil_points(unveiled, settings.veil_angle);
+  }
+  const PointCloud& frame = unveiled.empty() ? scene : unveiled;
+
   // The grids skip non-finite points themselves, so without a work volume they are built from the
   // frame as it is, and its finite points are copied (for the fine level, built on first use)
   // beside them rather than before them.
   const bool whole_frame = !settings.work_volume;
   if (whole_frame) {
-    if (std::none_of(scene.points.begin(), scene.points.end(),
+    if (std::none_of(frame.points.begin(), frame.points.end(),
                      [](const Eigen::Vector3f& p) { return is_finite(p); })) {
       throw Error("scene: the scene holds no finite point");
     }
   } else {
-    cropped_ = crop(scene, *settings.work_volume);
+    cropped_ = crop(frame, *settings.work_volume);
     if (cropped_.empty()) throw Error("scene: the work volume holds no scene point");
   }
-  const PointCloud& source = whole_frame ? scene : cropped_;
+  const PointCloud& source = whole_frame ? frame : cropped_;
   // The grids are built side by side: the range image, the finite points and the occupancy (raw
   // points) beside the voxel moments, then the distance field from the centroids beside the
   // normals, so that neither thread waits on the other's serial steps.
   const DistanceFieldSettings field_settings{settings_.coarse_leaf, *settings_.field_band};
   tbb::parallel_invoke(
       [&] {
-        range_image_ = RangeImage::from_cloud(scene);
-        if (whole_frame) cropped_ = remove_non_finite(scene);
+        range_image_ = RangeImage::from_cloud(frame);
+        if (whole_frame) cropped_ = remove_non_finite(frame);
         occupancy_ = OccupancyGrid(source.points, settings.leaf_size);
       },
       [&] {
