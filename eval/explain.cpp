@@ -205,7 +205,9 @@ std::vector<ExplainedCase> explain_evaluation(
   const FindSettings landmark_settings = pair_search(find, DatasetScene());
   std::vector<ExplainedCase> cases;
   std::atomic<std::size_t> done{0};
-  for (const auto& [scene_name, pairs] : failed) {
+  for (const auto& scene_pairs : failed) {
+    // A named reference, not a structured binding: C++17 lambdas cannot capture bindings (clang).
+    const std::vector<FailedPair>& pairs = scene_pairs.second;
     for (const FailedPair& f : pairs) {
       if (indexes.count(f.landmark->name)) continue;
       loaded[f.landmark->name] = std::make_unique<Landmark>(

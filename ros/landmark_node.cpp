@@ -12,6 +12,7 @@
 #include "lmk/landmark/distinctiveness.h"
 #include "lmk/landmark/find_landmark.h"
 #include "lmk/landmark/scene_index.h"
+#include "lmk/landmark/slide_check.h"
 #include "lmk/ros/geometry_conversion.h"
 #include "lmk/ros/tf_lookup.h"
 
@@ -163,6 +164,9 @@ void LandmarkNode::capture_box(const std::string& name, const Box& box, bool for
   response.message =
       "wrote '" + landmark.name + "' (" + std::to_string(landmark.points.size()) + " points)" +
       (verdict.empty() ? "; distinctive in this frame" : "; kept despite: " + verdict);
+  // The slide check (landmark/slide_check.h): advice shown with the result in RViz, not a refusal.
+  for (const std::string& line : describe_slides(slide_check(landmark), landmark.box))
+    response.message += "; " + line;
   ROS_INFO("lmk: %s", response.message.c_str());
 }
 

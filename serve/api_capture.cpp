@@ -7,6 +7,7 @@
 #include "lmk/json/settings_json.h"
 #include "lmk/landmark/box_guess.h"
 #include "lmk/landmark/distinctiveness.h"
+#include "lmk/landmark/slide_check.h"
 #include "lmk/serve/api.h"
 #include "lmk/serve/api_error.h"
 #include "lmk/serve/request_fields.h"
@@ -56,7 +57,11 @@ nlohmann::json verdict(const Landmark& landmark, const PointCloud& scene) {
   } else {
     message = "'" + landmark.name + "' is distinctive in its scene";
   }
+  // The slide check (landmark/slide_check.h), apart from the look-alikes: advice, not a refusal.
+  const std::vector<std::string> slides = describe_slides(slide_check(landmark), landmark.box);
+  for (const std::string& line : slides) message += "; " + line;
   return {{"distinctive", distinctive},
+          {"slides", slides},
           {"checked", true},
           {"found_itself", report.found_itself},
           {"other_instances", others},

@@ -12,6 +12,7 @@
 #include "lmk/geometry/pose.h"
 #include "lmk/landmark/distinctiveness.h"
 #include "lmk/landmark/landmark_file.h"
+#include "lmk/landmark/slide_check.h"
 #include "tools/cli_common.h"
 
 namespace lmk::cli {
@@ -75,6 +76,19 @@ void check_in_capture_scene(const PointCloud& scene, const Landmark& landmark) {
                "more empty margin (--no-check skips this check)\n");
 }
 
+// The slide check (landmark/slide_check.h): warns on stderr, direction by direction, when the
+// landmark's own shape lets it slide or turn within the sensor's noise.
+void check_slides(const Landmark& landmark) {
+  const std::vector<std::string> lines = describe_slides(slide_check(landmark), landmark.box);
+  if (lines.empty()) {
+    std::printf("check: '%s' fixes its pose in every direction\n", landmark.name.c_str());
+    return;
+  }
+  std::fprintf(stderr, "warning: '%s' can move within the sensor's noise:\n",
+               landmark.name.c_str());
+  for (const std::string& line : lines) std::fprintf(stderr, "  %s\n", line.c_str());
+}
+
 int run_capture(CaptureOptions& o) {
   o.settings.up = o.up.vector();
   o.settings.base_frame = o.up.base_frame;
@@ -90,6 +104,7 @@ int run_capture(CaptureOptions& o) {
     std::printf("a flat patch matches wherever it fits: no distinctiveness check\n");
   } else if (!o.no_check) {
     check_in_capture_scene(scene, landmark);
+    check_slides(landmark);
   }
   return kOk;
 }

@@ -131,6 +131,9 @@ TEST_F(ServeTest, TheVerdictComesBeforeTheFileAndTheCaptureIsWrittenIntoTheLibra
   EXPECT_TRUE(verdict["found_itself"].get<bool>());
   EXPECT_EQ(verdict["distinctive"].get<bool>(), verdict["other_instances"].empty());
   EXPECT_FALSE(verdict["message"].get<std::string>().empty());
+  // The slide check, apart from the look-alikes: the carton's corner fixes every direction.
+  EXPECT_TRUE(verdict["slides"].is_array());
+  EXPECT_TRUE(verdict["slides"].empty()) << verdict["slides"];
   EXPECT_FALSE(fs::exists(fs::path(landmarks_dir) / "carton.lmk"));
 
   // With "check", a landmark that is not distinctive is not written: 409 and the verdict.
