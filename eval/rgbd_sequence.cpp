@@ -86,7 +86,6 @@ PinholeIntrinsics intrinsics_for(const fs::path& dir, const RgbdReadOptions& opt
 
 // 7-Scenes, and 3DMatch's frame triples.
 RgbdSequence read_frames(const fs::path& dir, const RgbdReadOptions& options) {
-  const PinholeIntrinsics k = intrinsics_for(dir, options, " (7-Scenes: 585 585 320 240)");
   std::vector<std::string> depth_files;
   for (const auto& entry : fs::directory_iterator(dir)) {
     const std::string name = entry.path().filename().string();
@@ -97,9 +96,11 @@ RgbdSequence read_frames(const fs::path& dir, const RgbdReadOptions& options) {
     }
   }
   std::sort(depth_files.begin(), depth_files.end());
-  const bool colour = options.colour_registered.value_or(false);
   RgbdSequence sequence;
   sequence.layout = "frames";
+  if (depth_files.empty()) return sequence;  // no layout lmk knows: the caller says so
+  const PinholeIntrinsics k = intrinsics_for(dir, options, " (7-Scenes: 585 585 320 240)");
+  const bool colour = options.colour_registered.value_or(false);
   for (const std::string& depth : depth_files) {
     const std::string stem = depth.substr(0, depth.size() - std::string(".depth.png").size());
     RgbdFrame frame;

@@ -137,6 +137,9 @@ TEST(RgbdSequence, BadFilesAndPosesAreClearErrorsNamingThem) {
     EXPECT_NE(why.find(expected), std::string::npos) << why;
   };
   fs::create_directories(d);
+  expect_refused("seq", "no RGB-D frames");
+  write_frames_sequence(d);
+  fs::remove(d / "camera-intrinsics.txt");
   expect_refused("seq", "no intrinsics");
   write_frames_sequence(d);
   fs::remove(d / "frame-000001.pose.txt");
