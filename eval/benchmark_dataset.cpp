@@ -44,7 +44,7 @@ std::vector<DatasetPair> pairs_of(const GeneratedScene& scene,
     const auto it = scene.instances.find(landmark.name);
     const bool has_instances = it != scene.instances.end() && !it->second.empty();
     if (!in_context && !has_instances) continue;
-    DatasetPair pair{landmark.name, in_context, {}, {}};
+    DatasetPair pair{landmark.name, in_context, {}, {}, std::nullopt};
     if (has_instances) {
       const auto model = captured.find(landmark.name);
       for (const Box& box : it->second) {

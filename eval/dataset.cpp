@@ -149,7 +149,7 @@ DatasetPair Dataset::pair(const DatasetScene& scene, const std::string& landmark
   for (const DatasetPair& p : scene.pairs) {
     if (p.landmark == landmark) return p;
   }
-  return {landmark, false, {}, {}};
+  return {landmark, false, {}, {}, std::nullopt};
 }
 
 Dataset load_dataset(const std::string& dir) {

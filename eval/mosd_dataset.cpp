@@ -110,7 +110,7 @@ Dataset generate_mosd_dataset(const std::string& mosd_dir, const std::string& ou
       const PointCloud moved = frame.transformed(T);
       scene.T_scene_sensor = moved.T_cloud_sensor;
       for (const auto& [name, box] : captured)
-        scene.pairs.push_back({name, true, {T * box.pose}, {}});
+        scene.pairs.push_back({name, true, {T * box.pose}, {}, std::nullopt});
       write_cloud((fs::path(out_dir) / scene.file).string(), moved);
       dataset.scenes.push_back(scene);
     }
