@@ -7,15 +7,19 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "lmk/eval/benchmark_dataset.h"
 #include "lmk/eval/detail/evaluation_json.h"
+#include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/pose.h"
 #include "tests/eval/simple_scenes_fixture.h"
 
 namespace lmk {
 namespace {
+
+namespace fs = std::filesystem;
 
 class Explain : public test::SimpleScenes {
  protected:
@@ -81,6 +85,38 @@ TEST_F(Explain, ATinyThresholdLeavesTheTruthOverIt) {
     EXPECT_GT(*c.truth_error, 0.0002);
     EXPECT_LT(*c.truth_error, 0.006);  // a true pose: within the default threshold
   }
+}
+
+// A ball dropped into the bowl (the paper's own case of one landmark in another's empty space):
+// the bowl's true candidate fails the empty-space test.
+TEST_F(Explain, SomethingInTheEmptySpaceFailsTheTruthOnIt) {
+  const test::ScratchDir copy;
+  fs::copy(dir_->path(), copy.path(), fs::copy_options::recursive);
+  Dataset d = *dataset_;
+  DatasetScene* scene = nullptr;
+  for (DatasetScene& s : d.scenes) {
+    for (const DatasetPair& p : s.pairs)
+      if (p.landmark == "bowl" && !p.instances.empty()) scene = &s;
+  }
+  ASSERT_NE(scene, nullptr);
+  const Eigen::Vector3d centre = pair_of(d, "bowl").instances[0].translation();
+  const std::string file = (copy.path() / scene->file).string();
+  PointCloud cloud = read_cloud(file);
+  cloud.set_unorganized();
+  for (int i = 0; i < 3000; ++i) {  // a 7 cm ball of points where the bowl's hollow was seen empty
+    const double a = 0.7 * i, b = 3.14159 * i / 3000.0;
+    cloud.points.push_back(
+        (centre +
+         0.035 * Eigen::Vector3d(std::sin(b) * std::cos(a), std::sin(b) * std::sin(a), std::cos(b)))
+            .cast<float>());
+  }
+  cloud.width = static_cast<std::uint32_t>(cloud.points.size());
+  write_cloud(file, cloud);
+  const Evaluation e = evaluate(copy.path().string(), d, {});
+  const auto cases = explain_evaluation(copy.path().string(), d, e);
+  const ExplainedCase* c = find_case(cases, "bowl", true);
+  ASSERT_NE(c, nullptr);
+  EXPECT_EQ(c->cause, "empty space");
 }
 
 // Full coverage demanded: no real match has every landmark point supported.
