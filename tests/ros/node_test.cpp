@@ -187,6 +187,13 @@ TEST(LmkNode, AClickedPointAndTheMenuCaptureTheGuessedBoxAsInRviz) {
   ::ros::Publisher clicked = nh.advertise<geometry_msgs::PointStamped>("/clicked_point", 1, true);
   ::ros::Publisher feedback = nh.advertise<visualization_msgs::InteractiveMarkerFeedback>(
       "/lmk_node/capture_box/feedback", 1, true);
+  // Publish once the node has connected to both topics: an event, not a time. A latched message
+  // published while a subscriber's connection is still being set up aborted this test once, under
+  // load, inside roscpp (a null Publication).
+  for (int i = 0;
+       i < 300 && (clicked.getNumSubscribers() == 0 || feedback.getNumSubscribers() == 0); ++i) {
+    ::ros::WallDuration(0.1).sleep();
+  }
   geometry_msgs::PointStamped point;
   point.header.frame_id = "base_link";
   point.point.x = click.x();
