@@ -11,6 +11,7 @@
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/kdtree.h"
 #include "lmk/geometry/pose.h"
+#include "lmk/geometry/statistics.h"
 #include "lmk/geometry/voxel_normals.h"
 #include "lmk/json/pose_json.h"
 #include "lmk/landmark/distinctiveness.h"
@@ -31,12 +32,12 @@ struct UsedFrame {
 
 // The median depth of the frames' returns, for the default box side.
 double median_depth(const std::vector<UsedFrame>& frames) {
-  std::vector<float> z;
+  std::vector<double> z;
   for (const UsedFrame& f : frames)
     for (const auto& p : f.reduced.points) z.push_back(p.z());
-  if (z.empty()) throw Error("the sequence's frames hold no depth return");
-  std::nth_element(z.begin(), z.begin() + static_cast<long>(z.size() / 2), z.end());
-  return z[z.size() / 2];
+  const std::optional<double> m = median(std::move(z));
+  if (!m) throw Error("the sequence's frames hold no depth return");
+  return *m;
 }
 
 // The whole-frame registration of frame a onto frame b, started from the camera poses

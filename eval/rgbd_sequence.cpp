@@ -10,6 +10,7 @@
 
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/input_file.h"
+#include "lmk/json/json_reader.h"
 
 namespace lmk {
 namespace {
@@ -229,33 +230,17 @@ RgbdSequence read_tum(const fs::path& dir, const RgbdReadOptions& options) {
   return sequence;
 }
 
-std::vector<double> json_numbers(const nlohmann::json& j, std::size_t n, const std::string& where) {
-  if (!j.is_array() || j.size() != n) {
-    throw Error(where + ": must be an array of " + std::to_string(n) + " numbers");
-  }
-  std::vector<double> out;
-  for (const auto& x : j) {
-    if (!x.is_number()) throw Error(where + ": must hold numbers only");
-    out.push_back(x.get<double>());
-  }
-  return out;
-}
-
 RgbdSequence read_bop(const fs::path& dir, const RgbdReadOptions& options) {
   const std::string path = (dir / "scene_camera.json").string();
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(read_input_file(path, kJsonInput));
-  } catch (const nlohmann::json::exception& e) {
-    throw Error(path + ": not valid JSON (" + e.what() + ")");
-  }
-  if (!j.is_object() || j.empty()) throw Error(path + ": must be an object of image ids");
+  const detail::JsonReader r(path);
+  const nlohmann::json j = r.parse(read_input_file(path, kJsonInput));
+  if (!j.is_object() || j.empty()) r.fail("", "must be an object of image ids");
   std::vector<std::pair<long, std::string>> ids;
   for (const auto& item : j.items()) {
     char* end = nullptr;
     const long id = std::strtol(item.key().c_str(), &end, 10);
     if (end == item.key().c_str() || *end != '\0' || id < 0)
-      throw Error(path + ": '" + item.key() + "' is not an image id");
+      r.fail("", "'" + item.key() + "' is not an image id");
     ids.emplace_back(id, item.key());
   }
   std::sort(ids.begin(), ids.end());
@@ -266,20 +251,18 @@ RgbdSequence read_bop(const fs::path& dir, const RgbdReadOptions& options) {
     const nlohmann::json& c = j.at(key);
     const std::string where = path + ": " + key;
     if (!c.contains("cam_R_w2c") || !c.contains("cam_t_w2c")) {
-      throw Error(where + ": no cam_R_w2c / cam_t_w2c: lmk needs the camera's pose in every frame");
+      r.fail(key, "no cam_R_w2c / cam_t_w2c: lmk needs the camera's pose in every frame");
     }
-    const std::vector<double> K = json_numbers(c.at("cam_K"), 9, where + ".cam_K");
-    const std::vector<double> R = json_numbers(c.at("cam_R_w2c"), 9, where + ".cam_R_w2c");
-    const std::vector<double> t = json_numbers(c.at("cam_t_w2c"), 3, where + ".cam_t_w2c");
-    const double depth_scale = c.contains("depth_scale")
-                                   ? json_numbers(nlohmann::json::array({c.at("depth_scale")}), 1,
-                                                  where + ".depth_scale")[0]
-                                   : 1.0;
-    if (!(depth_scale > 0.0) || !std::isfinite(depth_scale))
-      throw Error(where + ".depth_scale: must be positive");
+    const Eigen::VectorXd K = r.numbers(r.field(c, key, "cam_K"), key + ".cam_K", 9);
+    const Eigen::VectorXd R = r.numbers(c.at("cam_R_w2c"), key + ".cam_R_w2c", 9);
+    const Eigen::VectorXd t = r.numbers(c.at("cam_t_w2c"), key + ".cam_t_w2c", 3);
+    const nlohmann::json scale = c.value("depth_scale", nlohmann::json(1.0));
+    if (!scale.is_number() || !(scale.get<double>() > 0.0) || !std::isfinite(scale.get<double>()))
+      r.fail(key + ".depth_scale", "must be a positive number");
+    const double depth_scale = scale.get<double>();
     Eigen::Matrix3d R_cw;
-    for (int r = 0; r < 3; ++r)
-      for (int col = 0; col < 3; ++col) R_cw(r, col) = R[static_cast<std::size_t>(3 * r + col)];
+    for (int row = 0; row < 3; ++row)
+      for (int col = 0; col < 3; ++col) R_cw(row, col) = R[3 * row + col];
     const Eigen::Isometry3d T_camera_world =
         rigid_motion(R_cw, Eigen::Vector3d(t[0], t[1], t[2]) * 1e-3, where);  // BOP's mm
     char file[32];

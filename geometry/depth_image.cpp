@@ -7,20 +7,23 @@
 #include <cmath>
 #include <csetjmp>
 #include <cstring>
+#include <filesystem>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/input_file.h"
+#include "lmk/geometry/settings_schema.h"
 
 namespace lmk {
 namespace {
 
-bool ends_with(const std::string& s, const std::string& suffix) {
-  if (s.size() < suffix.size()) return false;
-  std::string tail = s.substr(s.size() - suffix.size());
-  for (char& c : tail) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return tail == suffix;
+// The path's extension in lower case: ".png".
+std::string extension_of(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
 }
 
 void check_size(const std::string& path, std::uint64_t width, std::uint64_t height) {
@@ -225,18 +228,14 @@ DepthImage read_depth_pgm(const std::string& path, const std::string& bytes) {
   return image;
 }
 
-// Reads the numbers of a small text file, for messages naming `path`.
+// The whitespace-separated finite numbers of a small text file, for messages naming `path`.
 std::vector<double> numbers_in(const std::string& path) {
   std::istringstream in(read_input_file(path, kTextInput));
   std::vector<double> out;
-  std::string word;
-  while (in >> word) {
-    char* end = nullptr;
-    const double v = std::strtod(word.c_str(), &end);
-    if (end == word.c_str() || *end != '\0' || !std::isfinite(v)) {
-      throw Error(path + ": '" + word + "' is not a finite number");
-    }
-    out.push_back(v);
+  for (std::string word; in >> word;) {
+    const std::optional<double> v = read_finite_number(word);
+    if (!v) throw Error(path + ": '" + word + "' is not a finite number");
+    out.push_back(*v);
   }
   return out;
 }
@@ -287,16 +286,21 @@ PinholeIntrinsics read_intrinsics(const std::string& path) {
   return k;
 }
 
+bool is_depth_image_file(const std::string& path) {
+  const std::string ext = extension_of(path);
+  return ext == ".png" || ext == ".pgm";
+}
+
 DepthImage read_depth_image(const std::string& path) {
   const std::string bytes = read_input_file(path, kImageInput);
-  if (ends_with(path, ".pgm")) return read_depth_pgm(path, bytes);
-  if (ends_with(path, ".png")) return read_depth_png(path, bytes);
+  if (extension_of(path) == ".pgm") return read_depth_pgm(path, bytes);
+  if (extension_of(path) == ".png") return read_depth_png(path, bytes);
   throw Error(path + ": a depth image must be .png or .pgm");
 }
 
 ColourImage read_colour_image(const std::string& path) {
   const std::string bytes = read_input_file(path, kImageInput);
-  if (!ends_with(path, ".png")) throw Error(path + ": a colour image must be .png");
+  if (extension_of(path) != ".png") throw Error(path + ": a colour image must be .png");
   PngRead read(path, bytes);
   read.begin([&] {
     // Every colour type to 8-bit RGBA: palettes and low bit depths expanded, 16 bits reduced,

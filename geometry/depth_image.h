@@ -39,6 +39,9 @@ struct ColourImage {
 /// what a hostile header can make lmk allocate.
 inline constexpr std::uint64_t kMaxImagePixels = std::uint64_t{1} << 28;
 
+/// Whether `path` names a depth image by its extension (.png or .pgm, any case).
+bool is_depth_image_file(const std::string& path);
+
 /// Reads a 16-bit depth image (.png or .pgm). lmk::Error names the file and the problem: not a
 /// PNG or PGM, not 16-bit greyscale, truncated, too large.
 DepthImage read_depth_image(const std::string& path);

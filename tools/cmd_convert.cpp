@@ -24,15 +24,6 @@ struct ConvertOptions {
   std::string colour;
 };
 
-bool is_depth_image(const std::string& path) {
-  for (const char* ext : {".png", ".pgm", ".PNG", ".PGM"}) {
-    const std::string e(ext);
-    if (path.size() > e.size() && path.compare(path.size() - e.size(), e.size(), e) == 0)
-      return true;
-  }
-  return false;
-}
-
 // A depth image and its intrinsics to an organised cloud in the camera's optical frame.
 PointCloud cloud_of_depth_image(const ConvertOptions& options) {
   PinholeIntrinsics k;
@@ -56,7 +47,7 @@ PointCloud cloud_of_depth_image(const ConvertOptions& options) {
 
 int run_convert(const ConvertOptions& options) {
   format_from_path(options.output);  // reject an unknown output extension before reading
-  const bool from_depth = is_depth_image(options.input);
+  const bool from_depth = is_depth_image_file(options.input);
   if (!from_depth && (!options.intrinsics.empty() || !options.intrinsics_file.empty() ||
                       !options.colour.empty())) {
     throw Error("--intrinsics, --intrinsics-file and --colour are for a depth image (.png, .pgm)");
