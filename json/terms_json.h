@@ -29,7 +29,8 @@ inline nlohmann::json terms_to_json(const ErrorTerms& t) {
       {"seen_through_points", t.seen_through_points},
       {"empty_space_observed", std::isnan(t.empty_space_observed)
                                    ? nlohmann::json(nullptr)
-                                   : nlohmann::json(t.empty_space_observed)}};
+                                   : nlohmann::json(t.empty_space_observed)},
+      {"range_scale", t.range_scale}};
 }
 
 /// The inverse of terms_to_json; `error` is recomputed from the sums and counts.
@@ -60,6 +61,12 @@ inline ErrorTerms terms_from_json(const nlohmann::json& j, const std::string& wh
   if (j.contains("seen_through_points")) t.seen_through_points = count("seen_through_points");
   if (j.contains("empty_space_observed") && !j["empty_space_observed"].is_null())
     t.empty_space_observed = number("empty_space_observed");
+  // Written since threshold_range; earlier files were never scaled.
+  if (j.contains("range_scale")) {
+    t.range_scale = number("range_scale");
+    if (!(t.range_scale > 0.0 && t.range_scale <= 1.0))
+      throw Error(where + ".range_scale: must be in (0, 1]");
+  }
   t.finish();
   return t;
 }

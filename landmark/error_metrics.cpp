@@ -79,7 +79,8 @@ const KdTree& SceneView::tree() const { return index.fine_tree(); }
 void ErrorTerms::finish() {
   const std::size_t count = scene_to_landmark_count + landmark_to_scene_count;
   error = count == 0 ? std::numeric_limits<double>::infinity()
-                     : (scene_to_landmark_sum + landmark_to_scene_sum) / static_cast<double>(count);
+                     : range_scale * (scene_to_landmark_sum + landmark_to_scene_sum) /
+                           static_cast<double>(count);
 }
 
 Indices scene_points_in_box(const SceneView& scene, const Box& box) {

@@ -44,8 +44,12 @@ struct ErrorTerms {
   /// Sensor metric: the share of the landmark's observed-empty voxels the scene's sensor observed
   /// too, beyond the noise of the landmark's surface (NaN for the other metrics).
   double empty_space_observed = std::numeric_limits<double>::quiet_NaN();
-  /// (sum of both terms) / (count of both terms), m. When no term was counted there is no evidence
-  /// of a match, and the error is +infinity: defined, never NaN.
+  /// Visibility metrics: the factor (at most 1) the mean was scaled by because the candidate lies
+  /// beyond SceneSettings::threshold_range (when set), where the depth noise raises a true match's
+  /// error (match_error_scale()); 1 for the other metrics and nearer candidates.
+  double range_scale = 1.0;
+  /// range_scale x (sum of both terms) / (count of both terms), m. When no term was counted there
+  /// is no evidence of a match, and the error is +infinity: defined, never NaN.
   double error = 0.0;
 
   void finish();  ///< computes `error` from the sums and counts

@@ -52,6 +52,7 @@ lmk_msgs::ErrorTerms to_ros(const ErrorTerms& t) {
   out.unseen_points = t.unseen_points;
   out.seen_through_points = t.seen_through_points;
   out.empty_space_observed = t.empty_space_observed;
+  out.range_scale = t.range_scale;
   return out;
 }
 

@@ -110,6 +110,21 @@ double mean_surface_distance(const SceneIndex& scene, const PointCloud& points,
                           static_cast<double>(count);
 }
 
+double expected_match_error(const SceneSettings& settings, double range) {
+  // Shares of the coarse leaf and of one depth measurement's sigma fitted to viewpoints' true
+  // matches (expected_match_error's comment).
+  constexpr double kResolutionShare = 0.28;
+  constexpr double kNoiseShare = 0.4;
+  return std::hypot(kResolutionShare * settings.coarse_leaf,
+                    kNoiseShare * settings.depth_noise().measurement_sigma(range));
+}
+
+double match_error_scale(const SceneSettings& settings, double range) {
+  if (!settings.threshold_range || !(range > *settings.threshold_range)) return 1.0;
+  return expected_match_error(settings, *settings.threshold_range) /
+         expected_match_error(settings, range);
+}
+
 namespace {
 
 // The visibility metric's terms, with or without hiding the points behind nearer surfaces.
@@ -158,6 +173,11 @@ ErrorTerms visibility_terms(const SceneView& scene, const LandmarkView& landmark
     terms.empty_space_violation_mean =
         terms.scene_to_landmark_sum / static_cast<double>(terms.empty_space_violations);
   }
+  // Far from the sensor, the noise raises every term of a true match: judge the candidate as if
+  // it stood at the range the threshold was set for.
+  const Eigen::Vector3d sensor = scene.index.T_scene_sensor().translation();
+  const double range = (T_scene_capture * landmark.box.center() - sensor).norm();
+  terms.range_scale = match_error_scale(scene.index.settings(), range);
   terms.finish();
   return terms;
 }

@@ -35,6 +35,19 @@ ErrorTerms visibility_metric(const SceneView& scene, const LandmarkView& landmar
 ErrorTerms projective_metric(const SceneView& scene, const LandmarkView& landmark,
                              const Eigen::Isometry3d& T_scene_capture);
 
+/// The error a true match shows under the visibility metrics at `range` m from the scene's sensor,
+/// m: a part from the resolution (the coarse points' leaf) and a part from the depth noise there,
+/// in quadrature. Fitted to the true matches of the synthetic `viewpoints` preset, whose simulated
+/// Kinect `lmk sensor-check` validated against real frames (median error 2.8 mm at 0.5-1 m, 3.6 mm
+/// at 1.5-2 m, 4.3 mm at 2-2.5 m, 5.5 mm at 2.5-3 m: docs/evaluation.md).
+double expected_match_error(const SceneSettings& settings, double range);
+
+/// The factor a candidate's visibility error is scaled by at `range` m from the scene's sensor:
+/// 1 without settings.threshold_range and up to it; beyond it, expected_match_error() at
+/// threshold_range over its value at `range`, so a threshold set where the noise is low holds
+/// where it is high.
+double match_error_scale(const SceneSettings& settings, double range);
+
 /// How far outside the candidate's box an occluder must stand to hide a point, m. Nearer, it may
 /// be the very object the pose was fitted to: on the synthetic L-shape scenes, an L's post fitted
 /// to a can at 5.7 mm with its arm "hidden" behind the same can, just outside the box.

@@ -10,6 +10,7 @@
 
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/pose.h"
+#include "lmk/landmark/detail/grid_metrics.h"
 #include "lmk/landmark/landmark.h"
 #include "lmk/landmark/scene_index.h"
 #include "tests/support/test_support.h"
@@ -27,10 +28,12 @@ struct Fixture {
     landmark_points.set_unorganized();
   }
   ErrorTerms evaluate(const std::string& metric, const PointCloud& scene,
-                      const Eigen::Isometry3d& T = Eigen::Isometry3d::Identity()) const {
+                      const Eigen::Isometry3d& T = Eigen::Isometry3d::Identity(),
+                      std::optional<double> threshold_range = std::nullopt) const {
     // The finest leaf lmk accepts, far below the 1 cm point spacing: each scene point has a voxel
     // of its own, so the index keeps it as it is.
     SceneSettings settings;
+    settings.threshold_range = threshold_range;
     settings.leaf_size = settings.coarse_leaf = kMinLeafSize;
     settings.field_band = 2.0 * kMinLeafSize;
     const SceneIndex index(scene, settings);
@@ -133,6 +136,49 @@ TEST(Metrics, InvariantUnderARigidMotionOfSceneAndCandidate) {
     EXPECT_EQ(a.scene_points_in_box, b.scene_points_in_box) << metric;
     EXPECT_NEAR(a.error, b.error, 1e-6) << metric;
   }
+}
+
+TEST(VisibilityMetric, BeyondTheThresholdRangeTheErrorIsScaledAsTheNoiseGrows) {
+  const Fixture f;
+  // The landmark 2.5 m in front of the scene's sensor (at the origin), its scene copy 2 mm off.
+  const Eigen::Isometry3d T = pose_from_xyz_rpy({0.0, 0.0, 2.5}, {0.0, 0.0, 0.0});
+  PointCloud scene = f.landmark_points;
+  for (auto& p : scene.points) p = T.cast<float>() * p + Eigen::Vector3f(0.0f, 0.0f, 0.002f);
+  for (const char* metric : {"visibility", "projective"}) {
+    const ErrorTerms fixed = f.evaluate(metric, scene, T);
+    EXPECT_EQ(fixed.range_scale, 1.0) << metric;
+    const ErrorTerms nearer = f.evaluate(metric, scene, T, 3.0);  // 2.5 m is within 3 m
+    EXPECT_EQ(nearer.range_scale, 1.0) << metric;
+    EXPECT_EQ(nearer.error, fixed.error) << metric;
+    const ErrorTerms scaled = f.evaluate(metric, scene, T, 1.5);
+    SceneSettings settings;
+    settings.leaf_size = settings.coarse_leaf = kMinLeafSize;
+    settings.threshold_range = 1.5;
+    EXPECT_NEAR(scaled.range_scale, match_error_scale(settings, 2.5), 1e-9) << metric;
+    EXPECT_LT(scaled.range_scale, 1.0) << metric;
+    EXPECT_NEAR(scaled.error, scaled.range_scale * fixed.error, 1e-12) << metric;
+    // The sums are the metric's own, unscaled: a reader sees what was measured.
+    EXPECT_EQ(scaled.landmark_to_scene_sum, fixed.landmark_to_scene_sum) << metric;
+  }
+  // The paper's metrics are never scaled.
+  EXPECT_EQ(f.evaluate("paper", scene, T, 1.5).range_scale, 1.0);
+}
+
+TEST(VisibilityMetric, ATrueMatchsExpectedErrorGrowsWithTheDepthNoise) {
+  SceneSettings settings;
+  double previous = 0.0;
+  for (double range : {0.5, 1.0, 1.5, 2.0, 2.5, 3.0, 3.5}) {
+    const double e = expected_match_error(settings, range);
+    EXPECT_GT(e, previous) << range;
+    previous = e;
+  }
+  // Near the sensor the coarse leaf's resolution dominates; far away, the noise.
+  EXPECT_NEAR(expected_match_error(settings, 0.0), 0.28 * settings.coarse_leaf, 1e-12);
+  EXPECT_GT(expected_match_error(settings, 3.0), 0.4 * settings.depth_noise().measurement_sigma(3));
+  settings.threshold_range = 2.0;
+  EXPECT_EQ(match_error_scale(settings, 1.0), 1.0);
+  EXPECT_NEAR(match_error_scale(settings, 3.0),
+              expected_match_error(settings, 2.0) / expected_match_error(settings, 3.0), 1e-12);
 }
 
 TEST(Metrics, RegistryFindsByNameAndNamesTheKnownOnes) {
