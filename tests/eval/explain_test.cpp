@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
@@ -14,6 +15,9 @@
 #include "lmk/eval/detail/evaluation_json.h"
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/pose.h"
+#include "lmk/landmark/find_landmark.h"
+#include "lmk/landmark/landmark_file.h"
+#include "lmk/landmark/scene_index.h"
 #include "tests/eval/simple_scenes_fixture.h"
 
 namespace lmk {
@@ -117,6 +121,54 @@ TEST_F(Explain, SomethingInTheEmptySpaceFailsTheTruthOnIt) {
   const ExplainedCase* c = find_case(cases, "bowl", true);
   ASSERT_NE(c, nullptr);
   EXPECT_EQ(c->cause, "empty space");
+}
+
+// A bowl has no turn of its own about its axis: the search aligns it at several turns that fit
+// alike, and non-max suppression keeps the best. With its symmetry left undeclared and its truth
+// put at a turn suppression removed (more than 15 degrees from the winner), the instance is
+// missed for that reason, and the winner beside it is a false match.
+TEST_F(Explain, ATrueTurnThatSuppressionRemovedIsSuppressed) {
+  Dataset d = *dataset_;
+  const DatasetLandmark* bowl = nullptr;
+  for (DatasetLandmark& l : d.landmarks) {
+    if (l.name != "bowl") continue;
+    l.symmetry = Symmetry{};
+    bowl = &l;
+  }
+  ASSERT_NE(bowl, nullptr);
+  const DatasetScene* scene = nullptr;
+  for (const DatasetScene& s : d.scenes) {
+    for (const DatasetPair& p : s.pairs)
+      if (p.landmark == "bowl" && !p.instances.empty()) scene = &s;
+  }
+  ASSERT_NE(scene, nullptr);
+  // The pair's search as the evaluation runs it, keeping the candidates suppression removed.
+  FindSettings find = pair_search(EvaluationSettings().find.resolved(), *scene);
+  find.execution.keep_suppressed = true;
+  const SceneIndex index(read_cloud((dir_->path() / scene->file).string()), find.scene);
+  const FindResult found =
+      find_landmark(index, load_landmark((dir_->path() / bowl->file).string()), find);
+  ASSERT_FALSE(found.matches.empty());
+  const Eigen::Isometry3d& winner = found.matches.front().box.pose;
+  const Rejection* turned = nullptr;
+  for (const Rejection& r : found.suppressed) {
+    const Eigen::Isometry3d& pose = r.candidate.box.pose;
+    if ((pose.translation() - winner.translation()).norm() < 0.01 &&
+        rotation_error(winner.linear(), pose.linear(), Symmetry{}) > 25.0 * M_PI / 180.0) {
+      turned = &r;
+      break;
+    }
+  }
+  ASSERT_NE(turned, nullptr) << found.suppressed.size() << " suppressed, none turned";
+  pair_of(d, "bowl").instances = {turned->candidate.box.pose};
+
+  const auto cases = explain(d);
+  const ExplainedCase* missed = find_case(cases, "bowl", true);
+  ASSERT_NE(missed, nullptr);
+  EXPECT_EQ(missed->cause, "suppressed");
+  const ExplainedCase* false_match = find_case(cases, "bowl", false);
+  ASSERT_NE(false_match, nullptr);
+  EXPECT_EQ(false_match->cause, "displaced truth");
 }
 
 // Full coverage demanded: no real match has every landmark point supported.
