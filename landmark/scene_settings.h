@@ -29,7 +29,7 @@ struct SceneSettings {
   double noise_floor = DepthNoise().floor;
   /// An organised frame's veil points (geometry/veil_points.h: steps within this angle of the
   /// sensor's rays) are dropped before anything is built, rad; 0 (the default) keeps them. Off by
-  /// default: at 10 degrees it raised recall on the real desk sequence (0.260 -> 0.292) but cost
+  /// default: at 10 degrees it raised recall on the real desk sequence (0.265 -> 0.296) but cost
   /// the synthetic frames, which have no veil, real points (docs/evaluation.md).
   double veil_angle = 0.0;
   /// Visibility and projective metrics: the threshold holds as given up to this distance from the
