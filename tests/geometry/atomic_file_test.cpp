@@ -86,5 +86,30 @@ TEST(AtomicFile, ASigkilledWriterLeavesTheOldFileOrTheNewOne) {
   EXPECT_EQ(test::read_bytes(target), contents[0]);
 }
 
+// The kill loop itself (tests/support/kill_loop.h): a writer that rewrites its target in place,
+// truncating it first, is caught, so the loop's kills do land inside writes; the same loop finds
+// nothing wrong with write_text_atomically above.
+TEST(KillLoop, CatchesAWriterThatRewritesInPlace) {
+  test::ScratchDir dir;
+  const fs::path target = dir.path() / "scene.pcd";
+  const std::array<std::string, 2> contents = {std::string(2 << 20, 'a'),
+                                               std::string(2 << 20, 'b')};
+  const auto write = [&](int version) {
+    std::ofstream out(target, std::ios::binary | std::ios::trunc);
+    for (std::size_t at = 0; at < contents[version].size(); at += 4096) {
+      out.write(contents[version].data() + at, 4096);
+      out.flush();
+    }
+  };
+  const test::KillLoopOutcome outcome = test::kill_writer_repeatedly(write, [&] {
+    const std::string now = test::read_bytes(target);
+    if (now == contents[0]) return 0;
+    if (now == contents[1]) return 1;
+    throw Error("the target holds " + std::to_string(now.size()) + " bytes of neither");
+  });
+  EXPECT_EQ(outcome.runs, 50);
+  EXPECT_FALSE(outcome.broken.empty()) << "50 kills of an in-place writer, none caught it";
+}
+
 }  // namespace
 }  // namespace lmk

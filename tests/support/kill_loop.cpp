@@ -17,15 +17,28 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// Says it has started (a byte on `started`), then rewrites the target until it is killed.
-[[noreturn]] void write_until_killed(const std::function<void(int)>& write, int started) {
+// Says it has started (a byte on `progress`), then rewrites the target until it is killed, saying
+// after each write that it has finished it (another byte).
+[[noreturn]] void write_until_killed(const std::function<void(int)>& write, int progress) {
   try {
-    const char ready = 1;
-    if (::write(started, &ready, 1) != 1) ::_exit(4);
-    for (int k = 1;; ++k) write(k % 2);
+    const char byte = 1;
+    if (::write(progress, &byte, 1) != 1) ::_exit(4);
+    for (int k = 1;; ++k) {
+      write(k % 2);
+      if (::write(progress, &byte, 1) != 1) ::_exit(4);
+    }
   } catch (...) {
     ::_exit(3);  // a writer that fails by itself: the parent reports it
   }
+}
+
+// Reads `count` bytes from `fd`, one at a time; false when the writer closed it first.
+bool await_bytes(int fd, int count) {
+  for (int i = 0; i < count; ++i) {
+    char byte = 0;
+    if (::read(fd, &byte, 1) != 1) return false;
+  }
+  return true;
 }
 
 }  // namespace
@@ -37,16 +50,18 @@ KillLoopOutcome kill_writer_repeatedly(const std::function<void(int)>& write,
   write(0);
   const auto one_write =
       std::chrono::duration_cast<std::chrono::microseconds>(Clock::now() - start);
-  // The delay counts from the moment the child has started, so that how long a fork takes to be
-  // scheduled (longer under a sanitizer, or with the other core busy) does not shift the kills.
-  const auto max_delay = std::chrono::microseconds(100) + 4 * one_write;
+  // Each kill waits for the child to report 0-3 finished writes, then for a moment within one
+  // write: kills land before the first write, inside writes and between them however slowly the
+  // child runs (under a sanitizer, beside a busy core), and any kill after an odd number of
+  // finished writes finds the new version unless the next write has finished too.
+  std::mt19937 random(seed);
+  std::uniform_int_distribution<int> finished_writes(0, 3);
+  std::uniform_int_distribution<long> within_a_write(0, 100 + one_write.count());
 
   KillLoopOutcome outcome;
-  std::mt19937 random(seed);
-  std::uniform_int_distribution<long> delay(0, max_delay.count());
   for (int run = 0; run < runs; ++run) {
-    int started[2];
-    if (::pipe(started) != 0) {
+    int progress[2];
+    if (::pipe(progress) != 0) {
       outcome.broken.push_back("run " + std::to_string(run) + ": pipe failed");
       break;
     }
@@ -55,12 +70,15 @@ KillLoopOutcome kill_writer_repeatedly(const std::function<void(int)>& write,
       outcome.broken.push_back("run " + std::to_string(run) + ": fork failed");
       break;
     }
-    if (writer == 0) write_until_killed(write, started[1]);
-    char ready = 0;
-    const bool child_started = ::read(started[0], &ready, 1) == 1;
-    ::close(started[0]);
-    ::close(started[1]);
-    if (child_started) ::usleep(static_cast<useconds_t>(delay(random)));
+    if (writer == 0) {
+      ::close(progress[0]);
+      write_until_killed(write, progress[1]);
+    }
+    ::close(progress[1]);  // so that a writer that dies by itself ends the wait below
+    const int writes = finished_writes(random);
+    const long delay = within_a_write(random);
+    if (await_bytes(progress[0], 1 + writes)) ::usleep(static_cast<useconds_t>(delay));
+    ::close(progress[0]);
     ::kill(writer, SIGKILL);
     int status = 0;
     ::waitpid(writer, &status, 0);

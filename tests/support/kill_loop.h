@@ -23,11 +23,12 @@ struct KillLoopOutcome {
 };
 
 /// Writes version 0 of a target, then `runs` times: a forked child calls `write(1)`, `write(0)`,
-/// `write(1)`, ... until it is killed with SIGKILL after a random delay, and `version_held()` then
-/// says which version the target holds (0 or 1), reading it with lmk's own reader; it throws
-/// (any std::exception) when the target holds neither. The delays, counted from the child's start,
-/// span about four writes, timed on the first, so that kills land before, during and between
-/// writes.
+/// `write(1)`, ... until it is killed with SIGKILL, and `version_held()` then says which version
+/// the target holds (0 or 1), reading it with lmk's own reader; it throws (any std::exception) when
+/// the target holds neither. The child reports each write it finishes through a pipe, and each
+/// kill comes after a random 0-3 of them and a random moment within one write (timed on the
+/// first), so kills land before, during and between writes whatever the child's speed: waiting
+/// for its progress, not for wall time.
 KillLoopOutcome kill_writer_repeatedly(const std::function<void(int version)>& write,
                                        const std::function<int()>& version_held, int runs = 50,
                                        unsigned seed = 7);
