@@ -146,6 +146,7 @@ int run_slurm_eval(SlurmOptions& o) {
   job.eval_args = {"--dataset", job.dataset_dir.string()};
   job.eval_args.insert(job.eval_args.end(), shared.begin(), shared.end());
 
+  validate(job);
   std::error_code ec;
   fs::create_directories(job.dir / "logs", ec);
   if (ec)

@@ -1,10 +1,34 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "tools/slurm_job.h"
 
+#include <regex>
+
+#include "lmk/geometry/error.h"
 #include "lmk/geometry/version.h"
 
 namespace lmk::cli {
 namespace {
+
+bool has_control_character(const std::string& text) {
+  for (const char c : text) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u < 0x20 || u == 0x7f) return true;
+  }
+  return false;
+}
+
+// Throws unless `value` (of `option`) matches `pattern` and holds no control character.
+void check_value(const std::string& option, const std::string& value, const std::regex& pattern,
+                 const std::string& expected) {
+  if (has_control_character(value) || !std::regex_match(value, pattern))
+    throw Error("slurm eval: " + option + " '" + printable(value) + "' is not " + expected);
+}
+
+void check_text(const std::string& what, const std::string& value) {
+  if (has_control_character(value))
+    throw Error("slurm eval: " + what + " '" + printable(value) +
+                "' holds a control character, which would reach the scripts");
+}
 
 std::string words(const std::vector<std::string>& args) {
   std::string out;
@@ -31,6 +55,40 @@ std::string header(const SlurmJob& job, const std::string& name, const std::stri
 }
 
 }  // namespace
+
+void validate(const SlurmJob& job) {
+  // sbatch's --time: MINUTES, MINUTES:SECONDS, HOURS:MINUTES:SECONDS, DAYS-HOURS,
+  // DAYS-HOURS:MINUTES, DAYS-HOURS:MINUTES:SECONDS, or no limit.
+  static const std::regex time(R"((\d+-\d+(:\d+){0,2}|\d+(:\d+){0,2}|UNLIMITED|INFINITE))");
+  static const std::regex names(R"([A-Za-z0-9_.-]+(,[A-Za-z0-9_.-]+)*)");
+  static const std::regex name(R"([A-Za-z0-9_.-]+)");
+  static const std::regex size(R"(\d+[KMGT]?)");
+  const std::string time_format =
+      "a Slurm time (MINUTES, MINUTES:SECONDS, HOURS:MINUTES:SECONDS, "
+      "DAYS-HOURS[:MINUTES[:SECONDS]] "
+      "or UNLIMITED)";
+  check_value("--time", job.time, time, time_format);
+  check_value("--merge-time", job.merge_time, time, time_format);
+  if (!job.partition.empty())
+    check_value("--partition", job.partition, names, "a Slurm partition name (or a list of them)");
+  if (!job.account.empty()) check_value("--account", job.account, name, "a Slurm account name");
+  if (!job.mem_per_cpu.empty())
+    check_value("--mem-per-cpu", job.mem_per_cpu, size, "a Slurm size (e.g. 2048, 2G)");
+  for (const std::string& option : job.sbatch_options) {
+    check_text("--sbatch", option);
+    if (option.empty() || option.front() != '-')
+      throw Error("slurm eval: --sbatch '" + option +
+                  "' is not an sbatch option (it starts with '-', e.g. --sbatch=--qos=short)");
+  }
+  check_text("the job directory", job.dir.string());
+  check_text("the cache", job.cache.string());
+  check_text("the lmk executable's path", job.lmk);
+  check_text("the dataset's path", job.dataset_dir.string());
+  for (const std::string& a : job.eval_args) check_text("lmk eval's argument", a);
+  for (const std::string& a : job.merge_args) check_text("lmk eval's argument", a);
+  if (job.gen_args)
+    for (const std::string& a : *job.gen_args) check_text("lmk gen's argument", a);
+}
 
 std::string shell_quote(const std::string& text) {
   const bool safe = !text.empty() && text.find_first_not_of(
@@ -123,10 +181,10 @@ std::vector<std::pair<std::string, std::string>> slurm_scripts(const SlurmJob& j
        "echo \"evaluation: array job ${evaluation%%;*} (tasks ${tasks:-1-" +
        n +
        "}), then job ${merge%%;*} merges\"\n"
-       "echo \"the table: " +
-       (job.dir / "table.txt").string() + " once job ${merge%%;*} has run; logs in " +
-       (job.dir / "logs").string() +
-       "\"\n"
+       "echo \"the table: \"" +
+       shell_quote((job.dir / "table.txt").string()) +
+       "\" once job ${merge%%;*} has run; logs in \"" + shell_quote((job.dir / "logs").string()) +
+       "\n"
        "echo \"$evaluation $merge\" > last-submission\n";
   scripts.emplace_back("submit.sh", s);
   return scripts;

@@ -39,6 +39,13 @@ struct SlurmJob {
   std::vector<std::string> merge_args;
 };
 
+/// Throws lmk::Error naming the option unless every value that reaches a script is safe there:
+/// --time and --merge-time in Slurm's time formats, --partition and --account Slurm names,
+/// --mem-per-cpu a Slurm size, --sbatch options starting with '-', and no control character in
+/// any of them, in the paths or in lmk eval's arguments (a newline would end an "#SBATCH" line
+/// and start a line of the script).
+void validate(const SlurmJob& job);
+
 /// `text` as one word of a POSIX shell: as is when it holds only safe characters, else in single
 /// quotes.
 std::string shell_quote(const std::string& text);

@@ -565,6 +565,64 @@ TEST_F(Cli, SlurmEvalWritesTheJobChainAndChecksTheEvalArguments) {
   expect_bad_input("slurm", "A subcommand is required");
 }
 
+// lmk slurm eval writes no shell line from its options (issue #34, finding 4). Each option that
+// reaches an "#SBATCH" line is refused, in one line, with a newline, a $( ), a quote or a backtick
+// in it (--sbatch with a newline: its other values are comments to bash, passed to sbatch as
+// given). A job directory and --sbatch values holding them are written inert: every script, run by
+// bash with a fake sbatch and a fake lmk, touches nothing.
+TEST_F(Cli, SlurmEvalWritesNoShellLineFromItsOptions) {
+  namespace fs = std::filesystem;
+  const auto quoted = [](const std::string& text) {
+    std::string out = "'";
+    for (const char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return out + "'";
+  };
+  const std::vector<std::string> payloads = {"p\nid > pwned", "p$(touch pwned)", "p'q",
+                                             "p`touch pwned`"};
+  for (const char* option :
+       {"--time", "--merge-time", "--partition", "--account", "--mem-per-cpu"}) {
+    for (const std::string& payload : payloads) {
+      expect_bad_input("slurm eval --dir " + path("j") + " " + option + " " + quoted(payload) +
+                           " -- --preset paper",
+                       std::string(option) + " '");
+    }
+  }
+  expect_bad_input(
+      "slurm eval --dir " + path("j") + " --sbatch=" + quoted("--qos=a\nid") + " -- --preset paper",
+      "control character");
+  expect_bad_input("slurm eval --dir " + path("j") + " --time 1:2:3:4 -- --preset paper",
+                   "--time '1:2:3:4' is not a Slurm time");
+  expect_bad_input("slurm eval --dir " + path("j") + " --sbatch=qos -- --preset paper",
+                   "is not an sbatch option");
+  ASSERT_EQ(lmk("slurm eval --dir " + path("ok") +
+                " --time 1-02:30 --merge-time 45 --partition a,b --account x.y --mem-per-cpu 2G"
+                " -- --preset paper")
+                .exit_code,
+            0);
+
+  const fs::path bin = dir_.path() / "bin";
+  fs::create_directories(bin);
+  test::write_text((bin / "sbatch").string(), "#!/bin/sh\necho 42\n");
+  test::write_text((bin / "lmk").string(), "#!/bin/sh\nexit 0\n");
+  for (const char* tool : {"sbatch", "lmk"})
+    fs::permissions(bin / tool, fs::perms::owner_all, fs::perm_options::add);
+  const fs::path job = dir_.path() / "d$(touch pwned)`touch pwned`'q";
+  const CommandResult written =
+      lmk("slurm eval --dir " + quoted(job.string()) + " --lmk " + quoted((bin / "lmk").string()) +
+          " --sbatch=" + quoted("--comment=$(touch pwned)`touch pwned`'q") +
+          " -- --preset paper --json " + quoted((job / "e$(touch pwned).json").string()));
+  ASSERT_EQ(written.exit_code, 0) << written.err;
+  for (const char* script :
+       {"submit.sh", "gen.sbatch", "gen-merge.sbatch", "eval.sbatch", "merge.sbatch"}) {
+    const std::string command = "cd " + quoted(job.string()) + " && PATH=" + quoted(bin.string()) +
+                                ":\"$PATH\" SLURM_ARRAY_TASK_ID=1 bash " + script +
+                                " > /dev/null 2>&1";
+    EXPECT_EQ(std::system(command.c_str()), 0) << script;
+  }
+  for (const auto& entry : fs::recursive_directory_iterator(dir_.path()))
+    EXPECT_NE(entry.path().filename(), "pwned") << entry.path();
+}
+
 // lmk gen --shard K/N renders a stable share of the scenes; --merge writes the dataset.json of
 // the one-machine generation, or names the scenes no shard has rendered yet (issue #20).
 TEST_F(Cli, ShardedGenerationMergesToTheOneMachineDataset) {
