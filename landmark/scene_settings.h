@@ -85,13 +85,13 @@ struct SceneSettings {
           s.noise_axial);
     visit(SettingInfo("noise_floor", "Sensor metric: residual at any depth, m").positive(),
           s.noise_floor);
-    visit(
-        SettingInfo("veil_angle",
-                    "Drop an organised frame's veil points: steps within this angle of the "
-                    "sensor's rays (default 0: keep them; 10 for real Kinect or RealSense frames)")
-            .within(0.0, 0.5236)
-            .in_degrees(),
-        s.veil_angle);
+    visit(SettingInfo("veil_angle",
+                      "Drop an organised frame's veil points: steps within this angle of the "
+                      "sensor's rays (default 0: keep them; 10 helped near RealSense frames, not a "
+                      "Kinect's at 2 m)")
+              .within(0.0, 0.5236)
+              .in_degrees(),
+          s.veil_angle);
     visit(SettingInfo("threshold_range",
                       "Visibility metrics: the threshold holds up to this range, m; beyond, errors "
                       "are scaled down as the depth noise raises a true match's (default: never)")

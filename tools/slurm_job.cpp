@@ -65,8 +65,7 @@ void validate(const SlurmJob& job) {
   static const std::regex size(R"(\d+[KMGT]?)");
   const std::string time_format =
       "a Slurm time (MINUTES, MINUTES:SECONDS, HOURS:MINUTES:SECONDS, "
-      "DAYS-HOURS[:MINUTES[:SECONDS]] "
-      "or UNLIMITED)";
+      "DAYS-HOURS[:MINUTES[:SECONDS]] or UNLIMITED)";
   check_value("--time", job.time, time, time_format);
   check_value("--merge-time", job.merge_time, time, time_format);
   if (!job.partition.empty())
