@@ -4,11 +4,13 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
+#include <tbb/global_control.h>
 #include <unistd.h>
 
 #include <chrono>
 #include <cstdio>
 #include <exception>
+#include <new>
 #include <random>
 
 namespace lmk::test {
@@ -30,6 +32,16 @@ using Clock = std::chrono::steady_clock;
   } catch (...) {
     ::_exit(3);  // a writer that fails by itself: the parent reports it
   }
+}
+
+// fork() copies only the calling thread. A child forked while TBB's workers live inherits a
+// scheduler that still counts them, and its next parallel loop can wait forever for one of them
+// (seen: OpenVDB's point partitioner in save_landmark, about one fork in 800, which hung a whole
+// CI run). So the workers are joined before each fork, and the child starts a scheduler of its own;
+// false when TBB could not join them.
+bool join_tbb_workers() {
+  tbb::task_scheduler_handle handle{tbb::attach{}};
+  return tbb::finalize(handle, std::nothrow);
 }
 
 // Reads `count` bytes from `fd`, one at a time; false when the writer closed it first.
@@ -60,6 +72,11 @@ KillLoopOutcome kill_writer_repeatedly(const std::function<void(int)>& write,
 
   KillLoopOutcome outcome;
   for (int run = 0; run < runs; ++run) {
+    if (!join_tbb_workers()) {
+      outcome.broken.push_back("run " + std::to_string(run) +
+                               ": TBB's workers could not be joined");
+      break;
+    }
     int progress[2];
     if (::pipe(progress) != 0) {
       outcome.broken.push_back("run " + std::to_string(run) + ": pipe failed");
