@@ -11,6 +11,7 @@
 #include <lmk_msgs/FindLandmark.h>
 #include <lmk_msgs/ListLandmarks.h>
 #include <pr2_controllers_msgs/JointTrajectoryAction.h>
+#include <ros/callback_queue.h>
 #include <ros/ros.h>
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_listener.h>
@@ -422,13 +423,21 @@ TEST(RosRobot, ARejectedGoalIsReturnedAsAnError) {
   // A controller that rejects every goal, standing in for the right arm's.
   using Server = actionlib::ActionServer<pr2_controllers_msgs::JointTrajectoryAction>;
   ::ros::NodeHandle nh;
+  // The server's callbacks run on a queue of its own, whose spinner is destroyed before the server
+  // (declared after it): ~RosRobot cancels its goals, and on the global queue that cancel could
+  // reach the server while it is destroyed, which aborted roscpp ('null Publication').
+  ::ros::CallbackQueue strict_queue;
+  ::ros::NodeHandle strict_nh;
+  strict_nh.setCallbackQueue(&strict_queue);
   Server strict(
-      nh, "strict_arm/joint_trajectory_action",
+      strict_nh, "strict_arm/joint_trajectory_action",
       [](Server::GoalHandle goal) {
         goal.setRejected(pr2_controllers_msgs::JointTrajectoryResult(), "joints out of range");
       },
       false);
   strict.start();
+  ::ros::AsyncSpinner strict_spinner(1, &strict_queue);
+  strict_spinner.start();
   ros1::RosRobotSettings settings;
   settings.arm_actions = {{"left_arm", "l_arm_controller/joint_trajectory_action"},
                           {"right_arm", "strict_arm/joint_trajectory_action"}};

@@ -5,6 +5,8 @@
 #include <pr2_controllers_msgs/JointTrajectoryAction.h>
 #include <pr2_controllers_msgs/PointHeadAction.h>
 #include <pr2_controllers_msgs/Pr2GripperCommandAction.h>
+#include <ros/callback_queue.h>
+#include <ros/spinner.h>
 #include <sensor_msgs/JointState.h>
 #include <sensor_msgs/PointCloud2.h>
 #include <tf2_eigen/tf2_eigen.h>
@@ -31,7 +33,13 @@ constexpr double kGripperMaxOpening = 0.09;  // m, as SimulatedPr2
 struct FakePr2::Impl {
   FakePr2Settings settings;
   Pr2Kinematics kinematics;
+  // The servers' callbacks run on this queue, spun by `spinner`, which ~Impl stops before the
+  // servers go. On the process's global queue a cancel could still reach a server being destroyed
+  // (RosRobot's destructor cancels its goals), and roscpp then aborted publishing the server's
+  // status on a topic already unadvertised ('null Publication').
+  ::ros::CallbackQueue queue;
   ::ros::NodeHandle nh;
+  ::ros::AsyncSpinner spinner{2, &queue};
   mutable std::mutex mutex;
   std::map<std::string, double> joints;
   std::map<std::string, int> goal_counts;
@@ -48,6 +56,7 @@ struct FakePr2::Impl {
 
   explicit Impl(FakePr2Settings s)
       : settings(std::move(s)), kinematics(RobotModel::pr2(), settings.torso_height) {
+    nh.setCallbackQueue(&queue);
     // Every joint at zero, or at the nearest limit, as SimulatedPr2 starts.
     for (const std::string& group : kinematics.groups()) {
       const GroupInfo info = *kinematics.group(group);
@@ -84,11 +93,13 @@ struct FakePr2::Impl {
     joint_states = nh.advertise<sensor_msgs::JointState>("joint_states", 10);
     cloud = nh.advertise<sensor_msgs::PointCloud2>(settings.cloud_topic, 1);
     publisher = std::thread([this] { publish_loop(); });
+    spinner.start();
   }
 
   ~Impl() {
-    running = false;
+    running = false;  // ends publish_loop and a held goal
     publisher.join();
+    spinner.stop();  // waits for the callbacks running now; later messages only queue
     for (auto& s : arms) s->shutdown();
     for (auto& s : grippers) s->shutdown();
     head->shutdown();
