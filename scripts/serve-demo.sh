@@ -2,7 +2,8 @@
 # SPDX-License-Identifier: BSD-3-Clause
 # Quick start 3: the web interface on built-in data. Builds lmk, writes the demo tabletop (carton,
 # cup, ball) and the paper's tool-rack task (its scenes, landmarks and two programs), and serves
-# them at http://127.0.0.1:8080/ until Ctrl-C (docs/serve.md). Extra arguments go to `lmk serve`
+# them at http://127.0.0.1:8080/ until Ctrl-C (docs/serve.md); open the address it prints, which
+# carries the server's token. Extra arguments go to `lmk serve`
 # (--port 9000, say).
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -8,6 +8,7 @@
 #include <mutex>
 
 #include "lmk/geometry/error.h"
+#include "lmk/serve/access_guard.h"
 #include "lmk/serve/api_error.h"
 #include "lmk/serve/static_files.h"
 
@@ -63,20 +64,49 @@ std::string reason_for(int status, const ServeSettings& s) {
   }
 }
 
+RequestView view_of(const httplib::Request& req) {
+  RequestView v;
+  v.method = req.method;
+  v.path = req.path;
+  v.host = req.get_header_value("Host");
+  v.origin = req.get_header_value("Origin");
+  v.content_type = req.get_header_value("Content-Type");
+  v.authorization = req.get_header_value("Authorization");
+  v.cookie = req.get_header_value("Cookie");
+  v.has_query_token = req.has_param("token");
+  if (v.has_query_token) v.query_token = req.get_param_value("token");
+  return v;
+}
+
+// The guard of `settings`: its token, or a fresh one unless it asks none.
+AccessGuard make_guard(const ServeSettings& s) {
+  if (s.no_token && !is_loopback_name(s.bind)) {
+    throw Error("--no-token is only allowed on a loopback address; with --bind " + s.bind +
+                " anyone who reaches it could write landmarks");
+  }
+  const std::string token = s.no_token ? "" : (s.token.empty() ? random_token() : s.token);
+  return AccessGuard(token, s.bind, s.allowed_hosts);
+}
+
 }  // namespace
 
 struct HttpServer::Impl {
   Impl(ServeSettings settings, std::ostream* log_in)
-      : scratch(make_scratch_dir()), api(std::move(settings), scratch), log(log_in) {}
+      : guard(make_guard(settings)),
+        scratch(make_scratch_dir()),
+        api(std::move(settings), scratch),
+        log(log_in) {}
   ~Impl() {
     std::error_code ignored;
     fs::remove_all(scratch, ignored);
   }
 
   void routes();
+  void guard_requests();
   void api_route(const char* method, const std::string& pattern,
                  std::function<ApiResponse(const httplib::Request&)> handle);
 
+  AccessGuard guard;
   fs::path scratch;
   Api api;
   std::ostream* log;
@@ -96,7 +126,26 @@ void HttpServer::Impl::api_route(const char* method, const std::string& pattern,
   }
 }
 
+// Every request passes the access guard before it is routed, and before its body is read.
+void HttpServer::Impl::guard_requests() {
+  server.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
+    const AccessVerdict verdict = guard.check(view_of(req));
+    if (!verdict.allowed()) {
+      send(res, {verdict.status, {{"error", verdict.error}}});
+      return httplib::Server::HandlerResponse::Handled;
+    }
+    if (verdict.token_from_query && req.path == "/") {
+      // The page keeps the token in its cookie, and the address bar loses it.
+      res.set_header("Set-Cookie", guard.set_cookie_value());
+      res.set_redirect("/", 303);
+      return httplib::Server::HandlerResponse::Handled;
+    }
+    return httplib::Server::HandlerResponse::Unhandled;
+  });
+}
+
 void HttpServer::Impl::routes() {
+  guard_requests();
   Api& a = api;
   const auto param = [](const httplib::Request& r, const char* key) {
     return r.has_param(key) ? r.get_param_value(key) : std::string();
@@ -177,6 +226,7 @@ int HttpServer::bind() {
     throw Error("cannot listen on " + s.bind + ":" + std::to_string(s.port) +
                 " (in use, or not an address of this machine); choose another with --port");
   }
+  impl_->guard.set_port(port);
   return port;
 }
 
@@ -187,5 +237,7 @@ void HttpServer::stop() {
 }
 
 Api& HttpServer::api() { return impl_->api; }
+
+const std::string& HttpServer::token() const { return impl_->guard.token(); }
 
 }  // namespace lmk::serve

@@ -5,6 +5,7 @@
 // status, so that no request can stop the server.
 #include <memory>
 #include <ostream>
+#include <string>
 
 #include "lmk/serve/api.h"
 #include "lmk/serve/serve_settings.h"
@@ -13,8 +14,9 @@ namespace lmk::serve {
 
 class HttpServer {
  public:
-  /// Reads the scenes and opens the directories (lmk::Error for bad ones). Requests are logged,
-  /// one line each, to `log` unless it is null.
+  /// Reads the scenes and opens the directories (lmk::Error for bad ones, and for no_token off
+  /// loopback or a malformed token). Every request passes an AccessGuard first. Requests are
+  /// logged, one line each, to `log` unless it is null.
   explicit HttpServer(ServeSettings settings, std::ostream* log = nullptr);
   ~HttpServer();
   HttpServer(const HttpServer&) = delete;
@@ -28,6 +30,9 @@ class HttpServer {
   void stop();
 
   Api& api();
+  /// The token every API request and the page must carry (docs/serve.md, "Access"); empty with
+  /// settings.no_token.
+  const std::string& token() const;
 
  private:
   struct Impl;

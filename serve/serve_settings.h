@@ -11,10 +11,16 @@
 namespace lmk::serve {
 
 struct ServeSettings {
-  std::vector<std::string> scenes;            ///< cloud files shown in the scene picker
-  std::string landmarks_dir = "landmarks";    ///< captures are written here; created if missing
-  std::string programs_dir;                   ///< PbD programs offered; empty: none
-  std::string bind = "127.0.0.1";             ///< loopback only unless the user says otherwise
+  std::vector<std::string> scenes;          ///< cloud files shown in the scene picker
+  std::string landmarks_dir = "landmarks";  ///< captures are written here; created if missing
+  std::string programs_dir;                 ///< PbD programs offered; empty: none
+  std::string bind = "127.0.0.1";           ///< loopback only unless the user says otherwise
+  /// Asked of every API request and of the page (docs/serve.md, "Access"); empty: a fresh random
+  /// one (HttpServer::token()), unless no_token.
+  std::string token;
+  bool no_token = false;  ///< ask no token: refused unless `bind` is a loopback address
+  /// Names the Host header may carry beyond loopback names and `bind` (a proxy's, a machine's).
+  std::vector<std::string> allowed_hosts;
   int port = 8080;                            ///< 0: any free port
   std::string three_dir;                      ///< three.js; empty: Debian's libjs-three
   std::size_t max_upload_bytes = 256u << 20;  ///< larger uploads get 413

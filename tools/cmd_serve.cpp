@@ -4,12 +4,14 @@
 // look at PbD programs' plans, in the browser.
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <memory>
 #include <thread>
 
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/error.h"
+#include "lmk/serve/access_guard.h"
 #include "lmk/serve/http_server.h"
 #include "tools/cli_common.h"
 #include "tools/interrupt.h"
@@ -24,21 +26,24 @@ struct ServeOptions {
   bool quiet = false;
 };
 
-bool is_loopback(const std::string& address) {
-  return address == "127.0.0.1" || address == "localhost" || address == "::1" ||
-         address.rfind("127.", 0) == 0;
-}
-
 int run_serve(ServeOptions& o) {
   serve::ServeSettings& s = o.settings;
   for (const std::string& scene : s.scenes) format_from_path(scene);  // before anything is read
   s.base_frame = o.up.base_frame;
   s.up = o.up.vector();
   s.max_upload_bytes = static_cast<std::size_t>(o.max_upload_mib * 1024.0 * 1024.0);
-  if (!is_loopback(s.bind)) {
+  if (s.token.empty() && !s.no_token) {
+    if (const char* token = std::getenv("LMK_SERVE_TOKEN"); token != nullptr) s.token = token;
+  }
+  if (s.no_token && serve::is_loopback_name(s.bind)) {
     std::fprintf(stderr,
-                 "warning: --bind %s: lmk serve has no authentication; anyone who can reach this "
-                 "address can see your scenes and write landmarks into %s\n",
+                 "warning: --no-token: any program of this machine, and any web page open in its "
+                 "browser that guesses the port, can write landmarks into %s\n",
+                 s.landmarks_dir.c_str());
+  } else if (!s.no_token && !serve::is_loopback_name(s.bind)) {
+    std::fprintf(stderr,
+                 "warning: --bind %s: whoever has the token can see your scenes and write "
+                 "landmarks into %s, and it crosses the network unencrypted (plain HTTP)\n",
                  s.bind.c_str(), s.landmarks_dir.c_str());
   }
   if (!s.scenes.empty()) {
@@ -51,7 +56,8 @@ int run_serve(ServeOptions& o) {
   std::printf("lmk serve: %zu scene%s, landmarks in %s%s\n", s.scenes.size(),
               s.scenes.size() == 1 ? "" : "s", s.landmarks_dir.c_str(),
               s.programs_dir.empty() ? "" : (", programs in " + s.programs_dir).c_str());
-  std::printf("open http://%s:%d/ (Ctrl-C stops)\n", host.c_str(), port);
+  const std::string query = server.token().empty() ? "" : "?token=" + server.token();
+  std::printf("open http://%s:%d/%s (Ctrl-C stops)\n", host.c_str(), port, query.c_str());
   std::fflush(stdout);
 
   // Ctrl-C stops the server; the searches under way are dropped, nothing is half-written (the
@@ -93,6 +99,16 @@ Subcommand add_serve(CLI::App& app) {
   sub->add_option("--bind", s.bind,
                   "Address to listen on; only this machine by default (another address warns)")
       ->capture_default_str();
+  sub->add_option("--token", s.token,
+                  "Token every request must carry (default: $LMK_SERVE_TOKEN, else a random one, "
+                  "printed in the address)");
+  sub->add_flag("--no-token", s.no_token,
+                "Ask no token (loopback only; any local program or web page could then drive "
+                "the server)")
+      ->excludes("--token");
+  sub->add_option("--allow-host", s.allowed_hosts,
+                  "Further host name the server may be reached by (repeatable; loopback names and "
+                  "the --bind address always are)");
   sub->add_option("--workers", s.workers, "Searches run at once; more wait in a queue")
       ->check(CLI::Range(1, 64))
       ->capture_default_str();

@@ -259,11 +259,10 @@ TEST_F(ServeTest, TenConcurrentSearchesGiveTheResultsOfTenSequentialOnes) {
   std::vector<std::future<nlohmann::json>> concurrent;
   for (int seed = 0; seed < 10; ++seed) {
     concurrent.push_back(std::async(std::launch::async, [this, seed, &request] {
-      httplib::Client own("127.0.0.1", port);  // one connection each, as ten pages would
-      own.set_read_timeout(std::chrono::seconds(300));
+      const auto own = new_client();  // one connection each, as ten pages would
       nlohmann::json body = request(seed);
       body["wait"] = true;
-      const auto r = own.Post("/api/find", body.dump(), "application/json");
+      const auto r = own->Post("/api/find", body.dump(), "application/json");
       if (!r || r->status != 200) return nlohmann::json();
       return without_times(nlohmann::json::parse(r->body)["result"]);
     }));

@@ -46,12 +46,18 @@ void ServeTest::start(serve::ServeSettings settings) {
   server = std::make_unique<serve::HttpServer>(settings);
   port = server->bind();
   thread = std::thread([this] { server->run(); });
-  client = std::make_unique<httplib::Client>("127.0.0.1", port);
-  client->set_read_timeout(std::chrono::seconds(300));
+  client = new_client();
   // run() is listening once a request is answered.
   for (int i = 0; i < 200 && !client->Get("/api/info"); ++i) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
+}
+
+std::unique_ptr<httplib::Client> ServeTest::new_client() const {
+  auto c = std::make_unique<httplib::Client>("127.0.0.1", port);
+  c->set_read_timeout(std::chrono::seconds(300));
+  c->set_default_headers({{"Authorization", "token " + server->token()}});
+  return c;
 }
 
 namespace {

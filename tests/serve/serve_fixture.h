@@ -36,6 +36,9 @@ class ServeTest : public ::testing::Test {
   /// Starts the server with `settings` over the fixture's files (scenes, directories filled in).
   void start(serve::ServeSettings settings = {});
 
+  /// A client of the running server that sends its token, as the page's cookie does.
+  std::unique_ptr<httplib::Client> new_client() const;
+
   Reply get(const std::string& path);
   Reply post(const std::string& path, const nlohmann::json& body);
   Reply post_bytes(const std::string& path, const std::string& bytes);

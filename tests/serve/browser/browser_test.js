@@ -85,7 +85,7 @@ function startServer(scene, landmarks, flags) {
     child.on('exit', (code) => reject(new Error(`lmk serve exited (${code}):\n${out}${err}`)));
     child.stdout.on('data', (d) => {
       out += d;
-      const m = out.match(/open (http:\/\/\S+\/)/);
+      const m = out.match(/open (http:\/\/\S+)/);  // with its ?token=
       if (m) {
         clearTimeout(timer);
         resolve(m[1]);
