@@ -23,6 +23,7 @@
 #include "lmk/geometry/hash.h"
 #include "lmk/geometry/statistics.h"
 #include "lmk/geometry/version.h"
+#include "lmk/geometry/worker_threads.h"
 #include "lmk/json/find_settings_json.h"
 #include "lmk/landmark/error_metrics.h"
 #include "lmk/landmark/landmark_file.h"
@@ -137,6 +138,7 @@ Evaluation evaluate(const std::string& dir, const Dataset& dataset,
   Evaluation evaluation;
   evaluation.dataset = dataset.name;
   validate(settings.find);  // bad settings fail before any work
+  check_worker_threads(settings.threads, "eval: threads (--threads)");
   evaluation.settings = settings;
   evaluation.settings.find = settings.find.resolved();
   evaluation.settings.progress = nullptr;

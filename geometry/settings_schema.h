@@ -72,6 +72,10 @@ struct SettingInfo {
     min_exclusive = false;
     return *this;
   }
+  SettingInfo& at_most(double v) {
+    max = v;
+    return *this;
+  }
   SettingInfo& within(double lo, double hi) {
     at_least(lo);
     max = hi;

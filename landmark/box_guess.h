@@ -31,6 +31,10 @@ struct BoxGuess {
   std::optional<Eigen::Vector4d> support;
 };
 
+/// Throws lmk::Error naming the first length outside its bounds: search_radius and
+/// cluster_tolerance in (0, 3] m, plane_distance in (0, 0.5] m, margin in [0, 0.5] m.
+void validate(const BoxGuessSettings& settings);
+
 /// Guesses the box of the object under `clicked` (a point on it, in the scene frame). Throws
 /// lmk::Error, saying what to do, when nothing lies near the click, when the click is on the
 /// supporting surface itself, or when the object has fewer than settings.min_points points.

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "lmk/geometry/settings_schema.h"
+#include "lmk/geometry/worker_threads.h"
 #include "lmk/landmark/error_metrics.h"
 #include "lmk/landmark/scene_settings.h"
 
@@ -52,7 +53,7 @@ struct SamplingSettings {
     visit(SettingInfo("seed", "Random seed of the seed sampling"), s.seed);
     visit(SettingInfo("max_seeds",
                       "Most seeds (default: 1000 for the reference, as the paper; 2000 for fast)")
-              .at_least(1),
+              .within(1, 1e6),  // a 640 x 480 frame has 307,200 points
           s.max_seeds);
   }
 };
@@ -68,7 +69,8 @@ struct ReferenceSettings {
               .within(0.0, 1.0)
               .above(0.0),
           s.sample_fraction);
-    visit(SettingInfo("icp_iterations", "Reference: ICP iterations per seed").at_least(1),
+    // PCL's ICP converges within tens of iterations; 1000 per seed is already hours a search.
+    visit(SettingInfo("icp_iterations", "Reference: ICP iterations per seed").within(1, 1000),
           s.icp_iterations);
   }
 };
@@ -99,8 +101,9 @@ struct FastSettings {
 
   template <class Self, class Visit>
   static void describe(Self& s, Visit&& visit) {
+    // The seed count follows this, up to max_seeds; beyond 1000 a seed lands on every coarse point.
     visit(SettingInfo("seeds_per_instance", "Fast: seeds expected on one instance of the landmark")
-              .at_least(1),
+              .within(1, 1000),
           s.seeds_per_instance);
     visit(SettingInfo("orientations",
                       "Fast: 'upright' (any yaw, tilt up to --max-tilt) or 'full' (all of SO(3))")
@@ -115,14 +118,19 @@ struct FastSettings {
               .within(0.0, 1.0)
               .above(0.0),
           s.vote_leaf_fraction);
-    visit(SettingInfo("poses_per_seed", "Fast: best-voted poses kept per seed").at_least(1),
+    // Counts of poses, each aligned in turn: bounds far above any useful value (3, 250, 16 by
+    // default) that keep a request from asking for hours of work or an allocation beyond memory.
+    visit(SettingInfo("poses_per_seed", "Fast: best-voted poses kept per seed").within(1, 100),
           s.poses_per_seed);
-    visit(SettingInfo("max_candidates", "Fast: pose clusters aligned coarsely").at_least(1),
+    visit(SettingInfo("max_candidates", "Fast: pose clusters aligned coarsely").within(1, 1e5),
           s.max_candidates);
+    // A coarse fit a metre off is no fit.
     visit(SettingInfo("prune_error", "Fast: coarse fit beyond which a candidate is dropped, m")
-              .positive(),
+              .positive()
+              .at_most(1.0),
           s.prune_error);
-    visit(SettingInfo("max_refined", "Fast: candidates refined fully").at_least(1), s.max_refined);
+    visit(SettingInfo("max_refined", "Fast: candidates refined fully").within(1, 1e4),
+          s.max_refined);
     visit(SettingInfo("refine", "Fast: Ceres robust refinement of the finalists"), s.refine);
     visit(SettingInfo("suppress_overlaps",
                       "Fast: drop a match whose centre lies in a better match's box"),
@@ -154,10 +162,15 @@ struct SelectionSettings {
               .one_of(error_metric_names())
               .or_default(),
           s.metric);
-    visit(SettingInfo("nms_radius", "Non-max suppression radius on box centres, m").positive(),
+    // A radius in the scene: at most as far as any depth camera sees. The threshold is in the
+    // metric's unit (m, or sigma for `sensor`): 100 is far beyond any useful value of either.
+    visit(SettingInfo("nms_radius", "Non-max suppression radius on box centres, m")
+              .positive()
+              .at_most(kMaxSensorRange),
           s.nms_radius);
     visit(SettingInfo("threshold", "Largest error of a match, m (default: the metric's own)")
-              .positive(),
+              .positive()
+              .at_most(100.0),
           s.threshold);
     visit(SettingInfo("min_coverage", "Least fraction of landmark points with scene support")
               .within(0.0, 1.0),
@@ -185,7 +198,7 @@ struct ExecutionSettings {
   template <class Self, class Visit>
   static void describe(Self& s, Visit&& visit) {
     visit(SettingInfo("threads", "Worker threads; 0 uses every core")
-              .at_least(0)
+              .within(0, max_worker_threads())  // geometry/worker_threads.h
               .not_affecting_results(),
           s.threads);
   }

@@ -28,6 +28,15 @@ void validate(const SceneSettings& settings) {
   if (settings.field_band && *settings.field_band < settings.coarse_leaf) {
     throw Error("scene: the distance-field band (--field-band) must be at least the coarse leaf");
   }
+  if (settings.field_band && *settings.field_band > kMaxFieldBandLeaves * settings.coarse_leaf) {
+    std::ostringstream message;
+    message << "scene: the distance-field band (--field-band, " << *settings.field_band
+            << " m) must be at most " << kMaxFieldBandLeaves << " coarse leaves ("
+            << kMaxFieldBandLeaves * settings.coarse_leaf
+            << " m): its memory grows with the band, and a candidate farther from the surface is "
+               "hopeless";
+    throw Error(message.str());
+  }
 }
 
 SceneIndex::SceneIndex(const PointCloud& scene, const SceneSettings& settings)

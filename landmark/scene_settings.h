@@ -13,6 +13,13 @@
 
 namespace lmk {
 
+/// The largest scene leaves (leaf_size, coarse_leaf), m.
+constexpr double kMaxSceneLeaf = 0.1;
+/// The distance-field band holds at most this many coarse leaves.
+constexpr double kMaxFieldBandLeaves = 10.0;
+/// Farther than any depth camera sees, m: the bound of lengths measured from the sensor.
+constexpr double kMaxSensorRange = 20.0;
+
 struct SceneSettings {
   /// Step 1: crop the scene to this box (scene frame) first; nothing means the whole scene.
   std::optional<Box> work_volume;
@@ -60,17 +67,23 @@ struct SceneSettings {
                       "Crop the scene to this box first: CX CY CZ SX SY SZ [ROLL PITCH YAW], m and "
                       "degrees (default: the whole scene)"),
           s.work_volume);
+    // Leaves up to 10 cm: a landmark of a few tens of cm is then a few voxels across, and a
+    // coarser grid describes no shape at all.
     visit(SettingInfo("leaf_size", "Scene voxel leaf (the paper's 5 mm), m; at least 1 mm")
-              .at_least(kMinLeafSize)
+              .within(kMinLeafSize, kMaxSceneLeaf)
               .also("leaf"),
           s.leaf_size);
     visit(SettingInfo("coarse_leaf",
                       "Fast: leaf of the seeds, voting and coarse alignment, m; at least 1 mm")
-              .at_least(kMinLeafSize),
+              .within(kMinLeafSize, kMaxSceneLeaf),
           s.coarse_leaf);
+    // Up to 20 cm, twice the largest leaf; validate() also holds it within kMaxFieldBandLeaves
+    // coarse leaves. The field's voxels grow with the band times the scene's surface: 1e308 held
+    // the server at 4.8 GB, 5 m ran for minutes (issue #34), and a candidate further than a few
+    // leaves from the surface is hopeless anyway.
     visit(
         SettingInfo("field_band", "Band of the scene distance field, m (default: 2 coarse leaves)")
-            .at_least(kMinLeafSize),
+            .within(kMinLeafSize, 2.0 * kMaxSceneLeaf),
         s.field_band);
     visit(SettingInfo("up",
                       "Up axis X Y Z in the scene frame (default: the sensor's -y, or +z "
@@ -83,7 +96,10 @@ struct SceneSettings {
                       "(Kinect v1's)")
               .within(0.0, 0.1),
           s.noise_axial);
-    visit(SettingInfo("noise_floor", "Sensor metric: residual at any depth, m").positive(),
+    // A residual of 10 cm at every depth would make any surface match any other.
+    visit(SettingInfo("noise_floor", "Sensor metric: residual at any depth, m")
+              .positive()
+              .at_most(0.1),
           s.noise_floor);
     visit(SettingInfo("veil_angle",
                       "Drop an organised frame's veil points: steps within this angle of the "
@@ -95,7 +111,8 @@ struct SceneSettings {
     visit(SettingInfo("threshold_range",
                       "Visibility metrics: the threshold holds up to this range, m; beyond, errors "
                       "are scaled down as the depth noise raises a true match's (default: never)")
-              .positive(),
+              .positive()
+              .at_most(kMaxSensorRange),  // beyond any depth camera's range
           s.threshold_range);
   }
 };

@@ -7,6 +7,7 @@
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/pose.h"
 #include "lmk/geometry/settings_schema.h"
+#include "lmk/geometry/worker_threads.h"
 
 namespace lmk::cli {
 
@@ -25,6 +26,18 @@ CLI::Validator non_negative_whole() {
                                              : "'" + text + "' is not a non-negative whole number";
       },
       "UINT");
+}
+
+CLI::Validator worker_threads() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        const std::optional<std::uint64_t> n = read_non_negative_whole(text);
+        if (n && *n <= static_cast<std::uint64_t>(max_worker_threads())) return "";
+        return "'" + text + "' is not a thread count in [0, " +
+               std::to_string(max_worker_threads()) + "] (0 uses every core; at most " +
+               std::to_string(kMaxThreadsPerCore) + " per core of this machine)";
+      },
+      "THREADS");
 }
 
 CLI::Validator output_extension(const std::string& extension, const std::string& what) {

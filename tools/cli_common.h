@@ -41,6 +41,10 @@ CLI::Validator finite_number();
 /// wrap around to 2^64 - 1.
 CLI::Validator non_negative_whole();
 
+/// Refuses a thread count outside [0, max_worker_threads()] (geometry/worker_threads.h), the bound
+/// every --threads shares with the settings of the page and the ROS node.
+CLI::Validator worker_threads();
+
 /// Refuses an output path that does not end in `extension` (".lmk"), so that a landmark is never
 /// written under a name other tools would read as a point cloud.
 CLI::Validator output_extension(const std::string& extension, const std::string& what);

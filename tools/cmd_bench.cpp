@@ -28,6 +28,7 @@
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/statistics.h"
+#include "lmk/geometry/worker_threads.h"
 #include "lmk/landmark/find_landmark.h"
 #include "lmk/landmark/landmark_file.h"
 #include "tools/cli_common.h"
@@ -93,7 +94,7 @@ int run_bench(const BenchOptions& o) {
   }
   if (o.repeats < 1) throw Error("bench: --repeats must be at least 1");
   if (o.reference_seeds < 1) throw Error("bench: --reference-seeds must be at least 1");
-  if (o.threads < 0) throw Error("bench: --threads must be 0 (all cores) or more");
+  check_worker_threads(o.threads, "bench: --threads");
   const Workload w = load_workload(o);
   std::printf("workload           %s\n", w.description.c_str());
   std::printf("landmark           '%s', %zu points\n", w.landmark.name.c_str(),
@@ -205,6 +206,7 @@ Subcommand add_bench(CLI::App& app) {
       ->check(non_negative_whole())
       ->capture_default_str();
   sub->add_option("--threads", o->threads, "Worker threads; 0 uses every core")
+      ->check(worker_threads())
       ->capture_default_str();
   sub->add_option("--json", o->json, "Also write the figures as JSON to FILE");
   return {sub, [o] { return run_bench(*o); }};

@@ -191,6 +191,7 @@ void add_plan_options(CLI::App* sub, PbdOptions& o, bool scene_required) {
                   "Instance policy for landmarks whose program sets none: best-error, "
                   "nearest-to-demonstration, demonstrated-height");
   sub->add_option("--threads", o.threads, "Search threads; 0 uses every core")
+      ->check(worker_threads())
       ->capture_default_str();
 }
 
@@ -228,6 +229,7 @@ Subcommand add_pbd(CLI::App& app) {
   demo->add_option("--save", o->save_dir,
                    "Write each task's landmarks, programs and scenes to DIR/taskN");
   demo->add_option("--threads", o->threads, "Search threads; 0 uses every core")
+      ->check(worker_threads())
       ->capture_default_str();
   demo->add_option("--cache", o->cache_dir,
                    "Keep each finished task's results in DIR; a later run (after Ctrl-C, say) "

@@ -43,6 +43,7 @@ void add_evaluation_options(CLI::App* sub, EvaluationSettings& s) {
       ->check(CLI::IsMember({"all", "in-context"}))
       ->default_str("all");
   sub->add_option("--threads", s.threads, "Searches run at once (one thread each); 0: every core")
+      ->check(worker_threads())
       ->capture_default_str();
   auto* cache = sub->add_option("--cache", s.cache_dir,
                                 "Cache of generated datasets and of every search's result, so "

@@ -249,9 +249,9 @@ TEST_F(CliLandmark, LeavesBelowAMillimetreAreRefusedUpFront) {
                 .exit_code,
             0);
   expect_bad_input("find " + path("scene.pcd") + " " + path("c.lmk") + " --leaf 1e-5",
-                   "scene.leaf_size (--leaf-size): 1e-05 must be finite and at least 0.001");
+                   "scene.leaf_size (--leaf-size): 1e-05 must be finite and in [0.001, 0.1]");
   expect_bad_input("find " + path("scene.pcd") + " " + path("c.lmk") + " --coarse-leaf 0.0005",
-                   "at least 0.001");
+                   "in [0.001, 0.1]");
 }
 
 TEST_F(CliLandmark, BadInputToCaptureAndFind) {
@@ -293,6 +293,19 @@ TEST_F(CliLandmark, BadInputToCaptureAndFind) {
                    "--threshold: 'inf' is not a finite number");
   expect_bad_input("find " + scene + " " + path("c.lmk") + " --coarse-leaf 0.001",
                    "the coarse leaf (--coarse-leaf, 0.001 m) must be at least the leaf size");
+  // Issue #34, finding 2: 10,000,000 threads exited 139 and 100,000,000 "internal error:
+  // std::bad_alloc"; a field band of 5 m ran for minutes at 1.3 GB.
+  for (const char* threads : {"10000000", "100000000"}) {
+    expect_bad_input("find " + scene + " " + path("c.lmk") + " --threads " + threads,
+                     "execution.threads (--threads)");
+  }
+  expect_bad_input("find " + scene + " " + path("c.lmk") + " --field-band 5",
+                   "scene.field_band (--field-band): 5 must be finite and in [0.001, 0.2]");
+  expect_bad_input("find " + scene + " " + path("c.lmk") + " --field-band 0.15",
+                   "must be at most 10 coarse leaves");
+  expect_bad_input("eval --threads 100000000", "is not a thread count");
+  expect_bad_input("bench --threads 100000000", "is not a thread count");
+  expect_bad_input("pbd demo-tasks --threads 100000000", "is not a thread count");
 }
 
 // Outputs and inputs of the wrong kind are refused before any work: a landmark is never written

@@ -162,5 +162,28 @@ TEST(BoxGuess, ClicksOffTheObjectAreRefusedWithWhatToDo) {
   EXPECT_NE(error.find("supporting surface"), std::string::npos) << error;
 }
 
+TEST(BoxGuess, LengthsOutsideTheirBoundsAreRefusedBeforeAnyWork) {
+  PointCloud cloud;
+  cloud.points = {Eigen::Vector3f(0, 0, 1)};
+  const auto error_with = [&](auto change) {
+    BoxGuessSettings s;
+    change(s);
+    return test::error_of([&] { guess_box(cloud, Eigen::Vector3d(0, 0, 1), s); });
+  };
+  EXPECT_NE(
+      error_with([](BoxGuessSettings& s) { s.margin = 1e9; }).find("margin must be in [0, 0.5]"),
+      std::string::npos);
+  EXPECT_NE(error_with([](BoxGuessSettings& s) { s.margin = -0.01; }).find("margin"),
+            std::string::npos);
+  EXPECT_NE(error_with([](BoxGuessSettings& s) { s.search_radius = 1e308; }).find("search_radius"),
+            std::string::npos);
+  EXPECT_NE(
+      error_with([](BoxGuessSettings& s) { s.cluster_tolerance = NAN; }).find("cluster_tolerance"),
+      std::string::npos);
+  EXPECT_NE(error_with([](BoxGuessSettings& s) { s.plane_distance = 0.0; }).find("plane_distance"),
+            std::string::npos);
+  EXPECT_NO_THROW(validate(BoxGuessSettings()));
+}
+
 }  // namespace
 }  // namespace lmk

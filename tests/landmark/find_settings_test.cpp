@@ -6,7 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <set>
+#include <type_traits>
 
 #include "lmk/json/find_settings_json.h"
 #include "tests/support/find_settings_variants.h"
@@ -133,6 +135,62 @@ TEST(FindSettings, JsonRefusesUnknownAndMistypedFields) {
   EXPECT_THROW(detail::find_settings_from_json(json{{"sampling", {{"seed", "1"}}}}, "s", s), Error);
   detail::find_settings_from_json(json{{"fast", {{"max_candidates", 12}}}}, "s", s);
   EXPECT_EQ(s.fast.max_candidates, 12u);
+}
+
+// Issue #34, finding 2: {"threads": 2000000000} crashed the server inside oneTBB, and a field band
+// of 1e308 m held it at 4.8 GB. Every count and length now has an upper bound in its description,
+// which the CLI, the JSON of the page and the ROS node all read.
+TEST(FindSettings, EveryCountAndLengthHasAnUpperBound) {
+  FindSettings defaults;
+  int numbers = 0;
+  for_each_settings_group(defaults, [&](const char* group, const auto& settings) {
+    std::decay_t<decltype(settings)>::describe(settings, [&](const SettingInfo& info,
+                                                             const auto& value) {
+      using T = std::decay_t<decltype(value)>;
+      constexpr bool number =
+          std::is_same_v<T, double> || std::is_same_v<T, int> || std::is_same_v<T, std::size_t> ||
+          std::is_same_v<T, std::optional<double>> || std::is_same_v<T, std::optional<std::size_t>>;
+      if (!number || info.name == "seed") return;  // a seed is any 64-bit number
+      ++numbers;
+      EXPECT_TRUE(std::isfinite(info.max)) << group << "." << info.name << " has no upper bound";
+    });
+  });
+  EXPECT_GE(numbers, 20);
+}
+
+TEST(FindSettings, ThreadsAreBoundedByTheCoresAndTheFieldBandByTheCoarseLeaf) {
+  FindSettings s;
+  s.execution.threads = max_worker_threads();
+  EXPECT_NO_THROW(validate(s));
+  for (const int threads : {max_worker_threads() + 1, 2000000000, -1}) {
+    s.execution.threads = threads;
+    try {
+      validate(s);
+      ADD_FAILURE() << threads << " threads accepted";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("execution.threads (--threads)"), std::string::npos)
+          << e.what();
+    }
+  }
+  EXPECT_THROW(check_worker_threads(max_worker_threads() + 1, "test"), Error);
+  EXPECT_NO_THROW(check_worker_threads(0, "test"));
+  s = FindSettings();
+  for (const double band : {1e308, 5.0, 0.21}) {
+    s.scene.field_band = band;
+    EXPECT_THROW(validate(s), Error) << band;
+  }
+  s.scene.field_band = 0.1;  // 10 coarse leaves of 1 cm
+  EXPECT_NO_THROW(validate(s));
+  s.scene.field_band = 0.11;
+  try {
+    validate(s);
+    ADD_FAILURE() << "a band of 11 coarse leaves accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("at most 10 coarse leaves"), std::string::npos)
+        << e.what();
+  }
+  json j = {{"execution", {{"threads", 2000000000}}}};
+  EXPECT_THROW(detail::find_settings_from_json(j, "s", s), Error);
 }
 
 }  // namespace

@@ -89,6 +89,12 @@ TEST_F(ServeTest, NoBadRequestStopsTheServer) {
       {"/api/find", "{\"scene\": \"1\", \"landmarks\": [1, 2]}"},
       {"/api/find", std::string(100000, '[')},
       {"/api/programs/x/plan", "{}"},
+      // Issue #34, finding 2: these crashed the server inside oneTBB or held it at 4.8 GB.
+      {"/api/find",
+       "{\"scene\": \"1\", \"landmarks\": [\"carton\"], \"settings\": {\"threads\": 2000000000}}"},
+      {"/api/find",
+       "{\"scene\": \"1\", \"landmarks\": [\"carton\"], \"settings\": {\"field-band\": 1e308}}"},
+      {"/api/guess", "{\"scene\": \"1\", \"point\": [0, 0, 1], \"margin\": 1e9}"},
   };
   for (const auto& [path, body] : bodies) {
     const Reply r = post_text(path, body);
