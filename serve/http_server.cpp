@@ -4,6 +4,7 @@
 #include <stdlib.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <mutex>
 
@@ -103,6 +104,8 @@ struct HttpServer::Impl {
 
   void routes();
   void guard_requests();
+  ApiResponse upload(const httplib::Request& req, const httplib::ContentReader& read,
+                     std::string name);
   void api_route(const char* method, const std::string& pattern,
                  std::function<ApiResponse(const httplib::Request&)> handle);
 
@@ -144,6 +147,46 @@ void HttpServer::Impl::guard_requests() {
   });
 }
 
+// Reads an upload's cloud, at most --max-upload bytes of it, and hands it to the API.
+ApiResponse HttpServer::Impl::upload(const httplib::Request& req,
+                                     const httplib::ContentReader& read, std::string name) {
+  const std::size_t limit = api.settings().max_upload_bytes;
+  std::string body;
+  bool over = false;
+  bool collecting = true;  // in a form, only while its file's part arrives
+  const auto receive = [&](const char* data, std::size_t n) {
+    if (!collecting) return true;
+    over = body.size() + n > limit;
+    if (!over) body.append(data, n);
+    return !over;
+  };
+  bool complete = false;
+  if (req.is_multipart_form_data()) {
+    int files = 0;
+    complete = read(
+        [&](const httplib::MultipartFormData& part) {
+          collecting = !part.filename.empty();  // not a form's text field
+          if (!collecting) return true;
+          if (name.empty()) name = part.filename;
+          return ++files == 1;  // a second file stops the reading (httplib's callbacks)
+        },
+        receive);
+    if (files != 1) {
+      throw bad_request(files == 0 ? "upload: the form holds no file"
+                                   : "upload: the form holds more than one file");
+    }
+  } else {
+    complete = read(receive);
+  }
+  // httplib refuses a declared length over the limit before reading: nothing arrives.
+  const bool declared_over =
+      req.has_header("Content-Length") &&
+      std::strtoull(req.get_header_value("Content-Length").c_str(), nullptr, 10) > limit;
+  if (over || declared_over) throw ApiError(413, reason_for(413, api.settings()));
+  if (!complete) throw bad_request("upload: the body was cut short");
+  return api.upload_scene(name, body);
+}
+
 void HttpServer::Impl::routes() {
   guard_requests();
   Api& a = api;
@@ -152,8 +195,14 @@ void HttpServer::Impl::routes() {
   };
   api_route("GET", "/api/info", [&a](const auto&) { return a.info(); });
   api_route("GET", "/api/scenes", [&a](const auto&) { return a.scenes(); });
-  api_route("POST", "/api/scenes",
-            [&a, param](const auto& r) { return a.upload_scene(param(r, "name"), r.body); });
+  // An upload's body is the cloud file itself, whatever Content-Type the client put on it: curl's
+  // --data-binary says application/x-www-form-urlencoded, whose bodies httplib would otherwise
+  // parse as a form and cap at 8 KB (issue #34, finding 6). A content reader takes the bytes as
+  // they come; a multipart form (an HTML form's upload) gives the content of its one file.
+  server.Post("/api/scenes", [this, param](const httplib::Request& req, httplib::Response& res,
+                                           const httplib::ContentReader& read) {
+    guarded(res, [&] { send(res, upload(req, read, param(req, "name"))); });
+  });
   api_route("GET", "/api/scenes/([^/]+)", [&a](const auto& r) { return a.scene(r.matches[1]); });
   api_route("GET", "/api/scenes/([^/]+)/cloud", [&a, param](const auto& r) {
     return a.scene_cloud(r.matches[1], param(r, "max_points"));
