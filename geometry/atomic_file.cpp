@@ -52,9 +52,7 @@ void remove_stale_temporaries(const fs::path& dir, const fs::path& path) {
   for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
     const long pid = writer_of(it->path().filename().string(), path);
     if (pid <= 0) continue;
-    const bool alive =
-        pid == ::getpid() || ::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH;
-    if (!alive) fs::remove(it->path(), ec);
+    if (process_has_ended(pid)) fs::remove(it->path(), ec);
   }
 }
 
@@ -122,6 +120,11 @@ void write_text_atomically(const fs::path& path, const std::string& text) {
     out.flush();
     if (!out) throw Error(path.string() + ": write failed");
   });
+}
+
+bool process_has_ended(long pid) {
+  // kill(pid, 0) sends nothing; ESRCH alone means no such process (EPERM: alive, someone else's).
+  return pid > 0 && pid != ::getpid() && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;
 }
 
 }  // namespace lmk

@@ -21,4 +21,8 @@ void write_file_atomically(const std::filesystem::path& path,
 /// Writes `text` to `path` atomically; throws lmk::Error naming the file when it cannot.
 void write_text_atomically(const std::filesystem::path& path, const std::string& text);
 
+/// Whether the process `pid` has ended (no process has that id): what it left behind, a temporary
+/// or a scratch directory named after it, may go.
+bool process_has_ended(long pid);
+
 }  // namespace lmk

@@ -26,4 +26,7 @@ class Interrupted : public std::runtime_error {
 /// the terminal or split the line.
 std::string printable(const std::string& text, std::size_t max_chars = 60);
 
+/// Whether `text` is well-formed UTF-8 (RFC 3629: no overlong forms, no surrogates).
+bool is_valid_utf8(const std::string& text);
+
 }  // namespace lmk

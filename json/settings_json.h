@@ -50,6 +50,11 @@ inline void setting_from_json(const nlohmann::json& j, const std::string& where,
 }
 
 inline void setting_from_json(const nlohmann::json& j, const std::string& where, Box& out) {
+  // A string or a number is named as such, not as a box without its fields (issue #34, finding 5).
+  if (!j.is_object()) {
+    throw Error(where + ": must be a box {\"position\", \"quaternion\", \"size\"}, not " +
+                std::string(j.type_name() == std::string("array") ? "an " : "a ") + j.type_name());
+  }
   out = Box(pose_from_json(j, where), numbers_from_json(json_field(j, "size", where), 3, where));
 }
 

@@ -48,7 +48,9 @@ void check_settings(const CaptureSettings& s, const std::string& what) {
   }
 }
 
-void check_box(const Box& box, const CaptureSettings& s, const std::string& what) {
+}  // namespace
+
+void check_capture_box(const Box& box, const CaptureSettings& s, const std::string& what) {
   if (!box.size.allFinite() || (box.size.array() <= 0.0).any()) {
     throw Error(what + ": box sides must be positive and finite, got " + format_size(box.size));
   }
@@ -61,8 +63,6 @@ void check_box(const Box& box, const CaptureSettings& s, const std::string& what
   }
 }
 
-}  // namespace
-
 void Landmark::validate(const std::string& what) const {
   if (format_version != kLandmarkFormatVersion) {
     throw Error(what + ": landmark format version " + std::to_string(format_version) +
@@ -71,7 +71,7 @@ void Landmark::validate(const std::string& what) const {
   }
   if (name.empty()) throw Error(what + ": landmark name is empty");
   check_settings(settings, what);
-  check_box(box, settings, what);
+  check_capture_box(box, settings, what);
   if (!sensor_origin.allFinite()) throw Error(what + ": sensor origin is not finite");
   if (!up.allFinite() || std::abs(up.norm() - 1.0) > 1e-6) {
     throw Error(what + ": the up axis must be a finite unit vector");
@@ -88,7 +88,7 @@ Landmark capture(const PointCloud& scene, const Box& box, const std::string& nam
   const std::string what = "capture '" + name + "'";
   if (name.empty()) throw Error("capture: the landmark needs a name");
   check_settings(settings, what);
-  check_box(box, settings, what);
+  check_capture_box(box, settings, what);
   PointCloud unveiled;
   if (settings.veil_angle > 0.0 && scene.is_organized()) {
     unveiled = scene;

@@ -96,6 +96,11 @@ void prepare_landmark(Landmark& landmark,
 std::optional<std::string> degenerate_shape(const PointCloud& points, double leaf_size,
                                             const std::string& what, bool allow_flat = false);
 
+/// Throws lmk::Error, starting with `what`, for a box capture() refuses whatever the scene: a
+/// non-positive or non-finite side, a pose that is not a finite rotation and translation, or a side
+/// over settings.max_box_side. A service checks a request with it before it waits for a frame.
+void check_capture_box(const Box& box, const CaptureSettings& settings, const std::string& what);
+
 /// Cuts a landmark out of `scene`: the finite scene points inside the oriented `box` (given in the
 /// scene frame), voxel-downsampled to settings.leaf_size. Throws lmk::Error for an empty name, a
 /// box with a non-positive, non-finite or oversized side, a box with no scene point inside, too

@@ -5,6 +5,7 @@
 #include <cctype>
 
 #include "lmk/geometry/error.h"
+#include "lmk/geometry/plain_name.h"
 #include "lmk/landmark/landmark_file.h"
 
 namespace lmk {
@@ -20,13 +21,12 @@ LandmarkLibrary::LandmarkLibrary(fs::path directory) : directory_(std::move(dire
   }
 }
 
-void LandmarkLibrary::check_name(const std::string& name) {
-  const bool chars_ok = std::all_of(name.begin(), name.end(), [](char c) {
-    return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.';
-  });
-  if (name.empty() || name.size() > 100 || name[0] == '.' || !chars_ok) {
-    throw Error("landmark name '" + name +
-                "': use 1 to 100 letters, digits, '-', '_' or '.', not starting with '.'");
+void LandmarkLibrary::check_name(const std::string& name, const std::string& kind) {
+  // printable(): a NUL or a byte that is not UTF-8 would cut the message short or make the page's
+  // JSON invalid (issue #34, finding 5).
+  if (!is_plain_name(name, 100)) {
+    throw Error(kind + " '" + printable(name) +
+                "': use 1 to 100 letters, digits, '-', '_' or '.', not starting with '.' or '-'");
   }
 }
 

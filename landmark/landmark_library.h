@@ -41,8 +41,8 @@ class LandmarkLibrary {
   std::filesystem::path save(const Landmark& landmark, bool overwrite) const;
 
   /// Throws lmk::Error unless `name` is 1-100 letters, digits, '-', '_' or '.', not starting with
-  /// '.'.
-  static void check_name(const std::string& name);
+  /// '.' or '-'; the message calls it `kind` ("landmark name", "program id").
+  static void check_name(const std::string& name, const std::string& kind = "landmark name");
 
  private:
   struct Entry {

@@ -118,6 +118,8 @@ bool LandmarkNode::capture(lmk_msgs::CaptureLandmark::Request& request,
     const std::string& box_frame = request.box_pose.header.frame_id.empty()
                                        ? settings_.base_frame
                                        : request.box_pose.header.frame_id;
+    // The box itself before any wait: an infinite size got "no frame yet" (issue #34, finding 5).
+    check_capture_box(Box(T_boxframe_box, box_size), settings_.capture, "capture_landmark");
     const Eigen::Isometry3d T_base_boxframe =
         lookup_pose(tf_, settings_.base_frame, box_frame, ::ros::Time(0), ::ros::Duration(0.5));
     capture_box(request.name, Box(T_base_boxframe * T_boxframe_box, box_size), request.force,
@@ -220,6 +222,12 @@ bool LandmarkNode::find(lmk_msgs::FindLandmark::Request& request,
     const std::vector<std::string> names =
         request.name.empty() ? library_.names() : std::vector<std::string>{request.name};
     if (names.empty()) throw Error("no landmarks in " + library_.directory().string());
+    for (const std::string& name : names) {  // the request before any wait for a frame
+      LandmarkLibrary::check_name(name);
+      if (!library_.contains(name)) {
+        throw Error("no landmark '" + name + "' in " + library_.directory().string());
+      }
+    }
     const std::shared_ptr<const Frame> frame = this->frame();
     response.header.frame_id = frame->base_frame;
     response.header.stamp = frame->stamp;

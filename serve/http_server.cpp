@@ -2,12 +2,18 @@
 #include "lmk/serve/http_server.h"
 
 #include <stdlib.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <mutex>
+#include <optional>
 
+#include "lmk/geometry/atomic_file.h"
 #include "lmk/geometry/error.h"
 #include "lmk/serve/access_guard.h"
 #include "lmk/serve/api_error.h"
@@ -21,11 +27,42 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A private directory for parsing uploads, removed with the server.
+constexpr char kScratchPrefix[] = "lmk-serve-";
+
+// Removes the scratch directories of servers that are gone: a crashed or killed server cannot
+// remove its own (issue #34, finding 5). Their names carry the server's process id; a live
+// server's, another user's and names of any other form are left alone.
+void remove_stale_scratch_dirs(const fs::path& temp) {
+  std::error_code ec;
+  for (fs::directory_iterator it(temp, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.rfind(kScratchPrefix, 0) != 0) continue;
+    const std::string rest = name.substr(sizeof(kScratchPrefix) - 1);
+    const std::size_t dash = rest.find('-');
+    if (dash == 0 || dash == std::string::npos || dash > 9 ||
+        !std::all_of(rest.begin(), rest.begin() + dash,
+                     [](char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; })) {
+      continue;
+    }
+    struct stat info {};
+    if (::lstat(it->path().c_str(), &info) != 0 || !S_ISDIR(info.st_mode) ||
+        info.st_uid != ::getuid()) {
+      continue;
+    }
+    if (process_has_ended(std::stol(rest.substr(0, dash)))) {
+      std::error_code ignored;
+      fs::remove_all(it->path(), ignored);
+    }
+  }
+}
+
+// A private directory for parsing uploads, named after this process and removed with the server.
 fs::path make_scratch_dir() {
-  std::string pattern = (fs::temp_directory_path() / "lmk-serve-XXXXXX").string();
+  const fs::path temp = fs::temp_directory_path();
+  remove_stale_scratch_dirs(temp);
+  std::string pattern = (temp / (kScratchPrefix + std::to_string(::getpid()) + "-XXXXXX")).string();
   if (mkdtemp(pattern.data()) == nullptr) {
-    throw Error("cannot create a scratch directory in " + fs::temp_directory_path().string());
+    throw Error("cannot create a scratch directory in " + temp.string());
   }
   return pattern;
 }
@@ -33,8 +70,21 @@ fs::path make_scratch_dir() {
 void send(httplib::Response& res, const ApiResponse& r) {
   res.status = r.status;
   // With a charset, httplib leaves the body uncompressed. Its brotli, which browsers ask for,
-  // takes 10 s over a Kinect frame's points; over loopback the plain 5 MB arrive at once.
-  res.set_content(r.body.dump(), "application/json; charset=utf-8");
+  // takes 10 s over a Kinect frame's points; over loopback the plain 5 MB arrive at once. A byte
+  // that is not UTF-8 in a message becomes U+FFFD instead of an exception: the answer stays JSON.
+  res.set_content(r.body.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace),
+                  "application/json; charset=utf-8");
+}
+
+// The request's decoded path and query, when one of them is not UTF-8: the API's names and
+// messages are JSON text, which must be (issue #34, finding 5: %ff gave 500 and a body that was
+// not JSON).
+std::optional<std::string> not_utf8_part(const httplib::Request& req) {
+  if (!is_valid_utf8(req.path)) return "path";
+  for (const auto& [key, value] : req.params) {
+    if (!is_valid_utf8(key) || !is_valid_utf8(value)) return "query";
+  }
+  return std::nullopt;
 }
 
 // Runs a request's handler; whatever it throws becomes the request's JSON error.
@@ -135,6 +185,10 @@ void HttpServer::Impl::guard_requests() {
     const AccessVerdict verdict = guard.check(view_of(req));
     if (!verdict.allowed()) {
       send(res, {verdict.status, {{"error", verdict.error}}});
+      return httplib::Server::HandlerResponse::Handled;
+    }
+    if (const auto part = not_utf8_part(req)) {
+      send(res, {400, {{"error", "the request's " + *part + " is not valid UTF-8"}}});
       return httplib::Server::HandlerResponse::Handled;
     }
     if (verdict.token_from_query && req.path == "/") {

@@ -82,7 +82,7 @@ std::vector<std::string> optional_names(const nlohmann::json& body, const std::s
 
 const std::string& checked_name(const std::string& name, const std::string& what) {
   try {
-    LandmarkLibrary::check_name(name);
+    LandmarkLibrary::check_name(name, what == "program" ? "program id" : "landmark name");
   } catch (const Error& e) {
     throw bad_request(what + ": " + e.what());
   }

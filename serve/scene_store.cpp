@@ -7,6 +7,7 @@
 
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/error.h"
+#include "lmk/geometry/plain_name.h"
 #include "lmk/serve/api_error.h"
 
 namespace lmk::serve {
@@ -14,15 +15,10 @@ namespace {
 
 // An uploaded file's name is only a label and the key to its format: a plain file name.
 void check_upload_name(const std::string& name) {
-  const bool plain =
-      !name.empty() && name.size() <= 200 && name.front() != '.' &&
-      std::all_of(name.begin(), name.end(), [](char c) {
-        return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.';
-      });
-  if (!plain) {
-    throw bad_request("upload: name '" + name +
-                      "' must be a plain file name (letters, digits, '-', '_', '.') ending in "
-                      ".pcd, .ply or .xyz");
+  if (!is_plain_name(name, 200)) {
+    throw bad_request("upload: name '" + printable(name) +
+                      "' must be a plain file name (letters, digits, '-', '_', '.', not starting "
+                      "with '.' or '-') ending in .pcd, .ply or .xyz");
   }
 }
 

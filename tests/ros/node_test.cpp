@@ -19,6 +19,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -260,6 +261,36 @@ TEST(LmkNode, BadRequestsAreAnsweredWithTheReason) {
   EXPECT_FALSE(find.response.success);
   EXPECT_NE(find.response.message.find("no landmark 'missing'"), std::string::npos);
   EXPECT_TRUE(node->running());
+}
+
+// Issue #34, finding 5: with no camera publishing, an infinite box_size was answered "no frame
+// yet" after the frame timeout. The request is checked whole first, so the answer names it.
+TEST(LmkNode, RequestsAreCheckedBeforeWaitingForAFrame) {
+  const ScratchDir dir;  // no FakePr2: no frame ever arrives
+  const auto node = start_node(dir, dir.file("landmarks"));
+  lmk_msgs::CaptureLandmark capture;
+  capture.request.name = "box";
+  capture.request.box_pose.pose.orientation.w = 1.0;
+  capture.request.box_size.x = std::numeric_limits<double>::infinity();
+  capture.request.box_size.y = capture.request.box_size.z = 0.1;
+  capture = call("/lmk_node/capture_landmark", capture);
+  EXPECT_FALSE(capture.response.success);
+  EXPECT_NE(capture.response.message.find("box sides must be positive and finite"),
+            std::string::npos)
+      << capture.response.message;
+  capture.request.box_size.x = 0.1;
+  capture.request.name = "-rf";
+  capture = call("/lmk_node/capture_landmark", capture);
+  EXPECT_NE(capture.response.message.find("not starting with '.' or '-'"), std::string::npos)
+      << capture.response.message;
+
+  lmk_msgs::FindLandmark find;
+  find.request.name = "missing";
+  find = call("/lmk_node/find_landmark", find);
+  EXPECT_FALSE(find.response.success);
+  EXPECT_NE(find.response.message.find("no landmark 'missing'"), std::string::npos)
+      << find.response.message;
+  EXPECT_EQ(node->log().find("no frame"), std::string::npos) << node->log();
 }
 
 TEST(LmkNode, BadParametersStopItWithOneClearLine) {

@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // lmk serve's safety (docs/serve.md, "Safety"): files stay confined to the directories given,
 // uploads are bounded, and no request, however bad, stops the server.
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <filesystem>
 
 #include "tests/serve/serve_fixture.h"
@@ -114,6 +117,68 @@ TEST_F(ServeTest, TheDocumentedCurlUploadWorksWhateverTheContentType) {
   EXPECT_EQ(read_bytes(out + ".status"), "201") << read_bytes(out);
   const Reply scenes = get("/api/scenes");
   EXPECT_NE(scenes.text.find("new.pcd"), std::string::npos) << scenes.text;
+}
+
+// Issue #34, finding 5: a byte that is not UTF-8 gave 500 and a body that was not JSON; a NUL cut
+// the message short; "-rf.lmk" was written; a program id was called a "landmark name".
+TEST_F(ServeTest, HostileNamesAreRefusedWithValidJsonThatShowsThem) {
+  start();
+  for (const std::string path :
+       {"/api/scenes/%ff", "/api/landmarks/%c3%28", "/api/jobs/%ed%a0%80", "/api/info?x=%ff"}) {
+    const Reply r = get(path);
+    EXPECT_EQ(r.status, 400) << path << ": " << r.text;
+    ASSERT_FALSE(r.body.is_null()) << path << ": not JSON: " << r.text;
+    EXPECT_NE(r.body["error"].get<std::string>().find("not valid UTF-8"), std::string::npos);
+  }
+  const Reply upload = post_bytes("/api/scenes?name=%ff.pcd", "x");
+  EXPECT_EQ(upload.status, 400) << upload.text;
+  EXPECT_FALSE(upload.body.is_null()) << upload.text;
+  // A JSON body with a string that is not UTF-8: the parser's reason, as JSON.
+  const Reply body = post_text("/api/guess", "{\"scene\": \"\xff\"}");
+  EXPECT_EQ(body.status, 400) << body.text;
+  EXPECT_FALSE(body.body.is_null()) << body.text;
+
+  const Reply nul = post(
+      "/api/landmarks",
+      {{"scene", "1"}, {"name", std::string("milk\0evil", 9)}, {"box", box_json(carton_box())}});
+  EXPECT_EQ(nul.status, 400);
+  EXPECT_NE(nul.text.find("milk\\\\x00evil"), std::string::npos) << nul.text;  // all of it
+  const Reply dash =
+      post("/api/landmarks", {{"scene", "1"}, {"name", "-rf"}, {"box", box_json(carton_box())}});
+  EXPECT_EQ(dash.status, 400) << dash.text;
+  EXPECT_NE(dash.text.find("not starting with '.' or '-'"), std::string::npos) << dash.text;
+  EXPECT_FALSE(fs::exists(fs::path(landmarks_dir) / "-rf.lmk"));
+  EXPECT_EQ(post_bytes("/api/scenes?name=-rf.pcd", read_bytes(scene_file)).status, 400);
+  const Reply program = get("/api/programs/-x");
+  EXPECT_EQ(program.status, 400);
+  EXPECT_NE(program.text.find("program id '-x'"), std::string::npos) << program.text;
+  const Reply string_box = post("/api/check", {{"scene", "1"}, {"box", "big"}});
+  EXPECT_EQ(string_box.status, 400);
+  EXPECT_NE(string_box.text.find("box: must be a box"), std::string::npos) << string_box.text;
+  EXPECT_NE(string_box.text.find("not a string"), std::string::npos) << string_box.text;
+  EXPECT_EQ(get("/api/info").status, 200);
+}
+
+// Issue #34, finding 5: a crashed server left its scratch directory in /tmp for good. The next
+// server removes those of servers that are gone, and no other.
+TEST_F(ServeTest, TheScratchDirectoriesOfDeadServersGoAtStart) {
+  const pid_t child = ::fork();
+  if (child == 0) ::_exit(0);
+  ASSERT_GT(child, 0);
+  ::waitpid(child, nullptr, 0);  // a process id that has ended
+  const fs::path temp = fs::temp_directory_path();
+  const fs::path stale = temp / ("lmk-serve-" + std::to_string(child) + "-test01");
+  const fs::path live = temp / ("lmk-serve-" + std::to_string(::getpid()) + "-test02");
+  const fs::path other = temp / "lmk-serve-notapid-test03";
+  for (const fs::path& d : {stale, live, other}) {
+    fs::create_directories(d);
+    write_text((d / "upload-1.pcd").string(), "x");
+  }
+  start();
+  EXPECT_FALSE(fs::exists(stale));
+  EXPECT_TRUE(fs::exists(live / "upload-1.pcd"));
+  EXPECT_TRUE(fs::exists(other / "upload-1.pcd"));
+  for (const fs::path& d : {live, other}) fs::remove_all(d);
 }
 
 TEST_F(ServeTest, NoBadRequestStopsTheServer) {

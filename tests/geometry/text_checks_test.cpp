@@ -1,0 +1,50 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The checks on text that reaches messages, JSON and file names (issue #34, finding 5): UTF-8 as
+// JSON requires it, names that stay plain, messages that show every byte.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/plain_name.h"
+
+namespace lmk {
+namespace {
+
+TEST(TextChecks, Utf8IsWellFormedOnlyAsRfc3629Says) {
+  EXPECT_TRUE(is_valid_utf8(""));
+  EXPECT_TRUE(is_valid_utf8("milk.pcd"));
+  EXPECT_TRUE(
+      is_valid_utf8("caf\xc3\xa9 \xe2\x82\xac \xf0\x9f\x8d\xb6"));  // e-acute, euro, a bottle
+  for (const std::string bad : {
+           std::string("\xff"), std::string("\xc3\x28"),  // a lead byte without its follower
+           std::string("\xc0\xaf"),                       // an overlong '/'
+           std::string("\xe0\x80\xaf"),                   // an overlong '/' in three bytes
+           std::string("\xed\xa0\x80"),                   // a surrogate
+           std::string("\xf4\x90\x80\x80"),               // beyond U+10FFFF
+           std::string("ok\xe2\x82"),                     // cut short
+       }) {
+    EXPECT_FALSE(is_valid_utf8(bad)) << printable(bad);
+  }
+}
+
+TEST(TextChecks, PrintableShowsEveryByteOfANameWithANul) {
+  EXPECT_EQ(printable(std::string("milk\0evil", 9)), "milk\\x00evil");
+  EXPECT_EQ(printable("\xff.pcd"), "\\xff.pcd");
+  EXPECT_EQ(printable("\xed\xa0\x80"), "\\xed\\xa0\\x80");
+}
+
+TEST(TextChecks, PlainNamesCannotLeaveHideOrReadAsAnOption) {
+  for (const std::string good : {"milk", "rack-2", "a.b_c", "9"}) {
+    EXPECT_TRUE(is_plain_name(good, 100)) << good;
+  }
+  for (const std::string bad :
+       std::vector<std::string>{"", "-rf", ".hidden", "../up", "a/b", "a b", "caf\xc3\xa9",
+                                std::string("a\0b", 3), std::string(101, 'x')}) {
+    EXPECT_FALSE(is_plain_name(bad, 100)) << printable(bad);
+  }
+}
+
+}  // namespace
+}  // namespace lmk
