@@ -107,25 +107,54 @@ Dataset parse(const json& j, const detail::JsonReader& r) {
   return d;
 }
 
+// The file `name` of the dataset in `dir`: present, a regular file of at most kind's size, and
+// inside `dir` after every symbolic link unless `files` says anywhere. Fails through `r`, at
+// `where`, with one line.
+void check_dataset_file(const std::string& dir, const std::string& name, const InputKind& kind,
+                        DatasetFiles files, const std::string& where, const detail::JsonReader& r) {
+  const fs::path path = fs::path(dir) / name;  // an absolute `name` replaces `dir`
+  std::error_code ec;
+  if (!fs::exists(fs::symlink_status(path, ec)) || ec) {
+    r.fail(where, "'" + printable(name) + "' does not exist in " + dir);
+  }
+  if (files == DatasetFiles::inside) {
+    const fs::path real = fs::weakly_canonical(path, ec);
+    if (ec) {
+      r.fail(where,
+             "'" + printable(name) + "' cannot be resolved (" + ec.message() +
+                 (ec == std::errc::too_many_symbolic_link_levels ? ": a symbolic link loop" : "") +
+                 ")");
+    }
+    const fs::path root = fs::canonical(dir, ec);
+    const auto [end, ignored] = std::mismatch(root.begin(), root.end(), real.begin(), real.end());
+    if (ec || end != root.end()) {
+      r.fail(where, "'" + printable(name) + "' lies outside the dataset directory " + dir +
+                        " (lmk eval --allow-outside-files reads it anyway)");
+    }
+  }
+  try {
+    check_input_file(path.string(), kind);  // a FIFO or /dev/zero: a special file, not a scene
+  } catch (const Error& e) {
+    r.fail(where, e.what());
+  }
+}
+
 // Names unique, pairs naming known landmarks once per scene, and every file present.
-void check_consistency(const Dataset& d, const std::string& dir, const detail::JsonReader& r) {
+void check_consistency(const Dataset& d, const std::string& dir, DatasetFiles files,
+                       const detail::JsonReader& r) {
   std::set<std::string> landmark_names, scene_names;
   for (std::size_t i = 0; i < d.landmarks.size(); ++i) {
     const std::string where = detail::at("", "landmarks", i);
     if (!landmark_names.insert(d.landmarks[i].name).second) {
       r.fail(where, "duplicate landmark name '" + d.landmarks[i].name + "'");
     }
-    if (!fs::is_regular_file(fs::path(dir) / d.landmarks[i].file)) {
-      r.fail(where + ".file", "'" + d.landmarks[i].file + "' does not exist in " + dir);
-    }
+    check_dataset_file(dir, d.landmarks[i].file, kLandmarkInput, files, where + ".file", r);
   }
   for (std::size_t i = 0; i < d.scenes.size(); ++i) {
     const DatasetScene& s = d.scenes[i];
     const std::string where = detail::at("", "scenes", i);
     if (!scene_names.insert(s.name).second) r.fail(where, "duplicate scene name '" + s.name + "'");
-    if (!fs::is_regular_file(fs::path(dir) / s.file)) {
-      r.fail(where + ".file", "'" + s.file + "' does not exist in " + dir);
-    }
+    check_dataset_file(dir, s.file, kCloudInput, files, where + ".file", r);
     std::set<std::string> paired;
     for (std::size_t k = 0; k < s.pairs.size(); ++k) {
       const std::string& name = s.pairs[k].landmark;
@@ -152,13 +181,13 @@ DatasetPair Dataset::pair(const DatasetScene& scene, const std::string& landmark
   return {landmark, false, {}, {}, std::nullopt};
 }
 
-Dataset load_dataset(const std::string& dir) {
+Dataset load_dataset(const std::string& dir, DatasetFiles files) {
   const std::string file = (fs::path(dir) / "dataset.json").string();
   const detail::JsonReader r(file);
   if (!fs::is_directory(dir)) r.fail("", "no such file (is '" + dir + "' a dataset directory?)");
   const std::string text = read_input_file(file, kDatasetInput);
   const Dataset d = parse(r.parse(text), r);
-  check_consistency(d, dir, r);
+  check_consistency(d, dir, files, r);
   return d;
 }
 
@@ -218,7 +247,7 @@ void save_dataset(const std::string& dir, const Dataset& d) {
                   {"scenes", scenes}};
   // Validate what is about to be written exactly as a reader would, before writing it.
   const detail::JsonReader r(file);
-  check_consistency(parse(j, r), dir, r);
+  check_consistency(parse(j, r), dir, DatasetFiles::inside, r);
   write_file_atomically(file, [&](const fs::path& tmp) {
     std::ofstream out(tmp);
     out << j.dump(2) << "\n";

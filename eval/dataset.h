@@ -65,10 +65,20 @@ std::string scene_entry_text(const DatasetScene& scene);
 /// Reads such an entry; lmk::Error naming `where` (its file) and the field that is wrong.
 DatasetScene parse_scene_entry(const std::string& text, const std::string& where);
 
+/// Where the scene and landmark files a dataset.json names may lie.
+enum class DatasetFiles {
+  /// Inside the dataset's directory, after every symbolic link (the default): a dataset from
+  /// elsewhere cannot make lmk read ../../secret or /etc/passwd as a scene (issue #34, finding 5).
+  inside,
+  /// Anywhere (lmk eval --allow-outside-files): a dataset that points at shared data on purpose.
+  anywhere,
+};
+
 /// Reads and validates DIR/dataset.json. Throws lmk::Error naming the file, the field path (e.g.
-/// scenes[2].pairs[0].landmark) and the problem: a wrong version, a missing file, a duplicate or
-/// unknown name, a bad pose (non-finite, or a quaternion that is not unit length).
-Dataset load_dataset(const std::string& dir);
+/// scenes[2].pairs[0].landmark) and the problem: a wrong version, a missing file, a special file
+/// (a named pipe, a device), a symbolic link loop, a file outside DIR (unless `files` allows it),
+/// a duplicate or unknown name, a bad pose (non-finite, or a quaternion that is not unit length).
+Dataset load_dataset(const std::string& dir, DatasetFiles files = DatasetFiles::inside);
 
 /// Validates `dataset` against `dir` (the files it names must exist there) and writes
 /// DIR/dataset.json atomically.

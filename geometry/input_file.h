@@ -17,6 +17,8 @@ inline constexpr std::uintmax_t kMaxCloudFileBytes = std::uintmax_t{4} << 30;
 inline constexpr std::uintmax_t kMaxLandmarkFileBytes = std::uintmax_t{1} << 30;
 /// An image (depth or colour) is decoded whole; 512 MiB is far beyond a 16K x 16K 16-bit PNG.
 inline constexpr std::uintmax_t kMaxImageFileBytes = std::uintmax_t{512} << 20;
+/// A ROS bag is read through its index, never whole; 1 TiB is beyond any recording of a robot.
+inline constexpr std::uintmax_t kMaxBagFileBytes = std::uintmax_t{1} << 40;
 /// Programs, datasets, boxes, settings, URDFs and cache entries: JSON or XML text.
 inline constexpr std::uintmax_t kMaxTextFileBytes = std::uintmax_t{256} << 20;
 
@@ -34,6 +36,7 @@ inline constexpr InputKind kDatasetInput{"dataset file", kMaxTextFileBytes};
 inline constexpr InputKind kRobotInput{"robot description", kMaxTextFileBytes};
 inline constexpr InputKind kImageInput{"image file", kMaxImageFileBytes};
 inline constexpr InputKind kTextInput{"text file", kMaxTextFileBytes};
+inline constexpr InputKind kBagInput{"ROS bag", kMaxBagFileBytes};
 
 /// Throws lmk::Error, with one line starting with the path, unless `path` names an existing
 /// regular file (after symbolic links) of at most `kind.max_bytes`. Never opens the file.

@@ -15,6 +15,7 @@
 #include <set>
 
 #include "lmk/geometry/error.h"
+#include "lmk/geometry/input_file.h"
 
 namespace lmk::ros1 {
 namespace {
@@ -22,6 +23,9 @@ namespace {
 constexpr const char* kCloudType = "sensor_msgs/PointCloud2";
 
 void open_bag(rosbag::Bag& bag, const std::string& path) {
+  // A FIFO named x.bag hung lmk find, info and gen --from-bag in rosbag's open (issue #34,
+  // finding 5): the one check every input file passes first.
+  check_input_file(path, kBagInput);
   try {
     bag.open(path, rosbag::bagmode::Read);
   } catch (const rosbag::BagException& e) {

@@ -29,6 +29,10 @@ void add_dataset_options(CLI::App* sub, DatasetOptions& o) {
                   "some seeds is reported on others; 0 is the landmarks' demonstration scene")
       ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1000000000}))
       ->excludes(dataset);
+  sub->add_flag("--allow-outside-files", o.allow_outside_files,
+                "With --dataset: read scene and landmark files that lie outside its directory "
+                "(default: refused)")
+      ->needs(dataset);
   sub->add_option("--types", o.types,
                   "With a preset: only these scene types (comma-separated, e.g. "
                   "simple/three_balls) and the landmarks in context in them")
@@ -76,7 +80,8 @@ LoadedDataset load_or_generate(const DatasetOptions& o, const std::string& cache
     generate.progress = [&bar](std::size_t done, std::size_t total) { bar.update(done, total); };
     data.dir = cached_benchmark_dataset(home, preset, generate);
   }
-  data.dataset = load_dataset(data.dir);
+  data.dataset =
+      load_dataset(data.dir, o.allow_outside_files ? DatasetFiles::anywhere : DatasetFiles::inside);
   return data;
 }
 

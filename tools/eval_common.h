@@ -13,12 +13,13 @@
 namespace lmk::cli {
 
 struct DatasetOptions {
-  std::string dir;               ///< --dataset
-  std::string preset;            ///< --preset (default "paper" when neither is given)
-  std::optional<int> seeds;      ///< --seeds, with a preset
-  bool hard = false;             ///< --hard, with a preset
-  std::uint64_t first_seed = 1;  ///< --first-seed, with a preset
-  std::string types;             ///< --types, with a preset: comma-separated scene types
+  std::string dir;                   ///< --dataset
+  std::string preset;                ///< --preset (default "paper" when neither is given)
+  std::optional<int> seeds;          ///< --seeds, with a preset
+  bool hard = false;                 ///< --hard, with a preset
+  std::uint64_t first_seed = 1;      ///< --first-seed, with a preset
+  std::string types;                 ///< --types, with a preset: comma-separated scene types
+  bool allow_outside_files = false;  ///< --allow-outside-files, with --dataset
 };
 void add_dataset_options(CLI::App* sub, DatasetOptions& options);
 

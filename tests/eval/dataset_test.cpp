@@ -2,7 +2,9 @@
 #include "lmk/eval/dataset.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -12,6 +14,8 @@
 
 namespace lmk {
 namespace {
+
+namespace fs = std::filesystem;
 
 // A small valid dataset on disk: two landmarks, two scenes; the files only need to exist.
 class DatasetTest : public ::testing::Test {
@@ -94,6 +98,39 @@ TEST_F(DatasetTest, ClearErrors) {
   test::write_text(dir_.file("dataset.json"), "{ not json");
   EXPECT_THROW(load_dataset(dir_.path().string()), Error);
   EXPECT_THROW(load_dataset(dir_.file("nowhere")), Error);
+}
+
+// Issue #34, finding 5: dataset.json read scene and landmark files outside its directory, a FIFO
+// there was "does not exist", and a symbolic link loop was an internal error.
+TEST_F(DatasetTest, FilesStayInsideTheDatasetDirectoryUnlessAllowed) {
+  const auto expect = [](const std::string& message, const std::string& part) {
+    EXPECT_NE(message.find(part), std::string::npos) << message;
+  };
+  // A file beside the dataset directory, reached three ways.
+  const fs::path outside =
+      dir_.path().parent_path() / (dir_.path().filename().string() + "-secret.pcd");
+  test::write_text(outside.string(), "SECRET");
+  fs::create_symlink(outside, dir_.path() / "link.pcd");
+  const std::string up = "../" + outside.filename().string();
+  for (const std::string file : {up, outside.string(), std::string("link.pcd")}) {
+    expect(error_after([&](auto& j) { j["scenes"][1]["file"] = file; }),
+           "lies outside the dataset directory");
+    // Allowed on request.
+    EXPECT_NO_THROW(load_dataset(dir_.path().string(), DatasetFiles::anywhere)) << file;
+  }
+  // A link that stays inside is fine.
+  fs::create_symlink("b.pcd", dir_.path() / "inside.pcd");
+  dataset_.scenes[1].file = "inside.pcd";
+  save_dataset(dir_.path().string(), dataset_);
+  EXPECT_NO_THROW(load_dataset(dir_.path().string()));
+
+  ASSERT_EQ(::mkfifo(dir_.file("pipe.pcd").c_str(), 0600), 0);
+  expect(error_after([](auto& j) { j["scenes"][1]["file"] = "pipe.pcd"; }), "is a named pipe");
+  fs::create_symlink("loop2.pcd", dir_.path() / "loop1.pcd");
+  fs::create_symlink("loop1.pcd", dir_.path() / "loop2.pcd");
+  expect(error_after([](auto& j) { j["scenes"][1]["file"] = "loop1.pcd"; }),
+         "scenes[1].file: 'loop1.pcd'");
+  fs::remove(outside);
 }
 
 TEST_F(DatasetTest, HiddenFractionsRoundTripAndAreChecked) {

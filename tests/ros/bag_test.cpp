@@ -4,6 +4,7 @@
 // --topic --time`, `lmk info` and `lmk gen --from-bag`. No ROS master is involved: bags are files.
 #include <gtest/gtest.h>
 #include <rosbag/bag.h>
+#include <sys/stat.h>
 #include <tf2_eigen/tf2_eigen.h>
 #include <tf2_msgs/TFMessage.h>
 #include <tf2_ros/buffer.h>
@@ -145,6 +146,18 @@ TEST(Bags, BadBagsAndTopicsAreRefusedWithTheReason) {
   const auto [code, out] = run_lmk(dir, {"find", dir.file("fake.bag"), session().landmark});
   EXPECT_EQ(code, 2) << out;
   EXPECT_NE(out.find("is not a readable ROS bag"), std::string::npos) << out;
+  // A named pipe waits forever for a writer: refused as a special file before any open.
+  ASSERT_EQ(::mkfifo(dir.file("pipe.bag").c_str(), 0600), 0);
+  for (const std::vector<std::string> args :
+       {std::vector<std::string>{"find", dir.file("pipe.bag"), session().landmark},
+        std::vector<std::string>{"info", dir.file("pipe.bag")},
+        std::vector<std::string>{"gen", dir.file("ds2"), "--from-bag", dir.file("pipe.bag"),
+                                 "--landmark", session().landmark}}) {
+    const auto [fifo_code, fifo_out] = run_lmk(dir, args);
+    EXPECT_EQ(fifo_code, 2) << args[0] << ": " << fifo_out;
+    EXPECT_NE(fifo_out.find("pipe.bag: is a named pipe, not a ROS bag"), std::string::npos)
+        << args[0] << ": " << fifo_out;
+  }
 
   const auto [code3, out3] = run_lmk(dir, {"gen", dir.file("ds"), "--from-bag", session().bag});
   EXPECT_EQ(code3, 2) << out3;
