@@ -162,7 +162,7 @@ AccessVerdict AccessGuard::check(const RequestView& r) const {
     }
     v.token_from_query = from_query;
   }
-  if (changes_state(r.method) && takes_json(r) &&
+  if (changes_state(r.method) && r.has_body && takes_json(r) &&
       media_type(r.content_type) != "application/json") {
     v.status = 415;
     v.error = "send the request's JSON as 'Content-Type: application/json'" +

@@ -25,6 +25,7 @@ struct RequestView {
   std::string cookie;         ///< the Cookie header
   std::string query_token;    ///< the ?token= parameter
   bool has_query_token = false;
+  bool has_body = true;  ///< false: no Content-Length above 0 and no chunked body (a bare DELETE)
 };
 
 /// The guard's answer: pass (status 0), or refuse with this status and one-line reason.

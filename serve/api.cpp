@@ -51,10 +51,28 @@ ApiResponse Api::run_job(const std::string& kind, const nlohmann::json& body, Jo
   const std::string id = jobs_->submit(kind, std::move(work));
   if (!wait) return {202, {{"job", id}, {"url", "/api/jobs/" + id}}};
   // Waiting is for scripts: the page polls instead, to show progress.
-  const nlohmann::json job = jobs_->wait(id);
+  const nlohmann::json job = jobs_->status(id, kMaxRequestWait).value();
+  if (!JobPool::finished(job)) {
+    return {202,
+            {{"job", id},
+             {"url", "/api/jobs/" + id},
+             {"state", job["state"]},
+             {"note", "still running (or many requests wait already): poll the url"}}};
+  }
   if (job["state"] == "failed") return {job["status"].get<int>(), job};
   return {200, job};
 }
+
+ApiResponse Api::cancel_job(const std::string& id) {
+  const std::optional<bool> cancelled = jobs_->cancel(id);
+  if (!cancelled) throw not_found("no job '" + id + "' (finished jobs are kept for a while only)");
+  if (!*cancelled) throw conflict("job '" + id + "' has finished already");
+  return {200, {{"job", id}, {"cancelled", true}}};
+}
+
+ApiResponse Api::health() { return {200, {{"ok", true}}}; }
+
+void Api::stop() { jobs_->stop(); }
 
 ApiResponse Api::job(const std::string& id, const std::string& wait) const {
   double seconds = 0.0;
@@ -66,7 +84,7 @@ ApiResponse Api::job(const std::string& id, const std::string& wait) const {
     } catch (const std::exception&) {
       throw bad_request("job: wait=" + wait + ": must be a number of seconds, at least 0");
     }
-    seconds = std::min(seconds, 60.0);  // a long poll, not a hung connection
+    seconds = std::min(seconds, kMaxRequestWait);  // a long poll, not a hung connection
   }
   const auto status = jobs_->status(id, seconds);
   if (!status) throw not_found("no job '" + id + "' (finished jobs are kept for a while only)");

@@ -22,6 +22,10 @@ struct ApiResponse {
   nlohmann::json body;
 };
 
+/// The longest a request waits for a job, s: a POST with "wait": true, or a long poll
+/// (GET /api/jobs/ID?wait=S). Waiting requests hold HTTP threads; past it the client polls.
+inline constexpr double kMaxRequestWait = 10.0;
+
 class Api {
  public:
   /// Reads every scene and opens the landmark directory; lmk::Error for a bad scene file or
@@ -45,9 +49,14 @@ class Api {
   ApiResponse landmarks() const;
   ApiResponse landmark(const std::string& name) const;
   ApiResponse save_landmark(const std::string& body);
-  // Searches (api_find.cpp): POST /api/find, GET /api/jobs/ID?wait=S
+  // Searches (api_find.cpp): POST /api/find, GET /api/jobs/ID?wait=S, DELETE /api/jobs/ID
   ApiResponse find(const std::string& body);
   ApiResponse job(const std::string& id, const std::string& wait) const;
+  ApiResponse cancel_job(const std::string& id);
+  // GET /api/health: answers at once, whatever the jobs are doing.
+  static ApiResponse health();
+  /// Stops the jobs and wakes every request waiting for one (the server is stopping).
+  void stop();
   // Programs (api_programs.cpp): GET /api/programs, GET /api/programs/NAME,
   // POST /api/programs/NAME/plan
   ApiResponse programs() const;
@@ -57,8 +66,9 @@ class Api {
  private:
   /// The search settings a scene starts from: its up axis as the server was told.
   FindSettings scene_find_settings() const;
-  /// Queues `work`; with body["wait"] true, waits for it and answers with the finished job (200),
-  /// otherwise answers 202 with the job's id and where to poll it.
+  /// Queues `work`; with body["wait"] true, waits for it up to kMaxRequestWait and answers with
+  /// the finished job (200), otherwise (or when it is still running then, or too many requests
+  /// wait already) answers 202 with the job's id and where to poll it.
   ApiResponse run_job(const std::string& kind, const nlohmann::json& body, JobPool::Work work);
   /// The program file `name` (NAME.json in the programs directory); ApiError 400/403/404.
   std::filesystem::path program_path(const std::string& name) const;

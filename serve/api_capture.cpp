@@ -150,9 +150,12 @@ ApiResponse Api::save_landmark(const std::string& body_text) {
   nlohmann::json checked;
   if (check_first) {
     // The check is a search: it runs on the worker pool like any other.
+    // The job holds its own copies: a stopping server answers this request before the job ends.
+    const auto shared = std::make_shared<const Landmark>(landmark);
     const std::string id = jobs_->submit(
-        "check", [&landmark, &scene](JobProgress&) { return verdict(landmark, *scene.cloud); });
+        "check", [shared, scene](JobProgress&) { return verdict(*shared, *scene.cloud); });
     const nlohmann::json job = jobs_->wait(id);
+    if (!JobPool::finished(job)) throw ApiError(503, "the server is stopping");
     if (job["state"] == "failed") throw ApiError(job["status"].get<int>(), job["error"]);
     checked = job["result"];
     if (!checked["distinctive"].get<bool>()) {

@@ -9,7 +9,8 @@
 namespace lmk::serve {
 
 struct JobPool::Job {
-  explicit Job(const std::atomic<bool>& stopping) : progress(stopping) {}
+  explicit Job(const std::atomic<bool>& stopping) : progress(stopping, cancelled) {}
+  std::atomic<bool> cancelled{false};
   std::string id, kind;
   Work work;
   std::string state = "queued";
@@ -22,7 +23,8 @@ struct JobPool::Job {
 };
 
 void JobProgress::report(double fraction, std::string message) {
-  if (stopping_) throw JobCancelled();
+  if (stopping_) throw JobCancelled("the server is stopping");
+  if (cancelled_) throw JobCancelled("cancelled (DELETE /api/jobs/ID)");
   std::lock_guard<std::mutex> lock(mutex_);
   fraction_ = fraction;
   message_ = std::move(message);
@@ -33,12 +35,17 @@ nlohmann::json JobProgress::to_json() const {
   return {{"fraction", fraction_}, {"message", message_}};
 }
 
-JobPool::JobPool(int workers, std::size_t max_queued, std::size_t max_kept)
-    : max_queued_(max_queued), max_kept_(max_kept) {
+JobPool::JobPool(int workers, std::size_t max_queued, std::size_t max_kept, std::size_t max_waiters)
+    : max_queued_(max_queued), max_kept_(max_kept), max_waiters_(max_waiters) {
   for (int i = 0; i < std::max(1, workers); ++i) workers_.emplace_back([this] { work_loop(); });
 }
 
 JobPool::~JobPool() {
+  stop();
+  for (std::thread& t : workers_) t.join();
+}
+
+void JobPool::stop() {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     stopping_ = true;
@@ -46,7 +53,30 @@ JobPool::~JobPool() {
     queue_.clear();
   }
   changed_.notify_all();
-  for (std::thread& t : workers_) t.join();
+}
+
+std::optional<bool> JobPool::cancel(const std::string& id) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const auto it = jobs_.find(id);
+  if (it == jobs_.end()) return std::nullopt;
+  Job& job = *it->second;
+  if (job.state == "done" || job.state == "failed") return false;
+  job.cancelled = true;  // a running job ends at its next progress report
+  if (job.state == "queued") {
+    for (auto q = queue_.begin(); q != queue_.end(); ++q) {
+      if ((*q)->id == id) {
+        queue_.erase(q);
+        break;
+      }
+    }
+    finish(job, {}, "cancelled (DELETE /api/jobs/ID)", 409);
+  }
+  return true;
+}
+
+bool JobPool::finished(const nlohmann::json& status) {
+  const std::string state = status.value("state", "");
+  return state == "done" || state == "failed";
 }
 
 std::string JobPool::submit(const std::string& kind, Work work) {
@@ -85,7 +115,7 @@ void JobPool::work_loop() {
       result = job->work(job->progress);
     } catch (const JobCancelled& e) {
       error = e.what();
-      status = 503;
+      status = job->cancelled ? 409 : 503;
     } catch (const ApiError& e) {
       error = e.what();
       status = e.status();
@@ -145,9 +175,13 @@ std::optional<nlohmann::json> JobPool::status(const std::string& id, double wait
   const auto it = jobs_.find(id);
   if (it == jobs_.end()) return std::nullopt;
   const std::shared_ptr<Job> job = it->second;
-  const auto finished = [&job] { return job->state == "done" || job->state == "failed"; };
-  if (wait_seconds > 0.0) {
-    changed_.wait_for(lock, std::chrono::duration<double>(wait_seconds), finished);
+  const auto done = [this, &job] {
+    return stopping_ || job->state == "done" || job->state == "failed";
+  };
+  if (wait_seconds > 0.0 && waiters_ < max_waiters_) {
+    ++waiters_;
+    changed_.wait_for(lock, std::chrono::duration<double>(wait_seconds), done);
+    --waiters_;
   }
   return describe(*job);
 }
@@ -157,7 +191,8 @@ nlohmann::json JobPool::wait(const std::string& id) const {
   const auto it = jobs_.find(id);
   if (it == jobs_.end()) throw not_found("no job '" + id + "'");
   const std::shared_ptr<Job> job = it->second;
-  changed_.wait(lock, [&job] { return job->state == "done" || job->state == "failed"; });
+  changed_.wait(
+      lock, [this, &job] { return stopping_ || job->state == "done" || job->state == "failed"; });
   return describe(*job);
 }
 

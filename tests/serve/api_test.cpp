@@ -262,9 +262,10 @@ TEST_F(ServeTest, TenConcurrentSearchesGiveTheResultsOfTenSequentialOnes) {
       const auto own = new_client();  // one connection each, as ten pages would
       nlohmann::json body = request(seed);
       body["wait"] = true;
-      const auto r = own->Post("/api/find", body.dump(), "application/json");
-      if (!r || r->status != 200) return nlohmann::json();
-      return without_times(nlohmann::json::parse(r->body)["result"]);
+      const Reply r =
+          until_finished(*own, reply_of(own->Post("/api/find", body.dump(), "application/json")));
+      if (r.status != 200) return nlohmann::json();
+      return without_times(r.body["result"]);
     }));
   }
   // The page stays answered while they run.
@@ -330,6 +331,55 @@ TEST_F(ServeTest, ProgramsArePlannedAsOnTheRobotAndTheirFilesStayInTheirDirector
   EXPECT_EQ(post("/api/programs/none/plan", {{"scene", "2"}}).status, 404);
   EXPECT_EQ(post("/api/programs/reach/plan", {{"scene", "2"}, {"torso", "high"}}).status, 400);
   EXPECT_EQ(get("/api/programs/..%2F..%2Fetc%2Fpasswd").status, 400);
+}
+
+// Issue #34, finding 3: a health route, and DELETE /api/jobs/ID over HTTP.
+TEST_F(ServeTest, HealthAnswersAndJobsCanBeCancelled) {
+  start();
+  const Reply health = get("/api/health");
+  EXPECT_EQ(health.status, 200);
+  EXPECT_EQ(health.body["ok"], true);
+  const auto missing = client->Delete("/api/jobs/job-999");
+  ASSERT_TRUE(missing);
+  EXPECT_EQ(missing->status, 404);
+  capture_carton();
+  const Reply started = post("/api/find", {{"scene", "1"}, {"landmarks", {"carton"}}});
+  ASSERT_EQ(started.status, 202) << started.text;
+  const std::string id = started.body["job"];
+  const Reply finished = until_finished(*client, started);
+  EXPECT_EQ(finished.status, 200);
+  const auto again = client->Delete(("/api/jobs/" + id).c_str());
+  ASSERT_TRUE(again);
+  EXPECT_EQ(again->status, 409) << again->body;  // it had finished
+}
+
+// Issue #34, finding 3: Ctrl-C took 22 s with a search under way. A search that would run for
+// hours, a long poll and a POST waiting on it: stopping the server answers both (the job still
+// running, never done), the server and its pool stop, and the test ends.
+TEST_F(ServeTest, StoppingDoesNotWaitForASearchUnderWay) {
+  start();
+  capture_carton();
+  const nlohmann::json endless = {
+      {"scene", "1"},
+      {"landmarks", {"carton"}},
+      {"settings", {{"method", "reference"}, {"sample-fraction", 1}, {"max-seeds", 1000000}}}};
+  const Reply started = post("/api/find", endless);
+  ASSERT_EQ(started.status, 202) << started.text;
+  const std::string url = "/api/jobs/" + started.body["job"].get<std::string>();
+  while (get(url).body.value("state", "") != "running") std::this_thread::yield();
+  auto poll = std::async(std::launch::async,
+                         [&] { return reply_of(new_client()->Get((url + "?wait=10").c_str())); });
+  nlohmann::json waiting = endless;
+  waiting["wait"] = true;
+  auto post_waiting = std::async(std::launch::async, [&] {
+    return reply_of(new_client()->Post("/api/find", waiting.dump(), "application/json"));
+  });
+  server->stop();
+  thread.join();
+  // Each got an answer or a closed connection; neither waited for the search.
+  const Reply p = poll.get(), w = post_waiting.get();
+  EXPECT_FALSE(p.body.is_object() && p.body.value("state", "") == "done") << p.text;
+  EXPECT_NE(w.status, 200) << w.text;
 }
 
 }  // namespace

@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <future>
+#include <optional>
 #include <thread>
 
 #include "lmk/geometry/error.h"
@@ -82,6 +84,63 @@ TEST(JobPool, StoppingEndsAJobUnderWayAtItsNextReport) {
     while (!started) std::this_thread::yield();
   }  // the destructor returns: the job saw the stop
   EXPECT_TRUE(cancelled);
+}
+
+// A job that runs until it is cancelled or the pool stops, reporting progress all along.
+JobPool::Work forever(std::atomic<bool>& started) {
+  return [&started](JobProgress& p) {
+    started = true;
+    for (;;) p.report(0.0, "forever");
+    return nlohmann::json();
+  };
+}
+
+// Issue #34, finding 3: DELETE /api/jobs/ID.
+TEST(JobPool, ACancelledJobEndsAtItsNextReportAndAQueuedOneNeverRuns) {
+  std::atomic<bool> started{false}, ran{false};
+  JobPool pool(1, 4);
+  const std::string running = pool.submit("find", forever(started));
+  while (!started) std::this_thread::yield();
+  const std::string queued = pool.submit("find", [&ran](JobProgress&) {
+    ran = true;
+    return nlohmann::json();
+  });
+  EXPECT_EQ(pool.cancel(queued), std::optional<bool>(true));
+  EXPECT_EQ(pool.cancel(running), std::optional<bool>(true));
+  const nlohmann::json a = pool.wait(running), b = pool.wait(queued);
+  EXPECT_EQ(a["state"], "failed");
+  EXPECT_EQ(a["status"], 409);
+  EXPECT_EQ(b["status"], 409);
+  EXPECT_NE(b["error"].get<std::string>().find("cancelled"), std::string::npos);
+  EXPECT_FALSE(ran);
+  EXPECT_EQ(pool.cancel(running), std::optional<bool>(false));  // finished already
+  EXPECT_EQ(pool.cancel("job-999"), std::nullopt);
+}
+
+// Waiting requests hold HTTP threads: past max_waiters a request is answered at once, and stop()
+// wakes every one that waits, so that Ctrl-C is not held by a long poll.
+TEST(JobPool, WaitersAreBoundedAndWokenWhenThePoolStops) {
+  std::atomic<bool> started{false};
+  JobPool pool(1, 4, 256, /*max_waiters=*/1);
+  const std::string id = pool.submit("find", forever(started));
+  while (!started) std::this_thread::yield();
+  auto first = std::async(std::launch::async, [&] { return *pool.status(id, 600.0); });
+  auto second = std::async(std::launch::async, [&] { return *pool.status(id, 600.0); });
+  // One of the two found the only waiting place taken and is answered while the job runs.
+  for (;;) {
+    if (first.wait_for(std::chrono::milliseconds(0)) == std::future_status::ready) break;
+    if (second.wait_for(std::chrono::milliseconds(0)) == std::future_status::ready) {
+      std::swap(first, second);
+      break;
+    }
+    std::this_thread::yield();
+  }
+  EXPECT_EQ(first.get()["state"], "running");
+  pool.stop();  // the other waiter returns now, not after 600 s
+  const nlohmann::json last = second.get();
+  // Woken by the stop: the job still running, or already ended by it at its next report.
+  EXPECT_TRUE(last["state"] == "running" || (last["state"] == "failed" && last["status"] == 503))
+      << last.dump();
 }
 
 }  // namespace

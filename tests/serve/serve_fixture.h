@@ -28,6 +28,9 @@ struct Reply {
   std::string text;
 };
 
+/// A client's result as a Reply (status -1 and the reason when there was no response).
+Reply reply_of(const httplib::Result& r);
+
 class ServeTest : public ::testing::Test {
  protected:
   void SetUp() override;
@@ -43,6 +46,9 @@ class ServeTest : public ::testing::Test {
   Reply post(const std::string& path, const nlohmann::json& body);
   Reply post_bytes(const std::string& path, const std::string& bytes);
   Reply post_text(const std::string& path, const std::string& text);
+  /// `r`, or when it is a 202 for a job still running, the job polled on `c` until it ends: its
+  /// status then (200 done, the job's status when failed).
+  static Reply until_finished(httplib::Client& c, Reply r);
   /// POST with "wait": true, expecting the finished job; its result.
   nlohmann::json run(const std::string& path, nlohmann::json body);
 
