@@ -2,6 +2,7 @@
 // The scene endpoints: the picker's list, uploads, a scene's facts and its points for the view.
 #include <cmath>
 
+#include "lmk/geometry/error.h"
 #include "lmk/json/pose_json.h"
 #include "lmk/landmark/landmark.h"
 #include "lmk/serve/api.h"
@@ -55,16 +56,24 @@ ApiResponse Api::scene(const std::string& id) const {
   return {200, j};
 }
 
+// The most points a cloud download sends: a 1080p frame's 2 million. The answer is JSON built in
+// memory; 5 million points took 1.08 GB and 11 s (issue #34, finding 3).
+constexpr long long kMaxCloudDownloadPoints = 2'000'000;
+
 ApiResponse Api::scene_cloud(const std::string& id, const std::string& max_points_text) const {
   std::size_t max_points = 400000;
   if (!max_points_text.empty()) {
     try {
       std::size_t used = 0;
       const long long n = std::stoll(max_points_text, &used);
-      if (used != max_points_text.size() || n < 1) throw bad_request("");
+      if (used != max_points_text.size() || n < 1 || n > kMaxCloudDownloadPoints) {
+        throw bad_request("");
+      }
       max_points = static_cast<std::size_t>(n);
     } catch (const std::exception&) {
-      throw bad_request("cloud: max_points=" + max_points_text + ": must be a whole number >= 1");
+      throw bad_request("cloud: max_points=" + printable(max_points_text) +
+                        ": must be a whole number in [1, " +
+                        std::to_string(kMaxCloudDownloadPoints) + "]");
     }
   }
   const Scene s = scenes_.get(id);

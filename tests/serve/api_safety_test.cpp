@@ -152,6 +152,11 @@ TEST_F(ServeTest, HostileNamesAreRefusedWithValidJsonThatShowsThem) {
   const Reply program = get("/api/programs/-x");
   EXPECT_EQ(program.status, 400);
   EXPECT_NE(program.text.find("program id '-x'"), std::string::npos) << program.text;
+  // Issue #34, finding 3: max_points=5000000 took 1.08 GB and 11 s.
+  const Reply huge = get("/api/scenes/1/cloud?max_points=5000000");
+  EXPECT_EQ(huge.status, 400) << huge.text.substr(0, 200);
+  EXPECT_NE(huge.text.find("[1, 2000000]"), std::string::npos) << huge.text.substr(0, 200);
+  EXPECT_EQ(get("/api/scenes/1/cloud?max_points=2000000").status, 200);
   const Reply string_box = post("/api/check", {{"scene", "1"}, {"box", "big"}});
   EXPECT_EQ(string_box.status, 400);
   EXPECT_NE(string_box.text.find("box: must be a box"), std::string::npos) << string_box.text;
