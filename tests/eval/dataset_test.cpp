@@ -112,7 +112,7 @@ TEST_F(DatasetTest, FilesStayInsideTheDatasetDirectoryUnlessAllowed) {
   test::write_text(outside.string(), "SECRET");
   fs::create_symlink(outside, dir_.path() / "link.pcd");
   const std::string up = "../" + outside.filename().string();
-  for (const std::string file : {up, outside.string(), std::string("link.pcd")}) {
+  for (const std::string& file : {up, outside.string(), std::string("link.pcd")}) {
     expect(error_after([&](auto& j) { j["scenes"][1]["file"] = file; }),
            "lies outside the dataset directory");
     // Allowed on request.

@@ -17,7 +17,7 @@ TEST(TextChecks, Utf8IsWellFormedOnlyAsRfc3629Says) {
   EXPECT_TRUE(is_valid_utf8("milk.pcd"));
   EXPECT_TRUE(
       is_valid_utf8("caf\xc3\xa9 \xe2\x82\xac \xf0\x9f\x8d\xb6"));  // e-acute, euro, a bottle
-  for (const std::string bad : {
+  for (const std::string& bad : {
            std::string("\xff"), std::string("\xc3\x28"),  // a lead byte without its follower
            std::string("\xc0\xaf"),                       // an overlong '/'
            std::string("\xe0\x80\xaf"),                   // an overlong '/' in three bytes
@@ -39,7 +39,7 @@ TEST(TextChecks, PlainNamesCannotLeaveHideOrReadAsAnOption) {
   for (const std::string good : {"milk", "rack-2", "a.b_c", "9"}) {
     EXPECT_TRUE(is_plain_name(good, 100)) << good;
   }
-  for (const std::string bad :
+  for (const std::string& bad :
        std::vector<std::string>{"", "-rf", ".hidden", "../up", "a/b", "a b", "caf\xc3\xa9",
                                 std::string("a\0b", 3), std::string(101, 'x')}) {
     EXPECT_FALSE(is_plain_name(bad, 100)) << printable(bad);
