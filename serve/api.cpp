@@ -13,7 +13,9 @@ namespace lmk::serve {
 
 Api::Api(ServeSettings settings, const std::filesystem::path& scratch_dir)
     : settings_(std::move(settings)),
-      scenes_(settings_.max_uploads, scratch_dir),
+      scenes_(UploadLimits{settings_.max_uploads, settings_.max_upload_points,
+                           settings_.max_uploaded_points},
+              scratch_dir),
       library_(settings_.landmarks_dir) {
   for (const std::string& path : settings_.scenes) scenes_.add_file(path);
   if (!settings_.programs_dir.empty()) {

@@ -24,8 +24,8 @@ void check_upload_name(const std::string& name) {
 
 }  // namespace
 
-SceneStore::SceneStore(std::size_t max_uploads, std::filesystem::path scratch_dir)
-    : max_uploads_(max_uploads), scratch_dir_(std::move(scratch_dir)) {}
+SceneStore::SceneStore(UploadLimits limits, std::filesystem::path scratch_dir)
+    : limits_(limits), scratch_dir_(std::move(scratch_dir)) {}
 
 Scene& SceneStore::insert(std::string name, std::string source, PointCloud cloud) {
   Scene scene;
@@ -75,16 +75,27 @@ Scene SceneStore::add_upload(const std::string& name, const std::string& bytes) 
   }
   std::error_code ignored;
   std::filesystem::remove(file, ignored);
-
-  std::lock_guard<std::mutex> lock(mutex_);
-  const auto uploads = [this] {
-    return std::count_if(scenes_.begin(), scenes_.end(),
-                         [](const Scene& s) { return s.source == "upload"; });
-  };
-  while (max_uploads_ > 0 && static_cast<std::size_t>(uploads()) >= max_uploads_) {
-    scenes_.erase(std::find_if(scenes_.begin(), scenes_.end(),
-                               [](const Scene& s) { return s.source == "upload"; }));
+  if (cloud.size() > limits_.max_points) {
+    throw ApiError(413, "upload: " + name + " holds " + std::to_string(cloud.size()) +
+                            " points; at most " + std::to_string(limits_.max_points) +
+                            " per upload");
   }
+
+  // The oldest uploads go until this one fits: in count and in points kept. A search under way
+  // keeps its own reference to its cloud.
+  std::lock_guard<std::mutex> lock(mutex_);
+  const auto is_upload = [](const Scene& s) { return s.source == "upload"; };
+  const auto over = [&] {
+    std::size_t count = 0, points = cloud.size();
+    for (const Scene& s : scenes_) {
+      if (!is_upload(s)) continue;
+      ++count;
+      points += s.cloud->size();
+    }
+    return count > 0 && ((limits_.max_uploads > 0 && count >= limits_.max_uploads) ||
+                         points > limits_.max_kept_points);
+  };
+  while (over()) scenes_.erase(std::find_if(scenes_.begin(), scenes_.end(), is_upload));
   return insert(name, "upload", std::move(cloud));
 }
 

@@ -20,15 +20,24 @@ struct Scene {
   std::shared_ptr<const PointCloud> cloud;
 };
 
+/// What uploads may hold (docs/serve.md, "Safety"): a 50-million-point upload kept 590 MB
+/// resident, and 16 were kept (issue #34, finding 3).
+struct UploadLimits {
+  std::size_t max_uploads = 16;              ///< uploaded scenes kept; the oldest goes first
+  std::size_t max_points = 5'000'000;        ///< points of one upload (a 1080p frame has 2 million)
+  std::size_t max_kept_points = 20'000'000;  ///< points of all uploads kept; the oldest go first
+};
+
 class SceneStore {
  public:
-  /// Keeps at most `max_uploads` uploaded scenes; uploads are parsed in `scratch_dir`.
-  SceneStore(std::size_t max_uploads, std::filesystem::path scratch_dir);
+  /// Keeps uploads within `limits`; uploads are parsed in `scratch_dir`.
+  SceneStore(UploadLimits limits, std::filesystem::path scratch_dir);
 
   /// Reads a scene file given on the command line; lmk::Error for a bad one.
   Scene add_file(const std::string& path);
   /// Parses an uploaded cloud named `name` (its extension gives the format). ApiError 400 for a
-  /// bad name or a malformed cloud, with the reader's message.
+  /// bad name or a malformed cloud, with the reader's message; 413 for more than
+  /// limits.max_points points. The oldest uploads go to keep within the limits.
   Scene add_upload(const std::string& name, const std::string& bytes);
   /// The scene `id`; ApiError 404 naming the ids there are.
   Scene get(const std::string& id) const;
@@ -37,7 +46,7 @@ class SceneStore {
  private:
   Scene& insert(std::string name, std::string source, PointCloud cloud);
 
-  std::size_t max_uploads_;
+  UploadLimits limits_;
   std::filesystem::path scratch_dir_;
   mutable std::mutex mutex_;
   std::vector<Scene> scenes_;

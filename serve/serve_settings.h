@@ -21,12 +21,14 @@ struct ServeSettings {
   bool no_token = false;  ///< ask no token: refused unless `bind` is a loopback address
   /// Names the Host header may carry beyond loopback names and `bind` (a proxy's, a machine's).
   std::vector<std::string> allowed_hosts;
-  int port = 8080;                            ///< 0: any free port
-  std::string three_dir;                      ///< three.js; empty: Debian's libjs-three
-  std::size_t max_upload_bytes = 256u << 20;  ///< larger uploads get 413
-  std::size_t max_uploads = 16;               ///< uploaded scenes kept; the oldest goes first
-  int workers = 2;                            ///< searches run at once; more wait in the queue
-  std::size_t max_queued_jobs = 64;           ///< beyond it, new searches get 503
+  int port = 8080;                               ///< 0: any free port
+  std::string three_dir;                         ///< three.js; empty: Debian's libjs-three
+  std::size_t max_upload_bytes = 256u << 20;     ///< larger uploads get 413
+  std::size_t max_uploads = 16;                  ///< uploaded scenes kept; the oldest goes first
+  std::size_t max_upload_points = 5'000'000;     ///< points of one upload; more get 413
+  std::size_t max_uploaded_points = 20'000'000;  ///< points of all uploads kept; oldest go first
+  int workers = 2;                               ///< searches run at once; more wait in the queue
+  std::size_t max_queued_jobs = 64;              ///< beyond it, new searches get 503
   /// The scenes are in a robot base frame (+z up), as `lmk find --base-frame`; otherwise up is
   /// `up`, or the sensor's -y.
   bool base_frame = false;

@@ -6,6 +6,7 @@
 
 #include <filesystem>
 
+#include "lmk/geometry/cloud_io.h"
 #include "tests/serve/serve_fixture.h"
 
 namespace lmk::test {
@@ -184,6 +185,34 @@ TEST_F(ServeTest, TheScratchDirectoriesOfDeadServersGoAtStart) {
   EXPECT_TRUE(fs::exists(live / "upload-1.pcd"));
   EXPECT_TRUE(fs::exists(other / "upload-1.pcd"));
   for (const fs::path& d : {live, other}) fs::remove_all(d);
+}
+
+// Issue #34, finding 3: a 50-million-point upload kept 590 MB resident, and 16 were kept.
+TEST_F(ServeTest, UploadsAreBoundedInPointsEachAndInPointsKept) {
+  serve::ServeSettings settings;
+  const std::string pcd = read_bytes(scene_file);
+  const std::size_t points = read_cloud(scene_file).size();
+  settings.max_upload_points = points - 1;
+  start(settings);
+  const Reply big = post_bytes("/api/scenes?name=big.pcd", pcd);
+  EXPECT_EQ(big.status, 413) << big.text;
+  EXPECT_NE(big.text.find("points; at most " + std::to_string(points - 1) + " per upload"),
+            std::string::npos)
+      << big.text;
+  TearDown();
+
+  settings = serve::ServeSettings();
+  settings.max_uploaded_points = 2 * points;  // room for two uploads of this frame
+  start(settings);
+  for (const char* name : {"one.pcd", "two.pcd", "three.pcd"}) {
+    EXPECT_EQ(post_bytes(std::string("/api/scenes?name=") + name, pcd).status, 201) << name;
+  }
+  std::vector<std::string> kept;
+  const Reply scenes = get("/api/scenes");
+  for (const auto& s : scenes.body["scenes"]) {
+    if (s["source"] == "upload") kept.push_back(s["name"]);
+  }
+  EXPECT_EQ(kept, (std::vector<std::string>{"two.pcd", "three.pcd"}));  // the oldest went
 }
 
 TEST_F(ServeTest, NoBadRequestStopsTheServer) {
