@@ -9,7 +9,8 @@
 #
 # Targets: fuzz_pcd, fuzz_ply, fuzz_xyz (cloud readers), fuzz_landmark (.lmk as a user hands it
 # over), fuzz_vdb_layout (lmk's walk of a landmark's OpenVDB container, behind the checksum),
-# fuzz_program, fuzz_dataset, fuzz_depth_png and fuzz_depth_pgm (RGB-D depth images). Each starts from its committed seed corpus (tests/fuzz/corpus/TARGET) plus what
+# fuzz_program, fuzz_dataset, fuzz_depth_png and fuzz_depth_pgm (RGB-D depth images), and
+# fuzz_serve_request (lmk serve's access guard and API handlers). Each starts from its committed seed corpus (tests/fuzz/corpus/TARGET) plus what
 # earlier runs found (BUILD/fuzz/corpus/TARGET). A crash, sanitizer report, leak, timeout (10 s)
 # or single allocation over 2 GB is a finding: its input is kept in BUILD/fuzz/findings/TARGET/,
 # the script prints it and exits 1. Put each finding, once fixed, into
