@@ -819,8 +819,8 @@ TEST_F(Cli, ServeRefusesBadScenesAndPortsWithOneLine) {
 CommandResult serve_then_interrupt(const test::ScratchDir& dir, const std::string& args) {
   const std::string out = dir.file("stdout"), err = dir.file("stderr");
   const std::string command =
-      std::string("'") + LMK_BINARY + "' serve " + args + " >'" + out + "' 2>'" + err +
-      "' & pid=$!; for i in $(seq 600); do grep -q '^open http' '" + out +
+      "rm -f '" + out + "' '" + err + "'; '" + std::string(LMK_BINARY) + "' serve " + args + " >'" +
+      out + "' 2>'" + err + "' & pid=$!; for i in $(seq 600); do grep -q '^open http' '" + out +
       "' && break; kill -0 $pid 2>/dev/null || break; sleep 0.1; done; kill -INT $pid; wait $pid";
   const int status = std::system(command.c_str());
   return CommandResult{WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
