@@ -115,6 +115,11 @@ std::string reason_for(int status, const ServeSettings& s) {
   }
 }
 
+// The body length a request declares (Content-Length); 0 when it declares none.
+unsigned long long declared_length(const httplib::Request& req) {
+  return std::strtoull(req.get_header_value("Content-Length").c_str(), nullptr, 10);
+}
+
 RequestView view_of(const httplib::Request& req) {
   RequestView v;
   v.method = req.method;
@@ -125,8 +130,7 @@ RequestView view_of(const httplib::Request& req) {
   v.authorization = req.get_header_value("Authorization");
   v.cookie = req.get_header_value("Cookie");
   v.has_query_token = req.has_param("token");
-  v.has_body = req.has_header("Transfer-Encoding") ||
-               std::strtoull(req.get_header_value("Content-Length").c_str(), nullptr, 10) > 0;
+  v.has_body = req.has_header("Transfer-Encoding") || declared_length(req) > 0;
   if (v.has_query_token) v.query_token = req.get_param_value("token");
   return v;
 }
@@ -237,9 +241,7 @@ ApiResponse HttpServer::Impl::upload(const httplib::Request& req,
     complete = read(receive);
   }
   // httplib refuses a declared length over the limit before reading: nothing arrives.
-  const bool declared_over =
-      req.has_header("Content-Length") &&
-      std::strtoull(req.get_header_value("Content-Length").c_str(), nullptr, 10) > limit;
+  const bool declared_over = declared_length(req) > limit;
   if (over || declared_over) throw ApiError(413, reason_for(413, api.settings()));
   if (!complete) throw bad_request("upload: the body was cut short");
   return api.upload_scene(name, body);

@@ -22,6 +22,13 @@ struct JobPool::Job {
   double seconds = 0.0;
 };
 
+namespace {
+
+// A job's state says it has ended: it has its result or its error.
+bool has_ended(const std::string& state) { return state == "done" || state == "failed"; }
+
+}  // namespace
+
 void JobProgress::report(double fraction, std::string message) {
   if (stopping_) throw JobCancelled("the server is stopping");
   if (cancelled_) throw JobCancelled("cancelled (DELETE /api/jobs/ID)");
@@ -60,7 +67,7 @@ std::optional<bool> JobPool::cancel(const std::string& id) {
   const auto it = jobs_.find(id);
   if (it == jobs_.end()) return std::nullopt;
   Job& job = *it->second;
-  if (job.state == "done" || job.state == "failed") return false;
+  if (has_ended(job.state)) return false;
   job.cancelled = true;  // a running job ends at its next progress report
   if (job.state == "queued") {
     for (auto q = queue_.begin(); q != queue_.end(); ++q) {
@@ -75,8 +82,7 @@ std::optional<bool> JobPool::cancel(const std::string& id) {
 }
 
 bool JobPool::finished(const nlohmann::json& status) {
-  const std::string state = status.value("state", "");
-  return state == "done" || state == "failed";
+  return has_ended(status.value("state", ""));
 }
 
 std::string JobPool::submit(const std::string& kind, Work work) {
@@ -175,9 +181,7 @@ std::optional<nlohmann::json> JobPool::status(const std::string& id, double wait
   const auto it = jobs_.find(id);
   if (it == jobs_.end()) return std::nullopt;
   const std::shared_ptr<Job> job = it->second;
-  const auto done = [this, &job] {
-    return stopping_ || job->state == "done" || job->state == "failed";
-  };
+  const auto done = [this, &job] { return stopping_ || has_ended(job->state); };
   if (wait_seconds > 0.0 && waiters_ < max_waiters_) {
     ++waiters_;
     changed_.wait_for(lock, std::chrono::duration<double>(wait_seconds), done);
@@ -191,8 +195,7 @@ nlohmann::json JobPool::wait(const std::string& id) const {
   const auto it = jobs_.find(id);
   if (it == jobs_.end()) throw not_found("no job '" + id + "'");
   const std::shared_ptr<Job> job = it->second;
-  changed_.wait(
-      lock, [this, &job] { return stopping_ || job->state == "done" || job->state == "failed"; });
+  changed_.wait(lock, [this, &job] { return stopping_ || has_ended(job->state); });
   return describe(*job);
 }
 
