@@ -24,7 +24,10 @@ Api::Api(ServeSettings settings, const std::filesystem::path& scratch_dir)
     }
     programs_dir_ = std::filesystem::canonical(settings_.programs_dir);
   }
-  jobs_ = std::make_unique<JobPool>(settings_.workers, settings_.max_queued_jobs);
+  JobLimits limits;
+  limits.max_queued = settings_.max_queued_jobs;
+  limits.abandon_after = settings_.abandon_after;
+  jobs_ = std::make_unique<JobPool>(settings_.workers, limits);
 }
 
 ApiResponse Api::info() const {

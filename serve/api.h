@@ -11,6 +11,7 @@
 
 #include "lmk/landmark/find_settings.h"
 #include "lmk/landmark/landmark_library.h"
+#include "lmk/serve/cloud_download.h"
 #include "lmk/serve/job_pool.h"
 #include "lmk/serve/scene_store.h"
 #include "lmk/serve/serve_settings.h"
@@ -41,7 +42,8 @@ class Api {
   ApiResponse scenes() const;
   ApiResponse upload_scene(const std::string& name, const std::string& bytes);
   ApiResponse scene(const std::string& id) const;
-  ApiResponse scene_cloud(const std::string& id, const std::string& max_points) const;
+  /// The scene's points, written a piece at a time (ApiError for a bad id or max_points).
+  CloudDownload scene_cloud(const std::string& id, const std::string& max_points) const;
   // Capture (api_capture.cpp): POST /api/guess, POST /api/check, GET /api/landmarks,
   // GET /api/landmarks/NAME, POST /api/landmarks
   ApiResponse guess(const std::string& body) const;

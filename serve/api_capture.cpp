@@ -28,8 +28,9 @@ Landmark capture_from(const Scene& scene, const nlohmann::json& body, const Find
   return capture(*scene.cloud, box, name, settings);  // lmk::Error: 422, with the reason
 }
 
-// The verdict the page shows before the file is written (landmark/distinctiveness.h).
-nlohmann::json verdict(const Landmark& landmark, const PointCloud& scene) {
+// The verdict the page shows before the file is written (landmark/distinctiveness.h). The search
+// reports each seed to `progress`, where a cancelled or abandoned job ends.
+nlohmann::json verdict(const Landmark& landmark, const PointCloud& scene, JobProgress& progress) {
   if (landmark.settings.allow_flat) {
     return {{"distinctive", true},
             {"checked", false},
@@ -37,6 +38,10 @@ nlohmann::json verdict(const Landmark& landmark, const PointCloud& scene) {
   }
   FindSettings find;
   find.scene.up = landmark.up;  // the capture frame is the scene frame
+  const std::string what = "searching '" + landmark.name + "' in its own scene";
+  find.execution.progress = [&progress, &what](std::size_t done, std::size_t total) {
+    progress.report(0.2 + 0.8 * static_cast<double>(done) / static_cast<double>(total), what);
+  };
   const DistinctivenessReport report = check_distinctiveness(scene, landmark, find);
   nlohmann::json others = nlohmann::json::array();
   for (const Match& m : report.other_instances) {
@@ -107,7 +112,7 @@ ApiResponse Api::check(const std::string& body_text) {
     progress.report(0.0, "capturing '" + name + "'");
     const Landmark landmark = capture_from(scene, body, find, name, "check");
     progress.report(0.2, "searching '" + name + "' in its own scene");
-    return verdict(landmark, *scene.cloud);
+    return verdict(landmark, *scene.cloud, progress);
   });
 }
 
@@ -147,28 +152,42 @@ ApiResponse Api::save_landmark(const std::string& body_text) {
                    "' exists already; choose another name or set overwrite");
   }
   const Landmark landmark = capture_from(scene, body, scene_find_settings(), name, "capture");
-  nlohmann::json checked;
-  if (check_first) {
-    // The check is a search: it runs on the worker pool like any other.
-    // The job holds its own copies: a stopping server answers this request before the job ends.
-    const auto shared = std::make_shared<const Landmark>(landmark);
-    const std::string id = jobs_->submit(
-        "check", [shared, scene](JobProgress&) { return verdict(*shared, *scene.cloud); });
-    const nlohmann::json job = jobs_->wait(id);
-    if (!JobPool::finished(job)) throw ApiError(503, "the server is stopping");
-    if (job["state"] == "failed") throw ApiError(job["status"].get<int>(), job["error"]);
-    checked = job["result"];
-    if (!checked["distinctive"].get<bool>()) {
-      return {409,
-              {{"error", "capture: not written: " + checked["message"].get<std::string>()},
-               {"verdict", checked}}};
-    }
+  if (!check_first) {
+    const std::filesystem::path file = library_.save(landmark, overwrite);
+    nlohmann::json j = landmark_summary(name, landmark);
+    j["file"] = file.filename().string();
+    return {201, j};
   }
-  const std::filesystem::path file = library_.save(landmark, overwrite);
-  nlohmann::json j = landmark_summary(name, landmark);
-  j["file"] = file.filename().string();
-  if (!checked.is_null()) j["verdict"] = checked;
-  return {201, j};
+  // The check is a search: it runs on the worker pool like any other, and the landmark is written
+  // by the job once it passes. The request waits for it as a "wait": true POST does, at most
+  // kMaxRequestWait; a longer check answers 202 with the job to poll.
+  nlohmann::json job_body = body;
+  job_body["wait"] = true;
+  const auto shared = std::make_shared<const Landmark>(landmark);
+  LandmarkLibrary& library = library_;
+  ApiResponse answer = run_job(
+      "capture", job_body, [shared, scene, overwrite, name, &library](JobProgress& progress) {
+        const nlohmann::json checked = verdict(*shared, *scene.cloud, progress);
+        if (!checked["distinctive"].get<bool>()) {
+          throw ApiError(409, "capture: not written: " + checked["message"].get<std::string>(),
+                         {{"verdict", checked}});
+        }
+        const std::filesystem::path file = library.save(*shared, overwrite);
+        nlohmann::json j = landmark_summary(name, *shared);
+        j["file"] = file.filename().string();
+        j["verdict"] = checked;
+        return j;
+      });
+  // A finished capture answers as one without a check: the landmark, 201; or the refusal.
+  if (answer.status == 200) return {201, answer.body["result"]};
+  if (answer.status != 202) {
+    nlohmann::json refusal = {{"error", answer.body["error"]}};
+    if (answer.body.contains("verdict")) refusal["verdict"] = answer.body["verdict"];
+    return {answer.status, refusal};
+  }
+  answer.body["note"] =
+      "the check is still running; the landmark is written when it passes: poll the url";
+  return answer;
 }
 
 }  // namespace lmk::serve

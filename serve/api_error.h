@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // An API request that cannot be served, with its HTTP status: the server answers
-// {"error": message} with that status and keeps running.
+// {"error": message, ...details} with that status and keeps running.
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
 
@@ -9,11 +10,16 @@ namespace lmk::serve {
 
 class ApiError : public std::runtime_error {
  public:
-  ApiError(int status, const std::string& message) : std::runtime_error(message), status_(status) {}
+  /// `details`: an object whose fields the answer carries beside "error" (a refused capture's
+  /// verdict), or null.
+  ApiError(int status, const std::string& message, nlohmann::json details = nullptr)
+      : std::runtime_error(message), status_(status), details_(std::move(details)) {}
   int status() const { return status_; }
+  const nlohmann::json& details() const { return details_; }
 
  private:
   int status_;
+  nlohmann::json details_;
 };
 
 inline ApiError bad_request(const std::string& m) { return ApiError(400, m); }

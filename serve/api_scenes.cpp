@@ -19,9 +19,6 @@ nlohmann::json scene_summary(const Scene& s) {
           {"has_rgb", s.cloud->has_colors()}};
 }
 
-// Millimetres are finer than any depth camera resolves and keep the JSON small.
-long to_mm(float v) { return std::lround(static_cast<double>(v) * 1000.0); }
-
 }  // namespace
 
 ApiResponse Api::scenes() const {
@@ -56,11 +53,11 @@ ApiResponse Api::scene(const std::string& id) const {
   return {200, j};
 }
 
-// The most points a cloud download sends: a 1080p frame's 2 million. The answer is JSON built in
-// memory; 5 million points took 1.08 GB and 11 s (issue #34, finding 3).
+// The most points a cloud download sends: a 1080p frame's 2 million. The answer is streamed, but
+// the page draws it whole, and 5 million points took 11 s (issue #34, finding 3).
 constexpr long long kMaxCloudDownloadPoints = 2'000'000;
 
-ApiResponse Api::scene_cloud(const std::string& id, const std::string& max_points_text) const {
+CloudDownload Api::scene_cloud(const std::string& id, const std::string& max_points_text) const {
   std::size_t max_points = 400000;
   if (!max_points_text.empty()) {
     try {
@@ -76,31 +73,7 @@ ApiResponse Api::scene_cloud(const std::string& id, const std::string& max_point
                         std::to_string(kMaxCloudDownloadPoints) + "]");
     }
   }
-  const Scene s = scenes_.get(id);
-  const PointCloud& c = *s.cloud;
-  const std::size_t finite = c.count_finite();
-  // Every k-th finite point, k the smallest that keeps within max_points.
-  const std::size_t stride = std::max<std::size_t>(1, (finite + max_points - 1) / max_points);
-  nlohmann::json positions = nlohmann::json::array(), colors = nlohmann::json::array();
-  std::size_t kept = 0, seen = 0;
-  for (std::size_t i = 0; i < c.size(); ++i) {
-    const Eigen::Vector3f& p = c.points[i];
-    if (!is_finite(p)) continue;
-    if (seen++ % stride != 0) continue;
-    positions.push_back(to_mm(p.x()));
-    positions.push_back(to_mm(p.y()));
-    positions.push_back(to_mm(p.z()));
-    if (c.has_colors()) {
-      colors.push_back(c.colors[i].r);
-      colors.push_back(c.colors[i].g);
-      colors.push_back(c.colors[i].b);
-    }
-    ++kept;
-  }
-  nlohmann::json j = {
-      {"id", s.id}, {"points", kept}, {"stride", stride}, {"unit", "mm"}, {"positions", positions}};
-  j["colors"] = c.has_colors() ? colors : nlohmann::json(nullptr);
-  return {200, j};
+  return CloudDownload(scenes_.get(id), max_points);
 }
 
 }  // namespace lmk::serve

@@ -67,13 +67,15 @@ fs::path make_scratch_dir() {
   return pattern;
 }
 
+constexpr const char* kJsonContentType = "application/json; charset=utf-8";
+
 void send(httplib::Response& res, const ApiResponse& r) {
   res.status = r.status;
   // With a charset, httplib leaves the body uncompressed. Its brotli, which browsers ask for,
   // takes 10 s over a Kinect frame's points; over loopback the plain 5 MB arrive at once. A byte
   // that is not UTF-8 in a message becomes U+FFFD instead of an exception: the answer stays JSON.
   res.set_content(r.body.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace),
-                  "application/json; charset=utf-8");
+                  kJsonContentType);
 }
 
 // The request's decoded path and query, when one of them is not UTF-8: the API's names and
@@ -93,7 +95,9 @@ void guarded(httplib::Response& res, F&& handle) {
   try {
     handle();
   } catch (const ApiError& e) {
-    send(res, {e.status(), {{"error", e.what()}}});
+    nlohmann::json body = {{"error", e.what()}};
+    if (e.details().is_object()) body.update(e.details());
+    send(res, {e.status(), body});
   } catch (const Error& e) {
     send(res, {422, {{"error", e.what()}}});
   } catch (const std::exception& e) {
@@ -266,8 +270,23 @@ void HttpServer::Impl::routes() {
     guarded(res, [&] { send(res, upload(req, read, param(req, "name"))); });
   });
   api_route("GET", "/api/scenes/([^/]+)", [&a](const auto& r) { return a.scene(r.matches[1]); });
-  api_route("GET", "/api/scenes/([^/]+)/cloud", [&a, param](const auto& r) {
-    return a.scene_cloud(r.matches[1], param(r, "max_points"));
+  // The cloud is written a piece at a time as the client reads it, never whole in memory.
+  server.Get("/api/scenes/([^/]+)/cloud", [&a, param](const auto& req, httplib::Response& res) {
+    guarded(res, [&] {
+      auto download =
+          std::make_shared<CloudDownload>(a.scene_cloud(req.matches[1], param(req, "max_points")));
+      res.status = 200;
+      res.set_chunked_content_provider(kJsonContentType,
+                                       [download](std::size_t, httplib::DataSink& sink) {
+                                         const std::string piece = download->next();
+                                         if (piece.empty()) {
+                                           sink.done();
+                                         } else if (!sink.write(piece.data(), piece.size())) {
+                                           return false;  // the client went away
+                                         }
+                                         return true;
+                                       });
+    });
   });
   api_route("POST", "/api/guess", [&a](const auto& r) { return a.guess(r.body); });
   api_route("POST", "/api/check", [&a](const auto& r) { return a.check(r.body); });

@@ -2,6 +2,7 @@
 #include "lmk/serve/job_pool.h"
 
 #include <chrono>
+#include <cstdio>
 
 #include "lmk/geometry/error.h"
 #include "lmk/serve/api_error.h"
@@ -9,8 +10,9 @@
 namespace lmk::serve {
 
 struct JobPool::Job {
-  explicit Job(const std::atomic<bool>& stopping) : progress(stopping, cancelled) {}
-  std::atomic<bool> cancelled{false};
+  Job(const JobPool& pool, double submitted)
+      : progress([&pool, this] { pool.go_on(*this); }), last_asked(submitted) {}
+  std::atomic<bool> cancelled{false}, abandoned{false};
   std::string id, kind;
   Work work;
   std::string state = "queued";
@@ -18,8 +20,12 @@ struct JobPool::Job {
   nlohmann::json result;
   std::string error;
   int status = 200;
+  nlohmann::json details;  // an ApiError's, beside its message
   std::chrono::steady_clock::time_point started;
   double seconds = 0.0;
+  // When a request last asked about the job (JobPool::now()), and how many ask at the moment.
+  std::atomic<double> last_asked;
+  std::atomic<int> askers{0};
 };
 
 namespace {
@@ -30,8 +36,7 @@ bool has_ended(const std::string& state) { return state == "done" || state == "f
 }  // namespace
 
 void JobProgress::report(double fraction, std::string message) {
-  if (stopping_) throw JobCancelled("the server is stopping");
-  if (cancelled_) throw JobCancelled("cancelled (DELETE /api/jobs/ID)");
+  go_on_();
   std::lock_guard<std::mutex> lock(mutex_);
   fraction_ = fraction;
   message_ = std::move(message);
@@ -42,14 +47,44 @@ nlohmann::json JobProgress::to_json() const {
   return {{"fraction", fraction_}, {"message", message_}};
 }
 
-JobPool::JobPool(int workers, std::size_t max_queued, std::size_t max_kept, std::size_t max_waiters)
-    : max_queued_(max_queued), max_kept_(max_kept), max_waiters_(max_waiters) {
+JobPool::JobPool(int workers, JobLimits limits) : limits_(std::move(limits)) {
   for (int i = 0; i < std::max(1, workers); ++i) workers_.emplace_back([this] { work_loop(); });
 }
 
 JobPool::~JobPool() {
   stop();
   for (std::thread& t : workers_) t.join();
+}
+
+double JobPool::now() const {
+  if (limits_.clock) return limits_.clock();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+std::string JobPool::abandoned_message() const {
+  char seconds[32];
+  std::snprintf(seconds, sizeof(seconds), "%g", limits_.abandon_after);
+  return std::string("abandoned: nobody asked about the job for ") + seconds +
+         " s (poll GET /api/jobs/ID to keep a job running)";
+}
+
+bool JobPool::abandoned(Job& job) const {
+  if (job.askers > 0 || !(now() - job.last_asked > limits_.abandon_after)) return false;
+  job.abandoned = true;
+  job.cancelled = true;
+  return true;
+}
+
+void JobPool::go_on(Job& job) const {
+  if (stopping_) throw JobCancelled("the server is stopping");
+  if (job.cancelled || abandoned(job)) {
+    throw JobCancelled(job.abandoned ? abandoned_message() : "cancelled (DELETE /api/jobs/ID)");
+  }
+}
+
+void JobPool::asking(Job& job, int change) const {
+  job.askers += change;
+  job.last_asked = now();
 }
 
 void JobPool::stop() {
@@ -87,11 +122,11 @@ bool JobPool::finished(const nlohmann::json& status) {
 
 std::string JobPool::submit(const std::string& kind, Work work) {
   std::lock_guard<std::mutex> lock(mutex_);
-  if (queue_.size() >= max_queued_) {
+  if (queue_.size() >= limits_.max_queued) {
     throw ApiError(503, "busy: " + std::to_string(queue_.size()) +
                             " jobs are waiting; try again when some have finished");
   }
-  auto job = std::make_shared<Job>(stopping_);
+  auto job = std::make_shared<Job>(*this, now());
   job->id = "job-" + std::to_string(next_id_++);
   job->kind = kind;
   job->work = std::move(work);
@@ -110,12 +145,17 @@ void JobPool::work_loop() {
       if (stopping_) return;
       job = queue_.front();
       queue_.pop_front();
+      if (abandoned(*job)) {  // its client went away while it waited
+        finish(*job, {}, abandoned_message(), 409);
+        continue;
+      }
       job->state = "running";
       job->started = std::chrono::steady_clock::now();
     }
     nlohmann::json result;
     std::string error;
     int status = 200;
+    nlohmann::json details;
     // A job's failure is its own: it is reported on the job and never leaves the worker.
     try {
       result = job->work(job->progress);
@@ -125,6 +165,7 @@ void JobPool::work_loop() {
     } catch (const ApiError& e) {
       error = e.what();
       status = e.status();
+      details = e.details();
     } catch (const Error& e) {
       error = e.what();
       status = 422;
@@ -135,19 +176,21 @@ void JobPool::work_loop() {
     std::lock_guard<std::mutex> lock(mutex_);
     job->seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - job->started).count();
-    finish(*job, std::move(result), std::move(error), status);
+    finish(*job, std::move(result), std::move(error), status, std::move(details));
   }
 }
 
 // Called with mutex_ held.
-void JobPool::finish(Job& job, nlohmann::json result, std::string error, int status) {
+void JobPool::finish(Job& job, nlohmann::json result, std::string error, int status,
+                     nlohmann::json details) {
   job.state = error.empty() ? "done" : "failed";
   job.result = std::move(result);
   job.error = std::move(error);
   job.status = status;
+  job.details = std::move(details);
   job.work = nullptr;  // frees what the work held (scenes, landmarks)
   finished_.push_back(job.id);
-  while (finished_.size() > max_kept_) {
+  while (finished_.size() > limits_.max_kept) {
     jobs_.erase(finished_.front());
     finished_.pop_front();
   }
@@ -163,6 +206,7 @@ nlohmann::json JobPool::describe(const Job& job) const {
     j["result"] = job.result;
     j["seconds"] = job.seconds;
   } else if (job.state == "failed") {
+    if (job.details.is_object()) j.update(job.details);
     j["error"] = job.error;
     j["status"] = job.status;
   } else if (job.state == "queued") {
@@ -182,11 +226,13 @@ std::optional<nlohmann::json> JobPool::status(const std::string& id, double wait
   if (it == jobs_.end()) return std::nullopt;
   const std::shared_ptr<Job> job = it->second;
   const auto done = [this, &job] { return stopping_ || has_ended(job->state); };
-  if (wait_seconds > 0.0 && waiters_ < max_waiters_) {
+  asking(*job, +1);
+  if (wait_seconds > 0.0 && waiters_ < limits_.max_waiters) {
     ++waiters_;
     changed_.wait_for(lock, std::chrono::duration<double>(wait_seconds), done);
     --waiters_;
   }
+  asking(*job, -1);
   return describe(*job);
 }
 
@@ -195,7 +241,9 @@ nlohmann::json JobPool::wait(const std::string& id) const {
   const auto it = jobs_.find(id);
   if (it == jobs_.end()) throw not_found("no job '" + id + "'");
   const std::shared_ptr<Job> job = it->second;
+  asking(*job, +1);
   changed_.wait(lock, [this, &job] { return stopping_ || has_ended(job->state); });
+  asking(*job, -1);
   return describe(*job);
 }
 

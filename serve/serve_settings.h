@@ -29,6 +29,8 @@ struct ServeSettings {
   std::size_t max_uploaded_points = 20'000'000;  ///< points of all uploads kept; oldest go first
   int workers = 2;                               ///< searches run at once; more wait in the queue
   std::size_t max_queued_jobs = 64;              ///< beyond it, new searches get 503
+  /// s: a job nobody has asked about for this long is cancelled (JobLimits::abandon_after).
+  double abandon_after = 60.0;
   /// The scenes are in a robot base frame (+z up), as `lmk find --base-frame`; otherwise up is
   /// `up`, or the sensor's -y.
   bool base_frame = false;

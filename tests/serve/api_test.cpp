@@ -138,8 +138,10 @@ TEST_F(ServeTest, TheVerdictComesBeforeTheFileAndTheCaptureIsWrittenIntoTheLibra
 
   // With "check", a landmark that is not distinctive is not written: 409 and the verdict.
   if (!verdict["distinctive"].get<bool>()) {
-    const Reply refused =
-        post("/api/landmarks", {{"scene", "1"}, {"name", "carton"}, {"box", box}, {"check", true}});
+    // The check runs as a job: a request waits for it at most kMaxRequestWait, then polls.
+    const Reply refused = until_finished(
+        *client, post("/api/landmarks",
+                      {{"scene", "1"}, {"name", "carton"}, {"box", box}, {"check", true}}));
     EXPECT_EQ(refused.status, 409) << refused.text;
     EXPECT_EQ(without_times(refused.body["verdict"]), without_times(verdict));
     EXPECT_FALSE(fs::exists(fs::path(landmarks_dir) / "carton.lmk"));

@@ -6,7 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <condition_variable>
 #include <future>
+#include <mutex>
 #include <optional>
 #include <thread>
 
@@ -141,6 +143,113 @@ TEST(JobPool, WaitersAreBoundedAndWokenWhenThePoolStops) {
   // Woken by the stop: the job still running, or already ended by it at its next report.
   EXPECT_TRUE(last["state"] == "running" || (last["state"] == "failed" && last["status"] == 503))
       << last.dump();
+}
+
+// A job that reports once each time the test lets it, so that the test knows when it reported.
+class Steps {
+ public:
+  // Lets the job report once and waits until it has (or has ended).
+  void step() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    ++allowed_;
+    changed_.notify_all();
+    changed_.wait(lock, [this] { return taken_ == allowed_ || ended_; });
+  }
+  JobPool::Work work() {
+    return [this](JobProgress& p) {
+      try {
+        for (;;) {
+          {
+            std::unique_lock<std::mutex> lock(mutex_);
+            changed_.wait(lock, [this] { return allowed_ > taken_; });
+          }
+          p.report(0.5, "step");
+          std::lock_guard<std::mutex> lock(mutex_);
+          ++taken_;
+          changed_.notify_all();
+        }
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        ended_ = true;
+        changed_.notify_all();
+        throw;
+      }
+      return nlohmann::json();
+    };
+  }
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  int allowed_ = 0, taken_ = 0;
+  bool ended_ = false;
+};
+
+// Issue #34, finding 3: a job whose client went away is cancelled after abandon_after, measured
+// from the last request about it; the test drives the pool's clock, never the wall's.
+TEST(JobPool, AJobNobodyAsksAboutIsCancelledAndOneAskedAboutRunsOn) {
+  std::atomic<double> t{0.0};
+  JobLimits limits;
+  limits.abandon_after = 60.0;
+  limits.clock = [&t] { return t.load(); };
+  JobPool pool(1, limits);
+  Steps steps;
+  const std::string id = pool.submit("find", steps.work());
+  for (double now : {50.0, 100.0, 150.0}) {  // asked about every 50 s: runs on
+    t = now;
+    steps.step();
+    EXPECT_EQ((*pool.status(id))["state"], "running");
+  }
+  t = 150.0 + 59.0;
+  steps.step();  // 59 s unasked: still runs
+  t = 150.0 + 61.0;
+  steps.step();  // 61 s: ends at this report
+  const nlohmann::json ended = pool.wait(id);
+  EXPECT_EQ(ended["state"], "failed");
+  EXPECT_EQ(ended["status"], 409);
+  EXPECT_NE(ended["error"].get<std::string>().find("nobody asked about the job for 60 s"),
+            std::string::npos)
+      << ended.dump();
+}
+
+TEST(JobPool, AQueuedJobNobodyAsksAboutNeverRuns) {
+  std::atomic<double> t{0.0};
+  JobLimits limits;
+  limits.abandon_after = 60.0;
+  limits.clock = [&t] { return t.load(); };
+  JobPool pool(1, limits);
+  Steps steps;
+  const std::string busy = pool.submit("find", steps.work());
+  std::atomic<bool> ran{false};
+  const std::string forgotten = pool.submit("find", [&ran](JobProgress&) {
+    ran = true;
+    return nlohmann::json();
+  });
+  steps.step();  // the first job runs, the second waits behind it
+  t = 100.0;
+  EXPECT_EQ(pool.cancel(busy), std::optional<bool>(true));
+  steps.step();  // the first ends at its report; the worker takes the next
+  // A third job, asked about, runs after the forgotten one was dealt with.
+  const nlohmann::json third = pool.wait(pool.submit("find", [](JobProgress&) {
+    return nlohmann::json{{"ran", true}};
+  }));
+  EXPECT_EQ(third["state"], "done");
+  const nlohmann::json status = *pool.status(forgotten);
+  EXPECT_EQ(status["state"], "failed");
+  EXPECT_EQ(status["status"], 409);
+  EXPECT_FALSE(ran);
+}
+
+// A refusal's details (a capture's verdict) stay with the failed job beside its message.
+TEST(JobPool, AnApiErrorsDetailsAreKeptWithTheJob) {
+  JobPool pool(1, 2);
+  const nlohmann::json failed =
+      pool.wait(pool.submit("capture", [](JobProgress&) -> nlohmann::json {
+        throw ApiError(409, "not distinctive", {{"verdict", {{"distinctive", false}}}});
+      }));
+  EXPECT_EQ(failed["status"], 409);
+  EXPECT_EQ(failed["error"], "not distinctive");
+  EXPECT_EQ(failed["verdict"]["distinctive"], false);
 }
 
 }  // namespace
