@@ -27,9 +27,10 @@ esac
 # and the six demo tasks run in the Release suite; `--sanitize` runs everything.
 unit_modules=(test_geometry test_io test_occupancy test_registration test_pbd test_pr2 test_crash_safety)
 unit_label="^($(IFS='|'; echo "${unit_modules[*]}")|fuzz)\$"
-# The tests that run searches and evaluations on several threads, and their executables.
-threaded='ThreadCount|DoNotDependOnThreads|Concurrent|Parallel'
-threaded_modules=(test_geometry test_eval test_occupancy test_landmark)
+# The tests that run searches and evaluations on several threads, and their executables; and
+# lmk serve's, whose HTTP threads, job pool and searches share its state (issue #34).
+threaded='ThreadCount|DoNotDependOnThreads|Concurrent|Parallel|ServeTest|JobPool|AccessGuard'
+threaded_modules=(test_geometry test_eval test_occupancy test_landmark test_serve)
 
 run_suite() {
   bash scripts/build.sh

@@ -59,6 +59,8 @@ class Api {
   static ApiResponse health();
   /// Stops the jobs and wakes every request waiting for one (the server is stopping).
   void stop();
+  /// After stop(): whether the jobs under way have ended within `seconds` (JobPool::ended_within).
+  bool jobs_ended_within(double seconds) const { return jobs_->ended_within(seconds); }
   // Programs (api_programs.cpp): GET /api/programs, GET /api/programs/NAME,
   // POST /api/programs/NAME/plan
   ApiResponse programs() const;

@@ -2,6 +2,7 @@
 #include "lmk/serve/http_server.h"
 
 #include <stdlib.h>
+#include <sys/socket.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -66,6 +67,11 @@ fs::path make_scratch_dir() {
   }
   return pattern;
 }
+
+// Connections the kernel holds for the server before it accepts them: more than the HTTP threads,
+// so that a burst of clients (the page's requests, scripts, the load test's 70) is queued, not
+// dropped.
+constexpr int kListenBacklog = 256;
 
 constexpr const char* kJsonContentType = "application/json; charset=utf-8";
 
@@ -350,12 +356,21 @@ HttpServer::~HttpServer() { stop(); }
 
 int HttpServer::bind() {
   const ServeSettings& s = impl_->api.settings();
+  // httplib listens with a backlog of 5 connections: of 50 clients connecting at once, some found
+  // the queue full and got no answer (issue #34's load test). Linux takes a second listen() on a
+  // listening socket as a new backlog, so the socket is kept from httplib's options callback.
+  int listening = -1;
+  impl_->server.set_socket_options([&listening](socket_t sock) {
+    httplib::default_socket_options(sock);
+    listening = sock;
+  });
   const int port = s.port == 0 ? impl_->server.bind_to_any_port(s.bind)
                                : (impl_->server.bind_to_port(s.bind, s.port) ? s.port : -1);
   if (port < 0) {
     throw Error("cannot listen on " + s.bind + ":" + std::to_string(s.port) +
                 " (in use, or not an address of this machine); choose another with --port");
   }
+  if (listening >= 0) ::listen(listening, kListenBacklog);
   impl_->guard.set_port(port);
   return port;
 }
@@ -368,6 +383,8 @@ void HttpServer::stop() {
   impl_->api.stop();
   if (impl_->server.is_running()) impl_->server.stop();
 }
+
+bool HttpServer::jobs_ended_within(double seconds) { return impl_->api.jobs_ended_within(seconds); }
 
 Api& HttpServer::api() { return impl_->api; }
 

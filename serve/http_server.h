@@ -27,7 +27,13 @@ class HttpServer {
   int bind();
   /// Serves until stop() is called (from any thread). bind() first.
   void run();
+  /// Stops serving: the jobs are told to end at their next progress report, waiting requests are
+  /// answered, and run() returns once the requests under way are.
   void stop();
+  /// After stop(): whether the jobs under way have ended within `seconds`. When one has not (a
+  /// stage without progress reports), a process that must stop in time may exit regardless:
+  /// nothing it writes is half-written.
+  bool jobs_ended_within(double seconds);
 
   Api& api();
   /// The token every API request and the page must carry (docs/serve.md, "Access"); empty with

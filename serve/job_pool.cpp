@@ -97,6 +97,12 @@ void JobPool::stop() {
   changed_.notify_all();
 }
 
+bool JobPool::ended_within(double seconds) const {
+  std::unique_lock<std::mutex> lock(mutex_);
+  return changed_.wait_for(lock, std::chrono::duration<double>(seconds),
+                           [this] { return running_ == 0; });
+}
+
 std::optional<bool> JobPool::cancel(const std::string& id) {
   std::lock_guard<std::mutex> lock(mutex_);
   const auto it = jobs_.find(id);
@@ -151,6 +157,7 @@ void JobPool::work_loop() {
       }
       job->state = "running";
       job->started = std::chrono::steady_clock::now();
+      ++running_;
     }
     nlohmann::json result;
     std::string error;
@@ -174,6 +181,7 @@ void JobPool::work_loop() {
       status = 500;
     }
     std::lock_guard<std::mutex> lock(mutex_);
+    --running_;
     job->seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - job->started).count();
     finish(*job, std::move(result), std::move(error), status, std::move(details));

@@ -105,6 +105,10 @@ class JobPool {
   /// Stops the jobs under way at their next progress report, drops those still queued, and wakes
   /// every request waiting for one: the server then stops at once (Ctrl-C).
   void stop();
+  /// After stop(): whether every job under way has ended within `seconds`. A job reports between
+  /// seeds, not inside every stage (indexing a 5-million-point scene takes 15 s without a report),
+  /// so a caller that must stop in time asks this and leaves the rest behind.
+  bool ended_within(double seconds) const;
 
  private:
   struct Job;
@@ -128,6 +132,7 @@ class JobPool {
   std::deque<std::string> finished_;
   JobLimits limits_;
   mutable std::size_t waiters_ = 0;
+  std::size_t running_ = 0;  // jobs a worker runs at the moment
   std::size_t next_id_ = 1;
   std::atomic<bool> stopping_{false};
   std::vector<std::thread> workers_;

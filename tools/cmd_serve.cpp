@@ -26,6 +26,9 @@ struct ServeOptions {
   bool quiet = false;
 };
 
+// How long Ctrl-C waits for the jobs under way to end at their next progress report, s.
+constexpr double kStopGrace = 1.0;
+
 int run_serve(ServeOptions& o) {
   serve::ServeSettings& s = o.settings;
   for (const std::string& scene : s.scenes) format_from_path(scene);  // before anything is read
@@ -73,6 +76,16 @@ int run_serve(ServeOptions& o) {
     throw Error("the server stopped unexpectedly");
   }
   watcher.join();
+  // A search stops at its next seed; a stage without progress reports (indexing a scene of
+  // millions of points) would hold the exit for seconds. Ctrl-C stops within 2 s regardless: the
+  // process leaves such a job behind, and nothing is half-written (landmarks are written
+  // atomically; the next start removes the scratch directory).
+  if (!server.jobs_ended_within(kStopGrace)) {
+    std::printf("lmk serve: stopped (a job under way was left unfinished)\n");
+    std::fflush(stdout);
+    std::fflush(stderr);
+    std::_Exit(kOk);
+  }
   std::printf("lmk serve: stopped\n");
   return kOk;
 }

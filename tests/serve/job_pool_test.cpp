@@ -252,5 +252,25 @@ TEST(JobPool, AnApiErrorsDetailsAreKeptWithTheJob) {
   EXPECT_EQ(failed["verdict"]["distinctive"], false);
 }
 
+// Ctrl-C (issue #34, finding 3): a stage without progress reports cannot be stopped, so lmk serve
+// asks whether the jobs ended in time and leaves the rest behind.
+TEST(JobPool, EndedWithinSaysWhetherAJobWithoutReportsStillRuns) {
+  std::promise<void> release;
+  std::shared_future<void> released = release.get_future().share();
+  std::atomic<bool> started{false};
+  JobPool pool(1, 2);
+  const std::string id = pool.submit("find", [&started, released](JobProgress&) {
+    started = true;
+    released.wait();  // a stage that reports nothing until it ends
+    return nlohmann::json();
+  });
+  while (!started) std::this_thread::yield();
+  pool.stop();
+  EXPECT_FALSE(pool.ended_within(0.0));
+  release.set_value();
+  EXPECT_TRUE(pool.ended_within(600.0));  // returns as soon as the job has ended
+  EXPECT_EQ((*pool.status(id))["state"], "done");
+}
+
 }  // namespace
 }  // namespace lmk::serve
