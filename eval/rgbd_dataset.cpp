@@ -126,6 +126,10 @@ RgbdImport generate_rgbd_dataset(const std::string& sequence_dir, const std::str
   std::vector<Captured> captured;
   nlohmann::json refusals = nlohmann::json::array();
   const std::size_t steps = 2 * frames.size();
+  CaptureSettings capture_settings;
+  capture_settings.depth_smoothing = options.depth_smoothing;
+  FindSettings check_settings;
+  check_settings.scene.depth_smoothing = options.depth_smoothing;
   std::size_t done = 0;
   for (std::size_t a = 0; a < frames.size(); ++a) {
     const std::vector<Box> boxes =
@@ -135,8 +139,9 @@ RgbdImport generate_rgbd_dataset(const std::string& sequence_dir, const std::str
       const std::string name = frames[a].frame->name + "-" + std::to_string(k);
       std::string why;
       try {
-        Landmark landmark = capture(frames[a].cloud, boxes[k], name);
-        const DistinctivenessReport check = check_distinctiveness(frames[a].cloud, landmark);
+        Landmark landmark = capture(frames[a].cloud, boxes[k], name, capture_settings);
+        const DistinctivenessReport check =
+            check_distinctiveness(frames[a].cloud, landmark, check_settings);
         if (!check.found_itself) {
           why = "not found in its own frame";
         } else if (!check.other_instances.empty()) {
@@ -229,6 +234,7 @@ RgbdImport generate_rgbd_dataset(const std::string& sequence_dir, const std::str
                              {"min_off_plane", rule.min_off_plane},
                              {"max_boxes", rule.max_boxes}}},
                            {"boxes", import.boxes},
+                           {"depth_smoothing_px", options.depth_smoothing},
                            {"landmarks", captured.size()},
                            {"refused", refusals},
                            {"pose_bound",

@@ -14,6 +14,7 @@
 #include "lmk/eval/dataset.h"
 #include "lmk/eval/rgbd_sequence.h"
 #include "lmk/eval/user_like_boxes.h"
+#include "lmk/geometry/depth_smoothing.h"
 
 namespace lmk {
 
@@ -27,6 +28,9 @@ struct RgbdDatasetOptions {
   /// (30 cm at 2 m, as a user boxes furniture; 8 cm on a desk at half a metre).
   std::optional<double> box_side;
   std::size_t boxes_per_frame = 6;
+  /// The landmarks are captured, and checked in their own frame, with this depth smoothing
+  /// (CaptureSettings::depth_smoothing, pixels); search them with the same.
+  int depth_smoothing = kDefaultDepthSmoothing;
   /// A pair whose camera poses and the whole-frame registration disagree beyond these, at the
   /// landmark's centre, is left out: its ground truth cannot be trusted to the protocol's 25.4 mm
   /// and 15 degrees. Half of each.

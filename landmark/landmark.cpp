@@ -6,12 +6,12 @@
 
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/filters.h"
+#include "lmk/geometry/frame_preparation.h"
 #include "lmk/geometry/kdtree.h"
 #include "lmk/geometry/normals.h"
 #include "lmk/geometry/pose.h"
 #include "lmk/geometry/principal_axes.h"
 #include "lmk/geometry/projector_shadow.h"
-#include "lmk/geometry/veil_points.h"
 #include "lmk/geometry/voxel_grid.h"
 
 namespace lmk {
@@ -36,6 +36,10 @@ void check_settings(const CaptureSettings& s, const std::string& what) {
   }
   if (!(s.veil_angle >= 0.0) || !(s.veil_angle < 1.5)) {
     throw Error(what + ": the veil angle must be in [0, 1.5) rad (0: keep veil points)");
+  }
+  if (s.depth_smoothing < 0 || s.depth_smoothing > kMaxDepthSmoothingRadius) {
+    throw Error(what + ": the depth smoothing must be 0 to " +
+                std::to_string(kMaxDepthSmoothingRadius) + " pixels (0: the raw depth)");
   }
   if (!(s.projector_baseline >= 0.0) || !std::isfinite(s.projector_baseline)) {
     throw Error(what + ": the projector baseline must be finite and non-negative (0: none)");
@@ -89,12 +93,10 @@ Landmark capture(const PointCloud& scene, const Box& box, const std::string& nam
   if (name.empty()) throw Error("capture: the landmark needs a name");
   check_settings(settings, what);
   check_capture_box(box, settings, what);
-  PointCloud unveiled;
-  if (settings.veil_angle > 0.0 && scene.is_organized()) {
-    unveiled = scene;
-    remove_veil_points(unveiled, settings.veil_angle);
-  }
-  const PointCloud& frame = unveiled.empty() ? scene : unveiled;
+  // As a search prepares its scene (SceneIndex), so that both sides are alike.
+  const std::optional<PointCloud> prepared =
+      prepared_frame(scene, settings.veil_angle, settings.depth_smoothing, DepthNoise());
+  const PointCloud& frame = prepared ? *prepared : scene;
   const PointCloud inside = crop(frame, box);
   if (inside.empty()) {
     const Eigen::Vector3d c = box.center();

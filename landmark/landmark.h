@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "lmk/geometry/box.h"
+#include "lmk/geometry/depth_smoothing.h"
 #include "lmk/geometry/point_cloud.h"
 #include "lmk/occupancy/distance_field.h"
 #include "lmk/occupancy/empty_space.h"
@@ -40,6 +41,10 @@ struct CaptureSettings {
   /// fringe along a silhouette is the capture view's alone. Used at capture only; off by default,
   /// as SceneSettings::veil_angle.
   double veil_angle = 0.0;
+  /// The capture frame's depth is smoothed over this many pixels around each point (geometry/
+  /// depth_smoothing.h), as a search smooths its scene's (SceneSettings::depth_smoothing), so that
+  /// a landmark and the scenes it is searched in are alike. 0: the raw depth. Used at capture only.
+  int depth_smoothing = kDefaultDepthSmoothing;
   /// A structured-light sensor's projector offset along the camera's +x, m (the Kinect v1's 7.5
   /// cm): the camera's rays through the projector's shadow count as observed free up to the
   /// surface casting it (geometry/projector_shadow.h). 0 for a sensor without one (stereo, time

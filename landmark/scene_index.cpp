@@ -9,7 +9,7 @@
 
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/filters.h"
-#include "lmk/geometry/veil_points.h"
+#include "lmk/geometry/frame_preparation.h"
 #include "lmk/geometry/voxel_grid.h"
 #include "lmk/geometry/voxel_normals.h"
 #include "lmk/landmark/detail/stopwatch.h"
@@ -48,13 +48,11 @@ SceneIndex::SceneIndex(const PointCloud& scene, const SceneSettings& settings)
   up_ = settings.up ? settings.up->normalized()
                     : default_up(scene.T_cloud_sensor, settings.base_frame);
 
-  // A real frame's veil points first (geometry/veil_points.h): nothing else may see them.
-  PointCloud unveiled;
-  if (settings.veil_angle > 0.0 && scene.is_organized()) {
-    unveiled = scene;
-    remove_veil_points(unveiled, settings.veil_angle);
-  }
-  const PointCloud& frame = unveiled.empty() ? scene : unveiled;
+  // A real frame's veil points go and its depth is smoothed first (geometry/frame_preparation.h),
+  // as at capture: nothing else may see the raw frame.
+  const std::optional<PointCloud> prepared =
+      prepared_frame(scene, settings.veil_angle, settings.depth_smoothing, settings.depth_noise());
+  const PointCloud& frame = prepared ? *prepared : scene;
 
   // The grids skip non-finite points themselves, so without a work volume they are built from the
   // frame as it is, and its finite points are copied (for the fine level, built on first use)

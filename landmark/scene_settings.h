@@ -8,6 +8,7 @@
 
 #include "lmk/geometry/box.h"
 #include "lmk/geometry/depth_noise.h"
+#include "lmk/geometry/depth_smoothing.h"
 #include "lmk/geometry/settings_schema.h"
 #include "lmk/geometry/voxel_grid.h"
 
@@ -39,6 +40,10 @@ struct SceneSettings {
   /// default: at 10 degrees it raised recall on the real desk sequence (0.265 -> 0.296) but cost
   /// the synthetic frames, which have no veil, real points (docs/evaluation.md).
   double veil_angle = 0.0;
+  /// An organised frame's depth is smoothed over a window of this many pixels around each point
+  /// (geometry/depth_smoothing.h) before anything is built, as a capture smooths its frame
+  /// (CaptureSettings::depth_smoothing); 0: the raw depth.
+  int depth_smoothing = kDefaultDepthSmoothing;
   /// Visibility and projective metrics: the threshold holds as given up to this distance from the
   /// scene's sensor, m. Beyond it, a candidate's error is scaled down by how much the depth noise
   /// there raises the error a true match shows (match_error_scale(), grid_metrics.h). Unset (the
@@ -108,6 +113,11 @@ struct SceneSettings {
               .within(0.0, 0.5236)
               .in_degrees(),
           s.veil_angle);
+    visit(SettingInfo("depth_smoothing",
+                      "Smooth an organised frame's depth over this many pixels around each point, "
+                      "within 3 of the sensor's depth levels (0: the raw depth)")
+              .within(0, kMaxDepthSmoothingRadius),
+          s.depth_smoothing);
     visit(SettingInfo("threshold_range",
                       "Visibility metrics: the threshold holds up to this range, m; beyond, errors "
                       "are scaled down as the depth noise raises a true match's (default: never)")

@@ -131,6 +131,11 @@ Subcommand add_capture(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--max-box-side", o->settings.max_box_side, "Longest allowed box side, m")
       ->capture_default_str();
+  sub->add_option(
+         "--depth-smoothing", o->settings.depth_smoothing,
+         "Smooth an organised frame's depth over this many pixels around each point, as "
+         "searches do (0: the raw depth; keep it equal to the searches' --depth-smoothing)")
+      ->capture_default_str();
   add_up_options(sub, o->up);
   sub->add_flag("--allow-flat", o->settings.allow_flat,
                 "Accept a flat landmark: a patch of free surface (an empty spot on a table), which "

@@ -43,6 +43,7 @@ struct GenOptions {
   std::vector<double> intrinsics;  ///< fx fy cx cy
   bool registered_colour = false;
   std::optional<double> box_side;
+  int depth_smoothing = kDefaultDepthSmoothing;
   std::vector<std::size_t> gap;  ///< min max, frames
 };
 
@@ -131,6 +132,7 @@ int run_rgbd(const GenOptions& options) {
   }
   if (options.registered_colour) rgbd.read.colour_registered = true;
   rgbd.box_side = options.box_side;
+  rgbd.depth_smoothing = options.depth_smoothing;
   if (options.stride) rgbd.frame_stride = *options.stride;
   if (!options.gap.empty()) {
     rgbd.min_gap = options.gap[0];
@@ -232,6 +234,11 @@ Subcommand add_gen(CLI::App& app) {
                   "With --from-rgbd: side of the landmark boxes, m (default: 0.15 x the median "
                   "depth, within 0.08-0.4)")
       ->check(CLI::PositiveNumber);
+  sub->add_option("--depth-smoothing", options->depth_smoothing,
+                  "With --from-rgbd: capture and check the landmarks with this depth smoothing, "
+                  "pixels (search them with the same --depth-smoothing)")
+      ->check(CLI::Range(0, kMaxDepthSmoothingRadius))
+      ->capture_default_str();
   sub->add_option("--gap", options->gap,
                   "With --from-rgbd: MIN MAX frames between a landmark's frame and its scenes "
                   "(default 10 40)")
