@@ -187,12 +187,17 @@ class Steps {
 
 // Issue #34, finding 3: a job whose client went away is cancelled after abandon_after, measured
 // from the last request about it; the test drives the pool's clock, never the wall's.
-TEST(JobPool, AJobNobodyAsksAboutIsCancelledAndOneAskedAboutRunsOn) {
-  std::atomic<double> t{0.0};
+// Limits that abandon a job after 60 s of the clock `t`, which the test drives.
+JobLimits abandoning_after_a_minute(const std::atomic<double>& t) {
   JobLimits limits;
   limits.abandon_after = 60.0;
   limits.clock = [&t] { return t.load(); };
-  JobPool pool(1, limits);
+  return limits;
+}
+
+TEST(JobPool, AJobNobodyAsksAboutIsCancelledAndOneAskedAboutRunsOn) {
+  std::atomic<double> t{0.0};
+  JobPool pool(1, abandoning_after_a_minute(t));
   Steps steps;
   const std::string id = pool.submit("find", steps.work());
   for (double now : {50.0, 100.0, 150.0}) {  // asked about every 50 s: runs on
@@ -214,10 +219,7 @@ TEST(JobPool, AJobNobodyAsksAboutIsCancelledAndOneAskedAboutRunsOn) {
 
 TEST(JobPool, AQueuedJobNobodyAsksAboutNeverRuns) {
   std::atomic<double> t{0.0};
-  JobLimits limits;
-  limits.abandon_after = 60.0;
-  limits.clock = [&t] { return t.load(); };
-  JobPool pool(1, limits);
+  JobPool pool(1, abandoning_after_a_minute(t));
   Steps steps;
   const std::string busy = pool.submit("find", steps.work());
   std::atomic<bool> ran{false};
