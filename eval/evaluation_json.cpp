@@ -174,7 +174,9 @@ json explanation_to_json(const std::vector<ExplainedCase>& cases) {
                     {"error_at_truth", optional_number(c.truth_error)},
                     {"error_of_wrong_winner", optional_number(c.winner_error)},
                     {"nearest_candidate_m", optional_number(c.nearest_candidate_translation)},
-                    {"nearest_candidate_rad", optional_number(c.nearest_candidate_rotation)}});
+                    {"nearest_candidate_rad", optional_number(c.nearest_candidate_rotation)},
+                    {"truth_drift_m", optional_number(c.truth_drift_translation)},
+                    {"truth_drift_rad", optional_number(c.truth_drift_rotation)}});
   }
   return {{"cases", list},
           {"by_setting", cause_rows_to_json(cause_rows(cases))},

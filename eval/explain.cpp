@@ -81,9 +81,10 @@ std::vector<ExplainedCase> explain_pair(const FailedPair& f, const SceneIndex& i
   const FindResult again = find_landmark(index, landmark, settings);
   const std::vector<Candidate> all = candidates_of(again);
   const Box& capture_box = landmark.landmark().box;
-  const auto truth_error = [&](std::size_t k) {
-    return score_pose(index, landmark, settings, p.truth[k] * capture_box.pose.inverse()).error;
+  const auto at_truth = [&](std::size_t k) {
+    return score_pose(index, landmark, settings, p.truth[k] * capture_box.pose.inverse());
   };
+  const auto truth_error = [&](std::size_t k) { return at_truth(k).error; };
   const auto range = [&](const Eigen::Isometry3d& pose) {
     return (pose.translation() - p.sensor_position).norm();
   };
@@ -117,7 +118,11 @@ std::vector<ExplainedCase> explain_pair(const FailedPair& f, const SceneIndex& i
     if (c.cause == kSuppressed) suppressed_truths.push_back(k);
     c.box = Box(p.truth[k], capture_box.size);
     c.range = range(p.truth[k]);
-    c.truth_error = truth_error(k);
+    const Match refined = at_truth(k);
+    c.truth_error = refined.error;
+    c.truth_drift_translation = (refined.box.pose.translation() - p.truth[k].translation()).norm();
+    c.truth_drift_rotation =
+        rotation_error(p.truth[k].linear(), refined.box.pose.linear(), p.symmetry);
     c.winner_error = best_wrong;
     out.push_back(std::move(c));
   }

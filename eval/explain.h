@@ -61,6 +61,10 @@ struct ExplainedCase {
   std::optional<double> winner_error;
   /// A missed instance: the nearest candidate of any fate, m and rad (modulo symmetry).
   std::optional<double> nearest_candidate_translation, nearest_candidate_rotation;
+  /// A missed instance: how far aligning and polishing moved the true pose, m and rad (modulo
+  /// symmetry): the pose a search that started at the truth would report. Beyond the tolerance,
+  /// the metric's own optimum misses the truth, and no search could find it (or the truth is off).
+  std::optional<double> truth_drift_translation, truth_drift_rotation;
 };
 
 /// The causes of every miss and false match of `evaluation` (assumption 2 when it searched the
