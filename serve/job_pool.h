@@ -62,15 +62,6 @@ struct JobLimits {
 };
 
 class JobPool {
-  static JobLimits limits_of(std::size_t max_queued, std::size_t max_kept,
-                             std::size_t max_waiters) {
-    JobLimits l;
-    l.max_queued = max_queued;
-    l.max_kept = max_kept;
-    l.max_waiters = max_waiters;
-    return l;
-  }
-
  public:
   /// The job's work: its result, or it throws (ApiError keeps its status and details;
   /// lmk::Error is 422).
@@ -112,6 +103,14 @@ class JobPool {
 
  private:
   struct Job;
+  static JobLimits limits_of(std::size_t max_queued, std::size_t max_kept,
+                             std::size_t max_waiters) {
+    JobLimits l;
+    l.max_queued = max_queued;
+    l.max_kept = max_kept;
+    l.max_waiters = max_waiters;
+    return l;
+  }
   void work_loop();
   double now() const;
   // Throws JobCancelled when `job` must end: the pool stops, or it was cancelled or abandoned.
