@@ -86,6 +86,37 @@ std::string refusal_reason(const std::string& message) {
   return message;
 }
 
+// The depth error fitted on the frames the dataset does not use, so that no frame it measures on
+// shaped the correction.
+DepthCalibration calibrate_on_unused_frames(const RgbdSequence& sequence,
+                                            const RgbdDatasetOptions& options) {
+  std::vector<PointCloud> clouds;
+  std::vector<Eigen::Isometry3d> poses;
+  for (std::size_t i = 0; i < sequence.frames.size(); ++i) {
+    if (i % options.frame_stride == 0) continue;
+    clouds.push_back(load_rgbd_frame(sequence.frames[i]));
+    poses.push_back(sequence.frames[i].T_world_camera);
+  }
+  if (clouds.empty()) {
+    throw Error(
+        "from-rgbd: --calibrate-depth needs frames the dataset does not use (a frame "
+        "stride above 1)");
+  }
+  std::vector<const PointCloud*> views;
+  for (const PointCloud& c : clouds) views.push_back(&c);
+  return fit_depth_correction(views, poses, sequence.frames.front().intrinsics,
+                              options.calibration);
+}
+
+nlohmann::json calibration_json(const DepthCalibration& c) {
+  return {{"model", "z' = z + D z^2, D per cell (1/m), row-major"},
+          {"cells", {c.correction.cols, c.correction.rows}},
+          {"per_metre", c.correction.per_metre},
+          {"correspondences", c.correspondences},
+          {"rms_before_m", c.rms_before},
+          {"rms_after_m", c.rms_after}};
+}
+
 }  // namespace
 
 RgbdImport generate_rgbd_dataset(const std::string& sequence_dir, const std::string& out_dir,
@@ -108,9 +139,14 @@ RgbdImport generate_rgbd_dataset(const std::string& sequence_dir, const std::str
 
   std::vector<UsedFrame> frames;
   for (std::size_t i = 0; i < sequence.frames.size(); i += options.frame_stride) {
-    UsedFrame f{&sequence.frames[i], load_rgbd_frame(sequence.frames[i]), {}};
+    frames.push_back({&sequence.frames[i], load_rgbd_frame(sequence.frames[i]), {}});
+  }
+  if (options.calibrate_depth) {
+    import.depth_calibration = calibrate_on_unused_frames(sequence, options);
+    for (UsedFrame& f : frames) import.depth_calibration->correction.apply(f.cloud);
+  }
+  for (UsedFrame& f : frames) {
     f.reduced = downsample_with_normals(f.cloud, 0.02, Eigen::Vector3d::Zero());
-    frames.push_back(std::move(f));
   }
   import.box_side = options.box_side.value_or(std::clamp(0.15 * median_depth(frames), 0.08, 0.40));
   UserBoxRule rule;
@@ -218,31 +254,34 @@ RgbdImport generate_rgbd_dataset(const std::string& sequence_dir, const std::str
   }
   save_dataset(out_dir, dataset);
 
-  nlohmann::json record = {{"format", "lmk-rgbd-import"},
-                           {"version", 1},
-                           {"sequence", fs::path(sequence_dir).lexically_normal().string()},
-                           {"layout", sequence.layout},
-                           {"frames_in_sequence", sequence.frames.size()},
-                           {"frame_stride", options.frame_stride},
-                           {"gap_frames", {options.min_gap, options.max_gap}},
-                           {"rule",
-                            {{"box_side_m", rule.box_side},
-                             {"voxels_per_side", rule.voxels_per_side},
-                             {"depth_m", {rule.min_depth, rule.max_depth}},
-                             {"min_cell_points", rule.min_cell_points},
-                             {"off_plane_angle_rad", rule.off_plane_angle},
-                             {"min_off_plane", rule.min_off_plane},
-                             {"max_boxes", rule.max_boxes}}},
-                           {"boxes", import.boxes},
-                           {"depth_smoothing_px", options.depth_smoothing},
-                           {"landmarks", captured.size()},
-                           {"refused", refusals},
-                           {"pose_bound",
-                            {{"translation_m", options.max_pose_disagreement},
-                             {"rotation_rad", options.max_pose_rotation_disagreement}}},
-                           {"pairs", import.pairs},
-                           {"pairs_left_out", import.pairs_left_out},
-                           {"pose_checks", checks}};
+  nlohmann::json record = {
+      {"format", "lmk-rgbd-import"},
+      {"version", 1},
+      {"sequence", fs::path(sequence_dir).lexically_normal().string()},
+      {"layout", sequence.layout},
+      {"frames_in_sequence", sequence.frames.size()},
+      {"frame_stride", options.frame_stride},
+      {"gap_frames", {options.min_gap, options.max_gap}},
+      {"rule",
+       {{"box_side_m", rule.box_side},
+        {"voxels_per_side", rule.voxels_per_side},
+        {"depth_m", {rule.min_depth, rule.max_depth}},
+        {"min_cell_points", rule.min_cell_points},
+        {"off_plane_angle_rad", rule.off_plane_angle},
+        {"min_off_plane", rule.min_off_plane},
+        {"max_boxes", rule.max_boxes}}},
+      {"boxes", import.boxes},
+      {"depth_smoothing_px", options.depth_smoothing},
+      {"depth_correction", import.depth_calibration ? calibration_json(*import.depth_calibration)
+                                                    : nlohmann::json(nullptr)},
+      {"landmarks", captured.size()},
+      {"refused", refusals},
+      {"pose_bound",
+       {{"translation_m", options.max_pose_disagreement},
+        {"rotation_rad", options.max_pose_rotation_disagreement}}},
+      {"pairs", import.pairs},
+      {"pairs_left_out", import.pairs_left_out},
+      {"pose_checks", checks}};
   write_text_atomically(fs::path(out_dir) / "import.json", record.dump(1) + "\n");
   return import;
 }

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "lmk/eval/dataset.h"
+#include "lmk/eval/depth_calibration.h"
 #include "lmk/eval/rgbd_sequence.h"
 #include "lmk/eval/user_like_boxes.h"
 #include "lmk/geometry/depth_smoothing.h"
@@ -31,6 +32,11 @@ struct RgbdDatasetOptions {
   /// The landmarks are captured, and checked in their own frame, with this depth smoothing
   /// (CaptureSettings::depth_smoothing, pixels); search them with the same.
   int depth_smoothing = kDefaultDepthSmoothing;
+  /// Fit the camera's depth error (eval/depth_calibration.h) on the frames the dataset does not
+  /// use (all but every frame_stride-th), and correct every frame used with it before anything
+  /// else reads it.
+  bool calibrate_depth = false;
+  DepthCalibrationSettings calibration;
   /// A pair whose camera poses and the whole-frame registration disagree beyond these, at the
   /// landmark's centre, is left out: its ground truth cannot be trusted to the protocol's 25.4 mm
   /// and 15 degrees. Half of each.
@@ -44,10 +50,11 @@ struct RgbdImport {
   Dataset dataset;
   std::string layout;
   double box_side = 0.0;
-  std::size_t boxes = 0;                       ///< boxes the rule drew
-  std::map<std::string, std::size_t> refused;  ///< by reason: boxes the capture refused
-  std::size_t pairs = 0;                       ///< pairs kept
-  std::size_t pairs_left_out = 0;              ///< beyond the pose-disagreement bound
+  std::size_t boxes = 0;                              ///< boxes the rule drew
+  std::map<std::string, std::size_t> refused;         ///< by reason: boxes the capture refused
+  std::size_t pairs = 0;                              ///< pairs kept
+  std::size_t pairs_left_out = 0;                     ///< beyond the pose-disagreement bound
+  std::optional<DepthCalibration> depth_calibration;  ///< with calibrate_depth
 };
 
 /// Reads the sequence in `sequence_dir` and writes the dataset into `out_dir` (scenes/*.pcd in each

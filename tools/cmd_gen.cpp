@@ -44,6 +44,7 @@ struct GenOptions {
   bool registered_colour = false;
   std::optional<double> box_side;
   int depth_smoothing = kDefaultDepthSmoothing;
+  bool calibrate_depth = false;
   std::vector<std::size_t> gap;  ///< min max, frames
 };
 
@@ -133,6 +134,7 @@ int run_rgbd(const GenOptions& options) {
   if (options.registered_colour) rgbd.read.colour_registered = true;
   rgbd.box_side = options.box_side;
   rgbd.depth_smoothing = options.depth_smoothing;
+  rgbd.calibrate_depth = options.calibrate_depth;
   if (options.stride) rgbd.frame_stride = *options.stride;
   if (!options.gap.empty()) {
     rgbd.min_gap = options.gap[0];
@@ -144,6 +146,13 @@ int run_rgbd(const GenOptions& options) {
   const RgbdImport import = generate_rgbd_dataset(options.from_rgbd, options.output, rgbd);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (const auto& c = import.depth_calibration) {
+    std::printf(
+        "depth calibrated on the frames left out of the dataset: %d x %d cells, %zu "
+        "correspondences, their disagreement %.1f mm -> %.1f mm RMS\n",
+        c->correction.cols, c->correction.rows, c->correspondences, 1000.0 * c->rms_before,
+        1000.0 * c->rms_after);
+  }
   std::size_t refused = 0;
   std::string reasons;
   for (const auto& [why, n] : import.refused) {
@@ -239,6 +248,10 @@ Subcommand add_gen(CLI::App& app) {
                   "pixels (search them with the same --depth-smoothing)")
       ->check(CLI::Range(0, kMaxDepthSmoothingRadius))
       ->capture_default_str();
+  sub->add_flag("--calibrate-depth", options->calibrate_depth,
+                "With --from-rgbd: fit the camera's depth error on the frames the dataset does not "
+                "use, given their poses, and correct the frames it uses (import.json records the "
+                "fit)");
   sub->add_option("--gap", options->gap,
                   "With --from-rgbd: MIN MAX frames between a landmark's frame and its scenes "
                   "(default 10 40)")

@@ -1,0 +1,144 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "lmk/eval/depth_calibration.h"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "lmk/geometry/error.h"
+
+namespace lmk {
+
+double DepthCorrection::at(int u, int v) const {
+  const int c = std::clamp(u * cols / width, 0, cols - 1);
+  const int r = std::clamp(v * rows / height, 0, rows - 1);
+  return per_metre[static_cast<std::size_t>(r * cols + c)];
+}
+
+void DepthCorrection::apply(PointCloud& frame) const {
+  if (static_cast<int>(frame.width) != width || static_cast<int>(frame.height) != height) {
+    throw Error("depth correction: fitted on " + std::to_string(width) + " x " +
+                std::to_string(height) + " images, given a frame of " +
+                std::to_string(frame.width) + " x " + std::to_string(frame.height));
+  }
+  for (int v = 0; v < height; ++v) {
+    for (int u = 0; u < width; ++u) {
+      Eigen::Vector3f& p = frame.points[static_cast<std::size_t>(v) * width + u];
+      // z' = z + D z^2 along the ray: every coordinate scales by 1 + D z.
+      if (is_finite(p)) p *= static_cast<float>(1.0 + at(u, v) * p.z());
+    }
+  }
+}
+
+namespace {
+
+// One equation of the fit: D(cell_b) w_b - D(cell_a) w_a = difference, w = z^2.
+struct Correspondence {
+  int cell_a, cell_b;
+  double w_a, w_b, difference;
+};
+
+std::vector<Correspondence> correspondences(const std::vector<const PointCloud*>& frames,
+                                            const std::vector<Eigen::Isometry3d>& T_world_camera,
+                                            const PinholeIntrinsics& k,
+                                            const DepthCalibrationSettings& s,
+                                            const DepthCorrection& grid) {
+  std::vector<Correspondence> out;
+  const auto cell = [&grid](long u, long v) {
+    return std::clamp(static_cast<int>(v * grid.rows / grid.height), 0, grid.rows - 1) * grid.cols +
+           std::clamp(static_cast<int>(u * grid.cols / grid.width), 0, grid.cols - 1);
+  };
+  for (std::size_t a = 0; a < frames.size(); ++a) {
+    for (std::size_t b = 0; b < frames.size(); ++b) {
+      const std::size_t gap = a > b ? a - b : b - a;
+      if (gap < s.min_gap || gap > s.max_gap) continue;
+      const Eigen::Isometry3f T_b_a =
+          (T_world_camera[b].inverse() * T_world_camera[a]).cast<float>();
+      const PointCloud& A = *frames[a];
+      const PointCloud& B = *frames[b];
+      for (long v = 0; v < static_cast<long>(A.height); v += s.pixel_step) {
+        for (long u = 0; u < static_cast<long>(A.width); u += s.pixel_step) {
+          const Eigen::Vector3f& p = A.points[static_cast<std::size_t>(v) * A.width + u];
+          if (!is_finite(p)) continue;
+          const Eigen::Vector3f q = T_b_a * p;
+          if (!(q.z() > 0.1f)) continue;
+          const long ub = std::lround(k.fx * q.x() / q.z() + k.cx);
+          const long vb = std::lround(k.fy * q.y() / q.z() + k.cy);
+          if (ub < 0 || vb < 0 || ub >= static_cast<long>(B.width) ||
+              vb >= static_cast<long>(B.height)) {
+            continue;
+          }
+          const Eigen::Vector3f& m = B.points[static_cast<std::size_t>(vb) * B.width + ub];
+          if (!is_finite(m)) continue;
+          const double difference = static_cast<double>(q.z()) - m.z();
+          if (std::abs(difference) > s.max_difference) continue;
+          out.push_back(
+              {cell(u, v), cell(ub, vb), double(p.z()) * p.z(), double(m.z()) * m.z(), difference});
+        }
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+DepthCalibration fit_depth_correction(const std::vector<const PointCloud*>& frames,
+                                      const std::vector<Eigen::Isometry3d>& T_world_camera,
+                                      const PinholeIntrinsics& intrinsics,
+                                      const DepthCalibrationSettings& settings) {
+  if (frames.size() != T_world_camera.size() || frames.empty()) {
+    throw Error("depth calibration: one pose per frame, and at least one frame");
+  }
+  if (settings.cols < 1 || settings.rows < 1 || settings.pixel_step < 1) {
+    throw Error("depth calibration: the grid and the pixel step must be at least 1");
+  }
+  DepthCalibration out;
+  DepthCorrection& c = out.correction;
+  c.cols = settings.cols;
+  c.rows = settings.rows;
+  c.width = static_cast<int>(frames.front()->width);
+  c.height = static_cast<int>(frames.front()->height);
+  for (const PointCloud* f : frames) {
+    if (!f->is_organized() || static_cast<int>(f->width) != c.width ||
+        static_cast<int>(f->height) != c.height) {
+      throw Error("depth calibration: every frame must be an organised image of one size");
+    }
+  }
+  const std::vector<Correspondence> eqs =
+      correspondences(frames, T_world_camera, intrinsics, settings, c);
+  const int n = c.cols * c.rows;
+  out.correspondences = eqs.size();
+  if (eqs.size() < 100u * static_cast<std::size_t>(n)) {
+    throw Error("depth calibration: " + std::to_string(eqs.size()) +
+                " correspondences between the frames, too few for " + std::to_string(n) +
+                " cells; give more overlapping frames or fewer cells");
+  }
+  // Normal equations of sum (D_b w_b - D_a w_a - difference)^2, damped towards D = 0.
+  Eigen::MatrixXd AtA = Eigen::MatrixXd::Zero(n, n);
+  Eigen::VectorXd Atb = Eigen::VectorXd::Zero(n);
+  double before = 0.0;
+  for (const Correspondence& e : eqs) {
+    const int idx[2] = {e.cell_b, e.cell_a};
+    const double coef[2] = {e.w_b, -e.w_a};
+    for (int i = 0; i < 2; ++i) {
+      Atb[idx[i]] += coef[i] * e.difference;
+      for (int j = 0; j < 2; ++j) AtA(idx[i], idx[j]) += coef[i] * coef[j];
+    }
+    before += e.difference * e.difference;
+  }
+  AtA.diagonal().array() += settings.damping * AtA.diagonal().maxCoeff();
+  const Eigen::VectorXd D = AtA.ldlt().solve(Atb);
+  c.per_metre.assign(D.data(), D.data() + n);
+  double after = 0.0;
+  for (const Correspondence& e : eqs) {
+    const double r = e.difference - (D[e.cell_b] * e.w_b - D[e.cell_a] * e.w_a);
+    after += r * r;
+  }
+  out.rms_before = std::sqrt(before / static_cast<double>(eqs.size()));
+  out.rms_after = std::sqrt(after / static_cast<double>(eqs.size()));
+  return out;
+}
+
+}  // namespace lmk
