@@ -83,6 +83,15 @@ nlohmann::json landmark_summary(const std::string& name, const Landmark& l) {
           {"allow_flat", l.settings.allow_flat}};
 }
 
+// Writes `landmark` into `library` under `name`; the answer of a capture: its summary and file.
+nlohmann::json save_and_summarise(LandmarkLibrary& library, const std::string& name,
+                                  const Landmark& landmark, bool overwrite) {
+  const std::filesystem::path file = library.save(landmark, overwrite);
+  nlohmann::json j = landmark_summary(name, landmark);
+  j["file"] = file.filename().string();
+  return j;
+}
+
 }  // namespace
 
 ApiResponse Api::guess(const std::string& body_text) const {
@@ -152,12 +161,7 @@ ApiResponse Api::save_landmark(const std::string& body_text) {
                    "' exists already; choose another name or set overwrite");
   }
   const Landmark landmark = capture_from(scene, body, scene_find_settings(), name, "capture");
-  if (!check_first) {
-    const std::filesystem::path file = library_.save(landmark, overwrite);
-    nlohmann::json j = landmark_summary(name, landmark);
-    j["file"] = file.filename().string();
-    return {201, j};
-  }
+  if (!check_first) return {201, save_and_summarise(library_, name, landmark, overwrite)};
   // The check is a search: it runs on the worker pool like any other, and the landmark is written
   // by the job once it passes. The request waits for it as a "wait": true POST does, at most
   // kMaxRequestWait; a longer check answers 202 with the job to poll.
@@ -172,9 +176,7 @@ ApiResponse Api::save_landmark(const std::string& body_text) {
           throw ApiError(409, "capture: not written: " + checked["message"].get<std::string>(),
                          {{"verdict", checked}});
         }
-        const std::filesystem::path file = library.save(*shared, overwrite);
-        nlohmann::json j = landmark_summary(name, *shared);
-        j["file"] = file.filename().string();
+        nlohmann::json j = save_and_summarise(library, name, *shared, overwrite);
         j["verdict"] = checked;
         return j;
       });
