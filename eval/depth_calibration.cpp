@@ -10,10 +10,13 @@
 
 namespace lmk {
 
+int DepthCorrection::cell(int u, int v) const {
+  return std::clamp(v * rows / height, 0, rows - 1) * cols +
+         std::clamp(u * cols / width, 0, cols - 1);
+}
+
 double DepthCorrection::at(int u, int v) const {
-  const int c = std::clamp(u * cols / width, 0, cols - 1);
-  const int r = std::clamp(v * rows / height, 0, rows - 1);
-  return per_metre[static_cast<std::size_t>(r * cols + c)];
+  return per_metre[static_cast<std::size_t>(cell(u, v))];
 }
 
 void DepthCorrection::apply(PointCloud& frame) const {
@@ -45,10 +48,6 @@ std::vector<Correspondence> correspondences(const std::vector<const PointCloud*>
                                             const DepthCalibrationSettings& s,
                                             const DepthCorrection& grid) {
   std::vector<Correspondence> out;
-  const auto cell = [&grid](long u, long v) {
-    return std::clamp(static_cast<int>(v * grid.rows / grid.height), 0, grid.rows - 1) * grid.cols +
-           std::clamp(static_cast<int>(u * grid.cols / grid.width), 0, grid.cols - 1);
-  };
   for (std::size_t a = 0; a < frames.size(); ++a) {
     for (std::size_t b = 0; b < frames.size(); ++b) {
       const std::size_t gap = a > b ? a - b : b - a;
@@ -57,24 +56,22 @@ std::vector<Correspondence> correspondences(const std::vector<const PointCloud*>
           (T_world_camera[b].inverse() * T_world_camera[a]).cast<float>();
       const PointCloud& A = *frames[a];
       const PointCloud& B = *frames[b];
-      for (long v = 0; v < static_cast<long>(A.height); v += s.pixel_step) {
-        for (long u = 0; u < static_cast<long>(A.width); u += s.pixel_step) {
+      for (int v = 0; v < static_cast<int>(A.height); v += s.pixel_step) {
+        for (int u = 0; u < static_cast<int>(A.width); u += s.pixel_step) {
           const Eigen::Vector3f& p = A.points[static_cast<std::size_t>(v) * A.width + u];
           if (!is_finite(p)) continue;
           const Eigen::Vector3f q = T_b_a * p;
-          if (!(q.z() > 0.1f)) continue;
-          const long ub = std::lround(k.fx * q.x() / q.z() + k.cx);
-          const long vb = std::lround(k.fy * q.y() / q.z() + k.cy);
-          if (ub < 0 || vb < 0 || ub >= static_cast<long>(B.width) ||
-              vb >= static_cast<long>(B.height)) {
-            continue;
-          }
-          const Eigen::Vector3f& m = B.points[static_cast<std::size_t>(vb) * B.width + ub];
+          const std::optional<std::size_t> pixel =
+              k.pixel_of(q.cast<double>(), static_cast<int>(B.width), static_cast<int>(B.height));
+          if (!pixel) continue;
+          const Eigen::Vector3f& m = B.points[*pixel];
           if (!is_finite(m)) continue;
           const double difference = static_cast<double>(q.z()) - m.z();
           if (std::abs(difference) > s.max_difference) continue;
-          out.push_back(
-              {cell(u, v), cell(ub, vb), double(p.z()) * p.z(), double(m.z()) * m.z(), difference});
+          const int ub = static_cast<int>(*pixel % B.width),
+                    vb = static_cast<int>(*pixel / B.width);
+          out.push_back({grid.cell(u, v), grid.cell(ub, vb), double(p.z()) * p.z(),
+                         double(m.z()) * m.z(), difference});
         }
       }
     }

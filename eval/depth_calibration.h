@@ -26,6 +26,8 @@ struct DepthCorrection {
   int width = 640, height = 480;  ///< the image the cells divide, pixels
   std::vector<double> per_metre;  ///< D of each cell, row-major, 1/m: z' = z + D z^2
 
+  /// The cell of pixel (u, v), row-major.
+  int cell(int u, int v) const;
   /// D at pixel (u, v).
   double at(int u, int v) const;
   /// Moves each finite point of an organised frame (camera optical frame, sensor at the origin,

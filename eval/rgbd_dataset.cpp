@@ -63,14 +63,10 @@ double hidden_in(const std::vector<Eigen::Vector3f>& points, const Eigen::Isomet
   std::size_t seen = 0;
   for (const auto& p : points) {
     const Eigen::Vector3d q = T_b_a * p.cast<double>();
-    if (!(q.z() > 0.0)) continue;
-    const long u = std::lround(k.fx * q.x() / q.z() + k.cx);
-    const long v = std::lround(k.fy * q.y() / q.z() + k.cy);
-    if (u < 0 || v < 0 || u >= static_cast<long>(b.cloud.width) ||
-        v >= static_cast<long>(b.cloud.height))
-      continue;
-    const Eigen::Vector3f& m =
-        b.cloud.points[static_cast<std::size_t>(v) * b.cloud.width + static_cast<std::size_t>(u)];
+    const std::optional<std::size_t> pixel =
+        k.pixel_of(q, static_cast<int>(b.cloud.width), static_cast<int>(b.cloud.height));
+    if (!pixel) continue;
+    const Eigen::Vector3f& m = b.cloud.points[*pixel];
     // 1.5 cm, the protocol's spirit for a seen point, plus the Kinect-like noise at that depth.
     const double tolerance = 0.015 + 0.0057 * q.z() * q.z();
     if (is_finite(m) && std::abs(m.z() - q.z()) < tolerance) ++seen;

@@ -268,6 +268,16 @@ void PinholeIntrinsics::validate(const std::string& what) const {
   }
 }
 
+std::optional<std::size_t> PinholeIntrinsics::pixel_of(const Eigen::Vector3d& p, int width,
+                                                       int height) const {
+  if (!p.allFinite() || !(p.z() > 0.0)) return std::nullopt;
+  const long u = std::lround(fx * p.x() / p.z() + cx);
+  const long v = std::lround(fy * p.y() / p.z() + cy);
+  if (u < 0 || v < 0 || u >= width || v >= height) return std::nullopt;
+  return static_cast<std::size_t>(v) * static_cast<std::size_t>(width) +
+         static_cast<std::size_t>(u);
+}
+
 PinholeIntrinsics read_intrinsics(const std::string& path) {
   const std::vector<double> v = numbers_in(path);
   PinholeIntrinsics k;

@@ -2,6 +2,9 @@
 #pragma once
 // The pinhole model of a depth camera.
 
+#include <Eigen/Core>
+#include <cstddef>
+#include <optional>
 #include <string>
 
 namespace lmk {
@@ -15,6 +18,11 @@ struct PinholeIntrinsics {
 
   /// Throws lmk::Error naming `what` unless the focal lengths are positive and every value finite.
   void validate(const std::string& what) const;
+
+  /// The row-major index, in a width x height image, of the pixel nearest to where `p` (optical
+  /// frame) projects; nothing when `p` is not finite, not in front of the camera, or falls outside
+  /// the image.
+  std::optional<std::size_t> pixel_of(const Eigen::Vector3d& p, int width, int height) const;
 };
 
 }  // namespace lmk

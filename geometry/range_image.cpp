@@ -93,11 +93,7 @@ double RangeImage::depth_of(const Eigen::Vector3f& point) const {
 }
 
 std::optional<std::size_t> RangeImage::pixel_of(const Eigen::Vector3f& p) const {
-  if (!p.allFinite() || !(p.z() > 0.0f)) return std::nullopt;
-  const long u = std::lround(k_.fx * p.x() / p.z() + k_.cx);
-  const long v = std::lround(k_.fy * p.y() / p.z() + k_.cy);
-  if (u < 0 || v < 0 || u >= k_.width || v >= k_.height) return std::nullopt;
-  return static_cast<std::size_t>(v) * k_.width + static_cast<std::size_t>(u);
+  return k_.pixel_of(p.cast<double>(), k_.width, k_.height);
 }
 
 RangeImage::Look RangeImage::look(const Eigen::Vector3f& point) const {
