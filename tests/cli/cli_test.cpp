@@ -291,6 +291,11 @@ TEST_F(CliLandmark, BadInputToCaptureAndFind) {
                    "--max-seeds: '-3' is not a non-negative whole number");
   expect_bad_input("find " + scene + " " + path("c.lmk") + " --threshold inf",
                    "--threshold: 'inf' is not a finite number");
+  expect_bad_input("capture " + scene + " " + carton_ + " --name x -o " + path("x.lmk") +
+                       " --depth-smoothing 11",
+                   "the depth smoothing must be 0 to 10 pixels");
+  expect_bad_input("find " + scene + " " + path("c.lmk") + " --depth-smoothing 11",
+                   "scene.depth_smoothing (--depth-smoothing): 11 must be");
   expect_bad_input("find " + scene + " " + path("c.lmk") + " --coarse-leaf 0.001",
                    "the coarse leaf (--coarse-leaf, 0.001 m) must be at least the leaf size");
   // Issue #34, finding 2: 10,000,000 threads exited 139 and 100,000,000 "internal error:

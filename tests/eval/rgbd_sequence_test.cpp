@@ -10,6 +10,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "lmk/eval/rgbd_dataset.h"
 #include "lmk/geometry/pose.h"
 #include "tests/support/test_support.h"
 
@@ -50,6 +51,24 @@ void write_frames_sequence(const fs::path& dir) {
   write_text((dir / "frame-000001.pose.txt").string(), matrix_text(kSecondPose));
   write_text((dir / "frame-000001.color.png").string(),
              greyscale_png(std::vector<std::uint8_t>(12, 9), 4, 3));
+}
+
+// The depth calibration fits on the frames the dataset leaves out: with every frame used there are
+// none, and the import says so instead of fitting on the frames it measures on.
+TEST(RgbdSequence, CalibratingTheDepthNeedsFramesTheDatasetLeavesOut) {
+  const ScratchDir dir;
+  write_frames_sequence(dir.path() / "seq");
+  RgbdDatasetOptions options;
+  options.frame_stride = 1;
+  options.calibrate_depth = true;
+  try {
+    generate_rgbd_dataset((dir.path() / "seq").string(), (dir.path() / "out").string(), options);
+    ADD_FAILURE() << "the depth was calibrated on the frames the dataset uses";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("needs frames the dataset does not use"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(RgbdSequence, ReadsTheFramesLayout) {
