@@ -10,30 +10,6 @@
 
 namespace lmk {
 
-int DepthCorrection::cell(int u, int v) const {
-  return std::clamp(v * rows / height, 0, rows - 1) * cols +
-         std::clamp(u * cols / width, 0, cols - 1);
-}
-
-double DepthCorrection::at(int u, int v) const {
-  return per_metre[static_cast<std::size_t>(cell(u, v))];
-}
-
-void DepthCorrection::apply(PointCloud& frame) const {
-  if (static_cast<int>(frame.width) != width || static_cast<int>(frame.height) != height) {
-    throw Error("depth correction: fitted on " + std::to_string(width) + " x " +
-                std::to_string(height) + " images, given a frame of " +
-                std::to_string(frame.width) + " x " + std::to_string(frame.height));
-  }
-  for (int v = 0; v < height; ++v) {
-    for (int u = 0; u < width; ++u) {
-      Eigen::Vector3f& p = frame.points[static_cast<std::size_t>(v) * width + u];
-      // z' = z + D z^2 along the ray: every coordinate scales by 1 + D z.
-      if (is_finite(p)) p *= static_cast<float>(1.0 + at(u, v) * p.z());
-    }
-  }
-}
-
 namespace {
 
 // One equation of the fit: D(cell_b) w_b - D(cell_a) w_a = difference, w = z^2.

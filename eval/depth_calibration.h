@@ -16,24 +16,11 @@
 #include <cstddef>
 #include <vector>
 
+#include "lmk/geometry/depth_correction.h"
 #include "lmk/geometry/pinhole_intrinsics.h"
 #include "lmk/geometry/point_cloud.h"
 
 namespace lmk {
-
-struct DepthCorrection {
-  int cols = 1, rows = 1;         ///< cells across and down the image
-  int width = 640, height = 480;  ///< the image the cells divide, pixels
-  std::vector<double> per_metre;  ///< D of each cell, row-major, 1/m: z' = z + D z^2
-
-  /// The cell of pixel (u, v), row-major.
-  int cell(int u, int v) const;
-  /// D at pixel (u, v).
-  double at(int u, int v) const;
-  /// Moves each finite point of an organised frame (camera optical frame, sensor at the origin,
-  /// width x height) along its ray to its corrected depth. lmk::Error for a frame of another size.
-  void apply(PointCloud& frame) const;
-};
 
 struct DepthCalibrationSettings {
   int cols = 8, rows = 6;
@@ -43,12 +30,6 @@ struct DepthCalibrationSettings {
   /// Damping of each cell's D towards 0, relative to the largest cell's weight: it keeps cells
   /// that few pixels see from wandering.
   double damping = 1e-3;
-};
-
-struct DepthCalibration {
-  DepthCorrection correction;
-  std::size_t correspondences = 0;
-  double rms_before = 0.0, rms_after = 0.0;  ///< m, over the correspondences of the fit
 };
 
 /// Fits the correction to `frames` (organised clouds in their camera's optical frame, raw) seen

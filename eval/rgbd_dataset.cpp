@@ -13,6 +13,7 @@
 #include "lmk/geometry/pose.h"
 #include "lmk/geometry/statistics.h"
 #include "lmk/geometry/voxel_normals.h"
+#include "lmk/json/depth_correction_json.h"
 #include "lmk/json/pose_json.h"
 #include "lmk/landmark/distinctiveness.h"
 #include "lmk/landmark/landmark_file.h"
@@ -104,15 +105,6 @@ DepthCalibration calibrate_on_unused_frames(const RgbdSequence& sequence,
                               options.calibration);
 }
 
-nlohmann::json calibration_json(const DepthCalibration& c) {
-  return {{"model", "z' = z + D z^2, D per cell (1/m), row-major"},
-          {"cells", {c.correction.cols, c.correction.rows}},
-          {"per_metre", c.correction.per_metre},
-          {"correspondences", c.correspondences},
-          {"rms_before_m", c.rms_before},
-          {"rms_after_m", c.rms_after}};
-}
-
 }  // namespace
 
 RgbdImport generate_rgbd_dataset(const std::string& sequence_dir, const std::string& out_dir,
@@ -137,8 +129,13 @@ RgbdImport generate_rgbd_dataset(const std::string& sequence_dir, const std::str
   for (std::size_t i = 0; i < sequence.frames.size(); i += options.frame_stride) {
     frames.push_back({&sequence.frames[i], load_rgbd_frame(sequence.frames[i]), {}});
   }
-  if (options.calibrate_depth) {
+  if (options.calibrate_depth && options.depth_correction) {
+    throw Error("from-rgbd: either fit the depth correction or give one, not both");
+  }
+  if (options.calibrate_depth)
     import.depth_calibration = calibrate_on_unused_frames(sequence, options);
+  if (options.depth_correction) import.depth_calibration = options.depth_correction;
+  if (import.depth_calibration) {
     for (UsedFrame& f : frames) import.depth_calibration->correction.apply(f.cloud);
   }
   for (UsedFrame& f : frames) {
@@ -268,8 +265,9 @@ RgbdImport generate_rgbd_dataset(const std::string& sequence_dir, const std::str
         {"max_boxes", rule.max_boxes}}},
       {"boxes", import.boxes},
       {"depth_smoothing_px", options.depth_smoothing},
-      {"depth_correction", import.depth_calibration ? calibration_json(*import.depth_calibration)
-                                                    : nlohmann::json(nullptr)},
+      {"depth_correction", import.depth_calibration
+                               ? detail::depth_calibration_to_json(*import.depth_calibration)
+                               : nlohmann::json(nullptr)},
       {"landmarks", captured.size()},
       {"refused", refusals},
       {"pose_bound",

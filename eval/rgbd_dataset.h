@@ -37,6 +37,9 @@ struct RgbdDatasetOptions {
   /// else reads it.
   bool calibrate_depth = false;
   DepthCalibrationSettings calibration;
+  /// A correction fitted beforehand (`lmk calibrate-depth`), applied to every frame used, as with
+  /// calibrate_depth; not both.
+  std::optional<DepthCalibration> depth_correction;
   /// A pair whose camera poses and the whole-frame registration disagree beyond these, at the
   /// landmark's centre, is left out: its ground truth cannot be trusted to the protocol's 25.4 mm
   /// and 15 degrees. Half of each.

@@ -9,6 +9,7 @@
 #include "lmk/geometry/error.h"
 #include "lmk/json/find_settings_json.h"
 #include "lmk/landmark/box_guess.h"
+#include "lmk/landmark/depth_correction_file.h"
 #include "lmk/landmark/distinctiveness.h"
 #include "lmk/landmark/find_landmark.h"
 #include "lmk/landmark/scene_index.h"
@@ -44,6 +45,11 @@ LandmarkNodeSettings LandmarkNodeSettings::from_parameters(const ::ros::NodeHand
   private_nh.param("interactive", s.interactive, s.interactive);
   private_nh.param("capture_name", s.capture_name, s.capture_name);
   LandmarkLibrary::check_name(s.capture_name);
+  std::string depth_correction;
+  private_nh.param("depth_correction", depth_correction, depth_correction);
+  if (!depth_correction.empty()) {
+    s.depth_correction = load_depth_correction(depth_correction).correction;
+  }
   if (!(s.frame_timeout >= 0.0)) throw Error("~frame_timeout: must be seconds, 0 or more");
   // A string of JSON: a YAML map from rosparam would not read as one, and is refused rather than
   // silently ignored.
@@ -69,7 +75,8 @@ LandmarkNode::LandmarkNode(::ros::NodeHandle nh, ::ros::NodeHandle private_nh,
     : settings_(std::move(settings)),
       library_(settings_.landmark_directory),
       tf_listener_(tf_),
-      latest_(nh, settings_.cloud_topic, tf_, settings_.base_frame, settings_.sensor_frame) {
+      latest_(nh, settings_.cloud_topic, tf_, settings_.base_frame, settings_.sensor_frame,
+              settings_.depth_correction) {
   // The node's scenes are in the base frame, whose +z is up (docs/landmarks.md, "Up").
   settings_.find.scene.base_frame = true;
   settings_.capture.base_frame = true;

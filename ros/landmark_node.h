@@ -12,6 +12,7 @@
 #include <tf2_ros/transform_listener.h>
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "lmk/landmark/find_settings.h"
@@ -32,10 +33,14 @@ struct LandmarkNodeSettings {
   bool interactive = true;         ///< serve the RViz capture box (box_capture_markers.h)
   std::string capture_name = "landmark";  ///< RViz captures are NAME, NAME-2, NAME-3, ...
   CaptureSettings capture;                ///< base_frame is always set likewise
+  /// The camera's depth error (a file of lmk calibrate-depth, ~depth_correction), undone on every
+  /// frame before capture and search alike.
+  std::optional<DepthCorrection> depth_correction;
 
   /// From the private parameters ~cloud_topic, ~base_frame, ~sensor_frame,
   /// ~landmark_directory (default $ROS_HOME/lmk/landmarks), ~frame_timeout, ~interactive,
-  /// ~capture_name and ~find_settings (FindSettings as JSON, one object per stage, e.g.
+  /// ~capture_name, ~depth_correction (a file) and ~find_settings (FindSettings as JSON, one object
+  /// per stage, e.g.
   /// {"selection": {"threshold": 0.006}}; json/find_settings_json.h). Throws lmk::Error for a bad
   /// one.
   static LandmarkNodeSettings from_parameters(const ::ros::NodeHandle& private_nh);

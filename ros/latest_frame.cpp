@@ -9,24 +9,27 @@ namespace lmk::ros1 {
 
 Frame frame_from_cloud(const sensor_msgs::PointCloud2& msg, const tf2_ros::Buffer& tf,
                        const std::string& base_frame, const std::string& sensor_frame,
-                       const ::ros::Duration& tf_timeout) {
+                       const ::ros::Duration& tf_timeout, const DepthCorrection* correction) {
   const std::string cloud_frame = msg.header.frame_id;
   if (cloud_frame.empty()) throw Error("the cloud has no frame_id");
   PointCloud cloud = from_ros(msg, "cloud in '" + cloud_frame + "'");
   if (!sensor_frame.empty() && sensor_frame != cloud_frame) {
     cloud.T_cloud_sensor = lookup_pose(tf, cloud_frame, sensor_frame, msg.header.stamp, tf_timeout);
   }
+  if (correction) correction->apply(cloud);
   const Eigen::Isometry3d T_base_cloud =
       lookup_pose(tf, base_frame, cloud_frame, msg.header.stamp, tf_timeout);
   return Frame{cloud.transformed(T_base_cloud), base_frame, cloud_frame, msg.header.stamp};
 }
 
 LatestFrame::LatestFrame(::ros::NodeHandle& nh, const std::string& topic, const tf2_ros::Buffer& tf,
-                         std::string base_frame, std::string sensor_frame)
+                         std::string base_frame, std::string sensor_frame,
+                         std::optional<DepthCorrection> correction)
     : tf_(tf),
       topic_(topic),
       base_frame_(std::move(base_frame)),
-      sensor_frame_(std::move(sensor_frame)) {
+      sensor_frame_(std::move(sensor_frame)),
+      correction_(std::move(correction)) {
   // Queue of one: a search wants the newest frame, never a backlog.
   subscriber_ = nh.subscribe(topic, 1, &LatestFrame::receive, this);
 }
@@ -49,7 +52,8 @@ std::shared_ptr<const Frame> LatestFrame::wait(double seconds) const {
 void LatestFrame::receive(const sensor_msgs::PointCloud2ConstPtr& msg) {
   try {
     auto frame = std::make_shared<const Frame>(
-        frame_from_cloud(*msg, tf_, base_frame_, sensor_frame_, ::ros::Duration(0.5)));
+        frame_from_cloud(*msg, tf_, base_frame_, sensor_frame_, ::ros::Duration(0.5),
+                         correction_ ? &*correction_ : nullptr));
     const std::lock_guard<std::mutex> lock(mutex_);
     latest_ = std::move(frame);
   } catch (const Error& e) {

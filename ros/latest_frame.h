@@ -11,8 +11,10 @@
 
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 
+#include "lmk/geometry/depth_correction.h"
 #include "lmk/geometry/point_cloud.h"
 
 namespace lmk::ros1 {
@@ -25,18 +27,21 @@ struct Frame {
 };
 
 /// Converts one PointCloud2 into a Frame in `base_frame`. `sensor_frame` is the camera's optical
-/// frame; empty, the cloud's own frame is taken to be it. Throws lmk::Error for a malformed cloud
-/// or a missing transform.
+/// frame; empty, the cloud's own frame is taken to be it. A `correction` (the camera's depth
+/// error, lmk calibrate-depth) is undone first, in the camera's frame. Throws lmk::Error for a
+/// malformed cloud, a missing transform or a cloud the correction does not fit.
 Frame frame_from_cloud(const sensor_msgs::PointCloud2& msg, const tf2_ros::Buffer& tf,
                        const std::string& base_frame, const std::string& sensor_frame,
-                       const ::ros::Duration& tf_timeout);
+                       const ::ros::Duration& tf_timeout,
+                       const DepthCorrection* correction = nullptr);
 
 /// Subscribes to a cloud topic and keeps the latest frame that converted. A cloud that does not
 /// convert is reported (throttled) and the previous frame is kept.
 class LatestFrame {
  public:
   LatestFrame(::ros::NodeHandle& nh, const std::string& topic, const tf2_ros::Buffer& tf,
-              std::string base_frame, std::string sensor_frame);
+              std::string base_frame, std::string sensor_frame,
+              std::optional<DepthCorrection> correction = {});
   /// The latest frame, or null before the first one.
   std::shared_ptr<const Frame> get() const;
   /// The latest frame, waiting up to `seconds` for the first one (right after start-up it may
@@ -49,6 +54,7 @@ class LatestFrame {
 
   const tf2_ros::Buffer& tf_;
   std::string topic_, base_frame_, sensor_frame_;
+  std::optional<DepthCorrection> correction_;
   ::ros::Subscriber subscriber_;
   mutable std::mutex mutex_;
   std::shared_ptr<const Frame> latest_;

@@ -5,6 +5,7 @@
 
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/version.h"
+#include "lmk/landmark/depth_correction_file.h"
 #include "lmk/landmark/error_metrics.h"
 #include "lmk/serve/api_error.h"
 #include "lmk/serve/request_fields.h"
@@ -15,7 +16,10 @@ Api::Api(ServeSettings settings, const std::filesystem::path& scratch_dir)
     : settings_(std::move(settings)),
       scenes_(UploadLimits{settings_.max_uploads, settings_.max_upload_points,
                            settings_.max_uploaded_points},
-              scratch_dir),
+              scratch_dir,
+              settings_.depth_correction.empty()
+                  ? std::nullopt
+                  : std::optional(load_depth_correction(settings_.depth_correction).correction)),
       library_(settings_.landmarks_dir) {
   for (const std::string& path : settings_.scenes) scenes_.add_file(path);
   if (!settings_.programs_dir.empty()) {

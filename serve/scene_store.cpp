@@ -24,8 +24,9 @@ void check_upload_name(const std::string& name) {
 
 }  // namespace
 
-SceneStore::SceneStore(UploadLimits limits, std::filesystem::path scratch_dir)
-    : limits_(limits), scratch_dir_(std::move(scratch_dir)) {}
+SceneStore::SceneStore(UploadLimits limits, std::filesystem::path scratch_dir,
+                       std::optional<DepthCorrection> correction)
+    : limits_(limits), scratch_dir_(std::move(scratch_dir)), correction_(std::move(correction)) {}
 
 Scene& SceneStore::insert(std::string name, std::string source, PointCloud cloud) {
   Scene scene;
@@ -39,6 +40,7 @@ Scene& SceneStore::insert(std::string name, std::string source, PointCloud cloud
 
 Scene SceneStore::add_file(const std::string& path) {
   PointCloud cloud = read_cloud(path);
+  if (correction_) correction_->apply(cloud);
   std::lock_guard<std::mutex> lock(mutex_);
   return insert(std::filesystem::path(path).filename().string(), "file", std::move(cloud));
 }
@@ -64,6 +66,7 @@ Scene SceneStore::add_upload(const std::string& name, const std::string& bytes) 
       if (!out) throw Error("cannot write the upload to " + scratch_dir_.string());
     }
     cloud = read_cloud(file.string());
+    if (correction_) correction_->apply(cloud);
   } catch (const Error& e) {
     std::error_code ignored;
     std::filesystem::remove(file, ignored);

@@ -6,9 +6,11 @@
 #include <filesystem>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "lmk/geometry/depth_correction.h"
 #include "lmk/geometry/point_cloud.h"
 
 namespace lmk::serve {
@@ -30,14 +32,16 @@ struct UploadLimits {
 
 class SceneStore {
  public:
-  /// Keeps uploads within `limits`; uploads are parsed in `scratch_dir`.
-  SceneStore(UploadLimits limits, std::filesystem::path scratch_dir);
+  /// Keeps uploads within `limits`; uploads are parsed in `scratch_dir`. A `correction` (the depth
+  /// camera's error) is undone on every scene read or uploaded.
+  SceneStore(UploadLimits limits, std::filesystem::path scratch_dir,
+             std::optional<DepthCorrection> correction = {});
 
   /// Reads a scene file given on the command line; lmk::Error for a bad one.
   Scene add_file(const std::string& path);
   /// Parses an uploaded cloud named `name` (its extension gives the format). ApiError 400 for a
-  /// bad name or a malformed cloud, with the reader's message; 413 for more than
-  /// limits.max_points points. The oldest uploads go to keep within the limits.
+  /// bad name, a malformed cloud or one the depth correction does not fit, with the message; 413
+  /// for more than limits.max_points points. The oldest uploads go to keep within the limits.
   Scene add_upload(const std::string& name, const std::string& bytes);
   /// The scene `id`; ApiError 404 naming the ids there are.
   Scene get(const std::string& id) const;
@@ -48,6 +52,7 @@ class SceneStore {
 
   UploadLimits limits_;
   std::filesystem::path scratch_dir_;
+  std::optional<DepthCorrection> correction_;
   mutable std::mutex mutex_;
   std::vector<Scene> scenes_;
   std::size_t next_id_ = 1;

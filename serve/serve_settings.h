@@ -14,7 +14,10 @@ struct ServeSettings {
   std::vector<std::string> scenes;          ///< cloud files shown in the scene picker
   std::string landmarks_dir = "landmarks";  ///< captures are written here; created if missing
   std::string programs_dir;                 ///< PbD programs offered; empty: none
-  std::string bind = "127.0.0.1";           ///< loopback only unless the user says otherwise
+  /// The depth camera's fitted error (a file of lmk calibrate-depth), undone on every scene read
+  /// or uploaded, which must then be that camera's organised frames; empty: none.
+  std::string depth_correction;
+  std::string bind = "127.0.0.1";  ///< loopback only unless the user says otherwise
   /// Asked of every API request and of the page (docs/serve.md, "Access"); empty: a fresh random
   /// one (HttpServer::token()), unless no_token.
   std::string token;

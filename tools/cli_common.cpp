@@ -116,4 +116,12 @@ void add_up_options(CLI::App* sub, UpOptions& options) {
                 "The scene is expressed in a robot base frame, whose +z is up");
 }
 
+void add_depth_correction_option(CLI::App* sub, std::string& file) {
+  sub->add_option("--depth-correction", file,
+                  "Undo the depth camera's fitted depth error (a file of lmk calibrate-depth) on "
+                  "the organised frame read, before anything else; use it at capture and search "
+                  "alike")
+      ->check(CLI::ExistingFile);
+}
+
 }  // namespace lmk::cli

@@ -69,6 +69,10 @@ struct UpOptions {
 };
 void add_up_options(CLI::App* sub, UpOptions& options);
 
+/// --depth-correction FILE: the depth camera's fitted error (lmk calibrate-depth), undone on the
+/// organised frame read before anything else (landmark/depth_correction_file.h's correct_depth).
+void add_depth_correction_option(CLI::App* sub, std::string& file);
+
 /// The options of a search that lmk find, eval and ablate share: one flag per search setting
 /// (find_settings.h), grouped by stage in --help; the execution stage (--threads) only when
 /// `with_execution`. `settings` must outlive the parse.
@@ -78,6 +82,7 @@ Subcommand add_bench(CLI::App& app);
 Subcommand add_info(CLI::App& app);
 Subcommand add_convert(CLI::App& app);
 Subcommand add_gen(CLI::App& app);
+Subcommand add_calibrate_depth(CLI::App& app);
 Subcommand add_capture(CLI::App& app);
 Subcommand add_find(CLI::App& app);
 Subcommand add_landmark(CLI::App& app);

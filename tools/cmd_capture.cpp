@@ -10,6 +10,7 @@
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/pose.h"
+#include "lmk/landmark/depth_correction_file.h"
 #include "lmk/landmark/distinctiveness.h"
 #include "lmk/landmark/landmark_file.h"
 #include "lmk/landmark/slide_check.h"
@@ -23,6 +24,7 @@ struct CaptureOptions {
   std::vector<double> center, rpy_deg, size;
   UpOptions up;
   bool no_check = false;
+  std::string depth_correction;
   CaptureSettings settings;
 };
 
@@ -94,7 +96,8 @@ int run_capture(CaptureOptions& o) {
   o.settings.base_frame = o.up.base_frame;
   format_from_path(o.scene);
   const Box box = box_from_options(o);  // bad box arguments fail before the scene is read
-  const PointCloud scene = read_cloud(o.scene);
+  PointCloud scene = read_cloud(o.scene);
+  correct_depth(scene, o.depth_correction);
   const Landmark landmark = capture(scene, box, o.name, o.settings);
   save_landmark(o.output, landmark);
   std::printf("wrote %s: landmark '%s', %zu points, box %.3f x %.3f x %.3f m\n", o.output.c_str(),
@@ -137,6 +140,7 @@ Subcommand add_capture(CLI::App& app) {
          "searches do (0: the raw depth; keep it equal to the searches' --depth-smoothing)")
       ->capture_default_str();
   add_up_options(sub, o->up);
+  add_depth_correction_option(sub, o->depth_correction);
   sub->add_flag("--allow-flat", o->settings.allow_flat,
                 "Accept a flat landmark: a patch of free surface (an empty spot on a table), which "
                 "matches wherever it fits");

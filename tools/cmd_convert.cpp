@@ -10,6 +10,7 @@
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/depth_image.h"
 #include "lmk/geometry/error.h"
+#include "lmk/landmark/depth_correction_file.h"
 #include "tools/cli_common.h"
 
 namespace lmk::cli {
@@ -22,6 +23,7 @@ struct ConvertOptions {
   std::string intrinsics_file;
   double depth_unit = 0.001;
   std::string colour;
+  std::string depth_correction;
 };
 
 // A depth image and its intrinsics to an organised cloud in the camera's optical frame.
@@ -52,7 +54,8 @@ int run_convert(const ConvertOptions& options) {
                       !options.colour.empty())) {
     throw Error("--intrinsics, --intrinsics-file and --colour are for a depth image (.png, .pgm)");
   }
-  const PointCloud cloud = from_depth ? cloud_of_depth_image(options) : read_cloud(options.input);
+  PointCloud cloud = from_depth ? cloud_of_depth_image(options) : read_cloud(options.input);
+  correct_depth(cloud, options.depth_correction);
   write_cloud(options.output, cloud, {options.encoding});
   const CloudFormat format = format_from_path(options.output);
   const Encoding written = format == CloudFormat::kXyz ? Encoding::kAscii
@@ -100,6 +103,7 @@ Subcommand add_convert(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--colour,--color", options->colour,
                   "Depth image: a colour PNG registered to it, pixel for pixel");
+  add_depth_correction_option(sub, options->depth_correction);
   return {sub, [options] { return run_convert(*options); }};
 }
 

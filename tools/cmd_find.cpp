@@ -14,6 +14,7 @@
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/pose.h"
 #include "lmk/json/find_result_json.h"
+#include "lmk/landmark/depth_correction_file.h"
 #include "lmk/landmark/find_landmark.h"
 #include "lmk/landmark/landmark_file.h"
 #include "tools/bag_input.h"
@@ -25,7 +26,7 @@ namespace {
 
 struct FindOptions {
   BagOptions bag;
-  std::string scene, landmark, json;
+  std::string scene, landmark, json, depth_correction;
   bool timings = false;
   bool rejected = false;
   FindSettings settings;
@@ -69,9 +70,10 @@ void print_table(const FindResult& r, const std::string& name) {
 }
 
 PointCloud read_scene(FindOptions& o) {
-  if (!is_bag(o.scene)) return read_cloud(o.scene);
   bool in_base_frame = false;
-  PointCloud scene = read_bag_scene(o.scene, o.bag, in_base_frame);
+  PointCloud scene =
+      is_bag(o.scene) ? read_bag_scene(o.scene, o.bag, in_base_frame) : read_cloud(o.scene);
+  correct_depth(scene, o.depth_correction);
   // A scene in the robot's base frame has +z up, as --base-frame says, unless --up says otherwise.
   if (in_base_frame && !o.settings.scene.up) o.settings.scene.base_frame = true;
   return scene;
@@ -110,6 +112,7 @@ Subcommand add_find(CLI::App& app) {
   sub->add_option("landmark", o->landmark, "Landmark file (.lmk)")->required();
   add_search_options(sub, s, true);
   add_bag_options(sub, o->bag, true);
+  add_depth_correction_option(sub, o->depth_correction);
   sub->add_option("--json", o->json,
                   "Write the matches and statistics as JSON to FILE, or - for stdout");
   sub->add_flag("--rejected", o->rejected,

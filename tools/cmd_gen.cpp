@@ -16,6 +16,7 @@
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/pose.h"
+#include "lmk/landmark/depth_correction_file.h"
 #include "tools/bag_input.h"
 #include "tools/cli_common.h"
 #include "tools/progress.h"
@@ -45,6 +46,7 @@ struct GenOptions {
   std::optional<double> box_side;
   int depth_smoothing = kDefaultDepthSmoothing;
   bool calibrate_depth = false;
+  std::string depth_correction;  ///< a file of lmk calibrate-depth
   std::vector<std::size_t> gap;  ///< min max, frames
 };
 
@@ -135,6 +137,8 @@ int run_rgbd(const GenOptions& options) {
   rgbd.box_side = options.box_side;
   rgbd.depth_smoothing = options.depth_smoothing;
   rgbd.calibrate_depth = options.calibrate_depth;
+  if (!options.depth_correction.empty())
+    rgbd.depth_correction = load_depth_correction(options.depth_correction);
   if (options.stride) rgbd.frame_stride = *options.stride;
   if (!options.gap.empty()) {
     rgbd.min_gap = options.gap[0];
@@ -148,8 +152,10 @@ int run_rgbd(const GenOptions& options) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (const auto& c = import.depth_calibration) {
     std::printf(
-        "depth calibrated on the frames left out of the dataset: %d x %d cells, %zu "
-        "correspondences, their disagreement %.1f mm -> %.1f mm RMS\n",
+        "depth corrected with a fit %s: %d x %d cells, %zu correspondences, their disagreement "
+        "%.1f mm -> %.1f mm RMS\n",
+        options.calibrate_depth ? "on the frames left out of the dataset"
+                                : ("from " + options.depth_correction).c_str(),
         c->correction.cols, c->correction.rows, c->correspondences, 1000.0 * c->rms_before,
         1000.0 * c->rms_after);
   }
@@ -252,6 +258,11 @@ Subcommand add_gen(CLI::App& app) {
                 "With --from-rgbd: fit the camera's depth error on the frames the dataset does not "
                 "use, given their poses, and correct the frames it uses (import.json records the "
                 "fit)");
+  sub->add_option("--depth-correction", options->depth_correction,
+                  "With --from-rgbd: correct the frames it uses with this depth-correction file "
+                  "(lmk calibrate-depth) instead of fitting one")
+      ->check(CLI::ExistingFile)
+      ->excludes("--calibrate-depth");
   sub->add_option("--gap", options->gap,
                   "With --from-rgbd: MIN MAX frames between a landmark's frame and its scenes "
                   "(default 10 40)")

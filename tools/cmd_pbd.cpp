@@ -16,6 +16,7 @@
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/error.h"
 #include "lmk/json/plan_json.h"
+#include "lmk/landmark/depth_correction_file.h"
 #include "lmk/pbd/execute.h"
 #include "lmk/pbd/plan.h"
 #include "lmk/pr2/simulated_pr2.h"
@@ -125,7 +126,8 @@ Plan plan_program(const PbdOptions& o, SimulatedPr2& robot) {
   format_from_path(o.scene);
   const Program program = load_program(o.program);
   const auto landmarks = load_landmarks_of(o, program);
-  const PointCloud scene = read_cloud(o.scene);
+  PointCloud scene = read_cloud(o.scene);
+  correct_depth(scene, o.depth_correction);
   if (!robot.configure().ok() || !robot.activate().ok())
     throw Error("simulated PR2 failed to start");
   JointState state;
@@ -186,6 +188,7 @@ void add_plan_options(CLI::App* sub, PbdOptions& o, bool scene_required) {
   CLI::Option* scene =
       sub->add_option("--scene", o.scene, "Scene cloud in the robot base frame (.pcd, .ply, .xyz)");
   if (scene_required) scene->required();
+  add_depth_correction_option(sub, o.depth_correction);
   sub->add_option("--torso", o.torso, "PR2 torso height, m (0 to 0.33)")->capture_default_str();
   sub->add_option("--policy", o.policy,
                   "Instance policy for landmarks whose program sets none: best-error, "

@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "lmk/geometry/error.h"
+#include "lmk/landmark/depth_correction_file.h"
 #include "lmk/pr2/pr2_kinematics.h"
 #include "lmk/ros/latest_frame.h"
 #include "lmk/ros/ros_robot.h"
@@ -63,7 +64,10 @@ int run_on_ros(const PbdOptions& o) {
   ros1::RosRobot robot(nh, robot_settings);
   tf2_ros::Buffer tf;
   tf2_ros::TransformListener tf_listener(tf);
-  const ros1::LatestFrame latest(nh, o.cloud_topic, tf, robot_settings.base_frame, "");
+  std::optional<DepthCorrection> correction;
+  if (!o.depth_correction.empty())
+    correction = load_depth_correction(o.depth_correction).correction;
+  const ros1::LatestFrame latest(nh, o.cloud_topic, tf, robot_settings.base_frame, "", correction);
 
   const CallResult configured = robot.configure();
   if (!configured.ok()) throw Error("pbd run --ros: " + configured.message);

@@ -104,6 +104,7 @@ Subcommand add_serve(CLI::App& app) {
                   "Directory of landmarks (NAME.lmk): listed, searched, and written by captures; "
                   "created if missing")
       ->capture_default_str();
+  add_depth_correction_option(sub, s.depth_correction);
   sub->add_option("--programs", s.programs_dir, "Directory of PbD programs (.json) to plan")
       ->check(CLI::ExistingDirectory);
   sub->add_option("--port", s.port, "TCP port; 0 picks a free one")

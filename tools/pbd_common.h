@@ -14,6 +14,7 @@ namespace lmk::cli {
 
 struct PbdOptions {
   std::string program, scene, json, save_dir, policy, cache_dir;
+  std::string depth_correction;  ///< a file of lmk calibrate-depth, for the scene or the camera
   double torso = 0.0;
   int threads = 0;
   bool sim = false, ros = false, json_stdout = false, timings = false;

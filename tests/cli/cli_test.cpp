@@ -313,6 +313,75 @@ TEST_F(CliLandmark, BadInputToCaptureAndFind) {
   expect_bad_input("pbd demo-tasks --threads 100000000", "is not a thread count");
 }
 
+// A depth camera's correction (lmk calibrate-depth's file) is undone on the frame read by capture,
+// find and convert; one that does not fit the frame, or a bad file, is one line naming the file.
+TEST_F(CliLandmark, DepthCorrectionAppliesToTheFrameReadOrIsRefusedInOneLine) {
+  const std::string scene = path("scene.pcd");
+  const auto correction = [&](const std::string& name, const std::string& image,
+                              const std::string& cells, const std::string& values) {
+    test::write_text(dir_.file(name),
+                     R"({"format": "lmk-depth-correction", "version": 1, "image": )" + image +
+                         R"(, "cells": )" + cells + R"(, "per_metre": )" + values + "}");
+    return path(name);
+  };
+  const std::string none = correction("none.json", "[640, 480]", "[1, 1]", "[0]");
+  const std::string far = correction("far.json", "[640, 480]", "[2, 1]", "[0.01, 0.02]");
+  const std::string small = correction("small.json", "[4, 3]", "[1, 1]", "[0]");
+  const std::string bad = correction("bad.json", "[640, 480]", "[3, 1]", "[0, 0]");
+
+  // No error to undo: the same landmark and the same matches as without the option.
+  ASSERT_EQ(lmk("capture " + scene + " " + carton_ + " --name c -o " + path("c.lmk")).exit_code, 0);
+  ASSERT_EQ(lmk("capture " + scene + " " + carton_ + " --name c -o " + path("c0.lmk") +
+                " --depth-correction " + none)
+                .exit_code,
+            0);
+  const CommandResult plain = lmk("find " + scene + " " + path("c.lmk") + " --json -");
+  const CommandResult corrected_none =
+      lmk("find " + scene + " " + path("c0.lmk") + " --json - --depth-correction " + none);
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  EXPECT_EQ(corrected_none.out, plain.out);
+  // An error to undo moves the points: the converted frame differs, point for point.
+  ASSERT_EQ(
+      lmk("convert " + scene + " " + path("far.xyz") + " --depth-correction " + far).exit_code, 0);
+  ASSERT_EQ(lmk("convert " + scene + " " + path("same.xyz")).exit_code, 0);
+  EXPECT_NE(slurp(dir_.file("far.xyz")), slurp(dir_.file("same.xyz")));
+
+  expect_bad_input("find " + scene + " " + path("c.lmk") + " --depth-correction " + small,
+                   dir_.file("small.json") +
+                       ": depth correction: fitted on 4 x 3 images, given a frame of 640 x 480");
+  expect_bad_input("capture " + path("same.xyz") + " " + carton_ + " --name x -o " + path("x.lmk") +
+                       " --depth-correction " + none,
+                   "given an unorganised cloud");
+  expect_bad_input("convert " + scene + " " + path("x.pcd") + " --depth-correction " + bad,
+                   dir_.file("bad.json") + ": depth correction: 2 values for 3 cells");
+  expect_bad_input(
+      "find " + scene + " " + path("c.lmk") + " --depth-correction " + path("missing.json"),
+      "--depth-correction");
+  EXPECT_FALSE(std::filesystem::exists(dir_.file("x.lmk")));
+  EXPECT_FALSE(std::filesystem::exists(dir_.file("x.pcd")));
+}
+
+// lmk calibrate-depth on the real Kinect sequence: a correction file that makes its frames agree
+// better than they did, which lmk gen --from-rgbd --depth-correction then applies.
+TEST_F(Cli, CalibrateDepthOnTheRealKitchenWritesACorrectionTheImportApplies) {
+  LMK_REQUIRE_SHARED_DATA(data);
+  const std::string kitchen = "'" + (data / "real" / "redkitchen").string() + "'";
+  const CommandResult fit =
+      lmk("calibrate-depth " + kitchen + " -o " + path("k.json") + " --every 5 --gap 1 4");
+  ASSERT_EQ(fit.exit_code, 0) << fit.err;
+  const nlohmann::json j = nlohmann::json::parse(slurp(dir_.file("k.json")));
+  EXPECT_EQ(j["format"], "lmk-depth-correction");
+  EXPECT_EQ(j["per_metre"].size(), 48u);
+  EXPECT_LT(j["rms_after_m"].get<double>(), j["rms_before_m"].get<double>());
+  expect_bad_input("calibrate-depth " + kitchen + " -o " + path("k.txt"), "must end in .json");
+  expect_bad_input(
+      "calibrate-depth " + kitchen + " -o " + path("k2.json") + " --cells 64 48 --every 25",
+      "too few for 3072 cells");
+  expect_bad_input("gen " + path("ds") + " --from-rgbd " + kitchen + " --calibrate-depth " +
+                       "--depth-correction " + path("k.json"),
+                   "excludes");
+}
+
 // Outputs and inputs of the wrong kind are refused before any work: a landmark is never written
 // under a point-cloud name, and a directory or a pipe is never read as a file.
 TEST_F(CliLandmark, WrongKindsOfFilesAreRefusedUpFront) {

@@ -315,6 +315,12 @@ TEST(LmkNode, BadParametersStopItWithOneClearLine) {
                  dir.file("bad3.log"), 60.0);
   EXPECT_EQ(code3, 1) << out3;
   EXPECT_NE(out3.find("~find_settings: must be a string of JSON"), std::string::npos) << out3;
+  // A depth correction that cannot be read stops the node before it serves a frame uncorrected.
+  const auto [code4, out4] = run_to_end({LMK_NODE_BINARY, "__name:=lmk_node_bad_correction",
+                                         "_depth_correction:=" + dir.file("missing.json")},
+                                        dir.file("bad4.log"), 60.0);
+  EXPECT_EQ(code4, 1) << out4;
+  EXPECT_NE(out4.find("lmk_node: " + dir.file("missing.json")), std::string::npos) << out4;
 }
 
 /// The plan `lmk pbd run --ros` makes: the same frame, joint state, torso and settings.
