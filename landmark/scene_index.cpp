@@ -17,6 +17,11 @@
 
 namespace lmk {
 
+const std::vector<std::string>& setting_names(UnseenPoints) {
+  static const std::vector<std::string> names{"counted", "outside-image", "no-return"};
+  return names;
+}
+
 void validate(const SceneSettings& settings) {
   validate_settings(settings, "scene: ");
   if (settings.coarse_leaf < settings.leaf_size) {
@@ -75,6 +80,7 @@ SceneIndex::SceneIndex(const PointCloud& scene, const SceneSettings& settings)
   tbb::parallel_invoke(
       [&] {
         range_image_ = RangeImage::from_cloud(frame);
+        organised_ = frame.is_organized();
         if (whole_frame) cropped_ = remove_non_finite(frame);
         occupancy_ = OccupancyGrid(source.points, settings.leaf_size);
       },

@@ -47,6 +47,10 @@ class SceneIndex {
   /// What the scene's sensor saw along each ray (the whole scene, before the crop), for
   /// projective visibility; nothing when the cloud is no view from its recorded sensor pose.
   const std::optional<RangeImage>& range_image() const { return range_image_; }
+  /// Whether the scene was an organised frame, so that its range image holds the sensor's own
+  /// pixels (an unorganised cloud's is projected through assumed intrinsics, and its empty pixels
+  /// say nothing of what the sensor measured).
+  bool organised() const { return organised_; }
   /// The scene at leaf_size and its tree; built on the first call.
   const PointCloud& fine() const;
   const KdTree& fine_tree() const;
@@ -65,6 +69,7 @@ class SceneIndex {
   DistanceField field_;
   OccupancyGrid occupancy_;
   std::optional<RangeImage> range_image_;
+  bool organised_ = false;
   double seconds_ = 0.0;
 
   mutable std::once_flag coarse_tree_once_;

@@ -82,6 +82,14 @@ bool hidden_behind(const SceneIndex& scene, const Eigen::Vector3f& q, const Box&
   return !free_zone.contains(Eigen::Vector3d(seen.cast<double>()));
 }
 
+bool unseen_by_sensor(const SceneIndex& scene, const Eigen::Vector3f& q, UnseenPoints which) {
+  if (which == UnseenPoints::counted || !scene.organised()) return false;
+  const std::optional<RangeImage>& image = scene.range_image();
+  if (!image) return false;  // no pinhole view from its recorded pose
+  const RangeImage::Look look = image->look(q);
+  return !look.in_view || (which == UnseenPoints::no_return && std::isnan(look.measured));
+}
+
 std::size_t shown_shortfall(std::size_t shown, std::size_t total) {
   const double floor = kMinShownShare * static_cast<double>(total);
   return static_cast<std::size_t>(std::ceil(std::max(0.0, floor - static_cast<double>(shown))));
@@ -138,8 +146,11 @@ ErrorTerms visibility_terms(const SceneView& scene, const LandmarkView& landmark
   // Support: a scene surface within two paper leaves (1 cm) of the landmark point.
   const float support = static_cast<float>(2.0 * scene.index.settings().leaf_size);
   std::size_t supported = 0;
+  const UnseenPoints unseen = scene.index.settings().unseen_points;
   for (std::size_t j = 0; j < landmark.points.size(); ++j) {
-    if (projective && hidden_behind(scene.index, T * landmark.points.points[j], free_zone)) {
+    const Eigen::Vector3f q = T * landmark.points.points[j];
+    if ((projective && hidden_behind(scene.index, q, free_zone)) ||
+        unseen_by_sensor(scene.index, q, unseen)) {
       ++terms.unseen_points;
       continue;
     }

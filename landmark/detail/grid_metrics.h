@@ -82,6 +82,12 @@ Box occluder_free_zone(const Box& box);
 /// without a range image, outside the view and where nothing was measured.
 bool hidden_behind(const SceneIndex& scene, const Eigen::Vector3f& q, const Box& free_zone);
 
+/// Whether the scene's sensor could not have seen `q` (scene frame) at all, as `which` counts it
+/// (SceneSettings::unseen_points): outside its image, or on a pixel where it measured nothing.
+/// False for `counted`, and for a scene that was no organised frame from its recorded pose: an
+/// unorganised cloud's range image is projected through assumed intrinsics.
+bool unseen_by_sensor(const SceneIndex& scene, const Eigen::Vector3f& q, UnseenPoints which);
+
 /// Calls visit(e, occupied) for each voxel the scene occupies inside the candidate's box
 /// (`occupied`, scene frame) that falls in the landmark's observed-empty space (`e`, capture
 /// frame). Both grids share the voxel size, so this finds the same overlap as probing every empty

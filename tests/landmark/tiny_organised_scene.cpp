@@ -15,12 +15,12 @@ Eigen::Vector3f on_tiny_ray(int u, int v, double depth) {
                          static_cast<float>((v - kCy) / kF * depth), static_cast<float>(depth));
 }
 
-PointCloud tiny_wall(const std::function<double(int, int)>& depth_at) {
+PointCloud tiny_wall(const std::function<double(int, int)>& depth_at, int columns) {
   PointCloud cloud;
-  cloud.width = kTinyWidth;
+  cloud.width = static_cast<std::uint32_t>(columns);
   cloud.height = kTinyHeight;
   for (int v = 0; v < kTinyHeight; ++v)
-    for (int u = 0; u < kTinyWidth; ++u) cloud.points.push_back(on_tiny_ray(u, v, depth_at(u, v)));
+    for (int u = 0; u < columns; ++u) cloud.points.push_back(on_tiny_ray(u, v, depth_at(u, v)));
   return cloud;
 }
 
@@ -44,8 +44,8 @@ Landmark tiny_landmark() {
 }
 
 ErrorTerms evaluate_tiny(const std::string& metric, const Landmark& landmark,
-                         const PointCloud& scene) {
-  const SceneIndex index(scene);
+                         const PointCloud& scene, const SceneSettings& settings) {
+  const SceneIndex index(scene, settings);
   EXPECT_TRUE(index.range_image().has_value());
   const KdTree tree(landmark.points);
   return find_error_metric(metric).evaluate(

@@ -10,6 +10,7 @@
 
 #include "lmk/landmark/error_metrics.h"
 #include "lmk/landmark/landmark.h"
+#include "lmk/landmark/scene_settings.h"
 
 namespace lmk {
 
@@ -18,8 +19,9 @@ inline constexpr int kTinyWidth = 40, kTinyHeight = 30;
 /// The point at pixel (u, v) and `depth` along the optical axis.
 Eigen::Vector3f on_tiny_ray(int u, int v, double depth);
 
-/// The wall, with the depth of some pixels changed (NaN: no return).
-PointCloud tiny_wall(const std::function<double(int, int)>& depth_at);
+/// The wall, with the depth of some pixels changed (NaN: no return); only its first `columns`
+/// columns, as if the image ended there.
+PointCloud tiny_wall(const std::function<double(int, int)>& depth_at, int columns = kTinyWidth);
 
 /// Whether pixel (u, v) holds one of the landmark's nine points.
 bool in_tiny_landmark(int u, int v);
@@ -27,8 +29,8 @@ bool in_tiny_landmark(int u, int v);
 /// The nine-point landmark, with the free space in front of it observed by a dense capture.
 Landmark tiny_landmark();
 
-/// `metric`'s terms for the landmark where it was captured, in `scene`.
+/// `metric`'s terms for the landmark where it was captured, in `scene` indexed with `settings`.
 ErrorTerms evaluate_tiny(const std::string& metric, const Landmark& landmark,
-                         const PointCloud& scene);
+                         const PointCloud& scene, const SceneSettings& settings = {});
 
 }  // namespace lmk
