@@ -125,8 +125,10 @@ std::vector<EvaluationRow> evaluation_rows(const Evaluation& evaluation,
 
 /// Assumptions 1 (when every pair was searched) and 2, split by range: the distance from the
 /// scene's sensor to each ground-truth instance (true positives, false negatives) or to each match
-/// (false positives), in bins of `bin_width` m. One row per bin that holds anything, nearest
-/// first, its `setting` naming the bin ("1.0-1.5 m"); median errors as the table's, no times.
+/// (false positives), in bins of `bin_width` m; and assumption 3, each in-context pair's best
+/// match in the bin of its first instance not ignored (TP out of `pairs`: how often the best match
+/// was right at that range). Rows by bin that holds anything, nearest first, its `setting` naming
+/// the bin ("1.0-1.5 m"); median errors as the table's, no times.
 std::vector<EvaluationRow> evaluation_rows_by_range(const Evaluation& evaluation,
                                                     std::optional<double> threshold = {},
                                                     double bin_width = 0.5);
@@ -137,8 +139,8 @@ bool records_hidden_fractions(const Evaluation& evaluation);
 /// Assumptions 1 (when every pair was searched) and 2, split by the hidden fraction of each
 /// ground-truth instance, in bins of `bin_width` ("20-40% hidden"): recall by how much of the
 /// landmark its sensor could not see. False matches hide nothing and count in no bin, so the
-/// precision of a bin is that of the matches on its instances. Throws lmk::Error when the dataset
-/// records no hidden fraction.
+/// precision of a bin is that of the matches on its instances; assumption 3 as by range. Throws
+/// lmk::Error when the dataset records no hidden fraction.
 std::vector<EvaluationRow> evaluation_rows_by_hidden(const Evaluation& evaluation,
                                                      std::optional<double> threshold = {},
                                                      double bin_width = 0.2);

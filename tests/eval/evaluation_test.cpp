@@ -136,14 +136,15 @@ TEST_F(EvaluationTest, InContextPairsOnlyForAssumptionsTwoAndThree) {
   for (const EvaluationRow& row : evaluation_rows(e)) EXPECT_NE(row.assumption, 1);
 }
 
-// The table split by range adds up to the table: every instance and match lies in some bin.
+// The table split by range adds up to the table: every instance and match lies in some bin, and
+// every in-context pair's best match in its instance's.
 TEST_F(EvaluationTest, RowsByRangeAddUpToTheWholeTable) {
   EvaluationSettings settings;
   const Evaluation e = run(settings);
   const std::vector<EvaluationRow> whole = evaluation_rows(e),
                                    by_range = evaluation_rows_by_range(e);
   ASSERT_FALSE(by_range.empty());
-  for (int assumption : {1, 2}) {
+  for (int assumption : {1, 2, 3}) {
     Counts sum;
     for (const EvaluationRow& row : by_range) {
       if (row.assumption == assumption) sum.add(row.counts);
@@ -192,13 +193,18 @@ TEST(EvaluationByHidden, InstancesCountInTheirBinAndFalseMatchesInNone) {
   p.truth_hidden = {0.1, 0.5};
   p.found.push_back({Box(pose_from_xyz_rpy({3, 0, 0}, {0, 0, 0}), {0.1, 0.1, 0.1}), 0.003, {}});
   const std::vector<EvaluationRow> rows = evaluation_rows_by_hidden(e);
-  ASSERT_EQ(rows.size(), 4u);  // two bins, assumptions 1 and 2
+  // Two bins, assumptions 1 and 2; the pair's best match (right) in its first instance's bin.
+  ASSERT_EQ(rows.size(), 5u);
   EXPECT_EQ(rows[0].setting, "0-20% hidden");
   EXPECT_EQ(rows[0].counts.tp, 1u);
   EXPECT_EQ(rows[0].counts.fp, 0u);
-  EXPECT_EQ(rows[2].setting, "40-60% hidden");
-  EXPECT_EQ(rows[2].counts.fn, 1u);
-  EXPECT_EQ(rows[2].counts.tp + rows[2].counts.fp, 0u);
+  EXPECT_EQ(rows[2].setting, "0-20% hidden");
+  EXPECT_EQ(rows[2].assumption, 3);
+  EXPECT_EQ(rows[2].counts.tp, 1u);
+  EXPECT_EQ(rows[2].pairs, 1u);
+  EXPECT_EQ(rows[3].setting, "40-60% hidden");
+  EXPECT_EQ(rows[3].counts.fn, 1u);
+  EXPECT_EQ(rows[3].counts.tp + rows[3].counts.fp, 0u);
   // The JSON carries the record.
   const PairResult back =
       detail::pair_result_from_json(detail::pair_result_to_json(p, 0.006, {}), "pair");
