@@ -7,7 +7,10 @@ DistinctivenessReport check_distinctiveness(const PointCloud& capture_scene,
                                             const Landmark& landmark,
                                             const FindSettings& settings) {
   DistinctivenessReport report;
-  report.search = find_landmark(capture_scene, landmark, settings);
+  FindSettings as_captured = settings;
+  as_captured.scene.veil_angle = landmark.settings.veil_angle;
+  as_captured.scene.depth_smoothing = landmark.settings.depth_smoothing;
+  report.search = find_landmark(capture_scene, landmark, as_captured);
   // The captured instance sits at the identity: the capture frame is the capture scene's frame.
   const Eigen::Vector3d captured = landmark.box.center();
   for (const Match& m : report.search.matches) {

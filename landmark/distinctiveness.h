@@ -23,7 +23,9 @@ struct DistinctivenessReport {
   FindResult search;  ///< the whole search, for its statistics
 };
 
-/// Searches `landmark` in `capture_scene` (the scene it was cut from, in its capture frame).
+/// Searches `landmark` in `capture_scene` (the scene it was cut from, in its capture frame),
+/// prepared as the capture prepared it: `settings` with the landmark's veil angle and depth
+/// smoothing (CaptureSettings), so that the check sees the scene the landmark was cut from.
 DistinctivenessReport check_distinctiveness(const PointCloud& capture_scene,
                                             const Landmark& landmark,
                                             const FindSettings& settings = {});

@@ -80,6 +80,10 @@ LandmarkNode::LandmarkNode(::ros::NodeHandle nh, ::ros::NodeHandle private_nh,
   // The node's scenes are in the base frame, whose +z is up (docs/landmarks.md, "Up").
   settings_.find.scene.base_frame = true;
   settings_.capture.base_frame = true;
+  // Captures prepare their frame as the searches do (~find_settings' scene stage), so that a
+  // landmark and the frames it is searched in are alike.
+  settings_.capture.veil_angle = settings_.find.scene.veil_angle;
+  settings_.capture.depth_smoothing = settings_.find.scene.depth_smoothing;
   markers_ = private_nh.advertise<visualization_msgs::MarkerArray>("matches", 1, /*latch=*/true);
   capture_service_ = private_nh.advertiseService("capture_landmark", &LandmarkNode::capture, this);
   find_service_ = private_nh.advertiseService("find_landmark", &LandmarkNode::find, this);

@@ -25,6 +25,9 @@ Landmark capture_from(const Scene& scene, const nlohmann::json& body, const Find
   settings.base_frame = find.scene.base_frame;
   settings.up = find.scene.up;
   settings.allow_flat = optional_bool(body, "allow_flat", false, what);
+  // The frame prepared as the searches prepare theirs, so that the landmark and the scenes match.
+  settings.veil_angle = find.scene.veil_angle;
+  settings.depth_smoothing = find.scene.depth_smoothing;
   return capture(*scene.cloud, box, name, settings);  // lmk::Error: 422, with the reason
 }
 

@@ -214,5 +214,29 @@ TEST(Distinctiveness, ALoneLandmarkAmongDistractorsIsDistinctive) {
   EXPECT_TRUE(report.other_instances.empty());
 }
 
+// The check searches the capture scene prepared as the capture prepared it: a landmark captured
+// with depth smoothing is checked in the smoothed scene, as its searches would smooth theirs, not
+// in the raw one. The camera stands 1.2 m further back than the tests' own, so that the table lies
+// beyond 1.8 m, where smoothing applies.
+TEST(Distinctiveness, SearchesTheCaptureSceneAsTheCapturePreparedIt) {
+  const Eigen::Isometry3d far_camera = capture_camera() * Eigen::Translation3d(0.0, 0.0, -1.2);
+  const PointCloud scene = render_scene({kCopies[1]}, true, {}, far_camera);
+  CaptureSettings smoothed_capture;
+  smoothed_capture.depth_smoothing = 2;
+  const Landmark landmark = capture(scene, box_at(kCopies[1]), "L", smoothed_capture);
+  const DistinctivenessReport report = check_distinctiveness(scene, landmark);
+  FindSettings smoothed_search;
+  smoothed_search.scene.depth_smoothing = 2;
+  const FindResult expected = find_landmark(scene, landmark, smoothed_search);
+  const FindResult raw = find_landmark(scene, landmark);
+  ASSERT_EQ(report.search.matches.size(), expected.matches.size());
+  ASSERT_FALSE(expected.matches.empty());
+  for (std::size_t i = 0; i < expected.matches.size(); ++i) {
+    EXPECT_EQ(report.search.matches[i].error, expected.matches[i].error);
+  }
+  ASSERT_FALSE(raw.matches.empty());
+  EXPECT_NE(raw.matches.front().error, expected.matches.front().error);
+}
+
 }  // namespace
 }  // namespace lmk
