@@ -374,18 +374,35 @@ std::vector<EvaluationRow> evaluation_rows_by_range(const Evaluation& evaluation
                                                     double bin_width) {
   if (!(bin_width > 0.0)) throw Error("the range bins must be wider than 0 m");
   const auto bin_of = [bin_width](const PairResult& p, const Eigen::Isometry3d& pose) {
-    return static_cast<int>(
-        std::floor((pose.translation() - p.sensor_position).norm() / bin_width));
+    return range_bin((pose.translation() - p.sensor_position).norm(), bin_width);
   };
   return rows_by_bin(
       evaluation, threshold.value_or(*evaluation.settings.find.selection.threshold),
       static_cast<int>(std::ceil(10.0 / bin_width)),  // up to 10 m: beyond any depth sensor
       [&](const PairResult& p, std::size_t k) { return bin_of(p, p.truth[k]); }, bin_of,
-      [bin_width](int b) {
-        char label[32];
-        std::snprintf(label, sizeof(label), "%.1f-%.1f m", b * bin_width, (b + 1) * bin_width);
-        return std::string(label);
-      });
+      [bin_width](int b) { return range_bin_label(b, bin_width); });
+}
+
+int range_bin(double range, double bin_width) {
+  return static_cast<int>(std::floor(range / bin_width));
+}
+
+std::string range_bin_label(int bin, double bin_width) {
+  char label[32];
+  std::snprintf(label, sizeof(label), "%.1f-%.1f m", bin * bin_width, (bin + 1) * bin_width);
+  return label;
+}
+
+int hidden_bin(double hidden, double bin_width) {
+  const int bins = static_cast<int>(std::ceil(1.0 / bin_width - 1e-9));
+  return std::min(static_cast<int>(std::floor(hidden / bin_width)), bins - 1);
+}
+
+std::string hidden_bin_label(int bin, double bin_width) {
+  char label[32];
+  std::snprintf(label, sizeof(label), "%.0f-%.0f%% hidden", 100.0 * bin * bin_width,
+                100.0 * std::min(1.0, (bin + 1) * bin_width));
+  return label;
 }
 
 bool records_hidden_fractions(const Evaluation& evaluation) {
@@ -407,15 +424,10 @@ std::vector<EvaluationRow> evaluation_rows_by_hidden(const Evaluation& evaluatio
       evaluation, threshold.value_or(*evaluation.settings.find.selection.threshold), bins,
       [&](const PairResult& p, std::size_t k) {
         if (k >= p.truth_hidden.size()) return -1;  // a pair without the record
-        return std::min(static_cast<int>(std::floor(p.truth_hidden[k] / bin_width)), bins - 1);
+        return hidden_bin(p.truth_hidden[k], bin_width);
       },
       [](const PairResult&, const Eigen::Isometry3d&) { return -1; },
-      [bin_width](int b) {
-        char label[32];
-        std::snprintf(label, sizeof(label), "%.0f-%.0f%% hidden", 100.0 * b * bin_width,
-                      100.0 * std::min(1.0, (b + 1) * bin_width));
-        return std::string(label);
-      });
+      [bin_width](int b) { return hidden_bin_label(b, bin_width); });
 }
 
 std::vector<EvaluationRow> evaluation_rows(const Evaluation& evaluation,

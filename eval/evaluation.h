@@ -133,6 +133,13 @@ std::vector<EvaluationRow> evaluation_rows_by_range(const Evaluation& evaluation
                                                     std::optional<double> threshold = {},
                                                     double bin_width = 0.5);
 
+/// The bin of a range (m) and its label ("1.0-1.5 m"); of a hidden fraction (the last bin holds
+/// 1) and its label ("20-40% hidden"). Shared by the tables and by `--explain`'s.
+int range_bin(double range, double bin_width);
+std::string range_bin_label(int bin, double bin_width);
+int hidden_bin(double hidden, double bin_width);
+std::string hidden_bin_label(int bin, double bin_width);
+
 /// Whether the evaluated dataset records the hidden fraction of its instances (pairs[].hidden).
 bool records_hidden_fractions(const Evaluation& evaluation);
 

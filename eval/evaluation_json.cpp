@@ -171,6 +171,7 @@ json explanation_to_json(const std::vector<ExplainedCase>& cases) {
                     {"cause", c.cause},
                     {"box", box_to_json(c.box)},
                     {"range_m", c.range},
+                    {"hidden", optional_number(c.hidden)},
                     {"error_at_truth", optional_number(c.truth_error)},
                     {"error_of_wrong_winner", optional_number(c.winner_error)},
                     {"nearest_candidate_m", optional_number(c.nearest_candidate_translation)},
@@ -178,9 +179,12 @@ json explanation_to_json(const std::vector<ExplainedCase>& cases) {
                     {"truth_drift_m", optional_number(c.truth_drift_translation)},
                     {"truth_drift_rad", optional_number(c.truth_drift_rotation)}});
   }
-  return {{"cases", list},
-          {"by_setting", cause_rows_to_json(cause_rows(cases))},
-          {"by_range", cause_rows_to_json(cause_rows(cases, 0.5))}};
+  json out = {{"cases", list},
+              {"by_setting", cause_rows_to_json(cause_rows(cases))},
+              {"by_range", cause_rows_to_json(cause_rows(cases, 0.5))}};
+  if (std::any_of(cases.begin(), cases.end(), [](const ExplainedCase& c) { return c.hidden; }))
+    out["by_hidden"] = cause_rows_to_json(cause_rows_by_hidden(cases));
+  return out;
 }
 
 }  // namespace lmk::detail

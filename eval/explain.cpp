@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <memory>
 
@@ -118,6 +119,7 @@ std::vector<ExplainedCase> explain_pair(const FailedPair& f, const SceneIndex& i
     if (c.cause == kSuppressed) suppressed_truths.push_back(k);
     c.box = Box(p.truth[k], capture_box.size);
     c.range = range(p.truth[k]);
+    if (k < p.truth_hidden.size()) c.hidden = p.truth_hidden[k];
     const Match refined = at_truth(k);
     c.truth_error = refined.error;
     c.truth_drift_translation = (refined.box.pose.translation() - p.truth[k].translation()).norm();
@@ -241,8 +243,13 @@ std::vector<ExplainedCase> explain_evaluation(
   return cases;
 }
 
-std::vector<CauseRow> cause_rows(const std::vector<ExplainedCase>& cases,
-                                 std::optional<double> bin_width) {
+namespace {
+
+// The rows of cause_rows(): each case counts in group_of(case) (none: in "all" only) and in "all",
+// groups in the order of `sorted`.
+std::vector<CauseRow> grouped_cause_rows(
+    std::vector<const ExplainedCase*> sorted,
+    const std::function<std::optional<std::string>(const ExplainedCase&)>& group_of) {
   std::map<std::string, std::size_t> index;
   std::vector<CauseRow> rows;
   const auto row = [&](const std::string& group) -> CauseRow& {
@@ -257,22 +264,11 @@ std::vector<CauseRow> cause_rows(const std::vector<ExplainedCase>& cases,
     }
     return rows[it->second];
   };
-  const auto group_of = [&](const ExplainedCase& c) {
-    if (!bin_width) return c.setting;
-    const int b = static_cast<int>(std::floor(c.range / *bin_width));
-    char label[32];
-    std::snprintf(label, sizeof(label), "%.1f-%.1f m", b * *bin_width, (b + 1) * *bin_width);
-    return std::string(label);
-  };
   std::map<std::string, std::vector<double>> truth_errors, winner_errors;
-  std::vector<const ExplainedCase*> sorted;
-  for (const ExplainedCase& c : cases) sorted.push_back(&c);
-  if (bin_width) {
-    std::stable_sort(sorted.begin(), sorted.end(),
-                     [](const auto* a, const auto* b) { return a->range < b->range; });
-  }
   for (const ExplainedCase* c : sorted) {
-    for (const std::string& group : {group_of(*c), std::string("all")}) {
+    std::vector<std::string> groups{"all"};
+    if (const std::optional<std::string> g = group_of(*c)) groups.insert(groups.begin(), *g);
+    for (const std::string& group : groups) {
       CauseRow& r = row(group);
       const auto& causes = c->missed ? miss_causes() : false_match_causes();
       const auto k = static_cast<std::size_t>(std::find(causes.begin(), causes.end(), c->cause) -
@@ -290,6 +286,43 @@ std::vector<CauseRow> cause_rows(const std::vector<ExplainedCase>& cases,
     if (!winner_errors[r.group].empty()) r.median_winner_error = median(winner_errors[r.group]);
   }
   return rows;
+}
+
+// The cases sorted by `key`, stably.
+template <class Key>
+std::vector<const ExplainedCase*> sorted_by(const std::vector<ExplainedCase>& cases, Key key) {
+  std::vector<const ExplainedCase*> sorted;
+  for (const ExplainedCase& c : cases) sorted.push_back(&c);
+  std::stable_sort(sorted.begin(), sorted.end(),
+                   [&](const auto* a, const auto* b) { return key(*a) < key(*b); });
+  return sorted;
+}
+
+}  // namespace
+
+std::vector<CauseRow> cause_rows(const std::vector<ExplainedCase>& cases,
+                                 std::optional<double> bin_width) {
+  if (!bin_width) {
+    return grouped_cause_rows(sorted_by(cases, [](const ExplainedCase&) { return 0; }),
+                              [](const ExplainedCase& c) { return c.setting; });
+  }
+  const double w = *bin_width;
+  return grouped_cause_rows(sorted_by(cases, [](const ExplainedCase& c) { return c.range; }),
+                            [w](const ExplainedCase& c) -> std::optional<std::string> {
+                              return range_bin_label(range_bin(c.range, w), w);
+                            });
+}
+
+std::vector<CauseRow> cause_rows_by_hidden(const std::vector<ExplainedCase>& cases,
+                                           double bin_width) {
+  const auto bin = [bin_width](const ExplainedCase& c) {
+    return c.hidden ? hidden_bin(*c.hidden, bin_width) : -1;
+  };
+  return grouped_cause_rows(sorted_by(cases, bin),
+                            [&](const ExplainedCase& c) -> std::optional<std::string> {
+                              if (!c.hidden) return std::nullopt;
+                              return hidden_bin_label(bin(c), bin_width);
+                            });
 }
 
 TextTable cause_table(const std::vector<CauseRow>& rows, const std::string& metric) {

@@ -54,6 +54,9 @@ struct ExplainedCase {
   std::string cause;
   Box box;             ///< the instance's box (missed) or the match's (false match), scene frame
   double range = 0.0;  ///< from the scene's sensor to the box centre, m
+  /// A missed instance: the fraction of it the scene's sensor could not see, when the dataset
+  /// records it (pairs[].hidden): a partial view at the image's edge or behind an occluder.
+  std::optional<double> hidden;
   /// The metric at the pair's true pose (for a false match, at its pair's first instance, if
   /// any), aligned and polished from the truth (score_pose).
   std::optional<double> truth_error;
@@ -75,7 +78,8 @@ std::vector<ExplainedCase> explain_evaluation(
     const std::function<void(std::size_t, std::size_t)>& progress = {});
 
 /// A count of each cause per group: rows by setting ("all" last), or by range in bins of
-/// `bin_width` m when it is given.
+/// `bin_width` m when it is given; cause_rows_by_hidden, the misses by their hidden fraction in
+/// bins of `bin_width` ("20-40% hidden"), false matches only in "all" (they hide nothing).
 struct CauseRow {
   std::string group;
   std::vector<std::size_t> missed;                                ///< by miss_causes()
@@ -84,6 +88,8 @@ struct CauseRow {
 };
 std::vector<CauseRow> cause_rows(const std::vector<ExplainedCase>& cases,
                                  std::optional<double> bin_width = std::nullopt);
+std::vector<CauseRow> cause_rows_by_hidden(const std::vector<ExplainedCase>& cases,
+                                           double bin_width = 0.2);
 
 /// The rows as a table: a column per cause, then the median metric value at the true poses of the
 /// misses beside the median of the wrong matches that were reported, in `metric`'s unit.

@@ -35,7 +35,7 @@ struct EvalOptions {
 
 // --explain: the cause of every miss and false match, as tables on stdout and in the JSON.
 std::vector<ExplainedCase> explain(const LoadedDataset& data, const Evaluation& evaluation,
-                                   bool by_range) {
+                                   const std::string& by) {
   ProgressBar bar("explain");
   const std::vector<ExplainedCase> cases =
       explain_evaluation(data.dir, data.dataset, evaluation,
@@ -45,9 +45,14 @@ std::vector<ExplainedCase> explain(const LoadedDataset& data, const Evaluation& 
       "\nwhy (each missed instance and false match in one cause; the metric at the true pose, "
       "aligned and polished from it, beside the wrong matches reported):\n\n%s",
       cause_table(cause_rows(cases), metric).plain().c_str());
-  if (by_range) {
+  if (by == "range") {
     std::printf("\nwhy, by range:\n\n%s",
                 cause_table(cause_rows(cases, 0.5), metric).plain().c_str());
+  } else if (by == "hidden") {
+    std::printf(
+        "\nwhy, by the hidden fraction of each missed instance (false matches in \"all\" "
+        "only):\n\n%s",
+        cause_table(cause_rows_by_hidden(cases), metric).plain().c_str());
   }
   return cases;
 }
@@ -109,7 +114,7 @@ int run_eval(EvalOptions& o) {
   }
   std::vector<ExplainedCase> explained;
   if (o.explain) {
-    explained = explain(data, evaluation, o.by == "range");
+    explained = explain(data, evaluation, o.by);
     json["explain"] = detail::explanation_to_json(explained);
   }
   if (!o.json.empty()) write_text_atomically(o.json, json_output(json, o.timings).dump(2) + "\n");

@@ -221,6 +221,40 @@ TEST_F(Explain, TablesAndJsonCountEachCause) {
   EXPECT_FALSE(j["by_range"].empty());
 }
 
+// By hidden fraction: each missed instance in its bin, a miss without the record and every false
+// match in "all" only; the cases carry the fraction into the JSON.
+TEST(CauseRows, ByHiddenCountsEachMissInItsBinAndFalseMatchesInAllOnly) {
+  const auto missed = [](std::optional<double> hidden) {
+    ExplainedCase c;
+    c.missed = true;
+    c.cause = "no candidate";
+    c.hidden = hidden;
+    c.truth_error = 0.004;
+    return c;
+  };
+  ExplainedCase false_match;
+  false_match.missed = false;
+  false_match.cause = "look-alike";
+  const std::vector<ExplainedCase> cases = {missed(0.55), missed(0.1), missed(std::nullopt),
+                                            false_match};
+  const std::vector<CauseRow> rows = cause_rows_by_hidden(cases);
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows[0].group, "0-20% hidden");  // nearest bin first
+  EXPECT_EQ(rows[0].missed[0], 1u);
+  EXPECT_EQ(rows[1].group, "40-60% hidden");
+  EXPECT_EQ(rows[1].missed[0], 1u);
+  EXPECT_EQ(rows[2].group, "all");
+  EXPECT_EQ(rows[2].missed[0], 3u);
+  EXPECT_EQ(rows[2].false_matches[2], 1u);  // "look-alike"
+  for (const CauseRow& r : rows) {
+    if (r.group != "all") EXPECT_EQ(r.false_matches[2], 0u) << r.group;
+  }
+  const nlohmann::json j = detail::explanation_to_json(cases);
+  EXPECT_DOUBLE_EQ(j["cases"][0]["hidden"].get<double>(), 0.55);
+  EXPECT_TRUE(j["cases"][2]["hidden"].is_null());
+  EXPECT_EQ(j["by_hidden"].size(), 3u);
+}
+
 // The best near candidate that reached selection decides; one removed by suppression lost to a
 // better neighbour.
 TEST(MissCause, TheBestNearCandidateThatReachedSelectionDecides) {
