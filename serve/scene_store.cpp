@@ -40,7 +40,11 @@ Scene& SceneStore::insert(std::string name, std::string source, PointCloud cloud
 
 Scene SceneStore::add_file(const std::string& path) {
   PointCloud cloud = read_cloud(path);
-  if (correction_) correction_->apply(cloud);
+  try {
+    if (correction_) correction_->apply(cloud);
+  } catch (const Error& e) {
+    throw Error(path + ": " + e.what());
+  }
   std::lock_guard<std::mutex> lock(mutex_);
   return insert(std::filesystem::path(path).filename().string(), "file", std::move(cloud));
 }

@@ -357,6 +357,8 @@ TEST_F(CliLandmark, DepthCorrectionAppliesToTheFrameReadOrIsRefusedInOneLine) {
   expect_bad_input(
       "find " + scene + " " + path("c.lmk") + " --depth-correction " + path("missing.json"),
       "--depth-correction");
+  expect_bad_input("serve " + scene + " --depth-correction " + small,
+                   dir_.file("scene.pcd") + ": depth correction: fitted on 4 x 3 images");
   EXPECT_FALSE(std::filesystem::exists(dir_.file("x.lmk")));
   EXPECT_FALSE(std::filesystem::exists(dir_.file("x.pcd")));
 }
