@@ -111,6 +111,8 @@ RgbdImport generate_rgbd_dataset(const std::string& sequence_dir, const std::str
                                  const RgbdDatasetOptions& options) {
   if (options.frame_stride == 0 || options.min_gap > options.max_gap)
     throw Error("from-rgbd: the frame stride must be positive and min_gap at most max_gap");
+  if (options.calibrate_depth && options.depth_correction)
+    throw Error("from-rgbd: either fit the depth correction or give one, not both");
   const RgbdSequence sequence = read_rgbd_sequence(sequence_dir, options.read);
   RgbdImport import;
   import.layout = sequence.layout;
@@ -128,9 +130,6 @@ RgbdImport generate_rgbd_dataset(const std::string& sequence_dir, const std::str
   std::vector<UsedFrame> frames;
   for (std::size_t i = 0; i < sequence.frames.size(); i += options.frame_stride) {
     frames.push_back({&sequence.frames[i], load_rgbd_frame(sequence.frames[i]), {}});
-  }
-  if (options.calibrate_depth && options.depth_correction) {
-    throw Error("from-rgbd: either fit the depth correction or give one, not both");
   }
   if (options.calibrate_depth)
     import.depth_calibration = calibrate_on_unused_frames(sequence, options);

@@ -57,7 +57,7 @@ struct RgbdImport {
   std::map<std::string, std::size_t> refused;         ///< by reason: boxes the capture refused
   std::size_t pairs = 0;                              ///< pairs kept
   std::size_t pairs_left_out = 0;                     ///< beyond the pose-disagreement bound
-  std::optional<DepthCalibration> depth_calibration;  ///< with calibrate_depth
+  std::optional<DepthCalibration> depth_calibration;  ///< the correction applied, if any
 };
 
 /// Reads the sequence in `sequence_dir` and writes the dataset into `out_dir` (scenes/*.pcd in each

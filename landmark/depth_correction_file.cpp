@@ -23,6 +23,11 @@ DepthCalibration load_depth_correction(const std::string& path) {
   return detail::depth_calibration_from_json(j, r);
 }
 
+std::optional<DepthCorrection> load_depth_correction_if_given(const std::string& path) {
+  if (path.empty()) return std::nullopt;
+  return load_depth_correction(path).correction;
+}
+
 void save_depth_correction(const std::string& path, const DepthCalibration& calibration) {
   calibration.correction.validate();
   nlohmann::json j = {{"format", kFormat}, {"version", kDepthCorrectionFormatVersion}};

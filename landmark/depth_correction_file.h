@@ -9,6 +9,7 @@
 //    "image": [640, 480], "cells": [8, 6], "per_metre": [48 numbers, row-major],
 //    "correspondences": ..., "rms_before_m": ..., "rms_after_m": ..., "source": "..."}
 
+#include <optional>
 #include <string>
 
 #include "lmk/geometry/depth_correction.h"
@@ -20,6 +21,10 @@ inline constexpr int kDepthCorrectionFormatVersion = 1;
 
 /// Reads and validates a depth-correction file; lmk::Error naming the file and the field.
 DepthCalibration load_depth_correction(const std::string& path);
+
+/// The correction in `path`, for a frame source that undoes it on every frame (lmk_node, lmk serve,
+/// lmk pbd run --ros); nothing when `path` is empty.
+std::optional<DepthCorrection> load_depth_correction_if_given(const std::string& path);
 
 /// Writes `calibration` atomically (validated first).
 void save_depth_correction(const std::string& path, const DepthCalibration& calibration);

@@ -77,10 +77,10 @@ SceneIndex::SceneIndex(const PointCloud& scene, const SceneSettings& settings)
   // points) beside the voxel moments, then the distance field from the centroids beside the
   // normals, so that neither thread waits on the other's serial steps.
   const DistanceFieldSettings field_settings{settings_.coarse_leaf, *settings_.field_band};
+  organised_ = frame.is_organized();
   tbb::parallel_invoke(
       [&] {
         range_image_ = RangeImage::from_cloud(frame);
-        organised_ = frame.is_organized();
         if (whole_frame) cropped_ = remove_non_finite(frame);
         occupancy_ = OccupancyGrid(source.points, settings.leaf_size);
       },

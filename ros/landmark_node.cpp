@@ -47,9 +47,7 @@ LandmarkNodeSettings LandmarkNodeSettings::from_parameters(const ::ros::NodeHand
   LandmarkLibrary::check_name(s.capture_name);
   std::string depth_correction;
   private_nh.param("depth_correction", depth_correction, depth_correction);
-  if (!depth_correction.empty()) {
-    s.depth_correction = load_depth_correction(depth_correction).correction;
-  }
+  s.depth_correction = load_depth_correction_if_given(depth_correction);
   if (!(s.frame_timeout >= 0.0)) throw Error("~frame_timeout: must be seconds, 0 or more");
   // A string of JSON: a YAML map from rosparam would not read as one, and is refused rather than
   // silently ignored.

@@ -16,10 +16,7 @@ Api::Api(ServeSettings settings, const std::filesystem::path& scratch_dir)
     : settings_(std::move(settings)),
       scenes_(UploadLimits{settings_.max_uploads, settings_.max_upload_points,
                            settings_.max_uploaded_points},
-              scratch_dir,
-              settings_.depth_correction.empty()
-                  ? std::nullopt
-                  : std::optional(load_depth_correction(settings_.depth_correction).correction)),
+              scratch_dir, load_depth_correction_if_given(settings_.depth_correction)),
       library_(settings_.landmarks_dir) {
   for (const std::string& path : settings_.scenes) scenes_.add_file(path);
   if (!settings_.programs_dir.empty()) {

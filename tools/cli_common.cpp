@@ -116,6 +116,15 @@ void add_up_options(CLI::App* sub, UpOptions& options) {
                 "The scene is expressed in a robot base frame, whose +z is up");
 }
 
+PinholeIntrinsics intrinsics_of_option(const std::vector<double>& fx_fy_cx_cy) {
+  PinholeIntrinsics k;
+  k.fx = fx_fy_cx_cy.at(0);
+  k.fy = fx_fy_cx_cy.at(1);
+  k.cx = fx_fy_cx_cy.at(2);
+  k.cy = fx_fy_cx_cy.at(3);
+  return k;
+}
+
 void add_depth_correction_option(CLI::App* sub, std::string& file) {
   sub->add_option("--depth-correction", file,
                   "Undo the depth camera's fitted depth error (a file of lmk calibrate-depth) on "

@@ -10,6 +10,7 @@
 #include <optional>
 #include <vector>
 
+#include "lmk/geometry/pinhole_intrinsics.h"
 #include "lmk/landmark/find_landmark.h"
 
 namespace lmk::cli {
@@ -68,6 +69,9 @@ struct UpOptions {
   std::optional<Eigen::Vector3d> vector() const;
 };
 void add_up_options(CLI::App* sub, UpOptions& options);
+
+/// The pinhole intrinsics of an --intrinsics FX FY CX CY option (four values, as CLI11 checked).
+PinholeIntrinsics intrinsics_of_option(const std::vector<double>& fx_fy_cx_cy);
 
 /// --depth-correction FILE: the depth camera's fitted error (lmk calibrate-depth), undone on the
 /// organised frame read before anything else (landmark/depth_correction_file.h's correct_depth).

@@ -30,10 +30,7 @@ struct CalibrateDepthOptions {
 
 int run_calibrate_depth(CalibrateDepthOptions& o) {
   RgbdReadOptions read;
-  if (!o.intrinsics.empty()) {
-    read.intrinsics =
-        PinholeIntrinsics{o.intrinsics[0], o.intrinsics[1], o.intrinsics[2], o.intrinsics[3]};
-  }
+  if (!o.intrinsics.empty()) read.intrinsics = intrinsics_of_option(o.intrinsics);
   if (!o.cells.empty()) {
     o.settings.cols = o.cells[0];
     o.settings.rows = o.cells[1];

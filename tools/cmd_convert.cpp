@@ -32,8 +32,7 @@ PointCloud cloud_of_depth_image(const ConvertOptions& options) {
   if (!options.intrinsics_file.empty()) {
     k = read_intrinsics(options.intrinsics_file);
   } else if (options.intrinsics.size() == 4) {
-    k = {options.intrinsics[0], options.intrinsics[1], options.intrinsics[2],
-         options.intrinsics[3]};
+    k = intrinsics_of_option(options.intrinsics);
     k.validate("--intrinsics");
   } else {
     throw Error(

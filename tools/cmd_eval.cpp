@@ -102,8 +102,7 @@ int run_eval(EvalOptions& o) {
     const std::vector<EvaluationRow> by_range = evaluation_rows_by_range(evaluation);
     std::printf(
         "\nby range (distance from the sensor to each instance, or to a false match; a best match "
-        "at "
-        "its instance's):\n\n%s",
+        "at its instance's):\n\n%s",
         evaluation_table(by_range, o.timings).plain().c_str());
     json["rows_by_range"] = detail::rows_to_json(by_range);
   } else if (o.by == "hidden") {

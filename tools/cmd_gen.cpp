@@ -129,10 +129,7 @@ int run_mosd(const GenOptions& options) {
 
 int run_rgbd(const GenOptions& options) {
   RgbdDatasetOptions rgbd;
-  if (!options.intrinsics.empty()) {
-    rgbd.read.intrinsics = PinholeIntrinsics{options.intrinsics[0], options.intrinsics[1],
-                                             options.intrinsics[2], options.intrinsics[3]};
-  }
+  if (!options.intrinsics.empty()) rgbd.read.intrinsics = intrinsics_of_option(options.intrinsics);
   if (options.registered_colour) rgbd.read.colour_registered = true;
   rgbd.box_side = options.box_side;
   rgbd.depth_smoothing = options.depth_smoothing;

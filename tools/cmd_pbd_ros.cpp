@@ -64,10 +64,8 @@ int run_on_ros(const PbdOptions& o) {
   ros1::RosRobot robot(nh, robot_settings);
   tf2_ros::Buffer tf;
   tf2_ros::TransformListener tf_listener(tf);
-  std::optional<DepthCorrection> correction;
-  if (!o.depth_correction.empty())
-    correction = load_depth_correction(o.depth_correction).correction;
-  const ros1::LatestFrame latest(nh, o.cloud_topic, tf, robot_settings.base_frame, "", correction);
+  const ros1::LatestFrame latest(nh, o.cloud_topic, tf, robot_settings.base_frame, "",
+                                 load_depth_correction_if_given(o.depth_correction));
 
   const CallResult configured = robot.configure();
   if (!configured.ok()) throw Error("pbd run --ros: " + configured.message);

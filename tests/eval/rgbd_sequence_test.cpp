@@ -71,6 +71,19 @@ TEST(RgbdSequence, CalibratingTheDepthNeedsFramesTheDatasetLeavesOut) {
   }
 }
 
+// A correction is fitted or given, never both, and the import says so before reading a frame.
+TEST(RgbdSequence, FittingAndGivingADepthCorrectionAtOnceIsRefused) {
+  const ScratchDir dir;
+  RgbdDatasetOptions options;
+  options.calibrate_depth = true;
+  options.depth_correction = DepthCalibration{};
+  EXPECT_NE(error_of([&] {
+              generate_rgbd_dataset((dir.path() / "no-such-sequence").string(),
+                                    (dir.path() / "out").string(), options);
+            }).find("either fit the depth correction or give one, not both"),
+            std::string::npos);
+}
+
 TEST(RgbdSequence, ReadsTheFramesLayout) {
   const ScratchDir dir;
   write_frames_sequence(dir.path());
