@@ -9,14 +9,13 @@
 #include "lmk/geometry/atomic_file.h"
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/error.h"
-#include "lmk/geometry/kdtree.h"
 #include "lmk/geometry/pose.h"
 #include "lmk/geometry/statistics.h"
-#include "lmk/geometry/voxel_normals.h"
 #include "lmk/json/depth_correction_json.h"
 #include "lmk/json/pose_json.h"
 #include "lmk/landmark/distinctiveness.h"
 #include "lmk/landmark/landmark_file.h"
+#include "lmk/registration/frame_registration.h"
 #include "lmk/registration/icp.h"
 
 namespace lmk {
@@ -45,13 +44,7 @@ double median_depth(const std::vector<UsedFrame>& frames) {
 // (T_b_a): point-to-plane ICP of a's 2 cm points against b's, correspondences within 5 cm, a Huber
 // loss at 1 cm. Its answer is what the pair's ground truth is checked against.
 IcpResult register_frames(const UsedFrame& a, const UsedFrame& b, const Eigen::Isometry3d& T_b_a) {
-  const KdTree tree(b.reduced);
-  const KdTreeTarget target(b.reduced, tree);
-  IcpSettings settings;
-  settings.max_iterations = 40;
-  settings.max_correspondence_distance = 0.05;
-  settings.loss = {RobustKernel::huber, 0.01};
-  return icp(a.reduced.points, target, T_b_a, settings);
+  return register_frames(a.reduced, b.reduced, T_b_a);
 }
 
 // The fraction of `points` (frame a) that frame b does not see where the poses put them: outside
@@ -138,7 +131,7 @@ RgbdImport generate_rgbd_dataset(const std::string& sequence_dir, const std::str
     for (UsedFrame& f : frames) import.depth_calibration->correction.apply(f.cloud);
   }
   for (UsedFrame& f : frames) {
-    f.reduced = downsample_with_normals(f.cloud, 0.02, Eigen::Vector3d::Zero());
+    f.reduced = reduce_for_registration(f.cloud);
   }
   import.box_side = options.box_side.value_or(std::clamp(0.15 * median_depth(frames), 0.08, 0.40));
   UserBoxRule rule;

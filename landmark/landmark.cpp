@@ -2,70 +2,12 @@
 #include "lmk/landmark/landmark.h"
 
 #include <cmath>
-#include <sstream>
 
 #include "lmk/geometry/error.h"
-#include "lmk/geometry/filters.h"
-#include "lmk/geometry/frame_preparation.h"
 #include "lmk/geometry/kdtree.h"
 #include "lmk/geometry/normals.h"
-#include "lmk/geometry/pose.h"
-#include "lmk/geometry/principal_axes.h"
-#include "lmk/geometry/projector_shadow.h"
-#include "lmk/geometry/voxel_grid.h"
 
 namespace lmk {
-namespace {
-
-std::string format_size(const Eigen::Vector3d& size) {
-  std::ostringstream s;
-  s << size.x() << " x " << size.y() << " x " << size.z() << " m";
-  return s.str();
-}
-
-void check_settings(const CaptureSettings& s, const std::string& what) {
-  if (!(s.leaf_size >= kMinLeafSize) || !std::isfinite(s.leaf_size)) {
-    throw Error(what + ": leaf size must be finite and at least " +
-                std::to_string(static_cast<int>(kMinLeafSize * 1000)) + " mm");
-  }
-  if (!(s.distance_band >= s.leaf_size) || !std::isfinite(s.distance_band)) {
-    throw Error(what + ": the distance band must be finite and at least the leaf size");
-  }
-  if (!(s.empty_space_margin >= 0.0) || !std::isfinite(s.empty_space_margin)) {
-    throw Error(what + ": the empty-space margin must be finite and non-negative");
-  }
-  if (!(s.veil_angle >= 0.0) || !(s.veil_angle < 1.5)) {
-    throw Error(what + ": the veil angle must be in [0, 1.5) rad (0: keep veil points)");
-  }
-  if (s.depth_smoothing < 0 || s.depth_smoothing > kMaxDepthSmoothingRadius) {
-    throw Error(what + ": the depth smoothing must be 0 to " +
-                std::to_string(kMaxDepthSmoothingRadius) + " pixels (0: the raw depth)");
-  }
-  if (!(s.projector_baseline >= 0.0) || !std::isfinite(s.projector_baseline)) {
-    throw Error(what + ": the projector baseline must be finite and non-negative (0: none)");
-  }
-  if (s.up && (!s.up->allFinite() || s.up->norm() < 1e-9)) {
-    throw Error(what + ": the up axis must be a finite non-zero vector");
-  }
-  if (!(s.max_box_side > 0.0) || !std::isfinite(s.max_box_side)) {
-    throw Error(what + ": maximum box side must be positive and finite");
-  }
-}
-
-}  // namespace
-
-void check_capture_box(const Box& box, const CaptureSettings& s, const std::string& what) {
-  if (!box.size.allFinite() || (box.size.array() <= 0.0).any()) {
-    throw Error(what + ": box sides must be positive and finite, got " + format_size(box.size));
-  }
-  if (!is_valid_pose(box.pose)) {
-    throw Error(what + ": box pose must be finite with a proper rotation");
-  }
-  if ((box.size.array() > s.max_box_side).any()) {
-    throw Error(what + ": box of " + format_size(box.size) + " has a side over the " +
-                std::to_string(s.max_box_side) + " m limit (raise max_box_side if intended)");
-  }
-}
 
 void Landmark::validate(const std::string& what) const {
   if (format_version != kLandmarkFormatVersion) {
@@ -74,12 +16,13 @@ void Landmark::validate(const std::string& what) const {
                 std::to_string(kLandmarkFormatVersion) + ")");
   }
   if (name.empty()) throw Error(what + ": landmark name is empty");
-  check_settings(settings, what);
+  check_capture_settings(settings, what);
   check_capture_box(box, settings, what);
   if (!sensor_origin.allFinite()) throw Error(what + ": sensor origin is not finite");
   if (!up.allFinite() || std::abs(up.norm() - 1.0) > 1e-6) {
     throw Error(what + ": the up axis must be a finite unit vector");
   }
+  validate_views(what);
   if (points.empty()) throw Error(what + ": landmark has no points");
   if (points.count_finite() != points.size()) {
     throw Error(what + ": landmark points must all be finite");
@@ -87,82 +30,32 @@ void Landmark::validate(const std::string& what) const {
   points.validate(what);
 }
 
-Landmark capture(const PointCloud& scene, const Box& box, const std::string& name,
-                 const CaptureSettings& settings) {
-  const std::string what = "capture '" + name + "'";
-  if (name.empty()) throw Error("capture: the landmark needs a name");
-  check_settings(settings, what);
-  check_capture_box(box, settings, what);
-  // As a search prepares its scene (SceneIndex), so that both sides are alike.
-  const std::optional<PointCloud> prepared =
-      prepared_frame(scene, settings.veil_angle, settings.depth_smoothing, DepthNoise());
-  const PointCloud& frame = prepared ? *prepared : scene;
-  const PointCloud inside = crop(frame, box);
-  if (inside.empty()) {
-    const Eigen::Vector3d c = box.center();
-    std::ostringstream s;
-    s << what << ": no scene point inside the box centred at (" << c.x() << ", " << c.y() << ", "
-      << c.z() << ") of " << format_size(box.size) << "; is it in the scene's frame?";
-    throw Error(s.str());
+void Landmark::validate_views(const std::string& what) const {
+  if (!multi_view()) {
+    if (!point_views.empty()) throw Error(what + ": point views without the views");
+    return;
   }
-  Landmark landmark;
-  landmark.name = name;
-  landmark.points = voxel_downsample(inside, settings.leaf_size);
-  if (landmark.points.size() < settings.min_points) {
-    throw Error(what + ": only " + std::to_string(landmark.points.size()) +
-                " points in the box after downsampling, fewer than the minimum of " +
-                std::to_string(settings.min_points) + "; draw a larger box or lower min_points");
+  if (view_origins.size() < 2 || view_origins.size() > kMaxLandmarkViews) {
+    throw Error(what + ": a landmark of several views needs 2 to " +
+                std::to_string(kMaxLandmarkViews) + " views, not " +
+                std::to_string(view_origins.size()));
   }
-  if (const auto why =
-          degenerate_shape(landmark.points, settings.leaf_size, what, settings.allow_flat)) {
-    throw Error(*why);
+  for (const Eigen::Vector3d& o : view_origins) {
+    if (!o.allFinite()) throw Error(what + ": a view's sensor origin is not finite");
   }
-  landmark.points.T_cloud_sensor = scene.T_cloud_sensor;
-  landmark.box = box;
-  landmark.sensor_origin = scene.sensor_origin();
-  landmark.settings = settings;
-  landmark.up = settings.up ? settings.up->normalized()
-                            : default_up(scene.T_cloud_sensor, settings.base_frame);
-  // Rays to every scene point (non-finite ones are skipped), and through the projector's shadow.
-  std::vector<Eigen::Vector3f> rays = frame.points;
-  const std::vector<Eigen::Vector3f> shadow =
-      projector_shadow_ray_ends(scene, {settings.projector_baseline});
-  rays.insert(rays.end(), shadow.begin(), shadow.end());
-  prepare_landmark(landmark, &rays);
-  return landmark;
-}
-
-std::optional<std::string> degenerate_shape(const PointCloud& points, double leaf_size,
-                                            const std::string& what, bool allow_flat) {
-  constexpr double kDegenerateFraction = 0.95;
-  if (points.size() < 3) return what + ": fewer than three points cannot fix a pose";
-  const PrincipalAxes pca =
-      principal_axes(points.size(), [&](std::size_t i) { return points.points[i]; });
-  const Eigen::Vector3d mean = pca.mean, normal = pca.axes.col(0), axis = pca.axes.col(2);
-  const double tolerance = 2.0 * leaf_size;
-  std::size_t near_plane = 0, near_line = 0;
-  for (const auto& p : points.points) {
-    const Eigen::Vector3d d = p.cast<double>() - mean;
-    if (std::abs(d.dot(normal)) <= tolerance) ++near_plane;
-    if ((d - d.dot(axis) * axis).norm() <= tolerance) ++near_line;
+  if (view_origins.front() != sensor_origin) {
+    throw Error(what + ": the first view's sensor origin differs from the landmark's");
   }
-  const auto share = [&](std::size_t n) {
-    return static_cast<double>(n) / static_cast<double>(points.size());
-  };
-  const auto percent = [&](std::size_t n) { return std::to_string(std::lround(100.0 * share(n))); };
-  const std::string within = " within " + std::to_string(std::lround(1000.0 * tolerance)) + " mm";
-  if (share(near_line) >= kDegenerateFraction) {
-    return what + ": the shape is a thin straight piece (" + percent(near_line) +
-           "% of the points" + within +
-           " of one line), which leaves its turn about that line undetermined; draw the "
-           "box around something with a corner or some width";
+  if (point_views.size() != points.size()) {
+    throw Error(what + ": " + std::to_string(point_views.size()) + " point views for " +
+                std::to_string(points.size()) + " points");
   }
-  if (share(near_plane) >= kDegenerateFraction && !allow_flat) {
-    return what + ": the shape is flat (" + percent(near_plane) + "% of the points" + within +
-           " of one plane), so it would match anywhere on any plane; draw the box to include an "
-           "edge, a corner or some relief, or capture it as a flat patch (--allow-flat)";
+  const std::uint32_t all = (std::uint32_t{1} << view_origins.size()) - 1;
+  for (const std::uint32_t mask : point_views) {
+    if (mask == 0 || (mask & ~all) != 0) {
+      throw Error(what + ": a point's views name no view or a view the landmark does not have");
+    }
   }
-  return std::nullopt;
 }
 
 Eigen::Vector3d default_up(const Eigen::Isometry3d& T_cloud_sensor, bool base_frame) {
@@ -176,16 +69,46 @@ void estimate_landmark_normals(Landmark& landmark) {
   // k = 10 at the 5 mm leaf: a 1.5 cm neighbourhood, enough to average out depth noise while
   // keeping the carton's edges sharp.
   points.normals = estimate_normals(points, KdTree(points), NormalSettings{10});
+  if (!landmark.multi_view()) return;
+  // A point the first view never saw faces the first view that did: a normal turned towards a
+  // sensor that saw the point from its other side would hide it from every search.
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    Eigen::Vector3f& n = points.normals[i];
+    const std::uint32_t mask = landmark.point_views[i];
+    if (!n.allFinite() || (mask & 1u) != 0) continue;
+    const auto first = static_cast<std::size_t>(__builtin_ctz(mask));
+    const Eigen::Vector3f to_sensor = landmark.view_origins[first].cast<float>() - points.points[i];
+    if (n.dot(to_sensor) < 0.0f) n = -n;
+  }
 }
 
 void prepare_landmark(Landmark& landmark, const std::vector<Eigen::Vector3f>* scene_points) {
+  if (landmark.multi_view()) {
+    // Without the views' frames (importing), each view's rays reach the points it measured.
+    std::vector<std::vector<Eigen::Vector3f>> seen(landmark.view_origins.size());
+    for (std::size_t i = 0; i < landmark.points.size(); ++i) {
+      for (std::size_t v = 0; v < seen.size(); ++v) {
+        if ((landmark.point_views[i] >> v) & 1u) seen[v].push_back(landmark.points.points[i]);
+      }
+    }
+    std::vector<RayBundle> views;
+    for (std::size_t v = 0; v < seen.size(); ++v) {
+      views.push_back({&seen[v], landmark.view_origins[v]});
+    }
+    prepare_landmark_views(landmark, views);
+    return;
+  }
+  prepare_landmark_views(landmark, {RayBundle{scene_points ? scene_points : &landmark.points.points,
+                                              landmark.sensor_origin}});
+}
+
+void prepare_landmark_views(Landmark& landmark, const std::vector<RayBundle>& views) {
   estimate_landmark_normals(landmark);
   const PointCloud& points = landmark.points;
   const CaptureSettings& s = landmark.settings;
   landmark.distance = DistanceField(points.points, {s.leaf_size, s.distance_band});
-  landmark.empty_space = EmptySpaceGrid::observe(
-      scene_points ? *scene_points : points.points, landmark.sensor_origin, landmark.box,
-      landmark.distance, {s.leaf_size, s.empty_space_margin, s.leaf_size});
+  landmark.empty_space = EmptySpaceGrid::observe_views(
+      views, landmark.box, landmark.distance, {s.leaf_size, s.empty_space_margin, s.leaf_size});
 }
 
 }  // namespace lmk

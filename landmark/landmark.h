@@ -17,8 +17,13 @@
 namespace lmk {
 
 /// Version of the landmark model and of its .lmk file; bumped whenever either changes.
-/// Version 2 added the up axis and the distance and empty-space grids.
-inline constexpr int kLandmarkFormatVersion = 2;
+/// Version 2 added the up axis and the distance and empty-space grids; version 3 the views of a
+/// landmark captured from several (Landmark::view_origins). A landmark of one view is still written
+/// as version 2, byte for byte as before.
+inline constexpr int kLandmarkFormatVersion = 3;
+
+/// The most views one landmark fuses (Landmark::point_views holds one bit per view).
+inline constexpr std::size_t kMaxLandmarkViews = 16;
 
 struct CaptureSettings {
   double leaf_size = 0.005;     ///< voxel leaf of the captured points, m (the paper's 5 mm)
@@ -64,8 +69,19 @@ struct Landmark {
   /// The up axis at capture, in the capture frame (unit). Searches limit the landmark's tilt
   /// relative to it unless they search every orientation.
   Eigen::Vector3d up = -Eigen::Vector3d::UnitY();
+  /// A landmark captured from several views (capture_views(), issue #35): every view's sensor
+  /// origin in the capture frame, the first being sensor_origin. Empty for one view.
+  std::vector<Eigen::Vector3d> view_origins;
+  /// With several views: per point, bit v set when view v measured a surface in the point's voxel.
+  /// Empty for one view.
+  std::vector<std::uint32_t> point_views;
   CaptureSettings settings;
   int format_version = kLandmarkFormatVersion;
+
+  /// Whether the landmark fuses several views: its back may hold points that a sensor looking at
+  /// its front cannot see, so searches count only the points turned towards the scene's sensor.
+  bool multi_view() const { return !view_origins.empty(); }
+  std::size_t view_count() const { return multi_view() ? view_origins.size() : 1; }
 
   // Derived from the above by prepare_landmark(); stored in the .lmk file from version 2.
   /// Distance to the landmark's points (voxel = settings.leaf_size, band = distance_band).
@@ -75,14 +91,18 @@ struct Landmark {
 
   /// Throws lmk::Error naming the first field that is wrong (used after loading and importing).
   void validate(const std::string& what) const;
+  /// The part of validate() about the views: 2 to kMaxLandmarkViews of them, the first at
+  /// sensor_origin, and one non-empty mask of existing views per point; or none at all.
+  void validate_views(const std::string& what) const;
 };
 
 /// The up axis of a cloud's frame: +z when it is a robot base frame, otherwise the -y axis of its
 /// sensor (the camera convention: image rows grow downwards), expressed in the cloud's frame.
 Eigen::Vector3d default_up(const Eigen::Isometry3d& T_cloud_sensor, bool base_frame);
 
-/// The landmark points' normals (PCA of 10 neighbours, facing the capture sensor), into
-/// landmark.points.normals. They are not stored in the file; loading recomputes them.
+/// The landmark points' normals (PCA of 10 neighbours, facing the capture sensor; with several
+/// views, facing the first view that measured the point), into landmark.points.normals. They are
+/// not stored in the file; loading recomputes them.
 void estimate_landmark_normals(Landmark& landmark);
 
 /// Computes the derived parts of a landmark: its points' normals (facing the capture sensor), its
@@ -93,6 +113,10 @@ void estimate_landmark_normals(Landmark& landmark);
 void prepare_landmark(Landmark& landmark,
                       const std::vector<Eigen::Vector3f>* scene_points = nullptr);
 
+/// prepare_landmark() with each view's rays given (in the capture frame): the free space is what
+/// any of them saw free (EmptySpaceGrid::observe_views).
+void prepare_landmark_views(Landmark& landmark, const std::vector<RayBundle>& views);
+
 /// Why a landmark's shape cannot fix a pose, or nothing when it can. A flat landmark (at least 95%
 /// of its points within two leaves of one plane) slides and turns freely in that plane, and a thin
 /// straight one (likewise around one line) turns freely about it: either would match every table
@@ -100,6 +124,9 @@ void prepare_landmark(Landmark& landmark,
 /// `what` names the landmark in the message.
 std::optional<std::string> degenerate_shape(const PointCloud& points, double leaf_size,
                                             const std::string& what, bool allow_flat = false);
+
+/// Throws lmk::Error, starting with `what`, naming the first capture setting out of its range.
+void check_capture_settings(const CaptureSettings& settings, const std::string& what);
 
 /// Throws lmk::Error, starting with `what`, for a box capture() refuses whatever the scene: a
 /// non-positive or non-finite side, a pose that is not a finite rotation and translation, or a side

@@ -36,6 +36,17 @@ constexpr const char* kPositionAttribute = "capture_position";
 // Version 2: each point's index in the landmark. OpenVDB keeps points in its own voxel order, and
 // the stored closest-point grid names points by index, so loading must restore the capture order.
 constexpr const char* kIndexAttribute = "capture_index";
+// Version 3, a landmark of several views only: each point's views, one bit per view.
+constexpr const char* kViewsAttribute = "capture_views";
+// The version a landmark's file is written in: a landmark of one view keeps version 2, byte for
+// byte as lmk wrote it before views existed.
+constexpr int kOneViewFileVersion = 2;
+
+int file_version(const Landmark& landmark) {
+  return landmark.multi_view() ? kLandmarkFormatVersion : kOneViewFileVersion;
+}
+
+std::string view_origin_meta(std::size_t view) { return "lmk_view_origin_" + std::to_string(view); }
 
 // The first eight bytes of every OpenVDB file (io::Archive's magic number, little endian).
 bool has_vdb_magic(const std::string& bytes) {
@@ -81,6 +92,12 @@ vdb::points::PointDataGrid::Ptr make_points_grid(const Landmark& landmark) {
   vdb::points::appendAttribute<std::int32_t>(grid->tree(), kIndexAttribute);
   vdb::points::populateAttribute(grid->tree(), index_grid->tree(), kIndexAttribute,
                                  vdb::points::PointAttributeVector<std::int32_t>(order));
+  if (landmark.multi_view()) {
+    const std::vector<std::int32_t> views(landmark.point_views.begin(), landmark.point_views.end());
+    vdb::points::appendAttribute<std::int32_t>(grid->tree(), kViewsAttribute);
+    vdb::points::populateAttribute(grid->tree(), index_grid->tree(), kViewsAttribute,
+                                   vdb::points::PointAttributeVector<std::int32_t>(views));
+  }
   grid->setName(kPointsGrid);
 
   const Eigen::Matrix4d pose = landmark.box.pose.matrix();
@@ -88,7 +105,7 @@ vdb::points::PointDataGrid::Ptr make_points_grid(const Landmark& landmark) {
   for (int r = 0; r < 4; ++r)
     for (int c = 0; c < 4; ++c) box_pose(r, c) = pose(r, c);
   const auto vec = [](const Eigen::Vector3d& v) { return vdb::Vec3d(v.x(), v.y(), v.z()); };
-  grid->insertMeta("lmk_format_version", vdb::Int32Metadata(landmark.format_version));
+  grid->insertMeta("lmk_format_version", vdb::Int32Metadata(file_version(landmark)));
   grid->insertMeta("lmk_name", vdb::StringMetadata(landmark.name));
   grid->insertMeta("lmk_box_pose", vdb::Mat4DMetadata(box_pose));
   grid->insertMeta("lmk_box_size", vdb::Vec3DMetadata(vec(landmark.box.size)));
@@ -103,6 +120,13 @@ vdb::points::PointDataGrid::Ptr make_points_grid(const Landmark& landmark) {
                    vdb::DoubleMetadata(landmark.settings.empty_space_margin));
   // Optional: files without it hold a landmark with a shape, as every earlier file does.
   if (landmark.settings.allow_flat) grid->insertMeta("lmk_allow_flat", vdb::BoolMetadata(true));
+  if (landmark.multi_view()) {  // the first view's origin is lmk_sensor_origin
+    grid->insertMeta("lmk_view_count",
+                     vdb::Int32Metadata(static_cast<std::int32_t>(landmark.view_origins.size())));
+    for (std::size_t v = 1; v < landmark.view_origins.size(); ++v) {
+      grid->insertMeta(view_origin_meta(v), vdb::Vec3DMetadata(vec(landmark.view_origins[v])));
+    }
+  }
   return grid;
 }
 
@@ -137,6 +161,20 @@ Landmark landmark_from_grid(const vdb::points::PointDataGrid& grid, const std::s
   if (const auto flat = grid.getMetadata<vdb::BoolMetadata>("lmk_allow_flat")) {
     landmark.settings.allow_flat = flat->value();
   }
+  const bool views = landmark.format_version >= 3;
+  if (views) {
+    const std::int32_t count = require_meta<vdb::Int32Metadata>(grid, "lmk_view_count", path);
+    if (count < 2 || count > static_cast<std::int32_t>(kMaxLandmarkViews)) {
+      throw Error(path + ": corrupt landmark file: " + std::to_string(count) +
+                  " views (a landmark of several views has 2 to " +
+                  std::to_string(kMaxLandmarkViews) + ")");
+    }
+    landmark.view_origins.push_back(landmark.sensor_origin);
+    for (std::int32_t v = 1; v < count; ++v) {
+      landmark.view_origins.push_back(eigen(require_meta<vdb::Vec3DMetadata>(
+          grid, view_origin_meta(static_cast<std::size_t>(v)), path)));
+    }
+  }
 
   const bool ordered = landmark.format_version >= 2;
   const auto require = [&](const auto& leaf, const char* attribute) {
@@ -159,10 +197,18 @@ Landmark landmark_from_grid(const vdb::points::PointDataGrid& grid, const std::s
                   "' array: its point offsets do not fit it");
     }
   };
-  std::vector<std::int32_t> order;
+  std::vector<std::int32_t> order, point_views;
   for (auto leaf = grid.tree().cbeginLeaf(); leaf; ++leaf) {
     require(leaf, kPositionAttribute);
     if (ordered) require(leaf, kIndexAttribute);
+    if (views) {
+      require(leaf, kViewsAttribute);
+      const vdb::points::AttributeHandle<std::int32_t> handle(
+          leaf->constAttributeArray(kViewsAttribute));
+      for (auto index = leaf->beginIndexOn(); index; ++index) {
+        point_views.push_back(handle.get(*index));
+      }
+    }
     const vdb::points::AttributeHandle<vdb::Vec3f> handle(
         leaf->constAttributeArray(kPositionAttribute));
     for (auto index = leaf->beginIndexOn(); index; ++index) {
@@ -176,12 +222,14 @@ Landmark landmark_from_grid(const vdb::points::PointDataGrid& grid, const std::s
   }
   if (ordered) {  // back into capture order, which the closest-point grid refers to
     std::vector<Eigen::Vector3f> points(order.size(), Eigen::Vector3f::Constant(NAN));
+    if (views) landmark.point_views.assign(order.size(), 0);
     for (std::size_t k = 0; k < order.size(); ++k) {
       const auto i = static_cast<std::size_t>(order[k]);
       if (order[k] < 0 || i >= points.size() || !std::isnan(points[i].x())) {
         throw Error(path + ": corrupt landmark file: the point indices are not a permutation");
       }
       points[i] = landmark.points.points[k];
+      if (views) landmark.point_views[i] = static_cast<std::uint32_t>(point_views[k]);
     }
     landmark.points.points = std::move(points);
   }
@@ -204,18 +252,25 @@ typename GridT::Ptr read_grid(vdb::io::File& file, const std::string& name,
 nlohmann::json to_json(const Landmark& l) {
   nlohmann::json box = detail::pose_to_json(l.box.pose);
   box["size"] = detail::vector_to_json(l.box.size);
-  return {{"format_version", l.format_version},
-          {"name", l.name},
-          {"box", box},
-          {"sensor_origin", detail::vector_to_json(l.sensor_origin)},
-          {"capture",
-           {{"leaf_size", l.settings.leaf_size},
-            {"min_points", l.settings.min_points},
-            {"max_box_side", l.settings.max_box_side},
-            {"distance_band", l.settings.distance_band},
-            {"empty_space_margin", l.settings.empty_space_margin},
-            {"allow_flat", l.settings.allow_flat}}},
-          {"up", detail::vector_to_json(l.up)}};
+  nlohmann::json j = {{"format_version", file_version(l)},
+                      {"name", l.name},
+                      {"box", box},
+                      {"sensor_origin", detail::vector_to_json(l.sensor_origin)},
+                      {"capture",
+                       {{"leaf_size", l.settings.leaf_size},
+                        {"min_points", l.settings.min_points},
+                        {"max_box_side", l.settings.max_box_side},
+                        {"distance_band", l.settings.distance_band},
+                        {"empty_space_margin", l.settings.empty_space_margin},
+                        {"allow_flat", l.settings.allow_flat}}},
+                      {"up", detail::vector_to_json(l.up)}};
+  if (l.multi_view()) {  // each point's views are points.pcd's labels
+    j["view_origins"] = nlohmann::json::array();
+    for (const Eigen::Vector3d& o : l.view_origins) {
+      j["view_origins"].push_back(detail::vector_to_json(o));
+    }
+  }
+  return j;
 }
 
 // A box: a pose (position, unit quaternion) and a size. `where` names it in messages.
@@ -252,6 +307,14 @@ Landmark from_json(const nlohmann::json& j, const std::string& path) {
         capture.value("empty_space_margin", l.settings.empty_space_margin);
     l.settings.allow_flat = capture.value("allow_flat", false);
     if (j.contains("up")) l.up = detail::numbers_from_json(j.at("up"), 3, path + ": up");
+    if (j.contains("view_origins")) {
+      const nlohmann::json& origins = j.at("view_origins");
+      if (!origins.is_array()) throw Error(path + ": view_origins must be an array");
+      for (std::size_t v = 0; v < origins.size(); ++v) {
+        l.view_origins.push_back(detail::numbers_from_json(
+            origins[v], 3, path + ": view_origins[" + std::to_string(v) + "]"));
+      }
+    }
   } catch (const nlohmann::json::exception& e) {
     throw Error(path + ": " + e.what());
   }
@@ -275,6 +338,44 @@ Box read_box_json(const std::string& path) {
     return box_from_json(j, path + ": box");
   } catch (const nlohmann::json::exception& e) {
     throw Error(path + ": " + e.what());
+  }
+}
+
+std::vector<Eigen::Isometry3d> read_view_poses(const std::string& path) {
+  const nlohmann::json j = read_json_file(path);
+  if (!j.is_array() || j.empty()) {
+    throw Error(path + ": the views' poses must be a non-empty JSON array, one pose per view");
+  }
+  std::vector<Eigen::Isometry3d> poses;
+  for (std::size_t v = 0; v < j.size(); ++v) {
+    const std::string where = path + ": pose " + std::to_string(v + 1);
+    try {
+      poses.push_back(detail::pose_from_json(j[v], where));
+    } catch (const nlohmann::json::exception& e) {
+      throw Error(where + ": " + e.what());
+    }
+    if (!is_valid_pose(poses.back())) {
+      throw Error(where + ": not a finite rigid motion with a unit quaternion");
+    }
+  }
+  return poses;
+}
+
+int landmark_file_version(const std::string& path) {
+  check_landmark_file(path);  // OpenVDB must never see a damaged file
+  vdb::initialize();
+  try {
+    vdb::io::File file(path);
+    file.open();
+    if (!file.hasGrid(kPointsGrid)) {
+      throw Error(path + ": not an lmk landmark file: it has no '" + std::string(kPointsGrid) +
+                  "' grid");
+    }
+    const vdb::GridBase::Ptr grid = file.readGridMetadata(kPointsGrid);
+    file.close();
+    return require_meta<vdb::Int32Metadata>(*grid, "lmk_format_version", path);
+  } catch (const vdb::Exception& e) {
+    throw Error(path + ": corrupt or truncated landmark file (" + e.what() + ")");
   }
 }
 
@@ -341,6 +442,8 @@ Landmark load_landmark(const std::string& path) {
       file.close();
       landmark.distance = DistanceField::from_grids(landmark.points.points, std::move(field));
       landmark.empty_space = EmptySpaceGrid::from_grid(std::move(empty));
+      landmark.format_version = kLandmarkFormatVersion;  // version 2 is a landmark of one view
+      landmark.validate_views(path);                     // the normals read the views
       estimate_landmark_normals(landmark);
     } else {
       file.close();
@@ -366,7 +469,11 @@ void export_landmark(const Landmark& landmark, const std::string& out_dir) {
   std::error_code ec;
   fs::create_directories(out_dir, ec);
   if (!fs::is_directory(out_dir)) throw Error(out_dir + ": cannot create the directory");
-  write_cloud((fs::path(out_dir) / "points.pcd").string(), landmark.points, {Encoding::kBinary});
+  PointCloud points = landmark.points;
+  if (landmark.multi_view()) {
+    points.labels.assign(landmark.point_views.begin(), landmark.point_views.end());
+  }
+  write_cloud((fs::path(out_dir) / "points.pcd").string(), points, {Encoding::kBinary});
   const std::string json_path = (fs::path(out_dir) / "landmark.json").string();
   write_file_atomically(json_path, [&](const fs::path& tmp) {
     std::ofstream out(tmp);
@@ -383,9 +490,19 @@ Landmark import_landmark(const std::string& dir) {
   const nlohmann::json j = read_json_file(json_path);
   Landmark landmark = from_json(j, json_path);
   landmark.points = remove_non_finite(read_cloud((fs::path(dir) / "points.pcd").string()));
+  if (landmark.multi_view()) {  // each point's views are its label
+    if (!landmark.points.has_labels()) {
+      throw Error(dir + ": points.pcd has no labels for the views of a landmark of several views");
+    }
+    landmark.point_views.assign(landmark.points.labels.begin(), landmark.points.labels.end());
+  }
+  landmark.points.labels.clear();
   landmark.points.T_cloud_sensor = Eigen::Isometry3d::Identity();
   landmark.points.T_cloud_sensor.translation() = landmark.sensor_origin;
-  if (landmark.format_version == 1) landmark.format_version = kLandmarkFormatVersion;  // upgrade
+  // Upgrade: versions 1 and 2 are one view.
+  if (landmark.format_version < kLandmarkFormatVersion && landmark.format_version >= 1) {
+    landmark.format_version = kLandmarkFormatVersion;
+  }
   landmark.validate(dir);
   prepare_landmark(landmark);  // the capture scene is not exported: rays to its own points only
   return landmark;

@@ -43,8 +43,18 @@ Landmark import_landmark(const std::string& dir);
 /// loading them.
 std::vector<std::string> landmark_file_grids(const std::string& path);
 
+/// The format version a .lmk file was written in (2: one view, as lmk wrote before landmarks of
+/// several views existed; 3: several views), after the same checks as load_landmark().
+int landmark_file_version(const std::string& path);
+
 /// A box from a JSON file {"position":[x,y,z], "quaternion":[w,x,y,z], "size":[sx,sy,sz]}, the
 /// same form as the "box" object of landmark.json. Throws lmk::Error naming the file and field.
 Box read_box_json(const std::string& path);
+
+/// The poses of a landmark's views (capture_views.h) from a JSON file: an array with one
+/// {"position":[x,y,z], "quaternion":[w,x,y,z]} per view, each the pose of that view's cloud frame
+/// in one common frame (a sequence's world, a robot's odometry). Throws lmk::Error naming the file
+/// and the entry.
+std::vector<Eigen::Isometry3d> read_view_poses(const std::string& path);
 
 }  // namespace lmk

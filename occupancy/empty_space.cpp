@@ -49,6 +49,12 @@ EmptySpaceGrid EmptySpaceGrid::observe(const std::vector<Eigen::Vector3f>& scene
                                        const Eigen::Vector3d& sensor_origin, const Box& box,
                                        const DistanceField& surface,
                                        const EmptySpaceSettings& settings) {
+  return observe_views({RayBundle{&scene_points, sensor_origin}}, box, surface, settings);
+}
+
+EmptySpaceGrid EmptySpaceGrid::observe_views(const std::vector<RayBundle>& views, const Box& box,
+                                             const DistanceField& surface,
+                                             const EmptySpaceSettings& settings) {
   const double voxel = settings.voxel_size, margin = settings.surface_margin;
   const double unobserved_margin = settings.unobserved_margin;
   if (!(voxel > 0.0 && std::isfinite(voxel))) {
@@ -61,7 +67,10 @@ EmptySpaceGrid EmptySpaceGrid::observe(const std::vector<Eigen::Vector3f>& scene
     throw Error("empty space: the unobserved margin must be finite and non-negative");
   }
   if (!box.is_valid()) throw Error("empty space: the box needs a finite pose and positive sides");
-  if (!sensor_origin.allFinite()) throw Error("empty space: the sensor origin is not finite");
+  for (const RayBundle& view : views) {
+    if (!view.origin.allFinite()) throw Error("empty space: the sensor origin is not finite");
+    if (view.ends == nullptr) throw Error("empty space: a view without rays");
+  }
 
   detail::initialize_openvdb();
   // Every voxel of the box a ray crossed, up to `margin` before its end point. The free ones are
@@ -70,30 +79,33 @@ EmptySpaceGrid EmptySpaceGrid::observe(const std::vector<Eigen::Vector3f>& scene
   crossed->setTransform(vdb::math::Transform::createLinearTransform(voxel));
   auto access = crossed->getAccessor();
   const Eigen::Isometry3d T_box_capture = box.pose.inverse();
-  const Eigen::Vector3d origin_in_box = T_box_capture * sensor_origin;
   const Eigen::Vector3d half = 0.5 * box.size;
   const auto surface_sampler = surface.sampler();
-  const vdb::Vec3d eye(sensor_origin.x() / voxel + 0.5, sensor_origin.y() / voxel + 0.5,
-                       sensor_origin.z() / voxel + 0.5);  // DDA cells are [i, i+1): shift by half
-  for (const auto& point : scene_points) {
-    if (!point.allFinite()) continue;
-    const Eigen::Vector3d p = point.cast<double>();
-    double t0 = 0.0, t1 = 0.0;
-    if (!clip_to_box(origin_in_box, T_box_capture * p, half, t0, t1)) continue;
-    const double length = (p - sensor_origin).norm();
-    if (length <= margin) continue;
-    // Free space ends `margin` before the surface the ray hit.
-    t1 = std::min(t1, 1.0 - margin / length);
-    if (t0 >= t1) continue;
-    const Eigen::Vector3d d = (p - sensor_origin) / voxel;
-    const vdb::math::Ray<double> ray(eye, vdb::Vec3d(d.x(), d.y(), d.z()), t0, t1);
-    vdb::math::DDA<vdb::math::Ray<double>, 0> dda(ray, t0, t1);
-    do {
-      const vdb::Coord& ijk = dda.voxel();
-      if (access.isValueOn(ijk)) continue;
-      const Eigen::Vector3d centre = Eigen::Vector3d(ijk.x(), ijk.y(), ijk.z()) * voxel;
-      if (box.contains(centre)) access.setValueOn(ijk, true);
-    } while (dda.step());
+  for (const RayBundle& view : views) {
+    const Eigen::Vector3d& sensor_origin = view.origin;
+    const Eigen::Vector3d origin_in_box = T_box_capture * sensor_origin;
+    const vdb::Vec3d eye(sensor_origin.x() / voxel + 0.5, sensor_origin.y() / voxel + 0.5,
+                         sensor_origin.z() / voxel + 0.5);  // DDA cells are [i, i+1): shift by half
+    for (const auto& point : *view.ends) {
+      if (!point.allFinite()) continue;
+      const Eigen::Vector3d p = point.cast<double>();
+      double t0 = 0.0, t1 = 0.0;
+      if (!clip_to_box(origin_in_box, T_box_capture * p, half, t0, t1)) continue;
+      const double length = (p - sensor_origin).norm();
+      if (length <= margin) continue;
+      // Free space ends `margin` before the surface the ray hit.
+      t1 = std::min(t1, 1.0 - margin / length);
+      if (t0 >= t1) continue;
+      const Eigen::Vector3d d = (p - sensor_origin) / voxel;
+      const vdb::math::Ray<double> ray(eye, vdb::Vec3d(d.x(), d.y(), d.z()), t0, t1);
+      vdb::math::DDA<vdb::math::Ray<double>, 0> dda(ray, t0, t1);
+      do {
+        const vdb::Coord& ijk = dda.voxel();
+        if (access.isValueOn(ijk)) continue;
+        const Eigen::Vector3d centre = Eigen::Vector3d(ijk.x(), ijk.y(), ijk.z()) * voxel;
+        if (box.contains(centre)) access.setValueOn(ijk, true);
+      } while (dda.step());
+    }
   }
 
   // A crossed voxel is free when it lies `margin` from every measured surface (the landmark's

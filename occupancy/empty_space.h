@@ -27,6 +27,13 @@ struct EmptySpaceSettings {
   double unobserved_margin = 0.005;
 };
 
+/// The rays of one view: from the sensor's origin to each of `ends` (non-finite ends are skipped),
+/// all in one frame.
+struct RayBundle {
+  const std::vector<Eigen::Vector3f>* ends = nullptr;
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+};
+
 class EmptySpaceGrid {
  public:
   EmptySpaceGrid();  ///< nothing observed: no voxel is empty
@@ -40,6 +47,15 @@ class EmptySpaceGrid {
   static EmptySpaceGrid observe(const std::vector<Eigen::Vector3f>& scene_points,
                                 const Eigen::Vector3d& sensor_origin, const Box& box,
                                 const DistanceField& surface, const EmptySpaceSettings& settings);
+
+  /// observe() over several views of one landmark (issue #35): a voxel is crossed when a ray of
+  /// any view crossed it, so the free space is the union of what each view saw free, and
+  /// unobserved when no view's ray crossed it. A voxel one view saw free and another saw a surface
+  /// in is not free: `surface` holds every view's points, and free space keeps `surface_margin`
+  /// from all of them. One bundle gives observe()'s grid exactly.
+  static EmptySpaceGrid observe_views(const std::vector<RayBundle>& views, const Box& box,
+                                      const DistanceField& surface,
+                                      const EmptySpaceSettings& settings);
 
   double voxel_size() const;
   std::size_t size() const;  ///< number of empty voxels

@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// lmk capture SCENE (--box-center X Y Z --box-rpy R P Y --box-size SX SY SZ | --box-json FILE)
-//             --name NAME -o OUT.lmk [--up X Y Z] [--base-frame] [--no-check]: cut a landmark out
-//             of a scene with a box, and check that it is distinctive in that scene.
+// lmk capture SCENE [SCENE...] (--box-center X Y Z --box-rpy R P Y --box-size SX SY SZ |
+//             --box-json FILE) --name NAME -o OUT.lmk [--poses FILE] [--register] [--up X Y Z]
+//             [--base-frame] [--no-check]: cut a landmark out of a scene with a box, or fuse it
+//             from several views of it (landmark/capture_views.h), and check that it is
+//             distinctive in the first scene.
 
 #include <cmath>
 #include <cstdio>
@@ -10,6 +12,7 @@
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/pose.h"
+#include "lmk/landmark/capture_views.h"
 #include "lmk/landmark/depth_correction_file.h"
 #include "lmk/landmark/distinctiveness.h"
 #include "lmk/landmark/landmark_file.h"
@@ -20,7 +23,9 @@ namespace lmk::cli {
 namespace {
 
 struct CaptureOptions {
-  std::string scene, name, output, box_json;
+  std::vector<std::string> scenes;
+  std::string name, output, box_json, poses;
+  bool register_views = false;
   std::vector<double> center, rpy_deg, size;
   UpOptions up;
   bool no_check = false;
@@ -91,22 +96,59 @@ void check_slides(const Landmark& landmark) {
   for (const std::string& line : lines) std::fprintf(stderr, "  %s\n", line.c_str());
 }
 
+// Where each view's cloud frame lies in the first's: from the poses when given, by registration
+// onto the first view when not (from the identity: the clouds share a frame, as a robot's base
+// frame clouds do) or when --register asks to refine the poses.
+std::vector<CaptureView> place_views(const CaptureOptions& o, const std::vector<PointCloud>& clouds,
+                                     const Box& box) {
+  std::vector<Eigen::Isometry3d> guesses(clouds.size(), Eigen::Isometry3d::Identity());
+  if (!o.poses.empty()) {
+    const std::vector<Eigen::Isometry3d> poses = read_view_poses(o.poses);
+    if (poses.size() != clouds.size()) {
+      throw Error(o.poses + ": " + std::to_string(poses.size()) + " poses for " +
+                  std::to_string(clouds.size()) + " views; give one pose per scene, in order");
+    }
+    for (std::size_t v = 0; v < clouds.size(); ++v) guesses[v] = poses[0].inverse() * poses[v];
+  }
+  std::vector<CaptureView> views{{&clouds[0], Eigen::Isometry3d::Identity()}};
+  for (std::size_t v = 1; v < clouds.size(); ++v) {
+    if (!o.poses.empty() && !o.register_views) {
+      views.push_back({&clouds[v], guesses[v]});
+      continue;
+    }
+    const ViewRegistration r = register_view(clouds[0], clouds[v], guesses[v], box, v + 1);
+    std::printf(
+        "view %zu: registered onto view 1: overlap %.0f%%, residual %.1f mm, moved %.1f mm and "
+        "%.2f deg at the box\n",
+        v + 1, 100.0 * r.overlap, 1000.0 * r.residual, 1000.0 * r.moved, r.turned * 180.0 / M_PI);
+    views.push_back({&clouds[v], r.T_first_view});
+  }
+  return views;
+}
+
 int run_capture(CaptureOptions& o) {
   o.settings.up = o.up.vector();
   o.settings.base_frame = o.up.base_frame;
-  format_from_path(o.scene);
+  for (const std::string& scene : o.scenes) format_from_path(scene);
+  if (o.scenes.size() == 1 && (!o.poses.empty() || o.register_views)) {
+    throw Error("capture: --poses and --register join several views; give more than one scene");
+  }
   const Box box = box_from_options(o);  // bad box arguments fail before the scene is read
-  PointCloud scene = read_cloud(o.scene);
-  correct_depth(scene, o.depth_correction);
-  const Landmark landmark = capture(scene, box, o.name, o.settings);
+  std::vector<PointCloud> clouds;
+  for (const std::string& scene : o.scenes) {
+    clouds.push_back(read_cloud(scene));
+    correct_depth(clouds.back(), o.depth_correction);
+  }
+  const Landmark landmark = capture_views(place_views(o, clouds, box), box, o.name, o.settings);
   save_landmark(o.output, landmark);
-  std::printf("wrote %s: landmark '%s', %zu points, box %.3f x %.3f x %.3f m\n", o.output.c_str(),
-              landmark.name.c_str(), landmark.points.size(), box.size.x(), box.size.y(),
-              box.size.z());
+  std::printf("wrote %s: landmark '%s', %zu points from %zu view%s, box %.3f x %.3f x %.3f m\n",
+              o.output.c_str(), landmark.name.c_str(), landmark.points.size(),
+              landmark.view_count(), landmark.view_count() == 1 ? "" : "s", box.size.x(),
+              box.size.y(), box.size.z());
   if (landmark.settings.allow_flat) {
     std::printf("a flat patch matches wherever it fits: no distinctiveness check\n");
   } else if (!o.no_check) {
-    check_in_capture_scene(scene, landmark);
+    check_in_capture_scene(clouds[0], landmark);
     check_slides(landmark);
   }
   return kOk;
@@ -117,7 +159,16 @@ int run_capture(CaptureOptions& o) {
 Subcommand add_capture(CLI::App& app) {
   auto o = std::make_shared<CaptureOptions>();
   CLI::App* sub = app.add_subcommand("capture", "Cut a landmark out of a scene with a box");
-  sub->add_option("scene", o->scene, "Scene cloud (.pcd, .ply, .xyz)")->required();
+  sub->add_option("scenes", o->scenes,
+                  "Scene cloud (.pcd, .ply, .xyz); several are views of one landmark, fused in the "
+                  "first one's frame, where the box is given")
+      ->required();
+  sub->add_option("--poses", o->poses,
+                  "Several views: JSON array of each scene's pose in one common frame "
+                  "[{position:[x,y,z], quaternion:[w,x,y,z]}, ...]; without it the views are "
+                  "registered onto the first, taken to share its frame");
+  sub->add_flag("--register", o->register_views,
+                "Several views with --poses: refine the poses by registration onto the first view");
   sub->add_option("--box-center", o->center, "Box centre in the scene frame, m")->expected(3);
   sub->add_option("--box-rpy", o->rpy_deg, "Box roll pitch yaw, degrees (default 0 0 0)")
       ->expected(3);

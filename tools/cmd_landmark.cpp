@@ -22,13 +22,18 @@ int run_show(const LandmarkOptions& o) {
   std::string grids;
   for (const std::string& g : landmark_file_grids(o.file)) grids += (grids.empty() ? "" : " ") + g;
   std::printf("name           %s\n", l.name.c_str());
-  std::printf("format         lmk %d\n", l.format_version);
+  std::printf("format         lmk %d\n", landmark_file_version(o.file));
   std::printf("points         %zu\n", l.points.size());
   std::printf("box centre     %.4f %.4f %.4f m\n", c.x(), c.y(), c.z());
   std::printf("box rpy        %.2f %.2f %.2f deg\n", rpy.x(), rpy.y(), rpy.z());
   std::printf("box size       %.4f %.4f %.4f m\n", l.box.size.x(), l.box.size.y(), l.box.size.z());
   std::printf("sensor origin  %.4f %.4f %.4f\n", l.sensor_origin.x(), l.sensor_origin.y(),
               l.sensor_origin.z());
+  std::printf("views          %zu\n", l.view_count());
+  for (std::size_t v = 1; v < l.view_origins.size(); ++v) {  // the first is the sensor origin
+    const Eigen::Vector3d& o = l.view_origins[v];
+    std::printf("view %-2zu origin %.4f %.4f %.4f\n", v + 1, o.x(), o.y(), o.z());
+  }
   std::printf("leaf           %.4f m\n", l.settings.leaf_size);
   std::printf("grids          %s\n", grids.c_str());
   return kOk;

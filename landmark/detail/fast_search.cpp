@@ -223,7 +223,8 @@ CoarseAlignment coarse_align(const Stages& st, const std::vector<Candidate>& clu
       return;
     }
     out.quick[c] = mean_surface_distance(st.index, coarse_model, T,
-                                         in.metric.hides_occluded ? &st.landmark.box : nullptr);
+                                         in.metric.hides_occluded ? &st.landmark.box : nullptr,
+                                         st.landmark.multi_view());
   });
   return out;
 }

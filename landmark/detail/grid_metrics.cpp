@@ -95,23 +95,35 @@ std::size_t shown_shortfall(std::size_t shown, std::size_t total) {
   return static_cast<std::size_t>(std::ceil(std::max(0.0, floor - static_cast<double>(shown))));
 }
 
+bool turned_away(const Eigen::Vector3f& sensor, const Eigen::Isometry3f& T_scene_capture,
+                 const PointCloud& points, std::size_t j) {
+  if (!points.has_normals()) return false;
+  const Eigen::Vector3f n = T_scene_capture.linear() * points.normals[j];
+  const Eigen::Vector3f q = T_scene_capture * points.points[j];
+  return n.allFinite() && n.dot((sensor - q).normalized()) < kTurnedAwayCos;
+}
+
 double mean_surface_distance(const SceneIndex& scene, const PointCloud& points,
-                             const Eigen::Isometry3f& T_scene_capture, const Box* capture_box) {
+                             const Eigen::Isometry3f& T_scene_capture, const Box* capture_box,
+                             bool facing_only) {
   const DistanceField::Sampler field(scene.field());
   const bool projective = capture_box != nullptr;
   const Box free_zone =
       projective ? occluder_free_zone(capture_box->transformed(T_scene_capture.cast<double>()))
                  : Box();
+  const Eigen::Vector3f sensor = scene.T_scene_sensor().translation().cast<float>();
   double sum = 0.0;
-  std::size_t shown = 0;
+  std::size_t shown = 0, facing = 0;
   for (std::size_t j = 0; j < points.size(); ++j) {
+    if (facing_only && turned_away(sensor, T_scene_capture, points, j)) continue;
+    ++facing;
     if (projective && hidden_behind(scene, T_scene_capture * points.points[j], free_zone)) {
       continue;
     }
     sum += landmark_point_distance(scene, field, T_scene_capture, points, j);
     ++shown;
   }
-  const std::size_t shortfall = shown_shortfall(shown, points.size());
+  const std::size_t shortfall = shown_shortfall(shown, facing);
   const std::size_t count = shown + shortfall;
   return count == 0 ? scene.field().band()
                     : (sum + scene.field().band() * static_cast<double>(shortfall)) /
@@ -145,9 +157,17 @@ ErrorTerms visibility_terms(const SceneView& scene, const LandmarkView& landmark
       projective ? occluder_free_zone(landmark.box.transformed(T_scene_capture)) : Box();
   // Support: a scene surface within two paper leaves (1 cm) of the landmark point.
   const float support = static_cast<float>(2.0 * scene.index.settings().leaf_size);
-  std::size_t supported = 0;
+  std::size_t supported = 0, facing = 0;
   const UnseenPoints unseen = scene.index.settings().unseen_points;
+  // A landmark of several views shows a sensor only its side turned towards it.
+  const bool facing_only = landmark.landmark.multi_view();
+  const Eigen::Vector3f sensor = scene.index.T_scene_sensor().translation().cast<float>();
   for (std::size_t j = 0; j < landmark.points.size(); ++j) {
+    if (facing_only && turned_away(sensor, T, landmark.points, j)) {
+      ++terms.unseen_points;
+      continue;
+    }
+    ++facing;
     const Eigen::Vector3f q = T * landmark.points.points[j];
     if ((projective && hidden_behind(scene.index, q, free_zone)) ||
         unseen_by_sensor(scene.index, q, unseen)) {
@@ -161,8 +181,7 @@ ErrorTerms visibility_terms(const SceneView& scene, const LandmarkView& landmark
   }
   // Points short of the share a pose must show cost the band each (none for the visibility
   // metric, which shows every point).
-  const std::size_t shortfall =
-      shown_shortfall(terms.landmark_to_scene_count, landmark.points.size());
+  const std::size_t shortfall = shown_shortfall(terms.landmark_to_scene_count, facing);
   terms.landmark_to_scene_sum += scene.index.field().band() * static_cast<double>(shortfall);
   terms.landmark_to_scene_count += shortfall;
   terms.coverage =
@@ -186,8 +205,8 @@ ErrorTerms visibility_terms(const SceneView& scene, const LandmarkView& landmark
   }
   // Far from the sensor, the noise raises every term of a true match: judge the candidate as if
   // it stood at the range the threshold was set for.
-  const Eigen::Vector3d sensor = scene.index.T_scene_sensor().translation();
-  const double range = (T_scene_capture * landmark.box.center() - sensor).norm();
+  const double range =
+      (T_scene_capture * landmark.box.center() - scene.index.T_scene_sensor().translation()).norm();
   terms.range_scale = match_error_scale(scene.index.settings(), range);
   terms.finish();
   return terms;

@@ -64,13 +64,24 @@ inline constexpr double kMinShownShare = 0.5;
 /// kMinShownShare.
 std::size_t shown_shortfall(std::size_t shown, std::size_t total);
 
+/// The cosine beyond which a surface turns its face away from a sensor: seen more than 80 degrees
+/// from its normal, it returns nothing.
+inline constexpr float kTurnedAwayCos = 0.1736f;
+
+/// Whether landmark point j (with its normal), placed by T_scene_capture, turns its face away from
+/// a sensor at `sensor` (scene frame). A landmark of several views has points on sides that a
+/// sensor in front of it cannot see (capture_views.h); a point without a normal faces every way.
+bool turned_away(const Eigen::Vector3f& sensor, const Eigen::Isometry3f& T_scene_capture,
+                 const PointCloud& points, std::size_t j);
+
 /// The fast search's coarse score: the mean landmark_point_distance() of `points` placed by
 /// T_scene_capture; with `capture_box` (the landmark's box, capture frame), over the points not
 /// hidden_behind() an occluder outside the placed box, each point short of kMinShownShare
-/// counting the band.
+/// counting the band. With `facing_only` (a landmark of several views), only the points not
+/// turned_away() from the scene's sensor count, and the share is of those.
 double mean_surface_distance(const SceneIndex& scene, const PointCloud& points,
                              const Eigen::Isometry3f& T_scene_capture,
-                             const Box* capture_box = nullptr);
+                             const Box* capture_box = nullptr, bool facing_only = false);
 
 /// Where no occluder may stand for a candidate whose box is `box` (scene frame): the box grown by
 /// kOccluderClearance on every side.

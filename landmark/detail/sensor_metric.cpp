@@ -22,8 +22,6 @@ constexpr double kAtSurface = 1.0;  // sigma
 // noise: a pose whose free space cannot be seen (too far for its margins, or buried in a surface
 // that hides it) has no evidence for it beyond a fit that the noise makes easy.
 constexpr double kMinEmptyObserved = 0.02;
-// A surface turned more than 80 degrees from its line of sight returns nothing to the sensor.
-constexpr float kTurnedAway = 0.1736f;
 
 // Empty space seen from the scene's sensor: each observed-empty voxel of the landmark (centres[i],
 // distances[i] from its surface), placed by the pose, is looked up in the range image. A surface
@@ -130,12 +128,9 @@ SensorFit sensor_fit(const SceneIndex& index, const PointCloud& points,
   const DistanceField::Sampler scene_field(index.field());
   for (std::size_t j = 0; j < points.size(); ++j) {
     const Eigen::Vector3f q = T * points.points[j];
-    if (points.has_normals()) {
-      const Eigen::Vector3f n = T.linear() * points.normals[j];
-      if (n.allFinite() && n.dot((sensor - q).normalized()) < kTurnedAway) {
-        ++fit.unseen;
-        continue;
-      }
+    if (turned_away(sensor, T, points, j)) {
+      ++fit.unseen;
+      continue;
     }
     const double capture_depth = (points.points[j] - capture_sensor).norm();
     double cost = 0.0;

@@ -1,0 +1,251 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Capture: a landmark cut out of one view of a scene with a box, or fused from several views of it
+// (capture_views.h).
+#include <openvdb/openvdb.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/filters.h"
+#include "lmk/geometry/frame_preparation.h"
+#include "lmk/geometry/pose.h"
+#include "lmk/geometry/principal_axes.h"
+#include "lmk/geometry/projector_shadow.h"
+#include "lmk/geometry/voxel_grid.h"
+#include "lmk/landmark/capture_views.h"
+#include "lmk/landmark/landmark.h"
+
+namespace lmk {
+namespace {
+
+std::string format_size(const Eigen::Vector3d& size) {
+  std::ostringstream s;
+  s << size.x() << " x " << size.y() << " x " << size.z() << " m";
+  return s.str();
+}
+
+// One view's frame prepared as a search prepares its scene (SceneIndex), so that both sides are
+// alike, and moved into the capture frame; with the ends of the rays that observed free space: to
+// every point of the frame (non-finite ones are skipped) and through the projector's shadow.
+struct PreparedView {
+  PointCloud frame;
+  std::vector<Eigen::Vector3f> ray_ends;
+};
+
+PreparedView prepare_view(const CaptureView& view, const CaptureSettings& settings) {
+  const PointCloud& cloud = *view.cloud;
+  std::optional<PointCloud> prepared =
+      prepared_frame(cloud, settings.veil_angle, settings.depth_smoothing, DepthNoise());
+  PreparedView out;
+  out.frame = prepared ? std::move(*prepared) : cloud;
+  std::vector<Eigen::Vector3f> shadow =
+      projector_shadow_ray_ends(cloud, {settings.projector_baseline});
+  // The first view usually is the capture frame: left untouched, its points stay bit for bit.
+  if (!view.T_capture_cloud.matrix().isIdentity(0.0)) {
+    out.frame = out.frame.transformed(view.T_capture_cloud);
+    const Eigen::Isometry3f T = view.T_capture_cloud.cast<float>();
+    for (Eigen::Vector3f& p : shadow) p = T * p;
+  }
+  out.ray_ends = out.frame.points;
+  out.ray_ends.insert(out.ray_ends.end(), shadow.begin(), shadow.end());
+  return out;
+}
+
+[[noreturn]] void throw_empty_box(const std::string& what, const Box& box) {
+  const Eigen::Vector3d c = box.center();
+  std::ostringstream s;
+  s << what << ": no scene point inside the box centred at (" << c.x() << ", " << c.y() << ", "
+    << c.z() << ") of " << format_size(box.size) << "; is it in the scene's frame?";
+  throw Error(s.str());
+}
+
+// The views' points inside the box fused into one point per voxel of side `leaf` (anchored at the
+// origin, as voxel_downsample): their centroid, with the views that measured a point in the voxel.
+// The voxels are found through an OpenVDB grid of accumulator indices, and come out ordered by
+// voxel coordinate (x slowest, z fastest), whatever the order of the views' points.
+void fuse_views(const std::vector<PointCloud>& insides, double leaf, Landmark& landmark) {
+  struct Voxel {
+    openvdb::Coord coord;
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    double count = 0.0;
+    std::uint32_t views = 0;
+  };
+  openvdb::initialize();  // idempotent: registers the grid types once per process
+  auto index = openvdb::Int32Grid::create(-1);
+  auto access = index->getAccessor();
+  std::vector<Voxel> voxels;
+  const double inv_leaf = 1.0 / leaf;
+  for (std::size_t v = 0; v < insides.size(); ++v) {
+    for (const Eigen::Vector3f& p : insides[v].points) {
+      if (!is_finite(p)) continue;
+      const Eigen::Vector3d q = p.cast<double>() * inv_leaf;
+      const openvdb::Coord c(static_cast<int>(std::floor(q.x())),
+                             static_cast<int>(std::floor(q.y())),
+                             static_cast<int>(std::floor(q.z())));
+      int k = access.getValue(c);
+      if (k < 0) {
+        k = static_cast<int>(voxels.size());
+        access.setValue(c, k);
+        voxels.push_back({c});
+      }
+      Voxel& voxel = voxels[static_cast<std::size_t>(k)];
+      voxel.sum += p.cast<double>();
+      voxel.count += 1.0;
+      voxel.views |= std::uint32_t{1} << v;
+    }
+  }
+  std::sort(voxels.begin(), voxels.end(),
+            [](const Voxel& a, const Voxel& b) { return a.coord < b.coord; });
+  for (const Voxel& voxel : voxels) {
+    landmark.points.points.push_back((voxel.sum / voxel.count).cast<float>());
+    landmark.point_views.push_back(voxel.views);
+  }
+  landmark.points.set_unorganized();
+}
+
+}  // namespace
+
+void check_capture_settings(const CaptureSettings& s, const std::string& what) {
+  if (!(s.leaf_size >= kMinLeafSize) || !std::isfinite(s.leaf_size)) {
+    throw Error(what + ": leaf size must be finite and at least " +
+                std::to_string(static_cast<int>(kMinLeafSize * 1000)) + " mm");
+  }
+  if (!(s.distance_band >= s.leaf_size) || !std::isfinite(s.distance_band)) {
+    throw Error(what + ": the distance band must be finite and at least the leaf size");
+  }
+  if (!(s.empty_space_margin >= 0.0) || !std::isfinite(s.empty_space_margin)) {
+    throw Error(what + ": the empty-space margin must be finite and non-negative");
+  }
+  if (!(s.veil_angle >= 0.0) || !(s.veil_angle < 1.5)) {
+    throw Error(what + ": the veil angle must be in [0, 1.5) rad (0: keep veil points)");
+  }
+  if (s.depth_smoothing < 0 || s.depth_smoothing > kMaxDepthSmoothingRadius) {
+    throw Error(what + ": the depth smoothing must be 0 to " +
+                std::to_string(kMaxDepthSmoothingRadius) + " pixels (0: the raw depth)");
+  }
+  if (!(s.projector_baseline >= 0.0) || !std::isfinite(s.projector_baseline)) {
+    throw Error(what + ": the projector baseline must be finite and non-negative (0: none)");
+  }
+  if (s.up && (!s.up->allFinite() || s.up->norm() < 1e-9)) {
+    throw Error(what + ": the up axis must be a finite non-zero vector");
+  }
+  if (!(s.max_box_side > 0.0) || !std::isfinite(s.max_box_side)) {
+    throw Error(what + ": maximum box side must be positive and finite");
+  }
+}
+
+void check_capture_box(const Box& box, const CaptureSettings& s, const std::string& what) {
+  if (!box.size.allFinite() || (box.size.array() <= 0.0).any()) {
+    throw Error(what + ": box sides must be positive and finite, got " + format_size(box.size));
+  }
+  if (!is_valid_pose(box.pose)) {
+    throw Error(what + ": box pose must be finite with a proper rotation");
+  }
+  if ((box.size.array() > s.max_box_side).any()) {
+    throw Error(what + ": box of " + format_size(box.size) + " has a side over the " +
+                std::to_string(s.max_box_side) + " m limit (raise max_box_side if intended)");
+  }
+}
+
+Landmark capture(const PointCloud& scene, const Box& box, const std::string& name,
+                 const CaptureSettings& settings) {
+  return capture_views({CaptureView{&scene, Eigen::Isometry3d::Identity()}}, box, name, settings);
+}
+
+Landmark capture_views(const std::vector<CaptureView>& views, const Box& box,
+                       const std::string& name, const CaptureSettings& settings) {
+  const std::string what = "capture '" + name + "'";
+  if (name.empty()) throw Error("capture: the landmark needs a name");
+  check_capture_settings(settings, what);
+  check_capture_box(box, settings, what);
+  if (views.empty() || views.size() > kMaxLandmarkViews) {
+    throw Error(what + ": a landmark takes 1 to " + std::to_string(kMaxLandmarkViews) +
+                " views, not " + std::to_string(views.size()));
+  }
+  for (std::size_t v = 0; v < views.size(); ++v) {
+    if (views[v].cloud == nullptr || !is_valid_pose(views[v].T_capture_cloud)) {
+      throw Error(what + ": view " + std::to_string(v + 1) +
+                  " needs a cloud and a finite pose with a proper rotation");
+    }
+  }
+  std::vector<PreparedView> prepared;
+  std::vector<PointCloud> insides;
+  for (std::size_t v = 0; v < views.size(); ++v) {
+    prepared.push_back(prepare_view(views[v], settings));
+    insides.push_back(crop(prepared.back().frame, box));
+    if (insides.back().empty()) {
+      if (views.size() == 1) throw_empty_box(what, box);
+      throw Error(what + ": view " + std::to_string(v + 1) +
+                  " has no point inside the box; is its pose right, and does it see the landmark?");
+    }
+  }
+  Landmark landmark;
+  landmark.name = name;
+  const PointCloud& first = prepared.front().frame;
+  if (views.size() == 1) {
+    landmark.points = voxel_downsample(insides.front(), settings.leaf_size);
+  } else {
+    fuse_views(insides, settings.leaf_size, landmark);
+    for (const PreparedView& view : prepared) {
+      landmark.view_origins.push_back(view.frame.sensor_origin());
+    }
+  }
+  if (landmark.points.size() < settings.min_points) {
+    throw Error(what + ": only " + std::to_string(landmark.points.size()) +
+                " points in the box after downsampling, fewer than the minimum of " +
+                std::to_string(settings.min_points) + "; draw a larger box or lower min_points");
+  }
+  if (const auto why =
+          degenerate_shape(landmark.points, settings.leaf_size, what, settings.allow_flat)) {
+    throw Error(*why);
+  }
+  landmark.points.T_cloud_sensor = first.T_cloud_sensor;
+  landmark.box = box;
+  landmark.sensor_origin = first.sensor_origin();
+  landmark.settings = settings;
+  landmark.up = settings.up ? settings.up->normalized()
+                            : default_up(first.T_cloud_sensor, settings.base_frame);
+  std::vector<RayBundle> rays;
+  for (const PreparedView& view : prepared) {
+    rays.push_back({&view.ray_ends, view.frame.sensor_origin()});
+  }
+  prepare_landmark_views(landmark, rays);
+  return landmark;
+}
+
+std::optional<std::string> degenerate_shape(const PointCloud& points, double leaf_size,
+                                            const std::string& what, bool allow_flat) {
+  constexpr double kDegenerateFraction = 0.95;
+  if (points.size() < 3) return what + ": fewer than three points cannot fix a pose";
+  const PrincipalAxes pca =
+      principal_axes(points.size(), [&](std::size_t i) { return points.points[i]; });
+  const Eigen::Vector3d mean = pca.mean, normal = pca.axes.col(0), axis = pca.axes.col(2);
+  const double tolerance = 2.0 * leaf_size;
+  std::size_t near_plane = 0, near_line = 0;
+  for (const auto& p : points.points) {
+    const Eigen::Vector3d d = p.cast<double>() - mean;
+    if (std::abs(d.dot(normal)) <= tolerance) ++near_plane;
+    if ((d - d.dot(axis) * axis).norm() <= tolerance) ++near_line;
+  }
+  const auto share = [&](std::size_t n) {
+    return static_cast<double>(n) / static_cast<double>(points.size());
+  };
+  const auto percent = [&](std::size_t n) { return std::to_string(std::lround(100.0 * share(n))); };
+  const std::string within = " within " + std::to_string(std::lround(1000.0 * tolerance)) + " mm";
+  if (share(near_line) >= kDegenerateFraction) {
+    return what + ": the shape is a thin straight piece (" + percent(near_line) +
+           "% of the points" + within +
+           " of one line), which leaves its turn about that line undetermined; draw the "
+           "box around something with a corner or some width";
+  }
+  if (share(near_plane) >= kDegenerateFraction && !allow_flat) {
+    return what + ": the shape is flat (" + percent(near_plane) + "% of the points" + within +
+           " of one plane), so it would match anywhere on any plane; draw the box to include an "
+           "edge, a corner or some relief, or capture it as a flat patch (--allow-flat)";
+  }
+  return std::nullopt;
+}
+
+}  // namespace lmk
