@@ -13,6 +13,7 @@
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/pose.h"
+#include "lmk/landmark/capture_views.h"
 #include "lmk/landmark/detail/landmark_container.h"
 #include "tests/support/test_support.h"
 
@@ -29,6 +30,19 @@ Landmark sample_landmark() {
   settings.min_points = 40;
   return capture(scene, Box(pose_from_xyz_rpy({0.05, 0.0, 0.1}, {0.3, -0.2, 1.0}), {0.2, 0.3, 0.1}),
                  "test landmark", settings);
+}
+
+// The same cut from the same scene, seen again from a second pose 2 cm and 3 degrees away.
+Landmark sample_two_view_landmark() {
+  PointCloud scene = test::random_cloud(100000, 3, 0.4f);
+  scene.T_cloud_sensor.translation() << 0.1, -0.2, -1.5;
+  CaptureSettings settings;
+  settings.leaf_size = 0.01;
+  settings.min_points = 40;
+  return capture_views({{&scene, Eigen::Isometry3d::Identity()},
+                        {&scene, pose_from_xyz_rpy({0.02, 0.0, 0.0}, {0.0, 0.05, 0.0})}},
+                       Box(pose_from_xyz_rpy({0.05, 0.0, 0.1}, {0.3, -0.2, 1.0}), {0.2, 0.3, 0.1}),
+                       "two views", settings);
 }
 
 std::vector<Eigen::Vector3f> sorted(std::vector<Eigen::Vector3f> v) {
@@ -194,6 +208,44 @@ TEST(LandmarkFile, ImportValidates) {
     EXPECT_NE(std::string(e.what()).find("not a unit quaternion"), std::string::npos) << e.what();
   }
   EXPECT_THROW(import_landmark(dir.file("nowhere")), Error);
+}
+
+}  // namespace
+}  // namespace lmk
+
+namespace lmk {
+namespace {
+
+// A file of several views, damaged or written wrong behind a valid checksum, is refused with one
+// line; whole, it comes back with its views.
+TEST(LandmarkFile, ViewsAreReadBackAndCheckedBehindAValidChecksum) {
+  test::ScratchDir dir;
+  const Landmark original = sample_two_view_landmark();
+  save_landmark(dir.file("a.lmk"), original);
+  const Landmark loaded = load_landmark(dir.file("a.lmk"));
+  EXPECT_EQ(loaded.view_origins, original.view_origins);
+  EXPECT_EQ(loaded.point_views, original.point_views);
+  std::string bytes = test::read_bytes(dir.file("a.lmk"));
+  bytes[bytes.size() / 2] ^= 0x10;
+  test::write_text(dir.file("flipped.lmk"), bytes);
+  EXPECT_NE(load_error(dir.file("flipped.lmk")).find("does not match the checksum"),
+            std::string::npos);
+  // The view count's metadata entry: its name, its type "int32", the value's 32-bit length (4),
+  // then the value.
+  std::string data = test::read_bytes(dir.file("a.lmk"));
+  data.resize(data.size() - detail::kLandmarkTrailerSize);
+  const std::string entry("lmk_view_count\x05\x00\x00\x00int32", 23);
+  const std::size_t at = data.find(entry);
+  ASSERT_NE(at, std::string::npos);
+  for (const std::int32_t count : {1, 17, 3}) {
+    std::string bad = data;
+    std::memcpy(&bad[at + entry.size() + 4], &count, sizeof(count));
+    test::write_text(dir.file("bad.lmk"), bad + detail::landmark_trailer(bad));
+    const std::string error = load_error(dir.file("bad.lmk"));
+    EXPECT_NE(error.find(count == 3 ? "lmk_view_origin_2" : std::to_string(count) + " views"),
+              std::string::npos)
+        << error;
+  }
 }
 
 }  // namespace
