@@ -4,7 +4,11 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <functional>
+#include <limits>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <variant>
 
 #include "lmk/geometry/atomic_file.h"
 #include "lmk/geometry/cloud_io.h"
@@ -13,6 +17,7 @@
 #include "lmk/geometry/statistics.h"
 #include "lmk/json/depth_correction_json.h"
 #include "lmk/json/pose_json.h"
+#include "lmk/landmark/capture_views.h"
 #include "lmk/landmark/distinctiveness.h"
 #include "lmk/landmark/landmark_file.h"
 #include "lmk/registration/frame_registration.h"
@@ -73,7 +78,21 @@ std::string refusal_reason(const std::string& message) {
   for (const char* word : {"flat", "straight", "too few", "no scene point"}) {
     if (message.find(word) != std::string::npos) return word;
   }
+  if (message.find("first view") != std::string::npos) return "a view did not register";
   return message;
+}
+
+// The used frames that give a box cut in frame `a` its further views, nearest first and after
+// before: a + step, a - step, a + 2 step, ... (step = the view gap in used frames), as many as
+// exist up to `count`.
+std::vector<std::size_t> further_views(std::size_t a, std::size_t frames, std::size_t step,
+                                       std::size_t count) {
+  std::vector<std::size_t> out;
+  for (std::size_t k = 1; out.size() < count && (a + k * step < frames || k * step <= a); ++k) {
+    if (a + k * step < frames) out.push_back(a + k * step);
+    if (out.size() < count && k * step <= a) out.push_back(a - k * step);
+  }
+  return out;
 }
 
 // The depth error fitted on the frames the dataset does not use, so that no frame it measures on
@@ -104,6 +123,12 @@ RgbdImport generate_rgbd_dataset(const std::string& sequence_dir, const std::str
                                  const RgbdDatasetOptions& options) {
   if (options.frame_stride == 0 || options.min_gap > options.max_gap)
     throw Error("from-rgbd: the frame stride must be positive and min_gap at most max_gap");
+  if (options.views < 1 || options.views > 4 || options.view_gap < options.frame_stride ||
+      options.view_gap % options.frame_stride != 0) {
+    throw Error(
+        "from-rgbd: views must be 1 to 4, and the view gap a positive multiple of the frame "
+        "stride");
+  }
   if (options.calibrate_depth && options.depth_correction)
     throw Error("from-rgbd: either fit the depth correction or give one, not both");
   const RgbdSequence sequence = read_rgbd_sequence(sequence_dir, options.read);
@@ -143,6 +168,8 @@ RgbdImport generate_rgbd_dataset(const std::string& sequence_dir, const std::str
     std::size_t frame;
     std::string name;
     Landmark landmark;
+    std::vector<std::size_t> box_views;  ///< every view of its box: the scenes keep clear of them
+    std::vector<Eigen::Vector3f> seen;   ///< the box's one-view points, for the hidden fraction
   };
   std::vector<Captured> captured;
   nlohmann::json refusals = nlohmann::json::array();
@@ -151,32 +178,87 @@ RgbdImport generate_rgbd_dataset(const std::string& sequence_dir, const std::str
   capture_settings.depth_smoothing = options.depth_smoothing;
   FindSettings check_settings;
   check_settings.scene.depth_smoothing = options.depth_smoothing;
+  // The registration of each further view onto a box's frame, from the poses, once per pair of
+  // frames: a view it refuses leaves the landmarks that need it out.
+  std::map<std::pair<std::size_t, std::size_t>, std::variant<ViewRegistration, std::string>> joined;
+  nlohmann::json view_records = nlohmann::json::array();
+  const auto join = [&](std::size_t a, std::size_t v, const Box& box) {
+    auto it = joined.find({a, v});
+    if (it != joined.end()) return it->second;
+    std::variant<ViewRegistration, std::string> r;
+    try {
+      r = register_view(frames[a].cloud, frames[v].cloud,
+                        frames[a].frame->T_world_camera.inverse() * frames[v].frame->T_world_camera,
+                        box, 2);
+      const ViewRegistration& ok = std::get<ViewRegistration>(r);
+      view_records.push_back({{"frame", frames[a].frame->name},
+                              {"view", frames[v].frame->name},
+                              {"overlap", ok.overlap},
+                              {"residual_m", ok.residual},
+                              {"moved_m", ok.moved},
+                              {"turned_rad", ok.turned}});
+    } catch (const Error& e) {
+      r = std::string(e.what());
+      view_records.push_back({{"frame", frames[a].frame->name},
+                              {"view", frames[v].frame->name},
+                              {"refused", e.what()}});
+    }
+    return joined.emplace(std::make_pair(a, v), r).first->second;
+  };
+  // A landmark is kept when the capture accepts it and it passes the distinctiveness check in its
+  // own frame; otherwise the reason is tallied.
+  const auto keep = [&](const std::string& name, const Box& box, std::size_t a,
+                        const std::function<Landmark()>& cut) -> std::optional<Landmark> {
+    std::string why;
+    try {
+      Landmark landmark = cut();
+      const DistinctivenessReport check =
+          check_distinctiveness(frames[a].cloud, landmark, check_settings);
+      if (!check.found_itself) {
+        why = "not found in its own frame";
+      } else if (!check.other_instances.empty()) {
+        why = "matches elsewhere in its own frame";
+      } else {
+        return landmark;
+      }
+    } catch (const Error& e) {
+      why = refusal_reason(e.what());
+    }
+    ++import.refused[why];
+    refusals.push_back(
+        {{"landmark", name}, {"reason", why}, {"box", detail::pose_to_json(box.pose)}});
+    return std::nullopt;
+  };
+  const std::size_t view_step = options.view_gap / options.frame_stride;
   std::size_t done = 0;
   for (std::size_t a = 0; a < frames.size(); ++a) {
     const std::vector<Box> boxes =
         user_like_boxes(frames[a].cloud, frames[a].frame->intrinsics, rule);
+    std::vector<std::size_t> box_views{a};
+    for (std::size_t v : further_views(a, frames.size(), view_step, options.views - 1))
+      box_views.push_back(v);
     for (std::size_t k = 0; k < boxes.size(); ++k) {
       ++import.boxes;
       const std::string name = frames[a].frame->name + "-" + std::to_string(k);
-      std::string why;
-      try {
-        Landmark landmark = capture(frames[a].cloud, boxes[k], name, capture_settings);
-        const DistinctivenessReport check =
-            check_distinctiveness(frames[a].cloud, landmark, check_settings);
-        if (!check.found_itself) {
-          why = "not found in its own frame";
-        } else if (!check.other_instances.empty()) {
-          why = "matches elsewhere in its own frame";
-        } else {
-          captured.push_back({a, name, std::move(landmark)});
-        }
-      } catch (const Error& e) {
-        why = refusal_reason(e.what());
-      }
-      if (!why.empty()) {
-        ++import.refused[why];
-        refusals.push_back(
-            {{"landmark", name}, {"reason", why}, {"box", detail::pose_to_json(boxes[k].pose)}});
+      std::optional<Landmark> one = keep(name, boxes[k], a, [&] {
+        return capture(frames[a].cloud, boxes[k], name, capture_settings);
+      });
+      if (!one) continue;  // a box refused in one view is left out in every number of views
+      const std::vector<Eigen::Vector3f> seen = one->points.points;
+      captured.push_back({a, name, std::move(*one), box_views, seen});
+      for (std::size_t n = 2; n <= box_views.size(); ++n) {
+        const std::string name_n = name + "-v" + std::to_string(n);
+        std::optional<Landmark> fused = keep(name_n, boxes[k], a, [&] {
+          std::vector<CaptureView> views{{&frames[a].cloud, Eigen::Isometry3d::Identity()}};
+          for (std::size_t i = 1; i < n; ++i) {
+            const auto r = join(a, box_views[i], boxes[k]);
+            if (const auto* refused = std::get_if<std::string>(&r)) throw Error(*refused);
+            views.push_back(
+                {&frames[box_views[i]].cloud, std::get<ViewRegistration>(r).T_first_view});
+          }
+          return capture_views(views, boxes[k], name_n, capture_settings);
+        });
+        if (fused) captured.push_back({a, name_n, std::move(*fused), box_views, seen});
       }
     }
     if (options.progress) options.progress(++done, steps);
@@ -196,7 +278,9 @@ RgbdImport generate_rgbd_dataset(const std::string& sequence_dir, const std::str
     scene.setting = dataset.name;
     std::map<std::size_t, IcpResult> registrations;  // by capture frame
     for (const Captured& c : captured) {
-      const std::size_t gap = options.frame_stride * (b > c.frame ? b - c.frame : c.frame - b);
+      std::size_t gap = std::numeric_limits<std::size_t>::max();  // from the nearest view
+      for (std::size_t v : c.box_views)
+        gap = std::min(gap, options.frame_stride * (b > v ? b - v : v - b));
       if (gap < options.min_gap || gap > options.max_gap) continue;
       const Eigen::Isometry3d T_b_a =
           frames[b].frame->T_world_camera.inverse() * frames[c.frame].frame->T_world_camera;
@@ -210,7 +294,7 @@ RgbdImport generate_rgbd_dataset(const std::string& sequence_dir, const std::str
       pair.landmark = c.name;
       pair.in_context = true;
       pair.instances = {T_b_a * c.landmark.box.pose};
-      pair.hidden = {hidden_in(c.landmark.points.points, T_b_a, frames[b])};
+      pair.hidden = {hidden_in(c.seen, T_b_a, frames[b])};
       pair.pose_check =
           PoseCheck{(reg.T_target_source * centre - T_b_a * centre).norm(),
                     rotation_angle_between(reg.T_target_source.linear(), T_b_a.linear())};
@@ -256,6 +340,9 @@ RgbdImport generate_rgbd_dataset(const std::string& sequence_dir, const std::str
         {"min_off_plane", rule.min_off_plane},
         {"max_boxes", rule.max_boxes}}},
       {"boxes", import.boxes},
+      {"views", options.views},
+      {"view_gap_frames", options.view_gap},
+      {"view_registrations", view_records},
       {"depth_smoothing_px", options.depth_smoothing},
       {"depth_correction", import.depth_calibration
                                ? detail::depth_calibration_to_json(*import.depth_calibration)

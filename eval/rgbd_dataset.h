@@ -29,6 +29,14 @@ struct RgbdDatasetOptions {
   /// (30 cm at 2 m, as a user boxes furniture; 8 cm on a desk at half a metre).
   std::optional<double> box_side;
   std::size_t boxes_per_frame = 6;
+  /// Each box is also captured from 2 up to this many views (issue #35): its frame and the used
+  /// frames view_gap, then -view_gap, then 2 view_gap... frames away, each registered onto the
+  /// first from the camera poses (register_view; import.json records each registration, its
+  /// "moved" measured at the first box of the frame). The landmark of k views is named
+  /// "<name>-v<k>" (the one-view landmark keeps "<name>"); all of a box's landmarks are searched in
+  /// the same scenes, those min_gap to max_gap frames from the nearest of the box's views.
+  std::size_t views = 1;
+  std::size_t view_gap = 10;  ///< frames between a box's views
   /// The landmarks are captured, and checked in their own frame, with this depth smoothing
   /// (CaptureSettings::depth_smoothing, pixels); search them with the same.
   int depth_smoothing = kDefaultDepthSmoothing;

@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Capture: a landmark cut out of one view of a scene with a box, or fused from several views of it
 // (capture_views.h).
-#include <openvdb/openvdb.h>
-
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -10,6 +8,7 @@
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/filters.h"
 #include "lmk/geometry/frame_preparation.h"
+#include "lmk/geometry/kdtree.h"
 #include "lmk/geometry/pose.h"
 #include "lmk/geometry/principal_axes.h"
 #include "lmk/geometry/projector_shadow.h"
@@ -61,46 +60,33 @@ PreparedView prepare_view(const CaptureView& view, const CaptureSettings& settin
   throw Error(s.str());
 }
 
-// The views' points inside the box fused into one point per voxel of side `leaf` (anchored at the
-// origin, as voxel_downsample): their centroid, with the views that measured a point in the voxel.
-// The voxels are found through an OpenVDB grid of accumulator indices, and come out ordered by
-// voxel coordinate (x slowest, z fastest), whatever the order of the views' points.
-void fuse_views(const std::vector<PointCloud>& insides, double leaf, Landmark& landmark) {
-  struct Voxel {
-    openvdb::Coord coord;
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    double count = 0.0;
-    std::uint32_t views = 0;
-  };
-  openvdb::initialize();  // idempotent: registers the grid types once per process
-  auto index = openvdb::Int32Grid::create(-1);
-  auto access = index->getAccessor();
-  std::vector<Voxel> voxels;
-  const double inv_leaf = 1.0 / leaf;
-  for (std::size_t v = 0; v < insides.size(); ++v) {
-    for (const Eigen::Vector3f& p : insides[v].points) {
-      if (!is_finite(p)) continue;
-      const Eigen::Vector3d q = p.cast<double>() * inv_leaf;
-      const openvdb::Coord c(static_cast<int>(std::floor(q.x())),
-                             static_cast<int>(std::floor(q.y())),
-                             static_cast<int>(std::floor(q.z())));
-      int k = access.getValue(c);
-      if (k < 0) {
-        k = static_cast<int>(voxels.size());
-        access.setValue(c, k);
-        voxels.push_back({c});
+// The views' points inside the box fused into one surface. The first view's points are the
+// one-view landmark's, in its order. Each further view, downsampled alike, adds only the points
+// farther than `merge` from every point so far: the surfaces no earlier view measured (a side
+// turned away from them, a part beyond their image's edge). Its other points mark the nearest point
+// so far as measured by it too. Merging voxel by voxel instead left two noisy samplings of one
+// surface as a slab two or three voxels thick (a Kinect's noise at 2 m is about 7 mm), whose back
+// layer a search then saw as hidden behind the front.
+void fuse_views(const std::vector<PointCloud>& insides, const std::vector<double>& merge,
+                double leaf, Landmark& landmark) {
+  landmark.points = voxel_downsample(insides.front(), leaf);
+  landmark.point_views.assign(landmark.points.size(), 1u);
+  for (std::size_t v = 1; v < insides.size(); ++v) {
+    const PointCloud view = voxel_downsample(insides[v], leaf);
+    const KdTree so_far(landmark.points);
+    const auto bit = std::uint32_t{1} << v;
+    const auto reach = static_cast<float>(merge[v] * merge[v]);
+    std::vector<Eigen::Vector3f> added;
+    for (const Eigen::Vector3f& p : view.points) {
+      const std::vector<Neighbor> nearest = so_far.knn(p, 1);
+      if (!nearest.empty() && nearest.front().squared_distance <= reach) {
+        landmark.point_views[nearest.front().index] |= bit;
+      } else {
+        added.push_back(p);
       }
-      Voxel& voxel = voxels[static_cast<std::size_t>(k)];
-      voxel.sum += p.cast<double>();
-      voxel.count += 1.0;
-      voxel.views |= std::uint32_t{1} << v;
     }
-  }
-  std::sort(voxels.begin(), voxels.end(),
-            [](const Voxel& a, const Voxel& b) { return a.coord < b.coord; });
-  for (const Voxel& voxel : voxels) {
-    landmark.points.points.push_back((voxel.sum / voxel.count).cast<float>());
-    landmark.point_views.push_back(voxel.views);
+    landmark.points.points.insert(landmark.points.points.end(), added.begin(), added.end());
+    landmark.point_views.resize(landmark.points.size(), bit);
   }
   landmark.points.set_unorganized();
 }
@@ -187,7 +173,15 @@ Landmark capture_views(const std::vector<CaptureView>& views, const Box& box,
   if (views.size() == 1) {
     landmark.points = voxel_downsample(insides.front(), settings.leaf_size);
   } else {
-    fuse_views(insides, settings.leaf_size, landmark);
+    // Two points of one surface seen from two views lie within the noise of either: three sigma
+    // of the farther view's depth at the box, and at least two leaves.
+    std::vector<double> merge;
+    for (const PreparedView& view : prepared) {
+      const double range = (box.center() - view.frame.sensor_origin()).norm();
+      merge.push_back(
+          std::max(2.0 * settings.leaf_size, 3.0 * DepthNoise().measurement_sigma(range)));
+    }
+    fuse_views(insides, merge, settings.leaf_size, landmark);
     for (const PreparedView& view : prepared) {
       landmark.view_origins.push_back(view.frame.sensor_origin());
     }

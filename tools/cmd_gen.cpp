@@ -40,6 +40,8 @@ struct GenOptions {
   BagOptions bag;
   std::vector<std::string> landmarks;
   std::optional<std::size_t> stride;  ///< default: 1 for a bag, 5 for an RGB-D sequence
+  std::size_t views = 1;              ///< --from-rgbd: each box also from 2 up to this many views
+  std::optional<std::size_t> view_gap;
   std::string from_rgbd;
   std::vector<double> intrinsics;  ///< fx fy cx cy
   bool registered_colour = false;
@@ -141,6 +143,8 @@ int run_rgbd(const GenOptions& options) {
     rgbd.min_gap = options.gap[0];
     rgbd.max_gap = options.gap[1];
   }
+  rgbd.views = options.views;
+  if (options.view_gap) rgbd.view_gap = *options.view_gap;
   ProgressBar bar("gen rgbd");
   rgbd.progress = [&bar](std::size_t done, std::size_t total) { bar.update(done, total); };
   const auto start = std::chrono::steady_clock::now();
@@ -260,6 +264,16 @@ Subcommand add_gen(CLI::App& app) {
                   "(lmk calibrate-depth) instead of fitting one")
       ->check(CLI::ExistingFile)
       ->excludes("--calibrate-depth");
+  sub->add_option(
+         "--views", options->views,
+         "With --from-rgbd: each box also captured from 2 up to this many views (its frame "
+         "and the frames --view-gap, -view-gap, ... away, registered from the poses), "
+         "named NAME-vK; every landmark of a box is searched in the frames --gap away from "
+         "the nearest of its views")
+      ->check(CLI::Range(1, 4))
+      ->capture_default_str();
+  sub->add_option("--view-gap", options->view_gap,
+                  "With --from-rgbd --views: frames between a box's views (default 10)");
   sub->add_option("--gap", options->gap,
                   "With --from-rgbd: MIN MAX frames between a landmark's frame and its scenes "
                   "(default 10 40)")

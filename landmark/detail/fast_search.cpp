@@ -204,6 +204,14 @@ CoarseAlignment coarse_align(const Stages& st, const std::vector<Candidate>& clu
     quick_probes = thin(st.landmark.empty_space.centres(), 300);
     quick_probe_distances = thin(in.prepared.empty_distances(), 300);
   }
+  // A landmark of several views: the thinned points lie further apart than the leaf, and hide
+  // each other only across that spacing.
+  const SeveralViews views{
+      st.landmark.box.center(),
+      2.0 * st.leaf *
+          std::sqrt(std::max(
+              1.0, static_cast<double>(model.size()) /
+                       static_cast<double>(std::max<std::size_t>(coarse_model.size(), 1))))};
   CoarseAlignment out;
   out.aligned.resize(clusters.size());
   out.iterations.assign(clusters.size(), 0);
@@ -224,7 +232,7 @@ CoarseAlignment coarse_align(const Stages& st, const std::vector<Candidate>& clu
     }
     out.quick[c] = mean_surface_distance(st.index, coarse_model, T,
                                          in.metric.hides_occluded ? &st.landmark.box : nullptr,
-                                         st.landmark.multi_view());
+                                         st.landmark.multi_view() ? &views : nullptr);
   });
   return out;
 }

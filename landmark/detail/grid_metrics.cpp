@@ -95,6 +95,67 @@ std::size_t shown_shortfall(std::size_t shown, std::size_t total) {
   return static_cast<std::size_t>(std::ceil(std::max(0.0, floor - static_cast<double>(shown))));
 }
 
+std::vector<char> self_hidden(const PointCloud& points, const Eigen::Isometry3f& T_scene_capture,
+                              const Eigen::Vector3f& sensor, const Eigen::Vector3f& centre,
+                              double spacing) {
+  const std::size_t n = points.size();
+  std::vector<char> hidden(n, 0);
+  const Eigen::Vector3f axis = (centre - sensor).normalized();
+  const float range = (centre - sensor).norm();
+  if (!(range > 0.0f) || n == 0) return hidden;
+  // The image plane's axes, any two perpendicular to the ray to the centre.
+  const Eigen::Vector3f e1 = axis.unitOrthogonal(), e2 = axis.cross(e1);
+  const float cell = static_cast<float>(spacing) / range;  // in the plane at unit depth
+  std::vector<float> depth(n);
+  std::vector<std::pair<int, int>> pixel(n);
+  int u_min = std::numeric_limits<int>::max(), v_min = u_min, u_max = -u_min, v_max = -u_min;
+  for (std::size_t j = 0; j < n; ++j) {
+    const Eigen::Vector3f d = T_scene_capture * points.points[j] - sensor;
+    depth[j] = d.dot(axis);
+    if (!(depth[j] > 0.0f)) continue;
+    pixel[j] = {static_cast<int>(std::floor(d.dot(e1) / depth[j] / cell)),
+                static_cast<int>(std::floor(d.dot(e2) / depth[j] / cell))};
+    u_min = std::min(u_min, pixel[j].first), u_max = std::max(u_max, pixel[j].first);
+    v_min = std::min(v_min, pixel[j].second), v_max = std::max(v_max, pixel[j].second);
+  }
+  if (u_min > u_max) return hidden;
+  const int width = u_max - u_min + 3, height = v_max - v_min + 3;  // a cell of border each side
+  std::vector<float> nearest(static_cast<std::size_t>(width) * static_cast<std::size_t>(height),
+                             std::numeric_limits<float>::infinity());
+  const auto at = [&](int u, int v) -> float& {
+    return nearest[static_cast<std::size_t>(v - v_min + 1) * static_cast<std::size_t>(width) +
+                   static_cast<std::size_t>(u - u_min + 1)];
+  };
+  for (std::size_t j = 0; j < n; ++j) {
+    if (depth[j] > 0.0f)
+      at(pixel[j].first, pixel[j].second) = std::min(at(pixel[j].first, pixel[j].second), depth[j]);
+  }
+  for (std::size_t j = 0; j < n; ++j) {
+    if (!(depth[j] > 0.0f)) continue;
+    float front = std::numeric_limits<float>::infinity();
+    for (int du = -1; du <= 1; ++du)
+      for (int dv = -1; dv <= 1; ++dv)
+        front = std::min(front, at(pixel[j].first + du, pixel[j].second + dv));
+    // A surface seen obliquely recedes across the window by itself: its own slope (tan of the
+    // angle between its normal and the ray) over the two cells and a half between a point and the
+    // farthest one of its window is not an occluder's gap.
+    float slope = 0.0f;
+    if (points.has_normals() && points.normals[j].allFinite()) {
+      const Eigen::Vector3f ray = (T_scene_capture * points.points[j] - sensor).normalized();
+      const float c = std::max(std::abs((T_scene_capture.linear() * points.normals[j]).dot(ray)),
+                               kTurnedAwayCos);
+      slope = std::sqrt(1.0f - c * c) / c;
+    }
+    hidden[j] = depth[j] > front + static_cast<float>(spacing) * (1.0f + 2.5f * slope);
+  }
+  return hidden;
+}
+
+UnseenPoints unseen_points_of(const SceneIndex& scene, const Landmark& landmark) {
+  const UnseenPoints set = scene.settings().unseen_points;
+  return landmark.multi_view() && set == UnseenPoints::counted ? UnseenPoints::outside_image : set;
+}
+
 bool turned_away(const Eigen::Vector3f& sensor, const Eigen::Isometry3f& T_scene_capture,
                  const PointCloud& points, std::size_t j) {
   if (!points.has_normals()) return false;
@@ -105,17 +166,27 @@ bool turned_away(const Eigen::Vector3f& sensor, const Eigen::Isometry3f& T_scene
 
 double mean_surface_distance(const SceneIndex& scene, const PointCloud& points,
                              const Eigen::Isometry3f& T_scene_capture, const Box* capture_box,
-                             bool facing_only) {
+                             const SeveralViews* views) {
+  const bool facing_only = views != nullptr;
   const DistanceField::Sampler field(scene.field());
   const bool projective = capture_box != nullptr;
   const Box free_zone =
       projective ? occluder_free_zone(capture_box->transformed(T_scene_capture.cast<double>()))
                  : Box();
   const Eigen::Vector3f sensor = scene.T_scene_sensor().translation().cast<float>();
+  const std::vector<char> behind_itself =
+      facing_only ? self_hidden(points, T_scene_capture, sensor,
+                                (T_scene_capture.cast<double>() * views->box_centre).cast<float>(),
+                                views->spacing)
+                  : std::vector<char>();
   double sum = 0.0;
   std::size_t shown = 0, facing = 0;
   for (std::size_t j = 0; j < points.size(); ++j) {
-    if (facing_only && turned_away(sensor, T_scene_capture, points, j)) continue;
+    if (facing_only && (turned_away(sensor, T_scene_capture, points, j) || behind_itself[j] ||
+                        unseen_by_sensor(scene, T_scene_capture * points.points[j],
+                                         UnseenPoints::outside_image))) {
+      continue;
+    }
     ++facing;
     if (projective && hidden_behind(scene, T_scene_capture * points.points[j], free_zone)) {
       continue;
@@ -158,12 +229,18 @@ ErrorTerms visibility_terms(const SceneView& scene, const LandmarkView& landmark
   // Support: a scene surface within two paper leaves (1 cm) of the landmark point.
   const float support = static_cast<float>(2.0 * scene.index.settings().leaf_size);
   std::size_t supported = 0, facing = 0;
-  const UnseenPoints unseen = scene.index.settings().unseen_points;
-  // A landmark of several views shows a sensor only its side turned towards it.
+  // A landmark of several views shows a sensor only its side turned towards it, and only the part
+  // inside its image: other views saw beyond the image's edge of any one.
   const bool facing_only = landmark.landmark.multi_view();
+  const UnseenPoints unseen = unseen_points_of(scene.index, landmark.landmark);
   const Eigen::Vector3f sensor = scene.index.T_scene_sensor().translation().cast<float>();
+  const std::vector<char> behind_itself =
+      facing_only ? self_hidden(landmark.points, T, sensor,
+                                (T_scene_capture * landmark.box.center()).cast<float>(),
+                                2.0 * landmark.landmark.settings.leaf_size)
+                  : std::vector<char>();
   for (std::size_t j = 0; j < landmark.points.size(); ++j) {
-    if (facing_only && turned_away(sensor, T, landmark.points, j)) {
+    if (facing_only && (turned_away(sensor, T, landmark.points, j) || behind_itself[j])) {
       ++terms.unseen_points;
       continue;
     }

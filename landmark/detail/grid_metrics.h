@@ -74,14 +74,33 @@ inline constexpr float kTurnedAwayCos = 0.1736f;
 bool turned_away(const Eigen::Vector3f& sensor, const Eigen::Isometry3f& T_scene_capture,
                  const PointCloud& points, std::size_t j);
 
+/// For a landmark of several views placed by T_scene_capture: which of `points` lie behind the
+/// landmark's own nearer points seen from `sensor` (scene frame), and so cannot show in a frame
+/// taken from there, whatever the scene holds. A z-buffer of the points in a pinhole view along
+/// the ray to `centre`, in cells `spacing` wide at the centre's range (a point hides what lies
+/// more than `spacing` behind it in its cell and the eight around it, so that the gaps between
+/// sampled points do not let a hidden surface through).
+std::vector<char> self_hidden(const PointCloud& points, const Eigen::Isometry3f& T_scene_capture,
+                              const Eigen::Vector3f& sensor, const Eigen::Vector3f& centre,
+                              double spacing);
+
+/// The unseen points a search counts with `landmark`: the scene's setting, except that a landmark
+/// of several views never counts its points beyond the scene's image (at least outside-image).
+UnseenPoints unseen_points_of(const SceneIndex& scene, const Landmark& landmark);
+
 /// The fast search's coarse score: the mean landmark_point_distance() of `points` placed by
 /// T_scene_capture; with `capture_box` (the landmark's box, capture frame), over the points not
 /// hidden_behind() an occluder outside the placed box, each point short of kMinShownShare
-/// counting the band. With `facing_only` (a landmark of several views), only the points not
-/// turned_away() from the scene's sensor count, and the share is of those.
+/// counting the band. With `views` (a landmark of several views), only the points not
+/// turned_away() from the scene's sensor, inside its image and not self_hidden() count, and the
+/// share is of those.
+struct SeveralViews {
+  Eigen::Vector3d box_centre;  ///< the landmark box's centre, capture frame
+  double spacing = 0.0;        ///< the points' spacing for self_hidden(), m
+};
 double mean_surface_distance(const SceneIndex& scene, const PointCloud& points,
                              const Eigen::Isometry3f& T_scene_capture,
-                             const Box* capture_box = nullptr, bool facing_only = false);
+                             const Box* capture_box = nullptr, const SeveralViews* views = nullptr);
 
 /// Where no occluder may stand for a candidate whose box is `box` (scene frame): the box grown by
 /// kOccluderClearance on every side.

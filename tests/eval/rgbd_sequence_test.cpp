@@ -7,11 +7,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
 #include "lmk/eval/rgbd_dataset.h"
 #include "lmk/geometry/pose.h"
+#include "lmk/landmark/landmark_file.h"
 #include "tests/support/test_support.h"
 
 namespace lmk {
@@ -215,6 +217,60 @@ TEST(RgbdSequence, BadFilesAndPosesAreClearErrorsNamingThem) {
 
 // The real sequences: every frame reads, the poses are rigid, and the depth is where the README
 // says (0.9-2.9 m for the kitchen, 0.13-1.4 m for the desk).
+TEST(RgbdSequence, ViewsOutOfRangeAreRefusedBeforeAFrameIsRead) {
+  const ScratchDir dir;
+  RgbdDatasetOptions options;
+  options.views = 5;
+  EXPECT_NE(error_of([&] {
+              generate_rgbd_dataset((dir.path() / "no-such-sequence").string(),
+                                    (dir.path() / "out").string(), options);
+            }).find("views must be 1 to 4"),
+            std::string::npos);
+  options.views = 2;
+  options.view_gap = 7;  // not a multiple of the stride, 5
+  EXPECT_NE(error_of([&] {
+              generate_rgbd_dataset((dir.path() / "no-such-sequence").string(),
+                                    (dir.path() / "out").string(), options);
+            }).find("a positive multiple of the frame stride"),
+            std::string::npos);
+}
+
+// Landmarks of two views on the real kitchen: each kept box also as NAME-v2, fused from its frame
+// and the frame 10 later (or earlier), registered from the poses; both searched in the same scenes.
+TEST(RgbdSequence, TheRealKitchenGivesLandmarksOfTwoViews) {
+  LMK_REQUIRE_SHARED_DATA(data);
+  const ScratchDir dir;
+  RgbdDatasetOptions options;
+  options.frame_stride = 10;
+  options.boxes_per_frame = 2;
+  options.views = 2;
+  options.min_gap = 20;
+  const RgbdImport import = generate_rgbd_dataset((data / "real" / "redkitchen").string(),
+                                                  (dir.path() / "out").string(), options);
+  std::size_t two_views = 0;
+  for (const DatasetLandmark& l : import.dataset.landmarks) {
+    const Landmark landmark = load_landmark((dir.path() / "out" / l.file).string());
+    const bool fused = l.name.size() > 3 && l.name.substr(l.name.size() - 3) == "-v2";
+    EXPECT_EQ(landmark.view_count(), fused ? 2u : 1u) << l.name;
+    if (!fused) continue;
+    ++two_views;
+    // The same scenes as the box's landmark of one view, when that one was kept.
+    const std::string one = l.name.substr(0, l.name.size() - 3);
+    const auto searched_in = [&](const DatasetScene& scene, const std::string& name) {
+      return std::any_of(scene.pairs.begin(), scene.pairs.end(),
+                         [&](const DatasetPair& p) { return p.landmark == name; });
+    };
+    const bool one_kept =
+        std::any_of(import.dataset.landmarks.begin(), import.dataset.landmarks.end(),
+                    [&](const DatasetLandmark& k) { return k.name == one; });
+    ASSERT_TRUE(one_kept) << "a box refused in one view is left out in every number of views";
+    for (const DatasetScene& scene : import.dataset.scenes) {
+      EXPECT_EQ(searched_in(scene, l.name), searched_in(scene, one)) << l.name << " " << scene.name;
+    }
+  }
+  EXPECT_GT(two_views, 0u);
+}
+
 TEST(RgbdSequence, ReadsTheRealSequences) {
   LMK_REQUIRE_SHARED_DATA(data);
   for (const auto& [name, lo, hi] :

@@ -6,13 +6,12 @@
 
 #include <gtest/gtest.h>
 
-#include <array>
 #include <cmath>
-#include <map>
 
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/kdtree.h"
 #include "lmk/geometry/pose.h"
+#include "lmk/landmark/detail/grid_metrics.h"
 #include "lmk/landmark/find_landmark.h"
 #include "lmk/landmark/landmark_file.h"
 #include "tests/landmark/l_shape_scene.h"
@@ -22,14 +21,6 @@ namespace lmk {
 namespace {
 
 using namespace test_scenes;
-using Voxel = std::array<long long, 3>;
-
-Voxel voxel_of(const Eigen::Vector3f& p, double leaf) {
-  return {static_cast<long long>(std::floor(static_cast<double>(p.x()) / leaf)),
-          static_cast<long long>(std::floor(static_cast<double>(p.y()) / leaf)),
-          static_cast<long long>(std::floor(static_cast<double>(p.z()) / leaf))};
-}
-
 // The second view: from the table's right, where the L-shape's arm end and right side show.
 Eigen::Isometry3d side_camera() {
   return camera_look_at({0.8, 0.1, kTable + 0.7}, {0, 0, kTable}, Eigen::Vector3d::UnitZ());
@@ -75,7 +66,7 @@ TEST_F(CaptureViews, OneViewIsCaptureBitForBit) {
   EXPECT_EQ(views.empty_space.centres(), one.empty_space.centres());
 }
 
-TEST_F(CaptureViews, FusedPointsAreTheUnionOfTheViewsVoxelsEachWithItsViews) {
+TEST_F(CaptureViews, FusedPointsAreTheFirstViewsAndTheSurfacesOnlyTheOtherSaw) {
   const Box box = box_at(kCopies[1]);
   const Landmark front = capture(*front_, box, "L");
   const Landmark side = capture(*side_, box, "L");
@@ -84,21 +75,31 @@ TEST_F(CaptureViews, FusedPointsAreTheUnionOfTheViewsVoxelsEachWithItsViews) {
   ASSERT_EQ(both.view_count(), 2u);
   EXPECT_EQ(both.view_origins[0], front_->sensor_origin());
   EXPECT_EQ(both.view_origins[1], side_->sensor_origin());
-  const double leaf = both.settings.leaf_size;
-  std::map<Voxel, std::uint32_t> expected;  // voxel -> the views that measured it
-  for (const auto& p : front.points.points) expected[voxel_of(p, leaf)] |= 1u;
-  for (const auto& p : side.points.points) expected[voxel_of(p, leaf)] |= 2u;
-  ASSERT_EQ(both.points.size(), expected.size());
-  std::size_t shared = 0;
-  for (std::size_t i = 0; i < both.points.size(); ++i) {
-    const auto it = expected.find(voxel_of(both.points.points[i], leaf));
-    ASSERT_NE(it, expected.end()) << "a fused point in a voxel neither view measured";
-    EXPECT_EQ(both.point_views[i], it->second);
-    if (it->second == 3u) ++shared;
+  // The first view's points, bit for bit and in order, then what only the side view measured.
+  ASSERT_GT(both.points.size(), front.points.size());
+  for (std::size_t i = 0; i < front.points.size(); ++i) {
+    ASSERT_EQ(both.points.points[i], front.points.points[i]) << i;
+    EXPECT_TRUE(both.point_views[i] == 1u || both.point_views[i] == 3u);
   }
-  // Each view adds what the other could not see, and both see the top of the arm.
+  // Two points of one surface merge within two leaves (these renders are noiseless, and 3 sigma
+  // of a Kinect at a metre is less).
+  const double merge = 2.0 * both.settings.leaf_size;
+  const KdTree front_points(front.points), fused_points(both.points);
+  std::size_t shared = 0;
+  for (std::size_t i = front.points.size(); i < both.points.size(); ++i) {
+    EXPECT_EQ(both.point_views[i], 2u);
+    EXPECT_GT(std::sqrt(front_points.knn(both.points.points[i], 1)[0].squared_distance), merge);
+  }
+  // Every point of the side view is in the fused surface, its nearest fused point marked as seen
+  // by it.
+  for (const Eigen::Vector3f& p : side.points.points) {
+    const Neighbor n = fused_points.knn(p, 1)[0];
+    EXPECT_LE(std::sqrt(n.squared_distance), merge + 1e-6);
+    EXPECT_TRUE((both.point_views[n.index] & 2u) != 0u);
+    if (both.point_views[n.index] == 3u) ++shared;
+  }
+  // The side view adds a side the front never saw, and both see the top of the arm.
   EXPECT_GT(both.points.size(), front.points.size() + front.points.size() / 10);
-  EXPECT_GT(both.points.size(), side.points.size() + side.points.size() / 10);
   EXPECT_GT(shared, 0u);
   EXPECT_NO_THROW(both.validate("fused"));
 }
@@ -224,6 +225,52 @@ TEST_F(CaptureViews, AFusedLandmarkIsFoundFromAThirdViewAndShowsOnlyItsFacingSid
   const FindResult self = find_landmark(*front_, both, FindSettings());
   ASSERT_FALSE(self.matches.empty());
   EXPECT_GT(self.matches.front().terms.unseen_points, 0u);
+}
+
+}  // namespace
+}  // namespace lmk
+
+namespace lmk {
+namespace {
+
+// A 20 cm square of points 5 mm apart at `depth` in front of a sensor at the origin looking along
+// +z, turned by `tilt` about the x axis, with normals facing the sensor.
+PointCloud square(float depth, float tilt) {
+  PointCloud out;
+  const Eigen::Matrix3f turn = Eigen::AngleAxisf(tilt, Eigen::Vector3f::UnitX()).toRotationMatrix();
+  for (int i = -20; i <= 20; ++i) {
+    for (int j = -20; j <= 20; ++j) {
+      out.points.push_back(Eigen::Vector3f(0, 0, depth) +
+                           turn * Eigen::Vector3f(0.005f * i, 0.005f * j, 0));
+      out.normals.push_back(turn * -Eigen::Vector3f::UnitZ());
+    }
+  }
+  out.set_unorganized();
+  return out;
+}
+
+TEST(SelfHidden, TheBackOfTwoLayersIsHiddenAndAnObliqueSurfaceHidesNothingOfItself) {
+  const Eigen::Isometry3f identity = Eigen::Isometry3f::Identity();
+  const Eigen::Vector3f sensor = Eigen::Vector3f::Zero(), centre(0, 0, 1.05f);
+  PointCloud layers = square(1.0f, 0.0f);
+  const PointCloud back = square(1.1f, 0.0f);
+  layers.points.insert(layers.points.end(), back.points.begin(), back.points.end());
+  layers.normals.insert(layers.normals.end(), back.normals.begin(), back.normals.end());
+  layers.set_unorganized();
+  const std::vector<char> hidden = self_hidden(layers, identity, sensor, centre, 0.01);
+  const std::size_t n = back.size();
+  // The back square's middle lies behind the front's (its rim, seen past the front's edge at a
+  // range 10% farther, may show).
+  std::size_t back_hidden = 0;
+  for (std::size_t j = 0; j < n; ++j) {
+    EXPECT_FALSE(hidden[j]) << "a front point hidden";
+    back_hidden += hidden[n + j] ? 1 : 0;
+  }
+  EXPECT_GT(back_hidden, n * 8 / 10);
+  // One plane seen 70 degrees from its normal recedes steeply across the image, hiding nothing.
+  const std::vector<char> oblique =
+      self_hidden(square(1.0f, 1.22f), identity, sensor, {0, 0, 1.0f}, 0.01);
+  EXPECT_EQ(std::count(oblique.begin(), oblique.end(), 1), 0);
 }
 
 }  // namespace
