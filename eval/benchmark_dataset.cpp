@@ -17,6 +17,7 @@
 #include "lmk/geometry/hash.h"
 #include "lmk/geometry/input_file.h"
 #include "lmk/geometry/version.h"
+#include "lmk/landmark/capture_views.h"
 #include "lmk/landmark/landmark_file.h"
 
 namespace lmk {
@@ -67,17 +68,21 @@ std::string join(const std::vector<std::string>& names) {
 }
 
 // What decides a generated dataset's content: the preset and the options (not the shard).
+// A benchmark landmark's name with `views` views: its own for one, "<name>-v<views>" beyond.
+std::string views_name(const std::string& name, int views) {
+  return views == 1 ? name : name + "-v" + std::to_string(views);
+}
+
 std::string generation_key(const std::string& preset, const GenerateOptions& options) {
-  return Fnv1a()
-      .add(preset)
+  Fnv1a key;
+  key.add(preset)
       .add_value(options.seeds.value_or(0))
       .add_value(options.hard)
       .add_value(options.first_seed)
       .add_value(options.noise)
-      .add(join(options.types))
-      .add_value(kBenchmarkGeneratorVersion)
-      .add(kVersion)
-      .hex();
+      .add(join(options.types));
+  if (options.views > 1) key.add_value(options.views);  // one view: the key it always had
+  return key.add_value(kBenchmarkGeneratorVersion).add(kVersion).hex();
 }
 
 }  // namespace
@@ -111,18 +116,36 @@ const BenchmarkPreset& benchmark_preset(const std::string& name) {
   throw Error("unknown preset '" + name + "' (known: " + known + ")");
 }
 
-Landmark capture_benchmark_landmark(const BenchmarkLandmark& landmark, bool noise) {
-  const GeneratedScene demo = make_scene(landmark.demo_scene, 0, false);
+Landmark capture_benchmark_landmark(const BenchmarkLandmark& landmark, bool noise, int views) {
+  GeneratedScene demo = make_scene(landmark.demo_scene, 0, false);
   const auto it = demo.instances.find(landmark.name);
   if (it == demo.instances.end() || it->second.empty()) {
     throw Error("landmark '" + landmark.name + "' has no instance in its demonstration scene " +
                 landmark.demo_scene);
   }
-  const PointCloud cloud =
-      render_scene(demo, noise, noise_seed(benchmark_scene_name(landmark.demo_scene, 0, false)));
+  if (views < 1 || views > 4) throw Error("a benchmark landmark takes 1 to 4 views");
+  const Box& box = it->second.front();
+  const std::string demo_name = benchmark_scene_name(landmark.demo_scene, 0, false);
+  // The demonstration camera, then turned about the vertical through the instance: the viewpoints
+  // preset searches from within 60 degrees of the demonstration's side.
+  const double turns[] = {0.0, M_PI / 4.0, -M_PI / 4.0, M_PI / 2.0};
+  const Eigen::Isometry3d first = demo.T_world_sensor;
+  std::vector<PointCloud> clouds;
+  for (int v = 0; v < views; ++v) {
+    Eigen::Isometry3d turn = Eigen::Isometry3d::Identity();
+    turn.translate(box.center())
+        .rotate(Eigen::AngleAxisd(turns[v], Eigen::Vector3d::UnitZ()))
+        .translate(-box.center());
+    demo.T_world_sensor = turn * first;
+    clouds.push_back(render_scene(
+        demo, noise, noise_seed(v == 0 ? demo_name : demo_name + "-view" + std::to_string(v))));
+  }
   CaptureSettings settings;
   settings.base_frame = true;  // the world frame: z up
-  return capture(cloud, it->second.front(), landmark.name, settings);
+  if (views == 1) return capture(clouds.front(), box, landmark.name, settings);
+  std::vector<CaptureView> placed;  // every render is in the world frame
+  for (const PointCloud& cloud : clouds) placed.push_back({&cloud, Eigen::Isometry3d::Identity()});
+  return capture_views(placed, box, landmark.name + "-v" + std::to_string(views), settings);
 }
 
 std::string benchmark_scene_name(const std::string& type, std::uint64_t seed, bool hard,
@@ -189,14 +212,19 @@ Generated generate_benchmark(const std::string& dir, const std::string& preset_n
 
   // Every shard captures the landmarks (the scenes' hidden fractions need them); a capture is
   // deterministic, so whichever shard's file lands last holds the same landmark.
+  if (options.views < 1 || options.views > 4) throw Error("gen: --views must be 1 to 4");
   std::map<std::string, Landmark> captured;
   for (const BenchmarkLandmark& landmark : landmarks) {
-    const std::string file = "landmarks/" + landmark.name + ".lmk";
-    dataset.landmarks.push_back({landmark.name, file, landmark.symmetry});
-    if (options.merge) continue;
-    captured[landmark.name] = capture_benchmark_landmark(landmark, options.noise);
-    save_landmark((fs::path(dir) / file).string(), captured[landmark.name]);
-    step();
+    for (int views = 1; views <= options.views; ++views) {
+      const std::string name = views_name(landmark.name, views);
+      const std::string file = "landmarks/" + name + ".lmk";
+      dataset.landmarks.push_back({name, file, landmark.symmetry});
+      if (options.merge) continue;
+      const Landmark l = capture_benchmark_landmark(landmark, options.noise, views);
+      save_landmark((fs::path(dir) / file).string(), l);
+      if (views == 1) captured[landmark.name] = l;  // the truth and hidden fractions use it
+    }
+    if (!options.merge) step();
   }
   // A scene's entry is written after its cloud, so an entry means a complete scene.
   const auto part_of = [&](const std::string& name) { return parts / (name + ".json"); };
@@ -229,7 +257,13 @@ Generated generate_benchmark(const std::string& dir, const std::string& preset_n
       const bool listed =
           std::any_of(landmarks.begin(), landmarks.end(),
                       [&](const BenchmarkLandmark& l) { return l.name == pair.landmark; });
-      if (listed) entry.pairs.push_back(pair);
+      if (!listed) continue;
+      // A landmark of several views is searched where its one-view landmark is, for the same
+      // instances.
+      for (int views = 1; views <= options.views; ++views) {
+        entry.pairs.push_back(pair);
+        entry.pairs.back().landmark = views_name(pair.landmark, views);
+      }
     }
     write_cloud((fs::path(dir) / entry.file).string(),
                 render_scene(scene, options.noise, noise_seed(entry.name)));

@@ -60,6 +60,10 @@ struct GenerateOptions {
   /// Render nothing: gather the scenes the shards wrote into dataset.json, or fail naming those
   /// still missing.
   bool merge = false;
+  /// Each landmark is also captured from 2 up to this many demonstration views (issue #35): its
+  /// demonstration camera, then that camera turned about the vertical through the instance by
+  /// +45, -45 and +90 degrees; the landmark of k views is "<name>-v<k>", with the same pairs.
+  int views = 1;
   /// Called after each file written, with (files done, files in all).
   std::function<void(std::size_t, std::size_t)> progress;
 };
@@ -72,8 +76,10 @@ struct Generated {
 };
 
 /// Landmark `landmark` captured in its demonstration scene (its demo_scene type, seed 0, not
-/// hard), in the world frame (z up), with the box of the scene's first instance of it.
-Landmark capture_benchmark_landmark(const BenchmarkLandmark& landmark, bool noise = true);
+/// hard), in the world frame (z up), with the box of the scene's first instance of it; with
+/// `views` above 1, fused from that many demonstration views (GenerateOptions::views).
+Landmark capture_benchmark_landmark(const BenchmarkLandmark& landmark, bool noise = true,
+                                    int views = 1);
 
 /// The dataset scene name for a scene type and seed: "simple-bowl_and_cup-3", "...-3-hard", and
 /// with a variation "...-3-viewpoints", "...-3-occlusion".

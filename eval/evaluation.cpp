@@ -250,6 +250,15 @@ Evaluation evaluate(const std::string& dir, const Dataset& dataset,
                                                   : "they are cached in " + settings.cache_dir +
                                                         ": the same command resumes from them"));
   }
+  // Where each pair's landmark was demonstrated from, cached or not (--by views).
+  for (std::size_t k = 0; k < jobs.size(); ++k) {
+    const Landmark& l = landmarks[jobs[k].landmark];
+    PairResult& p = evaluation.pairs[k];
+    p.view_origins =
+        l.multi_view() ? l.view_origins : std::vector<Eigen::Vector3d>{l.sensor_origin};
+    p.landmark_up = l.up;
+    p.capture_box = l.box.pose;
+  }
   // A merge keeps what the cache had and names the rest.
   std::vector<PairResult> kept;
   for (std::size_t k = 0; k < jobs.size(); ++k) {
@@ -428,6 +437,62 @@ std::vector<EvaluationRow> evaluation_rows_by_hidden(const Evaluation& evaluatio
       },
       [](const PairResult&, const Eigen::Isometry3d&) { return -1; },
       [bin_width](int b) { return hidden_bin_label(b, bin_width); });
+}
+
+double azimuth_to_nearest_view(const PairResult& pair, const Eigen::Isometry3d& box_pose) {
+  const Eigen::Isometry3d T_scene_capture = box_pose * pair.capture_box.inverse();
+  const Eigen::Vector3d up = (T_scene_capture.linear() * pair.landmark_up).normalized();
+  const Eigen::Vector3d centre = box_pose.translation();
+  const auto flat = [&](const Eigen::Vector3d& to) {
+    const Eigen::Vector3d d = to - centre;
+    return Eigen::Vector3d(d - d.dot(up) * up);
+  };
+  const Eigen::Vector3d scene = flat(pair.sensor_position);
+  double nearest = M_PI;
+  for (const Eigen::Vector3d& origin : pair.view_origins) {
+    const Eigen::Vector3d view = flat(T_scene_capture * origin);
+    nearest = std::min(nearest, std::atan2(scene.cross(view).norm(), scene.dot(view)));
+  }
+  return nearest;
+}
+
+std::vector<EvaluationRow> evaluation_rows_by_views(const Evaluation& evaluation,
+                                                    std::optional<double> threshold,
+                                                    double bin_degrees) {
+  if (!(bin_degrees > 0.0 && bin_degrees <= 180.0))
+    throw Error("the azimuth bins must be wider than 0 and at most 180 degrees");
+  const int angle_bins = static_cast<int>(std::ceil(180.0 / bin_degrees - 1e-9));
+  const int bins = angle_bins * static_cast<int>(kMaxLandmarkViews);
+  const auto bin_of = [&](const PairResult& p, const Eigen::Isometry3d& pose) {
+    if (p.view_origins.empty()) return -1;
+    const double degrees = azimuth_to_nearest_view(p, pose) * 180.0 / M_PI;
+    const int angle = std::min(static_cast<int>(std::floor(degrees / bin_degrees)), angle_bins - 1);
+    return static_cast<int>(p.view_origins.size() - 1) * angle_bins + angle;
+  };
+  const auto views_label = [](int views) {
+    return std::to_string(views) + (views == 1 ? " view" : " views");
+  };
+  const double t = threshold.value_or(*evaluation.settings.find.selection.threshold);
+  // First each number of views over every azimuth, then by azimuth.
+  const auto views_of = [](const PairResult& p, const Eigen::Isometry3d&) {
+    return static_cast<int>(p.view_origins.size()) - 1;
+  };
+  std::vector<EvaluationRow> rows = rows_by_bin(
+      evaluation, t, static_cast<int>(kMaxLandmarkViews),
+      [&](const PairResult& p, std::size_t k) { return views_of(p, p.truth[k]); }, views_of,
+      [&](int b) { return views_label(b + 1); });
+  const std::vector<EvaluationRow> by_azimuth = rows_by_bin(
+      evaluation, t, bins,
+      [&](const PairResult& p, std::size_t k) { return bin_of(p, p.truth[k]); }, bin_of,
+      [&](int b) {
+        const int angle = b % angle_bins;
+        char label[48];
+        std::snprintf(label, sizeof(label), ", %.0f-%.0f deg", angle * bin_degrees,
+                      std::min(180.0, (angle + 1) * bin_degrees));
+        return views_label(b / angle_bins + 1) + label;
+      });
+  rows.insert(rows.end(), by_azimuth.begin(), by_azimuth.end());
+  return rows;
 }
 
 std::vector<EvaluationRow> evaluation_rows(const Evaluation& evaluation,

@@ -66,6 +66,12 @@ struct PairResult {
   std::string rejections;  ///< describe_rejections() of the search
   /// The scene's sensor position, scene frame: the range of each instance and match.
   Eigen::Vector3d sensor_position = Eigen::Vector3d::Zero();
+  /// Where the landmark was demonstrated from (issue #35; not cached: read from the landmark on
+  /// every run): its views' sensor origins (one for a landmark of one view), its up axis and its
+  /// box pose, all in the capture frame.
+  std::vector<Eigen::Vector3d> view_origins;
+  Eigen::Vector3d landmark_up = -Eigen::Vector3d::UnitY();
+  Eigen::Isometry3d capture_box = Eigen::Isometry3d::Identity();
   bool from_cache = false;  ///< read from the cache rather than searched in this run
 };
 
@@ -151,6 +157,19 @@ bool records_hidden_fractions(const Evaluation& evaluation);
 std::vector<EvaluationRow> evaluation_rows_by_hidden(const Evaluation& evaluation,
                                                      std::optional<double> threshold = {},
                                                      double bin_width = 0.2);
+
+/// Assumptions 1 (when every pair was searched), 2 and 3 as by range, split by the landmark's
+/// number of views and the azimuth from each instance (or false match) to the nearest of them: the
+/// angle, about the landmark's up axis, between the directions from the box's centre to the scene's
+/// sensor and to that view's sensor, in bins of `bin_degrees` ("3 views, 15-30 deg"); first the
+/// rows of each number of views over every azimuth ("3 views").
+std::vector<EvaluationRow> evaluation_rows_by_views(const Evaluation& evaluation,
+                                                    std::optional<double> threshold = {},
+                                                    double bin_degrees = 15.0);
+
+/// The azimuth (rad, 0 to pi) from a box at `box_pose` (scene frame) of `pair`'s landmark to the
+/// nearest of its views, seen from the pair's scene sensor (evaluation_rows_by_views).
+double azimuth_to_nearest_view(const PairResult& pair, const Eigen::Isometry3d& box_pose);
 
 /// The cache key of a search configuration on a dataset: a hash of the settings that change
 /// results, the dataset fingerprint and the lmk version.

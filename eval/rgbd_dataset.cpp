@@ -79,6 +79,9 @@ std::string refusal_reason(const std::string& message) {
     if (message.find(word) != std::string::npos) return word;
   }
   if (message.find("first view") != std::string::npos) return "a view did not register";
+  if (message.find("has no point inside the box") != std::string::npos) {
+    return "a view without a point in the box";
+  }
   return message;
 }
 

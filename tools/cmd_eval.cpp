@@ -26,7 +26,7 @@ struct EvalOptions {
   DatasetOptions dataset;
   EvaluationSettings settings;
   std::string json, report;
-  std::string by;     ///< "range" or "hidden": also the table split by that
+  std::string by;     ///< "range", "hidden" or "views": also the table split by that
   std::string shard;  ///< --shard K/N
   bool merge = false;
   bool timings = false;
@@ -110,6 +110,13 @@ int run_eval(EvalOptions& o) {
     std::printf("\nby the hidden fraction of each instance (false matches in no row):\n\n%s",
                 evaluation_table(by_hidden, o.timings).plain().c_str());
     json["rows_by_hidden"] = detail::rows_to_json(by_hidden);
+  } else if (o.by == "views") {
+    const std::vector<EvaluationRow> by_views = evaluation_rows_by_views(evaluation);
+    std::printf(
+        "\nby the landmark's views and the azimuth from each instance, or false match, to the "
+        "nearest of them:\n\n%s",
+        evaluation_table(by_views, o.timings).plain().c_str());
+    json["rows_by_views"] = detail::rows_to_json(by_views);
   }
   std::vector<ExplainedCase> explained;
   if (o.explain) {
@@ -140,9 +147,11 @@ Subcommand add_eval(CLI::App& app) {
   sub->add_option("--json", o->json, "Write the table and every pair's matches as JSON to FILE");
   add_timings_flag(sub, o->timings);
   sub->add_option("--by", o->by,
-                  "Also split the table by 'range' (the distance from the sensor, 0.5 m bins) or "
-                  "'hidden' (the fraction of each instance the sensor does not see, 20% bins)")
-      ->check(CLI::IsMember({"range", "hidden"}));
+                  "Also split the table by 'range' (the distance from the sensor, 0.5 m bins), "
+                  "'hidden' (the fraction of each instance the sensor does not see, 20% bins) or "
+                  "'views' (the landmark's number of views, and the azimuth to the nearest, 15 "
+                  "degree bins)")
+      ->check(CLI::IsMember({"range", "hidden", "views"}));
   auto* shard = sub->add_option("--shard", o->shard,
                                 "Evaluate only shard K of N (K/N): a stable share of the pairs, "
                                 "for one machine of a cluster; results go into the cache");

@@ -75,6 +75,7 @@ int run_preset(const GenOptions& options) {
   benchmark_preset(options.preset);  // an unknown name fails before anything is written
   GenerateOptions generate;
   generate.seeds = options.seeds;
+  generate.views = static_cast<int>(options.views);
   generate.hard = options.hard;
   generate.noise = !options.no_noise;
   generate.types = split_commas(options.types);
@@ -266,10 +267,10 @@ Subcommand add_gen(CLI::App& app) {
       ->excludes("--calibrate-depth");
   sub->add_option(
          "--views", options->views,
-         "With --from-rgbd: each box also captured from 2 up to this many views (its frame "
-         "and the frames --view-gap, -view-gap, ... away, registered from the poses), "
-         "named NAME-vK; every landmark of a box is searched in the frames --gap away from "
-         "the nearest of its views")
+         "Each landmark also captured from 2 up to this many views, named NAME-vK and searched "
+         "where NAME is. --preset: its demonstration camera turned by +45, -45, +90 degrees "
+         "about the instance; --from-rgbd: its frame and the frames --view-gap, -view-gap, ... "
+         "away, registered from the poses, searched --gap frames from the nearest view")
       ->check(CLI::Range(1, 4))
       ->capture_default_str();
   sub->add_option("--view-gap", options->view_gap,

@@ -34,6 +34,45 @@ TEST(BenchmarkDataset, TheFingerprintFollowsTheLandmarksFreeSpace) {
   EXPECT_NE(dataset_fingerprint(dir.path().string(), dataset, landmarks), before);
 }
 
+// With views, each landmark is also NAME-v2, fused from two demonstration views, and searched in
+// the same pairs as NAME; one view is the dataset it always was.
+TEST(BenchmarkDataset, ViewsAddLandmarksOfSeveralViewsWithTheSamePairs) {
+  test::ScratchDir one, two;
+  GenerateOptions options;
+  options.types = {"simple/bowl_and_cup"};
+  const Dataset d1 = generate_benchmark_dataset(one.path().string(), "paper", options);
+  options.views = 2;
+  const Dataset d2 = generate_benchmark_dataset(two.path().string(), "paper", options);
+  std::vector<std::string> names;
+  for (const DatasetLandmark& l : d2.landmarks) names.push_back(l.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"bowl", "bowl-v2", "cup", "cup-v2"}));
+  const Landmark cup = load_landmark((one.path() / "landmarks/cup.lmk").string());
+  const Landmark cup2 = load_landmark((two.path() / "landmarks/cup-v2.lmk").string());
+  EXPECT_FALSE(cup.multi_view());
+  ASSERT_EQ(cup2.view_count(), 2u);
+  EXPECT_GT(cup2.points.size(), cup.points.size());
+  // The first view's points are the one-view landmark's.
+  for (std::size_t i = 0; i < cup.points.size(); ++i) {
+    ASSERT_EQ(cup2.points.points[i], cup.points.points[i]);
+  }
+  ASSERT_EQ(d2.scenes.size(), d1.scenes.size());
+  for (std::size_t s = 0; s < d1.scenes.size(); ++s) {
+    ASSERT_EQ(d2.scenes[s].pairs.size(), 2 * d1.scenes[s].pairs.size());
+    for (std::size_t k = 0; k < d1.scenes[s].pairs.size(); ++k) {
+      const DatasetPair& a = d1.scenes[s].pairs[k];
+      const DatasetPair& b = d2.scenes[s].pairs[2 * k + 1];
+      EXPECT_EQ(b.landmark, a.landmark + "-v2");
+      EXPECT_EQ(b.in_context, a.in_context);
+      ASSERT_EQ(b.instances.size(), a.instances.size());
+      for (std::size_t i = 0; i < a.instances.size(); ++i) {
+        EXPECT_TRUE(b.instances[i].isApprox(a.instances[i], 1e-9));
+      }
+    }
+  }
+  EXPECT_EQ(test::read_bytes((one.path() / d1.scenes[0].file).string()),
+            test::read_bytes((two.path() / d2.scenes[0].file).string()));
+}
+
 TEST(BenchmarkDataset, TheSamePresetAndSeedWriteTheSameContent) {
   test::ScratchDir a, b, c;
   GenerateOptions options;

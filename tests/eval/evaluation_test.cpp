@@ -10,6 +10,7 @@
 #include <array>
 #include <cstdlib>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -209,6 +210,43 @@ TEST(EvaluationByHidden, InstancesCountInTheirBinAndFalseMatchesInNone) {
   const PairResult back =
       detail::pair_result_from_json(detail::pair_result_to_json(p, 0.006, {}), "pair");
   EXPECT_EQ(back.truth_hidden, p.truth_hidden);
+}
+
+// The azimuth to the nearest view is measured about the landmark's up axis, placed by the pose.
+TEST(EvaluationByViews, TheAzimuthIsToTheNearestViewAboutTheLandmarksUp) {
+  PairResult p;
+  p.landmark_up = Eigen::Vector3d::UnitZ();
+  p.capture_box = Eigen::Isometry3d::Identity();
+  p.sensor_position = Eigen::Vector3d(2, 0, 1);  // the height does not count
+  p.view_origins = {Eigen::Vector3d(0, 1, 0), Eigen::Vector3d(1, 1, 5)};
+  EXPECT_NEAR(azimuth_to_nearest_view(p, Eigen::Isometry3d::Identity()), M_PI / 4, 1e-12);
+  // The instance turned by 90 degrees about z turns its views with it: (0, 1) comes to (-1, 0) and
+  // (1, 1) to (-1, 1), 135 degrees from the sensor's side.
+  const Eigen::Isometry3d turned = pose_from_xyz_rpy({0, 0, 0}, {0, 0, M_PI / 2});
+  EXPECT_NEAR(azimuth_to_nearest_view(p, turned), 3 * M_PI / 4, 1e-12);
+}
+
+// Recall and precision by views: each instance in the bin of its landmark's views and azimuth, a
+// false match in the bin of its own pose.
+TEST(EvaluationByViews, InstancesAndFalseMatchesCountInTheirViewsAndAzimuth) {
+  Evaluation e = hand_made();
+  for (PairResult& p : e.pairs) {
+    p.landmark_up = Eigen::Vector3d::UnitZ();
+    p.sensor_position = Eigen::Vector3d(2, 0, 0);
+    p.view_origins = {Eigen::Vector3d(2, 0, 0), Eigen::Vector3d(0, 2, 0)};  // 0 and 90 degrees
+  }
+  // A false match turned by 65 degrees: its views lie 65 and 155 degrees from the sensor.
+  e.pairs[0].found.push_back(
+      {Box(pose_from_xyz_rpy({0, 0, 0}, {0, 0, 65.0 * M_PI / 180.0}), {0.1, 0.1, 0.1}), 0.003, {}});
+  const std::vector<EvaluationRow> rows = evaluation_rows_by_views(e);
+  std::map<std::pair<std::string, int>, Counts> by;
+  for (const EvaluationRow& r : rows) by[{r.setting, r.assumption}] = r.counts;
+  const auto counts = [&](const char* bin, int assumption) { return by[{bin, assumption}]; };
+  EXPECT_EQ(counts("2 views, 0-15 deg", 2).tp, 1u);
+  EXPECT_EQ(counts("2 views, 0-15 deg", 2).fp, 0u);
+  EXPECT_EQ(counts("2 views, 60-75 deg", 2).fp, 1u);
+  EXPECT_EQ(counts("2 views, 0-15 deg", 3).tp, 1u);  // the best match, right
+  EXPECT_THROW(evaluation_rows_by_views(e, {}, 0.0), Error);
 }
 
 TEST(EvaluationJson, TheIssueSchemaWithNullForUndefinedPrecision) {
