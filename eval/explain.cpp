@@ -26,6 +26,8 @@ constexpr const char* kSuppressed = "suppressed";
 constexpr const char* kOverThreshold = "over threshold";
 constexpr const char* kCoverage = "coverage";
 constexpr const char* kEmptySpace = "empty space";
+// A landmark of several views whose visible part could not fix the pose (view_determinacy.h).
+constexpr const char* kTooLittleShown = "too little shown";
 constexpr const char* kDisplacedTruth = "displaced truth";
 constexpr const char* kOffPose = "off pose";
 constexpr const char* kLookAlike = "look-alike";
@@ -161,14 +163,15 @@ std::string miss_cause(const std::vector<CandidateFate>& near, double t) {
     if (c.fate == "error above threshold") return kOverThreshold;
     if (c.fate == "coverage too low") return kCoverage;
     if (c.fate == "empty space occupied") return kEmptySpace;
+    if (c.fate == "shows too little to fix its pose") return kTooLittleShown;
     return kSuppressed;  // inside a better match
   }
   return kSuppressed;
 }
 
 const std::vector<std::string>& miss_causes() {
-  static const std::vector<std::string> causes{kNoCandidate, kSuppressed, kOverThreshold, kCoverage,
-                                               kEmptySpace};
+  static const std::vector<std::string> causes{kNoCandidate, kSuppressed, kOverThreshold,
+                                               kCoverage,    kEmptySpace, kTooLittleShown};
   return causes;
 }
 

@@ -4,11 +4,13 @@
 #include <tbb/task_arena.h>
 
 #include <cmath>
+#include <functional>
 
 #include "lmk/geometry/error.h"
 #include "lmk/landmark/detail/fast_search.h"
 #include "lmk/landmark/detail/search_method.h"
 #include "lmk/landmark/detail/stopwatch.h"
+#include "lmk/landmark/detail/view_determinacy.h"
 #include "lmk/landmark/non_max_suppression.h"
 
 namespace lmk {
@@ -22,6 +24,7 @@ constexpr const char* kRejectedError = "error above threshold";
 constexpr const char* kRejectedCoverage = "coverage too low";
 constexpr const char* kRejectedEmptySpace = "empty space occupied";
 constexpr const char* kRejectedOverlap = "inside a better match";
+constexpr const char* kRejectedUndetermined = "shows too little to fix its pose";
 constexpr const char* kSuppressed = "suppressed by a better match";
 
 // Steps 5 and 6: non-max suppression on box centres, then the error threshold (and, for metrics
@@ -30,7 +33,8 @@ constexpr const char* kSuppressed = "suppressed by a better match";
 // Candidates turned down go to `rejected` with the first test they failed; with `keep_suppressed`,
 // those non-max suppression removed go to `suppressed`.
 void select(std::vector<Match> candidates, const SelectionSettings& s, bool suppress_overlaps,
-            bool keep_suppressed, FindResult& result) {
+            bool keep_suppressed, const std::function<bool(const Match&)>& undetermined,
+            FindResult& result) {
   SearchStats& stats = result.stats;
   const std::vector<std::size_t> kept = non_max_suppression_of(candidates, s.nms_radius);
   stats.after_nms = kept.size();
@@ -55,6 +59,8 @@ void select(std::vector<Match> candidates, const SelectionSettings& s, bool supp
                static_cast<double>(m.terms.empty_space_violations) >
                    s.max_empty_space_violation * static_cast<double>(m.terms.empty_space_probes)) {
       reject(m, stats.rejected_empty_space, kRejectedEmptySpace);
+    } else if (undetermined(m)) {
+      reject(m, stats.rejected_undetermined, kRejectedUndetermined);
     } else {
       result.matches.push_back(std::move(m));
     }
@@ -132,8 +138,13 @@ FindResult search(const SceneIndex& index, const LandmarkIndex& prepared,
 
   const auto select_start = Clock::now();
   for (Match& m : candidates.suppressed) result.suppressed.push_back({std::move(m), kSuppressed});
-  select(std::move(candidates.kept), settings.selection, method.suppresses_overlaps(settings),
-         settings.execution.keep_suppressed, result);
+  select(
+      std::move(candidates.kept), settings.selection, method.suppresses_overlaps(settings),
+      settings.execution.keep_suppressed,
+      [&](const Match& m) {
+        return detail::shows_too_little_to_fix(index, p.landmark, m.T_scene_capture);
+      },
+      result);
   if (settings.execution.keep_aligned_points) {
     for (Match& m : result.matches) {
       m.aligned_points = p.landmark.points.transformed(m.T_scene_capture);
@@ -160,6 +171,7 @@ std::string describe_rejections(const SearchStats& s) {
   add(s.rejected_coverage, kRejectedCoverage);
   add(s.rejected_empty_space, kRejectedEmptySpace);
   add(s.rejected_overlap, kRejectedOverlap);
+  add(s.rejected_undetermined, kRejectedUndetermined);
   return out;
 }
 

@@ -69,16 +69,19 @@ struct SearchStats {
   std::size_t rejected_coverage = 0;     ///< coverage below selection.min_coverage
   std::size_t rejected_empty_space = 0;  ///< empty space occupied beyond the allowance
   std::size_t rejected_overlap = 0;      ///< centre inside a better match's box
-  std::string method;                    ///< the search method run
-  std::string metric;                    ///< the metric applied
+  /// A landmark of several views whose visible part leaves the pose freer than the whole landmark
+  /// (detail/view_determinacy.h).
+  std::size_t rejected_undetermined = 0;
+  std::string method;  ///< the search method run
+  std::string metric;  ///< the metric applied
 };
 
 /// A candidate that survived non-max suppression and was then turned down (step 6), with the
 /// first test it failed: what a person looks at to see why an instance was not reported.
 struct Rejection {
   Match candidate;
-  std::string reason;  ///< "error above threshold", "coverage too low", "empty space occupied"
-                       ///< or "inside a better match"
+  std::string reason;  ///< "error above threshold", "coverage too low", "empty space occupied",
+                       ///< "inside a better match" or "shows too little to fix its pose"
 };
 
 struct FindResult {

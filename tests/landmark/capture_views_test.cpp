@@ -8,10 +8,13 @@
 
 #include <cmath>
 
+#include "lmk/eval/depth_sensor.h"
+#include "lmk/eval/mesh.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/kdtree.h"
 #include "lmk/geometry/pose.h"
 #include "lmk/landmark/detail/grid_metrics.h"
+#include "lmk/landmark/detail/view_determinacy.h"
 #include "lmk/landmark/find_landmark.h"
 #include "lmk/landmark/landmark_file.h"
 #include "tests/landmark/l_shape_scene.h"
@@ -271,6 +274,45 @@ TEST(SelfHidden, TheBackOfTwoLayersIsHiddenAndAnObliqueSurfaceHidesNothingOfItse
   const std::vector<char> oblique =
       self_hidden(square(1.0f, 1.22f), identity, sensor, {0, 0, 1.0f}, 0.01);
   EXPECT_EQ(std::count(oblique.begin(), oblique.end(), 1), 0);
+}
+
+}  // namespace
+}  // namespace lmk
+
+namespace lmk {
+namespace {
+
+// A mug: a cylinder with a handle on its -y side, standing at the origin.
+TriangleMesh mug() {
+  TriangleMesh mesh;
+  mesh.append(make_cylinder_mesh(0.04, 0.1, 64), pose_from_xyz_rpy({0, 0, 0.05}, {0, 0, 0}));
+  mesh.append(make_box_mesh({0.015, 0.025, 0.06}), pose_from_xyz_rpy({0, -0.05, 0.05}, {0, 0, 0}));
+  return mesh;
+}
+
+PointCloud render_mug(const Eigen::Vector3d& eye) {
+  DepthSensorSettings sensor;
+  sensor.noise = false;
+  return render_depth(mug(), camera_look_at(eye, {0, 0, 0.05}, Eigen::Vector3d::UnitZ()), sensor);
+}
+
+// From where its handle is hidden, a fused mug shows a plain cylinder, free to turn about its axis,
+// which its demonstration view, handle and all, was not: that match cannot fix the pose. Seen from
+// the handle's side it can.
+TEST(ViewDeterminacy, AMugSeenFromBehindItsHandleCannotFixItsTurn) {
+  const PointCloud front = render_mug({0, -0.7, 0.35});
+  const PointCloud side = render_mug({0.5, -0.5, 0.35});
+  const Landmark fused = capture_views(
+      {{&front, Eigen::Isometry3d::Identity()}, {&side, Eigen::Isometry3d::Identity()}},
+      Box(pose_from_xyz_rpy({0, -0.01, 0.055}, {0, 0, 0}), {0.11, 0.13, 0.12}), "mug");
+  const Eigen::Isometry3d here = Eigen::Isometry3d::Identity();
+  EXPECT_FALSE(
+      detail::shows_too_little_to_fix(SceneIndex(render_mug({0.1, -0.7, 0.35})), fused, here));
+  EXPECT_TRUE(
+      detail::shows_too_little_to_fix(SceneIndex(render_mug({0.0, 0.7, 0.35})), fused, here));
+  // A landmark of one view is never judged so: it is searched with every point.
+  EXPECT_FALSE(detail::shows_too_little_to_fix(SceneIndex(render_mug({0.0, 0.7, 0.35})),
+                                               capture(front, fused.box, "mug"), here));
 }
 
 }  // namespace
