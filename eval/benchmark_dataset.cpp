@@ -68,11 +68,6 @@ std::string join(const std::vector<std::string>& names) {
 }
 
 // What decides a generated dataset's content: the preset and the options (not the shard).
-// A benchmark landmark's name with `views` views: its own for one, "<name>-v<views>" beyond.
-std::string views_name(const std::string& name, int views) {
-  return views == 1 ? name : name + "-v" + std::to_string(views);
-}
-
 std::string generation_key(const std::string& preset, const GenerateOptions& options) {
   Fnv1a key;
   key.add(preset)
@@ -145,7 +140,8 @@ Landmark capture_benchmark_landmark(const BenchmarkLandmark& landmark, bool nois
   if (views == 1) return capture(clouds.front(), box, landmark.name, settings);
   std::vector<CaptureView> placed;  // every render is in the world frame
   for (const PointCloud& cloud : clouds) placed.push_back({&cloud, Eigen::Isometry3d::Identity()});
-  return capture_views(placed, box, landmark.name + "-v" + std::to_string(views), settings);
+  return capture_views(
+      placed, box, views_landmark_name(landmark.name, static_cast<std::size_t>(views)), settings);
 }
 
 std::string benchmark_scene_name(const std::string& type, std::uint64_t seed, bool hard,
@@ -216,7 +212,7 @@ Generated generate_benchmark(const std::string& dir, const std::string& preset_n
   std::map<std::string, Landmark> captured;
   for (const BenchmarkLandmark& landmark : landmarks) {
     for (int views = 1; views <= options.views; ++views) {
-      const std::string name = views_name(landmark.name, views);
+      const std::string name = views_landmark_name(landmark.name, static_cast<std::size_t>(views));
       const std::string file = "landmarks/" + name + ".lmk";
       dataset.landmarks.push_back({name, file, landmark.symmetry});
       if (options.merge) continue;
@@ -262,7 +258,8 @@ Generated generate_benchmark(const std::string& dir, const std::string& preset_n
       // instances.
       for (int views = 1; views <= options.views; ++views) {
         entry.pairs.push_back(pair);
-        entry.pairs.back().landmark = views_name(pair.landmark, views);
+        entry.pairs.back().landmark =
+            views_landmark_name(pair.landmark, static_cast<std::size_t>(views));
       }
     }
     write_cloud((fs::path(dir) / entry.file).string(),

@@ -227,6 +227,10 @@ DatasetScene parse_scene_entry(const std::string& text, const std::string& where
   return scene_from_json(j, "", r);
 }
 
+std::string views_landmark_name(const std::string& name, std::size_t views) {
+  return views == 1 ? name : name + "-v" + std::to_string(views);
+}
+
 void save_dataset(const std::string& dir, const Dataset& d) {
   const std::string file = (fs::path(dir) / "dataset.json").string();
   json landmarks = json::array(), scenes = json::array();

@@ -84,4 +84,8 @@ Dataset load_dataset(const std::string& dir, DatasetFiles files = DatasetFiles::
 /// DIR/dataset.json atomically.
 void save_dataset(const std::string& dir, const Dataset& dataset);
 
+/// The name of the landmark of `views` views cut with the box of landmark `name` (lmk gen --views,
+/// issue #35): `name` itself for one view, "<name>-v<views>" beyond.
+std::string views_landmark_name(const std::string& name, std::size_t views);
+
 }  // namespace lmk

@@ -250,7 +250,7 @@ RgbdImport generate_rgbd_dataset(const std::string& sequence_dir, const std::str
       const std::vector<Eigen::Vector3f> seen = one->points.points;
       captured.push_back({a, name, std::move(*one), box_views, seen});
       for (std::size_t n = 2; n <= box_views.size(); ++n) {
-        const std::string name_n = name + "-v" + std::to_string(n);
+        const std::string name_n = views_landmark_name(name, n);
         std::optional<Landmark> fused = keep(name_n, boxes[k], a, [&] {
           std::vector<CaptureView> views{{&frames[a].cloud, Eigen::Isometry3d::Identity()}};
           for (std::size_t i = 1; i < n; ++i) {

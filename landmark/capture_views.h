@@ -5,11 +5,13 @@
 // "Advantages and limitations").
 //
 // Each view is a frame with its pose in the capture frame, which is the first view's frame. The
-// views' points inside the box are fused into one point per voxel, each keeping the views that
-// measured it (Landmark::point_views); the free space is the union of what each view saw free,
-// except where any view measured a surface (EmptySpaceGrid::observe_views). Searches count only
-// the points turned towards their scene's sensor, since a frame taken from the front does not show
-// a landmark's back (docs/landmarks.md, "Landmarks from several views").
+// first view's points inside the box are the one-view landmark's; each further view adds the
+// surfaces no earlier view measured, and every point keeps the views that measured it
+// (Landmark::point_views). The free space is the union of what each view saw free, except where
+// any view measured a surface (EmptySpaceGrid::observe_views). Searches count only the points the
+// scene's sensor can see: turned towards it, inside its image and not behind the landmark's own
+// nearer points, since a frame taken from the front does not show a landmark's back
+// (docs/landmarks.md, "Landmarks from several views").
 
 #include <vector>
 

@@ -330,6 +330,35 @@ void check_landmark_file(const std::string& path) {
   detail::check_vdb_layout(path, bytes.substr(0, bytes.size() - detail::kLandmarkTrailerSize));
 }
 
+// Runs `read` on the landmark file at `path`, opened once check_landmark_file() has passed:
+// OpenVDB must never see a damaged file. What OpenVDB throws on a file written wrong behind a valid
+// checksum becomes one lmk::Error naming the file.
+template <class Read>
+auto read_landmark_file(const std::string& path, bool delay_load, Read&& read) {
+  check_landmark_file(path);
+  vdb::initialize();  // idempotent: registers OpenVDB's grid and metadata types once per process
+  try {
+    vdb::io::File file(path);
+    file.open(delay_load);
+    return read(file);
+  } catch (const vdb::Exception& e) {
+    throw Error(path + ": corrupt or truncated landmark file (" + e.what() + ")");
+  } catch (const std::ios_base::failure& e) {
+    throw Error(path + ": corrupt or truncated landmark file (" + e.what() + ")");
+  } catch (const std::bad_alloc&) {
+    throw corrupt_sizes(path);
+  } catch (const std::length_error&) {
+    throw corrupt_sizes(path);
+  }
+}
+
+void require_points_grid(const vdb::io::File& file, const std::string& path) {
+  if (!file.hasGrid(kPointsGrid)) {
+    throw Error(path + ": not an lmk landmark file: it has no '" + std::string(kPointsGrid) +
+                "' grid");
+  }
+}
+
 }  // namespace
 
 Box read_box_json(const std::string& path) {
@@ -362,40 +391,21 @@ std::vector<Eigen::Isometry3d> read_view_poses(const std::string& path) {
 }
 
 int landmark_file_version(const std::string& path) {
-  check_landmark_file(path);  // OpenVDB must never see a damaged file
-  vdb::initialize();
-  try {
-    vdb::io::File file(path);
-    file.open();
-    if (!file.hasGrid(kPointsGrid)) {
-      throw Error(path + ": not an lmk landmark file: it has no '" + std::string(kPointsGrid) +
-                  "' grid");
-    }
+  return read_landmark_file(path, /*delay_load=*/true, [&](vdb::io::File& file) {
+    require_points_grid(file, path);
     const vdb::GridBase::Ptr grid = file.readGridMetadata(kPointsGrid);
     file.close();
     return require_meta<vdb::Int32Metadata>(*grid, "lmk_format_version", path);
-  } catch (const vdb::Exception& e) {
-    throw Error(path + ": corrupt or truncated landmark file (" + e.what() + ")");
-  }
+  });
 }
 
 std::vector<std::string> landmark_file_grids(const std::string& path) {
-  check_landmark_file(path);  // OpenVDB must never see a damaged file
-  vdb::initialize();
-  std::vector<std::string> names;
-  try {
-    vdb::io::File file(path);
-    file.open();
+  return read_landmark_file(path, /*delay_load=*/true, [](vdb::io::File& file) {
+    std::vector<std::string> names;
     for (auto it = file.beginName(); it != file.endName(); ++it) names.push_back(*it);
     file.close();
-  } catch (const vdb::Exception& e) {
-    throw Error(path + ": corrupt or truncated landmark file (" + e.what() + ")");
-  } catch (const std::bad_alloc&) {
-    throw corrupt_sizes(path);
-  } catch (const std::length_error&) {
-    throw corrupt_sizes(path);
-  }
-  return names;
+    return names;
+  });
 }
 
 void save_landmark(const std::string& path, const Landmark& landmark) {
@@ -418,17 +428,9 @@ void save_landmark(const std::string& path, const Landmark& landmark) {
 }
 
 Landmark load_landmark(const std::string& path) {
-  check_landmark_file(path);
-  vdb::initialize();
-  vdb::GridBase::Ptr base;
-  try {
-    vdb::io::File file(path);
-    file.open(/*delayLoad=*/false);
-    if (!file.hasGrid(kPointsGrid)) {
-      throw Error(path + ": not an lmk landmark file: it has no '" + std::string(kPointsGrid) +
-                  "' grid");
-    }
-    base = file.readGrid(kPointsGrid);
+  return read_landmark_file(path, /*delay_load=*/false, [&](vdb::io::File& file) {
+    require_points_grid(file, path);
+    const vdb::GridBase::Ptr base = file.readGrid(kPointsGrid);
     const auto grid = vdb::GridBase::grid<vdb::points::PointDataGrid>(base);
     if (!grid) throw Error(path + ": not an lmk landmark file: 'points' is not a point grid");
     Landmark landmark = landmark_from_grid(*grid, path);
@@ -453,15 +455,7 @@ Landmark load_landmark(const std::string& path) {
     }
     landmark.validate(path);
     return landmark;
-  } catch (const vdb::Exception& e) {
-    throw Error(path + ": corrupt or truncated landmark file (" + e.what() + ")");
-  } catch (const std::ios_base::failure& e) {
-    throw Error(path + ": corrupt or truncated landmark file (" + e.what() + ")");
-  } catch (const std::bad_alloc&) {
-    throw corrupt_sizes(path);
-  } catch (const std::length_error&) {
-    throw corrupt_sizes(path);
-  }
+  });
 }
 
 void export_landmark(const Landmark& landmark, const std::string& out_dir) {

@@ -151,6 +151,16 @@ std::vector<char> self_hidden(const PointCloud& points, const Eigen::Isometry3f&
   return hidden;
 }
 
+std::vector<char> facing_sensor(const PointCloud& points, const Eigen::Isometry3f& T_scene_capture,
+                                const Eigen::Vector3f& sensor, const Eigen::Vector3f& centre,
+                                double spacing) {
+  std::vector<char> facing = self_hidden(points, T_scene_capture, sensor, centre, spacing);
+  for (std::size_t j = 0; j < points.size(); ++j) {
+    facing[j] = !facing[j] && !turned_away(sensor, T_scene_capture, points, j);
+  }
+  return facing;
+}
+
 UnseenPoints unseen_points_of(const SceneIndex& scene, const Landmark& landmark) {
   const UnseenPoints set = scene.settings().unseen_points;
   return landmark.multi_view() && set == UnseenPoints::counted ? UnseenPoints::outside_image : set;
@@ -174,17 +184,17 @@ double mean_surface_distance(const SceneIndex& scene, const PointCloud& points,
       projective ? occluder_free_zone(capture_box->transformed(T_scene_capture.cast<double>()))
                  : Box();
   const Eigen::Vector3f sensor = scene.T_scene_sensor().translation().cast<float>();
-  const std::vector<char> behind_itself =
-      facing_only ? self_hidden(points, T_scene_capture, sensor,
-                                (T_scene_capture.cast<double>() * views->box_centre).cast<float>(),
-                                views->spacing)
-                  : std::vector<char>();
+  const std::vector<char> shows =
+      facing_only
+          ? facing_sensor(points, T_scene_capture, sensor,
+                          (T_scene_capture.cast<double>() * views->box_centre).cast<float>(),
+                          views->spacing)
+          : std::vector<char>();
   double sum = 0.0;
   std::size_t shown = 0, facing = 0;
   for (std::size_t j = 0; j < points.size(); ++j) {
-    if (facing_only && (turned_away(sensor, T_scene_capture, points, j) || behind_itself[j] ||
-                        unseen_by_sensor(scene, T_scene_capture * points.points[j],
-                                         UnseenPoints::outside_image))) {
+    if (facing_only && (!shows[j] || unseen_by_sensor(scene, T_scene_capture * points.points[j],
+                                                      UnseenPoints::outside_image))) {
       continue;
     }
     ++facing;
@@ -234,13 +244,13 @@ ErrorTerms visibility_terms(const SceneView& scene, const LandmarkView& landmark
   const bool facing_only = landmark.landmark.multi_view();
   const UnseenPoints unseen = unseen_points_of(scene.index, landmark.landmark);
   const Eigen::Vector3f sensor = scene.index.T_scene_sensor().translation().cast<float>();
-  const std::vector<char> behind_itself =
-      facing_only ? self_hidden(landmark.points, T, sensor,
-                                (T_scene_capture * landmark.box.center()).cast<float>(),
-                                2.0 * landmark.landmark.settings.leaf_size)
+  const std::vector<char> shows =
+      facing_only ? facing_sensor(landmark.points, T, sensor,
+                                  (T_scene_capture * landmark.box.center()).cast<float>(),
+                                  2.0 * landmark.landmark.settings.leaf_size)
                   : std::vector<char>();
   for (std::size_t j = 0; j < landmark.points.size(); ++j) {
-    if (facing_only && (turned_away(sensor, T, landmark.points, j) || behind_itself[j])) {
+    if (facing_only && !shows[j]) {
       ++terms.unseen_points;
       continue;
     }

@@ -84,6 +84,13 @@ std::vector<char> self_hidden(const PointCloud& points, const Eigen::Isometry3f&
                               const Eigen::Vector3f& sensor, const Eigen::Vector3f& centre,
                               double spacing);
 
+/// For a landmark of several views placed by T_scene_capture: whether each of `points` shows to a
+/// sensor at `sensor`, turned towards it and not self_hidden() behind the landmark's own nearer
+/// points (`centre` and `spacing` as there). Where its image ends is the caller's to add.
+std::vector<char> facing_sensor(const PointCloud& points, const Eigen::Isometry3f& T_scene_capture,
+                                const Eigen::Vector3f& sensor, const Eigen::Vector3f& centre,
+                                double spacing);
+
 /// The unseen points a search counts with `landmark`: the scene's setting, except that a landmark
 /// of several views never counts its points beyond the scene's image (at least outside-image).
 UnseenPoints unseen_points_of(const SceneIndex& scene, const Landmark& landmark);

@@ -12,15 +12,14 @@ bool shows_too_little_to_fix(const SceneIndex& scene, const Landmark& landmark,
   const Eigen::Isometry3f T = T_scene_capture.cast<float>();
   const Eigen::Vector3f sensor = scene.T_scene_sensor().translation().cast<float>();
   const Eigen::Vector3d centre = T_scene_capture * landmark.box.center();
-  const std::vector<char> behind = self_hidden(landmark.points, T, sensor, centre.cast<float>(),
-                                               2.0 * landmark.settings.leaf_size);
+  const std::vector<char> facing = facing_sensor(landmark.points, T, sensor, centre.cast<float>(),
+                                                 2.0 * landmark.settings.leaf_size);
   Indices shown;
   for (std::size_t j = 0; j < landmark.points.size(); ++j) {
-    if (turned_away(sensor, T, landmark.points, j) || behind[j] ||
-        unseen_by_sensor(scene, T * landmark.points.points[j], UnseenPoints::outside_image)) {
-      continue;
+    if (facing[j] &&
+        !unseen_by_sensor(scene, T * landmark.points.points[j], UnseenPoints::outside_image)) {
+      shown.push_back(static_cast<Index>(j));
     }
-    shown.push_back(static_cast<Index>(j));
   }
   // Both judged against the noise where the match stands.
   const double range = (centre - scene.T_scene_sensor().translation()).norm();

@@ -13,8 +13,9 @@ namespace lmk::detail {
 
 /// Whether the points of a landmark of several views that the scene's sensor can see at
 /// T_scene_capture (turned towards it, inside its image, not behind the landmark's own nearer
-/// points) leave the pose free along more directions, within the noise at that range, than all of
-/// the landmark's points do (slide_check.h). False for a landmark of one view.
+/// points) leave the pose free along more directions, within the noise at that range, than the
+/// points its demonstration view (the first) measured (slide_check.h); only directions left
+/// essentially free count. False for a landmark of one view.
 bool shows_too_little_to_fix(const SceneIndex& scene, const Landmark& landmark,
                              const Eigen::Isometry3d& T_scene_capture);
 

@@ -22,27 +22,32 @@ namespace {
 
 namespace fs = std::filesystem;
 
-Landmark sample_landmark() {
+// The scene, box and settings of the sample landmarks.
+PointCloud sample_scene() {
   PointCloud scene = test::random_cloud(100000, 3, 0.4f);
   scene.T_cloud_sensor.translation() << 0.1, -0.2, -1.5;
+  return scene;
+}
+
+const Box kSampleBox(pose_from_xyz_rpy({0.05, 0.0, 0.1}, {0.3, -0.2, 1.0}), {0.2, 0.3, 0.1});
+
+CaptureSettings sample_settings() {
   CaptureSettings settings;
   settings.leaf_size = 0.01;
   settings.min_points = 40;
-  return capture(scene, Box(pose_from_xyz_rpy({0.05, 0.0, 0.1}, {0.3, -0.2, 1.0}), {0.2, 0.3, 0.1}),
-                 "test landmark", settings);
+  return settings;
+}
+
+Landmark sample_landmark() {
+  return capture(sample_scene(), kSampleBox, "test landmark", sample_settings());
 }
 
 // The same cut from the same scene, seen again from a second pose 2 cm and 3 degrees away.
 Landmark sample_two_view_landmark() {
-  PointCloud scene = test::random_cloud(100000, 3, 0.4f);
-  scene.T_cloud_sensor.translation() << 0.1, -0.2, -1.5;
-  CaptureSettings settings;
-  settings.leaf_size = 0.01;
-  settings.min_points = 40;
+  const PointCloud scene = sample_scene();
   return capture_views({{&scene, Eigen::Isometry3d::Identity()},
                         {&scene, pose_from_xyz_rpy({0.02, 0.0, 0.0}, {0.0, 0.05, 0.0})}},
-                       Box(pose_from_xyz_rpy({0.05, 0.0, 0.1}, {0.3, -0.2, 1.0}), {0.2, 0.3, 0.1}),
-                       "two views", settings);
+                       kSampleBox, "two views", sample_settings());
 }
 
 std::vector<Eigen::Vector3f> sorted(std::vector<Eigen::Vector3f> v) {
