@@ -37,11 +37,14 @@ struct BenchmarkPreset {
   int seeds = 1;      ///< scenes per scene type
   bool hard = false;  ///< strong rotations and tilts (make_scene's hard variants)
   SceneVariation variation = SceneVariation::none;
+  /// The colour look-alikes (colour_scene_types(), colour_landmarks()) instead of the paper's.
+  bool colour = false;
 };
 
 /// "paper" (the 17 types, one seed each), "paper-x10" (ten seeds each), "rotations" (the hard
 /// variants, three seeds each), "viewpoints" (six seeds each, seen from new places) and
-/// "occlusion" (four seeds each, with occluders).
+/// "occlusion" (four seeds each, with occluders); and "colours" (the colour look-alikes, eight
+/// seeds each).
 const std::vector<BenchmarkPreset>& benchmark_presets();
 /// The preset called `name`; throws lmk::Error listing the known ones otherwise.
 const BenchmarkPreset& benchmark_preset(const std::string& name);

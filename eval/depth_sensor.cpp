@@ -3,6 +3,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <utility>
@@ -22,6 +23,21 @@ using detail::to_cgal;
 // depend on which thread renders which row.
 constexpr std::uint64_t kNoiseStream = 0;
 constexpr std::uint64_t kFlyingPixelStream = 0x5bd1e9955bd1e995ULL;
+constexpr std::uint64_t kColourStream = 0xc2b2ae3d27d4eb4fULL;
+
+// The colour a pixel records of a painted surface: its paint times the light's gain per channel,
+// shaded by how squarely the light (near the camera, plus the room's ambient light) meets it, with
+// the colour camera's noise. `facing` is |cos| of the angle between the ray and the normal.
+Color shaded_colour(const Color& paint, double facing, SplitMix64 rng,
+                    const DepthSensorSettings& s) {
+  const double shade = 0.45 + 0.55 * facing;
+  const auto channel = [&](std::uint8_t base, double gain) {
+    const double v = base * gain * shade + s.colour_noise * rng.normal();
+    return static_cast<std::uint8_t>(std::clamp(std::round(v), 0.0, 255.0));
+  };
+  return {channel(paint.r, s.light.x()), channel(paint.g, s.light.y()),
+          channel(paint.b, s.light.z())};
+}
 
 SplitMix64 pixel_stream(std::uint64_t seed, std::size_t pixel, std::uint64_t stream) {
   return SplitMix64(seed ^ stream ^ (0x9e3779b97f4a7c15ULL * (pixel + 1)));
@@ -126,6 +142,12 @@ PointCloud render_depth(const TriangleMesh& world, const Eigen::Isometry3d& T_wo
   const std::size_t pixels = static_cast<std::size_t>(s.width) * s.height;
   cloud.points.assign(pixels, Eigen::Vector3f::Constant(std::nanf("")));
   cloud.T_cloud_sensor = T_world_sensor;
+  if (!world.colours.empty()) {
+    if (world.colours.size() != world.triangles.size()) {
+      throw Error("render_depth: a painted mesh needs one colour per triangle");
+    }
+    cloud.colors.assign(pixels, Color{0, 0, 0});
+  }
   if (mesh_tree.triangles.empty()) return cloud;
 
   const Eigen::Vector3d origin = T_world_sensor.translation();
@@ -135,8 +157,12 @@ PointCloud render_depth(const TriangleMesh& world, const Eigen::Isometry3d& T_wo
     return Eigen::Vector3d(T_world_sensor.linear() *
                            Eigen::Vector3d((u - s.cx) / s.fx, (v - s.cy) / s.fy, 1.0));
   };
-  // The exact depth of every pixel that returns one (NaN otherwise).
+  // The exact depth of every pixel that returns one (NaN otherwise), and for a painted world the
+  // triangle it sees and how squarely.
   std::vector<double> depth(pixels, std::nan(""));
+  const bool painted = world.colours.size() == world.triangles.size() && !world.colours.empty();
+  std::vector<std::int32_t> seen_triangle(painted ? pixels : 0, -1);
+  std::vector<double> facing(painted ? pixels : 0, 0.0);
   tbb::parallel_for(0, s.height, [&](int v) {
     for (int u = 0; u < s.width; ++u) {
       const Eigen::Vector3d direction = ray(u, v);
@@ -155,7 +181,12 @@ PointCloud render_depth(const TriangleMesh& world, const Eigen::Isometry3d& T_wo
         const auto lit = first_hit(tree, projector, p);
         if (lit && (lit->first - projector).norm() < (p - projector).norm() - 1e-3) continue;
       }
-      depth[static_cast<std::size_t>(v) * s.width + u] = z;
+      const std::size_t i = static_cast<std::size_t>(v) * s.width + u;
+      depth[i] = z;
+      if (painted) {
+        seen_triangle[i] = static_cast<std::int32_t>(&tri - mesh_tree.triangles.data());
+        facing[i] = std::abs(normal.dot(direction.normalized()));
+      }
     }
   });
   std::vector<double> measured = depth;
@@ -168,6 +199,10 @@ PointCloud render_depth(const TriangleMesh& world, const Eigen::Isometry3d& T_wo
       if (std::isnan(measured[i])) continue;
       const double z = s.noise ? sensor_depth(measured[i], noise[i], s) : measured[i];
       cloud.points[i] = (origin + ray(u, v) * z).cast<float>();
+      if (painted && seen_triangle[i] >= 0) {
+        cloud.colors[i] = shaded_colour(world.colours[static_cast<std::size_t>(seen_triangle[i])],
+                                        facing[i], pixel_stream(s.seed, i, kColourStream), s);
+      }
     }
   });
   return cloud;

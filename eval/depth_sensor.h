@@ -49,6 +49,12 @@ struct DepthSensorSettings {
   /// the sensor finds each pixel's disparity by matching a window of the projected pattern.
   int noise_window = 1;
   std::uint64_t seed = 0;  ///< noise seed; each pixel has its own stream
+  /// A painted mesh (TriangleMesh::colours) gives each point its surface's colour, shaded by how
+  /// squarely the light meets it, times this gain per channel (r, g, b): the light's brightness
+  /// and tint, as a scene's lamps or a camera's white balance change them.
+  Eigen::Vector3d light = Eigen::Vector3d::Ones();
+  /// Colour noise, 8-bit counts (sigma per channel): a Kinect's colour camera's, roughly.
+  double colour_noise = 2.0;
 };
 
 /// The frame's noise: one unit-variance normal per pixel (width x height, row-major), averaged over
@@ -65,7 +71,8 @@ double depth_level_spacing(double z, const DepthSensorSettings& settings);
 
 /// Renders `world` seen from T_world_sensor (optical frame: z forward, x right, y down). Returns an
 /// organised width x height cloud in the world frame, NaN where there is no return, with
-/// T_cloud_sensor = T_world_sensor. Deterministic for a given seed whatever the thread count.
+/// T_cloud_sensor = T_world_sensor, and colours registered to it when `world` is painted.
+/// Deterministic for a given seed whatever the thread count.
 PointCloud render_depth(const TriangleMesh& world, const Eigen::Isometry3d& T_world_sensor,
                         const DepthSensorSettings& settings = {});
 

@@ -28,6 +28,8 @@ constexpr const char* kCoverage = "coverage";
 constexpr const char* kEmptySpace = "empty space";
 // A landmark of several views whose visible part could not fix the pose (view_determinacy.h).
 constexpr const char* kTooLittleShown = "too little shown";
+// The shape matched; the colour term put it over the threshold (detail/colour_term.h).
+constexpr const char* kColourDiffers = "colour differs";
 constexpr const char* kDisplacedTruth = "displaced truth";
 constexpr const char* kOffPose = "off pose";
 constexpr const char* kLookAlike = "look-alike";
@@ -164,14 +166,16 @@ std::string miss_cause(const std::vector<CandidateFate>& near, double t) {
     if (c.fate == "coverage too low") return kCoverage;
     if (c.fate == "empty space occupied") return kEmptySpace;
     if (c.fate == "shows too little to fix its pose") return kTooLittleShown;
+    if (c.fate == "colour differs") return kColourDiffers;
     return kSuppressed;  // inside a better match
   }
   return kSuppressed;
 }
 
 const std::vector<std::string>& miss_causes() {
-  static const std::vector<std::string> causes{kNoCandidate, kSuppressed, kOverThreshold,
-                                               kCoverage,    kEmptySpace, kTooLittleShown};
+  static const std::vector<std::string> causes{kNoCandidate,  kSuppressed, kOverThreshold,
+                                               kCoverage,     kEmptySpace, kTooLittleShown,
+                                               kColourDiffers};
   return causes;
 }
 

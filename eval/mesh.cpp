@@ -7,8 +7,21 @@ namespace lmk {
 
 void TriangleMesh::append(const TriangleMesh& other, const Eigen::Isometry3d& T_this_other) {
   const int base = static_cast<int>(vertices.size());
+  if (colours.empty() && !other.colours.empty()) colours.assign(triangles.size(), kUnpainted);
+  if (!colours.empty()) {
+    if (other.colours.empty()) {
+      colours.insert(colours.end(), other.triangles.size(), kUnpainted);
+    } else {
+      colours.insert(colours.end(), other.colours.begin(), other.colours.end());
+    }
+  }
   for (const Eigen::Vector3d& v : other.vertices) vertices.push_back(T_this_other * v);
   for (const Eigen::Vector3i& t : other.triangles) triangles.push_back(t.array() + base);
+}
+
+TriangleMesh painted(TriangleMesh mesh, const Color& colour) {
+  mesh.colours.assign(mesh.triangles.size(), colour);
+  return mesh;
 }
 
 TriangleMesh make_box_mesh(const Eigen::Vector3d& size) {

@@ -6,16 +6,27 @@
 #include <Eigen/Geometry>
 #include <vector>
 
+#include "lmk/geometry/point_cloud.h"
+
 namespace lmk {
+
+/// The colour of a surface nobody painted: a mid grey, as tables, walls and floors.
+inline constexpr Color kUnpainted{150, 150, 150};
 
 struct TriangleMesh {
   std::vector<Eigen::Vector3d> vertices;
   std::vector<Eigen::Vector3i> triangles;  ///< counter-clockwise seen from outside
+  /// Empty (no colour: the sensor renders depth only), or each triangle's surface colour.
+  std::vector<Color> colours;
 
-  /// Appends `other` transformed by T_this_other.
+  /// Appends `other` transformed by T_this_other. When only one of the two is painted, the other's
+  /// triangles take kUnpainted.
   void append(const TriangleMesh& other,
               const Eigen::Isometry3d& T_this_other = Eigen::Isometry3d::Identity());
 };
+
+/// `mesh` with every triangle painted `colour`.
+TriangleMesh painted(TriangleMesh mesh, const Color& colour);
 
 /// Axis-aligned box of full side lengths `size`, centred at the origin.
 TriangleMesh make_box_mesh(const Eigen::Vector3d& size);

@@ -168,6 +168,13 @@ ObjectModel make_clutter_box(const Eigen::Vector3d& size) {
   return finish("box", std::move(mesh));
 }
 
+ObjectModel make_carton(const Eigen::Vector3d& size) {
+  ObjectModel carton = make_clutter_box(size);
+  carton.kind = "carton";
+  carton.parts.push_back({"carton", drawn_on_table(carton.bounds)});
+  return carton;
+}
+
 ObjectModel make_table(const Eigen::Vector3d& size) {
   const double top = 0.04, leg = 0.05;
   TriangleMesh mesh;

@@ -51,6 +51,9 @@ ObjectModel make_ball(double radius = 0.033);
 /// "opening" (the mouth and the top of the walls).
 ObjectModel make_bin(bool round);
 ObjectModel make_clutter_box(const Eigen::Vector3d& size);
+/// A closed carton standing on its base (a tea or cereal box), as make_clutter_box with the part
+/// "carton": the box a user would draw around it.
+ObjectModel make_carton(const Eigen::Vector3d& size);
 
 // Furniture. Surfaces give the resting heights.
 ObjectModel make_table(const Eigen::Vector3d& size = {1.2, 0.8, 0.72});

@@ -39,10 +39,19 @@ struct GeneratedScene {
   std::vector<std::string> in_context;  ///< the landmarks the paper searched in this scene
   /// Ground-truth boxes per landmark name, world frame (landmarks absent from the scene have none).
   std::map<std::string, std::vector<Box>> instances;
+  /// The light's gain per channel (DepthSensorSettings::light) where the mesh is painted.
+  Eigen::Vector3d light = Eigen::Vector3d::Ones();
 };
 
 /// The 17 scene types, in the paper's order: "simple/bowl_and_cup", ...
 const std::vector<std::string>& scene_types();
+
+/// Colour look-alikes (issue #35), beyond the paper: painted objects of one shape in several
+/// colours, lit more or less brightly and warmly than at the demonstration: "colour/cups",
+/// "colour/bottles", "colour/cartons".
+const std::vector<std::string>& colour_scene_types();
+/// Their landmarks, each one colour of one shape: "red_cup", "blue_bottle", "yellow_carton".
+const std::vector<BenchmarkLandmark>& colour_landmarks();
 
 /// The scene as its sensor sees it (eval/depth_sensor.h): exact depth, the ground truth's view,
 /// or with `noise` the simulated Kinect's, from the noise stream `noise_seed`.

@@ -64,18 +64,23 @@ std::optional<RangeImage> RangeImage::from_cloud(const PointCloud& cloud,
       }
     }
     if (!(std::sqrt(squared / n) <= max_fit_rms)) return std::nullopt;
+    image.colour_ = cloud.colors;
     image.organised_ = true;
     return image;
   }
   image.k_ = fallback;
   image.depth_.assign(static_cast<std::size_t>(fallback.width) * fallback.height, kNothing);
+  if (cloud.has_colors()) image.colour_.assign(image.depth_.size(), Color{0, 0, 0});
   bool any = false;
-  for (const Eigen::Vector3f& point : cloud.points) {
-    const Eigen::Vector3f p = image.T_sensor_cloud_ * point;
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const Eigen::Vector3f p = image.T_sensor_cloud_ * cloud.points[i];
     const std::optional<std::size_t> pixel = image.pixel_of(p);
     if (!pixel) continue;
     float& d = image.depth_[*pixel];
-    if (std::isnan(d) || p.z() < d) d = p.z();
+    if (std::isnan(d) || p.z() < d) {
+      d = p.z();
+      if (cloud.has_colors()) image.colour_[*pixel] = cloud.colors[i];  // the nearest point's
+    }
     any = true;
   }
   if (!any) return std::nullopt;

@@ -50,6 +50,8 @@ class RangeImage {
   bool organised() const { return organised_; }
   /// Depth per pixel, row-major, NaN where nothing was measured.
   const std::vector<float>& depths() const { return depth_; }
+  /// Colour per pixel, row-major, where the cloud has colour (registered RGB); else empty.
+  const std::vector<Color>& colours() const { return colour_; }
 
  private:
   /// The index of the pixel a point in the sensor frame falls in, if in front and in the image.
@@ -58,6 +60,7 @@ class RangeImage {
   PinholeIntrinsics k_;
   Eigen::Isometry3f T_sensor_cloud_ = Eigen::Isometry3f::Identity();
   std::vector<float> depth_;
+  std::vector<Color> colour_;
   bool organised_ = false;
 };
 

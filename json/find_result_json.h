@@ -44,6 +44,7 @@ inline nlohmann::json search_stats_to_json(const SearchStats& s) {
           {"rejected_empty_space", s.rejected_empty_space},
           {"rejected_overlap", s.rejected_overlap},
           {"rejected_undetermined", s.rejected_undetermined},
+          {"rejected_colour", s.rejected_colour},
           {"threshold", s.threshold},
           {"method", s.method},
           {"metric", s.metric},

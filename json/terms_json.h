@@ -15,7 +15,7 @@ namespace lmk::detail {
 
 /// Every term; coverage is null for the metrics that do not measure it.
 inline nlohmann::json terms_to_json(const ErrorTerms& t) {
-  return {
+  nlohmann::json j = {
       {"scene_to_landmark_sum", t.scene_to_landmark_sum},
       {"scene_to_landmark_count", t.scene_to_landmark_count},
       {"landmark_to_scene_sum", t.landmark_to_scene_sum},
@@ -31,6 +31,13 @@ inline nlohmann::json terms_to_json(const ErrorTerms& t) {
                                    ? nlohmann::json(nullptr)
                                    : nlohmann::json(t.empty_space_observed)},
       {"range_scale", t.range_scale}};
+  // Only where colour was compared: a search without colour writes what it wrote before.
+  if (t.colour_points > 0) {
+    j["colour_difference"] = t.colour_difference;
+    j["colour_points"] = t.colour_points;
+    j["colour_penalty"] = t.colour_penalty;
+  }
+  return j;
 }
 
 /// The inverse of terms_to_json; `error` is recomputed from the sums and counts.
@@ -66,6 +73,12 @@ inline ErrorTerms terms_from_json(const nlohmann::json& j, const std::string& wh
     t.range_scale = number("range_scale");
     if (!(t.range_scale > 0.0 && t.range_scale <= 1.0))
       throw Error(where + ".range_scale: must be in (0, 1]");
+  }
+  if (j.contains("colour_points")) {  // written since the colour term, where it was measured
+    t.colour_difference = number("colour_difference");
+    t.colour_points = count("colour_points");
+    t.colour_penalty = number("colour_penalty");
+    if (!(t.colour_penalty >= 0.0)) throw Error(where + ".colour_penalty: must be non-negative");
   }
   t.finish();
   return t;

@@ -67,25 +67,33 @@ PreparedView prepare_view(const CaptureView& view, const CaptureSettings& settin
 // so far as measured by it too. Merging voxel by voxel instead left two noisy samplings of one
 // surface as a slab two or three voxels thick (a Kinect's noise at 2 m is about 7 mm), whose back
 // layer a search then saw as hidden behind the front.
+// Colour is kept when every view has it: a surface that only an uncoloured view measured would
+// have none to compare.
 void fuse_views(const std::vector<PointCloud>& insides, const std::vector<double>& merge,
                 double leaf, Landmark& landmark) {
   landmark.points = voxel_downsample(insides.front(), leaf);
   landmark.point_views.assign(landmark.points.size(), 1u);
+  const bool coloured = std::all_of(insides.begin(), insides.end(),
+                                    [](const PointCloud& view) { return view.has_colors(); });
+  if (!coloured) landmark.points.colors.clear();
   for (std::size_t v = 1; v < insides.size(); ++v) {
     const PointCloud view = voxel_downsample(insides[v], leaf);
     const KdTree so_far(landmark.points);
     const auto bit = std::uint32_t{1} << v;
     const auto reach = static_cast<float>(merge[v] * merge[v]);
-    std::vector<Eigen::Vector3f> added;
-    for (const Eigen::Vector3f& p : view.points) {
-      const std::vector<Neighbor> nearest = so_far.knn(p, 1);
+    Indices added;
+    for (std::size_t i = 0; i < view.size(); ++i) {
+      const std::vector<Neighbor> nearest = so_far.knn(view.points[i], 1);
       if (!nearest.empty() && nearest.front().squared_distance <= reach) {
         landmark.point_views[nearest.front().index] |= bit;
       } else {
-        added.push_back(p);
+        added.push_back(static_cast<Index>(i));
       }
     }
-    landmark.points.points.insert(landmark.points.points.end(), added.begin(), added.end());
+    for (Index i : added) {
+      landmark.points.points.push_back(view.points[i]);
+      if (coloured) landmark.points.colors.push_back(view.colors[i]);
+    }
     landmark.point_views.resize(landmark.points.size(), bit);
   }
   landmark.points.set_unorganized();

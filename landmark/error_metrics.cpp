@@ -80,7 +80,8 @@ void ErrorTerms::finish() {
   const std::size_t count = scene_to_landmark_count + landmark_to_scene_count;
   error = count == 0 ? std::numeric_limits<double>::infinity()
                      : range_scale * (scene_to_landmark_sum + landmark_to_scene_sum) /
-                           static_cast<double>(count);
+                               static_cast<double>(count) +
+                           colour_penalty;
 }
 
 Indices scene_points_in_box(const SceneView& scene, const Box& box) {

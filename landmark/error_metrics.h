@@ -48,8 +48,15 @@ struct ErrorTerms {
   /// beyond SceneSettings::threshold_range (when set), where the depth noise raises a true match's
   /// error (match_error_scale()); 1 for the other metrics and nearer candidates.
   double range_scale = 1.0;
-  /// range_scale x (sum of both terms) / (count of both terms), m. When no term was counted there
-  /// is no evidence of a match, and the error is +infinity: defined, never NaN.
+  /// The colour term (landmark/detail/colour_term.h; SelectionSettings::colour_weight), measured
+  /// only where the landmark and the scene both have colour: the mean chroma distance between
+  /// landmark points and the scene points supporting them (NaN when not measured), over
+  /// `colour_points` pairs, and what it added to the error, in the metric's unit.
+  double colour_difference = std::numeric_limits<double>::quiet_NaN();
+  std::size_t colour_points = 0;
+  double colour_penalty = 0.0;
+  /// range_scale x (sum of both terms) / (count of both terms) + colour_penalty, m. When no term
+  /// was counted there is no evidence of a match, and the error is +infinity: defined, never NaN.
   double error = 0.0;
 
   void finish();  ///< computes `error` from the sums and counts

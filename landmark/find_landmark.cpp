@@ -7,6 +7,7 @@
 #include <functional>
 
 #include "lmk/geometry/error.h"
+#include "lmk/landmark/detail/colour_term.h"
 #include "lmk/landmark/detail/fast_search.h"
 #include "lmk/landmark/detail/search_method.h"
 #include "lmk/landmark/detail/stopwatch.h"
@@ -21,6 +22,7 @@ using detail::seconds_since;
 
 // Why a candidate was turned down, as Rejection::reason and describe_rejections say it.
 constexpr const char* kRejectedError = "error above threshold";
+constexpr const char* kRejectedColour = "colour differs";
 constexpr const char* kRejectedCoverage = "coverage too low";
 constexpr const char* kRejectedEmptySpace = "empty space occupied";
 constexpr const char* kRejectedOverlap = "inside a better match";
@@ -52,7 +54,13 @@ void select(std::vector<Match> candidates, const SelectionSettings& s, bool supp
   for (std::size_t i : kept) {
     Match& m = candidates[i];
     if (!(m.error < stats.threshold)) {
-      reject(m, stats.rejected_error, kRejectedError);
+      // Over only by the colour term: the shape matched, the colour did not.
+      const bool shape_fits = m.error - m.terms.colour_penalty < stats.threshold;
+      if (m.terms.colour_penalty > 0.0 && shape_fits) {
+        reject(m, stats.rejected_colour, kRejectedColour);
+      } else {
+        reject(m, stats.rejected_error, kRejectedError);
+      }
     } else if (!std::isnan(m.terms.coverage) && m.terms.coverage < s.min_coverage) {
       reject(m, stats.rejected_coverage, kRejectedCoverage);
     } else if (m.terms.empty_space_probes > 0 &&
@@ -85,9 +93,10 @@ void select(std::vector<Match> candidates, const SelectionSettings& s, bool supp
 // What a search of `prepared` in `index` works with once its settings are resolved: the metric
 // and the landmark's view of it.
 struct Prepared {
-  Prepared(const LandmarkIndex& prepared, const FindSettings& requested)
+  Prepared(const SceneIndex& index, const LandmarkIndex& prepared, const FindSettings& requested)
       : settings(requested.resolved()),
-        metric(find_error_metric(settings.selection.metric)),
+        metric(detail::with_colour_term(find_error_metric(settings.selection.metric), settings,
+                                        prepared.landmark(), index)),
         landmark(prepared.landmark()),
         view{landmark.points, prepared.tree(), landmark.box, landmark} {
     // The sensor metric tests empty space beyond the noise, which far away exceeds the landmark
@@ -96,7 +105,7 @@ struct Prepared {
   }
 
   const FindSettings settings;  ///< resolved: what follows reads plain fields
-  const ErrorMetric& metric;
+  const ErrorMetric metric;     ///< with the colour term when the search weighs colour
   const Landmark& landmark;
   LandmarkView view;
 };
@@ -107,7 +116,7 @@ FindResult search(const SceneIndex& index, const LandmarkIndex& prepared,
   std::string why;
   if (!prepared.suits(requested, &why)) throw Error("find: " + why);
   const auto start = Clock::now();
-  const Prepared p(prepared, requested);
+  const Prepared p(index, prepared, requested);
   const FindSettings& settings = p.settings;
   const detail::SearchMethodSteps& method = detail::search_method_steps(settings.method);
   FindResult result;
@@ -168,6 +177,7 @@ std::string describe_rejections(const SearchStats& s) {
     out += (out.empty() ? "rejected: " : ", ") + std::to_string(n) + " " + why;
   };
   add(s.rejected_error, kRejectedError);
+  add(s.rejected_colour, kRejectedColour);
   add(s.rejected_coverage, kRejectedCoverage);
   add(s.rejected_empty_space, kRejectedEmptySpace);
   add(s.rejected_overlap, kRejectedOverlap);
@@ -209,7 +219,7 @@ Match score_pose(const SceneIndex& index, const LandmarkIndex& prepared,
   std::string why;
   if (!prepared.suits(requested, &why)) throw Error("find: " + why);
   if (!T_scene_capture.matrix().allFinite()) throw Error("score pose: the pose is not finite");
-  const Prepared p(prepared, requested);
+  const Prepared p(index, prepared, requested);
   const Indices no_seeds;
   const detail::SearchInput input{index,     index.coarse(),   p.landmark,
                                   prepared,  SceneView{index}, p.view,

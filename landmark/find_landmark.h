@@ -65,7 +65,9 @@ struct SearchStats {
   double seconds_fine = 0.0;       ///< fast, part of seconds_search: refinement and scoring
   double threshold = 0.0;          ///< the error threshold applied, m
   /// Candidates left by non-max suppression and then rejected, by the first test they failed.
-  std::size_t rejected_error = 0;        ///< error at or above the threshold
+  std::size_t rejected_error = 0;  ///< error at or above the threshold
+  /// Error at or above the threshold only because of the colour term (issue #35): the shape fits.
+  std::size_t rejected_colour = 0;
   std::size_t rejected_coverage = 0;     ///< coverage below selection.min_coverage
   std::size_t rejected_empty_space = 0;  ///< empty space occupied beyond the allowance
   std::size_t rejected_overlap = 0;      ///< centre inside a better match's box

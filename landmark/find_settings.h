@@ -155,6 +155,13 @@ struct SelectionSettings {
   /// instance leaves it empty; the 1% allowance is for the Kinect's isolated flying pixels at
   /// depth edges, not for surfaces.
   double max_empty_space_violation = 0.01;
+  /// The colour term (issue #35; landmark/detail/colour_term.h), only where the landmark and the
+  /// scene both have colour: the share of the threshold added to the error per unit of mean chroma
+  /// difference beyond colour_tolerance. 0 compares shapes only, as the paper.
+  double colour_weight = 10.0;
+  /// The mean chroma difference a true match may show at no cost: the camera's white balance and
+  /// the light changing between the demonstration and the scene.
+  double colour_tolerance = 0.1;
 
   template <class Self, class Visit>
   static void describe(Self& s, Visit&& visit) {
@@ -180,6 +187,19 @@ struct SelectionSettings {
               .within(0.0, 1.0)
               .also("max-empty-violation"),
           s.max_empty_space_violation);
+    // A weight of 50 charges a whole threshold for a chroma difference of 0.02, the noise between
+    // two views of one surface: beyond any use.
+    visit(SettingInfo("colour_weight",
+                      "Colour: share of the threshold added per unit of chroma difference "
+                      "(0: shape only)")
+              .within(0.0, 50.0)
+              .also("color-weight"),
+          s.colour_weight);
+    visit(SettingInfo("colour_tolerance",
+                      "Colour: mean chroma difference of a true match, at no cost")
+              .within(0.0, 1.5)
+              .also("color-tolerance"),
+          s.colour_tolerance);
   }
 };
 

@@ -38,12 +38,25 @@ constexpr const char* kPositionAttribute = "capture_position";
 constexpr const char* kIndexAttribute = "capture_index";
 // Version 3, a landmark of several views only: each point's views, one bit per view.
 constexpr const char* kViewsAttribute = "capture_views";
-// The version a landmark's file is written in: a landmark of one view keeps version 2, byte for
-// byte as lmk wrote it before views existed.
+// Version 3, a landmark with colour only: each point's 8-bit RGB, packed as 0xRRGGBB.
+constexpr const char* kColourAttribute = "capture_colour";
+// The version a landmark's file is written in: a landmark of one view without colour keeps version
+// 2, byte for byte as lmk wrote it before views and colour existed.
 constexpr int kOneViewFileVersion = 2;
 
 int file_version(const Landmark& landmark) {
-  return landmark.multi_view() ? kLandmarkFormatVersion : kOneViewFileVersion;
+  return landmark.multi_view() || landmark.points.has_colors() ? kLandmarkFormatVersion
+                                                               : kOneViewFileVersion;
+}
+
+std::int32_t packed_colour(const Color& c) {
+  return static_cast<std::int32_t>((std::uint32_t{c.r} << 16) | (std::uint32_t{c.g} << 8) | c.b);
+}
+
+Color unpacked_colour(std::int32_t packed) {
+  const auto bits = static_cast<std::uint32_t>(packed);
+  return {static_cast<std::uint8_t>(bits >> 16), static_cast<std::uint8_t>(bits >> 8),
+          static_cast<std::uint8_t>(bits)};
 }
 
 std::string view_origin_meta(std::size_t view) { return "lmk_view_origin_" + std::to_string(view); }
@@ -97,6 +110,13 @@ vdb::points::PointDataGrid::Ptr make_points_grid(const Landmark& landmark) {
     vdb::points::appendAttribute<std::int32_t>(grid->tree(), kViewsAttribute);
     vdb::points::populateAttribute(grid->tree(), index_grid->tree(), kViewsAttribute,
                                    vdb::points::PointAttributeVector<std::int32_t>(views));
+  }
+  if (landmark.points.has_colors()) {
+    std::vector<std::int32_t> colours;
+    for (const Color& c : landmark.points.colors) colours.push_back(packed_colour(c));
+    vdb::points::appendAttribute<std::int32_t>(grid->tree(), kColourAttribute);
+    vdb::points::populateAttribute(grid->tree(), index_grid->tree(), kColourAttribute,
+                                   vdb::points::PointAttributeVector<std::int32_t>(colours));
   }
   grid->setName(kPointsGrid);
 
@@ -161,7 +181,12 @@ Landmark landmark_from_grid(const vdb::points::PointDataGrid& grid, const std::s
   if (const auto flat = grid.getMetadata<vdb::BoolMetadata>("lmk_allow_flat")) {
     landmark.settings.allow_flat = flat->value();
   }
-  const bool views = landmark.format_version >= 3;
+  // Version 3 holds views, colour or both.
+  const bool views = landmark.format_version >= 3 &&
+                     grid.getMetadata<vdb::Int32Metadata>("lmk_view_count") != nullptr;
+  const auto first_leaf = grid.tree().cbeginLeaf();
+  const bool colours =
+      landmark.format_version >= 3 && first_leaf && first_leaf->hasAttribute(kColourAttribute);
   if (views) {
     const std::int32_t count = require_meta<vdb::Int32Metadata>(grid, "lmk_view_count", path);
     if (count < 2 || count > static_cast<std::int32_t>(kMaxLandmarkViews)) {
@@ -197,32 +222,29 @@ Landmark landmark_from_grid(const vdb::points::PointDataGrid& grid, const std::s
                   "' array: its point offsets do not fit it");
     }
   };
-  std::vector<std::int32_t> order, point_views;
+  std::vector<std::int32_t> order, point_views, point_colours;
+  const auto read_int_attribute = [&](const auto& leaf, const char* attribute,
+                                      std::vector<std::int32_t>& out) {
+    require(leaf, attribute);
+    const vdb::points::AttributeHandle<std::int32_t> handle(leaf->constAttributeArray(attribute));
+    for (auto index = leaf->beginIndexOn(); index; ++index) out.push_back(handle.get(*index));
+  };
   for (auto leaf = grid.tree().cbeginLeaf(); leaf; ++leaf) {
     require(leaf, kPositionAttribute);
-    if (ordered) require(leaf, kIndexAttribute);
-    if (views) {
-      require(leaf, kViewsAttribute);
-      const vdb::points::AttributeHandle<std::int32_t> handle(
-          leaf->constAttributeArray(kViewsAttribute));
-      for (auto index = leaf->beginIndexOn(); index; ++index) {
-        point_views.push_back(handle.get(*index));
-      }
-    }
+    if (views) read_int_attribute(leaf, kViewsAttribute, point_views);
+    if (colours) read_int_attribute(leaf, kColourAttribute, point_colours);
     const vdb::points::AttributeHandle<vdb::Vec3f> handle(
         leaf->constAttributeArray(kPositionAttribute));
     for (auto index = leaf->beginIndexOn(); index; ++index) {
       const vdb::Vec3f p = handle.get(*index);
       landmark.points.points.emplace_back(p.x(), p.y(), p.z());
     }
-    if (!ordered) continue;
-    const vdb::points::AttributeHandle<std::int32_t> indices(
-        leaf->constAttributeArray(kIndexAttribute));
-    for (auto index = leaf->beginIndexOn(); index; ++index) order.push_back(indices.get(*index));
+    if (ordered) read_int_attribute(leaf, kIndexAttribute, order);
   }
   if (ordered) {  // back into capture order, which the closest-point grid refers to
     std::vector<Eigen::Vector3f> points(order.size(), Eigen::Vector3f::Constant(NAN));
     if (views) landmark.point_views.assign(order.size(), 0);
+    if (colours) landmark.points.colors.assign(order.size(), Color{});
     for (std::size_t k = 0; k < order.size(); ++k) {
       const auto i = static_cast<std::size_t>(order[k]);
       if (order[k] < 0 || i >= points.size() || !std::isnan(points[i].x())) {
@@ -230,6 +252,7 @@ Landmark landmark_from_grid(const vdb::points::PointDataGrid& grid, const std::s
       }
       points[i] = landmark.points.points[k];
       if (views) landmark.point_views[i] = static_cast<std::uint32_t>(point_views[k]);
+      if (colours) landmark.points.colors[i] = unpacked_colour(point_colours[k]);
     }
     landmark.points.points = std::move(points);
   }

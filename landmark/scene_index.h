@@ -51,6 +51,8 @@ class SceneIndex {
   /// pixels (an unorganised cloud's is projected through assumed intrinsics, and its empty pixels
   /// say nothing of what the sensor measured).
   bool organised() const { return organised_; }
+  /// Whether the scene's image carries colour (registered RGB), which the colour term compares.
+  bool has_colours() const { return range_image_ && !range_image_->colours().empty(); }
   /// The scene at leaf_size and its tree; built on the first call.
   const PointCloud& fine() const;
   const KdTree& fine_tree() const;

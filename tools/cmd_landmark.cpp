@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // lmk landmark show FILE | export FILE OUTDIR | import DIR OUT.lmk
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 
+#include "lmk/geometry/chroma.h"
 #include "lmk/geometry/pose.h"
 #include "lmk/landmark/landmark_file.h"
 #include "tools/cli_common.h"
@@ -33,6 +35,14 @@ int run_show(const LandmarkOptions& o) {
   for (std::size_t v = 1; v < l.view_origins.size(); ++v) {  // the first is the sensor origin
     const Eigen::Vector3d& o = l.view_origins[v];
     std::printf("view %-2zu origin %.4f %.4f %.4f\n", v + 1, o.x(), o.y(), o.z());
+  }
+  // Colour: how many points carry a hue the colour term can compare (geometry/chroma.h).
+  if (l.points.has_colors()) {
+    const auto hued = std::count_if(l.points.colors.begin(), l.points.colors.end(),
+                                    [](const Color& c) { return chroma_of(c).has_value(); });
+    std::printf("colour         yes, %td of the points with a hue\n", hued);
+  } else {
+    std::printf("colour         no\n");
   }
   std::printf("leaf           %.4f m\n", l.settings.leaf_size);
   std::printf("grids          %s\n", grids.c_str());

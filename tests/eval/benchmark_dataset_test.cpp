@@ -10,6 +10,7 @@
 
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/error.h"
+#include "lmk/landmark/find_landmark.h"
 #include "lmk/landmark/landmark_file.h"
 #include "tests/support/test_support.h"
 
@@ -145,11 +146,15 @@ TEST(BenchmarkDataset, PresetsAndTheirSizes) {
 // mean distance to the scene mesh is below 5 mm.
 TEST(BenchmarkDataset, GroundTruthPosesPutTheLandmarkOnTheSceneSurface) {
   std::map<std::string, Landmark> landmarks;
-  for (const BenchmarkLandmark& l : benchmark_landmarks())
-    landmarks.emplace(l.name, capture_benchmark_landmark(l, false));
+  for (const auto* list : {&benchmark_landmarks(), &colour_landmarks()}) {
+    for (const BenchmarkLandmark& l : *list)
+      landmarks.emplace(l.name, capture_benchmark_landmark(l, false));
+  }
+  std::vector<std::string> types = scene_types();
+  types.insert(types.end(), colour_scene_types().begin(), colour_scene_types().end());
   std::size_t checked = 0;
   for (const bool hard : {false, true}) {
-    for (const std::string& type : scene_types()) {
+    for (const std::string& type : types) {
       const GeneratedScene scene = make_scene(type, 1, hard);
       for (const auto& [name, boxes] : scene.instances) {
         const Landmark& landmark = landmarks.at(name);
@@ -167,6 +172,47 @@ TEST(BenchmarkDataset, GroundTruthPosesPutTheLandmarkOnTheSceneSurface) {
     }
   }
   EXPECT_GT(checked, 80u);
+}
+
+// The colour look-alikes (issue #35): one shape in several colours, the landmark's colour kept in
+// its file, and a search that tells the landmark's colour from the others' where shape alone
+// cannot.
+TEST(BenchmarkDataset, TheColourPresetPaintsOneShapeInSeveralColours) {
+  test::ScratchDir dir;
+  GenerateOptions options;
+  options.types = {"colour/cups"};
+  options.seeds = 2;
+  const Dataset d = generate_benchmark_dataset(dir.path().string(), "colours", options);
+  ASSERT_EQ(d.landmarks.size(), 1u);
+  EXPECT_EQ(d.landmarks[0].name, "red_cup");
+  const Landmark cup = load_landmark((dir.path() / d.landmarks[0].file).string());
+  ASSERT_TRUE(cup.points.has_colors());
+  std::size_t red = 0;
+  for (const Color& c : cup.points.colors) red += c.r > 2 * c.g && c.r > 2 * c.b;
+  EXPECT_GT(red, cup.points.size() / 2);
+  ASSERT_EQ(d.scenes.size(), 2u);
+  for (const DatasetScene& entry : d.scenes) {
+    SCOPED_TRACE(entry.name);
+    const PointCloud scene = read_cloud((dir.path() / entry.file).string());
+    ASSERT_TRUE(scene.has_colors());
+    const std::vector<Eigen::Isometry3d> truth = d.pair(entry, "red_cup").instances;
+    ASSERT_FALSE(truth.empty());
+    const auto correct = [&](const Match& m) {
+      return std::any_of(truth.begin(), truth.end(), [&](const Eigen::Isometry3d& t) {
+        return (t.translation() - m.box.pose.translation()).norm() < 0.02;
+      });
+    };
+    FindSettings shape_only;
+    shape_only.selection.colour_weight = 0.0;
+    const FindResult by_shape = find_landmark(scene, cup, shape_only);
+    const FindResult by_colour = find_landmark(scene, cup, FindSettings{});  // colour by default
+    EXPECT_GT(std::count_if(by_shape.matches.begin(), by_shape.matches.end(),
+                            [&](const Match& m) { return !correct(m); }),
+              0);
+    EXPECT_EQ(by_colour.matches.size(), truth.size());
+    for (const Match& m : by_colour.matches) EXPECT_TRUE(correct(m));
+    EXPECT_GT(by_colour.stats.rejected_colour, 0u);
+  }
 }
 
 }  // namespace

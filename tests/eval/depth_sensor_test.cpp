@@ -37,6 +37,27 @@ TEST(DepthSensor, ExactDepthOnAFrontoParallelWall) {
   }
 }
 
+// A painted mesh gives colour registered to the depth: the paint times the light's gain, shaded;
+// an unpainted one gives depth only, as it always did.
+TEST(DepthSensor, APaintedMeshGivesColourThatFollowsTheLight) {
+  DepthSensorSettings s;
+  s.noise = false;
+  s.colour_noise = 0.0;
+  EXPECT_FALSE(render_depth(wall(2.0), Eigen::Isometry3d::Identity(), s).has_colors());
+  const TriangleMesh red = painted(wall(2.0), Color{200, 40, 30});
+  const PointCloud bright = render_depth(red, Eigen::Isometry3d::Identity(), s);
+  s.light = Eigen::Vector3d::Constant(0.5);
+  const PointCloud dim = render_depth(red, Eigen::Isometry3d::Identity(), s);
+  ASSERT_TRUE(bright.has_colors() && dim.has_colors());
+  const std::size_t centre = 240 * 640 + 320;
+  const Color b = bright.colors[centre], d = dim.colors[centre];
+  EXPECT_EQ(b.r, 200);  // the wall faces the sensor squarely: fully lit
+  EXPECT_EQ(b.g, 40);
+  EXPECT_NEAR(d.r, 100, 1);
+  EXPECT_NEAR(d.g, 20, 1);
+  EXPECT_NEAR(d.b, 15, 1);
+}
+
 TEST(DepthSensor, NoiseMatchesTheKinectModel) {
   DepthSensorSettings s;
   s.seed = 5;
