@@ -13,6 +13,7 @@
 // nearer points, since a frame taken from the front does not show a landmark's back
 // (docs/landmarks.md, "Landmarks from several views").
 
+#include <functional>
 #include <vector>
 
 #include "lmk/landmark/landmark.h"
@@ -73,5 +74,25 @@ ViewRegistration register_view(const PointCloud& first, const PointCloud& view,
                                const Eigen::Isometry3d& guess, const Box& box,
                                std::size_t view_number,
                                const ViewRegistrationSettings& settings = {});
+
+/// How the views of a capture are placed in the first view's frame (place_views()).
+struct ViewPlacement {
+  /// Each view's cloud frame in one common frame, the first view's included (a bag's TF, an RGB-D
+  /// sequence's poses); empty: the clouds share one frame, as a robot's base-frame clouds do.
+  std::vector<Eigen::Isometry3d> poses;
+  /// Refine the poses by registration onto the first view. Without poses the views are always
+  /// registered, from the identity.
+  bool register_views = false;
+  ViewRegistrationSettings registration;
+};
+
+/// Where each of `clouds` (at least one; the first is the capture frame) lies in the first's frame:
+/// from the poses when given, by registration onto the first view when not or when asked to
+/// refine them. `on_registered` hears of each registration with its view number (from 2). Throws
+/// lmk::Error for a pose count that is not one per cloud, and as register_view() does. What `lmk
+/// capture`, `lmk serve` and lmk_node all call, so that each reaches the same landmark.
+std::vector<CaptureView> place_views(
+    const std::vector<const PointCloud*>& clouds, const Box& box, const ViewPlacement& placement,
+    const std::function<void(std::size_t, const ViewRegistration&)>& on_registered = {});
 
 }  // namespace lmk

@@ -53,14 +53,40 @@ ViewRegistration register_view(const PointCloud& first, const PointCloud& view,
   if (out.overlap < settings.min_overlap) {
     throw Error(what + ": does not overlap the first view enough to be registered (" + measured +
                 "; at least " + percent(settings.min_overlap) +
-                " needed); give the views' poses (--poses), or take it nearer the first view");
+                " needed); give the views' poses, or take it nearer the first view");
   }
   if (!(out.residual <= settings.max_residual)) {
     throw Error(what + ": its surfaces disagree with the first view's after registration (" +
                 measured + "; at most " + millimetres(settings.max_residual) +
-                " accepted); give the views' poses (--poses)");
+                " accepted); give the views' poses");
   }
   return out;
+}
+
+std::vector<CaptureView> place_views(
+    const std::vector<const PointCloud*>& clouds, const Box& box, const ViewPlacement& placement,
+    const std::function<void(std::size_t, const ViewRegistration&)>& on_registered) {
+  if (clouds.empty()) throw Error("capture: no view");
+  const bool posed = !placement.poses.empty();
+  if (posed && placement.poses.size() != clouds.size()) {
+    throw Error("capture: " + std::to_string(placement.poses.size()) + " poses for " +
+                std::to_string(clouds.size()) + " views; give one pose per view, in order");
+  }
+  std::vector<CaptureView> views{{clouds[0], Eigen::Isometry3d::Identity()}};
+  for (std::size_t v = 1; v < clouds.size(); ++v) {
+    const Eigen::Isometry3d guess =
+        posed ? Eigen::Isometry3d(placement.poses[0].inverse() * placement.poses[v])
+              : Eigen::Isometry3d::Identity();
+    if (posed && !placement.register_views) {
+      views.push_back({clouds[v], guess});
+      continue;
+    }
+    const ViewRegistration r =
+        register_view(*clouds[0], *clouds[v], guess, box, v + 1, placement.registration);
+    if (on_registered) on_registered(v + 1, r);
+    views.push_back({clouds[v], r.T_first_view});
+  }
+  return views;
 }
 
 }  // namespace lmk

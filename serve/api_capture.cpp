@@ -6,6 +6,7 @@
 #include "lmk/json/pose_json.h"
 #include "lmk/json/settings_json.h"
 #include "lmk/landmark/box_guess.h"
+#include "lmk/landmark/capture_views.h"
 #include "lmk/landmark/distinctiveness.h"
 #include "lmk/landmark/slide_check.h"
 #include "lmk/serve/api.h"
@@ -17,9 +18,27 @@ namespace {
 
 nlohmann::json box_json(const Box& box) { return detail::setting_to_json(box); }
 
-// The landmark cut out of the request's scene with the request's box.
-Landmark capture_from(const Scene& scene, const nlohmann::json& body, const FindSettings& find,
-                      const std::string& name, const std::string& what) {
+// The scenes a capture cuts its landmark from: the request's "scene", then its "views" (issue #35,
+// "add a view"), each by id. Read before any work, so that an unknown id is a 404 at once.
+std::vector<Scene> capture_scenes(const SceneStore& scenes, const nlohmann::json& body,
+                                  const std::string& what) {
+  std::vector<Scene> out{scenes.get(required_string(body, "scene", what))};
+  for (const std::string& id : optional_names(body, "views", {}, what))
+    out.push_back(scenes.get(id));
+  if (out.size() > kMaxLandmarkViews) {
+    throw bad_request(what + ": views: a landmark takes at most " +
+                      std::to_string(kMaxLandmarkViews) + " scenes");
+  }
+  return out;
+}
+
+// The landmark cut out of the request's scenes with the request's box: one scene as `lmk capture
+// SCENE`, several as `lmk capture A B ...` (place_views, then capture_views): "poses" (one per
+// scene) places them, "register" refines that, and without poses each further view is registered
+// onto the first. Each registration is added to `registrations`.
+Landmark capture_from(const std::vector<Scene>& scenes, const nlohmann::json& body,
+                      const FindSettings& find, const std::string& name, const std::string& what,
+                      nlohmann::json& registrations) {
   const Box box = required_box(body, "box", what);
   CaptureSettings settings;
   settings.base_frame = find.scene.base_frame;
@@ -28,7 +47,21 @@ Landmark capture_from(const Scene& scene, const nlohmann::json& body, const Find
   // The frame prepared as the searches prepare theirs, so that the landmark and the scenes match.
   settings.veil_angle = find.scene.veil_angle;
   settings.depth_smoothing = find.scene.depth_smoothing;
-  return capture(*scene.cloud, box, name, settings);  // lmk::Error: 422, with the reason
+  ViewPlacement placement;
+  placement.poses = optional_poses(body, "poses", what);
+  placement.register_views = optional_bool(body, "register", false, what);
+  std::vector<const PointCloud*> clouds;
+  for (const Scene& scene : scenes) clouds.push_back(scene.cloud.get());
+  // lmk::Error: 422, with the reason (a registration refused says its overlap and residual).
+  const std::vector<CaptureView> views =
+      place_views(clouds, box, placement, [&](std::size_t view, const ViewRegistration& r) {
+        registrations.push_back({{"view", view},
+                                 {"overlap", r.overlap},
+                                 {"residual", r.residual},
+                                 {"moved", r.moved},
+                                 {"turned", r.turned}});
+      });
+  return capture_views(views, box, name, settings);
 }
 
 // The verdict the page shows before the file is written (landmark/distinctiveness.h). The search
@@ -83,7 +116,9 @@ nlohmann::json landmark_summary(const std::string& name, const Landmark& l) {
           {"points", l.points.size()},
           {"box", box_json(l.box)},
           {"up", detail::vector_to_json(l.up)},
-          {"allow_flat", l.settings.allow_flat}};
+          {"allow_flat", l.settings.allow_flat},
+          {"views", l.view_count()},
+          {"colour", l.points.has_colors()}};
 }
 
 // Writes `landmark` into `library` under `name`; the answer of a capture: its summary and file.
@@ -115,16 +150,21 @@ ApiResponse Api::guess(const std::string& body_text) const {
 
 ApiResponse Api::check(const std::string& body_text) {
   const nlohmann::json body = parse_body(body_text, "check");
-  const Scene scene = scenes_.get(required_string(body, "scene", "check"));
+  const std::vector<Scene> scenes = capture_scenes(scenes_, body, "check");
   const std::string name = body.contains("name") ? required_string(body, "name", "check") : "new";
-  // The box is read now, so that a bad one is a 400 here rather than a failed job.
+  // The box and poses are read now, so that a bad one is a 400 here rather than a failed job.
   required_box(body, "box", "check");
+  optional_poses(body, "poses", "check");
   const FindSettings find = scene_find_settings();
-  return run_job("check", body, [scene, body, find, name](JobProgress& progress) {
+  return run_job("check", body, [scenes, body, find, name](JobProgress& progress) {
     progress.report(0.0, "capturing '" + name + "'");
-    const Landmark landmark = capture_from(scene, body, find, name, "check");
+    nlohmann::json registrations = nlohmann::json::array();
+    const Landmark landmark = capture_from(scenes, body, find, name, "check", registrations);
     progress.report(0.2, "searching '" + name + "' in its own scene");
-    return verdict(landmark, *scene.cloud, progress);
+    nlohmann::json v = verdict(landmark, *scenes.front().cloud, progress);
+    v["views"] = landmark.view_count();
+    v["registrations"] = registrations;
+    return v;
   });
 }
 
@@ -154,17 +194,25 @@ ApiResponse Api::landmark(const std::string& name) const {
 
 ApiResponse Api::save_landmark(const std::string& body_text) {
   const nlohmann::json body = parse_body(body_text, "capture");
-  const Scene scene = scenes_.get(required_string(body, "scene", "capture"));
+  const std::vector<Scene> scenes = capture_scenes(scenes_, body, "capture");
+  const Scene& scene = scenes.front();
   const std::string name = checked_name(required_string(body, "name", "capture"), "capture");
   const bool overwrite = optional_bool(body, "overwrite", false, "capture");
   const bool check_first = optional_bool(body, "check", false, "capture");
   required_box(body, "box", "capture");  // a bad request is told so before anything else
+  optional_poses(body, "poses", "capture");
   if (!overwrite && library_.contains(name)) {
     throw conflict("capture: a landmark '" + name +
                    "' exists already; choose another name or set overwrite");
   }
-  const Landmark landmark = capture_from(scene, body, scene_find_settings(), name, "capture");
-  if (!check_first) return {201, save_and_summarise(library_, name, landmark, overwrite)};
+  nlohmann::json registrations = nlohmann::json::array();
+  const Landmark landmark =
+      capture_from(scenes, body, scene_find_settings(), name, "capture", registrations);
+  if (!check_first) {
+    nlohmann::json j = save_and_summarise(library_, name, landmark, overwrite);
+    j["registrations"] = registrations;
+    return {201, j};
+  }
   // The check is a search: it runs on the worker pool like any other, and the landmark is written
   // by the job once it passes. The request waits for it as a "wait": true POST does, at most
   // kMaxRequestWait; a longer check answers 202 with the job to poll.
@@ -173,7 +221,8 @@ ApiResponse Api::save_landmark(const std::string& body_text) {
   const auto shared = std::make_shared<const Landmark>(landmark);
   LandmarkLibrary& library = library_;
   ApiResponse answer = run_job(
-      "capture", job_body, [shared, scene, overwrite, name, &library](JobProgress& progress) {
+      "capture", job_body,
+      [shared, scene, overwrite, name, registrations, &library](JobProgress& progress) {
         const nlohmann::json checked = verdict(*shared, *scene.cloud, progress);
         if (!checked["distinctive"].get<bool>()) {
           throw ApiError(409, "capture: not written: " + checked["message"].get<std::string>(),
@@ -181,6 +230,7 @@ ApiResponse Api::save_landmark(const std::string& body_text) {
         }
         nlohmann::json j = save_and_summarise(library, name, *shared, overwrite);
         j["verdict"] = checked;
+        j["registrations"] = registrations;
         return j;
       });
   // A finished capture answers as one without a check: the landmark, 201; or the refusal.

@@ -2,6 +2,7 @@
 #include "lmk/serve/request_fields.h"
 
 #include "lmk/geometry/error.h"
+#include "lmk/json/pose_json.h"
 #include "lmk/json/settings_json.h"
 #include "lmk/landmark/landmark_library.h"
 #include "lmk/serve/api_error.h"
@@ -78,6 +79,23 @@ std::vector<std::string> optional_names(const nlohmann::json& body, const std::s
     names.push_back(n.get<std::string>());
   }
   return names;
+}
+
+std::vector<Eigen::Isometry3d> optional_poses(const nlohmann::json& body, const std::string& key,
+                                              const std::string& what) {
+  if (!body.contains(key)) return {};
+  const nlohmann::json& v = body[key];
+  if (!v.is_array()) throw bad_request(what + ": " + key + ": must be an array of poses");
+  std::vector<Eigen::Isometry3d> poses;
+  try {
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      poses.push_back(
+          detail::pose_from_json(v[i], what + ": " + key + "[" + std::to_string(i) + "]"));
+    }
+  } catch (const Error& e) {
+    throw bad_request(e.what());
+  }
+  return poses;
 }
 
 const std::string& checked_name(const std::string& name, const std::string& what) {

@@ -30,6 +30,10 @@ std::vector<std::string> optional_names(const nlohmann::json& body, const std::s
                                         const std::vector<std::string>& all,
                                         const std::string& what);
 
+/// A list of poses {position, quaternion [w,x,y,z]}; empty when the key is absent.
+std::vector<Eigen::Isometry3d> optional_poses(const nlohmann::json& body, const std::string& key,
+                                              const std::string& what);
+
 /// `name` itself when it is a plain name that cannot leave a directory
 /// (LandmarkLibrary::check_name, for landmarks and programs alike); ApiError 400 prefixed with
 /// `what` otherwise.

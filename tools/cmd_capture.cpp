@@ -96,34 +96,26 @@ void check_slides(const Landmark& landmark) {
   for (const std::string& line : lines) std::fprintf(stderr, "  %s\n", line.c_str());
 }
 
-// Where each view's cloud frame lies in the first's: from the poses when given, by registration
-// onto the first view when not (from the identity: the clouds share a frame, as a robot's base
-// frame clouds do) or when --register asks to refine the poses.
-std::vector<CaptureView> place_views(const CaptureOptions& o, const std::vector<PointCloud>& clouds,
-                                     const Box& box) {
-  std::vector<Eigen::Isometry3d> guesses(clouds.size(), Eigen::Isometry3d::Identity());
+// Where each view's cloud frame lies in the first's (place_views), each registration reported.
+std::vector<CaptureView> place(const CaptureOptions& o, const std::vector<PointCloud>& clouds,
+                               const Box& box) {
+  ViewPlacement placement;
   if (!o.poses.empty()) {
-    const std::vector<Eigen::Isometry3d> poses = read_view_poses(o.poses);
-    if (poses.size() != clouds.size()) {
-      throw Error(o.poses + ": " + std::to_string(poses.size()) + " poses for " +
+    placement.poses = read_view_poses(o.poses);
+    if (placement.poses.size() != clouds.size()) {
+      throw Error(o.poses + ": " + std::to_string(placement.poses.size()) + " poses for " +
                   std::to_string(clouds.size()) + " views; give one pose per scene, in order");
     }
-    for (std::size_t v = 0; v < clouds.size(); ++v) guesses[v] = poses[0].inverse() * poses[v];
   }
-  std::vector<CaptureView> views{{&clouds[0], Eigen::Isometry3d::Identity()}};
-  for (std::size_t v = 1; v < clouds.size(); ++v) {
-    if (!o.poses.empty() && !o.register_views) {
-      views.push_back({&clouds[v], guesses[v]});
-      continue;
-    }
-    const ViewRegistration r = register_view(clouds[0], clouds[v], guesses[v], box, v + 1);
+  placement.register_views = o.register_views;
+  std::vector<const PointCloud*> views;
+  for (const PointCloud& cloud : clouds) views.push_back(&cloud);
+  return place_views(views, box, placement, [](std::size_t view, const ViewRegistration& r) {
     std::printf(
         "view %zu: registered onto view 1: overlap %.0f%%, residual %.1f mm, moved %.1f mm and "
         "%.2f deg at the box\n",
-        v + 1, 100.0 * r.overlap, 1000.0 * r.residual, 1000.0 * r.moved, r.turned * 180.0 / M_PI);
-    views.push_back({&clouds[v], r.T_first_view});
-  }
-  return views;
+        view, 100.0 * r.overlap, 1000.0 * r.residual, 1000.0 * r.moved, r.turned * 180.0 / M_PI);
+  });
 }
 
 int run_capture(CaptureOptions& o) {
@@ -139,7 +131,7 @@ int run_capture(CaptureOptions& o) {
     clouds.push_back(read_cloud(scene));
     correct_depth(clouds.back(), o.depth_correction);
   }
-  const Landmark landmark = capture_views(place_views(o, clouds, box), box, o.name, o.settings);
+  const Landmark landmark = capture_views(place(o, clouds, box), box, o.name, o.settings);
   save_landmark(o.output, landmark);
   std::printf("wrote %s: landmark '%s', %zu points from %zu view%s, box %.3f x %.3f x %.3f m\n",
               o.output.c_str(), landmark.name.c_str(), landmark.points.size(),

@@ -62,6 +62,7 @@ class App {
     const [info, cloud] =
         await Promise.all([getJSON(`/api/scenes/${id}`), getJSON(`/api/scenes/${id}/cloud`)]);
     this.sceneId = id;
+    this.capture.sceneChoices(this.picker);
     this.viewer.setCloud(cloud, info);
     this.viewer.clear('matches');
     this.viewer.clear('targets');

@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The capture panel: a first box from a clicked point (POST /api/guess), the box's numbers
-// editable beside its handles, the distinctiveness verdict (POST /api/check) before anything is
-// written, then the landmark saved into the library (POST /api/landmarks).
+// editable beside its handles, further views of the landmark from other scenes ("Add a view":
+// registered onto this scene by the server, as `lmk capture A B`), the distinctiveness verdict
+// (POST /api/check) before anything is written, then the landmark saved into the library
+// (POST /api/landmarks).
 import {postJSON, runJob} from '/app/api.js';
 import * as THREE from '/three/build/three.module.js';
 
@@ -48,11 +50,47 @@ export class CapturePanel {
         app.viewer.setHandleMode(b.dataset.mode);
       });
     }
+    this.views = [];  // further scenes' ids, fused after the shown scene's
+    this.viewScene = document.getElementById('view-scene');
+    document.getElementById('add-view').addEventListener('click', () => this.addView());
+    document.getElementById('clear-views').addEventListener('click', () => this.setViews([]));
     this.name = document.getElementById('landmark-name');
     this.name.addEventListener('input', () => this.invalidate());
     document.getElementById('new-box').addEventListener('click', () => this.startBox());
     document.getElementById('check').addEventListener('click', () => this.check());
     document.getElementById('save').addEventListener('click', () => this.save());
+  }
+
+  /** The scenes that can add a view: every scene but the shown one. Called when scenes change. */
+  sceneChoices(picker) {
+    this.viewScene.replaceChildren();
+    for (const o of picker.options) {
+      if (o.value !== this.app.sceneId) this.viewScene.add(new Option(o.text, o.value));
+    }
+    this.setViews([]);  // views of another scene's box mean nothing here
+  }
+
+  addView() {
+    const id = this.viewScene.value;
+    if (!id || this.views.includes(id)) return;
+    this.setViews([...this.views, id]);
+  }
+
+  setViews(views) {
+    this.views = views;
+    const names = views.map((id) => [...this.viewScene.options].find((o) => o.value === id).text);
+    document.getElementById('views').textContent = views.length === 0 ?
+        'one view: this scene' :
+        `${views.length + 1} views: this scene, then ${names.join(', ')} (registered onto it)`;
+    document.getElementById('clear-views').disabled = views.length === 0;
+    this.invalidate();
+  }
+
+  // What every capture request says of the landmark: the scene, its further views, the box.
+  request(name) {
+    const body = {scene: this.app.sceneId, box: this.box, name};
+    if (this.views.length > 0) body.views = this.views;
+    return body;
   }
 
   /** A click in the view: the server's first guess of the box of the object under it. */
@@ -104,7 +142,7 @@ export class CapturePanel {
   invalidate() {
     const ready = this.box && this.name.value.trim() !== '';
     document.getElementById('check').disabled = !ready;
-    const key = JSON.stringify([this.box, this.name.value.trim()]);
+    const key = JSON.stringify([this.box, this.name.value.trim(), this.views]);
     if (key !== this.verdictFor) {
       document.getElementById('save').disabled = true;
       document.getElementById('save').textContent = 'Save';
@@ -114,13 +152,16 @@ export class CapturePanel {
 
   async check() {
     const name = this.name.value.trim();
-    const key = JSON.stringify([this.box, name]);
+    const key = JSON.stringify([this.box, name, this.views]);
     const verdict = document.getElementById('verdict');
     verdict.textContent = 'searching it in its own scene…';
     try {
-      const v = await runJob('/api/check', {scene: this.app.sceneId, box: this.box, name});
+      const v = await runJob('/api/check', this.request(name));
       verdict.className = v.distinctive ? 'small good' : 'small warn';
-      verdict.textContent = v.message;
+      const registered = (v.registrations || []).map(
+          (r) => `view ${r.view} registered: overlap ${Math.round(100 * r.overlap)}%, ` +
+              `residual ${(1000 * r.residual).toFixed(1)} mm`);
+      verdict.textContent = [v.message, ...registered].join('; ');
       const lookAlike = (m, i) => {
         return {box: m.box, label: `look-alike ${i + 1}`, tooltip: this.app.termsText(m)};
       };
@@ -140,12 +181,11 @@ export class CapturePanel {
     const name = this.name.value.trim();
     try {
       const saved = await postJSON('/api/landmarks', {
-        scene: this.app.sceneId,
-        box: this.box,
-        name,
+        ...this.request(name),
         overwrite: document.getElementById('overwrite').checked,
       });
-      this.app.status(`wrote ${saved.file}: ${saved.points} points`);
+      const views = saved.views > 1 ? ` from ${saved.views} views` : '';
+      this.app.status(`wrote ${saved.file}: ${saved.points} points${views}`);
       document.getElementById('save').disabled = true;
       await this.app.find.loadLandmarks(name);
     } catch (e) {

@@ -7,6 +7,7 @@
 #include "lmk/json/find_result_json.h"
 #include "lmk/json/plan_json.h"
 #include "lmk/landmark/box_guess.h"
+#include "lmk/landmark/capture_views.h"
 #include "lmk/landmark/landmark_file.h"
 #include "lmk/pbd/plan.h"
 #include "lmk/pr2/simulated_pr2.h"
@@ -238,6 +239,72 @@ TEST_F(ServeTest, FindGivesWhatTheLibraryFindsWithTheRejectedCandidatesAndProgre
   EXPECT_EQ(post("/api/find", {{"scene", "1"}, {"wait", "yes"}}).status, 400);
   EXPECT_EQ(get("/api/jobs/job-999").status, 404);
   EXPECT_EQ(get("/api/jobs/" + job + "?wait=soon").status, 400);
+}
+
+// "Add a view" (issue #35): the capture's further scenes are registered onto its first and fused,
+// as `lmk capture A B` fuses them (place_views, then capture_views): the same landmark, point for
+// point. A view that cannot join it is refused with the reason.
+TEST_F(ServeTest, AddingAViewFusesItAsLmkCaptureDoes) {
+  // The tabletop seen again with the camera turned 25 degrees about the vertical through the
+  // carton, in the same (world) frame, as a robot's head turning.
+  const Box box = carton_box();
+  Eigen::Isometry3d turn = Eigen::Isometry3d::Identity();
+  turn.translate(box.center())
+      .rotate(Eigen::AngleAxisd(25.0 * M_PI / 180.0, Eigen::Vector3d::UnitZ()))
+      .translate(-box.center());
+  DepthSensorSettings sensor;
+  sensor.seed = 2;
+  const std::string side_file = dir.file("tabletop_side.pcd");
+  write_cloud(side_file, render_depth(tabletop.mesh, turn * tabletop.T_world_sensor, sensor));
+  serve::ServeSettings settings;
+  settings.scenes = {scene_file, side_file, robot_scene_file};
+  start(settings);
+
+  const Reply saved =
+      post("/api/landmarks",
+           {{"scene", "1"}, {"views", {"2"}}, {"name", "carton"}, {"box", box_json(box)}});
+  ASSERT_EQ(saved.status, 201) << saved.text;
+  EXPECT_EQ(saved.body["views"], 2);
+  ASSERT_EQ(saved.body["registrations"].size(), 1u);
+  EXPECT_EQ(saved.body["registrations"][0]["view"], 2);
+  EXPECT_GT(saved.body["registrations"][0]["overlap"].get<double>(), 0.5);
+
+  const PointCloud first = read_cloud(scene_file), side = read_cloud(side_file);
+  CaptureSettings base;
+  base.base_frame = true;
+  const Landmark expected =
+      capture_views(place_views({&first, &side}, box, ViewPlacement{}), box, "carton", base);
+  const Landmark written = load_landmark((fs::path(landmarks_dir) / "carton.lmk").string());
+  ASSERT_EQ(written.view_count(), 2u);
+  EXPECT_EQ(written.points.points, expected.points.points);
+  EXPECT_EQ(written.point_views, expected.point_views);
+  EXPECT_EQ(written.view_origins, expected.view_origins);
+
+  // The check takes the views too, and says how each was registered.
+  const nlohmann::json verdict =
+      run("/api/check", {{"scene", "1"}, {"views", {"2"}}, {"name", "c"}, {"box", box_json(box)}});
+  EXPECT_EQ(verdict["views"], 2);
+  EXPECT_EQ(verdict["registrations"].size(), 1u);
+
+  // The frame moved 0.9 m does not show the carton where the first frame has it, whatever the
+  // registration makes of the room's planes: refused with the reason, naming the view.
+  const Reply apart =
+      post("/api/landmarks",
+           {{"scene", "1"}, {"views", {"3"}}, {"name", "apart"}, {"box", box_json(box)}});
+  EXPECT_EQ(apart.status, 422) << apart.text;
+  EXPECT_NE(apart.text.find("view 2"), std::string::npos) << apart.text;
+  EXPECT_FALSE(fs::exists(fs::path(landmarks_dir) / "apart.lmk"));
+  EXPECT_EQ(post("/api/landmarks",
+                 {{"scene", "1"}, {"views", {"9"}}, {"name", "x"}, {"box", box_json(box)}})
+                .status,
+            404);
+  EXPECT_EQ(post("/api/landmarks", {{"scene", "1"},
+                                    {"views", {"2"}},
+                                    {"poses", {1, 2}},
+                                    {"name", "x"},
+                                    {"box", box_json(box)}})
+                .status,
+            400);
 }
 
 TEST_F(ServeTest, FindWithoutLandmarksSaysToCaptureOne) {
