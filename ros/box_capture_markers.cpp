@@ -64,7 +64,8 @@ BoxCaptureMarkers::BoxCaptureMarkers(::ros::NodeHandle nh, const std::string& se
       actions_(std::move(actions)),
       box_(initial),
       server_(nh.resolveName(server_name), "", false) {
-  // Entry ids follow insertion: 1 capture, 2 capture anyway, 3 find (tests/ros select by id).
+  // Entry ids follow insertion: 1 capture, 2 capture anyway, 3 find, 4 add this view, 5 forget
+  // the added views (tests/ros select by id).
   menu_.insert("Capture as '" + capture_label + "'", [this](const auto&) {
     if (actions_.capture) actions_.capture(box(), false);
   });
@@ -73,6 +74,12 @@ BoxCaptureMarkers::BoxCaptureMarkers(::ros::NodeHandle nh, const std::string& se
   });
   menu_.insert("Find this here", [this](const auto&) {
     if (actions_.find) actions_.find(box());
+  });
+  menu_.insert("Add this view", [this](const auto&) {
+    if (actions_.add_view) actions_.add_view(false);
+  });
+  menu_.insert("Forget the added views", [this](const auto&) {
+    if (actions_.add_view) actions_.add_view(true);
   });
   clicked_ = nh.subscribe("/clicked_point", 1, &BoxCaptureMarkers::on_clicked, this);
   publish();

@@ -4,7 +4,8 @@
 // box in the base frame that the user drags and turns, and resizes with a handle on each face. A
 // point published with RViz's "Publish Point" tool (/clicked_point) places a first guess of the
 // box around the object under it (landmark/box_guess.h). The box's menu offers "Capture as
-// '<~capture_name>'", the same "even if not distinctive", and "Find this here".
+// '<~capture_name>'", the same "even if not distinctive", "Find this here", and "Add this view"
+// and "Forget the added views": turn the head, add the frame, and the capture fuses every view.
 
 #include <geometry_msgs/PointStamped.h>
 #include <interactive_markers/interactive_marker_server.h>
@@ -33,6 +34,9 @@ class BoxCaptureMarkers {
     /// "Capture as ..." (false) and "... even if not distinctive" (true).
     std::function<void(const Box&, bool force)> capture;
     std::function<void(const Box&)> find;  ///< "Find this here"
+    /// "Add this view" (false) and "Forget the added views" (true): the next capture fuses the
+    /// frames kept so far after its own (issue #35).
+    std::function<void(bool clear)> add_view;
   };
 
   /// Serves the markers as `server_name` under `nh`; the box starts at `initial` in `base_frame`.

@@ -3,12 +3,14 @@
 
 #include <visualization_msgs/MarkerArray.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <nlohmann/json.hpp>
 
 #include "lmk/geometry/error.h"
 #include "lmk/json/find_settings_json.h"
 #include "lmk/landmark/box_guess.h"
+#include "lmk/landmark/capture_views.h"
 #include "lmk/landmark/depth_correction_file.h"
 #include "lmk/landmark/distinctiveness.h"
 #include "lmk/landmark/find_landmark.h"
@@ -84,6 +86,7 @@ LandmarkNode::LandmarkNode(::ros::NodeHandle nh, ::ros::NodeHandle private_nh,
   settings_.capture.depth_smoothing = settings_.find.scene.depth_smoothing;
   markers_ = private_nh.advertise<visualization_msgs::MarkerArray>("matches", 1, /*latch=*/true);
   capture_service_ = private_nh.advertiseService("capture_landmark", &LandmarkNode::capture, this);
+  add_view_service_ = private_nh.advertiseService("add_view", &LandmarkNode::add_view, this);
   find_service_ = private_nh.advertiseService("find_landmark", &LandmarkNode::find, this);
   list_service_ = private_nh.advertiseService("list_landmarks", &LandmarkNode::list, this);
   if (settings_.interactive) {
@@ -93,6 +96,13 @@ LandmarkNode::LandmarkNode(::ros::NodeHandle nh, ::ros::NodeHandle private_nh,
     };
     actions.capture = [this](const Box& box, bool force) { capture_from_rviz(box, force); };
     actions.find = [this](const Box& box) { find_from_rviz(box); };
+    actions.add_view = [this](bool clear) {
+      try {
+        ROS_INFO("lmk: %s", keep_view(clear).c_str());
+      } catch (const Error& e) {
+        ROS_WARN("lmk: add a view from RViz: %s", e.what());
+      }
+    };
     // The box starts 0.8 m ahead of the robot at table height, until a click places it.
     const Box initial(Eigen::Isometry3d(Eigen::Translation3d(0.8, 0.0, 0.8)),
                       Eigen::Vector3d(0.2, 0.2, 0.2));
@@ -132,7 +142,7 @@ bool LandmarkNode::capture(lmk_msgs::CaptureLandmark::Request& request,
     const Eigen::Isometry3d T_base_boxframe =
         lookup_pose(tf_, settings_.base_frame, box_frame, ::ros::Time(0), ::ros::Duration(0.5));
     capture_box(request.name, Box(T_base_boxframe * T_boxframe_box, box_size), request.force,
-                request.overwrite, response);
+                request.overwrite, request.use_added_views, response);
   } catch (const Error& e) {
     response.success = false;
     response.message = e.what();
@@ -141,12 +151,63 @@ bool LandmarkNode::capture(lmk_msgs::CaptureLandmark::Request& request,
   return true;
 }
 
+std::string LandmarkNode::keep_view(bool clear) {
+  if (clear) {
+    const std::lock_guard<std::mutex> lock(views_mutex_);
+    added_views_.clear();
+    return "forgot the added views";
+  }
+  std::shared_ptr<const Frame> frame = this->frame();
+  const std::lock_guard<std::mutex> lock(views_mutex_);
+  if (added_views_.size() + 1 >= kMaxLandmarkViews) {
+    throw Error("already " + std::to_string(added_views_.size()) +
+                " views kept: a landmark takes at most " + std::to_string(kMaxLandmarkViews) +
+                " with the capture's own frame");
+  }
+  added_views_.push_back(std::move(frame));
+  return "kept this frame as view " + std::to_string(added_views_.size() + 1) +
+         " of the next capture that uses the added views";
+}
+
+bool LandmarkNode::add_view(lmk_msgs::AddView::Request& request,
+                            lmk_msgs::AddView::Response& response) {
+  try {
+    response.message = keep_view(request.clear);
+    response.success = true;
+  } catch (const Error& e) {
+    response.success = false;
+    response.message = e.what();
+  }
+  const std::lock_guard<std::mutex> lock(views_mutex_);
+  response.views = static_cast<std::uint32_t>(added_views_.size());
+  return true;
+}
+
 void LandmarkNode::capture_box(const std::string& name, const Box& box, bool force, bool overwrite,
+                               bool use_added_views,
                                lmk_msgs::CaptureLandmark::Response& response) {
   const std::shared_ptr<const Frame> frame = this->frame();
   response.header.frame_id = frame->base_frame;
   response.header.stamp = frame->stamp;
-  const Landmark landmark = lmk::capture(frame->scene, box, name, settings_.capture);
+  std::vector<std::shared_ptr<const Frame>> added;
+  if (use_added_views) {
+    const std::lock_guard<std::mutex> lock(views_mutex_);
+    added = added_views_;
+    if (added.empty()) throw Error("no view added: call add_view (RViz: \"Add this view\") first");
+  }
+  std::vector<const PointCloud*> clouds{&frame->scene};
+  for (const auto& view : added) clouds.push_back(&view->scene);
+  // The frames share the base frame: each further view is registered onto the latest from there.
+  std::string registered;
+  const std::vector<CaptureView> views =
+      place_views(clouds, box, ViewPlacement{}, [&](std::size_t view, const ViewRegistration& r) {
+        char text[96];
+        std::snprintf(text, sizeof(text), "; view %zu registered: overlap %.0f%%, residual %.1f mm",
+                      view, 100.0 * r.overlap, 1000.0 * r.residual);
+        registered += text;
+      });
+  const Landmark landmark = capture_views(views, box, name, settings_.capture);
+  response.views = static_cast<std::uint32_t>(landmark.view_count());
 
   FindSettings check = settings_.find;
   check.scene.up = landmark.up;
@@ -173,8 +234,13 @@ void LandmarkNode::capture_box(const std::string& name, const Box& box, bool for
   response.file = library_.save(landmark, overwrite).string();
   response.success = true;
   response.message =
-      "wrote '" + landmark.name + "' (" + std::to_string(landmark.points.size()) + " points)" +
-      (verdict.empty() ? "; distinctive in this frame" : "; kept despite: " + verdict);
+      "wrote '" + landmark.name + "' (" + std::to_string(landmark.points.size()) + " points" +
+      (landmark.multi_view() ? ", " + std::to_string(landmark.view_count()) + " views" : "") + ")" +
+      (verdict.empty() ? "; distinctive in this frame" : "; kept despite: " + verdict) + registered;
+  if (use_added_views) {  // written: the next landmark starts from its own views
+    const std::lock_guard<std::mutex> lock(views_mutex_);
+    added_views_.clear();
+  }
   // The slide check (landmark/slide_check.h): advice shown with the result in RViz, not a refusal.
   for (const std::string& line : describe_slides(slide_check(landmark), landmark.box))
     response.message += "; " + line;
@@ -195,8 +261,13 @@ void LandmarkNode::capture_from_rviz(const Box& box, bool force) {
     name = settings_.capture_name + "-" + std::to_string(n);
   }
   lmk_msgs::CaptureLandmark::Response response;
+  bool use_added_views = false;
+  {
+    const std::lock_guard<std::mutex> lock(views_mutex_);
+    use_added_views = !added_views_.empty();
+  }
   try {
-    capture_box(name, box, force, false, response);
+    capture_box(name, box, force, false, use_added_views, response);
   } catch (const Error& e) {
     ROS_WARN("lmk: capture from RViz: %s", e.what());
     return;

@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // lmk_node's work (docs/ros.md, "lmk_node"): keeps the latest camera frame in the base frame and
-// serves capture_landmark, find_landmark and list_landmarks over a landmark directory, publishing
-// the last search's matches as a latched MarkerArray for RViz.
+// serves capture_landmark, add_view, find_landmark and list_landmarks over a landmark directory,
+// publishing the last search's matches as a latched MarkerArray for RViz.
 
+#include <lmk_msgs/AddView.h>
 #include <lmk_msgs/CaptureLandmark.h>
 #include <lmk_msgs/FindLandmark.h>
 #include <lmk_msgs/ListLandmarks.h>
@@ -12,6 +13,7 @@
 #include <tf2_ros/transform_listener.h>
 
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 
@@ -53,16 +55,22 @@ class LandmarkNode {
 
   bool capture(lmk_msgs::CaptureLandmark::Request& request,
                lmk_msgs::CaptureLandmark::Response& response);
+  /// Keeps the latest frame as a further view of the next capture that fuses views (issue #35).
+  bool add_view(lmk_msgs::AddView::Request& request, lmk_msgs::AddView::Response& response);
   bool find(lmk_msgs::FindLandmark::Request& request, lmk_msgs::FindLandmark::Response& response);
   bool list(lmk_msgs::ListLandmarks::Request& request, lmk_msgs::ListLandmarks::Response& response);
 
  private:
   /// The latest frame; lmk::Error when none has arrived yet.
   std::shared_ptr<const Frame> frame() const;
-  /// Captures `box` (base frame) from the latest frame as `name` into the library, unless the
-  /// distinctiveness check objects and `force` is off; fills the response either way.
+  /// Captures `box` (base frame) from the latest frame, and with `use_added_views` the kept views
+  /// after it (registered onto it as `lmk capture A B` registers, place_views), as `name` into the
+  /// library, unless the distinctiveness check objects and `force` is off; fills the response
+  /// either way. A landmark written from the kept views forgets them.
   void capture_box(const std::string& name, const Box& box, bool force, bool overwrite,
-                   lmk_msgs::CaptureLandmark::Response& response);
+                   bool use_added_views, lmk_msgs::CaptureLandmark::Response& response);
+  /// Keeps the latest frame as a view, or forgets the kept ones; says what it did.
+  std::string keep_view(bool clear);
   /// The RViz menu's actions.
   Box guess_at(const std::string& frame_id, const Eigen::Vector3d& point);
   void capture_from_rviz(const Box& box, bool force);
@@ -75,7 +83,9 @@ class LandmarkNode {
   tf2_ros::TransformListener tf_listener_;
   LatestFrame latest_;
   ::ros::Publisher markers_;
-  ::ros::ServiceServer capture_service_, find_service_, list_service_;
+  ::ros::ServiceServer capture_service_, add_view_service_, find_service_, list_service_;
+  mutable std::mutex views_mutex_;
+  std::vector<std::shared_ptr<const Frame>> added_views_;  ///< views kept for the next capture
   std::unique_ptr<BoxCaptureMarkers> rviz_box_;
 };
 

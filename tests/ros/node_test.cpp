@@ -7,6 +7,7 @@
 #include <actionlib/server/action_server.h>
 #include <geometry_msgs/PointStamped.h>
 #include <gtest/gtest.h>
+#include <lmk_msgs/AddView.h>
 #include <lmk_msgs/CaptureLandmark.h>
 #include <lmk_msgs/FindLandmark.h>
 #include <lmk_msgs/ListLandmarks.h>
@@ -165,6 +166,61 @@ TEST(LmkNode, CaptureAndFindThroughTheServicesGiveWhatLmkFindGivesOnTheSameFrame
               want["terms"]["landmark_to_scene_count"].get<std::size_t>());
     EXPECT_EQ(got.rank, i + 1);
   }
+}
+
+// "Add this view" (issue #35): add_view keeps the latest frame, and a capture with
+// use_added_views fuses it after its own frame, as `lmk capture A B` fuses two scenes, point for
+// point. The fake PR2's head does not move, so both views are the same frame here; the fusion of
+// distinct views through the same place_views is ServeTest.AddingAViewFusesItAsLmkCaptureDoes.
+TEST(LmkNode, AddedViewsAreFusedAsLmkCaptureFusesThem) {
+  const Landmark demonstrated = load_landmark(demo_data().landmark().string());
+  FakePr2 robot(fake_settings("demonstration.pcd"));
+  const ScratchDir dir;
+  const auto node = start_node(dir, dir.file("landmarks"));
+
+  lmk_msgs::CaptureLandmark capture;
+  capture.request.name = "rim";
+  capture.request.box_pose.header.frame_id = "base_link";
+  capture.request.box_pose.pose = ros1::to_ros(demonstrated.box.pose);
+  capture.request.box_size = ros1::to_ros(demonstrated.box.size);
+  capture.request.force = true;  // the bowl's rim matches the other bowls of this frame
+  capture.request.use_added_views = true;
+  capture = call("/lmk_node/capture_landmark", capture);
+  EXPECT_FALSE(capture.response.success);  // no view added yet: said so
+  EXPECT_NE(capture.response.message.find("no view added"), std::string::npos)
+      << capture.response.message;
+
+  lmk_msgs::AddView add = call("/lmk_node/add_view", lmk_msgs::AddView());
+  ASSERT_TRUE(add.response.success) << add.response.message;
+  EXPECT_EQ(add.response.views, 1u);
+  capture = call("/lmk_node/capture_landmark", capture);
+  ASSERT_TRUE(capture.response.success) << capture.response.message << "\n" << node->log();
+  EXPECT_EQ(capture.response.views, 2u);
+  EXPECT_NE(capture.response.message.find("view 2 registered"), std::string::npos)
+      << capture.response.message;
+  // Written: the kept views are forgotten.
+  lmk_msgs::AddView forget;
+  forget.request.clear = true;
+  EXPECT_EQ(call("/lmk_node/add_view", forget).response.views, 0u);
+
+  const ros1::Frame frame = frame_as_the_node_sees_it();
+  write_cloud(dir.file("frame.pcd"), frame.scene);
+  const Eigen::Quaterniond q(demonstrated.box.pose.linear());
+  const Eigen::Vector3d c = demonstrated.box.pose.translation(), size = demonstrated.box.size;
+  std::ofstream(dir.file("box.json"))
+      << nlohmann::json{{"position", {c.x(), c.y(), c.z()}},
+                        {"quaternion", {q.w(), q.x(), q.y(), q.z()}},
+                        {"size", {size.x(), size.y(), size.z()}}};
+  const auto [code, out] = run_lmk(dir, {"capture", dir.file("frame.pcd"), dir.file("frame.pcd"),
+                                         "--box-json", dir.file("box.json"), "--name", "rim", "-o",
+                                         dir.file("cli.lmk"), "--base-frame", "--no-check"});
+  ASSERT_EQ(code, 0) << out;
+  const Landmark by_cli = load_landmark(dir.file("cli.lmk"));
+  const Landmark by_node = load_landmark(capture.response.file);
+  ASSERT_EQ(by_node.view_count(), 2u);
+  EXPECT_EQ(by_node.points.points, by_cli.points.points);
+  EXPECT_EQ(by_node.point_views, by_cli.point_views);
+  EXPECT_EQ(by_node.view_origins, by_cli.view_origins);
 }
 
 TEST(LmkNode, AClickedPointAndTheMenuCaptureTheGuessedBoxAsInRviz) {
