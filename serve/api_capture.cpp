@@ -66,10 +66,14 @@ Landmark capture_from(const std::vector<Scene>& scenes, const nlohmann::json& bo
 
 // The verdict the page shows before the file is written (landmark/distinctiveness.h). The search
 // reports each seed to `progress`, where a cancelled or abandoned job ends.
-nlohmann::json verdict(const Landmark& landmark, const PointCloud& scene, JobProgress& progress) {
+// With the landmark's views and how each further one was registered (`registrations`).
+nlohmann::json verdict(const Landmark& landmark, const PointCloud& scene,
+                       const nlohmann::json& registrations, JobProgress& progress) {
   if (landmark.settings.allow_flat) {
     return {{"distinctive", true},
             {"checked", false},
+            {"views", landmark.view_count()},
+            {"registrations", registrations},
             {"message", "a flat patch matches wherever it fits: no distinctiveness check"}};
   }
   FindSettings find;
@@ -108,6 +112,8 @@ nlohmann::json verdict(const Landmark& landmark, const PointCloud& scene, JobPro
           {"other_instances", others},
           {"metric", report.search.stats.metric},
           {"seconds", report.search.stats.seconds_total},
+          {"views", landmark.view_count()},
+          {"registrations", registrations},
           {"message", message}};
 }
 
@@ -161,10 +167,7 @@ ApiResponse Api::check(const std::string& body_text) {
     nlohmann::json registrations = nlohmann::json::array();
     const Landmark landmark = capture_from(scenes, body, find, name, "check", registrations);
     progress.report(0.2, "searching '" + name + "' in its own scene");
-    nlohmann::json v = verdict(landmark, *scenes.front().cloud, progress);
-    v["views"] = landmark.view_count();
-    v["registrations"] = registrations;
-    return v;
+    return verdict(landmark, *scenes.front().cloud, registrations, progress);
   });
 }
 
@@ -223,7 +226,7 @@ ApiResponse Api::save_landmark(const std::string& body_text) {
   ApiResponse answer = run_job(
       "capture", job_body,
       [shared, scene, overwrite, name, registrations, &library](JobProgress& progress) {
-        const nlohmann::json checked = verdict(*shared, *scene.cloud, progress);
+        const nlohmann::json checked = verdict(*shared, *scene.cloud, registrations, progress);
         if (!checked["distinctive"].get<bool>()) {
           throw ApiError(409, "capture: not written: " + checked["message"].get<std::string>(),
                          {{"verdict", checked}});

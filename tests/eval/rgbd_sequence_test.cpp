@@ -11,6 +11,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "lmk/eval/evaluation.h"
 #include "lmk/eval/rgbd_dataset.h"
 #include "lmk/geometry/pose.h"
 #include "lmk/landmark/landmark_file.h"
@@ -269,6 +270,35 @@ TEST(RgbdSequence, TheRealKitchenGivesLandmarksOfTwoViews) {
     }
   }
   EXPECT_GT(two_views, 0u);
+}
+
+// Colour on real frames (issue #35): the desk sequence's colour is registered to its depth, and
+// its camera's exposure and white balance drift as it moves. The colour term, whose tolerance was
+// chosen on this sequence, keeps every true match in context and turns down look-alikes of other
+// colours (docs/evaluation.md, "Colour"): what a change to chroma, the pairing or the defaults must
+// not lose.
+TEST(RgbdSequence, ColourOnTheRealDeskKeepsEveryTrueMatchAndRemovesFalseOnes) {
+  LMK_REQUIRE_SHARED_DATA(data);
+  const ScratchDir dir;
+  RgbdDatasetOptions options;
+  options.read.colour_registered = true;
+  const std::string out = (dir.path() / "desk").string();
+  const RgbdImport import = generate_rgbd_dataset((data / "real" / "desk").string(), out, options);
+  ASSERT_FALSE(import.dataset.landmarks.empty());
+  EXPECT_TRUE(load_landmark((dir.path() / "desk" / import.dataset.landmarks[0].file).string())
+                  .points.has_colors());
+  EvaluationSettings settings;
+  settings.in_context_only = true;
+  const Counts with = evaluation_row(evaluate(out, import.dataset, settings), "all", 2,
+                                     *settings.find.resolved().selection.threshold)
+                          .counts;
+  settings.find.selection.colour_weight = 0.0;
+  const Counts without = evaluation_row(evaluate(out, import.dataset, settings), "all", 2,
+                                        *settings.find.resolved().selection.threshold)
+                             .counts;
+  EXPECT_GT(without.tp, 10u);
+  EXPECT_EQ(with.tp, without.tp);
+  EXPECT_LT(2 * with.fp, without.fp + 1) << "colour should remove at least half the false matches";
 }
 
 TEST(RgbdSequence, ReadsTheRealSequences) {

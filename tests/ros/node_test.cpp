@@ -109,6 +109,18 @@ Service call(const std::string& name, Service service) {
   return service;
 }
 
+// A capture of the demonstrated box as "rim", the box given in `frame` (T_base_frame is where that
+// frame lies in base_link).
+lmk_msgs::CaptureLandmark rim_capture(const Landmark& demonstrated, const std::string& frame,
+                                      const Eigen::Isometry3d& T_base_frame) {
+  lmk_msgs::CaptureLandmark capture;
+  capture.request.name = "rim";
+  capture.request.box_pose.header.frame_id = frame;
+  capture.request.box_pose.pose = ros1::to_ros(T_base_frame.inverse() * demonstrated.box.pose);
+  capture.request.box_size = ros1::to_ros(demonstrated.box.size);
+  return capture;
+}
+
 TEST(LmkNode, CaptureAndFindThroughTheServicesGiveWhatLmkFindGivesOnTheSameFrame) {
   const Landmark demonstrated = load_landmark(demo_data().landmark().string());
   FakePr2 robot(fake_settings("demonstration.pcd"));
@@ -116,13 +128,9 @@ TEST(LmkNode, CaptureAndFindThroughTheServicesGiveWhatLmkFindGivesOnTheSameFrame
   const auto node = start_node(dir, dir.file("landmarks"));
 
   // The box the demonstration used, given in torso_lift_link: capture takes any TF frame.
-  lmk_msgs::CaptureLandmark capture;
-  capture.request.name = "rim";
-  capture.request.box_pose.header.frame_id = "torso_lift_link";
   const Pr2Kinematics kinematics(RobotModel::pr2(), 0.0);
-  capture.request.box_pose.pose =
-      ros1::to_ros(kinematics.T_base_torso().inverse() * demonstrated.box.pose);
-  capture.request.box_size = ros1::to_ros(demonstrated.box.size);
+  lmk_msgs::CaptureLandmark capture =
+      rim_capture(demonstrated, "torso_lift_link", kinematics.T_base_torso());
   capture = call("/lmk_node/capture_landmark", capture);
   ASSERT_TRUE(capture.response.success) << capture.response.message << "\n" << node->log();
   EXPECT_TRUE(capture.response.found_itself);
@@ -178,11 +186,8 @@ TEST(LmkNode, AddedViewsAreFusedAsLmkCaptureFusesThem) {
   const ScratchDir dir;
   const auto node = start_node(dir, dir.file("landmarks"));
 
-  lmk_msgs::CaptureLandmark capture;
-  capture.request.name = "rim";
-  capture.request.box_pose.header.frame_id = "base_link";
-  capture.request.box_pose.pose = ros1::to_ros(demonstrated.box.pose);
-  capture.request.box_size = ros1::to_ros(demonstrated.box.size);
+  lmk_msgs::CaptureLandmark capture =
+      rim_capture(demonstrated, "base_link", Eigen::Isometry3d::Identity());
   capture.request.force = true;  // the bowl's rim matches the other bowls of this frame
   capture.request.use_added_views = true;
   capture = call("/lmk_node/capture_landmark", capture);
