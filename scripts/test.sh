@@ -62,7 +62,8 @@ run_tsan() {
   bash scripts/build-tbb-tsan.sh "$tbb"
   export LD_LIBRARY_PATH="$tbb/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
   cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang-14 \
-    -DCMAKE_CXX_COMPILER=clang++-14 -DLMK_TSAN=ON -DLMK_BUILD_BENCH=OFF >/dev/null
+    -DCMAKE_CXX_COMPILER=clang++-14 -DLMK_TSAN=ON -DLMK_BUILD_BENCH=OFF -DLMK_BUILD_PYTHON=OFF \
+    >/dev/null
   # The options apply to the build too: it runs each test executable to list its tests.
   export TSAN_OPTIONS="halt_on_error=1 suppressions=$PWD/tests/tsan.supp"
   cmake --build "$build" -j2 --target "${threaded_modules[@]}"

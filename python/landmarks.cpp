@@ -1,0 +1,92 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// lmk.Landmark, lmk.load_landmark and lmk.capture: a landmark cut out of a cloud with a box, with
+// the verdict of the distinctiveness check and the slide check, as `lmk capture` gives them
+// (docs/python.md, "Landmarks").
+#include <pybind11/stl.h>
+
+#include <memory>
+
+#include "bindings.h"
+#include "lmk/json/find_result_json.h"
+#include "lmk/landmark/distinctiveness.h"
+#include "lmk/landmark/landmark_file.h"
+#include "lmk/landmark/slide_check.h"
+
+namespace lmk::python {
+namespace {
+
+// The check `lmk capture` runs in the capture scene, as a dict: whether the landmark is
+// distinctive, found itself, the other places it matches, and how it can slide within the noise.
+py::dict verdict(const PointCloud& scene, const Landmark& landmark) {
+  FindSettings find;
+  find.scene.up = landmark.up;  // the capture frame is the scene frame
+  DistinctivenessReport report;
+  std::vector<std::string> slides;
+  {
+    const py::gil_scoped_release release;
+    report = check_distinctiveness(scene, landmark, find);
+    slides = describe_slides(slide_check(landmark), landmark.box);
+  }
+  py::list others;
+  for (const Match& m : report.other_instances) {
+    others.append(json_to_python(detail::match_to_json(m)));
+  }
+  py::dict d;
+  d["distinctive"] = report.found_itself && report.other_instances.empty();
+  d["found_itself"] = report.found_itself;
+  d["other_instances"] = others;
+  d["slides"] = slides;
+  return d;
+}
+
+}  // namespace
+
+void bind_landmarks(py::module_& m) {
+  py::class_<Landmark, std::shared_ptr<Landmark>>(
+      m, "Landmark", "A landmark: the points cut out with a box, the box, and its grids.")
+      .def_readonly("name", &Landmark::name)
+      .def_property_readonly(
+          "points",
+          [](const Landmark& l) {
+            py::array_t<float> out({static_cast<py::ssize_t>(l.points.size()), py::ssize_t{3}});
+            auto o = out.mutable_unchecked<2>();
+            for (std::size_t i = 0; i < l.points.size(); ++i)
+              for (int k = 0; k < 3; ++k) o(i, k) = l.points.points[i][k];
+            return out;
+          },
+          "The landmark's points in its capture frame, an N x 3 float32 array.")
+      .def_property_readonly(
+          "box", [](const Landmark& l) { return box_to_dict(l.box); },
+          "The box drawn, in the capture frame: {'pose': 4x4, 'size': (3,)}.")
+      .def_property_readonly("view_count", &Landmark::view_count)
+      .def_property_readonly("has_colour", [](const Landmark& l) { return l.points.has_colors(); })
+      .def(
+          "save", [](const Landmark& l, const std::string& path) { save_landmark(path, l); },
+          py::arg("path"), "Writes the .lmk file, atomically.");
+  m.def(
+      "load_landmark", [](const std::string& path) { return load_landmark(path); }, py::arg("path"),
+      "Reads a .lmk file, checked as `lmk` checks it.");
+  m.def(
+      "capture",
+      [](const PointCloud& cloud, const py::object& box_pose, const py::object& box_size,
+         const std::string& name, bool base_frame, bool check) {
+        const Box box = box_from_arrays(box_pose, box_size, "box");
+        CaptureSettings settings;
+        settings.base_frame = base_frame;
+        Landmark landmark;
+        {
+          const py::gil_scoped_release release;
+          landmark = capture(cloud, box, name, settings);
+        }
+        py::object checked = check ? py::object(verdict(cloud, landmark)) : py::none();
+        return py::make_tuple(std::make_shared<Landmark>(std::move(landmark)), checked);
+      },
+      py::arg("cloud"), py::arg("box_pose"), py::arg("box_size"), py::kw_only(), py::arg("name"),
+      py::arg("base_frame") = false, py::arg("check") = true,
+      "Cuts a landmark out of `cloud` with the box (a 4x4 pose and three sides, m, in the cloud's "
+      "frame). `base_frame`: the cloud is in a robot base frame, whose +z is up. Returns "
+      "(landmark, verdict): the verdict of `lmk capture`'s checks (distinctive, found_itself, "
+      "other_instances, slides), or None with check=False.");
+}
+
+}  // namespace lmk::python

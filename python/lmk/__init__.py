@@ -1,0 +1,20 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""lmk: custom perceptual landmarks for robot programming by demonstration.
+
+Point clouds go in and out as numpy arrays; landmarks are captured, saved, loaded and searched for
+with the C++ library's own functions (docs/python.md). Search settings are keywords with the names
+of `lmk find`'s flags (``max_tilt=30`` for ``--max-tilt 30``), in the same units, checked by the
+same rules.
+"""
+
+from ._lmk import (  # noqa: F401
+    Cloud,
+    Error,
+    Landmark,
+    __version__,
+    capture,
+    find,
+    find_setting_keys,
+    load_landmark,
+    read_cloud,
+)

@@ -1,0 +1,27 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The `lmk` Python module (issue #36): its version, its error type, and the parts defined in
+// clouds.cpp, landmarks.cpp and search.cpp.
+#include <pybind11/pybind11.h>
+
+#include "bindings.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/version.h"
+
+namespace py = pybind11;
+
+PYBIND11_MODULE(_lmk, m) {
+  m.doc() = "lmk: custom perceptual landmarks (the C++ library's bindings)";
+  m.attr("__version__") = lmk::kVersion;
+  // lmk::Error's one-line message, as the CLI prints it, as lmk.Error (a RuntimeError).
+  static py::exception<lmk::Error> error(m, "Error", PyExc_RuntimeError);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const lmk::Error& e) {
+      error(e.what());
+    }
+  });
+  lmk::python::bind_clouds(m);
+  lmk::python::bind_landmarks(m);
+  lmk::python::bind_search(m);
+}

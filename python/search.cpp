@@ -1,0 +1,120 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// lmk.find: a search with its settings as keywords, named, converted and checked by the settings'
+// own descriptions (landmark/find_settings.h) as `lmk find`'s flags are; the GIL released while it
+// runs (docs/python.md, "Search").
+#include <pybind11/functional.h>
+#include <pybind11/stl.h>
+
+#include <algorithm>
+
+#include "bindings.h"
+#include "lmk/geometry/error.h"
+#include "lmk/json/find_result_json.h"
+#include "lmk/landmark/find_landmark.h"
+
+namespace lmk::python {
+namespace {
+
+// A keyword's value as the command line writes it: booleans as true/false, sequences as
+// space-separated values, numbers in Python's own shortest form.
+std::string setting_text(const py::handle& value) {
+  if (py::isinstance<py::bool_>(value)) return value.cast<bool>() ? "true" : "false";
+  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  if (py::isinstance<py::sequence>(value) || py::isinstance<py::array>(value)) {
+    std::string text;
+    for (const py::handle& v : value) text += (text.empty() ? "" : " ") + setting_text(v);
+    return text;
+  }
+  return py::str(value).cast<std::string>();
+}
+
+// The keyword's name as a flag's key: max_tilt -> max-tilt.
+std::string setting_key(std::string name) {
+  std::replace(name.begin(), name.end(), '_', '-');
+  return name;
+}
+
+FindSettings settings_from_keywords(const py::kwargs& keywords) {
+  FindSettings settings;
+  for (const auto& [name, value] : keywords) {
+    const std::string key = setting_key(name.cast<std::string>());
+    try {
+      set_find_setting(settings, key, setting_text(value));
+    } catch (const Error& e) {
+      throw py::value_error(e.what());
+    }
+  }
+  try {
+    validate(settings);
+  } catch (const Error& e) {
+    throw py::value_error(e.what());
+  }
+  return settings;
+}
+
+// The matches of `lmk find --json`, each with its pose (the capture frame in the scene frame) and
+// its box as arrays too.
+py::list matches_to_python(const std::vector<Match>& matches, const nlohmann::json& j) {
+  py::list out;
+  for (std::size_t i = 0; i < matches.size(); ++i) {
+    py::dict d = json_to_python(j[i]);
+    d["pose"] = pose_to_array(matches[i].T_scene_capture);
+    d["box"] = box_to_dict(matches[i].box);
+    out.append(d);
+  }
+  return out;
+}
+
+}  // namespace
+
+void bind_search(py::module_& m) {
+  m.def(
+      "find",
+      [](const PointCloud& scene, const Landmark& landmark, bool rejected,
+         const std::function<void(std::size_t, std::size_t)>& progress, const py::kwargs& kwargs) {
+        FindSettings settings = settings_from_keywords(kwargs);
+        if (progress) {
+          // Seeds report from the search's threads: each report takes the GIL.
+          settings.execution.progress = [&progress](std::size_t done, std::size_t total) {
+            const py::gil_scoped_acquire acquire;
+            progress(done, total);
+          };
+        }
+        FindResult result;
+        {
+          const py::gil_scoped_release release;
+          result = find_landmark(scene, landmark, settings);
+        }
+        const nlohmann::json j = detail::find_result_to_json(result, rejected);
+        py::dict out;
+        out["matches"] = matches_to_python(result.matches, j["matches"]);
+        out["stats"] = json_to_python(j["stats"]);
+        if (rejected) {
+          std::vector<Match> candidates;
+          for (const Rejection& r : result.rejected) candidates.push_back(r.candidate);
+          out["rejected"] = matches_to_python(candidates, j["rejected"]);
+        }
+        return out;
+      },
+      py::arg("scene"), py::arg("landmark"), py::kw_only(), py::arg("rejected") = false,
+      py::arg("progress") = nullptr,
+      "Finds every instance of `landmark` in `scene`. Settings are keywords named as `lmk find`'s "
+      "flags (max_tilt=30 for --max-tilt 30), in their units and checked by their rules "
+      "(ValueError otherwise). Returns {'matches': [...], 'stats': {...}} as `lmk find --json` "
+      "writes them, each match with its 'pose' (4x4, the capture frame in the scene frame) and "
+      "'box'; with rejected=True also the rejected candidates and their 'reason'. "
+      "progress(done, total) hears of each seed.");
+  m.def(
+      "find_setting_keys",
+      [] {
+        std::vector<std::string> keys;
+        for (std::string k : find_setting_keys()) {
+          std::replace(k.begin(), k.end(), '-', '_');
+          keys.push_back(k);
+        }
+        return keys;
+      },
+      "The keywords lmk.find takes: every search setting, as `lmk find`'s flags name them.");
+}
+
+}  // namespace lmk::python

@@ -1,0 +1,135 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""`import lmk` (issue #36): clouds as numpy arrays, landmarks, and searches that give exactly what
+the CLI gives on the same files. Run by ctest (tests/CMakeLists.txt), which sets PYTHONPATH to the
+build tree's package, LMK_BINARY to the CLI and LMK_CLI_FIXTURES to tests/cli/fixtures."""
+
+import json
+import os
+import subprocess
+
+import numpy as np
+import pytest
+
+import lmk
+
+LMK = os.environ["LMK_BINARY"]
+CUP = os.path.join(os.environ["LMK_CLI_FIXTURES"], "cup_v2.lmk")
+
+
+def run(*args):
+    return subprocess.run([LMK, *args], check=True, capture_output=True, text=True).stdout
+
+
+@pytest.fixture(scope="module")
+def tabletop(tmp_path_factory):
+    """The built-in tabletop frame (`lmk gen`), where cup_v2.lmk was captured."""
+    path = str(tmp_path_factory.mktemp("scene") / "tab.pcd")
+    run("gen", path)
+    return path
+
+
+def without_arrays(match):
+    return {k: v for k, v in match.items() if k not in ("pose", "box")}
+
+
+def test_version_is_the_cli_s():
+    assert lmk.__version__ in run("--version")
+
+
+def test_find_gives_exactly_lmk_find_json(tabletop):
+    cli = json.loads(run("find", tabletop, CUP, "--rejected", "--json", "-"))
+    got = lmk.find(lmk.read_cloud(tabletop), lmk.load_landmark(CUP), rejected=True)
+    assert len(got["matches"]) > 0
+    assert [without_arrays(m) for m in got["matches"]] == cli["matches"]
+    assert [without_arrays(m) for m in got["rejected"]] == cli["rejected"]
+    assert got["stats"]["rejections"] == cli["stats"]["rejections"]
+    for m in got["matches"]:
+        assert m["pose"].shape == (4, 4) and m["box"]["pose"].shape == (4, 4)
+        # The box is the landmark's capture box moved by the pose.
+        np.testing.assert_allclose(m["box"]["pose"][:3, 3], m["position"], atol=1e-12)
+
+
+def test_settings_are_the_flags_with_their_units_and_checks(tabletop):
+    scene, cup = lmk.read_cloud(tabletop), lmk.load_landmark(CUP)
+    cli = json.loads(run("find", tabletop, CUP, "--max-tilt", "30", "--no-refine", "--json", "-"))
+    got = lmk.find(scene, cup, max_tilt=30, refine=False)
+    assert [without_arrays(m) for m in got["matches"]] == cli["matches"]
+    assert "max_tilt" in lmk.find_setting_keys()
+    with pytest.raises(ValueError, match="max-tilt"):
+        lmk.find(scene, cup, max_tilt=500)
+    with pytest.raises(ValueError, match="unknown setting 'colour-weigh'"):
+        lmk.find(scene, cup, colour_weigh=1)
+
+
+def test_an_organised_numpy_cloud_finds_what_its_pcd_finds(tabletop):
+    read = lmk.read_cloud(tabletop)
+    assert read.organised and read.points.shape == (480, 640, 3)
+    assert not read.points.flags.writeable  # a view over the cloud's memory
+    built = lmk.Cloud(read.points.copy(), sensor_pose=read.sensor_pose)
+    cup = lmk.load_landmark(CUP)
+    a, b = lmk.find(read, cup), lmk.find(built, cup)
+    assert [without_arrays(m) for m in a["matches"]] == [without_arrays(m) for m in b["matches"]]
+    # float64 is taken too, and N x 3 is an unorganised cloud.
+    flat = lmk.Cloud(read.points.reshape(-1, 3).astype(np.float64))
+    assert not flat.organised and len(flat) == 480 * 640
+
+
+def test_bad_arrays_are_value_errors_that_name_them():
+    with pytest.raises(ValueError, match="points: must be an N x 3 array"):
+        lmk.Cloud(np.zeros((5, 2), dtype=np.float32))
+    with pytest.raises(ValueError, match="points: must be an array of float32 or float64"):
+        lmk.Cloud(np.zeros((5, 3), dtype=np.int32))
+    with pytest.raises(ValueError, match="colours: must have the points' shape"):
+        lmk.Cloud(np.zeros((5, 3), dtype=np.float32), colours=np.zeros((4, 3), dtype=np.uint8))
+    pose = np.eye(4)
+    pose[0, 3] = np.nan
+    with pytest.raises(ValueError, match="sensor_pose: must be finite"):
+        lmk.Cloud(np.zeros((5, 3), dtype=np.float32), sensor_pose=pose)
+    with pytest.raises(ValueError, match="sensor_pose: must be a 4 x 4 array"):
+        lmk.Cloud(np.zeros((5, 3), dtype=np.float32), sensor_pose=np.eye(3))
+
+
+def test_capture_saves_and_loads_with_its_verdict(tabletop, tmp_path):
+    scene, cup = lmk.read_cloud(tabletop), lmk.load_landmark(CUP)
+    box = cup.box
+    landmark, verdict = lmk.capture(scene, box["pose"], box["size"], name="cup")
+    assert landmark.name == "cup" and landmark.view_count == 1
+    # `lmk capture` of the same box writes the same points.
+    rotation = box["pose"][:3, :3]
+    w = np.sqrt(max(0.0, 1.0 + np.trace(rotation))) / 2.0
+    quaternion = [w, (rotation[2, 1] - rotation[1, 2]) / (4 * w),
+                  (rotation[0, 2] - rotation[2, 0]) / (4 * w),
+                  (rotation[1, 0] - rotation[0, 1]) / (4 * w)]
+    box_json = tmp_path / "box.json"
+    box_json.write_text(json.dumps({"position": box["pose"][:3, 3].tolist(),
+                                    "quaternion": quaternion, "size": box["size"].tolist()}))
+    run("capture", tabletop, "--box-json", str(box_json), "--name", "cup", "-o",
+        str(tmp_path / "cli.lmk"), "--no-check")
+    np.testing.assert_array_equal(landmark.points,
+                                  lmk.load_landmark(str(tmp_path / "cli.lmk")).points)
+    assert verdict["found_itself"]
+    assert set(verdict) == {"distinctive", "found_itself", "other_instances", "slides"}
+    path = str(tmp_path / "cup.lmk")
+    landmark.save(path)
+    np.testing.assert_array_equal(lmk.load_landmark(path).points, landmark.points)
+    with pytest.raises(ValueError, match="box: sides must be positive"):
+        lmk.capture(scene, box["pose"], [0.1, 0.0, 0.1], name="flat")
+    with pytest.raises(lmk.Error, match="no scene point inside the box"):
+        far = box["pose"].copy()
+        far[:3, 3] += 100.0
+        lmk.capture(scene, far, box["size"], name="nowhere")
+
+
+def test_lmk_errors_keep_the_cli_s_one_line_message(tmp_path):
+    missing = str(tmp_path / "missing.lmk")
+    with pytest.raises(lmk.Error) as error:
+        lmk.load_landmark(missing)
+    assert missing in str(error.value) and "\n" not in str(error.value)
+    assert issubclass(lmk.Error, RuntimeError)
+
+
+def test_progress_hears_every_seed(tabletop):
+    seen = []
+    got = lmk.find(lmk.read_cloud(tabletop), lmk.load_landmark(CUP),
+                   progress=lambda done, total: seen.append((done, total)))
+    assert seen and seen[-1][0] == seen[-1][1] == got["stats"]["seeds"]
