@@ -73,13 +73,14 @@ void bind_search(py::module_& m) {
       [](const PointCloud& scene, const Landmark& landmark, bool rejected,
          const std::function<void(std::size_t, std::size_t)>& progress, const py::kwargs& kwargs) {
         FindSettings settings = settings_from_keywords(kwargs);
-        if (progress) {
-          // Seeds report from the search's threads: each report takes the GIL.
-          settings.execution.progress = [&progress](std::size_t done, std::size_t total) {
-            const py::gil_scoped_acquire acquire;
-            progress(done, total);
-          };
-        }
+        // After each seed, from the search's threads: Python's signal handlers run (Ctrl-C ends
+        // the search there; Python runs them on its main thread, which takes part in the search),
+        // then `progress`. Each report takes the GIL; the search itself runs without it.
+        settings.execution.progress = [&progress](std::size_t done, std::size_t total) {
+          const py::gil_scoped_acquire acquire;
+          if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+          if (progress) progress(done, total);
+        };
         FindResult result;
         {
           const py::gil_scoped_release release;
@@ -103,7 +104,8 @@ void bind_search(py::module_& m) {
       "(ValueError otherwise). Returns {'matches': [...], 'stats': {...}} as `lmk find --json` "
       "writes them, each match with its 'pose' (4x4, the capture frame in the scene frame) and "
       "'box'; with rejected=True also the rejected candidates and their 'reason'. "
-      "progress(done, total) hears of each seed.");
+      "progress(done, total) hears of each seed. Ctrl-C (KeyboardInterrupt) ends the search at "
+      "its next seed.");
   m.def(
       "find_setting_keys",
       [] {
