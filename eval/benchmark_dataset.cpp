@@ -318,6 +318,10 @@ Dataset generate_benchmark_dataset(const std::string& dir, const std::string& pr
   return generate_benchmark(dir, preset, options).dataset;
 }
 
+std::string benchmark_dataset_home(const std::string& cache_dir) {
+  return cache_dir.empty() ? (fs::temp_directory_path() / "lmk-datasets").string() : cache_dir;
+}
+
 std::string cached_benchmark_dataset(const std::string& cache_dir, const std::string& preset,
                                      const GenerateOptions& options) {
   benchmark_preset(preset);

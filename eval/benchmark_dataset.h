@@ -101,6 +101,11 @@ Dataset generate_benchmark_dataset(const std::string& dir, const std::string& pr
 Generated generate_benchmark(const std::string& dir, const std::string& preset,
                              const GenerateOptions& options = {});
 
+/// Where an evaluation keeps a preset's generated dataset: `cache_dir`, or without a cache (empty)
+/// the system's temporary directory's lmk-datasets, out of the user's way. What `lmk eval`, `lmk
+/// ablate` and Python's lmk.eval share.
+std::string benchmark_dataset_home(const std::string& cache_dir);
+
 /// The preset's dataset under CACHE_DIR/datasets/, generated there first if it is not yet (into a
 /// temporary directory renamed into place, so an interrupted generation leaves nothing half
 /// written). Returns its directory.

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "lmk/geometry/box.h"
+#include "lmk/landmark/find_settings.h"
 
 namespace lmk::python {
 
@@ -19,6 +20,11 @@ namespace py = pybind11;
 void bind_clouds(py::module_& m);
 void bind_landmarks(py::module_& m);
 void bind_search(py::module_& m);
+void bind_evaluation(py::module_& m);
+
+/// Search settings from keywords named as `lmk find`'s flags (max_tilt for --max-tilt), set and
+/// checked by the settings' descriptions; ValueError with the CLI's message for a bad one.
+FindSettings settings_from_keywords(const py::kwargs& keywords);
 
 /// A 4x4 rigid transform from an array; ValueError naming `what` for another shape, a non-finite
 /// value or a matrix that is no rigid motion.

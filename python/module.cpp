@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The `lmk` Python module (issue #36): its version, its error type, and the parts defined in
-// clouds.cpp, landmarks.cpp and search.cpp.
+// clouds.cpp, landmarks.cpp, search.cpp and evaluation.cpp.
 #include <pybind11/pybind11.h>
 
 #include "bindings.h"
@@ -19,9 +19,13 @@ PYBIND11_MODULE(_lmk, m) {
       if (p) std::rethrow_exception(p);
     } catch (const lmk::Error& e) {
       error(e.what());
+    } catch (const lmk::Interrupted& e) {
+      // An evaluation stopped by Ctrl-C, its finished pairs cached: Python's own interruption.
+      PyErr_SetString(PyExc_KeyboardInterrupt, e.what());
     }
   });
   lmk::python::bind_clouds(m);
   lmk::python::bind_landmarks(m);
   lmk::python::bind_search(m);
+  lmk::python::bind_evaluation(m);
 }

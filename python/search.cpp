@@ -34,6 +34,8 @@ std::string setting_key(std::string name) {
   return name;
 }
 
+}  // namespace
+
 FindSettings settings_from_keywords(const py::kwargs& keywords) {
   FindSettings settings;
   for (const auto& [name, value] : keywords) {
@@ -51,6 +53,8 @@ FindSettings settings_from_keywords(const py::kwargs& keywords) {
   }
   return settings;
 }
+
+namespace {
 
 // The matches of `lmk find --json`, each with its pose (the capture frame in the scene frame) and
 // its box as arrays too.

@@ -10,8 +10,6 @@
 
 namespace lmk::cli {
 
-namespace fs = std::filesystem;
-
 void add_dataset_options(CLI::App* sub, DatasetOptions& o) {
   std::string presets;
   for (const BenchmarkPreset& p : benchmark_presets())
@@ -70,10 +68,7 @@ LoadedDataset load_or_generate(const DatasetOptions& o, const std::string& cache
     generate.types = split_commas(o.types);
     const std::string preset = o.preset.empty() ? "paper" : o.preset;
     benchmark_preset(preset);  // an unknown name fails before anything else
-    // Without a cache the dataset still needs a home for the run; the system's temporary
-    // directory keeps it out of the user's way.
-    const std::string home =
-        cache_dir.empty() ? (fs::temp_directory_path() / "lmk-datasets").string() : cache_dir;
+    const std::string home = benchmark_dataset_home(cache_dir);
     std::fprintf(stderr, "dataset: preset '%s' (generated on first use into %s/datasets)\n",
                  preset.c_str(), home.c_str());
     ProgressBar bar("generate");  // draws only when the dataset is not cached yet

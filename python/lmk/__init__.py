@@ -13,6 +13,7 @@ from ._lmk import (  # noqa: F401
     Landmark,
     __version__,
     capture,
+    eval,
     find,
     find_setting_keys,
     load_landmark,

@@ -177,3 +177,31 @@ def test_ctrl_c_ends_a_search_at_its_next_seed(tabletop):
     with pytest.raises(KeyboardInterrupt):
         lmk.find(scene, cup, progress=interrupt, threads=1)
     assert len(reports) < reports[0]
+
+
+def without_times(value):
+    """The JSON without its wall-clock times, at any depth (as `lmk eval --json` leaves them out)."""
+    if isinstance(value, dict):
+        return {k: without_times(v) for k, v in value.items()
+                if not k.startswith("seconds") and k != "median_seconds_per_search"}
+    if isinstance(value, list):
+        return [without_times(v) for v in value]
+    return value
+
+
+def test_eval_gives_lmk_eval_json_and_shares_its_cache(tmp_path):
+    cache = str(tmp_path / "cache")
+    got = lmk.eval(preset="paper", types=["simple/three_balls"], cache=cache)
+    out = tmp_path / "eval.json"
+    cli = subprocess.run([LMK, "eval", "--preset", "paper", "--types", "simple/three_balls",
+                          "--cache", cache, "--json", str(out)],
+                         check=True, capture_output=True, text=True)
+    assert "(0 searched," in cli.stderr  # every pair came from the cache lmk.eval filled
+    expected = json.loads(out.read_text())
+    assert without_times(got["rows"]) == without_times(expected["rows"])
+    assert without_times(got["pairs"]) == without_times(expected["pairs"])
+    assert got["rows"][0]["tp"] > 0
+    with pytest.raises(ValueError, match="a dataset or a preset, not both"):
+        lmk.eval(str(tmp_path), preset="paper")
+    with pytest.raises(lmk.Error, match="unknown preset 'papers'"):
+        lmk.eval(preset="papers", cache=cache)
