@@ -22,6 +22,11 @@ void bind_landmarks(py::module_& m);
 void bind_search(py::module_& m);
 void bind_evaluation(py::module_& m);
 
+/// A keyword's value as the command line writes it: booleans as true/false, sequences as
+/// space-separated values, numbers in Python's own shortest form.
+std::string setting_text(const py::handle& value);
+/// A keyword's name as a flag's key: max_tilt -> max-tilt.
+std::string setting_key(std::string name);
 /// Search settings from keywords named as `lmk find`'s flags (max_tilt for --max-tilt), set and
 /// checked by the settings' descriptions; ValueError with the CLI's message for a bad one.
 FindSettings settings_from_keywords(const py::kwargs& keywords);

@@ -13,10 +13,7 @@
 #include "lmk/landmark/find_landmark.h"
 
 namespace lmk::python {
-namespace {
 
-// A keyword's value as the command line writes it: booleans as true/false, sequences as
-// space-separated values, numbers in Python's own shortest form.
 std::string setting_text(const py::handle& value) {
   if (py::isinstance<py::bool_>(value)) return value.cast<bool>() ? "true" : "false";
   if (py::isinstance<py::str>(value)) return value.cast<std::string>();
@@ -28,13 +25,10 @@ std::string setting_text(const py::handle& value) {
   return py::str(value).cast<std::string>();
 }
 
-// The keyword's name as a flag's key: max_tilt -> max-tilt.
 std::string setting_key(std::string name) {
   std::replace(name.begin(), name.end(), '_', '-');
   return name;
 }
-
-}  // namespace
 
 FindSettings settings_from_keywords(const py::kwargs& keywords) {
   FindSettings settings;

@@ -33,25 +33,6 @@ struct AblateOptions {
   bool timings = false;
 };
 
-nlohmann::json ablation_json(const std::vector<AblationVariant>& variants,
-                             const std::string& dataset, const std::string& fingerprint) {
-  nlohmann::json list = nlohmann::json::array();
-  for (const AblationVariant& v : variants) {
-    nlohmann::json values = nlohmann::json::object();
-    for (const auto& [key, value] : v.values) values[key] = value;
-    list.push_back({{"values", values},
-                    {"settings", detail::find_settings_to_json(v.evaluation.settings.find)},
-                    {"seconds", v.evaluation.seconds},
-                    {"rows", detail::rows_to_json(v.rows)}});
-  }
-  return {{"format", "lmk-ablation"},
-          {"version", 1},
-          {"lmk_version", kVersion},
-          {"dataset", dataset},
-          {"dataset_fingerprint", fingerprint},
-          {"variants", list}};
-}
-
 int run_ablate(AblateOptions& o) {
   std::vector<AblationAxis> axes;
   for (const std::string& text : o.vary) axes.push_back(parse_ablation_axis(text));
@@ -80,11 +61,9 @@ int run_ablate(AblateOptions& o) {
   std::error_code ec;
   fs::create_directories(o.out, ec);
   if (ec) throw Error(o.out + ": cannot create the output directory (" + ec.message() + ")");
-  const std::string fingerprint = variants.empty() ? "" : variants.front().evaluation.fingerprint;
   write_text_atomically(
       fs::path(o.out) / "ablation.json",
-      json_output(ablation_json(variants, data.dataset.name, fingerprint), o.timings).dump(2) +
-          "\n");
+      json_output(detail::ablation_to_json(variants, data.dataset.name), o.timings).dump(2) + "\n");
   write_text_atomically(fs::path(o.out) / "ablation.md",
                         "# lmk ablation\n\n" + header + ".\n\n" + table.markdown());
   std::printf("wrote %s/ablation.json and %s/ablation.md\n", o.out.c_str(), o.out.c_str());

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "lmk/eval/ablation.h"
 #include "lmk/eval/evaluation.h"
 #include "lmk/eval/explain.h"
 
@@ -24,6 +25,11 @@ nlohmann::json rows_to_json(const std::vector<EvaluationRow>& rows);
 /// schema, with the dataset, the settings and the run's times.
 nlohmann::json evaluation_to_json(const Evaluation& evaluation,
                                   const std::vector<EvaluationRow>& rows);
+
+/// {"format": "lmk-ablation", ..., "variants": [{"values", "settings", "seconds", "rows"}]}: `lmk
+/// ablate`'s ablation.json, and Python's lmk.ablate.
+nlohmann::json ablation_to_json(const std::vector<AblationVariant>& variants,
+                                const std::string& dataset);
 
 /// {"cases": [...], "by_setting": [...], "by_range": [...]}: lmk eval --explain's diagnosis, every
 /// case with its cause and errors, and the counts per cause.

@@ -11,6 +11,7 @@ from ._lmk import (  # noqa: F401
     Cloud,
     Error,
     Landmark,
+    ablate,
     __version__,
     capture,
     eval,

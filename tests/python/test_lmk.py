@@ -205,3 +205,17 @@ def test_eval_gives_lmk_eval_json_and_shares_its_cache(tmp_path):
         lmk.eval(str(tmp_path), preset="paper")
     with pytest.raises(lmk.Error, match="unknown preset 'papers'"):
         lmk.eval(preset="papers", cache=cache)
+
+
+def test_ablate_gives_lmk_ablate_json(tmp_path):
+    cache = str(tmp_path / "cache")
+    got = lmk.ablate({"metric": ["paper", "vdb"]}, preset="paper", types=["simple/three_balls"],
+                     cache=cache, in_context=True)
+    subprocess.run([LMK, "ablate", "--preset", "paper", "--types", "simple/three_balls",
+                    "--vary", "metric=paper,vdb", "--pairs", "in-context", "--cache", cache,
+                    "--out", str(tmp_path / "ablation")], check=True, capture_output=True)
+    expected = json.loads((tmp_path / "ablation" / "ablation.json").read_text())
+    assert [v["values"] for v in got["variants"]] == [{"metric": "paper"}, {"metric": "vdb"}]
+    assert without_times(got["variants"]) == without_times(expected["variants"])
+    with pytest.raises(ValueError, match="unknown"):
+        lmk.ablate({"metrik": ["paper"]}, preset="paper", cache=cache)
