@@ -21,6 +21,8 @@ void bind_clouds(py::module_& m);
 void bind_landmarks(py::module_& m);
 void bind_search(py::module_& m);
 void bind_evaluation(py::module_& m);
+/// With lmk.Error, the base of lmk.Refused.
+void bind_robot(py::module_& m, const py::object& error);
 
 /// A keyword's value as the command line writes it: booleans as true/false, sequences as
 /// space-separated values, numbers in Python's own shortest form.

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The `lmk` Python module (issue #36): its version, its error type, and the parts defined in
-// clouds.cpp, landmarks.cpp, search.cpp and evaluation.cpp.
+// clouds.cpp, landmarks.cpp, search.cpp, evaluation.cpp and robot.cpp.
 #include <pybind11/pybind11.h>
 
 #include "bindings.h"
@@ -28,4 +28,5 @@ PYBIND11_MODULE(_lmk, m) {
   lmk::python::bind_landmarks(m);
   lmk::python::bind_search(m);
   lmk::python::bind_evaluation(m);
+  lmk::python::bind_robot(m, error);
 }

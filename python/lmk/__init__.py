@@ -11,6 +11,8 @@ from ._lmk import (  # noqa: F401
     Cloud,
     Error,
     Landmark,
+    Refused,
+    SimulatedPr2,
     ablate,
     __version__,
     capture,
@@ -18,5 +20,7 @@ from ._lmk import (  # noqa: F401
     find,
     find_setting_keys,
     load_landmark,
+    plan,
     read_cloud,
+    run,
 )

@@ -159,7 +159,9 @@ def test_the_gil_is_released_two_searches_in_two_threads_overlap(tabletop):
     for t in threads:
         t.join()
     together = time.perf_counter() - start
-    assert together < 0.8 * one_after_the_other, (together, one_after_the_other)
+    # Held, the GIL would make them take as long together as apart (1.0, or more with the
+    # threads' contention); free, about 0.55 on two idle cores, 0.65-0.8 beside other work.
+    assert together < 0.9 * one_after_the_other, (together, one_after_the_other)
 
 
 def test_ctrl_c_ends_a_search_at_its_next_seed(tabletop):
@@ -219,3 +221,47 @@ def test_ablate_gives_lmk_ablate_json(tmp_path):
     assert without_times(got["variants"]) == without_times(expected["variants"])
     with pytest.raises(ValueError, match="unknown"):
         lmk.ablate({"metrik": ["paper"]}, preset="paper", cache=cache)
+
+
+@pytest.fixture(scope="module")
+def task4(tmp_path_factory):
+    """The demo's task 4 (trash against recycling): its program, landmarks and scenes."""
+    out = tmp_path_factory.mktemp("demo")
+    run("pbd", "demo-tasks", "--task", "4", "--save", str(out))
+    return out / "task4"
+
+
+def test_the_pr2_s_kinematics_on_arrays():
+    robot = lmk.SimulatedPr2(torso_height=0.05)
+    assert "right_arm" in robot.groups()
+    joints = [0.0] * len(robot.joint_names("right_arm"))
+    joints[3] = -1.0  # the elbow bent
+    pose = robot.forward("right_arm", joints)
+    assert pose.shape == (4, 4)
+    ik = robot.inverse("right_arm", pose, seed=joints)
+    assert ik["success"] and ik["position_error"] < 1e-3
+    np.testing.assert_allclose(robot.forward("right_arm", ik["joints"]), pose, atol=1e-3)
+    with pytest.raises(ValueError, match="no group"):
+        robot.joint_names("tail")
+    with pytest.raises(ValueError, match="pose: must be a 4 x 4 array"):
+        robot.inverse("right_arm", np.eye(3))
+
+
+def test_plan_and_run_as_lmk_pbd_and_a_refusal_with_its_kind(task4):
+    program = str(task4 / "drop_in_trash.json")
+    demonstration = lmk.read_cloud(str(task4 / "demonstration.pcd"))
+    robot = lmk.SimulatedPr2(torso_height=0.05)
+    planned = lmk.plan(program, demonstration, robot)
+    cli = json.loads(run("pbd", "plan", program, "--torso", "0.05", "--json", "--scene",
+                         str(task4 / "demonstration.pcd")))
+    assert without_times(planned) == without_times(cli)
+    assert planned["valid"] and len(planned["steps"]) == 3
+    report = lmk.run(program, demonstration, robot)
+    assert report["completed"] and report["steps_completed"] == 3
+    assert robot.time > 0
+    with pytest.raises(lmk.Refused) as refused:
+        lmk.plan(program, lmk.read_cloud(str(task4 / "scenario4.pcd")),
+                 lmk.SimulatedPr2(torso_height=0.05))
+    assert refused.value.kind == "landmark-not-found"
+    assert str(refused.value).startswith("landmark 'trash_opening' not found")
+    assert isinstance(refused.value, lmk.Error)

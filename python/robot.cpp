@@ -1,0 +1,145 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The robot from Python: the simulated PR2's kinematics (FK and IK on arrays), planning a PbD
+// program in a scene, and running it on the simulated PR2 (docs/python.md, "Robot"). A plan the
+// robot will not carry out raises lmk.Refused with its kind and the CLI's one-line reason.
+#include <pybind11/stl.h>
+
+#include <filesystem>
+#include <memory>
+
+#include "bindings.h"
+#include "lmk/json/plan_json.h"
+#include "lmk/pbd/execute.h"
+#include "lmk/pbd/plan.h"
+#include "lmk/pr2/simulated_pr2.h"
+
+namespace lmk::python {
+namespace {
+
+using namespace pybind11::literals;
+
+// A simulated PR2, configured and active, its torso at `torso_height` (m).
+std::shared_ptr<SimulatedPr2> simulated_pr2(double torso_height) {
+  auto robot = std::make_shared<SimulatedPr2>(Pr2Kinematics(RobotModel::pr2(), torso_height));
+  if (!robot->configure().ok() || !robot->activate().ok()) {
+    throw Error("the simulated PR2 failed to start");
+  }
+  return robot;
+}
+
+const KinematicsInterface& kinematics(const SimulatedPr2& robot) { return robot.kinematics(); }
+
+// Plans the program file in `scene` for `robot` as it stands; lmk.Refused when the plan is refused.
+Plan plan_or_refuse(const std::string& program_file, const PointCloud& scene, SimulatedPr2& robot,
+                    const py::kwargs& keywords, const py::object& refused) {
+  PlanSettings settings;
+  settings.find = settings_from_keywords(keywords);
+  Plan result;
+  {
+    const py::gil_scoped_release release;
+    const Program program = load_program(program_file);
+    const auto landmarks =
+        load_program_landmarks(program, std::filesystem::path(program_file).parent_path().string());
+    JointState state;
+    robot.read_joint_state(state);
+    result = plan(program, landmarks, scene, robot.kinematics(), state, settings);
+  }
+  if (!result.valid()) {
+    py::object error = refused(describe(*result.refusal));
+    error.attr("kind") = refusal_kind(*result.refusal);
+    PyErr_SetObject(refused.ptr(), error.ptr());
+    throw py::error_already_set();
+  }
+  return result;
+}
+
+}  // namespace
+
+void bind_robot(py::module_& m, const py::object& error) {
+  // lmk.Refused(lmk.Error): a valid request the robot will not carry out; `kind` is
+  // "landmark-not-found" or "unreachable", as `lmk pbd plan --json` names it.
+  const py::object refused = py::reinterpret_steal<py::object>(
+      PyErr_NewExceptionWithDoc("lmk.Refused",
+                                "A plan the robot will not carry out; `kind` says why "
+                                "('landmark-not-found', 'unreachable').",
+                                error.ptr(), nullptr));
+  m.attr("Refused") = refused;
+
+  py::class_<SimulatedPr2, std::shared_ptr<SimulatedPr2>>(
+      m, "SimulatedPr2", "lmk's simulated PR2 (the CLI's --sim), configured and active.")
+      .def(py::init(&simulated_pr2), py::arg("torso_height") = 0.0)
+      .def("groups", [](const SimulatedPr2& r) { return kinematics(r).groups(); })
+      .def(
+          "joint_names",
+          [](const SimulatedPr2& r, const std::string& group) {
+            const auto info = kinematics(r).group(group);
+            if (!info) throw py::value_error("no group '" + group + "'");
+            std::vector<std::string> names;
+            for (const JointInfo& j : info->joints) names.push_back(j.name);
+            return names;
+          },
+          py::arg("group"))
+      .def(
+          "forward",
+          [](const SimulatedPr2& r, const std::string& group, const std::vector<double>& joints) {
+            Eigen::Isometry3d T_base_tool;
+            const CallResult result = kinematics(r).forward(group, joints, T_base_tool);
+            if (!result.ok()) throw py::value_error(result.message);
+            return pose_to_array(T_base_tool);
+          },
+          py::arg("group"), py::arg("joints"),
+          "The tool's 4x4 pose in base_link for the group's joint values, in its joint order.")
+      .def(
+          "inverse",
+          [](const SimulatedPr2& r, const std::string& group, const py::object& pose,
+             const std::vector<double>& seed) {
+            const IkResult ik = kinematics(r).inverse(group, pose_from_array(pose, "pose"), seed);
+            return py::dict("success"_a = ik.success, "joints"_a = ik.joints,
+                            "position_error"_a = ik.position_error,
+                            "rotation_error"_a = ik.rotation_error, "message"_a = ik.message);
+          },
+          py::arg("group"), py::arg("pose"), py::arg("seed") = std::vector<double>{},
+          "IK for a 4x4 tool pose in base_link: {success, joints, position_error (m), "
+          "rotation_error (rad), message}.")
+      .def("joint_state",
+           [](const SimulatedPr2& r) {
+             JointState state;
+             r.read_joint_state(state);
+             py::dict d;
+             for (std::size_t i = 0; i < state.names.size(); ++i)
+               d[py::str(state.names[i])] = state.positions[i];
+             return d;
+           })
+      .def_property_readonly("time", &SimulatedPr2::time, "Simulated seconds so far.");
+
+  m.def(
+      "plan",
+      [refused](const std::string& program, const PointCloud& scene, SimulatedPr2& robot,
+                const py::kwargs& kwargs) {
+        return json_to_python(
+            detail::plan_to_json(plan_or_refuse(program, scene, robot, kwargs, refused)));
+      },
+      py::arg("program"), py::arg("scene"), py::arg("robot"),
+      "Plans a program file (its landmarks beside it) in `scene` (base frame) for `robot` as it "
+      "stands, as `lmk pbd plan --json` does; raises lmk.Refused when the robot would not carry "
+      "it out. Search settings are keywords as for lmk.find.");
+  m.def(
+      "run",
+      [refused](const std::string& program, const PointCloud& scene, SimulatedPr2& robot,
+                const py::kwargs& kwargs) {
+        const Plan planned = plan_or_refuse(program, scene, robot, kwargs, refused);
+        ExecutionReport report;
+        {
+          const py::gil_scoped_release release;
+          report = execute(planned, robot);
+        }
+        return py::dict(
+            "completed"_a = report.completed, "steps_completed"_a = report.steps_completed,
+            "steps_total"_a = report.steps_total, "error"_a = report.error, "log"_a = report.log);
+      },
+      py::arg("program"), py::arg("scene"), py::arg("robot"),
+      "Plans as lmk.plan, then executes on the simulated PR2 (`lmk pbd run --sim`): "
+      "{completed, steps_completed, steps_total, error, log}.");
+}
+
+}  // namespace lmk::python
