@@ -33,7 +33,7 @@ packages=(
   python3-gencpp python3-genmsg ros-message-generation python3-rosmaster python3-roslaunch
   python3-rostest python3-rospy python3-rosbag catkin python3-catkin-pkg
   # the Python module (python/, docs/python.md) and its tests
-  pybind11-dev python3-dev python3-numpy python3-pytest
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib
   # lmk slurm's test starts a one-node Slurm cluster (tests/cluster/slurm_test.sh)
   slurm-wlm munge
 )

@@ -265,3 +265,38 @@ def test_plan_and_run_as_lmk_pbd_and_a_refusal_with_its_kind(task4):
     assert refused.value.kind == "landmark-not-found"
     assert str(refused.value).startswith("landmark 'trash_opening' not found")
     assert isinstance(refused.value, lmk.Error)
+
+
+def test_the_stub_names_everything_the_module_has():
+    import ast
+    stub = os.path.join(os.path.dirname(lmk.__file__), "__init__.pyi")
+    tree = ast.parse(open(stub).read())
+    named = {n.name for n in tree.body if isinstance(n, (ast.FunctionDef, ast.ClassDef))}
+    named |= {t.id for n in tree.body if isinstance(n, (ast.Assign, ast.AnnAssign))
+              for t in (n.targets if isinstance(n, ast.Assign) else [n.target])}
+    public = {name for name in dir(lmk) if not name.startswith("_") and name != "lmk"}
+    assert public - named == set()
+    for name in public:  # and each has its docstring
+        assert getattr(lmk, name).__doc__, name
+
+
+EXAMPLES = os.path.join(os.path.dirname(__file__), "..", "..", "examples")
+
+
+def test_find_in_frame_example_finds_the_cup(tabletop):
+    box = lmk.load_landmark(CUP).box
+    centre, size = box["pose"][:3, 3], box["size"]
+    out = subprocess.run(["/usr/bin/python3", os.path.join(EXAMPLES, "find_in_frame.py"), tabletop,
+                          *map(str, centre), *map(str, size), "cup"],
+                         check=True, capture_output=True, text=True, env=os.environ).stdout
+    assert "captured 'cup'" in out and "1: at" in out
+
+
+def test_ablate_metrics_example_draws_a_plot_that_is_not_blank(tmp_path):
+    png = tmp_path / "metrics.png"
+    subprocess.run(["/usr/bin/python3", os.path.join(EXAMPLES, "ablate_metrics.py"), str(png),
+                    "--types", "simple/three_balls", "--cache", str(tmp_path / "cache")],
+                   check=True, capture_output=True, text=True, env=os.environ)
+    import matplotlib.image
+    pixels = matplotlib.image.imread(str(png))
+    assert pixels.shape[0] > 100 and pixels.std() > 0.05  # lines and text, not one colour
