@@ -62,3 +62,51 @@ function(lmk_generate_ros_messages)
   endforeach()
   set(${ARG_HEADERS} ${headers} PARENT_SCOPE)
 endfunction()
+
+# lmk_generate_ros_python(PACKAGE NAME DIR DIR OUTPUT_DIR OUT [DEPENDS PKG...] TARGET T)
+# Generates the Python side of a message package (issue #36: rospy and `rosservice call`) with
+# Debian's genpy into OUT/NAME/msg and OUT/NAME/srv, each with its __init__.py, and a target T that
+# builds them. OUT goes on PYTHONPATH; roslib also wants the package itself on ROS_PACKAGE_PATH
+# (ros/msg/NAME/package.xml).
+find_file(LMK_GENMSG_PY genmsg_py.py PATHS /usr/lib/genpy NO_DEFAULT_PATH)
+find_file(LMK_GENSRV_PY gensrv_py.py PATHS /usr/lib/genpy NO_DEFAULT_PATH)
+
+function(lmk_generate_ros_python)
+  cmake_parse_arguments(ARG "" "PACKAGE;DIR;OUTPUT_DIR;TARGET" "DEPENDS" ${ARGN})
+  if(NOT LMK_GENMSG_PY OR NOT LMK_GENSRV_PY)
+    message(STATUS "lmk: python3-genpy is absent: no Python side of ${ARG_PACKAGE}")
+    return()
+  endif()
+  set(pkg ${ARG_PACKAGE})
+  set(include_flags -I ${pkg}:${ARG_DIR}/msg)
+  foreach(dep ${ARG_DEPENDS})
+    list(APPEND include_flags -I ${dep}:${LMK_ROS_SHARE}/${dep}/msg)
+  endforeach()
+  set(all_outputs "")
+  foreach(kind msg srv)
+    set(generator ${LMK_GENMSG_PY})
+    if(kind STREQUAL "srv")
+      set(generator ${LMK_GENSRV_PY})
+    endif()
+    file(GLOB definitions "${ARG_DIR}/${kind}/*.${kind}")
+    set(out_dir "${ARG_OUTPUT_DIR}/${pkg}/${kind}")
+    set(modules "")
+    foreach(definition ${definitions})
+      get_filename_component(name ${definition} NAME_WE)
+      add_custom_command(OUTPUT "${out_dir}/_${name}.py"
+        COMMAND ${LMK_ROS_PYTHON} ${generator} ${definition} -p ${pkg} -o ${out_dir}
+                ${include_flags}
+        DEPENDS ${definition} COMMENT "Generating ${pkg}/${name} for Python" VERBATIM)
+      list(APPEND modules "${out_dir}/_${name}.py")
+    endforeach()
+    add_custom_command(OUTPUT "${out_dir}/__init__.py"
+      COMMAND ${LMK_ROS_PYTHON} ${generator} --initpy -p ${pkg} -o ${out_dir}
+      DEPENDS ${modules} COMMENT "Generating ${pkg}.${kind} for Python" VERBATIM)
+    list(APPEND all_outputs ${modules} "${out_dir}/__init__.py")
+  endforeach()
+  add_custom_command(OUTPUT "${ARG_OUTPUT_DIR}/${pkg}/__init__.py"
+    COMMAND ${CMAKE_COMMAND} -E touch "${ARG_OUTPUT_DIR}/${pkg}/__init__.py"
+    COMMENT "Generating the ${pkg} Python package" VERBATIM)
+  list(APPEND all_outputs "${ARG_OUTPUT_DIR}/${pkg}/__init__.py")
+  add_custom_target(${ARG_TARGET} ALL DEPENDS ${all_outputs})
+endfunction()

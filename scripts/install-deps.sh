@@ -32,6 +32,9 @@ packages=(
   libtf2-ros-dev libtf2-eigen-dev libinteractive-markers-dev librosbag-dev libpcl-conversions-dev
   python3-gencpp python3-genmsg ros-message-generation python3-rosmaster python3-roslaunch
   python3-rostest python3-rospy python3-rosbag catkin python3-catkin-pkg
+  # lmk_msgs from Python and the shell: genpy generates it; rosservice and rospy's examples need
+  # the geometry messages it embeds
+  python3-genpy python3-rosservice python3-geometry-msgs
   # the Python module (python/, docs/python.md) and its tests
   pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib
   # lmk slurm's test starts a one-node Slurm cluster (tests/cluster/slurm_test.sh)

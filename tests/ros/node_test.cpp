@@ -228,6 +228,52 @@ TEST(LmkNode, AddedViewsAreFusedAsLmkCaptureFusesThem) {
   EXPECT_EQ(by_node.view_origins, by_cli.view_origins);
 }
 
+// lmk_msgs from Python and the shell (issue #36): `rosservice call` introspects the request and
+// answers with the matches, and rospy (examples/ros_find.py) gets the C++ client's answer, match
+// for match, error for error.
+TEST(LmkNode, RosserviceAndRospyGetTheCppClientsAnswer) {
+  FakePr2 robot(fake_settings("demonstration.pcd"));
+  const ScratchDir dir;
+  fs::create_directories(dir.path() / "landmarks");
+  fs::copy_file(demo_data().landmark(), dir.path() / "landmarks" / "rim.lmk");
+  const auto node = start_node(dir, dir.file("landmarks"));
+  lmk_msgs::FindLandmark find;
+  find.request.name = "rim";
+  find = call("/lmk_node/find_landmark", find);
+  ASSERT_TRUE(find.response.success) << find.response.message;
+  ASSERT_FALSE(find.response.matches.empty());
+
+  // The generated Python messages, and lmk_msgs as a package roslib finds.
+  setenv("PYTHONPATH", LMK_MSGS_PYTHON_DIR, 1);
+  setenv("ROS_PACKAGE_PATH", (std::string(LMK_SOURCE_DIR) + "/ros/msg:/usr/share").c_str(), 1);
+  const auto [code, out] =
+      run_to_end({"/usr/bin/rosservice", "call", "/lmk_node/find_landmark", "{name: rim}"},
+                 dir.file("rosservice.log"));
+  ASSERT_EQ(code, 0) << out;
+  EXPECT_NE(out.find("success: True"), std::string::npos) << out;
+  std::size_t ranks = 0;
+  for (std::size_t at = out.find("rank: "); at != std::string::npos;
+       at = out.find("rank: ", at + 1)) {
+    ++ranks;
+  }
+  EXPECT_EQ(ranks, find.response.matches.size()) << out;
+
+  const auto [py_code, py_out] = run_to_end(
+      {"/usr/bin/python3", std::string(LMK_SOURCE_DIR) + "/examples/ros_find.py", "rim", "--json"},
+      dir.file("ros_find.log"));
+  ASSERT_EQ(py_code, 0) << py_out;
+  const std::size_t line = py_out.find("{\"frame\"");
+  ASSERT_NE(line, std::string::npos) << py_out;
+  const nlohmann::json answer =
+      nlohmann::json::parse(py_out.substr(line, py_out.find('\n', line) - line));
+  EXPECT_EQ(answer["frame"], find.response.header.frame_id);
+  ASSERT_EQ(answer["matches"].size(), find.response.matches.size());
+  for (std::size_t i = 0; i < find.response.matches.size(); ++i) {
+    EXPECT_EQ(answer["matches"][i]["rank"].get<std::uint32_t>(), find.response.matches[i].rank);
+    EXPECT_EQ(answer["matches"][i]["error"].get<double>(), find.response.matches[i].error);
+  }
+}
+
 TEST(LmkNode, AClickedPointAndTheMenuCaptureTheGuessedBoxAsInRviz) {
   const Landmark demonstrated = load_landmark(demo_data().landmark().string());
   FakePr2 robot(fake_settings("demonstration.pcd"));
