@@ -15,6 +15,11 @@ trap 'rm -rf "$work"' EXIT
 "$cmake" -S "$source" -B "$work/build" -DCMAKE_PREFIX_PATH="$work/prefix" >"$work/configure.log"
 "$cmake" --build "$work/build" -j2 >"$work/build.log"
 "$work/build/consumer"
+# The installed Python module, where Debian's python3 looks under the prefix, finds its libraries.
+package=$(find "$work/prefix" -path '*/dist-packages/lmk' -type d | head -n 1)
+if [ -n "$package" ]; then
+  PYTHONPATH=$(dirname "$package") /usr/bin/python3 -c "import lmk; print('python: lmk', lmk.__version__)"
+fi
 if [ -n "$forbidden" ]; then
   loaded=$(ldd "$work/build/consumer")
   if grep -E "$forbidden" <<<"$loaded"; then
