@@ -15,6 +15,15 @@
 namespace lmk::python {
 namespace {
 
+// An N x 3 float32 array of `points` (a copy).
+py::array_t<float> points_array(const std::vector<Eigen::Vector3f>& points) {
+  py::array_t<float> out({static_cast<py::ssize_t>(points.size()), py::ssize_t{3}});
+  auto o = out.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < points.size(); ++i)
+    for (int k = 0; k < 3; ++k) o(i, k) = points[i][k];
+  return out;
+}
+
 // The check `lmk capture` runs in the capture scene, as a dict: whether the landmark is
 // distinctive, found itself, the other places it matches, and how it can slide within the noise.
 py::dict verdict(const PointCloud& scene, const Landmark& landmark) {
@@ -46,18 +55,33 @@ void bind_landmarks(py::module_& m) {
       m, "Landmark", "A landmark: the points cut out with a box, the box, and its grids.")
       .def_readonly("name", &Landmark::name)
       .def_property_readonly(
-          "points",
-          [](const Landmark& l) {
-            py::array_t<float> out({static_cast<py::ssize_t>(l.points.size()), py::ssize_t{3}});
-            auto o = out.mutable_unchecked<2>();
-            for (std::size_t i = 0; i < l.points.size(); ++i)
-              for (int k = 0; k < 3; ++k) o(i, k) = l.points.points[i][k];
-            return out;
-          },
+          "points", [](const Landmark& l) { return points_array(l.points.points); },
           "The landmark's points in its capture frame, an N x 3 float32 array.")
       .def_property_readonly(
           "box", [](const Landmark& l) { return box_to_dict(l.box); },
           "The box drawn, in the capture frame: {'pose': 4x4, 'size': (3,)}.")
+      .def_property_readonly(
+          "empty_space", [](const Landmark& l) { return points_array(l.empty_space.centres()); },
+          "The centres of the box's voxels observed free at capture (the empty-space grid), an "
+          "N x 3 float32 array in the capture frame.")
+      .def(
+          "distance",
+          [](const Landmark& l, const py::array_t<float, py::array::forcecast>& points) {
+            if (points.ndim() != 2 || points.shape(1) != 3) {
+              throw py::value_error("points: must be an N x 3 array");
+            }
+            const auto p = points.unchecked<2>();
+            py::array_t<float> out(points.shape(0));
+            auto o = out.mutable_unchecked<1>();
+            const DistanceField::Sampler sampler = l.distance.sampler();
+            for (py::ssize_t i = 0; i < points.shape(0); ++i) {
+              o(i) = sampler.distance(Eigen::Vector3f(p(i, 0), p(i, 1), p(i, 2)));
+            }
+            return out;
+          },
+          py::arg("points"),
+          "The landmark's distance field (the distance grid) at each of N x 3 points of the "
+          "capture frame, m; its band's value beyond the band.")
       .def_property_readonly("view_count", &Landmark::view_count)
       .def_property_readonly("has_colour", [](const Landmark& l) { return l.points.has_colors(); })
       .def(

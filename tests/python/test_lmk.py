@@ -109,6 +109,10 @@ def test_capture_saves_and_loads_with_its_verdict(tabletop, tmp_path):
                                   lmk.load_landmark(str(tmp_path / "cli.lmk")).points)
     assert verdict["found_itself"]
     assert set(verdict) == {"distinctive", "found_itself", "other_instances", "slides"}
+    # The grids: free space inside the box, and the distance field zero on the points.
+    assert landmark.empty_space.shape[1] == 3 and len(landmark.empty_space) > 0
+    assert np.all(landmark.distance(landmark.points) < 0.005)
+    assert landmark.distance(landmark.points + [0.0, 0.0, 1.0]).min() > 0.005
     path = str(tmp_path / "cup.lmk")
     landmark.save(path)
     np.testing.assert_array_equal(lmk.load_landmark(path).points, landmark.points)
