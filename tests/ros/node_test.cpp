@@ -257,6 +257,10 @@ TEST(LmkNode, RosserviceAndRospyGetTheCppClientsAnswer) {
     ++ranks;
   }
   EXPECT_EQ(ranks, find.response.matches.size()) << out;
+  const auto [list_code, listed] =
+      run_to_end({"/usr/bin/rosservice", "call", "/lmk_node/list_landmarks"}, dir.file("list.log"));
+  ASSERT_EQ(list_code, 0) << listed;
+  EXPECT_NE(listed.find("names: \n  - rim"), std::string::npos) << listed;
 
   const auto [py_code, py_out] = run_to_end(
       {"/usr/bin/python3", std::string(LMK_SOURCE_DIR) + "/examples/ros_find.py", "rim", "--json"},
