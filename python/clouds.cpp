@@ -81,7 +81,7 @@ py::array view(const std::vector<T>& values, const PointCloud& cloud, std::size_
   }
   py::array out(py::dtype::of<Scalar>(), shape, strides,
                 reinterpret_cast<const Scalar*>(values.data()), owner);
-  py::detail::array_proxy(out.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+  out.attr("setflags")(py::arg("write") = false);
   return out;
 }
 
@@ -123,11 +123,8 @@ void bind_clouds(py::module_& m) {
 }
 
 Eigen::Isometry3d pose_from_array(const py::object& array, const std::string& what) {
-  py::array_t<double, py::array::c_style | py::array::forcecast> a;
-  try {
-    a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(array);
-  } catch (const py::error_already_set&) {
-  }
+  // Empty when `array` converts to no float64 array (ensure() clears Python's error then).
+  const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(array);
   if (!a || a.ndim() != 2 || a.shape(0) != 4 || a.shape(1) != 4) {
     throw py::value_error(what + ": must be a 4 x 4 array");
   }

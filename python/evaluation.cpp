@@ -45,12 +45,10 @@ struct Run {
     if (dataset) {
       dir = *dataset;
     } else {
-      GenerateOptions generate;
       generate.seeds = seeds;
       generate.types = types;
       preset_name = preset.value_or("paper");
       benchmark_preset(preset_name);  // an unknown name fails before anything else
-      this->generate = generate;
     }
   }
   Run(const Run&) = delete;

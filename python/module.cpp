@@ -14,8 +14,9 @@ PYBIND11_MODULE(_lmk, m) {
   m.attr("__version__") = lmk::kVersion;
   // lmk::Error's one-line message, as the CLI prints it, as lmk.Error (a RuntimeError).
   static py::exception<lmk::Error> error(m, "Error", PyExc_RuntimeError);
-  error.doc() = "An lmk error: a missing or damaged file, a box with no point in it, a refused "
-                "registration; its message is the CLI's one line.";
+  error.doc() =
+      "An lmk error: a missing or damaged file, a box with no point in it, a refused "
+      "registration; its message is the CLI's one line.";
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);

@@ -98,25 +98,25 @@ int run_eval(EvalOptions& o) {
   std::printf("%s\n\n%s", evaluation_header(evaluation).c_str(),
               evaluation_table(rows, o.timings).plain().c_str());
   nlohmann::json json = detail::evaluation_to_json(evaluation, rows);
+  // A split of the table, printed under its caption and kept in the JSON under `key`.
+  const auto split = [&](const std::vector<EvaluationRow>& by, const char* caption,
+                         const char* key) {
+    std::printf("\n%s:\n\n%s", caption, evaluation_table(by, o.timings).plain().c_str());
+    json[key] = detail::rows_to_json(by);
+  };
   if (o.by == "range") {
-    const std::vector<EvaluationRow> by_range = evaluation_rows_by_range(evaluation);
-    std::printf(
-        "\nby range (distance from the sensor to each instance, or to a false match; a best match "
-        "at its instance's):\n\n%s",
-        evaluation_table(by_range, o.timings).plain().c_str());
-    json["rows_by_range"] = detail::rows_to_json(by_range);
+    split(evaluation_rows_by_range(evaluation),
+          "by range (distance from the sensor to each instance, or to a false match; a best match "
+          "at its instance's)",
+          "rows_by_range");
   } else if (o.by == "hidden") {
-    const std::vector<EvaluationRow> by_hidden = evaluation_rows_by_hidden(evaluation);
-    std::printf("\nby the hidden fraction of each instance (false matches in no row):\n\n%s",
-                evaluation_table(by_hidden, o.timings).plain().c_str());
-    json["rows_by_hidden"] = detail::rows_to_json(by_hidden);
+    split(evaluation_rows_by_hidden(evaluation),
+          "by the hidden fraction of each instance (false matches in no row)", "rows_by_hidden");
   } else if (o.by == "views") {
-    const std::vector<EvaluationRow> by_views = evaluation_rows_by_views(evaluation);
-    std::printf(
-        "\nby the landmark's views and the azimuth from each instance, or false match, to the "
-        "nearest of them:\n\n%s",
-        evaluation_table(by_views, o.timings).plain().c_str());
-    json["rows_by_views"] = detail::rows_to_json(by_views);
+    split(evaluation_rows_by_views(evaluation),
+          "by the landmark's views and the azimuth from each instance, or false match, to the "
+          "nearest of them",
+          "rows_by_views");
   }
   std::vector<ExplainedCase> explained;
   if (o.explain) {
