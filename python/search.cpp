@@ -73,11 +73,15 @@ void bind_search(py::module_& m) {
         FindSettings settings = settings_from_keywords(kwargs);
         // After each seed, from the search's threads: Python's signal handlers run (Ctrl-C ends
         // the search there; Python runs them on its main thread, which takes part in the search),
-        // then `progress`. Each report takes the GIL; the search itself runs without it.
-        settings.execution.progress = [&progress](std::size_t done, std::size_t total) {
+        // then `progress`. Each report takes the GIL; the search itself runs without it. The
+        // threads count seeds before they queue for the GIL, so their counts can arrive out of
+        // order: Python hears a count kept under the GIL instead, which rises by one each time.
+        std::size_t heard = 0;
+        settings.execution.progress = [&progress, &heard](std::size_t, std::size_t total) {
           const py::gil_scoped_acquire acquire;
           if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-          if (progress) progress(done, total);
+          ++heard;
+          if (progress) progress(heard, total);
         };
         FindResult result;
         {
