@@ -1,38 +1,47 @@
 # SPDX-License-Identifier: BSD-3-Clause
-# lmk_add_library(NAME SOURCES ... [PUBLIC_DEPS ...] [PRIVATE_DEPS ...])
-# One library per top-level folder, exported as lmk::NAME. Headers live beside the sources and are
-# included as "lmk/NAME/header.h", in the tree and installed alike, so that a consumer's own
-# geometry/ or eval/ folders never collide with lmk's. Only lmk/ is on a consumer's include path:
-# in the build tree it holds one link per module (lmk_expose_headers); headers in detail/ stay
-# private to the build and are not installed.
-set(LMK_INCLUDE_DIR "${PROJECT_BINARY_DIR}/include")
+# lmk_add_library(NAME [INTERNAL] SOURCES ... [PUBLIC_DEPS ...] [PRIVATE_DEPS ...])
+# One library per top-level folder, exported as lmk::NAME. INTERNAL: a static library for lmk's own
+# tool and tests, neither installed nor exported (lmk::serve). Headers live beside the sources and
+# are included as "lmk/NAME/header.h", in the tree and installed alike, so that a consumer's own
+# geometry/ or eval/ folders never collide with lmk's. In the source tree, include/lmk/ holds one
+# committed link per module folder (include/lmk/geometry -> ../../geometry), so that the includes
+# resolve with -Iinclude alone: in editors and code tools without a build, as in the build.
+# Headers in detail/ are their module's own (docs/developing.md) and are not installed.
+set(LMK_INCLUDE_DIR "${PROJECT_SOURCE_DIR}/include")
 set(LMK_GENERATED_INCLUDE_DIR "${PROJECT_BINARY_DIR}/generated")
 
-# Makes the current folder's headers includable as "lmk/NAME/...": a link from the build tree's
-# include/lmk/NAME to the folder, so that the sources stay beside their headers.
-function(lmk_expose_headers name)
-  file(MAKE_DIRECTORY "${LMK_INCLUDE_DIR}/lmk")
-  file(CREATE_LINK "${CMAKE_CURRENT_SOURCE_DIR}" "${LMK_INCLUDE_DIR}/lmk/${name}" SYMBOLIC)
+option(LMK_WERROR "Treat compiler warnings as errors (CI builds with it on)" OFF)
+
+# The warnings every lmk target is compiled with: set here once, for libraries, tools, tests,
+# benchmarks, the ROS node and the Python module alike.
+function(lmk_warnings target)
+  target_compile_options(${target} PRIVATE -Wall -Wextra $<$<BOOL:${LMK_WERROR}>:-Werror>)
 endfunction()
 
 function(lmk_add_library name)
-  cmake_parse_arguments(ARG "" "" "SOURCES;PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
+  cmake_parse_arguments(ARG "INTERNAL" "" "SOURCES;PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
   set(target lmk_${name})
-  add_library(${target} ${ARG_SOURCES})
+  if(ARG_INTERNAL)
+    add_library(${target} STATIC ${ARG_SOURCES})
+  else()
+    add_library(${target} ${ARG_SOURCES})
+  endif()
   add_library(lmk::${name} ALIAS ${target})
   set_target_properties(${target} PROPERTIES
     OUTPUT_NAME lmk_${name}
     EXPORT_NAME ${name}
     VERSION ${PROJECT_VERSION}
     SOVERSION ${PROJECT_VERSION_MAJOR}.${PROJECT_VERSION_MINOR})
-  lmk_expose_headers(${name})
   target_include_directories(${target} PUBLIC
     $<BUILD_INTERFACE:${LMK_INCLUDE_DIR}>
     $<BUILD_INTERFACE:${LMK_GENERATED_INCLUDE_DIR}>
     $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
   target_compile_features(${target} PUBLIC cxx_std_17)
-  target_compile_options(${target} PRIVATE -Wall -Wextra)
+  lmk_warnings(${target})
   target_link_libraries(${target} PUBLIC ${ARG_PUBLIC_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
+  if(ARG_INTERNAL)
+    return()
+  endif()
   install(TARGETS ${target} EXPORT lmkTargets
     LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
     ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}

@@ -2,7 +2,6 @@
 #include "lmk/demos/demo_tasks.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -13,6 +12,7 @@
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/filters.h"
 #include "lmk/geometry/pose.h"
+#include "lmk/geometry/stopwatch.h"
 #include "lmk/geometry/voxel_grid.h"
 #include "lmk/landmark/landmark_file.h"
 #include "lmk/pbd/execute.h"
@@ -20,6 +20,7 @@
 #include "lmk/pbd/plan.h"
 #include "lmk/pbd/recorder.h"
 #include "lmk/pr2/head_pointing.h"
+#include "lmk/pr2/pr2_robots.h"
 #include "lmk/pr2/simulated_pr2.h"
 
 namespace lmk {
@@ -36,10 +37,6 @@ using detail::DemoLandmark;
 using detail::DemoScenario;
 using detail::DemoTask;
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 void require(const CallResult& r, const std::string& what) {
   if (!r.ok()) throw Error(what + ": " + r.message);
 }
@@ -55,9 +52,7 @@ std::string file_stem(std::string name) {
 
 // The PR2 of a task: torso at the task's height, active, its head looking at the task's area.
 SimulatedPr2 make_robot(const DemoTask& task) {
-  SimulatedPr2 robot(Pr2Kinematics(RobotModel::pr2(), task.torso_height));
-  require(robot.configure(), task_prefix(task) + ": configure");
-  require(robot.activate(), task_prefix(task) + ": activate");
+  SimulatedPr2 robot = start_simulated_pr2(task.torso_height);
   require(point_head(robot, robot.kinematics(), task.look_at), task_prefix(task) + ": head");
   return robot;
 }
@@ -283,7 +278,7 @@ DemoScenarioResult run_scenario(const DemoTask& task, std::size_t index,
                                 const RecordedTask& recorded, ScenarioState& state,
                                 const DemoTasksSettings& settings) {
   const DemoScenario& scenario = task.scenarios[index];
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch stopwatch;
   DemoScenarioResult result;
   result.task = task.number;
   result.task_title = task.title;
@@ -352,7 +347,7 @@ DemoScenarioResult run_scenario(const DemoTask& task, std::size_t index,
           format_error(result.max_position_error, result.max_rotation_error) + " of the truth";
     }
   }
-  result.seconds = seconds_since(start);
+  result.seconds = stopwatch.seconds();
   return result;
 }
 
@@ -372,7 +367,7 @@ Interrupted interrupted(const DemoTasksSettings& settings, const std::vector<int
 }  // namespace
 
 DemoTasksReport run_demo_tasks(const DemoTasksSettings& settings) {
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch stopwatch;
   for (const int n : settings.tasks) {
     if (n < 1 || n > 6) throw Error("demo tasks: no task " + std::to_string(n) + " (1 to 6)");
   }
@@ -405,7 +400,7 @@ DemoTasksReport run_demo_tasks(const DemoTasksSettings& settings) {
     if (!settings.cache_dir.empty()) kept.push_back(task.number);
     report.scenarios.insert(report.scenarios.end(), results.begin(), results.end());
   }
-  report.seconds = seconds_since(start);
+  report.seconds = stopwatch.seconds();
   return report;
 }
 

@@ -25,9 +25,7 @@ struct DepthSensorSettings {
   bool noise = true;
   /// Axial noise sigma(z) = noise_a + noise_b (z - noise_z0)^2, metres, before the quantisation.
   /// 0.0013 z^2 is a disparity noise of 0.057 px, fitted to the planes of 51 real Kinect frames
-  /// (`lmk sensor-check`, docs/datasets.md). Nguyen et al.'s 0.0012 + 0.0019 (z - 0.4)^2 was
-  /// measured on quantised depth already, so with the quantisation added it gave 1.5 times the
-  /// real spread at 0.6 m.
+  /// (`lmk sensor-check`; why not a published model: docs/datasets.md, "The simulated Kinect").
   double noise_a = 0.0, noise_b = 0.0013, noise_z0 = 0.0;
   /// Disparity: the IR camera (focal length disparity_focal, about 580 px, not the colour image's
   /// 525) sees the projector's pattern over the baseline, in steps of disparity_step pixels, so

@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -16,16 +15,17 @@
 #include <mutex>
 
 #include "lmk/eval/benchmark_dataset.h"
-#include "lmk/eval/detail/evaluation_json.h"
 #include "lmk/eval/detail/pair_cache.h"
+#include "lmk/eval/internal/evaluation_json.h"
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/hash.h"
 #include "lmk/geometry/statistics.h"
+#include "lmk/geometry/stopwatch.h"
 #include "lmk/geometry/version.h"
 #include "lmk/geometry/worker_threads.h"
-#include "lmk/json/find_settings_json.h"
 #include "lmk/landmark/error_metrics.h"
+#include "lmk/landmark/internal/find_settings_json.h"
 #include "lmk/landmark/landmark_file.h"
 
 namespace lmk {
@@ -33,8 +33,6 @@ namespace lmk {
 namespace fs = std::filesystem;
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 // Matches are kept up to this multiple of the larger of the threshold and the metric's default,
 // for the curve against the threshold; every threshold up to the default then shares one search.
@@ -134,7 +132,7 @@ std::string default_cache_dir() {
 
 Evaluation evaluate(const std::string& dir, const Dataset& dataset,
                     const EvaluationSettings& settings) {
-  const auto start = Clock::now();
+  const Stopwatch stopwatch;
   Evaluation evaluation;
   evaluation.dataset = dataset.name;
   validate(settings.find);  // bad settings fail before any work
@@ -270,7 +268,7 @@ Evaluation evaluate(const std::string& dir, const Dataset& dataset,
     }
   }
   evaluation.pairs = std::move(kept);
-  evaluation.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  evaluation.seconds = stopwatch.seconds();
   return evaluation;
 }
 

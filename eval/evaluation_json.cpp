@@ -1,13 +1,14 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "lmk/eval/detail/evaluation_json.h"
+#include "lmk/eval/internal/evaluation_json.h"
 
 #include <cmath>
 
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/version.h"
-#include "lmk/json/find_settings_json.h"
+#include "lmk/json/box_json.h"
 #include "lmk/json/pose_json.h"
-#include "lmk/json/terms_json.h"
+#include "lmk/landmark/internal/find_settings_json.h"
+#include "lmk/landmark/internal/terms_json.h"
 
 namespace lmk::detail {
 
@@ -17,17 +18,6 @@ namespace {
 
 json optional_number(const std::optional<double>& v) {
   return v && std::isfinite(*v) ? json(*v) : json(nullptr);
-}
-
-json box_to_json(const Box& box) {
-  json j = pose_to_json(box.pose);
-  j["size"] = vector_to_json(box.size);
-  return j;
-}
-
-Box box_from_json(const json& j, const std::string& where) {
-  const Eigen::VectorXd size = numbers_from_json(json_field(j, "size", where), 3, where + ".size");
-  return Box(pose_from_json(j, where), size);
 }
 
 template <typename T>

@@ -10,8 +10,8 @@
 #include <unordered_map>
 
 #include "lmk/geometry/detail/voxel_buckets.h"
-#include "lmk/geometry/detail/voxel_key.h"
 #include "lmk/geometry/error.h"
+#include "lmk/geometry/internal/voxel_key.h"
 
 namespace lmk {
 namespace {

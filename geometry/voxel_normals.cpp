@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "lmk/geometry/detail/voxel_table.h"
+#include "lmk/geometry/internal/voxel_table.h"
 #include "lmk/geometry/principal_axes.h"
 
 namespace lmk {

@@ -9,17 +9,14 @@
 #include <string>
 
 #include "lmk/geometry/settings_schema.h"
+#include "lmk/json/box_json.h"
 #include "lmk/json/pose_json.h"
 
 namespace lmk::detail {
 
 inline nlohmann::json setting_to_json(const Eigen::Vector3d& v) { return vector_to_json(v); }
 
-inline nlohmann::json setting_to_json(const Box& box) {
-  nlohmann::json j = pose_to_json(box.pose);
-  j["size"] = vector_to_json(box.size);
-  return j;
-}
+inline nlohmann::json setting_to_json(const Box& box) { return box_to_json(box); }
 
 template <class T>
 nlohmann::json setting_to_json(const T& v) {
@@ -50,12 +47,7 @@ inline void setting_from_json(const nlohmann::json& j, const std::string& where,
 }
 
 inline void setting_from_json(const nlohmann::json& j, const std::string& where, Box& out) {
-  // A string or a number is named as such, not as a box without its fields (issue #34, finding 5).
-  if (!j.is_object()) {
-    throw Error(where + ": must be a box {\"position\", \"quaternion\", \"size\"}, not " +
-                std::string(j.type_name() == std::string("array") ? "an " : "a ") + j.type_name());
-  }
-  out = Box(pose_from_json(j, where), numbers_from_json(json_field(j, "size", where), 3, where));
+  out = box_from_json(j, where);
 }
 
 template <class T>

@@ -7,18 +7,15 @@
 #include <functional>
 
 #include "lmk/geometry/error.h"
+#include "lmk/geometry/stopwatch.h"
 #include "lmk/landmark/detail/colour_term.h"
 #include "lmk/landmark/detail/fast_search.h"
 #include "lmk/landmark/detail/search_method.h"
-#include "lmk/landmark/detail/stopwatch.h"
 #include "lmk/landmark/detail/view_determinacy.h"
 #include "lmk/landmark/non_max_suppression.h"
 
 namespace lmk {
 namespace {
-
-using detail::Clock;
-using detail::seconds_since;
 
 // Why a candidate was turned down, as Rejection::reason and describe_rejections say it.
 constexpr const char* kRejectedError = "error above threshold";
@@ -115,7 +112,8 @@ FindResult search(const SceneIndex& index, const LandmarkIndex& prepared,
                   const FindSettings& requested) {
   std::string why;
   if (!prepared.suits(requested, &why)) throw Error("find: " + why);
-  const auto start = Clock::now();
+  const Stopwatch total;
+  Stopwatch stage;
   const Prepared p(index, prepared, requested);
   const FindSettings& settings = p.settings;
   const detail::SearchMethodSteps& method = detail::search_method_steps(settings.method);
@@ -131,10 +129,10 @@ FindResult search(const SceneIndex& index, const LandmarkIndex& prepared,
   stats.scene_points_used = points.size();
   const Indices seeds = method.seeds(index, prepared, settings);
   stats.seeds = seeds.size();
-  stats.seconds_preprocess = seconds_since(start);
+  stats.seconds_preprocess = stage.seconds();
 
   // Step 4, in an arena of the requested size: no process-wide thread setting.
-  const auto search_start = Clock::now();
+  stage.restart();
   const detail::SearchInput input{index,  points, p.landmark, prepared,        SceneView{index},
                                   p.view, seeds,  p.metric,   stats.threshold, settings};
   detail::CandidateSet candidates;
@@ -143,9 +141,9 @@ FindResult search(const SceneIndex& index, const LandmarkIndex& prepared,
   arena.execute([&] { candidates = method.candidates(input, stats); });
   for (const Match& m : candidates.kept)
     stats.icp_iterations += static_cast<std::size_t>(m.icp_iterations);
-  stats.seconds_search = seconds_since(search_start);
+  stats.seconds_search = stage.seconds();
 
-  const auto select_start = Clock::now();
+  stage.restart();
   for (Match& m : candidates.suppressed) result.suppressed.push_back({std::move(m), kSuppressed});
   select(
       std::move(candidates.kept), settings.selection, method.suppresses_overlaps(settings),
@@ -160,8 +158,8 @@ FindResult search(const SceneIndex& index, const LandmarkIndex& prepared,
       m.aligned_points.T_cloud_sensor = index.T_scene_sensor();
     }
   }
-  stats.seconds_select = seconds_since(select_start);
-  stats.seconds_total = seconds_since(start);
+  stats.seconds_select = stage.seconds();
+  stats.seconds_total = total.seconds();
   return result;
 }
 

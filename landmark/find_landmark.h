@@ -23,13 +23,8 @@
 namespace lmk {
 
 /// Bumped whenever a search's results change for the same settings and inputs (how seeds are
-/// drawn, how candidates are scored), so that cached evaluations are searched again.
-/// 2: seeds spread one per cell instead of a uniform random sample.
-/// 3: relief beyond the sensor's noise; the tilt limit on aligned poses; no match inside a better
-///    one's box.
-/// 4: not used (docs/cluster.md's revision 4 changed no result).
-/// 5: the coarse score over the coarse alignment's points (at most 400) instead of every point of
-///    the landmark's coarse cloud.
+/// drawn, how candidates are scored), so that cached evaluations are searched again. What each
+/// revision changed: docs/evaluation.md, "Search revisions".
 inline constexpr int kSearchRevision = 5;
 
 struct Match {

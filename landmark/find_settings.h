@@ -85,11 +85,12 @@ struct FastSettings {
   Orientations orientations = Orientations::upright;  ///< tilts up to max_tilt when upright
   double max_tilt = 1.0471975511965976;               ///< rad (60 degrees)
   /// Point pair voting samples the landmark and the scene at this fraction of the landmark's
-  /// diameter (at least the coarse leaf). Drost et al.'s 5% found the same poses at twice the cost.
+  /// diameter (at least the coarse leaf); the value is docs/evaluation.md's "Tuning history".
   double vote_leaf_fraction = 0.07;
   int poses_per_seed = 3;  ///< best-voted poses kept per seed
-  /// Pose clusters aligned coarsely. 250 since seeds keep off noisy planes: their poses no longer
-  /// take slots, and 400 spent a third of a search's time aligning look-alikes (docs/cluster.md).
+  /// Pose clusters aligned coarsely: enough for every instance's poses once seeds keep off noisy
+  /// planes, few enough not to spend the search aligning look-alikes (docs/evaluation.md, "Tuning
+  /// history").
   std::size_t max_candidates = 250;
   double prune_error = 0.015;    ///< coarse fit beyond which a candidate is dropped, m
   std::size_t max_refined = 16;  ///< candidates refined fully

@@ -20,9 +20,10 @@
 #include "lmk/geometry/hash.h"
 #include "lmk/geometry/input_file.h"
 #include "lmk/geometry/pose.h"
+#include "lmk/json/box_json.h"
 #include "lmk/json/pose_json.h"
 #include "lmk/landmark/detail/landmark_container.h"
-#include "lmk/occupancy/detail/grids.h"
+#include "lmk/occupancy/internal/grids.h"
 
 namespace lmk {
 
@@ -273,11 +274,9 @@ typename GridT::Ptr read_grid(vdb::io::File& file, const std::string& name,
 }
 
 nlohmann::json to_json(const Landmark& l) {
-  nlohmann::json box = detail::pose_to_json(l.box.pose);
-  box["size"] = detail::vector_to_json(l.box.size);
   nlohmann::json j = {{"format_version", file_version(l)},
                       {"name", l.name},
-                      {"box", box},
+                      {"box", detail::box_to_json(l.box)},
                       {"sensor_origin", detail::vector_to_json(l.sensor_origin)},
                       {"capture",
                        {{"leaf_size", l.settings.leaf_size},
@@ -296,14 +295,6 @@ nlohmann::json to_json(const Landmark& l) {
   return j;
 }
 
-// A box: a pose (position, unit quaternion) and a size. `where` names it in messages.
-Box box_from_json(const nlohmann::json& j, const std::string& where) {
-  // Pose first, then size: the first field in file order is the one a message names.
-  const Eigen::Isometry3d pose = detail::pose_from_json(j, where);
-  return Box(pose,
-             detail::numbers_from_json(detail::json_field(j, "size", where), 3, where + ".size"));
-}
-
 nlohmann::json read_json_file(const std::string& path) {
   const std::string text = read_input_file(path, kJsonInput);
   try {
@@ -318,7 +309,7 @@ Landmark from_json(const nlohmann::json& j, const std::string& path) {
   try {
     l.format_version = j.at("format_version").get<int>();
     l.name = j.at("name").get<std::string>();
-    l.box = box_from_json(detail::json_field(j, "box", path), path + ": box");
+    l.box = detail::box_from_json(detail::json_field(j, "box", path), path + ": box");
     l.sensor_origin = detail::numbers_from_json(detail::json_field(j, "sensor_origin", path), 3,
                                                 path + ": sensor_origin");
     const auto& capture = j.at("capture");
@@ -387,7 +378,7 @@ void require_points_grid(const vdb::io::File& file, const std::string& path) {
 Box read_box_json(const std::string& path) {
   const nlohmann::json j = read_json_file(path);
   try {
-    return box_from_json(j, path + ": box");
+    return detail::box_from_json(j, path + ": box");
   } catch (const nlohmann::json::exception& e) {
     throw Error(path + ": " + e.what());
   }

@@ -6,10 +6,10 @@
 #include <sstream>
 
 #include "lmk/geometry/error.h"
+#include "lmk/geometry/stopwatch.h"
 #include "lmk/geometry/voxel_grid.h"
 #include "lmk/geometry/voxel_normals.h"
 #include "lmk/landmark/detail/point_pair_voting.h"
-#include "lmk/landmark/detail/stopwatch.h"
 #include "lmk/landmark/error_metrics.h"
 
 namespace lmk {
@@ -45,7 +45,7 @@ LandmarkIndex::LandmarkIndex(LandmarkIndex&&) noexcept = default;
 LandmarkIndex& LandmarkIndex::operator=(LandmarkIndex&&) noexcept = default;
 
 void LandmarkIndex::build(const FindSettings& settings) {
-  const auto start = detail::Clock::now();
+  const Stopwatch stopwatch;
   validate(settings);
   const Landmark& landmark = *landmark_;
   const std::string what = "landmark '" + landmark.name + "'";
@@ -83,7 +83,7 @@ void LandmarkIndex::build(const FindSettings& settings) {
         std::make_unique<detail::PointPairModel>(vote_model, fast->vote_leaf, fast->diameter);
     fast_ = std::move(fast);
   }
-  seconds_ = detail::seconds_since(start);
+  seconds_ = stopwatch.seconds();
 }
 
 bool LandmarkIndex::suits(const FindSettings& settings, std::string* why) const {

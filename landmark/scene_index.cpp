@@ -10,9 +10,9 @@
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/filters.h"
 #include "lmk/geometry/frame_preparation.h"
+#include "lmk/geometry/stopwatch.h"
 #include "lmk/geometry/voxel_grid.h"
 #include "lmk/geometry/voxel_normals.h"
-#include "lmk/landmark/detail/stopwatch.h"
 #include "lmk/landmark/landmark.h"
 
 namespace lmk {
@@ -46,7 +46,7 @@ void validate(const SceneSettings& settings) {
 
 SceneIndex::SceneIndex(const PointCloud& scene, const SceneSettings& settings)
     : settings_(settings.resolved()), T_scene_sensor_(scene.T_cloud_sensor) {
-  const auto start = detail::Clock::now();
+  const Stopwatch stopwatch;
   validate(settings);
   if (!scene.T_cloud_sensor.matrix().allFinite())
     throw Error("scene: the sensor pose is not finite");
@@ -101,7 +101,7 @@ SceneIndex::SceneIndex(const PointCloud& scene, const SceneSettings& settings)
             [&] { field_ = DistanceField(coarse_.points, field_settings); });
       });
   input_points_ = cropped_.size();
-  seconds_ = detail::seconds_since(start);
+  seconds_ = stopwatch.seconds();
 }
 
 const KdTree& SceneIndex::coarse_tree() const {

@@ -11,11 +11,11 @@
 #include <memory>
 #include <sstream>
 
-#include "lmk/geometry/detail/voxel_key.h"
-#include "lmk/geometry/detail/voxel_table.h"
 #include "lmk/geometry/error.h"
-#include "lmk/occupancy/detail/grids.h"
+#include "lmk/geometry/internal/voxel_key.h"
+#include "lmk/geometry/internal/voxel_table.h"
 #include "lmk/occupancy/detail/vdb_support.h"
+#include "lmk/occupancy/internal/grids.h"
 
 namespace lmk {
 namespace {

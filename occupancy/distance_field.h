@@ -60,9 +60,9 @@ class DistanceField {
   };
   Sampler sampler() const { return Sampler(*this); }
 
-  struct Grids;  ///< the OpenVDB grids, for storage (occupancy/detail/grids.h)
+  struct Grids;  ///< the OpenVDB grids, for storage (occupancy/internal/grids.h)
   const Grids& grids() const;
-  /// Reassembles a field from stored grids and the points they index; see detail/grids.h.
+  /// Reassembles a field from stored grids and the points they index; see internal/grids.h.
   static DistanceField from_grids(std::vector<Eigen::Vector3f> points, Grids grids);
 
  private:

@@ -8,8 +8,8 @@
 #include <cmath>
 
 #include "lmk/geometry/error.h"
-#include "lmk/occupancy/detail/grids.h"
 #include "lmk/occupancy/detail/vdb_support.h"
+#include "lmk/occupancy/internal/grids.h"
 
 namespace lmk {
 namespace {

@@ -78,7 +78,7 @@ class EmptySpaceGrid {
   };
   Sampler sampler() const { return Sampler(*this); }
 
-  struct Grid;  ///< the OpenVDB grid, for storage (occupancy/detail/grids.h)
+  struct Grid;  ///< the OpenVDB grid, for storage (occupancy/internal/grids.h)
   const Grid& grid() const;
   static EmptySpaceGrid from_grid(Grid grid);
 

@@ -2,13 +2,13 @@
 #include "lmk/pbd/plan.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <numeric>
 #include <set>
 
 #include "lmk/geometry/error.h"
+#include "lmk/geometry/stopwatch.h"
 #include "lmk/landmark/landmark_file.h"
 #include "lmk/landmark/scene_index.h"
 #include "lmk/pbd/joint_motion.h"
@@ -52,10 +52,6 @@ std::map<std::string, Landmark> load_program_landmarks(const Program& program,
 }
 
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // The landmarks some step is relative to, in the order the program declares them.
 std::vector<const ProgramLandmark*> used_landmarks(const Program& program) {
@@ -168,7 +164,7 @@ std::optional<Refusal> locate_landmarks(const Program& program,
                   "', but it was not loaded");
     }
     if (settings.progress) settings.progress("locating '" + entry->name + "'");
-    const auto start = std::chrono::steady_clock::now();
+    const Stopwatch stopwatch;
     const InstancePolicy policy = entry->select.value_or(settings.policy);
     if (policy != InstancePolicy::kDemonstratedHeight && !index) {
       index.emplace(scene, find.scene);
@@ -193,7 +189,7 @@ std::optional<Refusal> locate_landmarks(const Program& program,
     c.located.metric = result.stats.metric;
     c.located.eligible = eligible.size();
     c.located.policy = policy;
-    c.located.seconds = seconds_since(start);
+    c.located.seconds = stopwatch.seconds();
     out.push_back(std::move(c));
   }
   return std::nullopt;

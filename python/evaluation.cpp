@@ -11,7 +11,7 @@
 #include "bindings.h"
 #include "lmk/eval/ablation.h"
 #include "lmk/eval/benchmark_dataset.h"
-#include "lmk/eval/detail/evaluation_json.h"
+#include "lmk/eval/internal/evaluation_json.h"
 
 namespace lmk::python {
 namespace {

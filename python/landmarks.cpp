@@ -7,8 +7,8 @@
 #include <memory>
 
 #include "bindings.h"
-#include "lmk/json/find_result_json.h"
 #include "lmk/landmark/distinctiveness.h"
+#include "lmk/landmark/internal/find_result_json.h"
 #include "lmk/landmark/landmark_file.h"
 #include "lmk/landmark/slide_check.h"
 

@@ -8,9 +8,10 @@
 #include <memory>
 
 #include "bindings.h"
-#include "lmk/json/plan_json.h"
 #include "lmk/pbd/execute.h"
+#include "lmk/pbd/internal/plan_json.h"
 #include "lmk/pbd/plan.h"
+#include "lmk/pr2/pr2_robots.h"
 #include "lmk/pr2/simulated_pr2.h"
 
 namespace lmk::python {
@@ -20,11 +21,7 @@ using namespace pybind11::literals;
 
 // A simulated PR2, configured and active, its torso at `torso_height` (m).
 std::shared_ptr<SimulatedPr2> simulated_pr2(double torso_height) {
-  auto robot = std::make_shared<SimulatedPr2>(Pr2Kinematics(RobotModel::pr2(), torso_height));
-  if (!robot->configure().ok() || !robot->activate().ok()) {
-    throw Error("the simulated PR2 failed to start");
-  }
-  return robot;
+  return std::make_shared<SimulatedPr2>(start_simulated_pr2(torso_height));
 }
 
 const KinematicsInterface& kinematics(const SimulatedPr2& robot) { return robot.kinematics(); }

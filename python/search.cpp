@@ -9,8 +9,8 @@
 
 #include "bindings.h"
 #include "lmk/geometry/error.h"
-#include "lmk/json/find_result_json.h"
 #include "lmk/landmark/find_landmark.h"
+#include "lmk/landmark/internal/find_result_json.h"
 
 namespace lmk::python {
 

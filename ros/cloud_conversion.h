@@ -15,11 +15,12 @@
 
 namespace lmk::ros1 {
 
-/// The cloud in its own frame (msg.header.frame_id). x, y and z must be FLOAT32 or FLOAT64 fields;
-/// "rgb"/"rgba" and "label" are read when present, every other field is ignored. The sensor is
-/// placed at the frame's origin (T_cloud_sensor = identity), which holds for a camera's optical
-/// frame; a node that knows better sets it from TF. Throws lmk::Error naming `what` for a cloud
-/// without x, y, z, with big-endian data, or whose sizes disagree with its data.
+/// The cloud in its own frame (msg.header.frame_id), read as lmk reads a PCD file's points
+/// (geometry/point_records.h): x, y, z of any numeric type, normals, "rgba" or "rgb" and "label"
+/// when present; every other field is ignored. The sensor is placed at the frame's origin
+/// (T_cloud_sensor = identity), which holds for a camera's optical frame; a node that knows better
+/// sets it from TF. Throws lmk::Error naming `what` for a cloud without x, y, z, with big-endian
+/// data, with a field beyond its point step, or whose sizes disagree with its data.
 PointCloud from_ros(const sensor_msgs::PointCloud2& msg, const std::string& what = "PointCloud2");
 
 /// FLOAT32 x, y, z, plus a packed "rgb" when the cloud has colours and an INT32 "label" when it has

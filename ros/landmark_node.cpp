@@ -8,12 +8,12 @@
 #include <nlohmann/json.hpp>
 
 #include "lmk/geometry/error.h"
-#include "lmk/json/find_settings_json.h"
 #include "lmk/landmark/box_guess.h"
 #include "lmk/landmark/capture_views.h"
 #include "lmk/landmark/depth_correction_file.h"
 #include "lmk/landmark/distinctiveness.h"
 #include "lmk/landmark/find_landmark.h"
+#include "lmk/landmark/internal/find_settings_json.h"
 #include "lmk/landmark/scene_index.h"
 #include "lmk/landmark/slide_check.h"
 #include "lmk/ros/geometry_conversion.h"

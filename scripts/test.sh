@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: BSD-3-Clause
 # Quick start 2: install, build and run every test CI runs.
-#   1. the Release build and the whole suite (CTest, 2 jobs);
+#   1. the clang-format check (scripts/check-format.sh), the Release build with warnings as errors
+#      and the whole suite (CTest, 2 jobs), the layering check among it;
 #   2. the sanitizer build (clang-14: AddressSanitizer, UndefinedBehaviorSanitizer, libFuzzer
 #      coverage) and the unit tests of the geometry, I/O, occupancy, registration, PbD and PR2
 #      modules and of crash safety under it, with the fuzz targets' corpora;
@@ -33,14 +34,17 @@ threaded='ThreadCount|DoNotDependOnThreads|Concurrent|Parallel|ServeTest|JobPool
 threaded_modules=(test_geometry test_eval test_occupancy test_landmark test_serve)
 
 run_suite() {
-  bash scripts/build.sh
+  bash scripts/install-deps.sh
+  bash scripts/check-format.sh
+  # CI's build treats warnings as errors (LMK_WERROR; the flags are set once, cmake/LmkTargets.cmake).
+  bash scripts/build.sh -DLMK_WERROR=ON
   ctest --test-dir "${LMK_BUILD_DIR:-build}" -j2 --output-on-failure --timeout 900
 }
 
 run_sanitized() {  # all | unit
   bash scripts/install-deps.sh
   local build=${LMK_SANITIZE_BUILD_DIR:-build-sanitize} selection=()
-  bash scripts/configure-sanitize.sh "$build"
+  bash scripts/configure-sanitize.sh "$build" -DLMK_WERROR=ON  # clang-14's warnings too
   if [ "$1" = unit ]; then
     cmake --build "$build" -j2 --target "${unit_modules[@]}" fuzz_all
     selection=(-L "$unit_label")

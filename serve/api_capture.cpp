@@ -2,12 +2,12 @@
 // Capture endpoints: the box guess from a clicked point, the distinctiveness check, and writing
 // the landmark into the library (docs/landmarks.md; the paper's capture step).
 #include "lmk/geometry/error.h"
-#include "lmk/json/find_result_json.h"
 #include "lmk/json/pose_json.h"
 #include "lmk/json/settings_json.h"
 #include "lmk/landmark/box_guess.h"
 #include "lmk/landmark/capture_views.h"
 #include "lmk/landmark/distinctiveness.h"
+#include "lmk/landmark/internal/find_result_json.h"
 #include "lmk/landmark/slide_check.h"
 #include "lmk/serve/api.h"
 #include "lmk/serve/api_error.h"

@@ -2,10 +2,10 @@
 // POST /api/find: landmarks searched in a scene on the worker pool, the scene indexed once for
 // all of them (landmark/scene_index.h), with per-seed progress.
 #include "lmk/geometry/error.h"
-#include "lmk/json/find_result_json.h"
-#include "lmk/json/find_settings_json.h"
 #include "lmk/json/pose_json.h"
 #include "lmk/landmark/find_landmark.h"
+#include "lmk/landmark/internal/find_result_json.h"
+#include "lmk/landmark/internal/find_settings_json.h"
 #include "lmk/serve/api.h"
 #include "lmk/serve/api_error.h"
 #include "lmk/serve/request_fields.h"

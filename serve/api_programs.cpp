@@ -3,9 +3,10 @@
 // PR2 at rest (pbd/plan.h): landmarks located, every step's gripper pose in the base frame, and
 // the refusal exactly as the robot would give it.
 #include "lmk/geometry/error.h"
-#include "lmk/json/plan_json.h"
 #include "lmk/json/pose_json.h"
+#include "lmk/pbd/internal/plan_json.h"
 #include "lmk/pbd/plan.h"
+#include "lmk/pr2/pr2_robots.h"
 #include "lmk/pr2/simulated_pr2.h"
 #include "lmk/serve/api.h"
 #include "lmk/serve/api_error.h"
@@ -105,10 +106,7 @@ ApiResponse Api::plan(const std::string& name, const std::string& body_text) {
   apply_find_settings(body, "plan", plan_settings.find);
 
   return run_job("plan", body, [=](JobProgress& progress) mutable {
-    SimulatedPr2 robot(Pr2Kinematics(RobotModel::pr2(), torso));
-    if (!robot.configure().ok() || !robot.activate().ok()) {
-      throw Error("plan: the simulated PR2 failed to start");
-    }
+    SimulatedPr2 robot = start_simulated_pr2(torso);
     JointState start;
     robot.read_joint_state(start);
     double done = 0.0;

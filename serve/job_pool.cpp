@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "lmk/geometry/error.h"
+#include "lmk/geometry/stopwatch.h"
 #include "lmk/serve/api_error.h"
 
 namespace lmk::serve {
@@ -21,7 +22,7 @@ struct JobPool::Job {
   std::string error;
   int status = 200;
   nlohmann::json details;  // an ApiError's, beside its message
-  std::chrono::steady_clock::time_point started;
+  Stopwatch running;       // restarted when the job starts
   double seconds = 0.0;
   // When a request last asked about the job (JobPool::now()), and how many ask at the moment.
   std::atomic<double> last_asked;
@@ -156,7 +157,7 @@ void JobPool::work_loop() {
         continue;
       }
       job->state = "running";
-      job->started = std::chrono::steady_clock::now();
+      job->running.restart();
       ++running_;
     }
     nlohmann::json result;
@@ -182,8 +183,7 @@ void JobPool::work_loop() {
     }
     std::lock_guard<std::mutex> lock(mutex_);
     --running_;
-    job->seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - job->started).count();
+    job->seconds = job->running.seconds();
     finish(*job, std::move(result), std::move(error), status, std::move(details));
   }
 }

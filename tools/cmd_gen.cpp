@@ -4,7 +4,6 @@
 //   lmk gen --preset NAME OUT_DIR [--seeds N] [--hard]  a benchmark dataset (docs/datasets.md)
 //   lmk gen OUT_DIR --from-rgbd SEQ                      real cross-view pairs of an RGB-D sequence
 
-#include <chrono>
 #include <cstdio>
 #include <memory>
 
@@ -16,6 +15,7 @@
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/pose.h"
+#include "lmk/geometry/stopwatch.h"
 #include "lmk/landmark/depth_correction_file.h"
 #include "tools/bag_input.h"
 #include "tools/cli_common.h"
@@ -86,11 +86,10 @@ int run_preset(const GenOptions& options) {
       "gen " + options.preset + (options.shard.empty() ? "" : " " + options.shard);
   ProgressBar bar(label);
   generate.progress = [&bar](std::size_t done, std::size_t total) { bar.update(done, total); };
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch stopwatch;
   const Generated generated = generate_benchmark(options.output, options.preset, generate);
   const Dataset& dataset = generated.dataset;
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds = stopwatch.seconds();
   if (generate.shard) {
     std::printf(
         "%s: %zu of the dataset's scenes are this shard's: %zu rendered, %zu already there "
@@ -148,10 +147,9 @@ int run_rgbd(const GenOptions& options) {
   if (options.view_gap) rgbd.view_gap = *options.view_gap;
   ProgressBar bar("gen rgbd");
   rgbd.progress = [&bar](std::size_t done, std::size_t total) { bar.update(done, total); };
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch stopwatch;
   const RgbdImport import = generate_rgbd_dataset(options.from_rgbd, options.output, rgbd);
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds = stopwatch.seconds();
   if (const auto& c = import.depth_calibration) {
     std::printf(
         "depth corrected with a fit %s: %d x %d cells, %zu correspondences, their disagreement "

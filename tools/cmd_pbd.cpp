@@ -15,10 +15,11 @@
 #include "lmk/geometry/atomic_file.h"
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/error.h"
-#include "lmk/json/plan_json.h"
 #include "lmk/landmark/depth_correction_file.h"
 #include "lmk/pbd/execute.h"
+#include "lmk/pbd/internal/plan_json.h"
 #include "lmk/pbd/plan.h"
+#include "lmk/pr2/pr2_robots.h"
 #include "lmk/pr2/simulated_pr2.h"
 #include "tools/cli_common.h"
 #include "tools/interrupt.h"
@@ -120,23 +121,21 @@ int report_execution(const Plan& plan, const ExecutionReport& report, double sec
 
 namespace {
 
-// Plans the program in the scene for a simulated PR2 at rest with the torso at o.torso; the robot
-// is returned configured and active, so that `run` can execute the plan on it.
+// Plans the program in the scene for the simulated PR2 at rest (start_simulated_pr2(o.torso)), so
+// that `run` can execute the plan on it.
 Plan plan_program(const PbdOptions& o, SimulatedPr2& robot) {
   format_from_path(o.scene);
   const Program program = load_program(o.program);
   const auto landmarks = load_landmarks_of(o, program);
   PointCloud scene = read_cloud(o.scene);
   correct_depth(scene, o.depth_correction);
-  if (!robot.configure().ok() || !robot.activate().ok())
-    throw Error("simulated PR2 failed to start");
   JointState state;
   robot.read_joint_state(state);
   return plan(program, landmarks, scene, robot.kinematics(), state, plan_settings(o));
 }
 
 int run_plan(const PbdOptions& o) {
-  SimulatedPr2 robot(Pr2Kinematics(RobotModel::pr2(), o.torso));
+  SimulatedPr2 robot = start_simulated_pr2(o.torso);
   const Plan plan = plan_program(o, robot);
   if (o.json_stdout) {
     std::cout << detail::plan_to_json(plan).dump(2) << "\n";
@@ -156,7 +155,7 @@ int run_run(const PbdOptions& o) {
         "pbd run: give --sim --scene FILE for the simulated PR2, or --ros for a robot "
         "under ROS 1");
   }
-  SimulatedPr2 robot(Pr2Kinematics(RobotModel::pr2(), o.torso));
+  SimulatedPr2 robot = start_simulated_pr2(o.torso);
   const Plan plan = plan_program(o, robot);
   print_plan(plan);
   if (!plan.valid()) return refused(plan);

@@ -13,8 +13,10 @@
 #include <thread>
 
 #include "lmk/geometry/error.h"
+#include "lmk/geometry/stopwatch.h"
 #include "lmk/landmark/depth_correction_file.h"
 #include "lmk/pr2/pr2_kinematics.h"
+#include "lmk/pr2/pr2_robots.h"
 #include "lmk/ros/latest_frame.h"
 #include "lmk/ros/ros_robot.h"
 #include "tools/cli_common.h"
@@ -42,13 +44,6 @@ std::shared_ptr<const ros1::Frame> wait_for_frame(const ros1::LatestFrame& lates
               " s (is the camera publishing, and does TF reach the base frame?)");
 }
 
-double torso_height(const JointState& state) {
-  for (std::size_t i = 0; i < state.names.size(); ++i) {
-    if (state.names[i] == "torso_lift_joint") return state.positions[i];
-  }
-  throw Error("pbd run --ros: the robot's joint state has no torso_lift_joint (is it a PR2?)");
-}
-
 }  // namespace
 
 int run_on_ros(const PbdOptions& o) {
@@ -73,7 +68,7 @@ int run_on_ros(const PbdOptions& o) {
   JointState state;
   const CallResult read = robot.read_joint_state(state);
   if (!read.ok()) throw Error("pbd run --ros: " + read.message);
-  const Pr2Kinematics kinematics(RobotModel::pr2(), torso_height(state));
+  const Pr2Kinematics kinematics = pr2_kinematics_at(state);
   std::printf("planning on the frame of %.3f s from %s (%zu points), torso at %.3f m\n",
               frame->stamp.toSec(), o.cloud_topic.c_str(), frame->scene.size(),
               kinematics.torso_height());
@@ -96,13 +91,12 @@ int run_on_ros(const PbdOptions& o) {
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
     }
   });
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch stopwatch;
   const ExecutionReport report = execute(plan, robot);
   done = true;
   watcher.join();
   robot.deactivate();
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds = stopwatch.seconds();
   spinner.stop();
   return report_execution(plan, report, seconds, "wall time");
 }

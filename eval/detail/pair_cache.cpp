@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "lmk/eval/detail/pair_cache.h"
 
-#include "lmk/eval/detail/evaluation_json.h"
+#include "lmk/eval/internal/evaluation_json.h"
 #include "lmk/geometry/atomic_file.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/hash.h"

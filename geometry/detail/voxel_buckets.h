@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "lmk/geometry/detail/voxel_table.h"
+#include "lmk/geometry/internal/voxel_table.h"
 #include "lmk/geometry/point_cloud.h"
 
 namespace lmk::detail {

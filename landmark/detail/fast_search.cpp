@@ -9,15 +9,15 @@
 #include <numeric>
 #include <unordered_map>
 
-#include "lmk/geometry/detail/voxel_key.h"
+#include "lmk/geometry/internal/voxel_key.h"
 #include "lmk/geometry/pose.h"
 #include "lmk/geometry/radius_grid.h"
+#include "lmk/geometry/stopwatch.h"
 #include "lmk/geometry/voxel_grid.h"
 #include "lmk/landmark/detail/grid_metrics.h"
 #include "lmk/landmark/detail/point_pair_voting.h"
 #include "lmk/landmark/detail/relief_seeds.h"
 #include "lmk/landmark/detail/sensor_metric.h"
-#include "lmk/landmark/detail/stopwatch.h"
 #include "lmk/landmark/non_max_suppression.h"
 #include "lmk/registration/icp.h"
 #include "lmk/registration/refine_pose.h"
@@ -373,7 +373,7 @@ std::vector<Match> polish(const Stages& st, std::vector<Match> aligned,
 // Candidates in a deterministic order (by cluster rank), whatever the thread count.
 CandidateSet fast_candidates(const SearchInput& in, SearchStats& stats) {
   const Stages st(in);
-  const auto start = Clock::now();
+  Stopwatch stage;
   std::vector<Candidate> poses = vote(st);
   stats.poses = poses.size();
   // Step 2.
@@ -381,18 +381,18 @@ CandidateSet fast_candidates(const SearchInput& in, SearchStats& stats) {
       cluster(std::move(poses), std::max(2.0 * st.leaf, 0.1 * in.prepared.diameter()), 0.35,
               st.s.fast.max_candidates);
   stats.clusters = clusters.size();
-  stats.seconds_vote = seconds_since(start);
+  stats.seconds_vote = stage.seconds();
 
-  const auto coarse_start = Clock::now();
+  stage.restart();
   const CoarseAlignment coarse = coarse_align(st, clusters);
   const std::vector<std::size_t> survivors = prune(st, coarse);
   stats.refined = survivors.size();
-  stats.seconds_coarse = seconds_since(coarse_start);
+  stats.seconds_coarse = stage.seconds();
 
-  const auto fine_start = Clock::now();
+  stage.restart();
   CandidateSet out;
   out.kept = polish(st, fine_align(st, clusters, coarse, survivors), out.suppressed);
-  stats.seconds_fine = seconds_since(fine_start);
+  stats.seconds_fine = stage.seconds();
   return out;
 }
 

@@ -6,8 +6,8 @@
 #include <map>
 #include <optional>
 
-#include "lmk/geometry/detail/voxel_key.h"
-#include "lmk/geometry/detail/voxel_table.h"
+#include "lmk/geometry/internal/voxel_key.h"
+#include "lmk/geometry/internal/voxel_table.h"
 #include "lmk/geometry/principal_axes.h"
 #include "lmk/geometry/random.h"
 

@@ -11,9 +11,9 @@
 
 #include "lmk/demos/demo_task_cache.h"
 #include "lmk/eval/dataset.h"
-#include "lmk/eval/detail/evaluation_json.h"
 #include "lmk/eval/detail/pair_cache.h"
 #include "lmk/eval/evaluation_report.h"
+#include "lmk/eval/internal/evaluation_json.h"
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/pose.h"
 #include "lmk/landmark/landmark.h"

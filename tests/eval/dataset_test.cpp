@@ -27,8 +27,8 @@ class DatasetTest : public ::testing::Test {
     dataset_.landmarks = {{"bowl", "bowl.lmk", Symmetry{Eigen::Vector3d::UnitZ()}},
                           {"cup", "cup.lmk", Symmetry{}}};
     DatasetScene a{"a", "a.pcd", "simple", pose_from_xyz_rpy({0, 0, 1.2}, {0.1, 0.2, 0.3}), {}, {}};
-    a.pairs = {{"bowl", true, {pose_from_xyz_rpy({0.1, 0.2, 0.7}, {0, 0, 1})}, {}},
-               {"cup", true, {}, {}}};
+    a.pairs = {{"bowl", true, {pose_from_xyz_rpy({0.1, 0.2, 0.7}, {0, 0, 1})}, {}, {}},
+               {"cup", true, {}, {}, {}}};
     DatasetScene b{"b", "b.pcd", "cluttered", Eigen::Isometry3d::Identity(), {}, {}};
     dataset_.scenes = {a, b};
   }

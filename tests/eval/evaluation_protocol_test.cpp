@@ -113,10 +113,10 @@ TEST(CountBestMatch, OnlyTheBestMatchCounts) {
 }
 
 TEST(CountAssumptions, PairsWithoutGroundTruthAndOutOfContextPairs) {
-  PairInput hit{{at(0, 0)}, {at(0, 0)}, {}, true};
-  PairInput spurious{{}, {at(1, 1), at(2, 2)}, {}, true};  // no instance, two outputs
-  PairInput quiet{{}, {}, {}, true};                       // no instance, no output
-  PairInput out_of_context{{at(0, 0)}, {}, {}, false};     // a miss, counted only under 1
+  PairInput hit{{at(0, 0)}, {at(0, 0)}, {}, true, {}};
+  PairInput spurious{{}, {at(1, 1), at(2, 2)}, {}, true, {}};  // no instance, two outputs
+  PairInput quiet{{}, {}, {}, true, {}};                       // no instance, no output
+  PairInput out_of_context{{at(0, 0)}, {}, {}, false, {}};     // a miss, counted only under 1
   const auto counts = count_assumptions({hit, spurious, quiet, out_of_context});
   // Assumption 1: all pairs. 1 TP, 2 FP (both spurious outputs), 1 FN.
   EXPECT_EQ(counts[0].tp, 1u);
@@ -166,7 +166,7 @@ TEST(CountAllMatches, IgnoredInstancesCountNowhere) {
 }
 
 TEST(Counts, EmptyOutputsHaveNoPrecision) {
-  PairInput miss{{at(0, 0)}, {}, {}, true};
+  PairInput miss{{at(0, 0)}, {}, {}, true, {}};
   const auto counts = count_assumptions({miss});
   EXPECT_FALSE(counts[0].precision().has_value());  // nothing returned: neither 0 nor 1
   EXPECT_DOUBLE_EQ(*counts[0].recall(), 0.0);

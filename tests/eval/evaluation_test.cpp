@@ -16,9 +16,9 @@
 
 #include "lmk/eval/ablation.h"
 #include "lmk/eval/benchmark_dataset.h"
-#include "lmk/eval/detail/evaluation_json.h"
 #include "lmk/eval/evaluation_report.h"
 #include "lmk/eval/evaluation_table.h"
+#include "lmk/eval/internal/evaluation_json.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/pose.h"
 #include "tests/eval/simple_scenes_fixture.h"

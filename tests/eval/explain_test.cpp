@@ -12,7 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "lmk/eval/benchmark_dataset.h"
-#include "lmk/eval/detail/evaluation_json.h"
+#include "lmk/eval/internal/evaluation_json.h"
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/pose.h"
 #include "lmk/landmark/find_landmark.h"
@@ -247,7 +247,9 @@ TEST(CauseRows, ByHiddenCountsEachMissInItsBinAndFalseMatchesInAllOnly) {
   EXPECT_EQ(rows[2].missed[0], 3u);
   EXPECT_EQ(rows[2].false_matches[2], 1u);  // "look-alike"
   for (const CauseRow& r : rows) {
-    if (r.group != "all") EXPECT_EQ(r.false_matches[2], 0u) << r.group;
+    if (r.group != "all") {
+      EXPECT_EQ(r.false_matches[2], 0u) << r.group;
+    }
   }
   const nlohmann::json j = detail::explanation_to_json(cases);
   EXPECT_DOUBLE_EQ(j["cases"][0]["hidden"].get<double>(), 0.55);

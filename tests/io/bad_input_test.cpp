@@ -141,7 +141,7 @@ TEST_F(BadInput, DeclaredPointsAreCheckedAgainstTheLimitAndTheBytesBeforeAllocat
 
 TEST_F(BadInput, NoXyzFields) {
   test::write_text(dir_.file("abc.pcd"), pcd_header("ascii", 1, 1, "a b c") + "1 2 3\n");
-  expect_error(dir_.file("abc.pcd"), "no x/y/z fields (the file has: a b c)");
+  expect_error(dir_.file("abc.pcd"), "no x/y/z fields (it has: a b c)");
   test::write_text(dir_.file("abc.ply"),
                    "ply\nformat ascii 1.0\nelement vertex 1\nproperty float a\nproperty float b\n"
                    "property float c\nend_header\n1 2 3\n");

@@ -192,5 +192,34 @@ TEST(Metrics, RegistryFindsByNameAndNamesTheKnownOnes) {
   }
 }
 
+// docs/library.md's table of metrics ("| `name` | threshold | what |" rows under "### Error
+// metrics") names exactly the registered metrics, in the registry's order, with their thresholds.
+TEST(ErrorMetrics, TheLibraryDocsListEveryRegisteredMetric) {
+  const std::string docs = test::read_bytes(std::string(LMK_SOURCE_DIR) + "/docs/library.md");
+  const std::size_t section = docs.find("### Error metrics");
+  ASSERT_NE(section, std::string::npos);
+  std::vector<std::string> listed;
+  std::vector<std::string> thresholds;
+  std::size_t at = docs.find("\n| `", section);
+  while (at != std::string::npos && at < docs.find("\n## ", section)) {
+    const std::size_t name_end = docs.find('`', at + 4);
+    listed.push_back(docs.substr(at + 4, name_end - at - 4));
+    const std::size_t cell = docs.find("| ", name_end) + 2;
+    thresholds.push_back(docs.substr(cell, docs.find(" |", cell) - cell));
+    at = docs.find("\n| `", name_end);
+  }
+  std::vector<std::string> registered;
+  for (const ErrorMetric& m : error_metrics()) {
+    registered.push_back(m.name);
+    const double shown =
+        m.unit == ErrorMetric::Unit::sigma ? m.default_threshold : m.default_threshold * 1000.0;
+    const std::size_t row = registered.size() - 1;
+    if (row < thresholds.size()) {
+      EXPECT_DOUBLE_EQ(std::stod(thresholds[row]), shown) << m.name << ": " << thresholds[row];
+    }
+  }
+  EXPECT_EQ(listed, registered);
+}
+
 }  // namespace
 }  // namespace lmk

@@ -10,7 +10,7 @@
 #include <set>
 #include <type_traits>
 
-#include "lmk/json/find_settings_json.h"
+#include "lmk/landmark/internal/find_settings_json.h"
 #include "tests/support/find_settings_variants.h"
 
 namespace lmk {

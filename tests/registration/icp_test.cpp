@@ -94,7 +94,9 @@ TEST(Icp, LookingUpAllCorrespondencesAtOnceAnswersAsOneAtATime) {
       EXPECT_EQ(normals[k], n);
     }
     EXPECT_GT(hits, 100u);
-    if (t == &grid) EXPECT_GT(misses, 2u);
+    if (t == &grid) {
+      EXPECT_GT(misses, 2u);
+    }
   }
 }
 

@@ -148,7 +148,7 @@ TEST(Bags, BadBagsAndTopicsAreRefusedWithTheReason) {
   EXPECT_NE(out.find("is not a readable ROS bag"), std::string::npos) << out;
   // A named pipe waits forever for a writer: refused as a special file before any open.
   ASSERT_EQ(::mkfifo(dir.file("pipe.bag").c_str(), 0600), 0);
-  for (const std::vector<std::string> args :
+  for (const std::vector<std::string>& args :
        {std::vector<std::string>{"find", dir.file("pipe.bag"), session().landmark},
         std::vector<std::string>{"info", dir.file("pipe.bag")},
         std::vector<std::string>{"gen", dir.file("ds2"), "--from-bag", dir.file("pipe.bag"),

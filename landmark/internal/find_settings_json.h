@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The JSON form of FindSettings: {"method": ..., "scene": {...}, "sampling": {...}, ...}, one
-// object per stage, each derived from the stage's description (find_settings.h). Header-only and
-// internal, like json/pose_json.h.
+// object per stage, each derived from the stage's description (find_settings.h). Header-only;
+// internal/: shared within lmk, not installed.
 
 #include <nlohmann/json.hpp>
 #include <string>

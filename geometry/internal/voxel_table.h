@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
-// A hash table from packed voxel keys to dense ids, in order of first insertion. Internal.
+// A hash table from packed voxel keys to dense ids, in order of first insertion, for the
+// voxel filters and the grids above them (internal/: shared within lmk, not installed).
 //
 // Open addressing with linear probing: the voxel filters insert one key per raw point (300 000 for
 // a Kinect frame), and std::unordered_map's node allocation cost several times more than the rest
@@ -9,7 +10,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "lmk/geometry/detail/voxel_key.h"
+#include "lmk/geometry/internal/voxel_key.h"
 
 namespace lmk::detail {
 

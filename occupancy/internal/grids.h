@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The OpenVDB grids behind the occupancy types, for code that stores or inspects them (the .lmk
-// file). Internal: not installed, since it exposes OpenVDB types.
+// file). internal/: shared within lmk, not installed, since it exposes OpenVDB types.
 
 #include <openvdb/openvdb.h>
 

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The JSON forms of evaluation results: a pair's result (the cache's file and the report's
-// per-scene entries), the table rows and the settings. Internal: lmk's public headers never expose
-// nlohmann-json.
+// per-scene entries), the table rows and the settings. internal/: shared within lmk (the CLI,
+// Python), not installed: lmk's public headers never expose nlohmann-json.
 
 #include <nlohmann/json.hpp>
 #include <string>

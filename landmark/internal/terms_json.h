@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The JSON form of a match's error terms, shared by `lmk find --json` and the evaluation cache and
-// reports. Header-only and internal, like json/pose_json.h.
+// reports. Header-only; internal/: shared within lmk, not installed.
 
 #include <cmath>
 #include <limits>

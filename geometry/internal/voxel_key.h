@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
-// Voxel coordinates packed into one 64-bit key, shared by the voxel filters. Internal.
+// Voxel coordinates packed into one 64-bit key, shared by the voxel filters and the
+// grids above them (internal/: shared within lmk, not installed).
 
 #include <Eigen/Core>
 #include <array>

@@ -3,13 +3,13 @@
 // The JSON form of a search's result, which `lmk find --json` prints and `lmk serve` answers with:
 // {"matches": [...], "stats": {...}}, each match its box pose, error and terms; with rejections,
 // also "rejected": the candidates turned down after non-max suppression, each with its reason.
-// Header-only and internal, like pose_json.h.
+// Header-only; internal/: shared within lmk (the CLI, serve, ROS, Python), not installed.
 
 #include <nlohmann/json.hpp>
 
 #include "lmk/json/pose_json.h"
-#include "lmk/json/terms_json.h"
 #include "lmk/landmark/find_landmark.h"
+#include "lmk/landmark/internal/terms_json.h"
 
 namespace lmk::detail {
 

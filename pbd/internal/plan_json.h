@@ -2,7 +2,8 @@
 #pragma once
 // The JSON form of a PbD plan, which `lmk pbd plan --json` prints and `lmk serve` answers with: the
 // landmarks located, every step's targets in the base frame with their IK solutions, and the
-// refusal if there is one. Header-only and internal, like pose_json.h.
+// refusal if there is one. Header-only; internal/: shared within
+// lmk, not installed.
 
 #include <nlohmann/json.hpp>
 

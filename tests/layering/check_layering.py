@@ -1,0 +1,170 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
+"""lmk's layering rule, checked on the includes of the source tree (docs/developing.md).
+
+Each module folder is one layer, and a module includes only its own headers and those of the
+layers below it:
+
+    geometry < json < occupancy < registration < landmark < pbd < pr2 < eval < demos
+             < ros, serve < tools, python
+
+Modules of one layer (ros and serve; tools and python) do not include each other. A module's
+detail/ headers are its own: no other module includes them (tests and benchmarks, which look
+inside on purpose, may). What a module shares with the layers above lies in its folder or in its
+internal/ folder (shared within lmk, not installed).
+
+Usage:
+    check_layering.py [--root DIR]       exit 1 and one line per violation, if there are any
+    check_layering.py --counts           the include count per module pair, as a Markdown table
+    check_layering.py --self-test        plants each kind of violation and checks that it is seen
+"""
+
+import argparse
+import os
+import re
+import sys
+
+LAYERS = [["geometry"], ["json"], ["occupancy"], ["registration"], ["landmark"], ["pbd"],
+          ["pr2"], ["eval"], ["demos"], ["ros", "serve"], ["tools", "python"]]
+LEVEL = {module: level for level, layer in enumerate(LAYERS) for module in layer}
+# Folders above every layer, allowed any include and any module's detail/.
+ABOVE_ALL = ["tests", "bench"]
+SOURCE_SUFFIXES = (".h", ".cpp", ".in")
+INCLUDE = re.compile(r'^\s*#\s*include\s*"([^"]+)"', re.MULTILINE)
+LMK_INCLUDE = re.compile(r"^lmk/([a-z0-9_]+)/(.*)$")
+
+
+def read_tree(root):
+    """{path relative to root: text} of every C++ source and header of the checked folders."""
+    files = {}
+    for top in list(LEVEL) + ABOVE_ALL:
+        for folder, subfolders, names in os.walk(os.path.join(root, top)):
+            subfolders[:] = [s for s in subfolders if not s.startswith(".")]
+            for name in names:
+                if name.endswith(SOURCE_SUFFIXES):
+                    path = os.path.join(folder, name)
+                    with open(path, encoding="utf-8", errors="replace") as f:
+                        files[os.path.relpath(path, root)] = f.read()
+    return files
+
+
+def includes(files):
+    """(file, its module, the included module, the rest of the include path) per lmk include."""
+    for path, text in sorted(files.items()):
+        module = path.split(os.sep)[0]
+        for target in INCLUDE.findall(text):
+            if target.startswith("../"):
+                yield path, module, None, target
+                continue
+            match = LMK_INCLUDE.match(target)
+            if match:
+                yield path, module, match.group(1), match.group(2)
+
+
+def violations(files):
+    """One line per include against the layering rule."""
+    found = []
+    for path, module, included, rest in includes(files):
+        if included is None:
+            found.append(f"{path}: includes '{rest}' by a relative path out of its folder; "
+                         f"include it as \"lmk/MODULE/...\"")
+            continue
+        if module in ABOVE_ALL or included == module:
+            continue
+        if included not in LEVEL:
+            found.append(f"{path}: includes lmk/{included}/{rest}, which is no module of lmk")
+            continue
+        if rest.startswith("detail/"):
+            found.append(f"{path}: includes lmk/{included}/{rest}: a module's detail/ is its own; "
+                         f"share it from {included}/ or {included}/internal/")
+        if LEVEL[included] > LEVEL[module]:
+            found.append(f"{path}: {module} includes lmk/{included}/{rest}, a layer above it "
+                         f"({layer_order()})")
+        elif LEVEL[included] == LEVEL[module]:
+            found.append(f"{path}: {module} includes lmk/{included}/{rest}; {module} and "
+                         f"{included} are one layer and do not include each other")
+    return found
+
+
+def include_links(root):
+    """Problems with include/lmk/, which makes "lmk/MODULE/..." resolve from the source tree."""
+    problems = []
+    for module in LEVEL:
+        if module in ("tools", "python"):
+            continue
+        link = os.path.join(root, "include", "lmk", module)
+        if os.path.realpath(link) != os.path.realpath(os.path.join(root, module)):
+            problems.append(f"include/lmk/{module}: should be a link to ../../{module}")
+    return problems
+
+
+def layer_order():
+    return " < ".join(", ".join(layer) for layer in LAYERS)
+
+
+def counts_table(files):
+    """Markdown: for each module, how many of its includes go to each module below it."""
+    counts = {}
+    for _, module, included, _ in includes(files):
+        if included is not None and module in LEVEL and included != module:
+            counts[(module, included)] = counts.get((module, included), 0) + 1
+    modules = [m for layer in LAYERS for m in layer]
+    lines = ["| includer \\ included | " + " | ".join(modules[:-2]) + " |",
+             "|---" * (len(modules) - 1) + "|"]
+    for module in modules[1:]:
+        cells = [str(counts.get((module, other), "")) for other in modules[:-2]]
+        lines.append(f"| {module} | " + " | ".join(cells) + " |")
+    return "\n".join(lines)
+
+
+def self_test(files):
+    """Plants one violation of each kind into the real tree's files and checks that it is seen,
+    and that the real tree's own verdict does not change otherwise."""
+    plants = {
+        "geometry/planted_upward.cpp": '#include "lmk/landmark/landmark.h"\n',
+        "landmark/planted_detail.cpp": '#include "lmk/geometry/detail/pcd_io.h"\n',
+        "ros/planted_same_layer.cpp": '#include "lmk/serve/http_server.h"\n',
+        "tools/planted_relative.cpp": '#include "../eval/evaluation.h"\n',
+        "json/planted_upward.h": '#include "lmk/pbd/plan.h"\n',
+    }
+    before = set(violations(files))
+    failures = []
+    for path, text in plants.items():
+        after = set(violations({**files, path: text})) - before
+        if not any(line.startswith(path + ":") for line in after):
+            failures.append(f"self-test: the planted {path} ({text.strip()}) was not reported")
+        # Allowed includes stay allowed: tests may look inside any module.
+    allowed = {"tests/planted_white_box.cpp": '#include "lmk/geometry/detail/pcd_io.h"\n',
+               "landmark/planted_below.cpp": '#include "lmk/occupancy/distance_field.h"\n'}
+    for path, text in allowed.items():
+        if set(violations({**files, path: text})) - before:
+            failures.append(f"self-test: the allowed {path} ({text.strip()}) was reported")
+    return failures
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--root", default=os.path.join(os.path.dirname(__file__), "..", ".."),
+                        help="the source tree (default: this file's)")
+    mode = parser.add_mutually_exclusive_group()
+    mode.add_argument("--counts", action="store_true", help="print the include counts table")
+    mode.add_argument("--self-test", action="store_true", help="plant violations, see them fail")
+    args = parser.parse_args()
+    files = read_tree(args.root)
+    if not files:
+        print(f"check_layering: no sources under {args.root}", file=sys.stderr)
+        return 2
+    if args.counts:
+        print(counts_table(files))
+        return 0
+    problems = self_test(files) if args.self_test else violations(files) + include_links(args.root)
+    for line in problems:
+        print(line)
+    if not problems:
+        print(f"check_layering: {len(files)} files, "
+              + ("every planted violation seen" if args.self_test else "no violation"))
+    return 1 if problems else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
