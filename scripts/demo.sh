@@ -7,7 +7,7 @@
 # setting and assumption. A few minutes on 2 cores; results are cached, so a second run is instant.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/build.sh
+bash scripts/build.sh --tool
 build=${LMK_BUILD_DIR:-build}
 "$build/tools/lmk" --version
 echo

@@ -1,26 +1,41 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: BSD-3-Clause
-# Installs every Debian 12 package lmk needs to build, test and benchmark.
+# Installs the Debian 12 packages lmk needs.
+#   install-deps.sh          everything: to build, test and benchmark all of lmk
+#   install-deps.sh --tool   only what the lmk tool needs to build and run (the demos)
 # Idempotent: when every package is already installed it does nothing (no apt-get update).
 set -euo pipefail
 
-packages=(
+case "${1:-}" in
+  ""|--tool) ;;
+  *) echo "install-deps.sh: unknown option '$1' (--tool or nothing)" >&2; exit 2 ;;
+esac
+
+# The lmk tool: its libraries and `lmk serve`.
+tool_packages=(
   # toolchain
-  build-essential cmake pkg-config git clang-format
+  build-essential cmake pkg-config git
   # the libraries lmk is built on (docs/developing.md)
   libeigen3-dev libopenvdb-dev libceres-dev libpcl-dev libcgal-dev liburdfdom-dev
   libnanoflann-dev libtbb-dev nlohmann-json3-dev libcli11-dev
-  # RGB-D depth and colour images (geometry/depth_image.h)
+  # RGB-D depth and colour images (geometry/depth_image.h), the report's PNG pictures
   libpng-dev
   # Debian's PCL config pulls in VTK, whose config needs MPI's C bindings
   mpi-default-dev
+  # lmk serve: the HTTP server, and three.js for its page (read from /usr/share/javascript/three)
+  libcpp-httplib-dev libjs-three
+)
+
+# Everything else: tests, benchmarks, the format check, the sanitizer and fuzz builds, ROS, Python
+# and Slurm.
+more_packages=(
+  # the format check (scripts/check-format.sh)
+  clang-format
   # tests and benchmarks
   googletest libgtest-dev libgmock-dev libbenchmark-dev
   # the evaluation report's rendering test and lmk serve's browser test (headless Chromium driven
   # over the DevTools protocol by Node.js with Debian's WebSocket module)
   chromium nodejs node-ws
-  # lmk serve: the HTTP server, and three.js for its page (read from /usr/share/javascript/three)
-  libcpp-httplib-dev libjs-three
   # the sanitizer build and the fuzz targets (scripts/fuzz.sh): clang with libFuzzer's runtime
   clang-14 libclang-rt-14-dev
   # the ThreadSanitizer run fetches and builds Debian's oneTBB source (scripts/build-tbb-tsan.sh)
@@ -40,6 +55,9 @@ packages=(
   # lmk slurm's test starts a one-node Slurm cluster (tests/cluster/slurm_test.sh)
   slurm-wlm munge
 )
+
+packages=("${tool_packages[@]}")
+[ "${1:-}" = --tool ] || packages+=("${more_packages[@]}")
 
 missing=()
 for p in "${packages[@]}"; do

@@ -7,7 +7,7 @@
 # (--port 9000, say).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/build.sh
+bash scripts/build.sh --tool
 build=${LMK_BUILD_DIR:-build}
 lmk="$build/tools/lmk"
 out="$build/serve-demo"

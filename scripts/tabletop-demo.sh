@@ -4,7 +4,7 @@
 # on it as a landmark, and find it again with the fast search.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/build.sh
+bash scripts/build.sh --tool
 build=${LMK_BUILD_DIR:-build}
 lmk="$build/tools/lmk"
 out="$build/demo"
