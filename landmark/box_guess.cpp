@@ -144,28 +144,9 @@ Box grow_by_empty_margin(const Box& object, const PointCloud& scene, Indices oth
   return Box(pose, high - low);
 }
 
-// Each length in (lo, hi] m, or [0, hi] when zero is allowed. The upper bounds keep a request
-// from asking for the whole room: a neighbourhood or cluster gap beyond a landmark's largest box
-// (CaptureSettings::max_box_side, 3 m) and a margin or plane distance beyond half a metre describe
-// no object (issue #34, finding 2).
-void check_length(double v, double hi, bool zero_allowed, const char* name) {
-  const bool ok = std::isfinite(v) && (zero_allowed ? v >= 0.0 : v > 0.0) && v <= hi;
-  if (!ok) {
-    std::ostringstream message;
-    message << "box guess: " << name << " must be in " << (zero_allowed ? "[0, " : "(0, ") << hi
-            << "] m";
-    throw Error(message.str());
-  }
-}
-
 }  // namespace
 
-void validate(const BoxGuessSettings& s) {
-  check_length(s.search_radius, 3.0, false, "search_radius");
-  check_length(s.plane_distance, 0.5, false, "plane_distance");
-  check_length(s.cluster_tolerance, 3.0, false, "cluster_tolerance");
-  check_length(s.margin, 0.5, true, "margin");
-}
+void validate(const BoxGuessSettings& s) { validate_settings(s, "box guess: "); }
 
 BoxGuess guess_box(const PointCloud& scene, const Eigen::Vector3d& clicked,
                    const BoxGuessSettings& settings) {

@@ -11,6 +11,7 @@
 
 #include "lmk/geometry/box.h"
 #include "lmk/geometry/point_cloud.h"
+#include "lmk/geometry/settings_schema.h"
 
 namespace lmk {
 
@@ -21,6 +22,30 @@ struct BoxGuessSettings {
   double margin = 0.03;                ///< m of empty space wanted around the object on each side
   std::size_t min_points = 30;         ///< fewest points the object may have
   std::size_t min_plane_points = 200;  ///< a smaller plane is no support
+
+  /// Each field described once (geometry/settings_schema.h), for validate() and lmk serve's guess.
+  /// A box side beyond 3 m is no landmark (CaptureSettings::max_box_side), and a margin or plane
+  /// distance beyond half a metre describes no object (issue #34, finding 2).
+  template <class Self, class Visit>
+  static void describe(Self& s, Visit&& visit) {
+    visit(SettingInfo("search_radius", "The neighbourhood of the click considered, m")
+              .positive()
+              .at_most(3.0),
+          s.search_radius);
+    visit(SettingInfo("plane_distance", "RANSAC inlier distance of the supporting plane, m")
+              .positive()
+              .at_most(0.5),
+          s.plane_distance);
+    visit(SettingInfo("cluster_tolerance", "Gap that separates the object from its neighbours, m")
+              .positive()
+              .at_most(3.0),
+          s.cluster_tolerance);
+    visit(SettingInfo("margin", "Empty space wanted around the object on each side, m")
+              .within(0.0, 0.5),
+          s.margin);
+    visit(SettingInfo("min_points", "Fewest points the object may have"), s.min_points);
+    visit(SettingInfo("min_plane_points", "A smaller plane is no support"), s.min_plane_points);
+  }
 };
 
 struct BoxGuess {
@@ -31,8 +56,7 @@ struct BoxGuess {
   std::optional<Eigen::Vector4d> support;
 };
 
-/// Throws lmk::Error naming the first length outside its bounds: search_radius and
-/// cluster_tolerance in (0, 3] m, plane_distance in (0, 0.5] m, margin in [0, 0.5] m.
+/// Throws lmk::Error naming the first setting outside its bounds (the description's).
 void validate(const BoxGuessSettings& settings);
 
 /// Guesses the box of the object under `clicked` (a point on it, in the scene frame). Throws

@@ -102,32 +102,18 @@ void fuse_views(const std::vector<PointCloud>& insides, const std::vector<double
 }  // namespace
 
 void check_capture_settings(const CaptureSettings& s, const std::string& what) {
-  if (!(s.leaf_size >= kMinLeafSize) || !std::isfinite(s.leaf_size)) {
-    throw Error(what + ": leaf size must be finite and at least " +
-                std::to_string(static_cast<int>(kMinLeafSize * 1000)) + " mm");
+  validate_settings(s, what + ": ");
+  if (!(s.distance_band >= s.leaf_size)) {
+    throw Error(what + ": distance_band (--distance-band): " + std::to_string(s.distance_band) +
+                " must be at least the leaf size (" + std::to_string(s.leaf_size) + ")");
   }
-  if (!(s.distance_band >= s.leaf_size) || !std::isfinite(s.distance_band)) {
-    throw Error(what + ": the distance band must be finite and at least the leaf size");
-  }
-  if (!(s.empty_space_margin >= 0.0) || !std::isfinite(s.empty_space_margin)) {
-    throw Error(what + ": the empty-space margin must be finite and non-negative");
-  }
-  if (!(s.veil_angle >= 0.0) || !(s.veil_angle < 1.5)) {
-    throw Error(what + ": the veil angle must be in [0, 1.5) rad (0: keep veil points)");
-  }
-  if (s.depth_smoothing < 0 || s.depth_smoothing > kMaxDepthSmoothingRadius) {
-    throw Error(what + ": the depth smoothing must be 0 to " +
-                std::to_string(kMaxDepthSmoothingRadius) + " pixels (0: the raw depth)");
-  }
-  if (!(s.projector_baseline >= 0.0) || !std::isfinite(s.projector_baseline)) {
-    throw Error(what + ": the projector baseline must be finite and non-negative (0: none)");
-  }
-  if (s.up && (!s.up->allFinite() || s.up->norm() < 1e-9)) {
-    throw Error(what + ": the up axis must be a finite non-zero vector");
-  }
-  if (!(s.max_box_side > 0.0) || !std::isfinite(s.max_box_side)) {
-    throw Error(what + ": maximum box side must be positive and finite");
-  }
+}
+
+void prepare_capture_as_search(const SceneSettings& scene, CaptureSettings& capture) {
+  capture.up = scene.up;
+  capture.base_frame = scene.base_frame;
+  capture.veil_angle = scene.veil_angle;
+  capture.depth_smoothing = scene.depth_smoothing;
 }
 
 void check_capture_box(const Box& box, const CaptureSettings& s, const std::string& what) {

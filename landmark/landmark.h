@@ -11,6 +11,9 @@
 #include "lmk/geometry/box.h"
 #include "lmk/geometry/depth_smoothing.h"
 #include "lmk/geometry/point_cloud.h"
+#include "lmk/geometry/settings_schema.h"
+#include "lmk/geometry/voxel_grid.h"
+#include "lmk/landmark/scene_settings.h"
 #include "lmk/occupancy/distance_field.h"
 #include "lmk/occupancy/empty_space.h"
 
@@ -55,6 +58,54 @@ struct CaptureSettings {
   /// surface casting it (geometry/projector_shadow.h). 0 for a sensor without one (stereo, time
   /// of flight). Used at capture only: the empty space it carves is stored in the landmark.
   double projector_baseline = 0.075;
+
+  /// Each field described once (geometry/settings_schema.h): validation, `lmk capture`'s flags and
+  /// the JSON forms (a landmark's export, lmk serve) derive from this list.
+  template <class Self, class Visit>
+  static void describe(Self& s, Visit&& visit) {
+    visit(SettingInfo("leaf_size", "Voxel leaf of the landmark points, m")
+              .at_least(kMinLeafSize)
+              .also("leaf"),
+          s.leaf_size);
+    visit(SettingInfo("min_points", "Fewest points a landmark may have"), s.min_points);
+    visit(SettingInfo("max_box_side", "Longest allowed box side, m").positive(), s.max_box_side);
+    // At least the leaf too (check_capture_settings): the field's voxels are leaves.
+    visit(SettingInfo("distance_band", "Band of the landmark's distance field, m").positive(),
+          s.distance_band);
+    visit(
+        SettingInfo("empty_space_margin", "Observed-free space stops this far from any surface, m")
+            .at_least(0.0),
+        s.empty_space_margin);
+    visit(SettingInfo("up",
+                      "Up axis X Y Z in the capture frame (default: the sensor's -y, or +z "
+                      "in a robot base frame)"),
+          s.up);
+    visit(SettingInfo("base_frame", "The scene is expressed in a robot base frame, whose +z is up"),
+          s.base_frame);
+    visit(SettingInfo("allow_flat",
+                      "Accept a flat landmark: a patch of free surface (an empty spot on a table), "
+                      "which matches wherever it fits"),
+          s.allow_flat);
+    visit(
+        SettingInfo("veil_angle",
+                    "Drop the capture frame's veil points within this angle of the sensor's rays, "
+                    "as searches do (0: keep them; keep it equal to the searches' --veil-angle)")
+            .within(0.0, 1.5)
+            .in_degrees(),
+        s.veil_angle);
+    visit(SettingInfo("depth_smoothing",
+                      "Smooth an organised frame's depth over this many pixels around each point, "
+                      "as searches do (0: the raw depth; keep it equal to the searches' "
+                      "--depth-smoothing)")
+              .within(0, kMaxDepthSmoothingRadius),
+          s.depth_smoothing);
+    // A projector a metre from its camera is no depth sensor lmk knows.
+    visit(SettingInfo("projector_baseline",
+                      "A structured-light sensor's projector offset along the camera's +x, m (0: "
+                      "none, for stereo or time of flight)")
+              .within(0.0, 1.0),
+          s.projector_baseline);
+  }
 };
 
 struct Landmark {
@@ -127,6 +178,11 @@ std::optional<std::string> degenerate_shape(const PointCloud& points, double lea
 
 /// Throws lmk::Error, starting with `what`, naming the first capture setting out of its range.
 void check_capture_settings(const CaptureSettings& settings, const std::string& what);
+
+/// Sets the capture to prepare its frame as searches with `scene` prepare theirs: the up axis, the
+/// base frame, the veil angle and the depth smoothing. A landmark and the scenes it is searched in
+/// are then alike (lmk serve and lmk_node capture so).
+void prepare_capture_as_search(const SceneSettings& scene, CaptureSettings& capture);
 
 /// Throws lmk::Error, starting with `what`, for a box capture() refuses whatever the scene: a
 /// non-positive or non-finite side, a pose that is not a finite rotation and translation, or a side

@@ -22,6 +22,7 @@
 #include "lmk/geometry/pose.h"
 #include "lmk/json/box_json.h"
 #include "lmk/json/pose_json.h"
+#include "lmk/json/settings_json.h"
 #include "lmk/landmark/detail/landmark_container.h"
 #include "lmk/occupancy/internal/grids.h"
 
@@ -278,13 +279,7 @@ nlohmann::json to_json(const Landmark& l) {
                       {"name", l.name},
                       {"box", detail::box_to_json(l.box)},
                       {"sensor_origin", detail::vector_to_json(l.sensor_origin)},
-                      {"capture",
-                       {{"leaf_size", l.settings.leaf_size},
-                        {"min_points", l.settings.min_points},
-                        {"max_box_side", l.settings.max_box_side},
-                        {"distance_band", l.settings.distance_band},
-                        {"empty_space_margin", l.settings.empty_space_margin},
-                        {"allow_flat", l.settings.allow_flat}}},
+                      {"capture", detail::settings_to_json(l.settings)},
                       {"up", detail::vector_to_json(l.up)}};
   if (l.multi_view()) {  // each point's views are points.pcd's labels
     j["view_origins"] = nlohmann::json::array();
@@ -312,14 +307,8 @@ Landmark from_json(const nlohmann::json& j, const std::string& path) {
     l.box = detail::box_from_json(detail::json_field(j, "box", path), path + ": box");
     l.sensor_origin = detail::numbers_from_json(detail::json_field(j, "sensor_origin", path), 3,
                                                 path + ": sensor_origin");
-    const auto& capture = j.at("capture");
-    l.settings.leaf_size = capture.at("leaf_size").get<double>();
-    l.settings.min_points = capture.at("min_points").get<std::size_t>();
-    l.settings.max_box_side = capture.at("max_box_side").get<double>();
-    l.settings.distance_band = capture.value("distance_band", l.settings.distance_band);
-    l.settings.empty_space_margin =
-        capture.value("empty_space_margin", l.settings.empty_space_margin);
-    l.settings.allow_flat = capture.value("allow_flat", false);
+    // Every capture setting by its description; those an older export lacks keep their defaults.
+    detail::settings_from_json(j.at("capture"), path + ": capture", l.settings);
     if (j.contains("up")) l.up = detail::numbers_from_json(j.at("up"), 3, path + ": up");
     if (j.contains("view_origins")) {
       const nlohmann::json& origins = j.at("view_origins");

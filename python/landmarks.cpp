@@ -93,10 +93,23 @@ void bind_landmarks(py::module_& m) {
   m.def(
       "capture",
       [](const PointCloud& cloud, const py::object& box_pose, const py::object& box_size,
-         const std::string& name, bool base_frame, bool check) {
+         const std::string& name, bool base_frame, bool check, const py::kwargs& kwargs) {
         const Box box = box_from_arrays(box_pose, box_size, "box");
         CaptureSettings settings;
         settings.base_frame = base_frame;
+        // The other capture settings as keywords, named, limited and in the units of `lmk
+        // capture`'s flags (leaf_size=0.004), from CaptureSettings's one description.
+        for (const auto& [key, value] : kwargs) {
+          const std::string name_of = key.cast<std::string>();
+          try {
+            if (!set_setting_from_text(settings, setting_key(name_of), setting_text(value),
+                                       "capture: ")) {
+              throw Error("capture: unknown setting '" + name_of + "'");
+            }
+          } catch (const Error& e) {
+            throw py::value_error(e.what());
+          }
+        }
         Landmark landmark;
         {
           const py::gil_scoped_release release;
@@ -110,7 +123,9 @@ void bind_landmarks(py::module_& m) {
       "Cuts a landmark out of `cloud` with the box (a 4x4 pose and three sides, m, in the cloud's "
       "frame). `base_frame`: the cloud is in a robot base frame, whose +z is up. Returns "
       "(landmark, verdict): the verdict of `lmk capture`'s checks (distinctive, found_itself, "
-      "other_instances, slides), or None with check=False.");
+      "other_instances, slides), or None with check=False. Further keywords are `lmk capture`'s "
+      "settings (leaf_size, min_points, distance_band, allow_flat, depth_smoothing, ...), in its "
+      "flags' units.");
 }
 
 }  // namespace lmk::python

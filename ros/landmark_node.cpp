@@ -79,11 +79,8 @@ LandmarkNode::LandmarkNode(::ros::NodeHandle nh, ::ros::NodeHandle private_nh,
               settings_.depth_correction) {
   // The node's scenes are in the base frame, whose +z is up (docs/landmarks.md, "Up").
   settings_.find.scene.base_frame = true;
-  settings_.capture.base_frame = true;
-  // Captures prepare their frame as the searches do (~find_settings' scene stage), so that a
-  // landmark and the frames it is searched in are alike.
-  settings_.capture.veil_angle = settings_.find.scene.veil_angle;
-  settings_.capture.depth_smoothing = settings_.find.scene.depth_smoothing;
+  // Captures prepare their frame as the searches do (~find_settings' scene stage).
+  prepare_capture_as_search(settings_.find.scene, settings_.capture);
   markers_ = private_nh.advertise<visualization_msgs::MarkerArray>("matches", 1, /*latch=*/true);
   capture_service_ = private_nh.advertiseService("capture_landmark", &LandmarkNode::capture, this);
   add_view_service_ = private_nh.advertiseService("add_view", &LandmarkNode::add_view, this);

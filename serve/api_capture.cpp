@@ -41,12 +41,8 @@ Landmark capture_from(const std::vector<Scene>& scenes, const nlohmann::json& bo
                       nlohmann::json& registrations) {
   const Box box = required_box(body, "box", what);
   CaptureSettings settings;
-  settings.base_frame = find.scene.base_frame;
-  settings.up = find.scene.up;
+  prepare_capture_as_search(find.scene, settings);
   settings.allow_flat = optional_bool(body, "allow_flat", false, what);
-  // The frame prepared as the searches prepare theirs, so that the landmark and the scenes match.
-  settings.veil_angle = find.scene.veil_angle;
-  settings.depth_smoothing = find.scene.depth_smoothing;
   ViewPlacement placement;
   placement.poses = optional_poses(body, "poses", what);
   placement.register_views = optional_bool(body, "register", false, what);
@@ -143,7 +139,11 @@ ApiResponse Api::guess(const std::string& body_text) const {
   const Scene scene = scenes_.get(required_string(body, "scene", "guess"));
   BoxGuessSettings settings;
   settings.margin = optional_number(body, "margin", settings.margin, "guess");
-  if (settings.margin < 0.0) throw bad_request("guess: margin: must be at least 0");
+  try {
+    validate(settings);
+  } catch (const Error& e) {
+    throw bad_request("guess: " + std::string(e.what()));
+  }
   const BoxGuess g = guess_box(*scene.cloud, required_point(body, "point", "guess"), settings);
   nlohmann::json j = {{"box", box_json(g.box)},
                       {"object_box", box_json(g.object_box)},

@@ -4,6 +4,7 @@
 #include "lmk/geometry/error.h"
 #include "lmk/json/pose_json.h"
 #include "lmk/json/settings_json.h"
+#include "lmk/landmark/internal/find_settings_json.h"
 #include "lmk/landmark/landmark_library.h"
 #include "lmk/serve/api_error.h"
 
@@ -107,39 +108,23 @@ const std::string& checked_name(const std::string& name, const std::string& what
   return name;
 }
 
-namespace {
-
-// A JSON value as the command line would give it: numbers and booleans as written, arrays as
-// space-separated values ("0.3 0 0.8 0.2 0.2 0.2").
-std::string setting_text(const nlohmann::json& v) {
-  if (v.is_string()) return v.get<std::string>();
-  if (v.is_array()) {
-    std::string text;
-    for (const auto& x : v) text += (text.empty() ? "" : " ") + setting_text(x);
-    return text;
-  }
-  return v.dump();
-}
-
-}  // namespace
-
+// The settings' one wire form (docs/serve.md, "Settings"): nested by stage in the fields' own
+// units, as lmk serve answers with, `lmk find --json` and `lmk eval --json` write, and lmk_node's
+// ~find_settings reads. Only the fields to change need be given.
 void apply_find_settings(const nlohmann::json& body, const std::string& what,
                          FindSettings& settings) {
   if (!body.contains("settings")) return;
   const nlohmann::json& s = body["settings"];
-  if (!s.is_object()) throw bad_request(what + ": settings: must be an object of flags");
-  for (const auto& item : s.items()) {
-    if (item.value().is_null()) continue;  // a field left empty in a form: the default
-    try {
-      set_find_setting(settings, item.key(), setting_text(item.value()));
-    } catch (const Error& e) {
-      throw bad_request(what + ": settings." + item.key() + ": " + e.what());
-    }
+  if (!s.is_object()) {
+    throw bad_request(what +
+                      ": settings: must be an object by stage, such as {\"selection\": "
+                      "{\"threshold\": 0.004}}");
   }
   try {
+    detail::find_settings_from_json(s, what + ": settings", settings);
     validate(settings);
   } catch (const Error& e) {
-    throw bad_request(what + ": settings: " + e.what());
+    throw bad_request(e.what());
   }
 }
 

@@ -39,8 +39,10 @@ std::vector<Eigen::Isometry3d> optional_poses(const nlohmann::json& body, const 
 /// `what` otherwise.
 const std::string& checked_name(const std::string& name, const std::string& what);
 
-/// Applies body["settings"], an object of `lmk find` flags without their dashes ({"method":
-/// "reference", "threshold": 0.004, "max-tilt": 30}), in the flags' units, to `settings`.
+/// Applies body["settings"] to `settings`: the search settings' one wire form, nested by stage in
+/// the fields' own units ({"method": "reference", "selection": {"threshold": 0.004}, "fast":
+/// {"max_tilt": 0.52}}), as lmk serve answers with and lmk_node's ~find_settings reads. Fields it
+/// lacks keep their value; an unknown one is a 400 naming it.
 void apply_find_settings(const nlohmann::json& body, const std::string& what,
                          FindSettings& settings);
 

@@ -81,6 +81,9 @@ void add_depth_correction_option(CLI::App* sub, std::string& file);
 /// (find_settings.h), grouped by stage in --help; the execution stage (--threads) only when
 /// `with_execution`. `settings` must outlive the parse.
 void add_search_options(CLI::App* sub, FindSettings& settings, bool with_execution = false);
+/// One flag per field of CaptureSettings's description (--leaf-size, --min-points, ...), but the up
+/// axis and the base frame, which add_up_options gives.
+void add_capture_options(CLI::App* sub, CaptureSettings& settings);
 
 Subcommand add_bench(CLI::App& app);
 Subcommand add_info(CLI::App& app);

@@ -171,22 +171,9 @@ Subcommand add_capture(CLI::App& app) {
   sub->add_option("-o,--output", o->output, "Landmark file to write (.lmk)")
       ->required()
       ->check(output_extension(".lmk", "a landmark file"));
-  sub->add_option("--leaf", o->settings.leaf_size, "Voxel leaf of the landmark points, m")
-      ->capture_default_str();
-  sub->add_option("--min-points", o->settings.min_points, "Fewest points a landmark may have")
-      ->capture_default_str();
-  sub->add_option("--max-box-side", o->settings.max_box_side, "Longest allowed box side, m")
-      ->capture_default_str();
-  sub->add_option(
-         "--depth-smoothing", o->settings.depth_smoothing,
-         "Smooth an organised frame's depth over this many pixels around each point, as "
-         "searches do (0: the raw depth; keep it equal to the searches' --depth-smoothing)")
-      ->capture_default_str();
+  add_capture_options(sub, o->settings);
   add_up_options(sub, o->up);
   add_depth_correction_option(sub, o->depth_correction);
-  sub->add_flag("--allow-flat", o->settings.allow_flat,
-                "Accept a flat landmark: a patch of free surface (an empty spot on a table), which "
-                "matches wherever it fits");
   sub->add_flag("--no-check", o->no_check,
                 "Skip the distinctiveness check (searching the landmark in its own scene)");
   return {sub, [o] { return run_capture(*o); }};

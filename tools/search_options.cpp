@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The search's command-line flags, one per described setting (landmark/find_settings.h): the flag
-// is the field's kebab-case name, its help line and limits are the description's, and its value
-// is read and checked by the same code as `lmk ablate --vary` and the JSON.
+// The command-line flags of described settings, one per field: the search's (landmark/
+// find_settings.h) and the capture's (CaptureSettings, landmark/landmark.h). The flag is the
+// field's kebab-case name, its help line and limits are the description's, and its value is read
+// and checked by the same code as `lmk ablate --vary` and the JSON.
 
 #include <optional>
 #include <type_traits>
@@ -49,16 +50,16 @@ std::string flag_names(const SettingInfo& info) {
   return info.flag() + (info.alias.empty() ? "" : ",--" + info.alias);
 }
 
-// One flag bound to `value`, which must outlive the parse.
+// One flag bound to `value`, which must outlive the parse, under the --help heading `title`.
+// Messages name the field as validation does, after `where`: "find: fast.max_tilt (--max-tilt):".
 template <class T>
-void add_flag_for(CLI::App* sub, const std::string& group, const SettingInfo& info, T& value) {
-  // Messages name the field as validation does: "find: fast.max_tilt (--max-tilt): ...".
-  const std::string where = group == "method" ? "find: " : "find: " + group + ".";
+void add_flag_for(CLI::App* sub, const std::string& title, const std::string& where,
+                  const SettingInfo& info, T& value) {
   const std::string unit = info.text_unit.empty() ? "" : " (" + info.text_unit + ")";
   if constexpr (std::is_same<T, bool>::value) {
     sub->add_flag(flag_names(info) + ",!--no-" + info.key(), value,
                   info.help + (value ? " (default: on)" : " (default: off)"))
-        ->group(group_title(group));
+        ->group(title);
   } else {
     const auto [least, most] = settings_detail::word_count(value);
     CLI::Option* option = sub->add_option_function<std::vector<std::string>>(
@@ -76,7 +77,7 @@ void add_flag_for(CLI::App* sub, const std::string& group, const SettingInfo& in
           }
         },
         info.help + unit);
-    option->expected(least, most)->group(group_title(group))->type_name(value_name(info, value));
+    option->expected(least, most)->group(title)->type_name(value_name(info, value));
     const std::string shown = settings_detail::to_text(info, value);
     if (!shown.empty()) option->default_str(shown);
   }
@@ -84,11 +85,21 @@ void add_flag_for(CLI::App* sub, const std::string& group, const SettingInfo& in
 
 template <class S>
 void add_flags_for(CLI::App* sub, const std::string& group, S& settings) {
-  S::describe(settings,
-              [&](const SettingInfo& info, auto& value) { add_flag_for(sub, group, info, value); });
+  const std::string where = group == "method" ? "find: " : "find: " + group + ".";
+  S::describe(settings, [&](const SettingInfo& info, auto& value) {
+    add_flag_for(sub, group_title(group), where, info, value);
+  });
 }
 
 }  // namespace
+
+void add_capture_options(CLI::App* sub, CaptureSettings& settings) {
+  CaptureSettings::describe(settings, [&](const SettingInfo& info, auto& value) {
+    // The up axis and the base frame are add_up_options's, which `lmk find` shares.
+    if (info.name == "up" || info.name == "base_frame") return;
+    add_flag_for(sub, "Capture", "capture: ", info, value);
+  });
+}
 
 void add_search_options(CLI::App* sub, FindSettings& settings, bool with_execution) {
   add_flags_for(sub, "method", settings);  // --method

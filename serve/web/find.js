@@ -43,12 +43,16 @@ export class FindPanel {
     document.getElementById('find').disabled = landmarks.length === 0;
   }
 
+  // The settings' wire form (docs/serve.md, "Settings"): nested by stage, in metres. A threshold
+  // that is not a number goes as typed, for the server to refuse with the reason.
   settings() {
-    const settings = {method: document.getElementById('method').value};
+    const settings = {method: document.getElementById('method').value, selection: {}};
     const metric = document.getElementById('metric').value;
-    if (metric) settings.metric = metric;
+    if (metric) settings.selection.metric = metric;
     const threshold = document.getElementById('threshold').value.trim();
-    if (threshold) settings.threshold = threshold;
+    if (threshold) {
+      settings.selection.threshold = Number.isFinite(Number(threshold)) ? Number(threshold) : threshold;
+    }
     return settings;
   }
 

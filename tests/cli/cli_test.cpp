@@ -245,7 +245,7 @@ TEST_F(CliLandmark, CaptureShowExportImportFind) {
 TEST_F(CliLandmark, LeavesBelowAMillimetreAreRefusedUpFront) {
   expect_bad_input("capture " + path("scene.pcd") + " " + carton_ + " --name c -o " +
                        path("c.lmk") + " --leaf 1e-5",
-                   "leaf size must be finite and at least 1 mm");
+                   "capture: leaf_size (--leaf-size): 1e-05 must be finite and at least 0.001");
   EXPECT_FALSE(std::filesystem::exists(dir_.file("c.lmk")));
   ASSERT_EQ(lmk("capture " + path("scene.pcd") + " " + carton_ + " --name c -o " + path("c.lmk"))
                 .exit_code,
@@ -293,9 +293,10 @@ TEST_F(CliLandmark, BadInputToCaptureAndFind) {
                    "--max-seeds: '-3' is not a non-negative whole number");
   expect_bad_input("find " + scene + " " + path("c.lmk") + " --threshold inf",
                    "--threshold: 'inf' is not a finite number");
-  expect_bad_input("capture " + scene + " " + carton_ + " --name x -o " + path("x.lmk") +
-                       " --depth-smoothing 11",
-                   "the depth smoothing must be 0 to 10 pixels");
+  expect_bad_input(
+      "capture " + scene + " " + carton_ + " --name x -o " + path("x.lmk") +
+          " --depth-smoothing 11",
+      "capture: depth_smoothing (--depth-smoothing): 11 must be finite and in [0, 10]");
   expect_bad_input("find " + scene + " " + path("c.lmk") + " --depth-smoothing 11",
                    "scene.depth_smoothing (--depth-smoothing): 11 must be");
   expect_bad_input("find " + scene + " " + path("c.lmk") + " --coarse-leaf 0.001",

@@ -170,9 +170,10 @@ TEST(BoxGuess, LengthsOutsideTheirBoundsAreRefusedBeforeAnyWork) {
     change(s);
     return test::error_of([&] { guess_box(cloud, Eigen::Vector3d(0, 0, 1), s); });
   };
-  EXPECT_NE(
-      error_with([](BoxGuessSettings& s) { s.margin = 1e9; }).find("margin must be in [0, 0.5]"),
-      std::string::npos);
+  EXPECT_NE(error_with([](BoxGuessSettings& s) {
+              s.margin = 1e9;
+            }).find("margin (--margin): 1e+09 must be finite and in [0, 0.5]"),
+            std::string::npos);
   EXPECT_NE(error_with([](BoxGuessSettings& s) { s.margin = -0.01; }).find("margin"),
             std::string::npos);
   EXPECT_NE(error_with([](BoxGuessSettings& s) { s.search_radius = 1e308; }).find("search_radius"),

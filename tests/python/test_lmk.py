@@ -118,6 +118,14 @@ def test_capture_saves_and_loads_with_its_verdict(tabletop, tmp_path):
     np.testing.assert_array_equal(lmk.load_landmark(path).points, landmark.points)
     with pytest.raises(ValueError, match="box: sides must be positive"):
         lmk.capture(scene, box["pose"], [0.1, 0.0, 0.1], name="flat")
+    # Capture settings as keywords, as `lmk capture`'s flags: a coarser leaf keeps fewer points.
+    coarse, _ = lmk.capture(scene, box["pose"], box["size"], name="cup", leaf_size=0.01,
+                            check=False)
+    assert 0 < len(coarse.points) < len(landmark.points)
+    with pytest.raises(ValueError, match=r"leaf_size \(--leaf-size\): 1e-05 must be finite"):
+        lmk.capture(scene, box["pose"], box["size"], name="cup", leaf_size=1e-5)
+    with pytest.raises(ValueError, match="unknown setting 'leafsize'"):
+        lmk.capture(scene, box["pose"], box["size"], name="cup", leafsize=0.01)
     with pytest.raises(lmk.Error, match="no scene point inside the box"):
         far = box["pose"].copy()
         far[:3, 3] += 100.0

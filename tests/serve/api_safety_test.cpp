@@ -230,9 +230,11 @@ TEST_F(ServeTest, NoBadRequestStopsTheServer) {
       {"/api/programs/x/plan", "{}"},
       // Issue #34, finding 2: these crashed the server inside oneTBB or held it at 4.8 GB.
       {"/api/find",
-       "{\"scene\": \"1\", \"landmarks\": [\"carton\"], \"settings\": {\"threads\": 2000000000}}"},
+       "{\"scene\": \"1\", \"landmarks\": [\"carton\"], \"settings\": {\"execution\": "
+       "{\"threads\": 2000000000}}}"},
       {"/api/find",
-       "{\"scene\": \"1\", \"landmarks\": [\"carton\"], \"settings\": {\"field-band\": 1e308}}"},
+       "{\"scene\": \"1\", \"landmarks\": [\"carton\"], \"settings\": {\"scene\": {\"field_band\": "
+       "1e308}}}"},
       {"/api/guess", "{\"scene\": \"1\", \"point\": [0, 0, 1], \"margin\": 1e9}"},
   };
   for (const auto& [path, body] : bodies) {

@@ -223,15 +223,27 @@ TEST_F(ServeTest, FindGivesWhatTheLibraryFindsWithTheRejectedCandidatesAndProgre
   EXPECT_EQ(without_times(polled.body["result"]["results"][0]["matches"]),
             without_times(r["matches"]));
 
-  // Settings are `lmk find`'s flags; bad ones are refused naming the key.
-  const nlohmann::json paper =
-      run("/api/find", {{"scene", "1"}, {"settings", {{"metric", "paper"}, {"threshold", 0.004}}}});
+  // Settings in their wire form, nested by stage in SI units (the form the answer holds); bad ones
+  // are refused naming the field.
+  const nlohmann::json paper = run(
+      "/api/find",
+      {{"scene", "1"}, {"settings", {{"selection", {{"metric", "paper"}, {"threshold", 0.004}}}}}});
   EXPECT_EQ(paper["results"][0]["stats"]["metric"], "paper");
   EXPECT_EQ(paper["results"][0]["stats"]["threshold"], 0.004);
-  const Reply unknown = post("/api/find", {{"scene", "1"}, {"settings", {{"max-tilted", 3}}}});
+  const Reply unknown =
+      post("/api/find", {{"scene", "1"}, {"settings", {{"fast", {{"max_tilted", 3}}}}}});
   EXPECT_EQ(unknown.status, 400);
-  EXPECT_NE(unknown.body["error"].get<std::string>().find("max-tilted"), std::string::npos);
-  EXPECT_EQ(post("/api/find", {{"scene", "1"}, {"settings", {{"threshold", -1}}}}).status, 400);
+  EXPECT_NE(
+      unknown.body["error"].get<std::string>().find("settings.fast: unknown setting 'max_tilted'"),
+      std::string::npos)
+      << unknown.body;
+  // The answer's settings are the wire form: sent back, they give the same search.
+  const nlohmann::json again = run("/api/find", {{"scene", "1"}, {"settings", paper["settings"]}});
+  EXPECT_EQ(again["results"][0]["stats"]["threshold"], 0.004);
+  EXPECT_EQ(again["settings"], paper["settings"]);
+  EXPECT_EQ(post("/api/find", {{"scene", "1"}, {"settings", {{"selection", {{"threshold", -1}}}}}})
+                .status,
+            400);
   EXPECT_EQ(post("/api/find", {{"scene", "1"}, {"settings", {{"method", "magic"}}}}).status, 400);
   EXPECT_EQ(post("/api/find", {{"scene", "1"}, {"settings", 3}}).status, 400);
   EXPECT_EQ(post("/api/find", {{"scene", "1"}, {"landmarks", {"cup"}}}).status, 404);
@@ -319,7 +331,8 @@ TEST_F(ServeTest, TenConcurrentSearchesGiveTheResultsOfTenSequentialOnes) {
   capture_carton();
   // Ten different searches (ten seeds), first one after the other, then all at once.
   const auto request = [](int seed) {
-    return nlohmann::json{{"scene", "1"}, {"settings", {{"seed", seed}}}, {"rejected", true}};
+    return nlohmann::json{
+        {"scene", "1"}, {"settings", {{"sampling", {{"seed", seed}}}}}, {"rejected", true}};
   };
   std::vector<nlohmann::json> sequential;
   for (int seed = 0; seed < 10; ++seed) {
@@ -428,10 +441,12 @@ TEST_F(ServeTest, HealthAnswersAndJobsCanBeCancelled) {
 TEST_F(ServeTest, StoppingDoesNotWaitForASearchUnderWay) {
   start();
   capture_carton();
-  const nlohmann::json endless = {
-      {"scene", "1"},
-      {"landmarks", {"carton"}},
-      {"settings", {{"method", "reference"}, {"sample-fraction", 1}, {"max-seeds", 1000000}}}};
+  const nlohmann::json endless = {{"scene", "1"},
+                                  {"landmarks", {"carton"}},
+                                  {"settings",
+                                   {{"method", "reference"},
+                                    {"reference", {{"sample_fraction", 1}}},
+                                    {"sampling", {{"max_seeds", 1000000}}}}}};
   const Reply started = post("/api/find", endless);
   ASSERT_EQ(started.status, 202) << started.text;
   const std::string url = "/api/jobs/" + started.body["job"].get<std::string>();
