@@ -45,6 +45,35 @@ void expect_capture_error(const PointCloud& scene, const Box& box, const std::st
   }
 }
 
+// CaptureSettings's description is its validation: each field's limits, named with its flag, and
+// the band against the leaf.
+TEST(Capture, SettingsAreCheckedByTheirDescription) {
+  const auto error_with = [](auto change) {
+    CaptureSettings s;
+    change(s);
+    return test::error_of([&] { check_capture_settings(s, "capture"); });
+  };
+  EXPECT_NO_THROW(check_capture_settings(CaptureSettings(), "capture"));
+  EXPECT_NE(error_with([](CaptureSettings& s) {
+              s.projector_baseline = -0.1;
+            }).find("capture: projector_baseline (--projector-baseline): -0.1 must be finite"),
+            std::string::npos);
+  EXPECT_NE(error_with([](CaptureSettings& s) { s.veil_angle = 2.0; }).find("veil_angle"),
+            std::string::npos);
+  EXPECT_NE(error_with([](CaptureSettings& s) {
+              s.up = Eigen::Vector3d::Zero();
+            }).find("up (--up): must be a finite non-zero vector"),
+            std::string::npos);
+  EXPECT_NE(error_with([](CaptureSettings& s) {
+              s.distance_band = 0.004;
+            }).find("must be at least the leaf size"),
+            std::string::npos);
+  EXPECT_NE(error_with([](CaptureSettings& s) {
+              s.empty_space_margin = NAN;
+            }).find("empty_space_margin (--empty-space-margin): nan"),
+            std::string::npos);
+}
+
 TEST(Capture, RejectsBadBoxesAndTooFewPoints) {
   const PointCloud scene = test::random_cloud(50000, 2, 0.5f);
   Box box = kBox;

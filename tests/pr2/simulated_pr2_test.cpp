@@ -5,6 +5,7 @@
 
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/pose.h"
+#include "lmk/pr2/pr2_robots.h"
 #include "tests/support/lifecycle_conformance.h"
 #include "tests/support/test_support.h"
 
@@ -127,6 +128,26 @@ TEST(Pr2Kinematics, BaseFramePosesDependOnTheTorsoAndSensorPoseIsTheHeadKinect) 
   ASSERT_TRUE(robot.sensor_pose(sensor).ok());
   EXPECT_GT(sensor.translation().z(), 1.0);    // head height
   EXPECT_GT(sensor.linear().col(2).x(), 0.9);  // the optical axis looks forward
+}
+
+// The robot factory every front end starts its PR2 from (pr2/pr2_robots.h).
+TEST(Pr2Robots, TheSimulatedPr2StartsActiveAtItsTorsoAndARealOnesKinematicsFollowItsState) {
+  SimulatedPr2 robot = start_simulated_pr2(0.2);
+  EXPECT_EQ(robot.state(), LifecycleState::kActive);
+  EXPECT_DOUBLE_EQ(robot.kinematics().torso_height(), 0.2);
+  // A real PR2 reports its torso among its joints (lmk pbd run --ros).
+  JointState state;
+  state.names = {"head_pan_joint", "torso_lift_joint"};
+  state.positions = {0.1, 0.25};
+  EXPECT_DOUBLE_EQ(pr2_kinematics_at(state).torso_height(), 0.25);
+  // A torso out of the joint's limits is refused by the model, and a state without the torso
+  // joint is no PR2's.
+  EXPECT_THROW(start_simulated_pr2(5.0), Error);
+  JointState no_torso;
+  no_torso.names = {"head_pan_joint"};
+  no_torso.positions = {0.0};
+  EXPECT_NE(test::error_of([&] { pr2_kinematics_at(no_torso); }).find("no torso_lift_joint"),
+            std::string::npos);
 }
 
 }  // namespace
