@@ -11,7 +11,9 @@ layers below it:
 Modules of one layer (ros and serve; tools and python) do not include each other. A module's
 detail/ headers are its own: no other module includes them (tests and benchmarks, which look
 inside on purpose, may). What a module shares with the layers above lies in its folder or in its
-internal/ folder (shared within lmk, not installed).
+internal/ folder (shared within lmk, not installed). An installed header (MODULE/*.h of an
+installed module) includes no internal/ or detail/ header, which a consumer of the installed lmk
+would not find.
 
 Usage:
     check_layering.py [--root DIR]       exit 1 and one line per violation, if there are any
@@ -29,6 +31,9 @@ LAYERS = [["geometry"], ["json"], ["occupancy"], ["registration"], ["landmark"],
 LEVEL = {module: level for level, layer in enumerate(LAYERS) for module in layer}
 # Folders above every layer, allowed any include and any module's detail/.
 ABOVE_ALL = ["tests", "bench"]
+# Modules whose top-level headers are not installed: json/ (header-only, internal) and serve/
+# (the lmk tool's own); tools/ and python/ install no headers.
+NOT_INSTALLED = ["json", "serve", "tools", "python"]
 SOURCE_SUFFIXES = (".h", ".cpp", ".in")
 INCLUDE = re.compile(r'^\s*#\s*include\s*"([^"]+)"', re.MULTILINE)
 LMK_INCLUDE = re.compile(r"^lmk/([a-z0-9_]+)/(.*)$")
@@ -69,6 +74,11 @@ def violations(files):
             found.append(f"{path}: includes '{rest}' by a relative path out of its folder; "
                          f"include it as \"lmk/MODULE/...\"")
             continue
+        installed_header = (module not in NOT_INSTALLED + ABOVE_ALL and path.endswith(".h")
+                            and path.count(os.sep) == 1)
+        if installed_header and rest.split("/")[0] in ("internal", "detail"):
+            found.append(f"{path}: an installed header includes lmk/{included}/{rest}, which is not "
+                         f"installed; include it from a source file")
         if module in ABOVE_ALL or included == module:
             continue
         if included not in LEVEL:
@@ -126,6 +136,7 @@ def self_test(files):
         "ros/planted_same_layer.cpp": '#include "lmk/serve/http_server.h"\n',
         "tools/planted_relative.cpp": '#include "../eval/evaluation.h"\n',
         "json/planted_upward.h": '#include "lmk/pbd/plan.h"\n',
+        "landmark/planted_public.h": '#include "lmk/landmark/internal/terms_json.h"\n',
     }
     before = set(violations(files))
     failures = []
@@ -135,7 +146,9 @@ def self_test(files):
             failures.append(f"self-test: the planted {path} ({text.strip()}) was not reported")
         # Allowed includes stay allowed: tests may look inside any module.
     allowed = {"tests/planted_white_box.cpp": '#include "lmk/geometry/detail/pcd_io.h"\n',
-               "landmark/planted_below.cpp": '#include "lmk/occupancy/distance_field.h"\n'}
+               "landmark/planted_below.cpp": '#include "lmk/occupancy/distance_field.h"\n',
+               "landmark/planted_source.cpp": '#include "lmk/landmark/internal/terms_json.h"\n',
+               "landmark/internal/planted.h": '#include "lmk/landmark/detail/search_method.h"\n'}
     for path, text in allowed.items():
         if set(violations({**files, path: text})) - before:
             failures.append(f"self-test: the allowed {path} ({text.strip()}) was reported")
