@@ -10,7 +10,6 @@
 #include <array>
 #include <cmath>
 #include <deque>
-#include <sstream>
 #include <string>
 
 #include "lmk/geometry/error.h"

@@ -7,6 +7,7 @@
 #include <pybind11/pybind11.h>
 
 #include <Eigen/Geometry>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -29,6 +30,12 @@ void bind_robot(py::module_& m, const py::object& error);
 std::string setting_text(const py::handle& value);
 /// A keyword's name as a flag's key: max_tilt -> max-tilt.
 std::string setting_key(std::string name);
+/// Calls set(name, key, text) for each keyword: its Python name, its name as a flag's key and its
+/// value as the command line writes it. An lmk::Error from `set` becomes a ValueError with its
+/// message: what lmk.find's and lmk.capture's settings keywords share.
+void set_from_keywords(const py::kwargs& keywords,
+                       const std::function<void(const std::string& name, const std::string& key,
+                                                const std::string& text)>& set);
 /// Search settings from keywords named as `lmk find`'s flags (max_tilt for --max-tilt), set and
 /// checked by the settings' descriptions; ValueError with the CLI's message for a bad one.
 FindSettings settings_from_keywords(const py::kwargs& keywords);

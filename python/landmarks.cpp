@@ -99,17 +99,12 @@ void bind_landmarks(py::module_& m) {
         settings.base_frame = base_frame;
         // The other capture settings as keywords, named, limited and in the units of `lmk
         // capture`'s flags (leaf_size=0.004), from CaptureSettings's one description.
-        for (const auto& [key, value] : kwargs) {
-          const std::string name_of = key.cast<std::string>();
-          try {
-            if (!set_setting_from_text(settings, setting_key(name_of), setting_text(value),
-                                       "capture: ")) {
-              throw Error("capture: unknown setting '" + name_of + "'");
-            }
-          } catch (const Error& e) {
-            throw py::value_error(e.what());
+        set_from_keywords(kwargs, [&settings](const std::string& keyword, const std::string& key,
+                                              const std::string& text) {
+          if (!set_setting_from_text(settings, key, text, "capture: ")) {
+            throw Error("capture: unknown setting '" + keyword + "'");
           }
-        }
+        });
         Landmark landmark;
         {
           const py::gil_scoped_release release;

@@ -30,16 +30,25 @@ std::string setting_key(std::string name) {
   return name;
 }
 
-FindSettings settings_from_keywords(const py::kwargs& keywords) {
-  FindSettings settings;
+void set_from_keywords(const py::kwargs& keywords,
+                       const std::function<void(const std::string& name, const std::string& key,
+                                                const std::string& text)>& set) {
   for (const auto& [name, value] : keywords) {
-    const std::string key = setting_key(name.cast<std::string>());
+    const std::string python_name = name.cast<std::string>();
     try {
-      set_find_setting(settings, key, setting_text(value));
+      set(python_name, setting_key(python_name), setting_text(value));
     } catch (const Error& e) {
       throw py::value_error(e.what());
     }
   }
+}
+
+FindSettings settings_from_keywords(const py::kwargs& keywords) {
+  FindSettings settings;
+  set_from_keywords(
+      keywords, [&settings](const std::string&, const std::string& key, const std::string& text) {
+        set_find_setting(settings, key, text);
+      });
   try {
     validate(settings);
   } catch (const Error& e) {

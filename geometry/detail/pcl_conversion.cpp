@@ -3,10 +3,7 @@
 
 #include <algorithm>
 #include <cstring>
-#include <limits>
-#include <optional>
 
-#include "lmk/geometry/error.h"
 #include "lmk/geometry/point_records.h"
 
 namespace lmk::detail {
