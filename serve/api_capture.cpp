@@ -2,8 +2,8 @@
 // Capture endpoints: the box guess from a clicked point, the distinctiveness check, and writing
 // the landmark into the library (docs/landmarks.md; the paper's capture step).
 #include "lmk/geometry/error.h"
+#include "lmk/json/box_json.h"
 #include "lmk/json/pose_json.h"
-#include "lmk/json/settings_json.h"
 #include "lmk/landmark/box_guess.h"
 #include "lmk/landmark/capture_views.h"
 #include "lmk/landmark/distinctiveness.h"
@@ -15,8 +15,6 @@
 
 namespace lmk::serve {
 namespace {
-
-nlohmann::json box_json(const Box& box) { return detail::setting_to_json(box); }
 
 // The scenes a capture cuts its landmark from: the request's "scene", then its "views" (issue #35,
 // "add a view"), each by id. Read before any work, so that an unknown id is a 404 at once.
@@ -82,7 +80,7 @@ nlohmann::json verdict(const Landmark& landmark, const PointCloud& scene,
   nlohmann::json others = nlohmann::json::array();
   for (const Match& m : report.other_instances) {
     nlohmann::json o = detail::match_to_json(m);
-    o["box"] = box_json(m.box);
+    o["box"] = detail::box_to_json(m.box);
     others.push_back(o);
   }
   const bool distinctive = report.found_itself && report.other_instances.empty();
@@ -116,7 +114,7 @@ nlohmann::json verdict(const Landmark& landmark, const PointCloud& scene,
 nlohmann::json landmark_summary(const std::string& name, const Landmark& l) {
   return {{"name", name},
           {"points", l.points.size()},
-          {"box", box_json(l.box)},
+          {"box", detail::box_to_json(l.box)},
           {"up", detail::vector_to_json(l.up)},
           {"allow_flat", l.settings.allow_flat},
           {"views", l.view_count()},
@@ -145,8 +143,8 @@ ApiResponse Api::guess(const std::string& body_text) const {
     throw bad_request("guess: " + std::string(e.what()));
   }
   const BoxGuess g = guess_box(*scene.cloud, required_point(body, "point", "guess"), settings);
-  nlohmann::json j = {{"box", box_json(g.box)},
-                      {"object_box", box_json(g.object_box)},
+  nlohmann::json j = {{"box", detail::box_to_json(g.box)},
+                      {"object_box", detail::box_to_json(g.object_box)},
                       {"object_points", g.object.size()}};
   j["support"] =
       g.support ? nlohmann::json{g.support->x(), g.support->y(), g.support->z(), g.support->w()}
