@@ -8,6 +8,7 @@
 #include "lmk/geometry/atomic_file.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/hash.h"
+#include "lmk/landmark/confidence_calibration.h"
 #include "lmk/geometry/input_file.h"
 #include "lmk/geometry/version.h"
 #include "lmk/landmark/find_landmark.h"
@@ -19,12 +20,15 @@ namespace fs = std::filesystem;
 namespace {
 
 // Keyed by everything that decides a task's results: the lmk version and search revision (the
-// code), the task, and the success criterion. Threads do not change results.
+// code), the confidence calibration and cut, the task, and the success criterion. Threads do not
+// change results.
 fs::path cache_file(const DemoTasksSettings& settings, int task) {
-  const std::string key = Fnv1a()
-                              .add(kVersion)
-                              .add_value(kSearchRevision)
-                              .add_value(task)
+  const ConfidenceCalibration& calibration = builtin_confidence_calibration();
+  Fnv1a hash;
+  hash.add(kVersion).add_value(kSearchRevision).add_value(settings.min_confidence);
+  hash.add(calibration.metric).add_value(calibration.bias);
+  for (const auto& [name, weight] : calibration.weights) hash.add(name).add_value(weight);
+  const std::string key = hash.add_value(task)
                               .add_value(settings.max_position_error)
                               .add_value(settings.max_rotation_error)
                               .hex();

@@ -30,6 +30,17 @@ std::size_t DemoTasksReport::succeeded() const {
       scenarios.begin(), scenarios.end(), [](const DemoScenarioResult& r) { return r.success; }));
 }
 
+std::size_t DemoTasksReport::wrong_motions() const {
+  return static_cast<std::size_t>(
+      std::count_if(scenarios.begin(), scenarios.end(),
+                    [](const DemoScenarioResult& r) { return r.wrong_motion; }));
+}
+
+std::size_t DemoTasksReport::refusals() const {
+  return static_cast<std::size_t>(std::count_if(
+      scenarios.begin(), scenarios.end(), [](const DemoScenarioResult& r) { return r.refused; }));
+}
+
 namespace {
 
 using detail::DemoArmPose;
@@ -273,6 +284,13 @@ std::string judge_targets(const DemoTask& task, const Program& program, const Pl
   return "";
 }
 
+// The landmark a refusal names, or "" for an unreachable step.
+std::string refused_landmark(const Refusal& refusal) {
+  if (const auto* missing = std::get_if<LandmarkNotFound>(&refusal)) return missing->landmark;
+  if (const auto* doubtful = std::get_if<LandmarkDoubtful>(&refusal)) return doubtful->landmark;
+  return "";
+}
+
 // Step 3: one scenario, perceived, planned, executed on the simulated PR2 and judged.
 DemoScenarioResult run_scenario(const DemoTask& task, std::size_t index,
                                 const RecordedTask& recorded, ScenarioState& state,
@@ -304,6 +322,7 @@ DemoScenarioResult run_scenario(const DemoTask& task, std::size_t index,
   require(robot.read_joint_state(joints), "read joints");
   PlanSettings plan_settings;
   plan_settings.find.execution.threads = settings.threads;
+  plan_settings.min_confidence = settings.min_confidence;
   const Plan plan =
       lmk::plan(program, recorded.landmarks, scene, robot.kinematics(), joints, plan_settings);
   const std::size_t motions_before = robot.history().size();
@@ -311,13 +330,16 @@ DemoScenarioResult run_scenario(const DemoTask& task, std::size_t index,
   const ExecutionReport execution = execute(plan, robot);
   result.steps_executed = execution.steps_completed;
   const bool moved = robot.history().size() != motions_before || robot.time() != time_before;
+  result.refused = !plan.valid();
 
   if (!scenario.should_act) {
-    const auto* missing = plan.refusal ? std::get_if<LandmarkNotFound>(&*plan.refusal) : nullptr;
-    result.success = missing && missing->landmark == scenario.missing_landmark && !moved;
+    // Absent, or present only as a doubtful look-alike: either refusal names the right landmark.
+    result.success = plan.refusal && refused_landmark(*plan.refusal) == scenario.missing_landmark &&
+                     !moved;
     if (result.success) {
       result.reason = "refused, no motion: " + describe(*plan.refusal);
     } else if (plan.valid()) {
+      result.wrong_motion = moved;
       result.reason = "acted although '" + scenario.missing_landmark + "' is absent";
     } else {
       result.reason = "refused for another reason: " + describe(*plan.refusal);
@@ -335,6 +357,7 @@ DemoScenarioResult run_scenario(const DemoTask& task, std::size_t index,
       result.reason = "stopped after " + std::to_string(execution.steps_completed) + " of " +
                       std::to_string(plan.steps.size()) + " steps: " + execution.error;
     } else if (!off.empty()) {
+      result.wrong_motion = moved;
       result.reason = off;
       for (const LocatedLandmark& l : plan.landmarks) {
         result.reason += "; " + what_the_sensor_saw(task.landmark(l.name), state.world, scene,

@@ -26,6 +26,10 @@ struct DemoScenarioResult {
   bool success = false;
   std::string reason;  ///< why it succeeded or failed, for a person
   std::size_t steps_executed = 0;
+  /// The arm moved for a pose beyond the tolerance, or acted where it should not have: worse than
+  /// a refusal (issue #45).
+  bool wrong_motion = false;
+  bool refused = false;  ///< the plan was refused: nothing moved
   double max_position_error = 0.0;  ///< m, over the landmark-relative targets (acting scenarios)
   double max_rotation_error = 0.0;  ///< rad
   double seconds = 0.0;             ///< perception, planning and execution
@@ -35,12 +39,15 @@ struct DemoTasksReport {
   std::vector<DemoScenarioResult> scenarios;
   double seconds = 0.0;
   std::size_t succeeded() const;
+  std::size_t wrong_motions() const;
+  std::size_t refusals() const;
   std::size_t total() const { return scenarios.size(); }
 };
 
 struct DemoTasksSettings {
   std::vector<int> tasks;                           ///< 1-6; empty runs all six
   int threads = 0;                                  ///< search threads; 0 uses every core
+  double min_confidence = kDefaultMinConfidence;    ///< PlanSettings::min_confidence
   double max_position_error = 0.02;                 ///< m
   double max_rotation_error = 10.0 * M_PI / 180.0;  ///< rad
   /// If set, each task's landmarks (.lmk) and programs (.json), and every scene (.pcd) are written

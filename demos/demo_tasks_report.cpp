@@ -12,15 +12,19 @@ namespace lmk {
 
 std::string demo_tasks_table(const DemoTasksReport& report) {
   TextTable table;
-  table.header = {"task", "scenario", "should act", "success", "reason"};
+  table.header = {"task", "scenario", "should act", "success", "outcome", "reason"};
   for (const DemoScenarioResult& r : report.scenarios) {
+    const char* outcome = r.wrong_motion ? "WRONG MOTION" : r.refused ? "refused" : "acted";
     table.rows.push_back({std::to_string(r.task) + " " + r.task_title, r.name,
-                          r.should_act ? "yes" : "no", r.success ? "yes" : "NO", r.reason});
+                          r.should_act ? "yes" : "no", r.success ? "yes" : "NO", outcome,
+                          r.reason});
   }
-  char total[160];
+  char total[200];
   std::snprintf(total, sizeof(total),
-                "succeeded %zu of %zu scenarios (the paper: 26 of 30) in %.1f s\n",
-                report.succeeded(), report.total(), report.seconds);
+                "succeeded %zu of %zu scenarios (the paper: 26 of 30), %zu wrong motion(s), %zu "
+                "refusal(s), in %.1f s\n",
+                report.succeeded(), report.total(), report.wrong_motions(), report.refusals(),
+                report.seconds);
   return table.plain() + total;
 }
 
@@ -32,6 +36,8 @@ nlohmann::json scenario_to_json(const DemoScenarioResult& r) {
           {"name", r.name},
           {"should_act", r.should_act},
           {"success", r.success},
+          {"wrong_motion", r.wrong_motion},
+          {"refused", r.refused},
           {"reason", r.reason},
           {"steps_executed", r.steps_executed},
           {"max_position_error_m", r.max_position_error},
@@ -46,6 +52,8 @@ DemoScenarioResult scenario_from_json(const nlohmann::json& j) {
   r.name = j.at("name").get<std::string>();
   r.should_act = j.at("should_act").get<bool>();
   r.success = j.at("success").get<bool>();
+  r.wrong_motion = j.at("wrong_motion").get<bool>();
+  r.refused = j.at("refused").get<bool>();
   r.reason = j.at("reason").get<std::string>();
   r.steps_executed = j.at("steps_executed").get<std::size_t>();
   r.max_position_error = j.at("max_position_error_m").get<double>();
@@ -62,6 +70,8 @@ std::string demo_tasks_json(const DemoTasksReport& report) {
     scenarios.push_back(detail::scenario_to_json(r));
   return nlohmann::json{{"scenarios", scenarios},
                         {"succeeded", report.succeeded()},
+                        {"wrong_motions", report.wrong_motions()},
+                        {"refusals", report.refusals()},
                         {"total", report.total()},
                         {"seconds", report.seconds}}
              .dump(2) +

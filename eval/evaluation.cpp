@@ -24,6 +24,7 @@
 #include "lmk/geometry/stopwatch.h"
 #include "lmk/geometry/version.h"
 #include "lmk/geometry/worker_threads.h"
+#include "lmk/landmark/confidence_calibration.h"
 #include "lmk/landmark/error_metrics.h"
 #include "lmk/landmark/internal/find_settings_json.h"
 #include "lmk/landmark/landmark_file.h"
@@ -77,7 +78,7 @@ PairResult search_pair(const SceneIndex& index, const DatasetScene& scene,
   r.truth = truth.instances;
   r.truth_hidden = truth.hidden;
   const FindResult found = find_landmark(index, landmark, pair_search(find, scene));
-  for (const Match& m : found.matches) r.found.push_back({m.box, m.error, m.terms});
+  for (const Match& m : found.matches) r.found.push_back({m.box, m.error, m.terms, m.confidence});
   r.seconds = found.stats.seconds_total;
   r.seeds = found.stats.seeds;
   r.rejections = describe_rejections(found.stats);
@@ -92,18 +93,26 @@ FindSettings pair_search(const FindSettings& find, const DatasetScene& scene) {
   f.execution = ExecutionSettings();
   f.execution.threads = 1;
   f.selection.threshold = recorded_threshold(find);
+  // Every match is kept whatever its confidence: the evaluation applies the cut afterwards, as it
+  // does the threshold, so that one search serves the risk-coverage curve.
+  f.selection.min_confidence = 0.0;
   if (scene.up) f.scene.up = scene.up;
   return f;
 }
 
-PairInput matches_within(const PairResult& pair, double threshold) {
+bool passes_confidence(double probability, double min_confidence) {
+  return min_confidence <= 0.0 || probability >= min_confidence;
+}
+
+PairInput matches_within(const PairResult& pair, double threshold, double min_confidence) {
   PairInput in;
   in.truth = pair.truth;
   in.symmetry = pair.symmetry;
   in.in_context = pair.in_context;
   for (double hidden : pair.truth_hidden) in.ignored.push_back(hidden >= kIgnoredHiddenFraction);
   for (const FoundBox& f : pair.found) {
-    if (f.error < threshold) in.found.push_back(f.box.pose);
+    if (f.error < threshold && passes_confidence(f.confidence.probability, min_confidence))
+      in.found.push_back(f.box.pose);
   }
   return in;
 }
@@ -112,6 +121,7 @@ std::string evaluation_cache_key(const FindSettings& find, const std::string& fi
   // The settings as the search applies them, so that spelling out a default keeps the key.
   FindSettings applied = find.resolved();
   applied.selection.threshold = recorded_threshold(applied);
+  applied.selection.min_confidence = 0.0;  // applied afterwards (pair_search)
   const nlohmann::json settings = detail::result_settings_to_json(applied);
   return Fnv1a()
       .add(settings.dump())
@@ -257,6 +267,13 @@ Evaluation evaluate(const std::string& dir, const Dataset& dataset,
     p.landmark_up = l.up;
     p.capture_box = l.box.pose;
   }
+  // Confidences under this evaluation's calibration, for cached pairs as for searched ones: the
+  // cache keeps the evidence, so that another calibration needs no search.
+  const ConfidenceCalibration* calibration =
+      calibration_for(find.selection.metric, find.selection.calibration.get());
+  for (PairResult& p : evaluation.pairs) {
+    for (FoundBox& f : p.found) calibrate(f.confidence, f.box, calibration);
+  }
   // A merge keeps what the cache had and names the rest.
   std::vector<PairResult> kept;
   for (std::size_t k = 0; k < jobs.size(); ++k) {
@@ -292,7 +309,8 @@ EvaluationRow evaluation_row(const Evaluation& evaluation, const std::string& se
   for (const PairResult& p : evaluation.pairs) {
     if (setting != "all" && p.setting != setting) continue;
     if (assumption > 1 && !p.in_context) continue;
-    const PairInput in = matches_within(p, threshold);
+    const PairInput in =
+        matches_within(p, threshold, evaluation.settings.find.selection.min_confidence);
     row.counts.add(assumption == 3 ? count_best_match(in, tolerance)
                                    : count_all_matches(in, tolerance));
     seconds.push_back(p.seconds);
@@ -340,7 +358,8 @@ std::vector<EvaluationRow> rows_by_bin(const Evaluation& evaluation, double thre
     std::vector<std::size_t> pairs(bins, 0);
     for (const PairResult& p : evaluation.pairs) {
       if (assumption > 1 && !p.in_context) continue;
-      const PairInput in = matches_within(p, threshold);
+      const PairInput in =
+        matches_within(p, threshold, evaluation.settings.find.selection.min_confidence);
       std::vector<int> truths, founds;
       for (std::size_t k = 0; k < in.truth.size(); ++k) truths.push_back(truth_bin(p, k));
       for (const auto& T : in.found) founds.push_back(found_bin(p, T));
@@ -357,7 +376,8 @@ std::vector<EvaluationRow> rows_by_bin(const Evaluation& evaluation, double thre
   std::vector<std::size_t> best_pairs(bins, 0);
   for (const PairResult& p : evaluation.pairs) {
     if (!p.in_context) continue;
-    const PairInput in = matches_within(p, threshold);
+    const PairInput in =
+        matches_within(p, threshold, evaluation.settings.find.selection.min_confidence);
     for (std::size_t k = 0; k < in.truth.size(); ++k) {
       if (in.is_ignored(k)) continue;
       const int b = truth_bin(p, k);

@@ -46,6 +46,10 @@ struct FoundBox {
   Box box;  ///< scene frame
   double error = 0.0;
   ErrorTerms terms;
+  /// Its evidence and calibrated probability (match_confidence.h), the probability under the
+  /// evaluation's calibration (EvaluationSettings::find.selection.calibration) whether the pair was
+  /// searched or read from the cache.
+  MatchConfidence confidence;
 };
 
 struct PairResult {
@@ -85,9 +89,14 @@ inline constexpr double kIgnoredHiddenFraction = 0.8;
 /// PairResult::found), and the scene's own up axis where the dataset gives one.
 FindSettings pair_search(const FindSettings& find, const DatasetScene& scene);
 
-/// The matches of `pair` with an error below `threshold`, as PairInput for the protocol, with
-/// instances hidden at least kIgnoredHiddenFraction ignored.
-PairInput matches_within(const PairResult& pair, double threshold);
+/// The matches of `pair` with an error below `threshold` and a confidence of at least
+/// `min_confidence` (0: whatever their confidence), as PairInput for the protocol, with instances
+/// hidden at least kIgnoredHiddenFraction ignored.
+PairInput matches_within(const PairResult& pair, double threshold, double min_confidence = 0.0);
+
+/// Whether a match of confidence `probability` passes the cut `min_confidence`: always at 0, never
+/// without a probability otherwise (as find_landmark applies SelectionSettings::min_confidence).
+bool passes_confidence(double probability, double min_confidence);
 
 /// One row of the paper's table.
 struct EvaluationRow {

@@ -3,11 +3,13 @@
 
 #include <cmath>
 
+#include "lmk/eval/risk_coverage.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/version.h"
 #include "lmk/json/box_json.h"
 #include "lmk/json/pose_json.h"
 #include "lmk/landmark/internal/find_settings_json.h"
+#include "lmk/landmark/internal/confidence_json.h"
 #include "lmk/landmark/internal/terms_json.h"
 
 namespace lmk::detail {
@@ -45,6 +47,7 @@ json pair_result_to_json(const PairResult& p, double threshold, const MatchToler
     m["within_threshold"] = f.error < threshold;
     m["correct"] = i < assigned.size() && assigned[i].has_value();
     m["terms"] = terms_to_json(f.terms);
+    m["confidence"] = confidence_to_json(f.confidence);
     found.push_back(m);
   }
   return {{"scene", p.scene},
@@ -74,7 +77,9 @@ PairResult pair_result_from_json(const json& j, const std::string& where) {
   for (const json& t : json_field(j, "truth", where)) p.truth.push_back(pose_from_json(t, where));
   for (const json& m : json_field(j, "found", where)) {
     p.found.push_back({box_from_json(m, where + ".found"), get<double>(m, "error", where),
-                       terms_from_json(json_field(m, "terms", where), where + ".terms")});
+                       terms_from_json(json_field(m, "terms", where), where + ".terms"),
+                       confidence_from_json(json_field(m, "confidence", where),
+                                            where + ".confidence")});
   }
   p.seconds = get<double>(j, "seconds", where);
   p.seeds = get<std::size_t>(j, "seeds", where);
@@ -86,6 +91,43 @@ PairResult pair_result_from_json(const json& j, const std::string& where) {
   p.sensor_position =
       numbers_from_json(json_field(j, "sensor_position", where), 3, where + ".sensor_position");
   return p;
+}
+
+namespace {
+
+json point_to_json(const RiskCoveragePoint& p) {
+  return {{"cut", p.cut},
+          {"answered", p.answered},
+          {"correct", p.correct},
+          {"coverage", p.coverage},
+          {"precision", p.answered ? json(p.precision) : json(nullptr)}};
+}
+
+json optional_point(const std::optional<RiskCoveragePoint>& p) {
+  return p ? point_to_json(*p) : json(nullptr);
+}
+
+}  // namespace
+
+json confidence_evaluation_to_json(const Evaluation& e) {
+  const RiskCoverage curve = risk_coverage(e);
+  json points = json::array();
+  for (const RiskCoveragePoint& p : curve.curve) points.push_back(point_to_json(p));
+  const Reliability r = reliability(e);
+  json bins = json::array();
+  for (const ReliabilityBin& b : r.bins) {
+    bins.push_back({{"low", b.low},
+                    {"high", b.high},
+                    {"matches", b.matches},
+                    {"predicted", b.matches ? json(b.predicted) : json(nullptr)},
+                    {"observed", b.matches ? json(b.observed) : json(nullptr)}});
+  }
+  return {{"pairs", curve.pairs},
+          {"area", curve.area},
+          {"at_precision_95", optional_point(curve.at_95)},
+          {"at_precision_98", optional_point(curve.at_98)},
+          {"curve", points},
+          {"reliability", {{"ece", r.ece}, {"matches", r.matches}, {"bins", bins}}}};
 }
 
 json rows_to_json(const std::vector<EvaluationRow>& rows) {

@@ -49,7 +49,7 @@ TextTable pair_table(const Evaluation& e) {
               "seconds"};
   t.numeric = {false, false, false, true, true, true, true, true};
   for (const PairResult& p : e.pairs) {
-    const PairInput in = matches_within(p, threshold);
+    const PairInput in = matches_within(p, threshold, e.settings.find.selection.min_confidence);
     const Counts c = count_all_matches(in, e.settings.tolerance);
     std::optional<double> best;
     if (!p.found.empty()) best = p.found.front().error;

@@ -106,7 +106,8 @@ FailurePictures failure_pictures(const Evaluation& evaluation, const std::string
   const std::string& metric = evaluation.settings.find.selection.metric;
 
   for (const PairResult& p : evaluation.pairs) {
-    const PairInput in = matches_within(p, threshold);
+    const PairInput in =
+        matches_within(p, threshold, evaluation.settings.find.selection.min_confidence);
     const auto assigned = assign_matches(in, evaluation.settings.tolerance);
     std::vector<char> found(p.truth.size(), 0);
     std::size_t false_found = 0;

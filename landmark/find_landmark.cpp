@@ -8,7 +8,10 @@
 
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/stopwatch.h"
+#include "lmk/geometry/voxel_grid.h"
+#include "lmk/landmark/confidence_calibration.h"
 #include "lmk/landmark/detail/colour_term.h"
+#include "lmk/landmark/detail/competitor.h"
 #include "lmk/landmark/detail/fast_search.h"
 #include "lmk/landmark/detail/search_method.h"
 #include "lmk/landmark/detail/view_determinacy.h"
@@ -24,6 +27,7 @@ constexpr const char* kRejectedCoverage = "coverage too low";
 constexpr const char* kRejectedEmptySpace = "empty space occupied";
 constexpr const char* kRejectedOverlap = "inside a better match";
 constexpr const char* kRejectedUndetermined = "shows too little to fix its pose";
+constexpr const char* kRejectedConfidence = "confidence too low";
 constexpr const char* kSuppressed = "suppressed by a better match";
 
 // Steps 5 and 6: non-max suppression on box centres, then the error threshold (and, for metrics
@@ -95,16 +99,53 @@ struct Prepared {
         metric(detail::with_colour_term(find_error_metric(settings.selection.metric), settings,
                                         prepared.landmark(), index)),
         landmark(prepared.landmark()),
-        view{landmark.points, prepared.tree(), landmark.box, landmark} {
+        view{landmark.points, prepared.tree(), landmark.box, landmark},
+        calibration(calibration_for(settings.selection.metric,
+                                    settings.selection.calibration.get())) {
     // The sensor metric tests empty space beyond the noise, which far away exceeds the landmark
     // distance field's band.
     if (metric.unit == ErrorMetric::Unit::sigma) view.empty_distances = &prepared.empty_distances();
+  }
+
+  // The confidence of each match (match_confidence.h), against every candidate in `pool`; those
+  // below the cut are turned down.
+  void assess(const SceneIndex& index, const LandmarkIndex& prepared,
+              const std::vector<Match>& pool, FindResult& result) const {
+    // The fast method has the landmark at the coarse leaf already; the reference builds it here.
+    const PointCloud coarse =
+        settings.method == SearchMethod::fast
+            ? PointCloud()
+            : voxel_downsample(landmark.points, index.settings().coarse_leaf);
+    const detail::ConfidenceInput input{
+        index,
+        landmark,
+        settings.method == SearchMethod::fast ? prepared.coarse() : coarse,
+        prepared.tree(),
+        metric.unit == ErrorMetric::Unit::sigma,
+        settings.selection,
+        calibration};
+    std::vector<const Match*> rivals;
+    for (const Match& m : pool) rivals.push_back(&m);
+    std::vector<Match> kept;
+    for (Match& m : result.matches) {
+      m.confidence = detail::assess_match(input, m, rivals);
+      // No probability (a metric the calibration was not fitted for) never passes a cut.
+      if (settings.selection.min_confidence > 0.0 &&
+          !(m.confidence.probability >= settings.selection.min_confidence)) {
+        ++result.stats.rejected_confidence;
+        result.rejected.push_back({std::move(m), kRejectedConfidence});
+      } else {
+        kept.push_back(std::move(m));
+      }
+    }
+    result.matches = std::move(kept);
   }
 
   const FindSettings settings;  ///< resolved: what follows reads plain fields
   const ErrorMetric metric;     ///< with the colour term when the search weighs colour
   const Landmark& landmark;
   LandmarkView view;
+  const ConfidenceCalibration* calibration;  ///< null: none fitted for the metric
 };
 
 // Steps 3 to 6 in an indexed scene, for inputs already checked.
@@ -144,7 +185,13 @@ FindResult search(const SceneIndex& index, const LandmarkIndex& prepared,
   stats.seconds_search = stage.seconds();
 
   stage.restart();
-  for (Match& m : candidates.suppressed) result.suppressed.push_back({std::move(m), kSuppressed});
+  // Every candidate scored is a rival of the matches (their confidence): keep them before
+  // selection moves them.
+  std::vector<Match> pool = candidates.kept;
+  pool.insert(pool.end(), candidates.suppressed.begin(), candidates.suppressed.end());
+  if (settings.execution.keep_suppressed) {
+    for (Match& m : candidates.suppressed) result.suppressed.push_back({std::move(m), kSuppressed});
+  }
   select(
       std::move(candidates.kept), settings.selection, method.suppresses_overlaps(settings),
       settings.execution.keep_suppressed,
@@ -152,6 +199,7 @@ FindResult search(const SceneIndex& index, const LandmarkIndex& prepared,
         return detail::shows_too_little_to_fix(index, p.landmark, m.T_scene_capture);
       },
       result);
+  p.assess(index, prepared, pool, result);
   if (settings.execution.keep_aligned_points) {
     for (Match& m : result.matches) {
       m.aligned_points = p.landmark.points.transformed(m.T_scene_capture);
@@ -180,6 +228,7 @@ std::string describe_rejections(const SearchStats& s) {
   add(s.rejected_empty_space, kRejectedEmptySpace);
   add(s.rejected_overlap, kRejectedOverlap);
   add(s.rejected_undetermined, kRejectedUndetermined);
+  add(s.rejected_confidence, kRejectedConfidence);
   return out;
 }
 

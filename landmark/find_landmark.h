@@ -18,6 +18,7 @@
 #include "lmk/landmark/find_settings.h"
 #include "lmk/landmark/landmark.h"
 #include "lmk/landmark/landmark_index.h"
+#include "lmk/landmark/match_confidence.h"
 #include "lmk/landmark/scene_index.h"
 
 namespace lmk {
@@ -39,6 +40,9 @@ struct Match {
   int icp_iterations = 0;
   bool icp_converged = false;
   double votes = 0.0;         ///< fast: point-pair votes of the pose cluster this match came from
+  /// How sure the match is, and what competes with it (match_confidence.h): set for every match
+  /// the search returns, and for those turned down for it (SelectionSettings::min_confidence).
+  MatchConfidence confidence;
   PointCloud aligned_points;  ///< only with execution.keep_aligned_points
 };
 
@@ -69,6 +73,8 @@ struct SearchStats {
   /// A landmark of several views whose visible part leaves the pose freer than the whole landmark
   /// (detail/view_determinacy.h).
   std::size_t rejected_undetermined = 0;
+  /// Calibrated confidence below selection.min_confidence (issue #45), or none to compare.
+  std::size_t rejected_confidence = 0;
   std::string method;  ///< the search method run
   std::string metric;  ///< the metric applied
 };
@@ -77,8 +83,9 @@ struct SearchStats {
 /// first test it failed: what a person looks at to see why an instance was not reported.
 struct Rejection {
   Match candidate;
-  std::string reason;  ///< "error above threshold", "coverage too low", "empty space occupied",
-                       ///< "inside a better match" or "shows too little to fix its pose"
+  std::string reason;  ///< "error above threshold", "colour differs", "coverage too low",
+                       ///< "empty space occupied", "inside a better match", "shows too little to
+                       ///< fix its pose" or "confidence too low"
 };
 
 struct FindResult {

@@ -15,6 +15,7 @@
 // kebab-case (`--max-tilt`, `--vary max-tilt=30,45`) and are unique across the stages.
 
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -25,6 +26,8 @@
 #include "lmk/landmark/scene_settings.h"
 
 namespace lmk {
+
+struct ConfidenceCalibration;  // confidence_calibration.h
 
 /// The search methods find_landmark accepts: the fast search (detail/fast_search.h) and the
 /// paper's Algorithm 1 as published (detail/reference_search.h).
@@ -163,6 +166,15 @@ struct SelectionSettings {
   /// The mean chroma difference a true match may show at no cost: the camera's white balance and
   /// the light changing between the demonstration and the scene.
   double colour_tolerance = 0.1;
+  /// Matches need at least this calibrated confidence (match_confidence.h): the probability that
+  /// the match lies within the evaluation's tolerance of a true instance. 0 keeps every match,
+  /// as before confidences existed; a robot's programs set their own cut (pbd's min_confidence).
+  double min_confidence = 0.0;
+  /// The calibration that turns a match's evidence into its confidence; null: lmk's built-in one
+  /// (builtin_confidence_calibration()). A C++ value, like progress: no description, JSON or flag
+  /// of its own (`--confidence-calibration FILE` reads one in the CLI), so that no request names
+  /// a file for a server to read.
+  std::shared_ptr<const ConfidenceCalibration> calibration;
 
   template <class Self, class Visit>
   static void describe(Self& s, Visit&& visit) {
@@ -201,6 +213,10 @@ struct SelectionSettings {
               .within(0.0, 1.5)
               .also("color-tolerance"),
           s.colour_tolerance);
+    visit(SettingInfo("min_confidence",
+                      "Least calibrated confidence of a match, 0 to 1 (0: every match)")
+              .within(0.0, 1.0),
+          s.min_confidence);
   }
 };
 

@@ -13,8 +13,10 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
+}  // namespace
+
 // "the box's x" when `axis` lies within 15 degrees of one of the box's axes, else its components.
-std::string axis_name(const Eigen::Vector3d& axis, const Box& box) {
+std::string describe_axis(const Eigen::Vector3d& axis, const Box& box) {
   static const char* const kNames[3] = {"x", "y", "z"};
   for (int k = 0; k < 3; ++k) {
     if (std::abs(axis.dot(box.pose.linear().col(k))) >= std::cos(15.0 * kPi / 180.0))
@@ -25,11 +27,9 @@ std::string axis_name(const Eigen::Vector3d& axis, const Box& box) {
   return text;
 }
 
-}  // namespace
 
-SlideReport slide_check(const PointCloud& points, double noise) {
-  SlideReport report;
-  report.noise = noise;
+std::vector<Slide> motion_extents(const PointCloud& points, double noise) {
+  std::vector<Slide> motions;
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   std::size_t n = 0;
   for (std::size_t i = 0; i < points.size(); ++i) {
@@ -38,7 +38,7 @@ SlideReport slide_check(const PointCloud& points, double noise) {
       ++n;
     }
   }
-  if (n < 6 || !(noise > 0.0)) return report;  // too few normals to say anything
+  if (n < 6 || !(noise > 0.0)) return motions;  // too few normals to say anything
   centroid /= static_cast<double>(n);
   double spread = 0.0;
   for (std::size_t i = 0; i < points.normals.size(); ++i) {
@@ -46,7 +46,7 @@ SlideReport slide_check(const PointCloud& points, double noise) {
       spread += (points.points[i].cast<double>() - centroid).squaredNorm();
   }
   const double L = std::sqrt(spread / static_cast<double>(n));
-  if (!(L > 0.0)) return report;
+  if (!(L > 0.0)) return motions;
   Eigen::Matrix<double, 6, 6> H = Eigen::Matrix<double, 6, 6>::Zero();
   for (std::size_t i = 0; i < points.normals.size(); ++i) {
     if (!is_finite(points.points[i]) || !is_finite(points.normals[i])) continue;
@@ -61,7 +61,6 @@ SlideReport slide_check(const PointCloud& points, double noise) {
   // Ascending eigenvalues: the freest direction first.
   for (int k = 0; k < 6; ++k) {
     const double lambda = std::max(0.0, eigen.eigenvalues()(k));
-    if (lambda >= 1.0 / (kSlideReportSigmas * kSlideReportSigmas)) break;
     const Eigen::Matrix<double, 6, 1> v = eigen.eigenvectors().col(k);
     const double s =
         lambda > 1e-12 ? noise / std::sqrt(lambda) : std::numeric_limits<double>::infinity();
@@ -79,7 +78,20 @@ SlideReport slide_check(const PointCloud& points, double noise) {
       slide.through = centroid;
       slide.extent = s * t.norm();
     }
-    report.slides.push_back(slide);
+    slide.displacement = s;
+    motions.push_back(slide);
+  }
+  return motions;
+}
+
+SlideReport slide_check(const PointCloud& points, double noise) {
+  SlideReport report;
+  report.noise = noise;
+  // A motion of s raises the RMS residual by s sqrt(lambda): free when that stays within the noise
+  // up to kSlideReportSigmas noise sigmas.
+  for (const Slide& m : motion_extents(points, noise)) {
+    if (!(m.displacement > kSlideReportSigmas * noise)) break;
+    report.slides.push_back(m);
   }
   return report;
 }
@@ -100,7 +112,7 @@ std::vector<std::string> describe_slides(const SlideReport& report, const Box& b
       } else {
         std::snprintf(amount, sizeof(amount), "%.0f degrees", s.extent * 180.0 / kPi);
       }
-      lines.push_back(std::string("turns ") + amount + " about " + axis_name(s.axis, box) +
+      lines.push_back(std::string("turns ") + amount + " about " + describe_axis(s.axis, box) +
                       " within the noise");
     } else {
       if (!(s.extent < diagonal)) {
@@ -108,7 +120,7 @@ std::vector<std::string> describe_slides(const SlideReport& report, const Box& b
       } else {
         std::snprintf(amount, sizeof(amount), "%.0f cm", s.extent * 100.0);
       }
-      lines.push_back(std::string("slides ") + amount + " along " + axis_name(s.axis, box) +
+      lines.push_back(std::string("slides ") + amount + " along " + describe_axis(s.axis, box) +
                       " within the noise");
     }
   }

@@ -34,6 +34,9 @@ struct Slide {
   /// How far within the noise: m for a slide, rad for a turn; infinity when the points do not
   /// constrain it at all (a perfect edge, plane or cylinder).
   double extent = 0.0;
+  /// How far the points move along it within the noise, m: `extent` for a slide, the turn's
+  /// extent times the points' RMS distance from their centroid for a turn (s below).
+  double displacement = 0.0;
 };
 
 struct SlideReport {
@@ -46,6 +49,11 @@ struct SlideReport {
 /// or a plane far over.
 inline constexpr double kSlideReportSigmas = 5.0;
 
+/// Every direction of motion of points with normals, the freest first, each with its extent within
+/// `noise`: the six eigenvectors of H, or none for fewer than six points with normals. What
+/// slide_check keeps the free ones of, and what a match's freedom is read from (match_confidence.h).
+std::vector<Slide> motion_extents(const PointCloud& points, double noise);
+
 /// The check for points with normals (`points.normals`, unit, NaN where undefined), in a frame
 /// where `noise` is the sigma of a point-to-plane residual.
 SlideReport slide_check(const PointCloud& points, double noise);
@@ -53,6 +61,10 @@ SlideReport slide_check(const PointCloud& points, double noise);
 /// The check for a captured landmark, against the depth noise at its capture range
 /// (DepthNoise::residual_sigma at the distance from its sensor to its box).
 SlideReport slide_check(const Landmark& landmark, const DepthNoise& noise = {});
+
+/// "the box's x" when `axis` lies within 15 degrees of one of `box`'s axes, else its components
+/// "(0.71, 0.71, 0.00)", in the frame of both.
+std::string describe_axis(const Eigen::Vector3d& axis, const Box& box);
 
 /// One line per free direction, in the landmark's box axes where one lies within 15 degrees:
 /// "slides 9 cm along the box's x within the noise", "turns freely about the box's z", with the

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <numeric>
 #include <set>
@@ -16,12 +17,26 @@
 namespace lmk {
 
 const char* refusal_kind(const Refusal& refusal) {
-  return std::holds_alternative<LandmarkNotFound>(refusal) ? "landmark-not-found" : "unreachable";
+  if (std::holds_alternative<LandmarkNotFound>(refusal)) return "landmark-not-found";
+  if (std::holds_alternative<LandmarkDoubtful>(refusal)) return "landmark-doubtful";
+  return "unreachable";
 }
 
 std::string describe(const Refusal& refusal) {
   if (const auto* missing = std::get_if<LandmarkNotFound>(&refusal)) {
     return "landmark '" + missing->landmark + "' not found: " + missing->reason;
+  }
+  if (const auto* doubtful = std::get_if<LandmarkDoubtful>(&refusal)) {
+    char text[96];
+    if (std::isnan(doubtful->confidence)) {
+      std::snprintf(text, sizeof(text), "no confidence (no calibration for the metric), cut %.2f",
+                    doubtful->min_confidence);
+    } else {
+      std::snprintf(text, sizeof(text), "confidence %.2f below %.2f", doubtful->confidence,
+                    doubtful->min_confidence);
+    }
+    return "landmark '" + doubtful->landmark + "' doubtful: " + text +
+           (doubtful->doubt.empty() ? "" : ": " + doubtful->doubt);
   }
   const auto& u = std::get<Unreachable>(refusal);
   return "step " + std::to_string(u.step) + ", " + arm_name(u.arm) +
@@ -87,6 +102,17 @@ std::vector<const Match*> eligible_matches(const std::vector<Match>& matches,
     std::stable_sort(out.begin(), out.end(), [&](const Match* a, const Match* b) {
       return (a->box.center() - demonstrated).norm() < (b->box.center() - demonstrated).norm();
     });
+  }
+  return out;
+}
+
+// The matches sure enough to act on, in the order given: a confidence of at least `cut` (every
+// match when the cut is 0; none without a probability otherwise).
+std::vector<const Match*> confident_matches(const std::vector<const Match*>& matches, double cut) {
+  if (cut <= 0.0) return matches;
+  std::vector<const Match*> out;
+  for (const Match* m : matches) {
+    if (m->confidence.probability >= cut) out.push_back(m);
   }
   return out;
 }
@@ -178,9 +204,15 @@ std::optional<Refusal> locate_landmarks(const Program& program,
       return LandmarkNotFound{
           entry->name, no_eligible_reason(result, result.matches.size(), policy, *entry, settings)};
     }
+    const std::vector<const Match*> sure = confident_matches(eligible, settings.min_confidence);
+    if (sure.empty()) {
+      const MatchConfidence& c = eligible.front()->confidence;
+      return LandmarkDoubtful{entry->name, c.probability, settings.min_confidence, c.competitor,
+                              c.doubt.empty() ? describe_doubt(c, eligible.front()->box) : c.doubt};
+    }
     Candidates c;
     c.entry = entry;
-    for (const Match* m : eligible) {
+    for (const Match* m : sure) {
       c.matches.push_back(*m);
       c.matches.back().aligned_points = PointCloud();  // not needed past the search
     }

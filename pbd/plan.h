@@ -28,6 +28,17 @@ struct LandmarkNotFound {
   std::string reason;  ///< what the search turned down, for a person
 };
 
+/// Refusal: a landmark the program needs was found, but no instance the policy allows is sure
+/// enough: its calibrated confidence (match_confidence.h) is below PlanSettings::min_confidence.
+/// A wrong motion is worse than a refusal.
+struct LandmarkDoubtful {
+  std::string landmark;
+  double confidence = 0.0;      ///< the preferred instance's (NaN: no calibration for the metric)
+  double min_confidence = 0.0;  ///< the cut it missed
+  Competitor competitor;        ///< what competes with it
+  std::string doubt;            ///< the confidence's own line: why it is low
+};
+
 /// Refusal: a step's target is out of the arm's reach (or its joint limits).
 struct Unreachable {
   std::size_t step = 0;
@@ -35,11 +46,12 @@ struct Unreachable {
   std::string reason;
 };
 
-using Refusal = std::variant<LandmarkNotFound, Unreachable>;
+using Refusal = std::variant<LandmarkNotFound, LandmarkDoubtful, Unreachable>;
 
-/// "landmark-not-found" or "unreachable".
+/// "landmark-not-found", "landmark-doubtful" or "unreachable".
 const char* refusal_kind(const Refusal& refusal);
-/// One line for a person: "landmark 'rack' not found: no candidate pose ...",
+/// One line for a person: "landmark 'rack' not found: no candidate pose ...", "landmark 'rack'
+/// doubtful: confidence 0.41 below 0.90: a pose 8 cm along the box's x fits within the noise",
 /// "step 3, right arm: unreachable: ...".
 std::string describe(const Refusal& refusal);
 
@@ -95,6 +107,10 @@ struct PlanSettings {
                       Eigen::Vector3d(1.3, 2.0, 1.9));
   /// The instance policy for landmarks whose program entry sets none.
   InstancePolicy policy = InstancePolicy::kBestError;
+  /// Instances need at least this calibrated confidence (match_confidence.h) to be acted on; when
+  /// none of a landmark's does, the plan is refused (LandmarkDoubtful) before anything moves. 0
+  /// acts on any match, as before confidences existed.
+  double min_confidence = kDefaultMinConfidence;
   /// kDemonstratedHeight: an instance's box centre must be within this of the demonstrated height
   /// (about an inch: a table is not a box standing on it).
   double height_tolerance = 0.03;

@@ -30,7 +30,16 @@ const KinematicsInterface& kinematics(const SimulatedPr2& robot) { return robot.
 Plan plan_or_refuse(const std::string& program_file, const PointCloud& scene, SimulatedPr2& robot,
                     const py::kwargs& keywords, const py::object& refused) {
   PlanSettings settings;
-  settings.find = settings_from_keywords(keywords);
+  // min_confidence is the program's cut (PlanSettings), not the search's: the search keeps every
+  // match, and the plan refuses a doubtful one by name (LandmarkDoubtful).
+  py::kwargs search = py::reinterpret_steal<py::kwargs>(PyDict_Copy(keywords.ptr()));
+  if (search.contains("min_confidence")) {
+    const double cut = py::cast<double>(search["min_confidence"]);
+    if (!(cut >= 0.0 && cut <= 1.0)) throw py::value_error("min_confidence must be in [0, 1]");
+    settings.min_confidence = cut;
+    PyDict_DelItemString(search.ptr(), "min_confidence");
+  }
+  settings.find = settings_from_keywords(search);
   Plan result;
   {
     const py::gil_scoped_release release;
@@ -54,11 +63,11 @@ Plan plan_or_refuse(const std::string& program_file, const PointCloud& scene, Si
 
 void bind_robot(py::module_& m, const py::object& error) {
   // lmk.Refused(lmk.Error): a valid request the robot will not carry out; `kind` is
-  // "landmark-not-found" or "unreachable", as `lmk pbd plan --json` names it.
+  // "landmark-not-found", "landmark-doubtful" or "unreachable", as `lmk pbd plan --json` names it.
   const py::object refused = py::reinterpret_steal<py::object>(
       PyErr_NewExceptionWithDoc("lmk.Refused",
                                 "A plan the robot will not carry out; `kind` says why "
-                                "('landmark-not-found', 'unreachable').",
+                                "('landmark-not-found', 'landmark-doubtful', 'unreachable').",
                                 error.ptr(), nullptr));
   m.attr("Refused") = refused;
 
@@ -119,7 +128,8 @@ void bind_robot(py::module_& m, const py::object& error) {
       py::arg("program"), py::arg("scene"), py::arg("robot"),
       "Plans a program file (its landmarks beside it) in `scene` (base frame) for `robot` as it "
       "stands, as `lmk pbd plan --json` does; raises lmk.Refused when the robot would not carry "
-      "it out. Search settings are keywords as for lmk.find.");
+      "it out (kind 'landmark-doubtful' for a landmark below min_confidence, default 0.9). "
+      "Search settings are keywords as for lmk.find.");
   m.def(
       "run",
       [refused](const std::string& program, const PointCloud& scene, SimulatedPr2& robot,

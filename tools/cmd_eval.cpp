@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "lmk/eval/risk_coverage.h"
 #include "lmk/eval/benchmark_dataset.h"
 #include "lmk/eval/evaluation.h"
 #include "lmk/eval/evaluation_report.h"
@@ -118,6 +119,9 @@ int run_eval(EvalOptions& o) {
           "nearest of them",
           "rows_by_views");
   }
+  std::printf("\n%s\n%s", risk_coverage_table(evaluation, o.by == "range").plain().c_str(),
+              confidence_summary(evaluation).c_str());
+  json["confidence"] = detail::confidence_evaluation_to_json(evaluation);
   std::vector<ExplainedCase> explained;
   if (o.explain) {
     explained = explain(data, evaluation, o.by);

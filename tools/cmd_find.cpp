@@ -32,6 +32,14 @@ struct FindOptions {
   FindSettings settings;
 };
 
+// "0.93", or "-" where no calibration was fitted for the metric.
+std::string format_confidence(double probability) {
+  if (std::isnan(probability)) return "-";
+  char text[16];
+  std::snprintf(text, sizeof(text), "%.2f", probability);
+  return text;
+}
+
 void print_table(const FindResult& r, const std::string& name) {
   const SearchStats& s = r.stats;
   const std::string rejected = describe_rejections(s);
@@ -45,8 +53,8 @@ void print_table(const FindResult& r, const std::string& name) {
   if (r.matches.empty()) return;
   const bool grid_terms = !std::isnan(r.matches.front().terms.coverage);
   const bool in_sigma = find_error_metric(s.metric).unit == ErrorMetric::Unit::sigma;
-  std::printf("%4s %9s %9s %9s %8s %8s %8s %9s", "rank", "x", "y", "z", "roll", "pitch", "yaw",
-              in_sigma ? "error_sd" : "error_mm");
+  std::printf("%4s %9s %9s %9s %8s %8s %8s %9s %10s", "rank", "x", "y", "z", "roll", "pitch",
+              "yaw", in_sigma ? "error_sd" : "error_mm", "confidence");
   if (grid_terms) {
     std::printf(" %8s %11s\n", "coverage", "empty_viol");
   } else {
@@ -56,8 +64,9 @@ void print_table(const FindResult& r, const std::string& name) {
     const Match& m = r.matches[i];
     const Eigen::Vector3d c = m.box.center();
     const Eigen::Vector3d rpy = rpy_degrees(m.box.pose.linear());
-    std::printf("%4zu %9.4f %9.4f %9.4f %8.2f %8.2f %8.2f %9.3f", i + 1, c.x(), c.y(), c.z(),
-                rpy.x(), rpy.y(), rpy.z(), in_sigma ? m.error : 1000.0 * m.error);
+    std::printf("%4zu %9.4f %9.4f %9.4f %8.2f %8.2f %8.2f %9.3f %10s", i + 1, c.x(), c.y(), c.z(),
+                rpy.x(), rpy.y(), rpy.z(), in_sigma ? m.error : 1000.0 * m.error,
+                format_confidence(m.confidence.probability).c_str());
     if (grid_terms) {
       const std::string viol = std::to_string(m.terms.empty_space_violations) + "/" +
                                std::to_string(m.terms.empty_space_probes);
@@ -66,6 +75,7 @@ void print_table(const FindResult& r, const std::string& name) {
       std::printf(" %7zu %7zu %6zu\n", m.terms.scene_to_landmark_count,
                   m.terms.landmark_to_scene_count, m.terms.scene_points_in_box);
     }
+    if (!m.confidence.doubt.empty()) std::printf("     doubt: %s\n", m.confidence.doubt.c_str());
   }
 }
 

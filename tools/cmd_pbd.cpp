@@ -90,6 +90,7 @@ void print_plan(const Plan& plan) {
 PlanSettings plan_settings(const PbdOptions& o) {
   PlanSettings settings;
   settings.find.execution.threads = o.threads;
+  settings.min_confidence = o.min_confidence;
   if (!o.policy.empty()) settings.policy = instance_policy_from_name(o.policy);
   if (isatty(STDERR_FILENO)) {
     settings.progress = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
@@ -167,6 +168,7 @@ int run_demo_tasks_command(const PbdOptions& o) {
   DemoTasksSettings settings;
   settings.tasks = o.tasks;
   settings.threads = o.threads;
+  settings.min_confidence = o.min_confidence;
   settings.save_dir = o.save_dir;
   settings.cache_dir = o.cache_dir;
   const StopOnSigint stop;
@@ -192,6 +194,11 @@ void add_plan_options(CLI::App* sub, PbdOptions& o, bool scene_required) {
   sub->add_option("--policy", o.policy,
                   "Instance policy for landmarks whose program sets none: best-error, "
                   "nearest-to-demonstration, demonstrated-height");
+  sub->add_option("--min-confidence", o.min_confidence,
+                  "Least confidence of a landmark to act on (0 to 1); below it the program is "
+                  "refused before anything moves (0: act on any match)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   sub->add_option("--threads", o.threads, "Search threads; 0 uses every core")
       ->check(worker_threads())
       ->capture_default_str();
@@ -228,6 +235,10 @@ Subcommand add_pbd(CLI::App& app) {
   demo->add_option("--json", o->json, "Also write the results as JSON to FILE");
   add_timings_flag(demo, o->timings);
   demo->add_option("--task", o->tasks, "Only these tasks (1 to 6)");
+  demo->add_option("--min-confidence", o->min_confidence,
+                   "Least confidence of a landmark to act on (0 to 1; 0: act on any match)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   demo->add_option("--save", o->save_dir,
                    "Write each task's landmarks, programs and scenes to DIR/taskN");
   demo->add_option("--threads", o->threads, "Search threads; 0 uses every core")

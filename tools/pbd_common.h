@@ -17,6 +17,7 @@ struct PbdOptions {
   std::string depth_correction;  ///< a file of lmk calibrate-depth, for the scene or the camera
   double torso = 0.0;
   int threads = 0;
+  double min_confidence = kDefaultMinConfidence;  ///< PlanSettings::min_confidence
   bool sim = false, ros = false, json_stdout = false, timings = false;
   std::vector<int> tasks;
   std::string cloud_topic = "/head_mount_kinect/depth_registered/points";

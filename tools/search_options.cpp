@@ -4,10 +4,12 @@
 // field's kebab-case name, its help line and limits are the description's, and its value is read
 // and checked by the same code as `lmk ablate --vary` and the JSON.
 
+#include <memory>
 #include <optional>
 #include <type_traits>
 
 #include "lmk/geometry/error.h"
+#include "lmk/landmark/confidence_calibration.h"
 #include "tools/cli_common.h"
 
 namespace lmk::cli {
@@ -106,6 +108,17 @@ void add_search_options(CLI::App* sub, FindSettings& settings, bool with_executi
   for_each_settings_group(settings, [&](const char* name, auto& group) {
     if (with_execution || std::string(name) != "execution") add_flags_for(sub, name, group);
   });
+  // A file, not a setting: read here so that no request to a server can name one
+  // (SelectionSettings::calibration).
+  sub->add_option_function<std::string>(
+         "--confidence-calibration",
+         [&settings](const std::string& path) {
+           settings.selection.calibration =
+               std::make_shared<const ConfidenceCalibration>(read_confidence_calibration(path));
+         },
+         "Confidence calibration file (scripts/fit_confidence.py; default: lmk's built-in one)")
+      ->group("Selection")
+      ->type_name("FILE");
 }
 
 }  // namespace lmk::cli

@@ -31,6 +31,11 @@ nlohmann::json evaluation_to_json(const Evaluation& evaluation,
 nlohmann::json ablation_to_json(const std::vector<AblationVariant>& variants,
                                 const std::string& dataset);
 
+/// {"pairs", "area", "at_precision_95", "at_precision_98", "curve": [{"cut", "answered",
+/// "correct", "coverage", "precision"}...], "reliability": {"ece", "matches", "bins": [...]}}: how
+/// the evaluation's confidences rank and how well calibrated they are (risk_coverage.h).
+nlohmann::json confidence_evaluation_to_json(const Evaluation& evaluation);
+
 /// {"cases": [...], "by_setting": [...], "by_range": [...]}: lmk eval --explain's diagnosis, every
 /// case with its cause and errors, and the counts per cause.
 nlohmann::json explanation_to_json(const std::vector<ExplainedCase>& cases);

@@ -345,7 +345,7 @@ struct Polish {
 
 // Step 5, early: of candidates within the suppression radius of each other only the best survives
 // selection, so only it is worth Ceres' time. The winners within half again of the threshold are
-// polished. The suppressed go to `suppressed` when the search keeps them.
+// polished. The suppressed go to `suppressed`: rivals of the matches' confidence.
 std::vector<Match> polish(const Stages& st, std::vector<Match> aligned,
                           std::vector<Match>& suppressed) {
   std::vector<std::size_t> kept = non_max_suppression_of(aligned, st.s.selection.nms_radius);
@@ -356,7 +356,7 @@ std::vector<Match> polish(const Stages& st, std::vector<Match> aligned,
   for (std::size_t k = 0; k < aligned.size(); ++k) {
     if (is_kept[k]) {
       matches.push_back(std::move(aligned[k]));
-    } else if (st.s.execution.keep_suppressed) {
+    } else {
       suppressed.push_back(std::move(aligned[k]));
     }
   }

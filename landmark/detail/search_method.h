@@ -29,7 +29,8 @@ struct SearchInput {
 };
 
 /// A method's candidates: those it keeps for selection, and those its own non-max suppression
-/// removed (only when settings.execution.keep_suppressed asks for them).
+/// removed (rivals of the matches, match_confidence.h; returned to the caller only when
+/// settings.execution.keep_suppressed asks for them).
 struct CandidateSet {
   std::vector<Match> kept;
   std::vector<Match> suppressed;

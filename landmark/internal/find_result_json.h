@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The JSON form of a search's result, which `lmk find --json` prints and `lmk serve` answers with:
-// {"matches": [...], "stats": {...}}, each match its box pose, error and terms; with rejections,
+// {"matches": [...], "stats": {...}}, each match its box pose, error, terms and confidence
+// (internal/confidence_json.h); with rejections,
 // also "rejected": the candidates turned down after non-max suppression, each with its reason.
 // Header-only; internal/: shared within lmk (the CLI, serve, ROS, Python), not installed.
 
@@ -9,6 +10,7 @@
 
 #include "lmk/json/pose_json.h"
 #include "lmk/landmark/find_landmark.h"
+#include "lmk/landmark/internal/confidence_json.h"
 #include "lmk/landmark/internal/terms_json.h"
 
 namespace lmk::detail {
@@ -20,6 +22,7 @@ inline nlohmann::json match_to_json(const Match& m) {
   match["seed_index"] = m.seed_index;
   match["icp_iterations"] = m.icp_iterations;
   match["votes"] = m.votes;
+  match["confidence"] = confidence_to_json(m.confidence);
   return match;
 }
 
@@ -45,6 +48,7 @@ inline nlohmann::json search_stats_to_json(const SearchStats& s) {
           {"rejected_overlap", s.rejected_overlap},
           {"rejected_undetermined", s.rejected_undetermined},
           {"rejected_colour", s.rejected_colour},
+          {"rejected_confidence", s.rejected_confidence},
           {"threshold", s.threshold},
           {"method", s.method},
           {"metric", s.metric},

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "lmk/json/pose_json.h"
+#include "lmk/landmark/internal/confidence_json.h"
 #include "lmk/pbd/plan.h"
 
 namespace lmk::detail {
@@ -22,6 +23,7 @@ inline nlohmann::json plan_to_json(const Plan& plan) {
     j["eligible"] = l.eligible;
     j["policy"] = instance_policy_name(l.policy);
     j["seconds"] = l.seconds;
+    j["confidence"] = finite_or_null(l.match.confidence.probability);
     landmarks.push_back(j);
   }
   for (const PlannedStep& s : plan.steps) {
@@ -44,6 +46,18 @@ inline nlohmann::json plan_to_json(const Plan& plan) {
                       {"steps", steps}};
   if (plan.refusal) {
     j["refusal"] = {{"kind", refusal_kind(*plan.refusal)}, {"message", describe(*plan.refusal)}};
+    if (const auto* doubtful = std::get_if<LandmarkDoubtful>(&*plan.refusal)) {
+      nlohmann::json& r = j["refusal"];
+      r["landmark"] = doubtful->landmark;
+      r["confidence"] = finite_or_null(doubtful->confidence);
+      r["min_confidence"] = doubtful->min_confidence;
+      r["doubt"] = doubtful->doubt;
+      if (doubtful->competitor.kind != Competitor::Kind::none) {
+        r["competitor"] = {{"kind", setting_name(doubtful->competitor.kind)},
+                           {"distance", doubtful->competitor.distance},
+                           {"angle", doubtful->competitor.angle}};
+      }
+    }
   }
   return j;
 }

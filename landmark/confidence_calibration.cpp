@@ -1,0 +1,145 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "lmk/landmark/confidence_calibration.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <nlohmann/json.hpp>
+
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/input_file.h"
+
+namespace lmk {
+
+extern const char* const kBuiltinConfidenceCalibration;  // landmark/data, compiled in by CMake
+
+namespace {
+
+// Beyond these the evidence says nothing more: a margin of 20 error sigmas is as sure as one of
+// 200, and a logistic model that saw a few large values would otherwise let them dominate.
+constexpr double kMarginCap = 20.0;
+constexpr double kFitCap = 10.0;
+constexpr double kRangeCap = 5.0;
+constexpr double kLogFreedomBound = 3.0;
+
+double capped(double v, double lo, double hi) {
+  if (std::isnan(v)) return hi;
+  return std::clamp(v, lo, hi);
+}
+
+}  // namespace
+
+const std::vector<std::string>& confidence_feature_names() {
+  static const std::vector<std::string> names = {"local_margin", "elsewhere_margin", "fit",
+                                                 "coverage",     "log_freedom",      "range"};
+  return names;
+}
+
+std::vector<double> confidence_features(const MatchConfidence& c) {
+  const double freedom_ratio = c.freedom / kSamePoseDistance;
+  const double log_freedom =
+      freedom_ratio > 0.0 ? std::log10(freedom_ratio) : (std::isnan(freedom_ratio) ? 0.0 : -3.0);
+  return {capped(c.local_margin, -kMarginCap, kMarginCap),
+          capped(c.elsewhere_margin, -kMarginCap, kMarginCap),
+          capped(c.fit, 0.0, kFitCap),
+          std::isnan(c.coverage) ? 1.0 : c.coverage,
+          capped(log_freedom, -kLogFreedomBound, kLogFreedomBound),
+          capped(c.range, 0.0, kRangeCap)};
+}
+
+double calibrated_probability(const MatchConfidence& confidence,
+                              const ConfidenceCalibration& calibration) {
+  const std::vector<std::string>& names = confidence_feature_names();
+  const std::vector<double> features = confidence_features(confidence);
+  double logit = calibration.bias;
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    const auto w = calibration.weights.find(names[k]);
+    if (w != calibration.weights.end()) logit += w->second * features[k];
+  }
+  return 1.0 / (1.0 + std::exp(-logit));
+}
+
+const ConfidenceCalibration* calibration_for(const std::string& metric,
+                                             const ConfidenceCalibration* chosen) {
+  const ConfidenceCalibration& c = chosen ? *chosen : builtin_confidence_calibration();
+  return c.metric == metric ? &c : nullptr;
+}
+
+void calibrate(MatchConfidence& confidence, const Box& box,
+               const ConfidenceCalibration* calibration) {
+  confidence.probability = calibration ? calibrated_probability(confidence, *calibration)
+                                       : std::numeric_limits<double>::quiet_NaN();
+  confidence.doubt = confidence.probability < 0.5 ? describe_doubt(confidence, box) : "";
+}
+
+ConfidenceCalibration parse_confidence_calibration(const std::string& text,
+                                                   const std::string& where) {
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(where + ": not valid JSON (" + e.what() + ")");
+  }
+  const auto fail = [&](const std::string& problem) -> Error {
+    return Error(where + ": " + problem +
+                 " (a confidence calibration, as scripts/fit_confidence.py writes it; "
+                 "docs/file-formats.md)");
+  };
+  if (!j.is_object()) throw fail("must be a JSON object");
+  const auto field = [&](const char* key) -> const nlohmann::json& {
+    if (!j.contains(key)) throw fail(std::string("has no '") + key + "'");
+    return j[key];
+  };
+  if (field("format") != "lmk-confidence-calibration")
+    throw fail("'format' must be \"lmk-confidence-calibration\"");
+  const nlohmann::json& version = field("version");
+  if (!version.is_number_integer() || version.get<long long>() < 1) {
+    throw fail("'version' must be a positive integer");
+  }
+  if (version.get<long long>() > kConfidenceCalibrationVersion) {
+    throw fail("version " + version.dump() + " is newer than this lmk reads (" +
+               std::to_string(kConfidenceCalibrationVersion) + "): update lmk");
+  }
+  ConfidenceCalibration c;
+  const auto text_field = [&](const char* key) {
+    const nlohmann::json& v = field(key);
+    if (!v.is_string()) throw fail(std::string("'") + key + "' must be a string");
+    return v.get<std::string>();
+  };
+  c.metric = text_field("metric");
+  c.fitted_on = text_field("fitted_on");
+  const nlohmann::json& bias = field("bias");
+  if (!bias.is_number() || !std::isfinite(bias.get<double>()))
+    throw fail("'bias' must be a finite number");
+  c.bias = bias.get<double>();
+  const nlohmann::json& weights = field("weights");
+  if (!weights.is_object()) throw fail("'weights' must be an object of feature: weight");
+  const std::vector<std::string>& names = confidence_feature_names();
+  for (const auto& [name, w] : weights.items()) {
+    if (std::find(names.begin(), names.end(), name) == names.end()) {
+      std::string known;
+      for (const std::string& n : names) known += (known.empty() ? "" : ", ") + n;
+      throw fail("unknown feature '" + name + "' (known: " + known + ")");
+    }
+    if (!w.is_number() || !std::isfinite(w.get<double>()))
+      throw fail("weights." + name + " must be a finite number");
+    c.weights[name] = w.get<double>();
+  }
+  return c;
+}
+
+ConfidenceCalibration read_confidence_calibration(const std::string& path) {
+  return parse_confidence_calibration(read_input_file(path, kJsonInput), path);
+}
+
+const ConfidenceCalibration& builtin_confidence_calibration() {
+  static const ConfidenceCalibration builtin = parse_confidence_calibration(
+      kBuiltinConfidenceCalibration, "lmk's built-in confidence calibration");
+  return builtin;
+}
+
+ConfidenceCalibration confidence_calibration(const std::string& path) {
+  return path.empty() ? builtin_confidence_calibration() : read_confidence_calibration(path);
+}
+
+}  // namespace lmk

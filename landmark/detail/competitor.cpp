@@ -1,0 +1,154 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "lmk/landmark/detail/competitor.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "lmk/geometry/pose.h"
+#include "lmk/landmark/slide_check.h"
+#include "lmk/registration/icp.h"
+
+namespace lmk::detail {
+namespace {
+
+// Landmark points enough to measure support, freedom and symmetry: a few hundred fix a pose as
+// well as all of them (the fast search's coarse score uses 400 too).
+constexpr std::size_t kMaxEvidencePoints = 400;
+
+std::vector<Eigen::Vector3f> thinned(const PointCloud& cloud, std::size_t cap) {
+  std::vector<Eigen::Vector3f> out;
+  const std::size_t step = std::max<std::size_t>(1, (cloud.size() + cap - 1) / cap);
+  for (std::size_t i = 0; i < cloud.size(); i += step) {
+    if (is_finite(cloud.points[i])) out.push_back(cloud.points[i]);
+  }
+  return out;
+}
+
+// Whether `other` puts the landmark's points where `match` puts them, though turned: a turn about
+// an axis the shape is symmetric about (a bowl, a ball), which no search and no evaluation can
+// tell from the match. The mean distance from each point moved by the relative motion to the
+// nearest landmark point stays within half a coarse leaf.
+bool same_surface(const ConfidenceInput& in, const std::vector<Eigen::Vector3f>& points,
+                  const Eigen::Isometry3d& T_match, const Eigen::Isometry3d& T_other) {
+  if (points.empty()) return false;
+  const Eigen::Isometry3f M = (T_match.inverse() * T_other).cast<float>();
+  double sum = 0.0;
+  for (const Eigen::Vector3f& p : points) {
+    const auto n = in.landmark_tree.nearest(M * p);
+    if (!n) return false;
+    sum += std::sqrt(static_cast<double>(n->squared_distance));
+  }
+  return sum / static_cast<double>(points.size()) < 0.5 * in.index.settings().coarse_leaf;
+}
+
+struct Rivals {
+  const Match* local = nullptr;      ///< best slide or turn
+  const Match* elsewhere = nullptr;  ///< best look-alike
+};
+
+Rivals find_rivals(const ConfidenceInput& in, const Match& match,
+                   const std::vector<const Match*>& pool,
+                   const std::vector<Eigen::Vector3f>& points) {
+  Rivals r;
+  const Eigen::Vector3d centre = match.box.center();
+  for (const Match* c : pool) {
+    if (c == &match || !std::isfinite(c->error) || !plausible_alternative(*c, in.selection))
+      continue;
+    const double distance = (c->box.center() - centre).norm();
+    const double angle =
+        rotation_angle_between(match.T_scene_capture.linear(), c->T_scene_capture.linear());
+    if (distance < kSamePoseDistance &&
+        (angle < kSamePoseAngle ||
+         same_surface(in, points, match.T_scene_capture, c->T_scene_capture))) {
+      continue;  // the same pose, as the evaluation would count it
+    }
+    const Match*& slot = match.box.contains(c->box.center()) ? r.local : r.elsewhere;
+    if (!slot || c->error < slot->error) slot = c;
+  }
+  return r;
+}
+
+Competitor describe_competitor(const Match& match, const Match& rival) {
+  Competitor c;
+  c.T_scene_capture = rival.T_scene_capture;
+  c.box = rival.box;
+  c.error = rival.error;
+  c.distance = (rival.box.center() - match.box.center()).norm();
+  c.angle = rotation_angle_between(match.T_scene_capture.linear(), rival.T_scene_capture.linear());
+  if (!match.box.contains(rival.box.center())) {
+    c.kind = Competitor::Kind::look_alike;
+  } else {
+    c.kind = c.distance < kSamePoseDistance ? Competitor::Kind::turn : Competitor::Kind::slide;
+  }
+  return c;
+}
+
+// The landmark's points that the scene supports at the match (a scene surface within the
+// coverage's support distance, two fine leaves), with the scene's normals there: their count,
+// and the freest motion they allow within the noise (slide_check.h's H on the scene's side).
+void measure_support(const ConfidenceInput& in, const Match& match,
+                     const std::vector<Eigen::Vector3f>& points, double noise,
+                     MatchConfidence& out) {
+  const DistanceFieldTarget target(in.index.field(), &in.index.coarse().normals);
+  const float support = static_cast<float>(2.0 * in.index.settings().leaf_size);
+  const Eigen::Isometry3f T = match.T_scene_capture.cast<float>();
+  PointCloud supported;
+  supported.normals.reserve(points.size());
+  for (const Eigen::Vector3f& p : points) {
+    const Eigen::Vector3f q = T * p;
+    Eigen::Vector3f nearest, normal;
+    if (!target.nearest(q, nearest, normal) || (nearest - q).norm() >= support) continue;
+    supported.points.push_back(nearest);
+    supported.normals.push_back(normal);
+  }
+  out.support = supported.size();
+  const std::vector<Slide> motions = motion_extents(supported, noise);
+  if (!motions.empty()) {
+    out.freest = motions.front();
+    out.freedom = motions.front().displacement;
+  }
+}
+
+}  // namespace
+
+bool plausible_alternative(const Match& candidate, const SelectionSettings& s) {
+  const ErrorTerms& t = candidate.terms;
+  if (!std::isnan(t.coverage) && t.coverage < s.min_coverage) return false;
+  return !(t.empty_space_probes > 0 &&
+           static_cast<double>(t.empty_space_violations) >
+               s.max_empty_space_violation * static_cast<double>(t.empty_space_probes));
+}
+
+MatchConfidence assess_match(const ConfidenceInput& in, const Match& match,
+                             const std::vector<const Match*>& pool) {
+  MatchConfidence c;
+  const std::vector<Eigen::Vector3f> points = thinned(in.coarse_landmark, kMaxEvidencePoints);
+  c.range = (match.box.center() - in.index.T_scene_sensor().translation()).norm();
+  const double capture_range = (in.landmark.box.center() - in.landmark.sensor_origin).norm();
+  const double noise = in.index.settings().depth_noise().residual_sigma(capture_range, c.range);
+  measure_support(in, match, points, noise, c);
+  c.coverage = match.terms.coverage;
+
+  // The error is a mean over the supporting points; its spread from the noise alone falls with
+  // the square root of their count. In metres the residual sigma sets its scale (scaled as the
+  // error was beyond threshold_range); the sensor metric's residuals are in sigma already.
+  const double unit = in.error_in_sigma ? 1.0 : noise * match.terms.range_scale;
+  c.error_sigma = unit / std::sqrt(static_cast<double>(std::max<std::size_t>(c.support, 1)));
+  c.fit = match.error / unit;
+
+  const Rivals rivals = find_rivals(in, match, pool, points);
+  const auto margin = [&](const Match* rival) {
+    return rival ? (rival->error - match.error) / c.error_sigma
+                 : std::numeric_limits<double>::infinity();
+  };
+  c.local_margin = margin(rivals.local);
+  c.elsewhere_margin = margin(rivals.elsewhere);
+  const Match* closest = c.local_margin <= c.elsewhere_margin ? rivals.local : rivals.elsewhere;
+  if (closest) c.competitor = describe_competitor(match, *closest);
+  c.margin = std::min(c.local_margin, c.elsewhere_margin);
+
+  calibrate(c, match.box, in.calibration);
+  return c;
+}
+
+}  // namespace lmk::detail

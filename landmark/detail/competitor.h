@@ -1,0 +1,39 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+// A match's evidence (match_confidence.h), computed from what the search has already met: every
+// candidate it aligned and scored (the competitors), the scene's distance field and normals (the
+// support and freedom), and the depth noise at the match's range (the error's uncertainty).
+// Nothing here changes a match or its order. Internal.
+
+#include <vector>
+
+#include "lmk/landmark/confidence_calibration.h"
+#include "lmk/landmark/find_landmark.h"
+#include "lmk/landmark/find_settings.h"
+#include "lmk/landmark/scene_index.h"
+
+namespace lmk::detail {
+
+struct ConfidenceInput {
+  const SceneIndex& index;
+  const Landmark& landmark;
+  /// The landmark's points at the scene's coarse leaf, capture frame: the support is counted on
+  /// them, about one per independent patch of noise.
+  const PointCloud& coarse_landmark;
+  const KdTree& landmark_tree;  ///< the landmark's points, capture frame
+  bool error_in_sigma;          ///< the metric's unit is the sensor's sigma, not metres
+  const SelectionSettings& selection;
+  /// The calibration to apply; null when none was fitted for the metric (calibration_for()).
+  const ConfidenceCalibration* calibration;
+};
+
+/// Whether `candidate` could have been a match but for its error: it passes the coverage and the
+/// empty-space tests of `selection` (a pose that fails them is no alternative a robot could take).
+bool plausible_alternative(const Match& candidate, const SelectionSettings& selection);
+
+/// The evidence of `match` against `pool`, every candidate the search scored (the match itself may
+/// be among them), and its calibrated probability and doubt line.
+MatchConfidence assess_match(const ConfidenceInput& input, const Match& match,
+                             const std::vector<const Match*>& pool);
+
+}  // namespace lmk::detail

@@ -1,0 +1,119 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+// The JSON form of a match's confidence (match_confidence.h), shared by `lmk find --json`,
+// `lmk serve`, the evaluation's cache and reports, Python and ROS:
+//   {"probability", "features": {name: value}, "margin", "local_margin", "elsewhere_margin", "error_sigma", "fit", "range",
+//    "support", "freedom", "freest": {"turn", "axis"}, "coverage", "doubt",
+//    "competitor": null | {"kind", "position", "orientation", "error", "distance", "angle"}}
+// Numbers that are not finite (no probability, no rival: an infinite margin) are null.
+// Header-only; internal/: shared within lmk, not installed.
+
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/settings_schema.h"
+#include "lmk/json/box_json.h"
+#include "lmk/json/pose_json.h"
+#include "lmk/landmark/confidence_calibration.h"
+#include "lmk/landmark/match_confidence.h"
+
+namespace lmk::detail {
+
+inline nlohmann::json finite_or_null(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
+
+inline nlohmann::json confidence_to_json(const MatchConfidence& c) {
+  nlohmann::json competitor = nullptr;
+  if (c.competitor.kind != Competitor::Kind::none) {
+    competitor = box_to_json(c.competitor.box);
+    competitor["kind"] = setting_name(c.competitor.kind);
+    competitor["error"] = finite_or_null(c.competitor.error);
+    competitor["distance"] = c.competitor.distance;
+    competitor["angle"] = c.competitor.angle;
+  }
+  // The calibration's inputs as it computes them (confidence_calibration.h), so that
+  // scripts/fit_confidence.py fits on exactly what the search will weigh.
+  nlohmann::json features = nlohmann::json::object();
+  const std::vector<double> values = confidence_features(c);
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    features[confidence_feature_names()[k]] = values[k];
+  }
+  return {{"probability", finite_or_null(c.probability)},
+          {"features", features},
+          {"margin", finite_or_null(c.margin)},
+          {"local_margin", finite_or_null(c.local_margin)},
+          {"elsewhere_margin", finite_or_null(c.elsewhere_margin)},
+          {"error_sigma", finite_or_null(c.error_sigma)},
+          {"fit", finite_or_null(c.fit)},
+          {"range", finite_or_null(c.range)},
+          {"support", c.support},
+          {"freedom", finite_or_null(c.freedom)},
+          {"freest", {{"turn", c.freest.turn}, {"axis", vector_to_json(c.freest.axis)}}},
+          {"coverage", finite_or_null(c.coverage)},
+          {"doubt", c.doubt},
+          {"competitor", competitor}};
+}
+
+/// The inverse of confidence_to_json. A null margin reads back as +infinity (no rival), a null
+/// freedom as +infinity only when the support had points (a pose free along some direction), other
+/// nulls as NaN.
+inline MatchConfidence confidence_from_json(const nlohmann::json& j, const std::string& where) {
+  const auto number_in = [](const nlohmann::json& object, const char* key, double if_null,
+                            const std::string& at) {
+    const nlohmann::json& v = json_field(object, key, at);
+    if (v.is_null()) return if_null;
+    if (!v.is_number()) throw Error(at + "." + key + ": must be a number or null");
+    return v.get<double>();
+  };
+  const auto number = [&](const char* key, double if_null) {
+    return number_in(j, key, if_null, where);
+  };
+  const double inf = std::numeric_limits<double>::infinity();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  MatchConfidence c;
+  c.probability = number("probability", nan);
+  c.margin = number("margin", inf);
+  c.local_margin = number("local_margin", inf);
+  c.elsewhere_margin = number("elsewhere_margin", inf);
+  c.error_sigma = number("error_sigma", nan);
+  c.fit = number("fit", nan);
+  c.range = number("range", nan);
+  const nlohmann::json& support = json_field(j, "support", where);
+  if (!support.is_number_unsigned()) throw Error(where + ".support: must be a count");
+  c.support = support.get<std::size_t>();
+  c.freedom = number("freedom", c.support >= 6 ? inf : nan);
+  const std::string freest_at = where + ".freest";
+  const nlohmann::json& freest = json_field(j, "freest", where);
+  const nlohmann::json& turn = json_field(freest, "turn", freest_at);
+  if (!turn.is_boolean()) throw Error(freest_at + ".turn: must be true or false");
+  c.freest.turn = turn.get<bool>();
+  c.freest.axis = numbers_from_json(json_field(freest, "axis", freest_at), 3, freest_at + ".axis");
+  c.freest.displacement = c.freedom;
+  c.coverage = number("coverage", nan);
+  const nlohmann::json& doubt = json_field(j, "doubt", where);
+  if (!doubt.is_string()) throw Error(where + ".doubt: must be a string");
+  c.doubt = doubt.get<std::string>();
+  const nlohmann::json& competitor = json_field(j, "competitor", where);
+  if (!competitor.is_null()) {
+    const std::string at = where + ".competitor";
+    const nlohmann::json& kind = json_field(competitor, "kind", at);
+    const std::optional<Competitor::Kind> named =
+        kind.is_string() ? setting_value_named<Competitor::Kind>(kind.get<std::string>())
+                         : std::nullopt;
+    if (!named || *named == Competitor::Kind::none)
+      throw Error(at + ".kind: must be \"slide\", \"turn\" or \"look-alike\"");
+    c.competitor.kind = *named;
+    c.competitor.box = box_from_json(competitor, at);
+    c.competitor.error = number_in(competitor, "error", inf, at);
+    c.competitor.distance = number_in(competitor, "distance", nan, at);
+    c.competitor.angle = number_in(competitor, "angle", nan, at);
+  }
+  return c;
+}
+
+}  // namespace lmk::detail

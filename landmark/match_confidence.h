@@ -1,0 +1,86 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+// How sure a match is (issue #45; docs/evaluation.md, "Confidence"). A search reports evidence,
+// not verdicts: each match carries how clearly it beats the best *different* pose the search met
+// (a slide along the same structure, a turn, a look-alike elsewhere), in units of its error's own
+// uncertainty at its range; how freely the scene lets it move within the noise; and how much of
+// the landmark the scene shows. A calibration fitted on labelled data (confidence_calibration.h)
+// turns that into the probability that the match lies within the evaluation's tolerance of a true
+// instance. Deciding what to do with it (act, look again, refuse) is the caller's: pbd's
+// min_confidence, `lmk find --min-confidence`.
+
+#include <Eigen/Geometry>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "lmk/geometry/box.h"
+#include "lmk/landmark/slide_check.h"
+
+namespace lmk {
+
+/// Two poses closer than this are one pose: the evaluation's tolerance (docs/datasets.md, one inch
+/// between box centres and 15 degrees), against which the probability is calibrated.
+inline constexpr double kSamePoseDistance = 0.0254;  ///< m
+inline constexpr double kSamePoseAngle = 0.2618;     ///< rad
+
+/// The confidence a robot's program needs by default to act on a match (PlanSettings::
+/// min_confidence): chosen from the measurements of docs/evaluation.md, "Confidence".
+inline constexpr double kDefaultMinConfidence = 0.9;
+
+/// The best-scoring candidate of the search that is a different pose from a match.
+struct Competitor {
+  /// What separates it from the match: a slide (its centre beyond kSamePoseDistance, its box
+  /// overlapping the match's), a turn (its centre within kSamePoseDistance, turned beyond
+  /// kSamePoseAngle), or a look-alike elsewhere (its centre outside the match's box).
+  enum class Kind { none, slide, turn, look_alike };
+  Kind kind = Kind::none;
+  Eigen::Isometry3d T_scene_capture = Eigen::Isometry3d::Identity();
+  Box box;  ///< scene frame
+  double error = std::numeric_limits<double>::infinity();  ///< in the metric's unit
+  double distance = 0.0;  ///< between the box centres, m
+  double angle = 0.0;     ///< of the rotation between the two poses, rad
+};
+
+/// "none", "slide", "turn", "look-alike".
+const std::vector<std::string>& setting_names(Competitor::Kind);
+
+/// The evidence of one match and the probability made of it.
+struct MatchConfidence {
+  /// The calibrated probability that the match lies within kSamePoseDistance and kSamePoseAngle
+  /// of a true instance, in [0, 1]. NaN when no calibration applies (a metric it was not fitted
+  /// for: see ConfidenceCalibration::metric).
+  double probability = std::numeric_limits<double>::quiet_NaN();
+  /// (competitor error - match error) / error_sigma: how many of its own uncertainties the match
+  /// beats its competitor by; +infinity when the search met no different pose.
+  double margin = std::numeric_limits<double>::infinity();
+  /// The same against the best different pose whose box overlaps the match's (a slide or a turn),
+  /// and against the best look-alike elsewhere: the two kinds of doubt, which the calibration
+  /// weighs apart (several true instances are look-alikes of each other).
+  double local_margin = std::numeric_limits<double>::infinity();
+  double elsewhere_margin = std::numeric_limits<double>::infinity();
+  /// The uncertainty of the match's error from the depth noise alone, in the metric's unit: the
+  /// residual sigma at the match's range (DepthNoise::residual_sigma) over the square root of the
+  /// supporting landmark points (for the sensor metric, whose residuals are in sigma, 1 over it).
+  double error_sigma = std::numeric_limits<double>::quiet_NaN();
+  /// The match's error over the residual sigma at its range: how well it fits for its range.
+  double fit = std::numeric_limits<double>::quiet_NaN();
+  double range = std::numeric_limits<double>::quiet_NaN();  ///< scene sensor to box centre, m
+  /// Landmark points (at the scene's coarse leaf, the noise's independence scale) that have a scene
+  /// surface within the support distance at the match.
+  std::size_t support = 0;
+  /// The freest motion of the supporting points against the scene's normals at the match (the
+  /// slide check's H, slide_check.h, scene frame), and how far it moves them within the noise, m.
+  Slide freest;
+  double freedom = std::numeric_limits<double>::quiet_NaN();
+  double coverage = std::numeric_limits<double>::quiet_NaN();  ///< the metric's, when it has one
+  Competitor competitor;  ///< the closest-scoring different pose, local or elsewhere
+  /// One line on why the probability is below a half ("a pose 8 cm along the box's x fits within
+  /// the noise", "only 31% of the landmark is seen"); empty otherwise.
+  std::string doubt;
+};
+
+/// The doubt line for `confidence`, the match's box `box` (scene frame) naming the directions.
+std::string describe_doubt(const MatchConfidence& confidence, const Box& box);
+
+}  // namespace lmk
