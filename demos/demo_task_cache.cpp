@@ -8,9 +8,9 @@
 #include "lmk/geometry/atomic_file.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/hash.h"
-#include "lmk/landmark/confidence_calibration.h"
 #include "lmk/geometry/input_file.h"
 #include "lmk/geometry/version.h"
+#include "lmk/landmark/confidence_calibration.h"
 #include "lmk/landmark/find_landmark.h"
 
 namespace lmk {

@@ -334,8 +334,8 @@ DemoScenarioResult run_scenario(const DemoTask& task, std::size_t index,
 
   if (!scenario.should_act) {
     // Absent, or present only as a doubtful look-alike: either refusal names the right landmark.
-    result.success = plan.refusal && refused_landmark(*plan.refusal) == scenario.missing_landmark &&
-                     !moved;
+    result.success =
+        plan.refusal && refused_landmark(*plan.refusal) == scenario.missing_landmark && !moved;
     if (result.success) {
       result.reason = "refused, no motion: " + describe(*plan.refusal);
     } else if (plan.valid()) {

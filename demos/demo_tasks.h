@@ -29,7 +29,7 @@ struct DemoScenarioResult {
   /// The arm moved for a pose beyond the tolerance, or acted where it should not have: worse than
   /// a refusal (issue #45).
   bool wrong_motion = false;
-  bool refused = false;  ///< the plan was refused: nothing moved
+  bool refused = false;             ///< the plan was refused: nothing moved
   double max_position_error = 0.0;  ///< m, over the landmark-relative targets (acting scenarios)
   double max_rotation_error = 0.0;  ///< rad
   double seconds = 0.0;             ///< perception, planning and execution

@@ -359,7 +359,7 @@ std::vector<EvaluationRow> rows_by_bin(const Evaluation& evaluation, double thre
     for (const PairResult& p : evaluation.pairs) {
       if (assumption > 1 && !p.in_context) continue;
       const PairInput in =
-        matches_within(p, threshold, evaluation.settings.find.selection.min_confidence);
+          matches_within(p, threshold, evaluation.settings.find.selection.min_confidence);
       std::vector<int> truths, founds;
       for (std::size_t k = 0; k < in.truth.size(); ++k) truths.push_back(truth_bin(p, k));
       for (const auto& T : in.found) founds.push_back(found_bin(p, T));

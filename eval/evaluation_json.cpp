@@ -8,8 +8,8 @@
 #include "lmk/geometry/version.h"
 #include "lmk/json/box_json.h"
 #include "lmk/json/pose_json.h"
-#include "lmk/landmark/internal/find_settings_json.h"
 #include "lmk/landmark/internal/confidence_json.h"
+#include "lmk/landmark/internal/find_settings_json.h"
 #include "lmk/landmark/internal/terms_json.h"
 
 namespace lmk::detail {
@@ -76,10 +76,10 @@ PairResult pair_result_from_json(const json& j, const std::string& where) {
   p.symmetry.order = get<int>(j, "symmetry_order", where);
   for (const json& t : json_field(j, "truth", where)) p.truth.push_back(pose_from_json(t, where));
   for (const json& m : json_field(j, "found", where)) {
-    p.found.push_back({box_from_json(m, where + ".found"), get<double>(m, "error", where),
-                       terms_from_json(json_field(m, "terms", where), where + ".terms"),
-                       confidence_from_json(json_field(m, "confidence", where),
-                                            where + ".confidence")});
+    p.found.push_back(
+        {box_from_json(m, where + ".found"), get<double>(m, "error", where),
+         terms_from_json(json_field(m, "terms", where), where + ".terms"),
+         confidence_from_json(json_field(m, "confidence", where), where + ".confidence")});
   }
   p.seconds = get<double>(j, "seconds", where);
   p.seeds = get<std::size_t>(j, "seeds", where);

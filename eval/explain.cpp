@@ -198,8 +198,10 @@ std::vector<ExplainedCase> explain_evaluation(
   std::map<std::string, std::vector<FailedPair>> failed;
   std::size_t to_explain = 0;
   for (const PairResult& p : evaluation.pairs) {
-    FailedPair f{&p, nullptr, nullptr, matches_within(p, *find.selection.threshold,
-                                                            find.selection.min_confidence),
+    FailedPair f{&p,
+                 nullptr,
+                 nullptr,
+                 matches_within(p, *find.selection.threshold, find.selection.min_confidence),
                  {}};
     f.assigned = assign_matches(f.input, tolerance);
     const Counts counts = count_all_matches(f.input, tolerance);

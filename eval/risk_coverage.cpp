@@ -179,7 +179,7 @@ std::vector<std::string> point_row(const std::string& label, const RiskCoverageP
 // The cut the range rows are at: the evaluation's own, else the usual robot's.
 double range_cut(const Evaluation& e) {
   const double own = e.settings.find.selection.min_confidence;
-  return own > 0.0 ? own : 0.9;
+  return own > 0.0 ? own : kDefaultMinConfidence;
 }
 
 }  // namespace

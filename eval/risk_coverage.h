@@ -79,7 +79,7 @@ inline const std::vector<double>& reported_confidence_cuts() {
 
 /// The risk-coverage table: one row per reported cut (and the evaluation's own), and the rows for
 /// precision 0.95 and 0.98; with `ranges`, one more per 1 m range bin from 0 to 3 m and beyond,
-/// at the evaluation's cut (0.9 when it sets none).
+/// at the evaluation's cut (kDefaultMinConfidence when it sets none).
 TextTable risk_coverage_table(const Evaluation& evaluation, bool ranges);
 
 /// Two lines: the pairs, the area under the curve and the expected calibration error, and the

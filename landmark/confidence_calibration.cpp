@@ -27,6 +27,13 @@ double capped(double v, double lo, double hi) {
   return std::clamp(v, lo, hi);
 }
 
+// A margin's evidence grows with its logarithm: 1 sigma against 3 is much, 10 against 20 little.
+// Signed: a rival that scores better (a negative margin) counts against the match alike.
+double log_margin(double margin) {
+  const double m = capped(margin, -kMarginCap, kMarginCap);
+  return std::copysign(std::log1p(std::abs(m)), m);
+}
+
 }  // namespace
 
 const std::vector<std::string>& confidence_feature_names() {
@@ -39,8 +46,8 @@ std::vector<double> confidence_features(const MatchConfidence& c) {
   const double freedom_ratio = c.freedom / kSamePoseDistance;
   const double log_freedom =
       freedom_ratio > 0.0 ? std::log10(freedom_ratio) : (std::isnan(freedom_ratio) ? 0.0 : -3.0);
-  return {capped(c.local_margin, -kMarginCap, kMarginCap),
-          capped(c.elsewhere_margin, -kMarginCap, kMarginCap),
+  return {log_margin(c.local_margin),
+          log_margin(c.elsewhere_margin),
           capped(c.fit, 0.0, kFitCap),
           std::isnan(c.coverage) ? 1.0 : c.coverage,
           capped(log_freedom, -kLogFreedomBound, kLogFreedomBound),

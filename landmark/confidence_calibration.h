@@ -29,8 +29,9 @@ struct ConfidenceCalibration {
 };
 
 /// The features a calibration may weigh, each a bounded function of the evidence:
-///   local_margin      margin against the best slide or turn, in error sigmas, capped at 20
-///   elsewhere_margin  margin against the best look-alike elsewhere, capped at 20
+///   local_margin      margin against the best slide or turn, in error sigmas, capped at +-20,
+///                     as sign(m) log(1 + |m|) (no rival: the cap)
+///   elsewhere_margin  the same against the best look-alike elsewhere
 ///   fit               the error over the residual sigma at the match's range, capped at 10
 ///   coverage          share of the landmark the scene supports (1 for metrics without it)
 ///   log_freedom       log10 of the freedom over kSamePoseDistance, within [-3, 3]

@@ -100,8 +100,8 @@ struct Prepared {
                                         prepared.landmark(), index)),
         landmark(prepared.landmark()),
         view{landmark.points, prepared.tree(), landmark.box, landmark},
-        calibration(calibration_for(settings.selection.metric,
-                                    settings.selection.calibration.get())) {
+        calibration(
+            calibration_for(settings.selection.metric, settings.selection.calibration.get())) {
     // The sensor metric tests empty space beyond the noise, which far away exceeds the landmark
     // distance field's band.
     if (metric.unit == ErrorMetric::Unit::sigma) view.empty_distances = &prepared.empty_distances();
@@ -112,10 +112,9 @@ struct Prepared {
   void assess(const SceneIndex& index, const LandmarkIndex& prepared,
               const std::vector<Match>& pool, FindResult& result) const {
     // The fast method has the landmark at the coarse leaf already; the reference builds it here.
-    const PointCloud coarse =
-        settings.method == SearchMethod::fast
-            ? PointCloud()
-            : voxel_downsample(landmark.points, index.settings().coarse_leaf);
+    const PointCloud coarse = settings.method == SearchMethod::fast
+                                  ? PointCloud()
+                                  : voxel_downsample(landmark.points, index.settings().coarse_leaf);
     const detail::ConfidenceInput input{
         index,
         landmark,

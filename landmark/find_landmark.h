@@ -39,7 +39,7 @@ struct Match {
   Eigen::Vector3f seed_point;  ///< that seed's scene point
   int icp_iterations = 0;
   bool icp_converged = false;
-  double votes = 0.0;         ///< fast: point-pair votes of the pose cluster this match came from
+  double votes = 0.0;  ///< fast: point-pair votes of the pose cluster this match came from
   /// How sure the match is, and what competes with it (match_confidence.h): set for every match
   /// the search returns, and for those turned down for it (SelectionSettings::min_confidence).
   MatchConfidence confidence;

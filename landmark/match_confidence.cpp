@@ -67,8 +67,8 @@ std::string describe_doubt(const MatchConfidence& c, const Box& box) {
     return describe_competitor(c, box);
   }
   if (c.freedom > kSamePoseDistance) {
-    const std::string amount = std::isinf(c.freedom) ? std::string("freely")
-                                                     : format("%.0f cm", c.freedom * 100.0);
+    const std::string amount =
+        std::isinf(c.freedom) ? std::string("freely") : format("%.0f cm", c.freedom * 100.0);
     return std::string(c.freest.turn ? "it turns " : "it slides ") + amount +
            (c.freest.turn ? " about " : " along ") + describe_axis(c.freest.axis, box) +
            " within the noise";
@@ -77,8 +77,7 @@ std::string describe_doubt(const MatchConfidence& c, const Box& box) {
     return format("only %.0f%% of the landmark is seen", c.coverage * 100.0);
   }
   if (c.competitor.kind != Competitor::Kind::none) return describe_competitor(c, box);
-  return format("its error is %.1f times the depth noise at ", c.fit) +
-         format("%.1f m", c.range);
+  return format("its error is %.1f times the depth noise at ", c.fit) + format("%.1f m", c.range);
 }
 
 }  // namespace lmk

@@ -26,7 +26,7 @@ inline constexpr double kSamePoseAngle = 0.2618;     ///< rad
 
 /// The confidence a robot's program needs by default to act on a match (PlanSettings::
 /// min_confidence): chosen from the measurements of docs/evaluation.md, "Confidence".
-inline constexpr double kDefaultMinConfidence = 0.9;
+inline constexpr double kDefaultMinConfidence = 0.8;
 
 /// The best-scoring candidate of the search that is a different pose from a match.
 struct Competitor {
@@ -36,10 +36,10 @@ struct Competitor {
   enum class Kind { none, slide, turn, look_alike };
   Kind kind = Kind::none;
   Eigen::Isometry3d T_scene_capture = Eigen::Isometry3d::Identity();
-  Box box;  ///< scene frame
+  Box box;                                                 ///< scene frame
   double error = std::numeric_limits<double>::infinity();  ///< in the metric's unit
-  double distance = 0.0;  ///< between the box centres, m
-  double angle = 0.0;     ///< of the rotation between the two poses, rad
+  double distance = 0.0;                                   ///< between the box centres, m
+  double angle = 0.0;  ///< of the rotation between the two poses, rad
 };
 
 /// "none", "slide", "turn", "look-alike".

@@ -27,7 +27,6 @@ std::string describe_axis(const Eigen::Vector3d& axis, const Box& box) {
   return text;
 }
 
-
 std::vector<Slide> motion_extents(const PointCloud& points, double noise) {
   std::vector<Slide> motions;
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();

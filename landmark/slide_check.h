@@ -51,7 +51,8 @@ inline constexpr double kSlideReportSigmas = 5.0;
 
 /// Every direction of motion of points with normals, the freest first, each with its extent within
 /// `noise`: the six eigenvectors of H, or none for fewer than six points with normals. What
-/// slide_check keeps the free ones of, and what a match's freedom is read from (match_confidence.h).
+/// slide_check keeps the free ones of, and what a match's freedom is read from
+/// (match_confidence.h).
 std::vector<Slide> motion_extents(const PointCloud& points, double noise);
 
 /// The check for points with normals (`points.normals`, unit, NaN where undefined), in a frame

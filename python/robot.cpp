@@ -128,7 +128,7 @@ void bind_robot(py::module_& m, const py::object& error) {
       py::arg("program"), py::arg("scene"), py::arg("robot"),
       "Plans a program file (its landmarks beside it) in `scene` (base frame) for `robot` as it "
       "stands, as `lmk pbd plan --json` does; raises lmk.Refused when the robot would not carry "
-      "it out (kind 'landmark-doubtful' for a landmark below min_confidence, default 0.9). "
+      "it out (kind 'landmark-doubtful' for a landmark below min_confidence, default 0.8). "
       "Search settings are keywords as for lmk.find.");
   m.def(
       "run",

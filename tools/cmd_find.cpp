@@ -53,8 +53,8 @@ void print_table(const FindResult& r, const std::string& name) {
   if (r.matches.empty()) return;
   const bool grid_terms = !std::isnan(r.matches.front().terms.coverage);
   const bool in_sigma = find_error_metric(s.metric).unit == ErrorMetric::Unit::sigma;
-  std::printf("%4s %9s %9s %9s %8s %8s %8s %9s %10s", "rank", "x", "y", "z", "roll", "pitch",
-              "yaw", in_sigma ? "error_sd" : "error_mm", "confidence");
+  std::printf("%4s %9s %9s %9s %8s %8s %8s %9s %10s", "rank", "x", "y", "z", "roll", "pitch", "yaw",
+              in_sigma ? "error_sd" : "error_mm", "confidence");
   if (grid_terms) {
     std::printf(" %8s %11s\n", "coverage", "empty_viol");
   } else {

@@ -2,7 +2,8 @@
 #pragma once
 // The JSON form of a match's confidence (match_confidence.h), shared by `lmk find --json`,
 // `lmk serve`, the evaluation's cache and reports, Python and ROS:
-//   {"probability", "features": {name: value}, "margin", "local_margin", "elsewhere_margin", "error_sigma", "fit", "range",
+//   {"probability", "features": {name: value}, "margin", "local_margin", "elsewhere_margin",
+//   "error_sigma", "fit", "range",
 //    "support", "freedom", "freest": {"turn", "axis"}, "coverage", "doubt",
 //    "competitor": null | {"kind", "position", "orientation", "error", "distance", "angle"}}
 // Numbers that are not finite (no probability, no rival: an infinite margin) are null.
@@ -10,8 +11,8 @@
 
 #include <cmath>
 #include <limits>
-#include <optional>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 #include "lmk/geometry/error.h"
