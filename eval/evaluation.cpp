@@ -100,10 +100,6 @@ FindSettings pair_search(const FindSettings& find, const DatasetScene& scene) {
   return f;
 }
 
-bool passes_confidence(double probability, double min_confidence) {
-  return min_confidence <= 0.0 || probability >= min_confidence;
-}
-
 PairInput matches_within(const PairResult& pair, double threshold, double min_confidence) {
   PairInput in;
   in.truth = pair.truth;

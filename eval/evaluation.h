@@ -90,13 +90,9 @@ inline constexpr double kIgnoredHiddenFraction = 0.8;
 FindSettings pair_search(const FindSettings& find, const DatasetScene& scene);
 
 /// The matches of `pair` with an error below `threshold` and a confidence of at least
-/// `min_confidence` (0: whatever their confidence), as PairInput for the protocol, with instances
-/// hidden at least kIgnoredHiddenFraction ignored.
+/// `min_confidence` (passes_confidence(), match_confidence.h), as PairInput for the protocol, with
+/// instances hidden at least kIgnoredHiddenFraction ignored.
 PairInput matches_within(const PairResult& pair, double threshold, double min_confidence = 0.0);
-
-/// Whether a match of confidence `probability` passes the cut `min_confidence`: always at 0, never
-/// without a probability otherwise (as find_landmark applies SelectionSettings::min_confidence).
-bool passes_confidence(double probability, double min_confidence);
 
 /// One row of the paper's table.
 struct EvaluationRow {

@@ -95,20 +95,14 @@ RiskCoverage risk_coverage(const Evaluation& e,
   return out;
 }
 
-RiskCoveragePoint risk_coverage_at(const Evaluation& e, double cut,
-                                   const std::function<bool(const PairResult&)>& select) {
+RiskCoveragePoint risk_coverage_at(const RiskCoverage& curve, double cut) {
+  // The curve falls in confidence and grows in answers: its last point at or above the cut.
   RiskCoveragePoint point;
+  for (const RiskCoveragePoint& p : curve.curve) {
+    if (!(p.cut >= cut)) break;
+    point = p;
+  }
   point.cut = cut;
-  std::size_t pairs = 0;
-  for (const Answer& a : best_answers(e, select, pairs)) {
-    if (!(a.confidence >= cut)) break;
-    ++point.answered;
-    point.correct += a.correct ? 1 : 0;
-  }
-  if (pairs > 0) point.coverage = static_cast<double>(point.answered) / static_cast<double>(pairs);
-  if (point.answered > 0) {
-    point.precision = static_cast<double>(point.correct) / static_cast<double>(point.answered);
-  }
   return point;
 }
 
@@ -195,7 +189,7 @@ TextTable risk_coverage_table(const Evaluation& e, bool ranges) {
   std::sort(cuts.begin(), cuts.end());
   for (double cut : cuts) {
     t.rows.push_back(point_row(cut == own ? "at the cut (--min-confidence)" : "at a cut",
-                               risk_coverage_at(e, cut), curve.pairs));
+                               risk_coverage_at(curve, cut), curve.pairs));
   }
   const auto best = [&](const char* label, const std::optional<RiskCoveragePoint>& p) {
     if (p) {
@@ -215,7 +209,7 @@ TextTable risk_coverage_table(const Evaluation& e, bool ranges) {
       if (in_bin.pairs == 0) continue;
       const std::string label = "instance at " + fixed(bin[0], 0) +
                                 (bin[1] > 100.0 ? "+ m" : "-" + fixed(bin[1], 0) + " m");
-      t.rows.push_back(point_row(label, risk_coverage_at(e, cut, select), in_bin.pairs));
+      t.rows.push_back(point_row(label, risk_coverage_at(in_bin, cut), in_bin.pairs));
     }
   }
   return t;

@@ -43,9 +43,9 @@ struct RiskCoverage {
 RiskCoverage risk_coverage(const Evaluation& evaluation,
                            const std::function<bool(const PairResult&)>& select = {});
 
-/// The point of `curve` at a cut: the pairs whose best match has a confidence of at least `cut`.
-RiskCoveragePoint risk_coverage_at(const Evaluation& evaluation, double cut,
-                                   const std::function<bool(const PairResult&)>& select = {});
+/// The point of `curve` at a cut: the pairs whose best match has a confidence of at least `cut`
+/// (nothing answered when none has).
+RiskCoveragePoint risk_coverage_at(const RiskCoverage& curve, double cut);
 
 /// A selection of the pairs whose first instance not ignored lies at a range in [low, high) m
 /// from the scene's sensor (the answered share within 2 m, at 2-3 m).

@@ -145,8 +145,4 @@ const ConfidenceCalibration& builtin_confidence_calibration() {
   return builtin;
 }
 
-ConfidenceCalibration confidence_calibration(const std::string& path) {
-  return path.empty() ? builtin_confidence_calibration() : read_confidence_calibration(path);
-}
-
 }  // namespace lmk

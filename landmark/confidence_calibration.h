@@ -67,8 +67,4 @@ ConfidenceCalibration read_confidence_calibration(const std::string& path);
 /// The calibration built into lmk.
 const ConfidenceCalibration& builtin_confidence_calibration();
 
-/// The calibration a search uses: the file at `path`, or the built-in one when `path` is empty.
-/// A file is read at every call (a few hundred bytes): no state is kept between searches.
-ConfidenceCalibration confidence_calibration(const std::string& path);
-
 }  // namespace lmk

@@ -14,6 +14,7 @@
 #include "lmk/landmark/detail/competitor.h"
 #include "lmk/landmark/detail/fast_search.h"
 #include "lmk/landmark/detail/search_method.h"
+#include "lmk/landmark/detail/selection_tests.h"
 #include "lmk/landmark/detail/view_determinacy.h"
 #include "lmk/landmark/non_max_suppression.h"
 
@@ -62,11 +63,9 @@ void select(std::vector<Match> candidates, const SelectionSettings& s, bool supp
       } else {
         reject(m, stats.rejected_error, kRejectedError);
       }
-    } else if (!std::isnan(m.terms.coverage) && m.terms.coverage < s.min_coverage) {
+    } else if (detail::coverage_too_low(m.terms, s)) {
       reject(m, stats.rejected_coverage, kRejectedCoverage);
-    } else if (m.terms.empty_space_probes > 0 &&
-               static_cast<double>(m.terms.empty_space_violations) >
-                   s.max_empty_space_violation * static_cast<double>(m.terms.empty_space_probes)) {
+    } else if (detail::empty_space_occupied(m.terms, s)) {
       reject(m, stats.rejected_empty_space, kRejectedEmptySpace);
     } else if (undetermined(m)) {
       reject(m, stats.rejected_undetermined, kRejectedUndetermined);
@@ -111,6 +110,7 @@ struct Prepared {
   // below the cut are turned down.
   void assess(const SceneIndex& index, const LandmarkIndex& prepared,
               const std::vector<Match>& pool, FindResult& result) const {
+    if (result.matches.empty()) return;
     // The fast method has the landmark at the coarse leaf already; the reference builds it here.
     const PointCloud coarse = settings.method == SearchMethod::fast
                                   ? PointCloud()
@@ -128,9 +128,7 @@ struct Prepared {
     std::vector<Match> kept;
     for (Match& m : result.matches) {
       m.confidence = detail::assess_match(input, m, rivals);
-      // No probability (a metric the calibration was not fitted for) never passes a cut.
-      if (settings.selection.min_confidence > 0.0 &&
-          !(m.confidence.probability >= settings.selection.min_confidence)) {
+      if (!passes_confidence(m.confidence.probability, settings.selection.min_confidence)) {
         ++result.stats.rejected_confidence;
         result.rejected.push_back({std::move(m), kRejectedConfidence});
       } else {

@@ -80,6 +80,13 @@ struct MatchConfidence {
   std::string doubt;
 };
 
+/// Whether a match of calibrated confidence `probability` passes the cut `min_confidence`: every
+/// match at a cut of 0, none without a probability (NaN) above it. The one rule of
+/// SelectionSettings::min_confidence, the evaluation's cut and PlanSettings::min_confidence.
+inline bool passes_confidence(double probability, double min_confidence) {
+  return min_confidence <= 0.0 || probability >= min_confidence;
+}
+
 /// The doubt line for `confidence`, the match's box `box` (scene frame) naming the directions.
 std::string describe_doubt(const MatchConfidence& confidence, const Box& box);
 

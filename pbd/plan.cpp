@@ -106,13 +106,11 @@ std::vector<const Match*> eligible_matches(const std::vector<Match>& matches,
   return out;
 }
 
-// The matches sure enough to act on, in the order given: a confidence of at least `cut` (every
-// match when the cut is 0; none without a probability otherwise).
+// The matches sure enough to act on (passes_confidence()), in the order given.
 std::vector<const Match*> confident_matches(const std::vector<const Match*>& matches, double cut) {
-  if (cut <= 0.0) return matches;
   std::vector<const Match*> out;
   for (const Match* m : matches) {
-    if (m->confidence.probability >= cut) out.push_back(m);
+    if (passes_confidence(m->confidence.probability, cut)) out.push_back(m);
   }
   return out;
 }
@@ -208,7 +206,7 @@ std::optional<Refusal> locate_landmarks(const Program& program,
     if (sure.empty()) {
       const MatchConfidence& c = eligible.front()->confidence;
       return LandmarkDoubtful{entry->name, c.probability, settings.min_confidence, c.competitor,
-                              c.doubt.empty() ? describe_doubt(c, eligible.front()->box) : c.doubt};
+                              describe_doubt(c, eligible.front()->box)};
     }
     Candidates c;
     c.entry = entry;

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "lmk/geometry/pose.h"
+#include "lmk/landmark/detail/selection_tests.h"
 #include "lmk/landmark/slide_check.h"
 #include "lmk/registration/icp.h"
 
@@ -52,8 +53,7 @@ Rivals find_rivals(const ConfidenceInput& in, const Match& match,
   Rivals r;
   const Eigen::Vector3d centre = match.box.center();
   for (const Match* c : pool) {
-    if (c == &match || !std::isfinite(c->error) || !plausible_alternative(*c, in.selection))
-      continue;
+    if (!std::isfinite(c->error) || !plausible_alternative(*c, in.selection)) continue;
     const double distance = (c->box.center() - centre).norm();
     const double angle =
         rotation_angle_between(match.T_scene_capture.linear(), c->T_scene_capture.linear());
@@ -112,11 +112,7 @@ void measure_support(const ConfidenceInput& in, const Match& match,
 }  // namespace
 
 bool plausible_alternative(const Match& candidate, const SelectionSettings& s) {
-  const ErrorTerms& t = candidate.terms;
-  if (!std::isnan(t.coverage) && t.coverage < s.min_coverage) return false;
-  return !(t.empty_space_probes > 0 &&
-           static_cast<double>(t.empty_space_violations) >
-               s.max_empty_space_violation * static_cast<double>(t.empty_space_probes));
+  return !coverage_too_low(candidate.terms, s) && !empty_space_occupied(candidate.terms, s);
 }
 
 MatchConfidence assess_match(const ConfidenceInput& in, const Match& match,

@@ -32,7 +32,8 @@ struct ConfidenceInput {
 bool plausible_alternative(const Match& candidate, const SelectionSettings& selection);
 
 /// The evidence of `match` against `pool`, every candidate the search scored (the match itself may
-/// be among them), and its calibrated probability and doubt line.
+/// be among them: as the same pose, it is no rival), and its calibrated probability and doubt
+/// line.
 MatchConfidence assess_match(const ConfidenceInput& input, const Match& match,
                              const std::vector<const Match*>& pool);
 
