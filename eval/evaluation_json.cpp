@@ -182,11 +182,13 @@ json cause_rows_to_json(const std::vector<CauseRow>& rows) {
     for (std::size_t k = 0; k < r.missed.size(); ++k) missed[miss_causes()[k]] = r.missed[k];
     for (std::size_t k = 0; k < r.false_matches.size(); ++k)
       false_matches[false_match_causes()[k]] = r.false_matches[k];
-    out.push_back({{"group", r.group},
-                   {"missed", missed},
-                   {"false_matches", false_matches},
-                   {"median_error_at_truth", optional_number(r.median_truth_error)},
-                   {"median_error_of_wrong_winner", optional_number(r.median_winner_error)}});
+    out.push_back(
+        {{"group", r.group},
+         {"missed", missed},
+         {"false_matches", false_matches},
+         {"median_error_at_truth", optional_number(r.median_truth_error)},
+         {"median_error_of_wrong_winner", optional_number(r.median_winner_error)},
+         {"median_confidence_of_wrong_winner", optional_number(r.median_winner_confidence)}});
   }
   return out;
 }
@@ -206,6 +208,7 @@ json explanation_to_json(const std::vector<ExplainedCase>& cases) {
                     {"hidden", optional_number(c.hidden)},
                     {"error_at_truth", optional_number(c.truth_error)},
                     {"error_of_wrong_winner", optional_number(c.winner_error)},
+                    {"confidence_of_wrong_winner", optional_number(c.winner_confidence)},
                     {"nearest_candidate_m", optional_number(c.nearest_candidate_translation)},
                     {"nearest_candidate_rad", optional_number(c.nearest_candidate_rotation)},
                     {"truth_drift_m", optional_number(c.truth_drift_translation)},

@@ -134,19 +134,22 @@ constexpr const char* kExplainNote =
     "kept, turned down or suppressed within the protocol's tolerance of the truth (lmk eval "
     "--explain; docs/evaluation.md). 'at truth' is the median metric value at the true poses of "
     "the misses, aligned and polished from the truth as a candidate there would be; 'wrong "
-    "winner' the median of the wrong matches their pairs reported.";
+    "winner' the median of the wrong matches their pairs reported, 'its confidence' the median "
+    "confidence of every wrong match (misses' winners and false matches).";
 
 // One line per case.
 TextTable case_table(const std::vector<ExplainedCase>& cases, const std::string& metric) {
   TextTable t;
-  t.header = {"scene", "landmark", "kind", "cause", "range m", "at truth", "wrong winner"};
-  t.numeric = {false, false, false, false, true, true, true};
+  t.header = {"scene",   "landmark", "kind",         "cause",
+              "range m", "at truth", "wrong winner", "its confidence"};
+  t.numeric = {false, false, false, false, true, true, true, true};
   const auto error = [&](const std::optional<double>& v) {
     return v ? format_error(*v, metric) : std::string("-");
   };
   for (const ExplainedCase& c : cases) {
     t.rows.push_back({c.scene, c.landmark, c.missed ? "missed" : "false match", c.cause,
-                      format_optional(c.range, 2), error(c.truth_error), error(c.winner_error)});
+                      format_optional(c.range, 2), error(c.truth_error), error(c.winner_error),
+                      format_optional(c.winner_confidence, 2)});
   }
   return t;
 }

@@ -58,6 +58,10 @@ bool within(const Eigen::Isometry3d& truth, const Eigen::Isometry3d& pose, const
          rotation_error(truth.linear(), pose.linear(), symmetry) <= factor * tolerance.rotation;
 }
 
+std::optional<double> finite_or_none(double v) {
+  return std::isfinite(v) ? std::optional<double>(v) : std::nullopt;
+}
+
 ExplainedCase case_of(const PairResult& p, bool missed) {
   ExplainedCase c;
   c.scene = p.scene;
@@ -93,10 +97,12 @@ std::vector<ExplainedCase> explain_pair(const FailedPair& f, const SceneIndex& i
   const auto range = [&](const Eigen::Isometry3d& pose) {
     return (pose.translation() - p.sensor_position).norm();
   };
-  std::optional<double> best_wrong;  // the best reported match assigned to no instance
+  // The best reported match assigned to no instance, and how sure the search was of it.
+  std::optional<double> best_wrong, best_wrong_confidence;
   for (std::size_t i = 0; i < f.assigned.size(); ++i) {
-    if (!f.assigned[i])
-      best_wrong = best_wrong ? std::min(*best_wrong, p.found[i].error) : p.found[i].error;
+    if (f.assigned[i] || (best_wrong && *best_wrong <= p.found[i].error)) continue;
+    best_wrong = p.found[i].error;
+    best_wrong_confidence = finite_or_none(p.found[i].confidence.probability);
   }
   std::vector<ExplainedCase> out;
   std::vector<char> matched(p.truth.size(), 0);
@@ -130,6 +136,7 @@ std::vector<ExplainedCase> explain_pair(const FailedPair& f, const SceneIndex& i
     c.truth_drift_rotation =
         rotation_error(p.truth[k].linear(), refined.box.pose.linear(), p.symmetry);
     c.winner_error = best_wrong;
+    c.winner_confidence = best_wrong_confidence;
     out.push_back(std::move(c));
   }
   for (std::size_t i = 0; i < f.assigned.size(); ++i) {
@@ -139,6 +146,7 @@ std::vector<ExplainedCase> explain_pair(const FailedPair& f, const SceneIndex& i
     c.box = found.box;
     c.range = range(found.box.pose);
     c.winner_error = found.error;
+    c.winner_confidence = finite_or_none(found.confidence.probability);
     if (!p.truth.empty()) c.truth_error = truth_error(0);
     const double radius = find.selection.nms_radius;
     const bool displaced =
@@ -271,11 +279,12 @@ std::vector<CauseRow> grouped_cause_rows(
                       std::vector<std::size_t>(miss_causes().size(), 0),
                       std::vector<std::size_t>(false_match_causes().size(), 0),
                       {},
+                      {},
                       {}});
     }
     return rows[it->second];
   };
-  std::map<std::string, std::vector<double>> truth_errors, winner_errors;
+  std::map<std::string, std::vector<double>> truth_errors, winner_errors, winner_confidences;
   for (const ExplainedCase* c : sorted) {
     std::vector<std::string> groups{"all"};
     if (const std::optional<std::string> g = group_of(*c)) groups.insert(groups.begin(), *g);
@@ -287,6 +296,7 @@ std::vector<CauseRow> grouped_cause_rows(
       (c->missed ? r.missed : r.false_matches).at(k) += 1;
       if (c->missed && c->truth_error) truth_errors[group].push_back(*c->truth_error);
       if (c->missed && c->winner_error) winner_errors[group].push_back(*c->winner_error);
+      if (c->winner_confidence) winner_confidences[group].push_back(*c->winner_confidence);
     }
   }
   // "all" last.
@@ -295,6 +305,9 @@ std::vector<CauseRow> grouped_cause_rows(
   for (CauseRow& r : rows) {
     if (!truth_errors[r.group].empty()) r.median_truth_error = median(truth_errors[r.group]);
     if (!winner_errors[r.group].empty()) r.median_winner_error = median(winner_errors[r.group]);
+    if (!winner_confidences[r.group].empty()) {
+      r.median_winner_confidence = median(winner_confidences[r.group]);
+    }
   }
   return rows;
 }
@@ -343,6 +356,7 @@ TextTable cause_table(const std::vector<CauseRow>& rows, const std::string& metr
   for (const std::string& c : false_match_causes()) table.header.push_back("false: " + c);
   table.header.push_back("at truth");
   table.header.push_back("wrong winner");
+  table.header.push_back("its confidence");
   table.numeric.assign(table.header.size(), true);
   table.numeric[0] = false;
   const auto error = [&](const std::optional<double>& v) {
@@ -354,6 +368,7 @@ TextTable cause_table(const std::vector<CauseRow>& rows, const std::string& metr
     for (std::size_t n : r.false_matches) line.push_back(std::to_string(n));
     line.push_back(error(r.median_truth_error));
     line.push_back(error(r.median_winner_error));
+    line.push_back(format_optional(r.median_winner_confidence, 2));
     table.rows.push_back(std::move(line));
   }
   return table;

@@ -62,6 +62,9 @@ struct ExplainedCase {
   std::optional<double> truth_error;
   /// A missed instance: the best wrong match of its pair that was reported; a false match: its own.
   std::optional<double> winner_error;
+  /// The calibrated confidence of that wrong match (match_confidence.h), when it has one: how sure
+  /// the search was of the pose it got wrong.
+  std::optional<double> winner_confidence;
   /// A missed instance: the nearest candidate of any fate, m and rad (modulo symmetry).
   std::optional<double> nearest_candidate_translation, nearest_candidate_rotation;
   /// A missed instance: how far aligning and polishing moved the true pose, m and rad (modulo
@@ -85,6 +88,8 @@ struct CauseRow {
   std::vector<std::size_t> missed;                                ///< by miss_causes()
   std::vector<std::size_t> false_matches;                         ///< by false_match_causes()
   std::optional<double> median_truth_error, median_winner_error;  ///< over the group's misses
+  /// Over the group's misses and false matches: the median confidence of the wrong matches.
+  std::optional<double> median_winner_confidence;
 };
 std::vector<CauseRow> cause_rows(const std::vector<ExplainedCase>& cases,
                                  std::optional<double> bin_width = std::nullopt);
@@ -92,7 +97,8 @@ std::vector<CauseRow> cause_rows_by_hidden(const std::vector<ExplainedCase>& cas
                                            double bin_width = 0.2);
 
 /// The rows as a table: a column per cause, then the median metric value at the true poses of the
-/// misses beside the median of the wrong matches that were reported, in `metric`'s unit.
+/// misses beside the median of the wrong matches that were reported, in `metric`'s unit, and the
+/// median confidence of the wrong matches.
 TextTable cause_table(const std::vector<CauseRow>& rows, const std::string& metric);
 
 }  // namespace lmk

@@ -121,6 +121,8 @@ struct Prepared {
         settings.method == SearchMethod::fast ? prepared.coarse() : coarse,
         prepared.tree(),
         metric.unit == ErrorMetric::Unit::sigma,
+        metric,
+        view,
         settings.selection,
         calibration};
     std::vector<const Match*> rivals;

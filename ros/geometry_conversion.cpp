@@ -1,9 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "lmk/ros/geometry_conversion.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "lmk/geometry/pose.h"
+#include "lmk/geometry/settings_schema.h"
 
 namespace lmk::ros1 {
 
@@ -65,6 +68,25 @@ lmk_msgs::LandmarkMatch to_ros(const Match& match, const std::string& name, std:
   out.box_size = to_ros(match.box.size);
   out.error = match.error;
   out.terms = to_ros(match.terms);
+  out.confidence = to_ros(match.confidence);
+  return out;
+}
+
+lmk_msgs::MatchConfidence to_ros(const MatchConfidence& c) {
+  lmk_msgs::MatchConfidence out;
+  out.probability = c.probability;
+  out.margin = c.margin;
+  out.error_sigma = c.error_sigma;
+  out.range = c.range;
+  out.support = c.support;
+  out.freedom = c.freedom;
+  out.coverage = c.coverage;
+  out.competitor_kind = setting_name(c.competitor.kind);
+  out.competitor_box_pose = to_ros(c.competitor.box.pose);
+  out.competitor_error = c.competitor.error;
+  out.competitor_distance = c.competitor.distance;
+  out.competitor_angle = c.competitor.angle;
+  out.doubt = c.doubt;
   return out;
 }
 
@@ -91,6 +113,12 @@ visualization_msgs::Marker marker(const std::string& frame_id, const std::string
   return m;
 }
 
+// Red at 0, yellow at a half, green at 1: how sure a match is, at a glance.
+std_msgs::ColorRGBA confidence_colour(double probability, float alpha) {
+  const float p = static_cast<float>(std::clamp(probability, 0.0, 1.0));
+  return rgba(std::min(1.0f, 2.0f * (1.0f - p)), std::min(1.0f, 2.0f * p), 0.1f, alpha);
+}
+
 }  // namespace
 
 visualization_msgs::Marker box_marker(const Box& box, const std::string& frame_id,
@@ -114,7 +142,13 @@ visualization_msgs::MarkerArray match_markers(const std::vector<lmk_msgs::Landma
         marker(frame_id, "lmk_matches", id++, visualization_msgs::Marker::CUBE);
     box.pose = match.box_pose;
     box.scale = match.box_size;
-    box.color = match.rank == 1 ? rgba(0.1f, 0.8f, 0.2f, 0.4f) : rgba(1.0f, 0.55f, 0.0f, 0.3f);
+    const float alpha = match.rank == 1 ? 0.45f : 0.3f;
+    const double p = match.confidence.probability;
+    if (std::isfinite(p)) {
+      box.color = confidence_colour(p, alpha);
+    } else {
+      box.color = match.rank == 1 ? rgba(0.1f, 0.8f, 0.2f, alpha) : rgba(1.0f, 0.55f, 0.0f, alpha);
+    }
     array.markers.push_back(box);
 
     visualization_msgs::Marker label =
@@ -123,10 +157,14 @@ visualization_msgs::MarkerArray match_markers(const std::vector<lmk_msgs::Landma
     label.pose.position.z += 0.5 * match.box_size.z + 0.04;
     label.scale.z = 0.04;  // text height, m
     label.color = rgba(1.0f, 1.0f, 1.0f, 1.0f);
-    char text[160];
+    char text[200];
     std::snprintf(text, sizeof text, "%s #%u  %.1f mm", match.landmark.c_str(), match.rank,
                   1000.0 * match.error);
     label.text = text;
+    if (std::isfinite(p)) {
+      std::snprintf(text, sizeof text, "  confidence %.2f", p);
+      label.text += text;
+    }
     array.markers.push_back(label);
   }
   return array;

@@ -7,6 +7,7 @@
 #include <geometry_msgs/Vector3.h>
 #include <lmk_msgs/ErrorTerms.h>
 #include <lmk_msgs/LandmarkMatch.h>
+#include <lmk_msgs/MatchConfidence.h>
 #include <visualization_msgs/Marker.h>
 #include <visualization_msgs/MarkerArray.h>
 
@@ -28,6 +29,7 @@ Eigen::Isometry3d from_ros(const geometry_msgs::Pose& pose, const std::string& w
 Eigen::Vector3d from_ros(const geometry_msgs::Vector3& v);
 
 lmk_msgs::ErrorTerms to_ros(const ErrorTerms& terms);
+lmk_msgs::MatchConfidence to_ros(const MatchConfidence& confidence);
 /// One match of the landmark `name`, ranked `rank` (1 for the best).
 lmk_msgs::LandmarkMatch to_ros(const Match& match, const std::string& name, std::uint32_t rank);
 
@@ -36,8 +38,10 @@ visualization_msgs::Marker box_marker(const Box& box, const std::string& frame_i
                                       const std::string& ns, int id);
 
 /// What the node publishes after a search: a DELETEALL (so that the last search's boxes go), then
-/// per match a box (the best of each landmark green, the others orange) and a label with the
-/// landmark, rank and error. Markers carry the stamp 0, so that RViz draws them with the latest TF.
+/// per match a box coloured by its confidence (red through yellow to green as it rises from 0 to
+/// 1; without one, the best of each landmark green and the others orange) and a label with the
+/// landmark, rank, error and confidence. Markers carry the stamp 0, so that RViz draws them with
+/// the latest TF.
 visualization_msgs::MarkerArray match_markers(const std::vector<lmk_msgs::LandmarkMatch>& matches,
                                               const std::string& frame_id);
 

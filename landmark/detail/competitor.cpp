@@ -109,7 +109,53 @@ void measure_support(const ConfidenceInput& in, const Match& match,
   }
 }
 
+// Probe offsets along a motion: from one same-pose step out to `reach`, half a step apart (so that
+// a pose between two probes lies within a quarter step of one), at most kMaxProbesPerSide a side.
+constexpr std::size_t kMaxProbesPerSide = 8;
+
+std::vector<double> probe_offsets(double step, double reach) {
+  std::vector<double> out;
+  for (std::size_t k = 0; k < kMaxProbesPerSide; ++k) {
+    const double offset = step * (1.0 + 0.5 * static_cast<double>(k));
+    if (offset > reach) break;
+    out.push_back(offset);
+    out.push_back(-offset);
+  }
+  return out;
+}
+
 }  // namespace
+
+std::vector<Match> probe_freest_motion(const ConfidenceInput& in, const Match& match,
+                                       const MatchConfidence& confidence) {
+  const Slide& freest = confidence.freest;
+  std::vector<Match> out;
+  if (!(confidence.freedom >= 0.5 * kSamePoseDistance)) return out;
+  const Eigen::Vector3d axis = freest.axis.normalized();
+  // A slide as far as the box reaches along it (beyond, the landmark would have left its own
+  // box); a turn up to half a revolution either way.
+  const Eigen::Vector3d along = match.box.pose.linear().transpose() * axis;
+  const std::vector<double> offsets =
+      freest.turn ? probe_offsets(kSamePoseAngle, M_PI)
+                  : probe_offsets(kSamePoseDistance, along.cwiseAbs().dot(match.box.size));
+  const SceneView scene{in.index};
+  for (const double offset : offsets) {
+    Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
+    if (freest.turn) {
+      motion = Eigen::Translation3d(freest.through) * Eigen::AngleAxisd(offset, axis) *
+               Eigen::Translation3d(-freest.through);
+    } else {
+      motion.translation() = offset * axis;
+    }
+    Match probe;
+    probe.T_scene_capture = motion * match.T_scene_capture;
+    probe.box = in.landmark.box.transformed(probe.T_scene_capture);
+    probe.terms = in.metric.evaluate(scene, in.view, probe.T_scene_capture);
+    probe.error = probe.terms.error;
+    out.push_back(std::move(probe));
+  }
+  return out;
+}
 
 bool plausible_alternative(const Match& candidate, const SelectionSettings& s) {
   return !coverage_too_low(candidate.terms, s) && !empty_space_occupied(candidate.terms, s);
@@ -124,6 +170,11 @@ MatchConfidence assess_match(const ConfidenceInput& in, const Match& match,
   const double noise = in.index.settings().depth_noise().residual_sigma(capture_range, c.range);
   measure_support(in, match, points, noise, c);
   c.coverage = match.terms.coverage;
+  // The rivals: every candidate of the search, and the poses along the match's freest motion that
+  // none of them stood at.
+  const std::vector<Match> probes = probe_freest_motion(in, match, c);
+  std::vector<const Match*> rivals_pool = pool;
+  for (const Match& p : probes) rivals_pool.push_back(&p);
 
   // The error is a mean over the supporting points; its spread from the noise alone falls with
   // the square root of their count. In metres the residual sigma sets its scale (scaled as the
@@ -132,7 +183,7 @@ MatchConfidence assess_match(const ConfidenceInput& in, const Match& match,
   c.error_sigma = unit / std::sqrt(static_cast<double>(std::max<std::size_t>(c.support, 1)));
   c.fit = match.error / unit;
 
-  const Rivals rivals = find_rivals(in, match, pool, points);
+  const Rivals rivals = find_rivals(in, match, rivals_pool, points);
   const auto margin = [&](const Match* rival) {
     return rival ? (rival->error - match.error) / c.error_sigma
                  : std::numeric_limits<double>::infinity();

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "lmk/landmark/confidence_calibration.h"
+#include "lmk/landmark/error_metrics.h"
 #include "lmk/landmark/find_landmark.h"
 #include "lmk/landmark/find_settings.h"
 #include "lmk/landmark/scene_index.h"
@@ -22,6 +23,10 @@ struct ConfidenceInput {
   const PointCloud& coarse_landmark;
   const KdTree& landmark_tree;  ///< the landmark's points, capture frame
   bool error_in_sigma;          ///< the metric's unit is the sensor's sigma, not metres
+  /// The search's metric and its view of the landmark: the poses along a match's freest motion
+  /// that no candidate stood at are scored with them (probe_freest_motion()).
+  const ErrorMetric& metric;
+  const LandmarkView& view;
   const SelectionSettings& selection;
   /// The calibration to apply; null when none was fitted for the metric (calibration_for()).
   const ConfidenceCalibration* calibration;
@@ -30,6 +35,14 @@ struct ConfidenceInput {
 /// Whether `candidate` could have been a match but for its error: it passes the coverage and the
 /// empty-space tests of `selection` (a pose that fails them is no alternative a robot could take).
 bool plausible_alternative(const Match& candidate, const SelectionSettings& selection);
+
+/// The match moved along its freest motion (`confidence.freest`, measured first): slid, or turned
+/// about its axis, by whole same-pose steps (kSamePoseDistance, kSamePoseAngle) out to the
+/// landmark box's extent, each pose scored with the search's metric. A search whose candidates
+/// all converged near a wrong spot on a long edge met no rival there; the truth is one of these.
+/// Empty when the match's freedom is under half a same-pose step: a pose the scene pins.
+std::vector<Match> probe_freest_motion(const ConfidenceInput& input, const Match& match,
+                                       const MatchConfidence& confidence);
 
 /// The evidence of `match` against `pool`, every candidate the search scored (the match itself may
 /// be among them: as the same pose, it is no rival), and its calibrated probability and doubt

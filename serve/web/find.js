@@ -8,6 +8,27 @@ function formatError(error, unit) {
   return unit === 'sd' ? `${error.toFixed(3)} sd` : `${(1000 * error).toFixed(3)} mm`;
 }
 
+/** A match's calibrated confidence, "0.87", or "–" when no calibration applies. */
+function formatConfidence(confidence) {
+  if (!confidence || confidence.probability === null) return '–';
+  return confidence.probability.toFixed(2);
+}
+
+/** The competing pose in words: "slide 8.0 cm, 2° away, error 4.100 mm". */
+function competitorText(rival, unit) {
+  return `${rival.kind} ${(100 * rival.distance).toFixed(1)} cm, ` +
+      `${(rival.angle * 180 / Math.PI).toFixed(0)}° away, error ${formatError(rival.error, unit)}`;
+}
+
+/** The tooltip's lines on how sure a match is, each ending in a newline. */
+function confidenceText(confidence, unit) {
+  if (!confidence) return '';
+  let text = `confidence ${formatConfidence(confidence)}\n`;
+  if (confidence.doubt) text += `doubt: ${confidence.doubt}\n`;
+  if (confidence.competitor) text += `competitor: ${competitorText(confidence.competitor, unit)}\n`;
+  return text;
+}
+
 export class FindPanel {
   constructor(app, info) {
     this.app = app;
@@ -94,7 +115,7 @@ export class FindPanel {
     const table = document.getElementById('matches');
     table.replaceChildren();
     const head = table.insertRow();
-    for (const h of ['landmark', 'rank', 'error', 'x', 'y', 'z']) {
+    for (const h of ['landmark', 'rank', 'error', 'confidence', 'x', 'y', 'z']) {
       head.append(Object.assign(document.createElement('th'), {textContent: h}));
     }
     const boxes = [];
@@ -108,7 +129,8 @@ export class FindPanel {
       for (const m of r.rejected || []) rows.push({m, rank: '–', rejected: true});
       for (const {m, rank, rejected} of rows) {
         const tooltip = `${r.landmark} ${rejected ? `rejected: ${m.reason}` : `#${rank}`}\n` +
-            `error ${formatError(m.error, r.error_unit)}\n${this.app.termsText(m)}`;
+            `error ${formatError(m.error, r.error_unit)}\n` +
+            confidenceText(m.confidence, r.error_unit) + this.app.termsText(m);
         const row = table.insertRow();
         row.className = rejected ? 'rejected' : 'match';
         row.dataset.landmark = r.landmark;
@@ -116,7 +138,7 @@ export class FindPanel {
         row.title = tooltip;
         for (const text
                  of [r.landmark, rank, formatError(m.error, r.error_unit),
-                     ...m.position.map((v) => v.toFixed(3))]) {
+                     formatConfidence(m.confidence), ...m.position.map((v) => v.toFixed(3))]) {
           row.insertCell().textContent = text;
         }
         const box = {position: m.position, quaternion: m.quaternion, size: r.box_size};
@@ -124,9 +146,24 @@ export class FindPanel {
           box,
           rejected,
           tooltip,
-          label:
-              `${r.landmark} ${rejected ? '✗' : `#${rank}`} ` + formatError(m.error, r.error_unit)
+          confidence: m.confidence ? m.confidence.probability : null,
+          label: `${r.landmark} ${rejected ? '✗' : `#${rank}`} ` +
+              formatError(m.error, r.error_unit) +
+              (m.confidence && m.confidence.probability !== null ?
+                   ` (${formatConfidence(m.confidence)})` :
+                   '')
         });
+        // The pose that competes with a kept match, drawn as a ghost of its box: where else the
+        // landmark would fit almost as well.
+        const rival = !rejected && m.confidence && m.confidence.competitor;
+        if (rival) {
+          boxes.push({
+            box: {position: rival.position, quaternion: rival.quaternion, size: r.box_size},
+            competitor: true,
+            tooltip: `competitor of ${r.landmark} #${rank}: ${competitorText(rival, r.error_unit)}`,
+            label: `${r.landmark} #${rank}'s ${rival.kind}`
+          });
+        }
       }
     }
     document.getElementById('find-message').textContent = lines.join('\n');

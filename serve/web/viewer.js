@@ -57,6 +57,16 @@ function wireBox(color) {
   return group;
 }
 
+// A match's box colour: a rejected candidate dull red, a competing pose grey, a match by its
+// confidence from red (0) through yellow to green (1), or plain green without one.
+function boxColour(item) {
+  if (item.rejected) return 0xcc6666;
+  if (item.competitor) return 0x999999;
+  if (item.confidence === null || item.confidence === undefined) return 0x66ff66;
+  const p = Math.min(Math.max(item.confidence, 0), 1);
+  return new THREE.Color(Math.min(1, 2 * (1 - p)), Math.min(1, 2 * p), 0.2).getHex();
+}
+
 // A parallel gripper at the end-effector frame: palm across y, fingers along +x.
 function gripper(color, closed) {
   const gap = closed ? 0.02 : 0.08;
@@ -248,7 +258,7 @@ export class Viewer {
   showBoxes(items) {
     this.clear('matches');
     for (const item of items) {
-      const mesh = wireBox(item.rejected ? 0xcc6666 : 0x66ff66);
+      const mesh = wireBox(boxColour(item));
       applyBox(mesh, item.box);
       this.layers.matches.add(mesh);
       this.addLabel(mesh, item.label, 'matches');

@@ -174,7 +174,7 @@ Evaluation hand_made() {
   found.setting = "simple";
   found.in_context = true;
   found.truth = {Eigen::Isometry3d::Identity()};
-  found.found = {{Box(Eigen::Isometry3d::Identity(), {0.1, 0.1, 0.1}), 0.002, {}}};
+  found.found = {{Box(Eigen::Isometry3d::Identity(), {0.1, 0.1, 0.1}), 0.002, {}, {}}};
   found.seconds = 0.05;
   PairResult nothing = found;
   nothing.scene = "s2";
@@ -192,7 +192,7 @@ TEST(EvaluationByHidden, InstancesCountInTheirBinAndFalseMatchesInNone) {
   PairResult& p = e.pairs[0];
   p.truth = {Eigen::Isometry3d::Identity(), pose_from_xyz_rpy({1, 0, 0}, {0, 0, 0})};
   p.truth_hidden = {0.1, 0.5};
-  p.found.push_back({Box(pose_from_xyz_rpy({3, 0, 0}, {0, 0, 0}), {0.1, 0.1, 0.1}), 0.003, {}});
+  p.found.push_back({Box(pose_from_xyz_rpy({3, 0, 0}, {0, 0, 0}), {0.1, 0.1, 0.1}), 0.003, {}, {}});
   const std::vector<EvaluationRow> rows = evaluation_rows_by_hidden(e);
   // Two bins, assumptions 1 and 2; the pair's best match (right) in its first instance's bin.
   ASSERT_EQ(rows.size(), 5u);
@@ -237,7 +237,10 @@ TEST(EvaluationByViews, InstancesAndFalseMatchesCountInTheirViewsAndAzimuth) {
   }
   // A false match turned by 65 degrees: its views lie 65 and 155 degrees from the sensor.
   e.pairs[0].found.push_back(
-      {Box(pose_from_xyz_rpy({0, 0, 0}, {0, 0, 65.0 * M_PI / 180.0}), {0.1, 0.1, 0.1}), 0.003, {}});
+      {Box(pose_from_xyz_rpy({0, 0, 0}, {0, 0, 65.0 * M_PI / 180.0}), {0.1, 0.1, 0.1}),
+       0.003,
+       {},
+       {}});
   const std::vector<EvaluationRow> rows = evaluation_rows_by_views(e);
   std::map<std::pair<std::string, int>, Counts> by;
   for (const EvaluationRow& r : rows) by[{r.setting, r.assumption}] = r.counts;

@@ -17,13 +17,24 @@ Eigen::Isometry3d capture_camera() {
   return camera_look_at({0, -0.8, kTable + 0.9}, {0, 0, kTable}, Eigen::Vector3d::UnitZ());
 }
 
+PointCloud render_on_table(TriangleMesh world, const Eigen::Isometry3d& camera) {
+  world.append(make_box_mesh({1.4, 1.0, 0.04}),
+               pose_from_xyz_rpy({0, 0, kTable - 0.02}, {0, 0, 0}));
+  DepthSensorSettings sensor;
+  sensor.noise = false;
+  sensor.width = 320;  // a half-resolution sensor keeps the test fast; the geometry is the same
+  sensor.height = 240;
+  sensor.fx = sensor.fy = 262.5;
+  sensor.cx = 159.5;
+  sensor.cy = 119.5;
+  return render_depth(world, camera, sensor);
+}
+
 PointCloud render_scene(const std::vector<Eigen::Vector2d>& positions, bool distractors,
                         const std::vector<Eigen::Isometry3d>& floating,
                         const Eigen::Isometry3d& camera) {
   TriangleMesh world;
   for (const auto& pose : floating) world.append(l_shape(), pose);
-  world.append(make_box_mesh({1.4, 1.0, 0.04}),
-               pose_from_xyz_rpy({0, 0, kTable - 0.02}, {0, 0, 0}));
   for (const auto& xy : positions) {
     world.append(l_shape(), pose_from_xyz_rpy({xy.x(), xy.y(), kTable}, {0, 0, 0}));
   }
@@ -34,14 +45,7 @@ PointCloud render_scene(const std::vector<Eigen::Vector2d>& positions, bool dist
     world.append(make_box_mesh({0.15, 0.1, 0.03}),
                  pose_from_xyz_rpy({0.4, 0.2, kTable + 0.015}, {0, 0, 0.3}));
   }
-  DepthSensorSettings sensor;
-  sensor.noise = false;
-  sensor.width = 320;  // a half-resolution sensor keeps the test fast; the geometry is the same
-  sensor.height = 240;
-  sensor.fx = sensor.fy = 262.5;
-  sensor.cx = 159.5;
-  sensor.cy = 119.5;
-  return render_depth(world, camera, sensor);
+  return render_on_table(std::move(world), camera);
 }
 
 const std::vector<Eigen::Vector2d> kCopies = {{-0.45, -0.1}, {-0.1, -0.15}, {0.3, -0.05}};

@@ -21,6 +21,9 @@ TriangleMesh l_shape();
 /// The capture camera: above and in front of the table, looking down at about 48 degrees.
 Eigen::Isometry3d capture_camera();
 
+/// `world` on the table, rendered from `camera` by the tests' noiseless half-resolution Kinect.
+PointCloud render_on_table(TriangleMesh world, const Eigen::Isometry3d& camera = capture_camera());
+
 /// The table with L-shapes standing at `positions` (on the table top), the distractors when
 /// `distractors`, and L-shapes at the `floating` poses; rendered from `camera`.
 PointCloud render_scene(const std::vector<Eigen::Vector2d>& positions, bool distractors,

@@ -63,10 +63,11 @@ class PlanTest : public ::testing::Test {
     return r;
   }
 
-  Plan plan_in(const PointCloud& scene, const Program& p, const SimulatedPr2& r) const {
+  Plan plan_in(const PointCloud& scene, const Program& p, const SimulatedPr2& r,
+               const PlanSettings& settings = {}) const {
     JointState state;
     EXPECT_TRUE(r.read_joint_state(state).ok());
-    return plan(p, {{"l", *landmark_}}, scene, r.kinematics(), state);
+    return plan(p, {{"l", *landmark_}}, scene, r.kinematics(), state, settings);
   }
 
   static Landmark* landmark_;
@@ -130,6 +131,34 @@ TEST_F(PlanTest, AMissingLandmarkIsRefusedByNameAndNothingMoves) {
   EXPECT_NE(report.error.find("landmark 'l' not found"), std::string::npos) << report.error;
   EXPECT_TRUE(r.history().empty());
   EXPECT_EQ(r.time(), 0.0);  // not even a gripper moved
+}
+
+TEST_F(PlanTest, ADoubtfulLandmarkIsRefusedWithItsConfidenceAndNothingMoves) {
+  // Two copies of the L: each is the other's look-alike. Found, but no surer than the cut asks.
+  const PointCloud scene = scene_in_base({{0.3, -0.25}, {-0.1, -0.15}}, false);
+  SimulatedPr2 r = robot();
+  PlanSettings settings;
+  const Plan acting = plan_in(scene, program(), r, settings);
+  ASSERT_NE(acting.landmark("l"), nullptr) << describe(*acting.refusal);
+  const double confidence = acting.landmark("l")->match.confidence.probability;
+  ASSERT_GT(confidence, 0.0);
+  ASSERT_LT(confidence, 1.0);
+  settings.min_confidence = 0.5 * (confidence + 1.0);  // above every instance's confidence
+  const Plan p = plan_in(scene, program(), r, settings);
+  ASSERT_FALSE(p.valid());
+  const auto* doubtful = std::get_if<LandmarkDoubtful>(&*p.refusal);
+  ASSERT_NE(doubtful, nullptr) << describe(*p.refusal);
+  EXPECT_EQ(doubtful->landmark, "l");
+  EXPECT_LT(doubtful->confidence, settings.min_confidence);
+  EXPECT_EQ(doubtful->min_confidence, settings.min_confidence);
+  EXPECT_EQ(doubtful->competitor.kind, Competitor::Kind::look_alike);
+  EXPECT_EQ(std::string(refusal_kind(*p.refusal)), "landmark-doubtful");
+  EXPECT_NE(describe(*p.refusal).find("'l'"), std::string::npos) << describe(*p.refusal);
+  EXPECT_TRUE(p.steps.empty());
+  const ExecutionReport report = execute(p, r);
+  EXPECT_FALSE(report.started);
+  EXPECT_TRUE(r.history().empty());
+  EXPECT_EQ(r.time(), 0.0);
 }
 
 TEST_F(PlanTest, AnUnreachableStepIsRefusedBeforeTheReachableOnesRun) {

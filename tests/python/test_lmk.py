@@ -47,6 +47,9 @@ def test_find_gives_exactly_lmk_find_json(tabletop):
         assert m["pose"].shape == (4, 4) and m["box"]["pose"].shape == (4, 4)
         # The box is the landmark's capture box moved by the pose.
         np.testing.assert_allclose(m["box"]["pose"][:3, 3], m["position"], atol=1e-12)
+        # Every match says how sure it is (a calibrated probability) and what competes with it.
+        assert 0.0 <= m["confidence"]["probability"] <= 1.0
+        assert "competitor" in m["confidence"]
 
 
 def test_settings_are_the_flags_with_their_units_and_checks(tabletop):

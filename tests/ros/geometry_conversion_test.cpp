@@ -67,6 +67,42 @@ TEST(GeometryConversion, MatchMarkersClearTheLastSearchThenDrawEachMatch) {
   EXPECT_NE(array.markers[1].id, array.markers[3].id);
 }
 
+TEST(GeometryConversion, AMatchCarriesItsConfidenceAndCompetitor) {
+  Match match;
+  match.box = Box(Eigen::Isometry3d::Identity(), Eigen::Vector3d(0.1, 0.1, 0.2));
+  match.confidence.probability = 0.3;
+  match.confidence.competitor.kind = Competitor::Kind::slide;
+  match.confidence.competitor.distance = 0.08;
+  match.confidence.competitor.box =
+      Box(pose_from_xyz_rpy({0.08, 0, 0}, {0, 0, 0}), Eigen::Vector3d(0.1, 0.1, 0.2));
+  match.confidence.doubt = "a pose 8 cm along the box's x fits within the noise";
+  const lmk_msgs::LandmarkMatch msg = to_ros(match, "cup", 1);
+  EXPECT_DOUBLE_EQ(msg.confidence.probability, 0.3);
+  EXPECT_EQ(msg.confidence.competitor_kind, "slide");
+  EXPECT_DOUBLE_EQ(msg.confidence.competitor_box_pose.position.x, 0.08);
+  EXPECT_EQ(msg.confidence.doubt, match.confidence.doubt);
+}
+
+TEST(GeometryConversion, MatchMarkersAreColouredByConfidence) {
+  Match sure, doubtful, uncalibrated;
+  for (Match* m : {&sure, &doubtful, &uncalibrated}) {
+    m->box = Box(Eigen::Isometry3d::Identity(), Eigen::Vector3d(0.1, 0.1, 0.2));
+    m->error = 0.003;
+  }
+  sure.confidence.probability = 0.95;
+  doubtful.confidence.probability = 0.1;
+  const visualization_msgs::MarkerArray array = match_markers(
+      {to_ros(sure, "cup", 1), to_ros(doubtful, "cup", 2), to_ros(uncalibrated, "cup", 3)},
+      "base_link");
+  ASSERT_EQ(array.markers.size(), 7u);
+  const std_msgs::ColorRGBA& green = array.markers[1].color;
+  const std_msgs::ColorRGBA& red = array.markers[3].color;
+  EXPECT_GT(green.g, green.r);
+  EXPECT_GT(red.r, red.g);
+  EXPECT_EQ(array.markers[2].text, "cup #1  3.0 mm  confidence 0.95");
+  EXPECT_EQ(array.markers[6].text, "cup #3  3.0 mm");  // no calibration: no confidence shown
+}
+
 TEST(BoxCaptureMarkers, DraggingAFaceResizesTheBoxAndKeepsTheOppositeFace) {
   const Box box(pose_from_xyz_rpy(Eigen::Vector3d(1, 0, 0.5), Eigen::Vector3d(0, 0, M_PI / 2)),
                 Eigen::Vector3d(0.2, 0.4, 0.6));

@@ -192,7 +192,7 @@ async function main() {
   // 5. What the page shows, against lmk find on the same files.
   const shown = await page.evaluate(`[...document.querySelectorAll('#matches tr.match')]
       .map((row) => ({landmark: row.dataset.landmark, error: Number(row.dataset.error),
-                      text: row.cells[2].textContent}))`);
+                      text: row.cells[2].textContent, confidence: row.cells[3].textContent}))`);
   const result = await page.evaluate('lmk.find.last.results[0]');
   await saveScreenshot(page, 'find.png');
   const cli = JSON.parse(execFileSync(lmk, ['find', scene, file, '--json', '-', ...flags]));
@@ -208,6 +208,11 @@ async function main() {
     check(
         shown[i].text === `${(1000 * m.error).toFixed(3)} mm`,
         `match ${i + 1}: the page reads '${shown[i].text}' for ${m.error} m`);
+    const probability = m.confidence.probability;
+    const confidence = probability === null ? '–' : probability.toFixed(2);
+    check(
+        shown[i].confidence === confidence,
+        `match ${i + 1}: the page reads confidence '${shown[i].confidence}' for ${probability}`);
     const p = result.matches[i].position;
     check(
         p.every((v, k) => Math.abs(v - m.position[k]) < 1e-9),

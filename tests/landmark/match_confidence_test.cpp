@@ -1,0 +1,85 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// A match's confidence (match_confidence.h) on scenes built here, where the answer is known from
+// the geometry alone: two identical objects are look-alikes of each other, a box cut out of a long
+// beam slides along it, and an L-shape alone on a table is pinned by its own corners.
+
+#include "lmk/landmark/match_confidence.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "lmk/eval/mesh.h"
+#include "lmk/geometry/pose.h"
+#include "lmk/landmark/find_landmark.h"
+#include "tests/landmark/l_shape_scene.h"
+
+namespace lmk {
+namespace {
+
+using namespace test_scenes;
+
+const MatchConfidence& only_match(const FindResult& r) {
+  EXPECT_FALSE(r.matches.empty());
+  return r.matches.front().confidence;
+}
+
+TEST(MatchConfidence, TwoIdenticalObjectsAreEachOthersLookAlike) {
+  const PointCloud scene = render_scene({kCopies[0], kCopies[1]}, false);
+  const Landmark landmark = capture(scene, box_at(kCopies[0]), "L");
+  const FindResult r = find_landmark(scene, landmark, FindSettings());
+  ASSERT_EQ(r.matches.size(), 2u);
+  const double apart = (box_at(kCopies[0]).center() - box_at(kCopies[1]).center()).norm();
+  for (const Match& m : r.matches) {
+    const MatchConfidence& c = m.confidence;
+    EXPECT_EQ(c.competitor.kind, Competitor::Kind::look_alike);
+    EXPECT_NEAR(c.competitor.distance, apart, 0.01);
+    // The rival is the other copy, as good as this one within the noise: no clear winner.
+    EXPECT_LT(std::abs(c.elsewhere_margin), 10.0);
+    EXPECT_EQ(c.margin, c.elsewhere_margin);
+    EXPECT_GE(c.probability, 0.0);
+    EXPECT_LE(c.probability, 1.0);
+  }
+}
+
+TEST(MatchConfidence, AnLShapeAloneHasNoRivalAndIsPinned) {
+  const PointCloud scene = render_scene({kCopies[1]}, false);
+  const Landmark landmark = capture(scene, box_at(kCopies[1]), "L");
+  const FindResult r = find_landmark(scene, landmark, FindSettings());
+  ASSERT_EQ(r.matches.size(), 1u);
+  const MatchConfidence& c = only_match(r);
+  EXPECT_EQ(c.competitor.kind, Competitor::Kind::none);
+  EXPECT_TRUE(std::isinf(c.margin));
+  // Its corners fix it: no motion moves it half a same-pose step within the noise.
+  EXPECT_LT(c.freedom, 0.5 * kSamePoseDistance);
+  EXPECT_GT(c.support, 30u);
+  EXPECT_NEAR(c.coverage, 1.0, 0.05);
+  EXPECT_GT(c.probability, 0.8);
+  EXPECT_TRUE(c.doubt.empty());
+}
+
+TEST(MatchConfidence, ABoxCutFromALongBeamSlidesAlongIt) {
+  // A beam 80 cm long, 6 cm square, lying across the table along x; the box holds 20 cm of it,
+  // with free space above and on its sides, and the beam going on through both of its ends.
+  TriangleMesh beam;
+  beam.append(make_box_mesh({0.8, 0.06, 0.06}),
+              pose_from_xyz_rpy({0, 0, kTable + 0.03}, {0, 0, 0}));
+  const PointCloud scene = render_on_table(beam);
+  const Box box(pose_from_xyz_rpy({0.05, 0, kTable + 0.045}, {0, 0, 0}), {0.2, 0.1, 0.085});
+  const Landmark landmark = capture(scene, box, "beam");
+  const FindResult r = find_landmark(scene, landmark, FindSettings());
+  ASSERT_FALSE(r.matches.empty());
+  const MatchConfidence& c = only_match(r);
+  EXPECT_FALSE(c.freest.turn);
+  EXPECT_GT(std::abs(c.freest.axis.x()), 0.95);  // free along the beam
+  EXPECT_GT(c.freedom, kSamePoseDistance);
+  EXPECT_EQ(c.competitor.kind, Competitor::Kind::slide);
+  EXPECT_GE(c.competitor.distance, kSamePoseDistance);
+  EXPECT_LT(std::abs(c.competitor.box.center().y() - r.matches.front().box.center().y()), 0.01);
+  EXPECT_LT(c.local_margin, 3.0);  // the slid pose fits within the noise of the match
+  EXPECT_LT(c.probability, kDefaultMinConfidence);
+  EXPECT_NE(c.doubt.find("along the box's x"), std::string::npos) << c.doubt;
+}
+
+}  // namespace
+}  // namespace lmk
