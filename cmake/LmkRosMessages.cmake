@@ -83,6 +83,9 @@ function(lmk_generate_ros_python)
     list(APPEND include_flags -I ${dep}:${LMK_ROS_SHARE}/${dep}/msg)
   endforeach()
   set(all_outputs "")
+  # Every module depends on all of the package's messages, as the headers do: a message's md5sum,
+  # and so a service's, covers every message it embeds.
+  file(GLOB messages "${ARG_DIR}/msg/*.msg")
   foreach(kind msg srv)
     set(generator ${LMK_GENMSG_PY})
     if(kind STREQUAL "srv")
@@ -96,7 +99,7 @@ function(lmk_generate_ros_python)
       add_custom_command(OUTPUT "${out_dir}/_${name}.py"
         COMMAND ${LMK_ROS_PYTHON} ${generator} ${definition} -p ${pkg} -o ${out_dir}
                 ${include_flags}
-        DEPENDS ${definition} COMMENT "Generating ${pkg}/${name} for Python" VERBATIM)
+        DEPENDS ${definition} ${messages} COMMENT "Generating ${pkg}/${name} for Python" VERBATIM)
       list(APPEND modules "${out_dir}/_${name}.py")
     endforeach()
     add_custom_command(OUTPUT "${out_dir}/__init__.py"

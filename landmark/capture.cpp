@@ -203,33 +203,61 @@ Landmark capture_views(const std::vector<CaptureView>& views, const Box& box,
   return landmark;
 }
 
-std::optional<std::string> degenerate_shape(const PointCloud& points, double leaf_size,
-                                            const std::string& what, bool allow_flat) {
-  constexpr double kDegenerateFraction = 0.95;
-  if (points.size() < 3) return what + ": fewer than three points cannot fix a pose";
+namespace {
+
+// At least this share of a landmark's points within two leaves of one plane (or one line) makes
+// its shape flat (or straight).
+constexpr double kDegenerateFraction = 0.95;
+
+// The shares of `points` near their best plane and near their best line, with that plane's normal.
+struct ShapeShares {
+  Eigen::Vector3d normal;
+  double near_plane = 0.0, near_line = 0.0;
+  double tolerance = 0.0;  ///< the distance counted as near, m
+};
+
+ShapeShares shape_shares(const PointCloud& points, double leaf_size) {
   const PrincipalAxes pca =
       principal_axes(points.size(), [&](std::size_t i) { return points.points[i]; });
-  const Eigen::Vector3d mean = pca.mean, normal = pca.axes.col(0), axis = pca.axes.col(2);
-  const double tolerance = 2.0 * leaf_size;
+  const Eigen::Vector3d mean = pca.mean, axis = pca.axes.col(2);
+  ShapeShares s;
+  s.normal = pca.axes.col(0);
+  s.tolerance = 2.0 * leaf_size;
   std::size_t near_plane = 0, near_line = 0;
   for (const auto& p : points.points) {
     const Eigen::Vector3d d = p.cast<double>() - mean;
-    if (std::abs(d.dot(normal)) <= tolerance) ++near_plane;
-    if ((d - d.dot(axis) * axis).norm() <= tolerance) ++near_line;
+    if (std::abs(d.dot(s.normal)) <= s.tolerance) ++near_plane;
+    if ((d - d.dot(axis) * axis).norm() <= s.tolerance) ++near_line;
   }
-  const auto share = [&](std::size_t n) {
-    return static_cast<double>(n) / static_cast<double>(points.size());
-  };
-  const auto percent = [&](std::size_t n) { return std::to_string(std::lround(100.0 * share(n))); };
-  const std::string within = " within " + std::to_string(std::lround(1000.0 * tolerance)) + " mm";
-  if (share(near_line) >= kDegenerateFraction) {
-    return what + ": the shape is a thin straight piece (" + percent(near_line) +
+  const double n = static_cast<double>(points.size());
+  s.near_plane = static_cast<double>(near_plane) / n;
+  s.near_line = static_cast<double>(near_line) / n;
+  return s;
+}
+
+}  // namespace
+
+std::optional<Eigen::Vector3d> flat_normal(const PointCloud& points, double leaf_size) {
+  if (points.size() < 3) return std::nullopt;
+  const ShapeShares s = shape_shares(points, leaf_size);
+  if (s.near_plane < kDegenerateFraction || s.near_line >= kDegenerateFraction) return std::nullopt;
+  return s.normal;
+}
+
+std::optional<std::string> degenerate_shape(const PointCloud& points, double leaf_size,
+                                            const std::string& what, bool allow_flat) {
+  if (points.size() < 3) return what + ": fewer than three points cannot fix a pose";
+  const ShapeShares s = shape_shares(points, leaf_size);
+  const auto percent = [](double share) { return std::to_string(std::lround(100.0 * share)); };
+  const std::string within = " within " + std::to_string(std::lround(1000.0 * s.tolerance)) + " mm";
+  if (s.near_line >= kDegenerateFraction) {
+    return what + ": the shape is a thin straight piece (" + percent(s.near_line) +
            "% of the points" + within +
            " of one line), which leaves its turn about that line undetermined; draw the "
            "box around something with a corner or some width";
   }
-  if (share(near_plane) >= kDegenerateFraction && !allow_flat) {
-    return what + ": the shape is flat (" + percent(near_plane) + "% of the points" + within +
+  if (s.near_plane >= kDegenerateFraction && !allow_flat) {
+    return what + ": the shape is flat (" + percent(s.near_plane) + "% of the points" + within +
            " of one plane), so it would match anywhere on any plane; draw the box to include an "
            "edge, a corner or some relief, or capture it as a flat patch (--allow-flat)";
   }

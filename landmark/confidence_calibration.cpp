@@ -37,8 +37,8 @@ double log_margin(double margin) {
 }  // namespace
 
 const std::vector<std::string>& confidence_feature_names() {
-  static const std::vector<std::string> names = {"local_margin", "elsewhere_margin", "fit",
-                                                 "coverage",     "log_freedom",      "range"};
+  static const std::vector<std::string> names = {
+      "local_margin", "elsewhere_margin", "fit", "coverage", "log_freedom", "range", "intrusion"};
   return names;
 }
 
@@ -51,7 +51,8 @@ std::vector<double> confidence_features(const MatchConfidence& c) {
           capped(c.fit, 0.0, kFitCap),
           std::isnan(c.coverage) ? 1.0 : c.coverage,
           capped(log_freedom, -kLogFreedomBound, kLogFreedomBound),
-          capped(c.range, 0.0, kRangeCap)};
+          capped(c.range, 0.0, kRangeCap),
+          capped(c.intrusion, 0.0, 1.0)};
 }
 
 double calibrated_probability(const MatchConfidence& confidence,

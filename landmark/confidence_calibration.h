@@ -36,6 +36,7 @@ struct ConfidenceCalibration {
 ///   coverage          share of the landmark the scene supports (1 for metrics without it)
 ///   log_freedom       log10 of the freedom over kSamePoseDistance, within [-3, 3]
 ///   range             m, capped at 5
+///   intrusion         the share of the empty-space allowance the match uses, in [0, 1]
 const std::vector<std::string>& confidence_feature_names();
 
 /// The features of `confidence`, in the order of confidence_feature_names().

@@ -124,7 +124,8 @@ struct Prepared {
         metric,
         view,
         settings.selection,
-        calibration};
+        calibration,
+        flat_normal(landmark.points, index.settings().leaf_size)};
     std::vector<const Match*> rivals;
     for (const Match& m : pool) rivals.push_back(&m);
     std::vector<Match> kept;

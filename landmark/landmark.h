@@ -176,6 +176,11 @@ void prepare_landmark_views(Landmark& landmark, const std::vector<RayBundle>& vi
 std::optional<std::string> degenerate_shape(const PointCloud& points, double leaf_size,
                                             const std::string& what, bool allow_flat = false);
 
+/// The normal of the plane a flat landmark's points lie on (at least 95% of them within two leaves
+/// of it, as degenerate_shape() judges), in their frame; nothing for a shape with relief. A flat
+/// landmark (CaptureSettings::allow_flat) is the same wherever it lies on its plane.
+std::optional<Eigen::Vector3d> flat_normal(const PointCloud& points, double leaf_size);
+
 /// Throws lmk::Error, starting with `what`, naming the first capture setting out of its range.
 void check_capture_settings(const CaptureSettings& settings, const std::string& what);
 

@@ -15,6 +15,9 @@ constexpr double kPi = 3.14159265358979323846;
 // kCloseSigmas it is close enough to be the doubt a person should hear first.
 constexpr double kWithinNoiseSigmas = 3.0;
 constexpr double kCloseSigmas = 6.0;
+// A match using more than this share of the empty-space allowance has something in its free space
+// (flying pixels stay well under it).
+constexpr double kIntrusionDoubt = 0.25;
 
 std::string format(const char* pattern, double a) {
   char text[160];
@@ -76,6 +79,7 @@ std::string describe_doubt(const MatchConfidence& c, const Box& box) {
   if (c.coverage < 0.7) {
     return format("only %.0f%% of the landmark is seen", c.coverage * 100.0);
   }
+  if (c.intrusion > kIntrusionDoubt) return "something stands in the space its box says is free";
   if (c.competitor.kind != Competitor::Kind::none) return describe_competitor(c, box);
   return format("its error is %.1f times the depth noise at ", c.fit) + format("%.1f m", c.range);
 }

@@ -74,6 +74,11 @@ struct MatchConfidence {
   Slide freest;
   double freedom = std::numeric_limits<double>::quiet_NaN();
   double coverage = std::numeric_limits<double>::quiet_NaN();  ///< the metric's, when it has one
+  /// How much of the empty-space allowance the match uses: the landmark's observed-empty voxels
+  /// the scene occupies over the most selection lets through (SelectionSettings::
+  /// max_empty_space_violation), in [0, 1]; 0 for metrics that do not test empty space. Something
+  /// standing in a free patch, or a slid pose's own surface in the margin, raises it.
+  double intrusion = 0.0;
   Competitor competitor;  ///< the closest-scoring different pose, local or elsewhere
   /// One line on why the probability is below a half ("a pose 8 cm along the box's x fits within
   /// the noise", "only 31% of the landmark is seen"); empty otherwise.

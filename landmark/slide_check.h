@@ -28,9 +28,9 @@ namespace lmk {
 
 /// One way the landmark can move within the noise.
 struct Slide {
-  bool turn = false;        ///< a turn about `axis` through `through`; else a slide along `axis`
-  Eigen::Vector3d axis;     ///< unit, capture frame
-  Eigen::Vector3d through;  ///< a point of a turn's axis, capture frame
+  bool turn = false;  ///< a turn about `axis` through `through`; else a slide along `axis`
+  Eigen::Vector3d axis = Eigen::Vector3d::Zero();     ///< unit, capture frame
+  Eigen::Vector3d through = Eigen::Vector3d::Zero();  ///< a point of a turn's axis, capture frame
   /// How far within the noise: m for a slide, rad for a turn; infinity when the points do not
   /// constrain it at all (a perfect edge, plane or cylinder).
   double extent = 0.0;

@@ -81,6 +81,7 @@ lmk_msgs::MatchConfidence to_ros(const MatchConfidence& c) {
   out.support = c.support;
   out.freedom = c.freedom;
   out.coverage = c.coverage;
+  out.intrusion = c.intrusion;
   out.competitor_kind = setting_name(c.competitor.kind);
   out.competitor_box_pose = to_ros(c.competitor.box.pose);
   out.competitor_error = c.competitor.error;

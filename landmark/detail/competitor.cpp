@@ -42,6 +42,16 @@ bool same_surface(const ConfidenceInput& in, const std::vector<Eigen::Vector3f>&
   return sum / static_cast<double>(points.size()) < 0.5 * in.index.settings().coarse_leaf;
 }
 
+// Whether `other` puts a flat landmark's plane where `match` puts it (its normal within
+// kSamePoseAngle, its centre within kSamePoseDistance of the match's plane): the same patch of the
+// same surface, wherever on it.
+bool same_plane(const Eigen::Vector3d& normal, const Match& match, const Match& other) {
+  const Eigen::Vector3d n_match = match.T_scene_capture.linear() * normal;
+  const Eigen::Vector3d n_other = other.T_scene_capture.linear() * normal;
+  const double off_plane = std::abs(n_match.dot(other.box.center() - match.box.center()));
+  return std::abs(n_match.dot(n_other)) > std::cos(kSamePoseAngle) && off_plane < kSamePoseDistance;
+}
+
 struct Rivals {
   const Match* local = nullptr;      ///< best slide or turn
   const Match* elsewhere = nullptr;  ///< best look-alike
@@ -62,6 +72,7 @@ Rivals find_rivals(const ConfidenceInput& in, const Match& match,
          same_surface(in, points, match.T_scene_capture, c->T_scene_capture))) {
       continue;  // the same pose, as the evaluation would count it
     }
+    if (in.flat_normal && same_plane(*in.flat_normal, match, *c)) continue;
     const Match*& slot = match.box.contains(c->box.center()) ? r.local : r.elsewhere;
     if (!slot || c->error < slot->error) slot = c;
   }
@@ -109,8 +120,9 @@ void measure_support(const ConfidenceInput& in, const Match& match,
   }
 }
 
-// Probe offsets along a motion: from one same-pose step out to `reach`, half a step apart (so that
-// a pose between two probes lies within a quarter step of one), at most kMaxProbesPerSide a side.
+// Probe offsets along one side of a motion: from one same-pose step out to `reach`, half a step
+// apart (so that a pose between two probes lies within a quarter step of one), at most
+// kMaxProbesPerSide.
 constexpr std::size_t kMaxProbesPerSide = 8;
 
 std::vector<double> probe_offsets(double step, double reach) {
@@ -119,9 +131,27 @@ std::vector<double> probe_offsets(double step, double reach) {
     const double offset = step * (1.0 + 0.5 * static_cast<double>(k));
     if (offset > reach) break;
     out.push_back(offset);
-    out.push_back(-offset);
   }
   return out;
+}
+
+// The match moved by `offset` along `freest` (m along its axis, or rad about it), and scored.
+Match moved_match(const ConfidenceInput& in, const Match& match, const Slide& freest,
+                  double offset) {
+  const Eigen::Vector3d axis = freest.axis.normalized();
+  Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
+  if (freest.turn) {
+    motion = Eigen::Translation3d(freest.through) * Eigen::AngleAxisd(offset, axis) *
+             Eigen::Translation3d(-freest.through);
+  } else {
+    motion.translation() = offset * axis;
+  }
+  Match probe;
+  probe.T_scene_capture = motion * match.T_scene_capture;
+  probe.box = in.landmark.box.transformed(probe.T_scene_capture);
+  probe.terms = in.metric.evaluate(SceneView{in.index}, in.view, probe.T_scene_capture);
+  probe.error = probe.terms.error;
+  return probe;
 }
 
 }  // namespace
@@ -130,31 +160,34 @@ std::vector<Match> probe_freest_motion(const ConfidenceInput& in, const Match& m
                                        const MatchConfidence& confidence) {
   const Slide& freest = confidence.freest;
   std::vector<Match> out;
-  if (!(confidence.freedom >= 0.5 * kSamePoseDistance)) return out;
-  const Eigen::Vector3d axis = freest.axis.normalized();
+  // A flat landmark moves freely within its plane by design: those moves are no rivals.
+  if (in.flat_normal || !(confidence.freedom >= 0.5 * kSamePoseDistance)) return out;
   // A slide as far as the box reaches along it (beyond, the landmark would have left its own
   // box); a turn up to half a revolution either way.
-  const Eigen::Vector3d along = match.box.pose.linear().transpose() * axis;
+  const Eigen::Vector3d along = match.box.pose.linear().transpose() * freest.axis.normalized();
   const std::vector<double> offsets =
       freest.turn ? probe_offsets(kSamePoseAngle, M_PI)
                   : probe_offsets(kSamePoseDistance, along.cwiseAbs().dot(match.box.size));
-  const SceneView scene{in.index};
-  for (const double offset : offsets) {
-    Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
-    if (freest.turn) {
-      motion = Eigen::Translation3d(freest.through) * Eigen::AngleAxisd(offset, axis) *
-               Eigen::Translation3d(-freest.through);
-    } else {
-      motion.translation() = offset * axis;
+  for (const double side : {1.0, -1.0}) {
+    // A rival is a pose where the landmark fits again, not the slope of the match's own fit: a
+    // probe whose error is no higher than its neighbours' along the motion (the match itself the
+    // first neighbour; the last probe, while the error still falls, stands for what lies beyond).
+    std::vector<Match> line;
+    for (const double offset : offsets)
+      line.push_back(moved_match(in, match, freest, side * offset));
+    for (std::size_t k = 0; k < line.size(); ++k) {
+      const double before = k == 0 ? match.error : line[k - 1].error;
+      const bool after_ok = k + 1 == line.size() || line[k].error <= line[k + 1].error;
+      if (line[k].error <= before && after_ok) out.push_back(line[k]);
     }
-    Match probe;
-    probe.T_scene_capture = motion * match.T_scene_capture;
-    probe.box = in.landmark.box.transformed(probe.T_scene_capture);
-    probe.terms = in.metric.evaluate(scene, in.view, probe.T_scene_capture);
-    probe.error = probe.terms.error;
-    out.push_back(std::move(probe));
   }
   return out;
+}
+
+double empty_space_intrusion(const ErrorTerms& t, const SelectionSettings& s) {
+  const double allowed = s.max_empty_space_violation * static_cast<double>(t.empty_space_probes);
+  if (!(allowed > 0.0)) return 0.0;
+  return std::min(1.0, static_cast<double>(t.empty_space_violations) / allowed);
 }
 
 bool plausible_alternative(const Match& candidate, const SelectionSettings& s) {
@@ -170,6 +203,7 @@ MatchConfidence assess_match(const ConfidenceInput& in, const Match& match,
   const double noise = in.index.settings().depth_noise().residual_sigma(capture_range, c.range);
   measure_support(in, match, points, noise, c);
   c.coverage = match.terms.coverage;
+  c.intrusion = empty_space_intrusion(match.terms, in.selection);
   // The rivals: every candidate of the search, and the poses along the match's freest motion that
   // none of them stood at.
   const std::vector<Match> probes = probe_freest_motion(in, match, c);

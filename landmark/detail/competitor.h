@@ -5,6 +5,7 @@
 // support and freedom), and the depth noise at the match's range (the error's uncertainty).
 // Nothing here changes a match or its order. Internal.
 
+#include <optional>
 #include <vector>
 
 #include "lmk/landmark/confidence_calibration.h"
@@ -30,7 +31,15 @@ struct ConfidenceInput {
   const SelectionSettings& selection;
   /// The calibration to apply; null when none was fitted for the metric (calibration_for()).
   const ConfidenceCalibration* calibration;
+  /// A flat landmark's plane normal, capture frame (flat_normal()): such a landmark is the same
+  /// wherever it lies on its plane, so poses on the match's plane are no rivals and its freedom
+  /// within the plane is not probed.
+  std::optional<Eigen::Vector3d> flat_normal = std::nullopt;
 };
+
+/// The share of the empty-space allowance of `selection` that terms `t` use
+/// (MatchConfidence::intrusion).
+double empty_space_intrusion(const ErrorTerms& t, const SelectionSettings& selection);
 
 /// Whether `candidate` could have been a match but for its error: it passes the coverage and the
 /// empty-space tests of `selection` (a pose that fails them is no alternative a robot could take).

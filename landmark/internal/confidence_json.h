@@ -4,7 +4,7 @@
 // `lmk serve`, the evaluation's cache and reports, Python and ROS:
 //   {"probability", "features": {name: value}, "margin", "local_margin", "elsewhere_margin",
 //   "error_sigma", "fit", "range",
-//    "support", "freedom", "freest": {"turn", "axis"}, "coverage", "doubt",
+//    "support", "freedom", "freest": {"turn", "axis"}, "coverage", "intrusion", "doubt",
 //    "competitor": null | {"kind", "position", "orientation", "error", "distance", "angle"}}
 // Numbers that are not finite (no probability, no rival: an infinite margin) are null.
 // Header-only; internal/: shared within lmk, not installed.
@@ -56,6 +56,7 @@ inline nlohmann::json confidence_to_json(const MatchConfidence& c) {
           {"freedom", finite_or_null(c.freedom)},
           {"freest", {{"turn", c.freest.turn}, {"axis", vector_to_json(c.freest.axis)}}},
           {"coverage", finite_or_null(c.coverage)},
+          {"intrusion", c.intrusion},
           {"doubt", c.doubt},
           {"competitor", competitor}};
 }
@@ -96,6 +97,9 @@ inline MatchConfidence confidence_from_json(const nlohmann::json& j, const std::
   c.freest.axis = numbers_from_json(json_field(freest, "axis", freest_at), 3, freest_at + ".axis");
   c.freest.displacement = c.freedom;
   c.coverage = number("coverage", nan);
+  c.intrusion = number("intrusion", nan);
+  if (!(c.intrusion >= 0.0 && c.intrusion <= 1.0))
+    throw Error(where + ".intrusion: must be in [0, 1]");
   const nlohmann::json& doubt = json_field(j, "doubt", where);
   if (!doubt.is_string()) throw Error(where + ".doubt: must be a string");
   c.doubt = doubt.get<std::string>();

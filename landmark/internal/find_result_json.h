@@ -2,10 +2,11 @@
 #pragma once
 // The JSON form of a search's result, which `lmk find --json` prints and `lmk serve` answers with:
 // {"matches": [...], "stats": {...}}, each match its box pose, error, terms and confidence
-// (internal/confidence_json.h); with rejections,
+// (internal/confidence_json.h; a rejected candidate only when it was assessed); with rejections,
 // also "rejected": the candidates turned down after non-max suppression, each with its reason.
 // Header-only; internal/: shared within lmk (the CLI, serve, ROS, Python), not installed.
 
+#include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "lmk/json/pose_json.h"
@@ -22,7 +23,9 @@ inline nlohmann::json match_to_json(const Match& m) {
   match["seed_index"] = m.seed_index;
   match["icp_iterations"] = m.icp_iterations;
   match["votes"] = m.votes;
-  match["confidence"] = confidence_to_json(m.confidence);
+  // Only what the search assessed (every match, and candidates turned down for their confidence):
+  // a candidate turned down earlier has no evidence to show.
+  if (!std::isnan(m.confidence.error_sigma)) match["confidence"] = confidence_to_json(m.confidence);
   return match;
 }
 
