@@ -2,7 +2,6 @@
 #include "lmk/eval/evaluation.h"
 
 #include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <atomic>
@@ -201,8 +200,7 @@ Evaluation evaluate(const std::string& dir, const Dataset& dataset,
       scene_jobs.push_back({k, k});
     scene_jobs.back().second = k + 1;
   }
-  tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
-  arena.execute([&] {
+  with_worker_threads(settings.threads, [&] {
     tbb::parallel_for(std::size_t{0}, scene_jobs.size(), [&](std::size_t s) {
       const auto [first, last] = scene_jobs[s];
       const DatasetScene& scene = dataset.scenes[jobs[first].scene];

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "lmk/geometry/worker_threads.h"
 
+#include <tbb/task_arena.h>
+
 #include <algorithm>
 #include <thread>
 
@@ -19,6 +21,11 @@ void check_worker_threads(int threads, const std::string& what) {
                 std::to_string(max_worker_threads()) + "] (0 uses every core; at most " +
                 std::to_string(kMaxThreadsPerCore) + " per core of this machine)");
   }
+}
+
+void with_worker_threads(int threads, const std::function<void()>& work) {
+  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+  arena.execute(work);
 }
 
 }  // namespace lmk

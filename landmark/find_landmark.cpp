@@ -1,14 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "lmk/landmark/find_landmark.h"
 
-#include <tbb/task_arena.h>
-
 #include <cmath>
 #include <functional>
 
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/stopwatch.h"
 #include "lmk/geometry/voxel_grid.h"
+#include "lmk/geometry/worker_threads.h"
 #include "lmk/landmark/confidence_calibration.h"
 #include "lmk/landmark/detail/colour_term.h"
 #include "lmk/landmark/detail/competitor.h"
@@ -172,14 +171,11 @@ FindResult search(const SceneIndex& index, const LandmarkIndex& prepared,
   stats.seeds = seeds.size();
   stats.seconds_preprocess = stage.seconds();
 
-  // Step 4, in an arena of the requested size: no process-wide thread setting.
+  // Step 4.
   stage.restart();
   const detail::SearchInput input{index,  points, p.landmark, prepared,        SceneView{index},
                                   p.view, seeds,  p.metric,   stats.threshold, settings};
-  detail::CandidateSet candidates;
-  const int threads = settings.execution.threads;
-  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
-  arena.execute([&] { candidates = method.candidates(input, stats); });
+  detail::CandidateSet candidates = method.candidates(input, stats);
   for (const Match& m : candidates.kept)
     stats.icp_iterations += static_cast<std::size_t>(m.icp_iterations);
   stats.seconds_search = stage.seconds();
@@ -232,32 +228,45 @@ std::string describe_rejections(const SearchStats& s) {
   return out;
 }
 
+// Each call runs on the requested threads (with_worker_threads), its indexing included: two
+// searches of one thread each, from two threads of the caller, share no worker.
 FindResult find_landmark(const PointCloud& scene, const Landmark& landmark,
                          const FindSettings& settings) {
-  // The landmark first: its errors (flat, invalid) come before the scene's.
-  const LandmarkIndex prepared = LandmarkIndex::borrowing(landmark, settings);
-  const SceneIndex index(scene, settings.scene);
-  FindResult result = search(index, prepared, settings);
-  const double built = index.seconds_to_build() + prepared.seconds_to_build();
-  result.stats.seconds_preprocess += built;
-  result.stats.seconds_total += built;
-  result.stats.scene_points = scene.count_finite();
+  validate(settings);
+  FindResult result;
+  with_worker_threads(settings.execution.threads, [&] {
+    // The landmark first: its errors (flat, invalid) come before the scene's.
+    const LandmarkIndex prepared = LandmarkIndex::borrowing(landmark, settings);
+    const SceneIndex index(scene, settings.scene);
+    result = search(index, prepared, settings);
+    const double built = index.seconds_to_build() + prepared.seconds_to_build();
+    result.stats.seconds_preprocess += built;
+    result.stats.seconds_total += built;
+    result.stats.scene_points = scene.count_finite();
+  });
   return result;
 }
 
 FindResult find_landmark(const SceneIndex& index, const Landmark& landmark,
                          const FindSettings& settings) {
-  const LandmarkIndex prepared = LandmarkIndex::borrowing(landmark, settings);
-  FindResult result = search(index, prepared, settings);
-  result.stats.seconds_preprocess += prepared.seconds_to_build();
-  result.stats.seconds_total += prepared.seconds_to_build();
+  validate(settings);
+  FindResult result;
+  with_worker_threads(settings.execution.threads, [&] {
+    const LandmarkIndex prepared = LandmarkIndex::borrowing(landmark, settings);
+    result = search(index, prepared, settings);
+    result.stats.seconds_preprocess += prepared.seconds_to_build();
+    result.stats.seconds_total += prepared.seconds_to_build();
+  });
   return result;
 }
 
 FindResult find_landmark(const SceneIndex& index, const LandmarkIndex& landmark,
                          const FindSettings& settings) {
   validate(settings);
-  return search(index, landmark, settings);
+  FindResult result;
+  with_worker_threads(settings.execution.threads,
+                      [&] { result = search(index, landmark, settings); });
+  return result;
 }
 
 Match score_pose(const SceneIndex& index, const LandmarkIndex& prepared,

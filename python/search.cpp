@@ -6,6 +6,7 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <thread>
 
 #include "bindings.h"
 #include "lmk/geometry/error.h"
@@ -81,12 +82,23 @@ void bind_search(py::module_& m) {
          const std::function<void(std::size_t, std::size_t)>& progress, const py::kwargs& kwargs) {
         FindSettings settings = settings_from_keywords(kwargs);
         // After each seed, from the search's threads: Python's signal handlers run (Ctrl-C ends
-        // the search there; Python runs them on its main thread, which takes part in the search),
-        // then `progress`. Each report takes the GIL; the search itself runs without it. The
-        // threads count seeds before they queue for the GIL, so their counts can arrive out of
-        // order: Python hears a count kept under the GIL instead, which rises by one each time.
+        // the search there), then `progress`. Each report takes the GIL; the search itself runs
+        // without it. Without `progress`, only the reports on the calling thread take it, and
+        // only when that is Python's main thread, the one thread that runs signal handlers: two
+        // searches from two other threads then never queue for the GIL. The threads count seeds
+        // before they queue for the GIL, so their counts can arrive out of order: Python hears a
+        // count kept under the GIL instead, which rises by one each time.
+        const std::thread::id caller = std::this_thread::get_id();
+        const bool caller_handles_signals =
+            PyThread_get_thread_ident() == py::module_::import("threading")
+                                               .attr("main_thread")()
+                                               .attr("ident")
+                                               .cast<unsigned long>();
         std::size_t heard = 0;
-        settings.execution.progress = [&progress, &heard](std::size_t, std::size_t total) {
+        settings.execution.progress = [&](std::size_t, std::size_t total) {
+          if (!progress && !(caller_handles_signals && std::this_thread::get_id() == caller)) {
+            return;
+          }
           const py::gil_scoped_acquire acquire;
           if (PyErr_CheckSignals() != 0) throw py::error_already_set();
           ++heard;
