@@ -77,6 +77,8 @@ void calibrate(MatchConfidence& confidence, const Box& box,
                const ConfidenceCalibration* calibration) {
   confidence.probability = calibration ? calibrated_probability(confidence, *calibration)
                                        : std::numeric_limits<double>::quiet_NaN();
+  // No calibration weighs free space that nothing confirms: no data holds a robot acting there.
+  if (confidence.free_space_unconfirmed) confidence.probability = 0.0;
   confidence.doubt = confidence.probability < 0.5 ? describe_doubt(confidence, box) : "";
 }
 

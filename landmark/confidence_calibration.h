@@ -51,8 +51,9 @@ double calibrated_probability(const MatchConfidence& confidence,
 const ConfidenceCalibration* calibration_for(const std::string& metric,
                                              const ConfidenceCalibration* chosen);
 
-/// Sets `confidence.probability` under `calibration` (NaN when null) and, below a half, its doubt
-/// line for a match with box `box` (scene frame); clears the doubt otherwise.
+/// Sets `confidence.probability` under `calibration` (NaN when null; 0 for free space nothing
+/// confirms, MatchConfidence::free_space_unconfirmed) and, below a half, its doubt line for a match
+/// with box `box` (scene frame); clears the doubt otherwise.
 void calibrate(MatchConfidence& confidence, const Box& box,
                const ConfidenceCalibration* calibration);
 

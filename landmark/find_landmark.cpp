@@ -114,6 +114,8 @@ struct Prepared {
     const PointCloud coarse = settings.method == SearchMethod::fast
                                   ? PointCloud()
                                   : voxel_downsample(landmark.points, index.settings().coarse_leaf);
+    const std::optional<Eigen::Vector3d> flat =
+        flat_normal(landmark.points, index.settings().leaf_size);
     const detail::ConfidenceInput input{
         index,
         landmark,
@@ -124,7 +126,8 @@ struct Prepared {
         view,
         settings.selection,
         calibration,
-        flat_normal(landmark.points, index.settings().leaf_size)};
+        flat,
+        flat ? &prepared.empty_distances() : nullptr};
     std::vector<const Match*> rivals;
     for (const Match& m : pool) rivals.push_back(&m);
     std::vector<Match> kept;

@@ -64,8 +64,14 @@ const std::vector<std::string>& setting_names(Competitor::Kind) {
 }
 
 std::string describe_doubt(const MatchConfidence& c, const Box& box) {
-  // The first doubt that holds, in the order a person can act on: a rival pose (widen the box,
-  // look again), then a pose free to move, then too little seen, then a poor fit.
+  // The first doubt that holds, in the order a person can act on: free space the sensor cannot
+  // confirm (look from elsewhere), a rival pose (widen the box, look again), then a pose free to
+  // move, then too little seen, then a poor fit.
+  if (c.free_space_unconfirmed) {
+    return format("only %.0f%% of the space its box says is free is seen free",
+                  std::floor(c.free_space_seen * 100.0)) +
+           " (the rest is hidden or returned nothing)";
+  }
   if (c.competitor.kind != Competitor::Kind::none && c.margin < kCloseSigmas) {
     return describe_competitor(c, box);
   }

@@ -79,6 +79,16 @@ struct MatchConfidence {
   /// max_empty_space_violation), in [0, 1]; 0 for metrics that do not test empty space. Something
   /// standing in a free patch, or a slid pose's own surface in the margin, raises it.
   double intrusion = 0.0;
+  /// A flat landmark (flat_normal()) only: the share of its free space (the observed-empty voxels
+  /// beyond the noise of its surface) the scene's sensor sees empty at the match. A flat surface
+  /// hides none of its own free space, so what is not seen empty is hidden by something else or
+  /// returned nothing: an object standing in the patch whose sides the sensor sees only edge-on, or
+  /// the shadow of one beside it. NaN for other landmarks and scenes without a range image.
+  double free_space_seen = std::numeric_limits<double>::quiet_NaN();
+  /// free_space_seen leaves more of the free space unseen than the empty-space allowance
+  /// (SelectionSettings::max_empty_space_violation): nothing confirms the patch is free, and the
+  /// probability is 0 whatever the calibration says.
+  bool free_space_unconfirmed = false;
   Competitor competitor;  ///< the closest-scoring different pose, local or elsewhere
   /// One line on why the probability is below a half ("a pose 8 cm along the box's x fits within
   /// the noise", "only 31% of the landmark is seen"); empty otherwise.

@@ -82,6 +82,7 @@ lmk_msgs::MatchConfidence to_ros(const MatchConfidence& c) {
   out.freedom = c.freedom;
   out.coverage = c.coverage;
   out.intrusion = c.intrusion;
+  out.free_space_seen = c.free_space_seen;
   out.competitor_kind = setting_name(c.competitor.kind);
   out.competitor_box_pose = to_ros(c.competitor.box.pose);
   out.competitor_error = c.competitor.error;

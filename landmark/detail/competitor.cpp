@@ -6,6 +6,7 @@
 
 #include "lmk/geometry/pose.h"
 #include "lmk/landmark/detail/selection_tests.h"
+#include "lmk/landmark/detail/sensor_metric.h"
 #include "lmk/landmark/slide_check.h"
 #include "lmk/registration/icp.h"
 
@@ -204,6 +205,11 @@ MatchConfidence assess_match(const ConfidenceInput& in, const Match& match,
   measure_support(in, match, points, noise, c);
   c.coverage = match.terms.coverage;
   c.intrusion = empty_space_intrusion(match.terms, in.selection);
+  if (in.flat_normal && in.empty_distances) {
+    c.free_space_seen =
+        empty_space_seen_empty(in.index, in.landmark, *in.empty_distances, match.T_scene_capture);
+    c.free_space_unconfirmed = c.free_space_seen < 1.0 - in.selection.max_empty_space_violation;
+  }
   // The rivals: every candidate of the search, and the poses along the match's freest motion that
   // none of them stood at.
   const std::vector<Match> probes = probe_freest_motion(in, match, c);

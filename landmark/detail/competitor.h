@@ -35,6 +35,10 @@ struct ConfidenceInput {
   /// wherever it lies on its plane, so poses on the match's plane are no rivals and its freedom
   /// within the plane is not probed.
   std::optional<Eigen::Vector3d> flat_normal = std::nullopt;
+  /// A flat landmark's empty voxels' distances from its surface (LandmarkIndex::empty_distances()):
+  /// how much of its free space the scene sees empty is measured with them
+  /// (MatchConfidence::free_space_seen). Null for other landmarks.
+  const std::vector<float>* empty_distances = nullptr;
 };
 
 /// The share of the empty-space allowance of `selection` that terms `t` use

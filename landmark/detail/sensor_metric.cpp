@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "lmk/landmark/detail/grid_metrics.h"
 #include "lmk/landmark/landmark.h"
@@ -23,13 +24,31 @@ constexpr double kAtSurface = 1.0;  // sigma
 // that hides it) has no evidence for it beyond a fit that the noise makes easy.
 constexpr double kMinEmptyObserved = 0.02;
 
-// Empty space seen from the scene's sensor: each observed-empty voxel of the landmark (centres[i],
-// distances[i] from its surface), placed by the pose, is looked up in the range image. A surface
-// measured at its depth violates it; one clearly behind confirms it empty; one clearly in front
-// hides it and, as outside the view or without a return, leaves it unknown. Only voxels farther
-// from the landmark's surface than that same margin of noise are tested: nearer, the landmark's
-// own surface, measured behind them, could not confirm them. Probes are the voxels observed
-// either way.
+// What the scene's sensor saw of one observed-empty voxel of the landmark (its centre `c` and its
+// distance from the landmark's surface), placed by the pose T: a surface measured at its depth
+// occupies it; one clearly behind confirms it empty; one clearly in front hides it and, as outside
+// the view or without a return, leaves it unknown. A voxel nearer the landmark's surface than that
+// same margin of noise is not tested: the landmark's own surface, measured behind it, could not
+// confirm it.
+enum class EmptyVoxel { untested, seen_empty, occupied, unknown };
+
+EmptyVoxel look_at_empty_voxel(const RangeImage& image, const DepthNoise& noise,
+                               const Eigen::Vector3f& capture_sensor, const Eigen::Vector3f& c,
+                               float distance, const Eigen::Isometry3f& T) {
+  const RangeImage::Look look = image.look(T * c);
+  const double sigma = noise.residual_sigma((c - capture_sensor).norm(), std::abs(look.depth));
+  if (distance < kOccluding * sigma) return EmptyVoxel::untested;
+  if (!look.in_view || std::isnan(look.measured)) return EmptyVoxel::unknown;
+  const double gap = look.measured - look.depth;
+  if (gap > kOccluding * sigma) return EmptyVoxel::seen_empty;
+  // Further in front than a sigma, the voxel is hidden: the surface may be a side of the object
+  // the capture never saw. Further behind, it may be the surface the voxel was seen empty in front
+  // of at capture (a table under a bottle), which the landmark need not hold.
+  return std::abs(gap) > kAtSurface * sigma ? EmptyVoxel::unknown : EmptyVoxel::occupied;
+}
+
+// Empty space seen from the scene's sensor (look_at_empty_voxel()): probes are the voxels observed
+// either way, violations those occupied.
 void projective_empty_space(const RangeImage& image, const DepthNoise& noise,
                             const Landmark& landmark, const std::vector<Eigen::Vector3f>& centres,
                             const std::vector<float>& distances, const Eigen::Isometry3f& T,
@@ -37,21 +56,10 @@ void projective_empty_space(const RangeImage& image, const DepthNoise& noise,
   const Eigen::Vector3f capture_sensor = landmark.sensor_origin.cast<float>();
   double violation_distance = 0.0;
   for (std::size_t i = 0; i < centres.size(); ++i) {
-    const Eigen::Vector3f& c = centres[i];
-    const RangeImage::Look look = image.look(T * c);
-    if (!look.in_view || std::isnan(look.measured)) continue;
-    const double sigma = noise.residual_sigma((c - capture_sensor).norm(), look.depth);
-    if (distances[i] < kOccluding * sigma) continue;
-    const double gap = look.measured - look.depth;
-    if (gap > kOccluding * sigma) {  // seen empty
-      ++terms.empty_space_probes;
-      continue;
-    }
-    // A surface within a sigma of the voxel is at it. Further in front, the voxel is hidden: the
-    // surface may be a side of the object the capture never saw. Further behind, it may be the
-    // surface the voxel was seen empty in front of at capture (a table under a bottle), which the
-    // landmark need not hold.
-    if (std::abs(gap) > kAtSurface * sigma) continue;
+    const EmptyVoxel seen =
+        look_at_empty_voxel(image, noise, capture_sensor, centres[i], distances[i], T);
+    if (seen == EmptyVoxel::seen_empty) ++terms.empty_space_probes;
+    if (seen != EmptyVoxel::occupied) continue;
     ++terms.empty_space_probes;
     ++terms.empty_space_violations;
     violation_distance += distances[i];
@@ -102,6 +110,26 @@ double SensorFit::coverage() const {
   const double expected = std::max(static_cast<double>(visible),
                                    kMinVisibleShare * static_cast<double>(visible + unseen));
   return expected > 0.0 ? static_cast<double>(supported) / expected : 0.0;
+}
+
+double empty_space_seen_empty(const SceneIndex& index, const Landmark& landmark,
+                              const std::vector<float>& distances,
+                              const Eigen::Isometry3d& T_scene_capture) {
+  const std::vector<Eigen::Vector3f>& centres = landmark.empty_space.centres();
+  if (!index.range_image() || centres.empty()) return std::numeric_limits<double>::quiet_NaN();
+  const DepthNoise noise = index.settings().depth_noise();
+  const Eigen::Vector3f capture_sensor = landmark.sensor_origin.cast<float>();
+  const Eigen::Isometry3f T = T_scene_capture.cast<float>();
+  std::size_t tested = 0, seen = 0;
+  for (std::size_t i = 0; i < centres.size(); ++i) {
+    const EmptyVoxel look = look_at_empty_voxel(*index.range_image(), noise, capture_sensor,
+                                                centres[i], distances[i], T);
+    if (look == EmptyVoxel::untested) continue;
+    ++tested;
+    if (look == EmptyVoxel::seen_empty) ++seen;
+  }
+  return tested > 0 ? static_cast<double>(seen) / static_cast<double>(tested)
+                    : std::numeric_limits<double>::quiet_NaN();
 }
 
 double empty_space_penalty(const SceneIndex& index, const Landmark& landmark,

@@ -50,6 +50,15 @@ double empty_space_penalty(const SceneIndex& index, const Landmark& landmark,
                            const std::vector<float>& distances,
                            const Eigen::Isometry3f& T_scene_capture);
 
+/// The share of the observed-empty voxels of `landmark` (`distances` from its surface, as
+/// LandmarkIndex::empty_distances()) placed by T_scene_capture that the scene's sensor sees empty:
+/// a surface measured clearly behind them. Voxels it sees occupied, hidden behind a nearer surface,
+/// without a return or outside its view count against it; those within the noise of the landmark's
+/// surface are not counted. NaN without a range image or a tested voxel.
+double empty_space_seen_empty(const SceneIndex& index, const Landmark& landmark,
+                              const std::vector<float>& distances,
+                              const Eigen::Isometry3d& T_scene_capture);
+
 SensorFit sensor_fit(const SceneIndex& index, const PointCloud& points,
                      const Eigen::Vector3f& capture_sensor,
                      const Eigen::Isometry3f& T_scene_capture);

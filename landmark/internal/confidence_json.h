@@ -4,7 +4,8 @@
 // `lmk serve`, the evaluation's cache and reports, Python and ROS:
 //   {"probability", "features": {name: value}, "margin", "local_margin", "elsewhere_margin",
 //   "error_sigma", "fit", "range",
-//    "support", "freedom", "freest": {"turn", "axis"}, "coverage", "intrusion", "doubt",
+//    "support", "freedom", "freest": {"turn", "axis"}, "coverage", "intrusion",
+//    "free_space_seen", "free_space_unconfirmed", "doubt",
 //    "competitor": null | {"kind", "position", "orientation", "error", "distance", "angle"}}
 // Numbers that are not finite (no probability, no rival: an infinite margin) are null.
 // Header-only; internal/: shared within lmk, not installed.
@@ -57,6 +58,8 @@ inline nlohmann::json confidence_to_json(const MatchConfidence& c) {
           {"freest", {{"turn", c.freest.turn}, {"axis", vector_to_json(c.freest.axis)}}},
           {"coverage", finite_or_null(c.coverage)},
           {"intrusion", c.intrusion},
+          {"free_space_seen", finite_or_null(c.free_space_seen)},
+          {"free_space_unconfirmed", c.free_space_unconfirmed},
           {"doubt", c.doubt},
           {"competitor", competitor}};
 }
@@ -100,6 +103,14 @@ inline MatchConfidence confidence_from_json(const nlohmann::json& j, const std::
   c.intrusion = number("intrusion", nan);
   if (!(c.intrusion >= 0.0 && c.intrusion <= 1.0))
     throw Error(where + ".intrusion: must be in [0, 1]");
+  // Absent before search revision 7: not measured.
+  if (j.contains("free_space_seen")) c.free_space_seen = number("free_space_seen", nan);
+  if (j.contains("free_space_unconfirmed")) {
+    const nlohmann::json& unconfirmed = j["free_space_unconfirmed"];
+    if (!unconfirmed.is_boolean())
+      throw Error(where + ".free_space_unconfirmed: must be true or false");
+    c.free_space_unconfirmed = unconfirmed.get<bool>();
+  }
   const nlohmann::json& doubt = json_field(j, "doubt", where);
   if (!doubt.is_string()) throw Error(where + ".doubt: must be a string");
   c.doubt = doubt.get<std::string>();

@@ -1,20 +1,26 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // A match's confidence (match_confidence.h) on scenes built here, where the answer is known from
 // the geometry alone: two identical objects are look-alikes of each other, a box cut out of a long
-// beam slides along it, an L-shape alone on a table is pinned by its own corners, and a flat patch
-// of a table is the same patch wherever it lies on it.
+// beam slides along it, an L-shape alone on a table is pinned by its own corners, a flat patch
+// of a table is the same patch wherever it lies on it, and a patch whose free space a post hides
+// from the sensor is not confirmed free.
 
 #include "lmk/landmark/match_confidence.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <string>
 
 #include "lmk/eval/mesh.h"
 #include "lmk/geometry/pose.h"
+#include "lmk/landmark/confidence_calibration.h"
+#include "lmk/landmark/detail/sensor_metric.h"
 #include "lmk/landmark/find_landmark.h"
+#include "lmk/landmark/landmark_index.h"
+#include "lmk/landmark/scene_index.h"
 #include "tests/landmark/l_shape_scene.h"
 
 namespace lmk {
@@ -121,6 +127,71 @@ TEST(MatchConfidence, AFlatPatchHasNoRivalOnItsOwnPlane) {
     // Any rival lies off the match's plane: the crate's top for a patch of the table, and back.
     EXPECT_GT(std::abs(c.competitor.box.center().z() - m.box.center().z()), 0.1);
   }
+}
+
+// The table with a post 30 cm tall standing at (x, y).
+PointCloud table_with_post(double x, double y) {
+  TriangleMesh post;
+  post.append(make_box_mesh({0.06, 0.05, 0.3}),
+              pose_from_xyz_rpy({x, y, kTable + 0.15}, {0, 0, 0}));
+  return render_on_table(post);
+}
+
+TEST(MatchConfidence, APatchWhoseFreeSpaceIsHiddenIsNotConfirmed) {
+  // A patch of the empty table, at its own place on the same table with a post just outside its
+  // box: behind it (seen from the camera), the post hides nothing of it; in front of it, its
+  // shadow hides part of the patch's free space, and of the table under it. Nothing the sensor
+  // sees stands in the patch, yet nothing confirms that all of it is free: a robot must not put
+  // something there.
+  const Box patch(pose_from_xyz_rpy({-0.3, -0.1, kTable + 0.04}, {0, 0, 0}), {0.2, 0.2, 0.1});
+  CaptureSettings flat;
+  flat.allow_flat = true;
+  const Landmark landmark = capture(render_on_table(TriangleMesh()), patch, "patch", flat);
+  const LandmarkIndex prepared(landmark);
+  const auto seen_at_capture_pose = [&](const PointCloud& scene) {
+    return empty_space_seen_empty(SceneIndex(scene), landmark, prepared.empty_distances(),
+                                  Eigen::Isometry3d::Identity());
+  };
+  EXPECT_GT(seen_at_capture_pose(table_with_post(-0.3, 0.045)), 0.99);
+  const double hidden = seen_at_capture_pose(table_with_post(-0.3, -0.24));
+  EXPECT_LT(hidden, 0.95);
+  EXPECT_GT(hidden, 0.5);  // the shadow of a post, not a patch out of sight
+
+  // The search measures it for every match of the patch; those beside the post that leave more of
+  // their free space unseen than the empty-space allowance have no probability and say why.
+  FindSettings every_match;
+  every_match.selection.min_confidence = 0.0;
+  const FindResult r = find_landmark(table_with_post(-0.3, -0.24), landmark, every_match);
+  ASSERT_FALSE(r.matches.empty());
+  std::size_t unconfirmed = 0;
+  for (const Match& m : r.matches) {
+    const MatchConfidence& c = m.confidence;
+    SCOPED_TRACE(evidence(c));
+    ASSERT_FALSE(std::isnan(c.free_space_seen));
+    EXPECT_EQ(c.free_space_unconfirmed, c.free_space_seen < 0.99);
+    if (!c.free_space_unconfirmed) continue;
+    ++unconfirmed;
+    EXPECT_EQ(c.probability, 0.0);
+    EXPECT_NE(c.doubt.find("of the space its box says is free is seen free"), std::string::npos);
+  }
+  EXPECT_GE(unconfirmed, 1u);
+  EXPECT_LT(unconfirmed, r.matches.size());  // the open table's patches are seen free
+
+  // The rule, on its own: no probability, whatever the calibration says, and the doubt line.
+  MatchConfidence c = r.matches.front().confidence;
+  c.free_space_seen = 0.874;
+  c.free_space_unconfirmed = true;
+  calibrate(c, patch, &builtin_confidence_calibration());
+  EXPECT_EQ(c.probability, 0.0);
+  EXPECT_EQ(c.doubt,
+            "only 87% of the space its box says is free is seen free (the rest is hidden or "
+            "returned nothing)");
+
+  // A landmark that is not flat has its own sides to hide its free space: it is not measured.
+  const Landmark l = capture(render_scene({kCopies[1]}, false), box_at(kCopies[1]), "L");
+  const FindResult shape = find_landmark(render_scene({kCopies[1]}, false), l, FindSettings());
+  ASSERT_FALSE(shape.matches.empty());
+  EXPECT_TRUE(std::isnan(shape.matches.front().confidence.free_space_seen));
 }
 
 }  // namespace
