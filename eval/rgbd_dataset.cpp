@@ -20,6 +20,7 @@
 #include "lmk/landmark/capture_views.h"
 #include "lmk/landmark/distinctiveness.h"
 #include "lmk/landmark/landmark_file.h"
+#include "lmk/occupancy/tsdf_volume.h"
 #include "lmk/registration/frame_registration.h"
 #include "lmk/registration/icp.h"
 
@@ -120,6 +121,30 @@ DepthCalibration calibrate_on_unused_frames(const RgbdSequence& sequence,
                               options.calibration);
 }
 
+// The scene of frame `used` (sequence.frames[index]) fused from `count` consecutive frames of the
+// sequence about it (as many before as after, the even count's extra one after), each loaded and
+// corrected as the dataset's frames are and moved into its camera frame by the sequence's poses.
+PointCloud fused_scene(const RgbdSequence& sequence, std::size_t index, const UsedFrame& used,
+                       std::size_t count, const std::optional<DepthCalibration>& correction) {
+  const std::size_t before = std::min(index, (count - 1) / 2);
+  const std::size_t first = index - before;
+  const std::size_t last = std::min(sequence.frames.size(), first + count);
+  std::vector<PointCloud> clouds;
+  std::vector<DepthFrame> frames{{&used.cloud, Eigen::Isometry3d::Identity()}};
+  clouds.reserve(last - first);
+  const Eigen::Isometry3d T_camera_world = used.frame->T_world_camera.inverse();
+  for (std::size_t i = first; i < last; ++i) {
+    if (i == index) continue;
+    clouds.push_back(load_rgbd_frame(sequence.frames[i]));
+    if (correction) correction->correction.apply(clouds.back());
+  }
+  for (std::size_t i = first, k = 0; i < last; ++i) {
+    if (i == index) continue;
+    frames.push_back({&clouds[k++], T_camera_world * sequence.frames[i].T_world_camera});
+  }
+  return fuse_frames(frames);
+}
+
 }  // namespace
 
 RgbdImport generate_rgbd_dataset(const std::string& sequence_dir, const std::string& out_dir,
@@ -132,6 +157,8 @@ RgbdImport generate_rgbd_dataset(const std::string& sequence_dir, const std::str
         "from-rgbd: views must be 1 to 4, and the view gap a positive multiple of the frame "
         "stride");
   }
+  if (options.fuse < 1 || options.fuse > 30)
+    throw Error("from-rgbd: fuse " + std::to_string(options.fuse) + " frames: must be 1 to 30");
   if (options.calibrate_depth && options.depth_correction)
     throw Error("from-rgbd: either fit the depth correction or give one, not both");
   const RgbdSequence sequence = read_rgbd_sequence(sequence_dir, options.read);
@@ -319,7 +346,11 @@ RgbdImport generate_rgbd_dataset(const std::string& sequence_dir, const std::str
       scene.pairs.push_back(std::move(pair));
     }
     if (!scene.pairs.empty()) {
-      write_cloud((fs::path(out_dir) / scene.file).string(), frames[b].cloud);
+      const std::size_t index = static_cast<std::size_t>(frames[b].frame - sequence.frames.data());
+      write_cloud((fs::path(out_dir) / scene.file).string(),
+                  options.fuse > 1 ? fused_scene(sequence, index, frames[b], options.fuse,
+                                                 import.depth_calibration)
+                                   : frames[b].cloud);
       dataset.scenes.push_back(std::move(scene));
     }
     if (options.progress) options.progress(++done, steps);
@@ -345,6 +376,7 @@ RgbdImport generate_rgbd_dataset(const std::string& sequence_dir, const std::str
       {"boxes", import.boxes},
       {"views", options.views},
       {"view_gap_frames", options.view_gap},
+      {"fused_frames", options.fuse},
       {"view_registrations", view_records},
       {"depth_smoothing_px", options.depth_smoothing},
       {"depth_correction", import.depth_calibration

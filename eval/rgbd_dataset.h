@@ -37,6 +37,10 @@ struct RgbdDatasetOptions {
   /// the same scenes, those min_gap to max_gap frames from the nearest of the box's views.
   std::size_t views = 1;
   std::size_t view_gap = 10;  ///< frames between a box's views
+  /// Each scene fused from this many consecutive frames of the sequence about its own (issue #46;
+  /// occupancy/tsdf_volume.h), moved into its camera frame by the sequence's poses; 1 keeps the
+  /// frame itself. The landmarks stay one frame's, as a user cuts them.
+  std::size_t fuse = 1;
   /// The landmarks are captured, and checked in their own frame, with this depth smoothing
   /// (CaptureSettings::depth_smoothing, pixels); search them with the same.
   int depth_smoothing = kDefaultDepthSmoothing;

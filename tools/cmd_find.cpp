@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// lmk find SCENE LANDMARK [search settings: --method M --metric NAME --threshold T ...]
-//          [--threads N] [--json FILE|-]: every instance of a landmark, with its pose and error.
+// lmk find SCENE [SCENE...] LANDMARK [--poses F] [search settings: --method M --metric NAME
+//          --threshold T ...] [--threads N] [--json FILE|-]: every instance of a landmark, with its
+//          pose and error. Several frames of one scene are fused into one (tsdf_volume.h) first.
 
 #include <cmath>
 #include <cstdio>
@@ -13,10 +14,12 @@
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/pose.h"
+#include "lmk/geometry/pose_list.h"
 #include "lmk/landmark/depth_correction_file.h"
 #include "lmk/landmark/find_landmark.h"
 #include "lmk/landmark/internal/find_result_json.h"
 #include "lmk/landmark/landmark_file.h"
+#include "lmk/occupancy/tsdf_volume.h"
 #include "tools/bag_input.h"
 #include "tools/cli_common.h"
 #include "tools/progress.h"
@@ -26,7 +29,9 @@ namespace {
 
 struct FindOptions {
   BagOptions bag;
-  std::string scene, landmark, json, depth_correction;
+  std::vector<std::string> inputs;  ///< the scene's frames, then the landmark
+  std::vector<std::string> scenes;
+  std::string landmark, json, depth_correction, poses;
   bool timings = false;
   bool rejected = false;
   FindSettings settings;
@@ -79,18 +84,44 @@ void print_table(const FindResult& r, const std::string& name) {
   }
 }
 
-PointCloud read_scene(FindOptions& o) {
+PointCloud read_frame(FindOptions& o, const std::string& path) {
   bool in_base_frame = false;
-  PointCloud scene =
-      is_bag(o.scene) ? read_bag_scene(o.scene, o.bag, in_base_frame) : read_cloud(o.scene);
+  PointCloud scene = is_bag(path) ? read_bag_scene(path, o.bag, in_base_frame) : read_cloud(path);
   correct_depth(scene, o.depth_correction);
   // A scene in the robot's base frame has +z up, as --base-frame says, unless --up says otherwise.
   if (in_base_frame && !o.settings.scene.up) o.settings.scene.base_frame = true;
   return scene;
 }
 
+// The scene: one frame as it is, several fused into one (with --poses, each moved into the common
+// frame first; without, they are in it already: a static head's frames, or clouds in a robot's base
+// frame).
+PointCloud read_scene(FindOptions& o) {
+  if (o.scenes.size() == 1 && o.poses.empty()) return read_frame(o, o.scenes.front());
+  std::vector<Eigen::Isometry3d> poses(o.scenes.size(), Eigen::Isometry3d::Identity());
+  if (!o.poses.empty()) {
+    poses = read_pose_list(o.poses);
+    if (poses.size() != o.scenes.size()) {
+      throw Error(o.poses + ": " + std::to_string(poses.size()) + " poses for " +
+                  std::to_string(o.scenes.size()) + " frames (one line per frame, in order)");
+    }
+  }
+  std::vector<PointCloud> frames;
+  for (const std::string& path : o.scenes) {
+    if (is_bag(path)) throw Error(path + ": a bag cannot be fused with other frames yet");
+    frames.push_back(read_frame(o, path));
+  }
+  std::vector<DepthFrame> fused;
+  for (std::size_t i = 0; i < frames.size(); ++i) fused.push_back({&frames[i], poses[i]});
+  return fuse_frames(fused);
+}
+
 int run_find(FindOptions& o) {
-  if (!is_bag(o.scene)) format_from_path(o.scene);
+  o.landmark = o.inputs.back();
+  o.scenes.assign(o.inputs.begin(), o.inputs.end() - 1);
+  for (const std::string& scene : o.scenes) {
+    if (!is_bag(scene)) format_from_path(scene);
+  }
   const Landmark landmark = load_landmark(o.landmark);
   const PointCloud scene = read_scene(o);
   ProgressBar bar("find " + landmark.name);
@@ -117,9 +148,17 @@ Subcommand add_find(CLI::App& app) {
   auto o = std::make_shared<FindOptions>();
   FindSettings& s = o->settings;
   CLI::App* sub = app.add_subcommand("find", "Find every instance of a landmark in a scene");
-  sub->add_option("scene", o->scene, "Scene cloud (.pcd, .ply, .xyz) or ROS bag (.bag)")
-      ->required();
-  sub->add_option("landmark", o->landmark, "Landmark file (.lmk)")->required();
+  sub->add_option(
+         "inputs", o->inputs,
+         "SCENE [SCENE...] LANDMARK: the scene cloud (.pcd, .ply, .xyz) or ROS bag (.bag), "
+         "then the landmark file (.lmk). Several organised frames of one scene are fused "
+         "into one before the search (docs/cli.md, \"Several frames\")")
+      ->required()
+      ->expected(2, -1);
+  sub->add_option("--poses", o->poses,
+                  "With several frames: a text file of each frame's pose in a common frame, one "
+                  "line per frame, x y z qx qy qz qw (TUM's order; a timestamp may lead). Without "
+                  "it the frames are in one frame already");
   add_search_options(sub, s, true);
   add_bag_options(sub, o->bag, true);
   add_depth_correction_option(sub, o->depth_correction);

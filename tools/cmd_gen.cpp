@@ -42,6 +42,7 @@ struct GenOptions {
   std::optional<std::size_t> stride;  ///< default: 1 for a bag, 5 for an RGB-D sequence
   std::size_t views = 1;              ///< --from-rgbd: each box also from 2 up to this many views
   std::optional<std::size_t> view_gap;
+  std::size_t fuse = 1;  ///< --from-rgbd: each scene fused from this many consecutive frames
   std::string from_rgbd;
   std::vector<double> intrinsics;  ///< fx fy cx cy
   bool registered_colour = false;
@@ -145,6 +146,7 @@ int run_rgbd(const GenOptions& options) {
   }
   rgbd.views = options.views;
   if (options.view_gap) rgbd.view_gap = *options.view_gap;
+  rgbd.fuse = options.fuse;
   ProgressBar bar("gen rgbd");
   rgbd.progress = [&bar](std::size_t done, std::size_t total) { bar.update(done, total); };
   const Stopwatch stopwatch;
@@ -273,6 +275,12 @@ Subcommand add_gen(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--view-gap", options->view_gap,
                   "With --from-rgbd --views: frames between a box's views (default 10)");
+  sub->add_option("--fuse", options->fuse,
+                  "With --from-rgbd: each scene fused from N consecutive frames about its own, "
+                  "moved by the sequence's poses (lmk find with several frames; default 1: the "
+                  "frame alone)")
+      ->check(CLI::Range(1, 30))
+      ->capture_default_str();
   sub->add_option("--gap", options->gap,
                   "With --from-rgbd: MIN MAX frames between a landmark's frame and its scenes "
                   "(default 10 40)")

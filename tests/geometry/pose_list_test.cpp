@@ -1,0 +1,55 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The pose list of fused frames (pose_list.h): TUM's order with or without its timestamp, comments
+// and blank lines, and one line naming what is wrong with a bad pose.
+
+#include "lmk/geometry/pose_list.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "lmk/geometry/error.h"
+
+namespace lmk {
+namespace {
+
+std::string error_of(const std::string& text) {
+  try {
+    parse_pose_list(text, "poses.txt");
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(PoseList, ReadsTumOrderWithOrWithoutATimestamp) {
+  const auto poses = parse_pose_list(
+      "# x y z qx qy qz qw\n"
+      "1 2 3 0 0 0 1\n"
+      "\n"
+      "1305031102.175304 0.5 0 0 0 0 0.7071068 0.7071068  # turned 90 degrees about z\n",
+      "poses.txt");
+  ASSERT_EQ(poses.size(), 2u);
+  EXPECT_TRUE(poses[0].translation().isApprox(Eigen::Vector3d(1, 2, 3)));
+  EXPECT_TRUE(poses[0].linear().isIdentity(1e-12));
+  EXPECT_TRUE(poses[1].translation().isApprox(Eigen::Vector3d(0.5, 0, 0)));
+  EXPECT_TRUE(
+      (poses[1].linear() * Eigen::Vector3d::UnitX()).isApprox(Eigen::Vector3d::UnitY(), 1e-6));
+}
+
+TEST(PoseList, BadLinesAreRefusedWithTheirNumber) {
+  EXPECT_EQ(
+      error_of("0 0 0 0 0 0 1\n1 2 3\n"),
+      "poses.txt:2: expected 7 numbers (x y z qx qy qz qw) or 8 (a timestamp first), found 3");
+  EXPECT_EQ(error_of("0 0 x 0 0 0 1\n"), "poses.txt:1: 'x' is not a number");
+  EXPECT_NE(error_of("0 0 0 0 0 0 2\n").find("poses.txt:1.quaternion: is not a unit quaternion"),
+            std::string::npos)
+      << error_of("0 0 0 0 0 0 2\n");
+  EXPECT_NE(error_of("0 0 nan 0 0 0 1\n").find("poses.txt:1"), std::string::npos);
+  EXPECT_NE(error_of("1e308 0 0 0 0 0 1\n").find("at most 1e5 m"), std::string::npos);
+  EXPECT_EQ(error_of(""), "");
+  EXPECT_TRUE(parse_pose_list("# nothing\n\n", "poses.txt").empty());
+}
+
+}  // namespace
+}  // namespace lmk
