@@ -140,7 +140,12 @@ PointCloud fused_scene(const RgbdSequence& sequence, std::size_t index, const Us
   }
   for (std::size_t i = first, k = 0; i < last; ++i) {
     if (i == index) continue;
-    frames.push_back({&clouds[k++], T_camera_world * sequence.frames[i].T_world_camera});
+    // The sequence's poses, refined by registering the whole frame onto the scene's: they are
+    // tracking's, good to a centimetre, and a fused surface is only as sharp as its frames agree.
+    const PointCloud& cloud = clouds[k++];
+    const IcpResult r = register_frames(reduce_for_registration(cloud), used.reduced,
+                                        T_camera_world * sequence.frames[i].T_world_camera);
+    frames.push_back({&cloud, r.T_target_source});
   }
   return fuse_frames(frames);
 }

@@ -7,10 +7,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/range_image.h"
+#include "lmk/geometry/stopwatch.h"
 #include "lmk/occupancy/detail/vdb_support.h"
 
 namespace lmk {
@@ -65,9 +67,9 @@ struct PreparedFrame {
   }
 };
 
+// Each frame's image (fitting its intrinsics reads every pixel: the frames in parallel).
 std::vector<PreparedFrame> prepare(const std::vector<DepthFrame>& frames) {
   if (frames.empty()) throw Error("fuse: no frame");
-  std::vector<PreparedFrame> out;
   for (std::size_t i = 0; i < frames.size(); ++i) {
     const std::string what = "fuse: frame " + std::to_string(i + 1);
     const PointCloud* cloud = frames[i].cloud;
@@ -76,13 +78,19 @@ std::vector<PreparedFrame> prepare(const std::vector<DepthFrame>& frames) {
       throw Error(what + ": an unorganised cloud (frames are fused through their depth images)");
     }
     if (!frames[i].T_common_cloud.matrix().allFinite()) throw Error(what + ": pose not finite");
-    std::optional<RangeImage> image = RangeImage::from_cloud(*cloud);
-    if (!image) {
-      throw Error(what +
+  }
+  std::vector<std::optional<RangeImage>> images(frames.size());
+  tbb::parallel_for(std::size_t{0}, frames.size(),
+                    [&](std::size_t i) { images[i] = RangeImage::from_cloud(*frames[i].cloud); });
+  std::vector<PreparedFrame> out;
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    if (!images[i]) {
+      throw Error("fuse: frame " + std::to_string(i + 1) +
                   ": its pixels are no pinhole view from its sensor pose (a wrong VIEWPOINT?)");
     }
-    const Eigen::Isometry3d T_common_sensor = frames[i].T_common_cloud * cloud->T_cloud_sensor;
-    out.push_back({std::move(*image), T_common_sensor.inverse().cast<float>()});
+    const Eigen::Isometry3d T_common_sensor =
+        frames[i].T_common_cloud * frames[i].cloud->T_cloud_sensor;
+    out.push_back({std::move(*images[i]), T_common_sensor.inverse().cast<float>()});
   }
   return out;
 }
@@ -90,41 +98,52 @@ std::vector<PreparedFrame> prepare(const std::vector<DepthFrame>& frames) {
 // The band and the weight of a depth measured at `depth`: the band is truncation_sigmas of its
 // noise (at least four voxels), the weight 1 / sigma^2 relative to a measurement at 1 m.
 struct Measurement {
-  double band;
-  double weight;
+  float band;
+  float weight;
 };
 Measurement measurement_at(double depth, const FusionSettings& s) {
   const double sigma = std::max(s.noise.measurement_sigma(depth), 0.25 * s.voxel_size);
   const double at_one_metre = std::max(s.noise.measurement_sigma(1.0), 0.25 * s.voxel_size);
   // At least four voxels: a surface seen obliquely changes its projective distance by several
   // voxels' worth from one voxel to the next, and a crossing needs both sides inside the band.
-  return {std::max(s.truncation_sigmas * sigma, 4.0 * s.voxel_size),
-          (at_one_metre * at_one_metre) / (sigma * sigma)};
+  return {static_cast<float>(std::max(s.truncation_sigmas * sigma, 4.0 * s.voxel_size)),
+          static_cast<float>((at_one_metre * at_one_metre) / (sigma * sigma))};
 }
 
-// The voxels every frame measured a surface in, dilated by the band at the frames' median depth:
-// the voxels the volume keeps. Free space far from every surface is not stored.
+// measurement_at() by the millimetre, out to kTableRange: looked up twice per voxel and frame.
+class MeasurementTable {
+ public:
+  explicit MeasurementTable(const FusionSettings& s) {
+    for (int mm = 0; mm <= kSteps; ++mm) table_.push_back(measurement_at(1e-3 * mm, s));
+  }
+  const Measurement& at(float depth) const {
+    const int mm = static_cast<int>(depth * 1000.0f + 0.5f);
+    return table_[static_cast<std::size_t>(std::clamp(mm, 0, kSteps))];
+  }
+
+ private:
+  static constexpr int kSteps = 10000;  // 10 m: beyond any depth camera's range
+  std::vector<Measurement> table_;
+};
+
+// The voxels every frame measured a surface in, dilated by kShell voxels: the voxels the volume
+// keeps. Free space far from every surface is not stored.
+constexpr int kShell = 2;
 vdb::FloatGrid::Ptr allocate(const std::vector<DepthFrame>& frames, const FusionSettings& s) {
   auto weight = vdb::FloatGrid::create(0.0f);
   weight->setTransform(vdb::math::Transform::createLinearTransform(s.voxel_size));
   auto accessor = weight->getAccessor();
   const double inverse_voxel = 1.0 / s.voxel_size;
-  std::vector<float> depths;
   for (const DepthFrame& f : frames) {
     const Eigen::Isometry3f T = f.T_common_cloud.cast<float>();
-    const Eigen::Vector3f sensor = f.cloud->T_cloud_sensor.translation().cast<float>();
-    for (std::size_t i = 0; i < f.cloud->points.size(); ++i) {
-      const Eigen::Vector3f& p = f.cloud->points[i];
+    for (const Eigen::Vector3f& p : f.cloud->points) {
       if (!is_finite(p)) continue;
       accessor.setValueOn(detail::nearest_voxel((T * p).cast<double>(), inverse_voxel), 0.0f);
-      if (i % 97 == 0) depths.push_back((p - sensor).norm());
     }
   }
-  if (depths.empty()) return weight;
-  std::nth_element(depths.begin(), depths.begin() + depths.size() / 2, depths.end());
-  const double band = measurement_at(depths[depths.size() / 2], s).band;
-  const int iterations = std::clamp(static_cast<int>(std::ceil(band / s.voxel_size)), 1, 8);
-  vdb::tools::dilateActiveValues(weight->tree(), iterations, vdb::tools::NN_FACE_EDGE_VERTEX,
+  // Two voxels about each measured one hold the crossing and the gradient beside it, and where
+  // another frame saw past the surface, its carving; the band sets the values, not the extent.
+  vdb::tools::dilateActiveValues(weight->tree(), kShell, vdb::tools::NN_FACE_EDGE_VERTEX,
                                  vdb::tools::IGNORE_TILES);
   return weight;
 }
@@ -143,6 +162,7 @@ vdb::FloatGrid::Ptr integrate(vdb::FloatGrid& weights, const std::vector<Prepare
   const double voxel = s.voxel_size;
   // Four pixels further apart in depth than two voxels do not hold one surface between them.
   const float continuity = static_cast<float>(2.0 * voxel);
+  const MeasurementTable measurements(s);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaves.leafCount()),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       for (std::size_t n = range.begin(); n < range.end(); ++n) {
@@ -153,23 +173,23 @@ vdb::FloatGrid::Ptr integrate(vdb::FloatGrid& weights, const std::vector<Prepare
                           const Eigen::Vector3f x(static_cast<float>(c.x() * voxel),
                                                   static_cast<float>(c.y() * voxel),
                                                   static_cast<float>(c.z() * voxel));
-                          double sum = 0.0, weight = 0.0;
+                          float sum = 0.0f, weight = 0.0f;
                           for (const PreparedFrame& f : frames) {
                             const PreparedFrame::Look look = f.look(x, continuity);
                             if (std::isnan(look.measured)) continue;
-                            const double gap = look.measured - look.depth;
-                            const double band = measurement_at(look.measured, s).band;
+                            const float gap = look.measured - look.depth;
+                            const float band = measurements.at(look.measured).band;
                             if (gap < -band) continue;  // behind the surface: unseen
                             // Weighed at the voxel's own depth: a frame that saw a far surface
                             // through a near voxel is as sure of it as one that measured there.
-                            const double w = measurement_at(look.depth, s).weight;
-                            sum += w * std::min(1.0, gap / band);
+                            const float w = measurements.at(look.depth).weight;
+                            sum += w * std::min(1.0f, gap / band);
                             weight += w;
                           }
                           const std::size_t k = v.pos();
-                          if (weight > 0.0) {
-                            w.setValueOnly(k, static_cast<float>(weight));
-                            d->setValueOnly(k, static_cast<float>(sum / weight));
+                          if (weight > 0.0f) {
+                            w.setValueOnly(k, weight);
+                            d->setValueOnly(k, sum / weight);
                           } else {
                             w.setValueOff(k);
                             d->setValueOff(k);
@@ -278,50 +298,70 @@ std::optional<TsdfVolume::Sample> TsdfVolume::sample(const Eigen::Vector3d& p) c
 }
 
 PointCloud TsdfVolume::surface() const {
-  const auto distance = grid_->distance->getConstAccessor();
-  const auto weight = grid_->weight->getConstAccessor();
   const double voxel = grid_->voxel;
-  // The distance at `c` when observed.
-  const auto at = [&](const vdb::Coord& c, float& value) {
-    if (!weight.isValueOn(c)) return false;
-    value = distance.getValue(c);
-    return true;
-  };
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  vdb::tree::LeafManager<const vdb::FloatTree> leaves(grid_->weight->tree());
+  // Per leaf, in the leaves' order: the same crossings in the same order whatever the threads.
+  std::vector<PointCloud> per_leaf(leaves.leafCount());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaves.leafCount()),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      const auto distance = grid_->distance->getConstAccessor();
+                      const auto weight = grid_->weight->getConstAccessor();
+                      // The distance at `c` when observed.
+                      const auto at = [&](const vdb::Coord& c, float& value) {
+                        if (!weight.isValueOn(c)) return false;
+                        value = distance.getValue(c);
+                        return true;
+                      };
+                      // The unit gradient at `c` by central differences where both neighbours were
+                      // observed, one-sided else: the normal, pointing to free space.
+                      const auto normal_at = [&](const vdb::Coord& c, float here) {
+                        Eigen::Vector3f gradient;
+                        for (int axis = 0; axis < 3; ++axis) {
+                          vdb::Coord step(0, 0, 0);
+                          step[axis] = 1;
+                          float ahead = 0.0f, behind = 0.0f;
+                          const bool has_ahead = at(c + step, ahead),
+                                     has_behind = at(c - step, behind);
+                          gradient[axis] = has_ahead && has_behind ? 0.5f * (ahead - behind)
+                                           : has_ahead             ? ahead - here
+                                           : has_behind            ? here - behind
+                                                                   : nan;
+                        }
+                        const float length = gradient.norm();
+                        return length > 1e-6f ? Eigen::Vector3f(gradient / length)
+                                              : Eigen::Vector3f::Constant(nan);
+                      };
+                      for (std::size_t n = range.begin(); n < range.end(); ++n) {
+                        PointCloud& out = per_leaf[n];
+                        const vdb::FloatTree::LeafNodeType& leaf = leaves.leaf(n);
+                        for (auto v = leaf.cbeginValueOn(); v; ++v) {
+                          const vdb::Coord c = v.getCoord();
+                          const float here = distance.getValue(c);
+                          if (!(std::abs(here) < 1.0f)) continue;  // truncated: says only "beyond"
+                          for (int axis = 0; axis < 3; ++axis) {
+                            vdb::Coord step(0, 0, 0);
+                            step[axis] = 1;
+                            float next = 0.0f;
+                            if (!at(c + step, next) || (here > 0.0f) == (next > 0.0f) ||
+                                !(std::abs(next) < 1.0f)) {
+                              continue;  // no crossing, or one beside a truncated value
+                            }
+                            const float t = here / (here - next);
+                            Eigen::Vector3f p(static_cast<float>(c.x() * voxel),
+                                              static_cast<float>(c.y() * voxel),
+                                              static_cast<float>(c.z() * voxel));
+                            p[axis] += t * static_cast<float>(voxel);
+                            out.points.push_back(p);
+                            out.normals.push_back(normal_at(c, here));
+                          }
+                        }
+                      }
+                    });
   PointCloud out;
-  for (auto v = grid_->weight->cbeginValueOn(); v; ++v) {
-    const vdb::Coord c = v.getCoord();
-    const float here = distance.getValue(c);
-    // The gradient by central differences where both neighbours were observed, one-sided else.
-    Eigen::Vector3f gradient;
-    for (int axis = 0; axis < 3; ++axis) {
-      vdb::Coord step(0, 0, 0);
-      step[axis] = 1;
-      float ahead = 0.0f, behind = 0.0f;
-      const bool has_ahead = at(c + step, ahead), has_behind = at(c - step, behind);
-      gradient[axis] = has_ahead && has_behind ? 0.5f * (ahead - behind)
-                       : has_ahead             ? ahead - here
-                       : has_behind            ? here - behind
-                                               : std::numeric_limits<float>::quiet_NaN();
-    }
-    const float length = gradient.norm();
-    const Eigen::Vector3f normal =
-        length > 1e-6f ? Eigen::Vector3f(gradient / length)
-                       : Eigen::Vector3f::Constant(std::numeric_limits<float>::quiet_NaN());
-    for (int axis = 0; axis < 3; ++axis) {
-      vdb::Coord step(0, 0, 0);
-      step[axis] = 1;
-      float next = 0.0f;
-      if (!at(c + step, next)) continue;
-      if ((here > 0.0f) == (next > 0.0f) || std::max(std::abs(here), std::abs(next)) >= 1.0f) {
-        continue;  // no crossing, or one beside a truncated value, which says only "beyond"
-      }
-      const float t = here / (here - next);
-      Eigen::Vector3f p(static_cast<float>(c.x() * voxel), static_cast<float>(c.y() * voxel),
-                        static_cast<float>(c.z() * voxel));
-      p[axis] += t * static_cast<float>(voxel);
-      out.points.push_back(p);
-      out.normals.push_back(normal);
-    }
+  for (const PointCloud& leaf : per_leaf) {
+    out.points.insert(out.points.end(), leaf.points.begin(), leaf.points.end());
+    out.normals.insert(out.normals.end(), leaf.normals.begin(), leaf.normals.end());
   }
   out.width = static_cast<std::uint32_t>(out.points.size());
   out.height = 1;

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// lmk bench [SCENE LANDMARK] [--repeats N] [--reference-seeds N] [--threads N] [--json FILE]:
+// lmk bench [SCENE LANDMARK] [--repeats N] [--reference-seeds N] [--threads N] [--frames N]
+//           [--json FILE]:
 // the fast search and the paper's reference search side by side, on the same scene and landmark
 // in one run: median seconds per search, their ratio, and peak memory.
 //
@@ -28,9 +29,11 @@
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/statistics.h"
+#include "lmk/geometry/stopwatch.h"
 #include "lmk/geometry/worker_threads.h"
 #include "lmk/landmark/find_landmark.h"
 #include "lmk/landmark/landmark_file.h"
+#include "lmk/occupancy/tsdf_volume.h"
 #include "tools/cli_common.h"
 
 namespace lmk::cli {
@@ -43,6 +46,7 @@ struct BenchOptions {
   int repeats = 10;
   std::size_t reference_seeds = 20;
   int threads = 2;
+  int frames = 1;  ///< > 1: also fuse this many frames of the scene, and search the fused frame
 };
 
 struct Workload {
@@ -88,12 +92,43 @@ double peak_memory_mib() {
   return static_cast<double>(usage.ru_maxrss) / 1024.0;
 }
 
+// Fusing o.frames copies of the scene's frame (the work of as many frames: every kept voxel is
+// looked up in each) and searching the fused frame, each o.repeats times, against the one-frame
+// search's median `one_frame` of the same run.
+nlohmann::json bench_fused(const Workload& w, const BenchOptions& o, const LandmarkIndex& prepared,
+                           const FindSettings& fast, double one_frame) {
+  const std::vector<DepthFrame> frames(static_cast<std::size_t>(o.frames), DepthFrame{&w.scene});
+  std::vector<double> fusing, searching;
+  PointCloud scene;
+  for (int k = 0; k < o.repeats; ++k) {
+    const Stopwatch stopwatch;
+    with_worker_threads(o.threads, [&] { scene = fuse_frames(frames); });
+    fusing.push_back(stopwatch.seconds());
+    const SceneIndex index(scene, fast.scene);
+    const FindResult r = find_landmark(index, prepared, fast);
+    searching.push_back(r.stats.seconds_total + index.seconds_to_build());
+  }
+  const double peak = peak_memory_mib();
+  std::printf("\nfused              %d frames of it, %d times\n", o.frames, o.repeats);
+  std::printf("  median fusion     %.4f s (%u x %u fused frame)\n", median_of(fusing), scene.width,
+              scene.height);
+  std::printf("  median search     %.4f s on the fused frame, %.2fx the one-frame search\n",
+              median_of(searching), median_of(searching) / one_frame);
+  std::printf("  peak memory       %.0f MiB (process, after fusing)\n", peak);
+  return {{"frames", o.frames},
+          {"median_seconds_fusion", median_of(fusing)},
+          {"median_seconds_search_fused", median_of(searching)},
+          {"search_ratio_to_one_frame", median_of(searching) / one_frame},
+          {"peak_memory_mib", peak}};
+}
+
 int run_bench(const BenchOptions& o) {
   if (o.scene.empty() != o.landmark.empty()) {
     throw Error("bench: give both SCENE and LANDMARK, or neither for the built-in workload");
   }
   if (o.repeats < 1) throw Error("bench: --repeats must be at least 1");
   if (o.reference_seeds < 1) throw Error("bench: --reference-seeds must be at least 1");
+  if (o.frames < 1 || o.frames > 30) throw Error("bench: --frames must be 1 to 30");
   check_worker_threads(o.threads, "bench: --threads");
   const Workload w = load_workload(o);
   std::printf("workload           %s\n", w.description.c_str());
@@ -139,6 +174,9 @@ int run_bench(const BenchOptions& o) {
   std::printf("  matches           %zu\n", fast_matches);
   std::printf("  peak memory       %.0f MiB (process, after the fast searches)\n", fast_peak);
 
+  nlohmann::json fused = nullptr;
+  if (o.frames > 1) fused = bench_fused(w, o, prepared, fast, fast_median);
+
   // Reference: a capped run, extrapolated to the full seed count.
   FindSettings reference;
   reference.method = SearchMethod::reference;
@@ -183,7 +221,8 @@ int run_bench(const BenchOptions& o) {
                                   {"seconds_per_seed", per_seed},
                                   {"seconds_per_search_extrapolated", reference_search},
                                   {"peak_memory_mib", reference_peak}}},
-                                {"ratio", ratio}};
+                                {"ratio", ratio},
+                                {"fused", fused}};
     write_text_atomically(o.json, out.dump(2) + "\n");
   }
   return kOk;
@@ -204,6 +243,10 @@ Subcommand add_bench(CLI::App& app) {
   sub->add_option("--reference-seeds", o->reference_seeds,
                   "Seeds the reference search runs before extrapolating")
       ->check(non_negative_whole())
+      ->capture_default_str();
+  sub->add_option("--frames", o->frames,
+                  "Also fuse this many frames of the scene (its frame repeated: the work of as "
+                  "many frames) and search the fused frame, against the one-frame search")
       ->capture_default_str();
   sub->add_option("--threads", o->threads, "Worker threads; 0 uses every core")
       ->check(worker_threads())
