@@ -17,6 +17,7 @@
 #include "lmk/landmark/landmark_file.h"
 #include "lmk/pbd/execute.h"
 #include "lmk/pbd/joint_motion.h"
+#include "lmk/pbd/look_again.h"
 #include "lmk/pbd/plan.h"
 #include "lmk/pbd/recorder.h"
 #include "lmk/pr2/head_pointing.h"
@@ -73,6 +74,25 @@ PointCloud look(const SimulatedPr2& robot, const DemoWorld& world, std::uint64_t
   require(robot.sensor_pose(T_base_sensor), "sensor pose");
   return world.observe(T_base_sensor, seed);
 }
+
+// The simulated PR2's head and its Kinect in a demo world: pointed by the head's joints, seeing
+// the world from where the head's kinematics put the camera, each frame with its own noise.
+class HeadKinect : public Eyes {
+ public:
+  HeadKinect(SimulatedPr2& robot, const DemoWorld& world, std::uint64_t seed)
+      : robot_(robot), world_(world), seed_(seed) {}
+  CallResult look_at(const Eigen::Vector3d& target, PointCloud& frame) override {
+    const CallResult pointed = point_head(robot_, robot_.kinematics(), target);
+    if (!pointed.ok()) return pointed;
+    frame = look(robot_, world_, ++seed_);
+    return CallResult::success();
+  }
+
+ private:
+  SimulatedPr2& robot_;
+  const DemoWorld& world_;
+  std::uint64_t seed_;
+};
 
 // The box the user draws around a landmark in the demonstration world.
 Box drawn_box(const DemoTask& task, const DemoLandmark& l) {
@@ -284,6 +304,12 @@ std::string judge_targets(const DemoTask& task, const Program& program, const Pl
   return "";
 }
 
+// "; after 2 more looks (...)", or "" without any.
+std::string looks_said(const LookedPlan& looked) {
+  const std::string said = describe_looks(looked.looks);
+  return said.empty() ? "" : "; " + said;
+}
+
 // The landmark a refusal names, or "" for an unreachable step.
 std::string refused_landmark(const Refusal& refusal) {
   if (const auto* missing = std::get_if<LandmarkNotFound>(&refusal)) return missing->landmark;
@@ -310,6 +336,11 @@ DemoScenarioResult run_scenario(const DemoTask& task, std::size_t index,
   }
   state.picked.clear();
   SimulatedPr2& robot = *state.robot;
+  // A scenario that continues the previous one starts from the task's view, wherever the head
+  // looked last.
+  if (scenario.continues_previous) {
+    require(point_head(robot, robot.kinematics(), task.look_at), task_prefix(task) + ": head");
+  }
   const PointCloud scene = look(robot, state.world, 100 * task.number + index);
   if (!settings.save_dir.empty()) {
     write_cloud((std::filesystem::path(settings.save_dir) / ("task" + std::to_string(task.number)) /
@@ -323,8 +354,13 @@ DemoScenarioResult run_scenario(const DemoTask& task, std::size_t index,
   PlanSettings plan_settings;
   plan_settings.find.execution.threads = settings.threads;
   plan_settings.min_confidence = settings.min_confidence;
-  const Plan plan =
-      lmk::plan(program, recorded.landmarks, scene, robot.kinematics(), joints, plan_settings);
+  HeadKinect eyes(robot, state.world, 100 * (100 * task.number + index));
+  LookAgainSettings looking;
+  looking.max_looks = settings.look_again;
+  const LookedPlan looked = plan_looking_again(
+      program, recorded.landmarks, scene, robot.kinematics(), joints, eyes, plan_settings, looking);
+  const Plan& plan = looked.plan;
+  result.looks = looked.looks.size();
   const std::size_t motions_before = robot.history().size();
   const double time_before = robot.time();
   const ExecutionReport execution = execute(plan, robot);
@@ -337,7 +373,7 @@ DemoScenarioResult run_scenario(const DemoTask& task, std::size_t index,
     result.success =
         plan.refusal && refused_landmark(*plan.refusal) == scenario.missing_landmark && !moved;
     if (result.success) {
-      result.reason = "refused, no motion: " + describe(*plan.refusal);
+      result.reason = "refused, no motion: " + describe(*plan.refusal) + looks_said(looked);
     } else if (plan.valid()) {
       result.wrong_motion = moved;
       result.reason = "acted although '" + scenario.missing_landmark + "' is absent";
@@ -345,7 +381,7 @@ DemoScenarioResult run_scenario(const DemoTask& task, std::size_t index,
       result.reason = "refused for another reason: " + describe(*plan.refusal);
     }
   } else if (!plan.valid()) {
-    result.reason = "refused: " + describe(*plan.refusal);
+    result.reason = "refused: " + describe(*plan.refusal) + looks_said(looked);
     if (const auto* missing = std::get_if<LandmarkNotFound>(&*plan.refusal)) {
       result.reason += "; " + what_the_sensor_saw(task.landmark(missing->landmark), state.world,
                                                   scene, recorded.landmarks.at(missing->landmark));

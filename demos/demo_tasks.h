@@ -33,6 +33,7 @@ struct DemoScenarioResult {
   double max_position_error = 0.0;  ///< m, over the landmark-relative targets (acting scenarios)
   double max_rotation_error = 0.0;  ///< rad
   double seconds = 0.0;             ///< perception, planning and execution
+  std::size_t looks = 0;            ///< further frames the head took (look_again)
 };
 
 struct DemoTasksReport {
@@ -45,9 +46,12 @@ struct DemoTasksReport {
 };
 
 struct DemoTasksSettings {
-  std::vector<int> tasks;                           ///< 1-6; empty runs all six
-  int threads = 0;                                  ///< search threads; 0 uses every core
-  double min_confidence = kDefaultMinConfidence;    ///< PlanSettings::min_confidence
+  std::vector<int> tasks;                         ///< 1-6; empty runs all six
+  int threads = 0;                                ///< search threads; 0 uses every core
+  double min_confidence = kDefaultMinConfidence;  ///< PlanSettings::min_confidence
+  /// Further frames the head may take when a landmark is missing or doubtful (pbd/look_again.h);
+  /// 0 refuses at once.
+  int look_again = 2;
   double max_position_error = 0.02;                 ///< m
   double max_rotation_error = 10.0 * M_PI / 180.0;  ///< rad
   /// If set, each task's landmarks (.lmk) and programs (.json), and every scene (.pcd) are written

@@ -12,12 +12,12 @@ namespace lmk {
 
 std::string demo_tasks_table(const DemoTasksReport& report) {
   TextTable table;
-  table.header = {"task", "scenario", "should act", "success", "outcome", "reason"};
+  table.header = {"task", "scenario", "should act", "success", "outcome", "looks", "reason"};
   for (const DemoScenarioResult& r : report.scenarios) {
     const char* outcome = r.wrong_motion ? "WRONG MOTION" : r.refused ? "refused" : "acted";
     table.rows.push_back({std::to_string(r.task) + " " + r.task_title, r.name,
                           r.should_act ? "yes" : "no", r.success ? "yes" : "NO", outcome,
-                          r.reason});
+                          std::to_string(r.looks), r.reason});
   }
   char total[200];
   std::snprintf(total, sizeof(total),
@@ -42,7 +42,8 @@ nlohmann::json scenario_to_json(const DemoScenarioResult& r) {
           {"steps_executed", r.steps_executed},
           {"max_position_error_m", r.max_position_error},
           {"max_rotation_error_rad", r.max_rotation_error},
-          {"seconds", r.seconds}};
+          {"seconds", r.seconds},
+          {"looks", r.looks}};
 }
 
 DemoScenarioResult scenario_from_json(const nlohmann::json& j) {
@@ -59,6 +60,7 @@ DemoScenarioResult scenario_from_json(const nlohmann::json& j) {
   r.max_position_error = j.at("max_position_error_m").get<double>();
   r.max_rotation_error = j.at("max_rotation_error_rad").get<double>();
   r.seconds = j.at("seconds").get<double>();
+  r.looks = j.value("looks", std::size_t{0});
   return r;
 }
 

@@ -19,12 +19,32 @@
 #include "lmk/geometry/version.h"
 #include "lmk/landmark/capture_views.h"
 #include "lmk/landmark/landmark_file.h"
+#include "lmk/occupancy/tsdf_volume.h"
 
 namespace lmk {
 
 namespace fs = std::filesystem;
 
 namespace {
+
+// The scene fused from options.frames renders (GenerateOptions::frames): each with its own noise,
+// the k-th from the camera panned by head_turn x (0, +1, -1, +2, -2, ...) about the vertical
+// through it; fused into the first render's view.
+PointCloud render_fused(GeneratedScene scene, const GenerateOptions& options, std::uint64_t seed) {
+  const Eigen::Isometry3d camera = scene.T_world_sensor;
+  std::vector<PointCloud> renders;
+  for (int k = 0; k < options.frames; ++k) {
+    const int step = (k + 1) / 2 * (k % 2 == 1 ? 1 : -1);
+    const double pan = step * options.head_turn * M_PI / 180.0;
+    Eigen::Isometry3d turned = camera;
+    turned.linear() = Eigen::AngleAxisd(pan, Eigen::Vector3d::UnitZ()) * camera.linear();
+    scene.T_world_sensor = turned;
+    renders.push_back(render_scene(scene, options.noise, seed + static_cast<std::uint64_t>(k)));
+  }
+  std::vector<DepthFrame> frames;
+  for (const PointCloud& r : renders) frames.push_back({&r});
+  return fuse_frames(frames);
+}
 
 // Each rendered frame gets its own noise stream, derived from what the frame shows.
 std::uint64_t noise_seed(const std::string& scene_name) {
@@ -78,6 +98,7 @@ std::string generation_key(const std::string& preset, const GenerateOptions& opt
       .add_value(options.noise)
       .add(join(options.types));
   if (options.views > 1) key.add_value(options.views);  // one view: the key it always had
+  if (options.frames > 1) key.add_value(options.frames).add_value(options.head_turn);
   return key.add_value(kBenchmarkGeneratorVersion).add(kVersion).hex();
 }
 
@@ -166,6 +187,11 @@ Generated generate_benchmark(const std::string& dir, const std::string& preset_n
   if (seeds < 1) throw Error("--seeds must be at least 1 (got " + std::to_string(seeds) + ")");
   if (options.merge && options.shard)
     throw Error("gen: a merge gathers every shard; give no shard");
+  if (options.frames < 1 || options.frames > 30)
+    throw Error("gen: --frames " + std::to_string(options.frames) + ": must be 1 to 30");
+  if (!(options.head_turn >= 0.0 && options.head_turn <= 45.0))
+    throw Error("gen: --head-turn " + std::to_string(options.head_turn) +
+                ": must be 0 to 45 degrees");
   const bool hard = preset.hard || options.hard;
   const fs::path parts = fs::path(dir) / (".parts-" + generation_key(preset_name, options));
 
@@ -268,7 +294,8 @@ Generated generate_benchmark(const std::string& dir, const std::string& preset_n
       }
     }
     write_cloud((fs::path(dir) / entry.file).string(),
-                render_scene(scene, options.noise, noise_seed(entry.name)));
+                options.frames > 1 ? render_fused(scene, options, noise_seed(entry.name))
+                                   : render_scene(scene, options.noise, noise_seed(entry.name)));
     // Kept as its part holds it: a pose goes through its quaternion there, which is not
     // bit-exact, so a scene rendered now and one a shard rendered must take the same way for
     // dataset.json to be the same whichever ran.

@@ -67,6 +67,12 @@ struct GenerateOptions {
   /// demonstration camera, then that camera turned about the vertical through the instance by
   /// +45, -45 and +90 degrees; the landmark of k views is "<name>-v<k>", with the same pairs.
   int views = 1;
+  /// Each scene fused from this many renders of it (issue #46; occupancy/tsdf_volume.h), each with
+  /// its own noise, the k-th from the scene's camera panned by head_turn degrees times 0, +1, -1,
+  /// +2, -2, ... about the vertical through it (a robot's head turning between looks). 1 renders
+  /// one frame as before.
+  int frames = 1;
+  double head_turn = 0.0;  ///< degrees
   /// Called after each file written, with (files done, files in all).
   std::function<void(std::size_t, std::size_t)> progress;
 };

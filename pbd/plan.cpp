@@ -205,8 +205,12 @@ std::optional<Refusal> locate_landmarks(const Program& program,
     const std::vector<const Match*> sure = confident_matches(eligible, settings.min_confidence);
     if (sure.empty()) {
       const MatchConfidence& c = eligible.front()->confidence;
-      return LandmarkDoubtful{entry->name, c.probability, settings.min_confidence, c.competitor,
-                              describe_doubt(c, eligible.front()->box)};
+      return LandmarkDoubtful{entry->name,
+                              c.probability,
+                              settings.min_confidence,
+                              c.competitor,
+                              describe_doubt(c, eligible.front()->box),
+                              eligible.front()->box};
     }
     Candidates c;
     c.entry = entry;

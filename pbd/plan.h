@@ -37,6 +37,7 @@ struct LandmarkDoubtful {
   double min_confidence = 0.0;  ///< the cut it missed
   Competitor competitor;        ///< what competes with it
   std::string doubt;            ///< the confidence's own line: why it is low
+  Box box;                      ///< the preferred instance's box, base frame
 };
 
 /// Refusal: a step's target is out of the arm's reach (or its joint limits).

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "bindings.h"
+#include "lmk/occupancy/tsdf_volume.h"
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/pose.h"
 
@@ -120,6 +121,33 @@ void bind_clouds(py::module_& m) {
   m.def(
       "read_cloud", [](const std::string& path) { return read_cloud(path); }, py::arg("path"),
       "Reads a cloud file as `lmk` does (.pcd, .ply, .xyz).");
+  m.def(
+      "fuse",
+      [](const std::vector<std::shared_ptr<PointCloud>>& clouds, const py::object& poses) {
+        std::vector<DepthFrame> frames;
+        for (std::size_t i = 0; i < clouds.size(); ++i) {
+          if (!clouds[i]) throw py::value_error("fuse: cloud " + std::to_string(i + 1) + " is None");
+          frames.push_back({clouds[i].get()});
+        }
+        if (!poses.is_none()) {
+          const py::list list = py::list(poses);
+          if (list.size() != clouds.size()) {
+            throw py::value_error("fuse: " + std::to_string(list.size()) + " poses for " +
+                                  std::to_string(clouds.size()) + " clouds");
+          }
+          for (std::size_t i = 0; i < frames.size(); ++i) {
+            frames[i].T_common_cloud =
+                pose_from_array(list[i], "fuse: pose " + std::to_string(i + 1));
+          }
+        }
+        const py::gil_scoped_release release;
+        return fuse_frames(frames);
+      },
+      py::arg("clouds"), py::arg("poses") = py::none(),
+      "Several organised frames of one scene as one, as `lmk find A.pcd B.pcd ...` fuses them "
+      "(an OpenVDB truncated signed distance volume, rendered from the first frame's sensor): "
+      "`poses`, when given, is each cloud's 4x4 pose in a common frame; without, the clouds are "
+      "in one frame already. Search the result with lmk.find.");
 }
 
 Eigen::Isometry3d pose_from_array(const py::object& array, const std::string& what) {

@@ -35,7 +35,8 @@ struct GenOptions {
   std::string shard;  ///< K/N
   bool merge = false;
   std::string from_mosd;
-  int copies = 2, frames = 0;
+  int copies = 2, frames = 0;  ///< --from-mosd: the first N frames; --preset: frames fused
+  double head_turn = 0.0;      ///< --preset --frames: degrees the head pans between frames
   std::string from_bag;
   BagOptions bag;
   std::vector<std::string> landmarks;
@@ -83,6 +84,8 @@ int run_preset(const GenOptions& options) {
   if (options.seed != 0) generate.first_seed = options.seed;
   if (!options.shard.empty()) generate.shard = parse_shard(options.shard);
   generate.merge = options.merge;
+  generate.frames = std::max(1, options.frames);
+  generate.head_turn = options.head_turn;
   const std::string label =
       "gen " + options.preset + (options.shard.empty() ? "" : " " + options.shard);
   ProgressBar bar(label);
@@ -220,7 +223,9 @@ Subcommand add_gen(CLI::App& app) {
   sub->add_option("--copies", options->copies, "With --from-mosd: moved copies per frame")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  sub->add_option("--frames", options->frames, "With --from-mosd: the first N frames only (0: all)")
+  sub->add_option("--frames", options->frames,
+                  "With --from-mosd: the first N frames only (0: all). With --preset: each scene "
+                  "fused from N renders with their own noise (lmk find with several frames)")
       ->check(CLI::NonNegativeNumber);
   sub->add_flag("--no-noise", options->no_noise, "Exact depth: no sensor noise or quantisation");
   sub->add_option("--from-bag", options->from_bag,
@@ -275,6 +280,11 @@ Subcommand add_gen(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--view-gap", options->view_gap,
                   "With --from-rgbd --views: frames between a box's views (default 10)");
+  sub->add_option("--head-turn", options->head_turn,
+                  "With --preset --frames: the k-th render's camera panned by DEG x 0, +1, -1, +2, "
+                  "-2, ... about the vertical through it, as a robot's head turns between looks "
+                  "(default 0)")
+      ->check(CLI::Range(0.0, 45.0));
   sub->add_option("--fuse", options->fuse,
                   "With --from-rgbd: each scene fused from N consecutive frames about its own, "
                   "moved by the sequence's poses (lmk find with several frames; default 1: the "

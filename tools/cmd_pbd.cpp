@@ -169,6 +169,7 @@ int run_demo_tasks_command(const PbdOptions& o) {
   settings.tasks = o.tasks;
   settings.threads = o.threads;
   settings.min_confidence = o.min_confidence;
+  settings.look_again = o.look_again;
   settings.save_dir = o.save_dir;
   settings.cache_dir = o.cache_dir;
   const StopOnSigint stop;
@@ -238,6 +239,11 @@ Subcommand add_pbd(CLI::App& app) {
   demo->add_option("--min-confidence", o->min_confidence,
                    "Least confidence of a landmark to act on (0 to 1; 0: act on any match)")
       ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  demo->add_option("--look-again", o->look_again,
+                   "Further frames the head may take, pointed where they can settle it, when a "
+                   "landmark is missing or doubtful, before refusing (0: refuse at once)")
+      ->check(CLI::Range(0, 8))
       ->capture_default_str();
   demo->add_option("--save", o->save_dir,
                    "Write each task's landmarks, programs and scenes to DIR/taskN");

@@ -18,6 +18,7 @@ struct PbdOptions {
   double torso = 0.0;
   int threads = 0;
   double min_confidence = kDefaultMinConfidence;  ///< PlanSettings::min_confidence
+  int look_again = 2;  ///< demo-tasks: further frames when a landmark is missing or doubtful
   bool sim = false, ros = false, json_stdout = false, timings = false;
   std::vector<int> tasks;
   std::string cloud_topic = "/head_mount_kinect/depth_registered/points";

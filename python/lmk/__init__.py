@@ -19,6 +19,7 @@ from ._lmk import (  # noqa: F401
     eval,
     find,
     find_setting_keys,
+    fuse,
     load_landmark,
     plan,
     read_cloud,

@@ -92,6 +92,26 @@ def test_bad_arrays_are_value_errors_that_name_them():
         lmk.Cloud(np.zeros((5, 3), dtype=np.float32), sensor_pose=np.eye(3))
 
 
+def test_fused_frames_find_what_one_frame_finds(tabletop):
+    """Two frames of the tabletop fused (lmk.fuse, as `lmk find A.pcd B.pcd`) hold the cup where
+    the frame alone does; poses move each frame into the common frame."""
+    scene, cup = lmk.read_cloud(tabletop), lmk.load_landmark(CUP)
+    alone = lmk.find(scene, cup)["matches"][0]["position"]
+    fused = lmk.fuse([scene, scene])
+    assert fused.organised and fused.points.shape == scene.points.shape
+    np.testing.assert_allclose(lmk.find(fused, cup)["matches"][0]["position"], alone, atol=0.01)
+    moved = np.eye(4)
+    moved[:3, 3] = [1.0, 2.0, 0.0]
+    elsewhere = lmk.fuse([scene, scene], poses=[moved, moved])
+    np.testing.assert_allclose(lmk.find(elsewhere, cup)["matches"][0]["position"],
+                               np.asarray(alone) + [1.0, 2.0, 0.0], atol=0.01)
+    with pytest.raises(ValueError, match="1 poses for 2 clouds"):
+        lmk.fuse([scene, scene], poses=[moved])
+    flat = lmk.Cloud(scene.points.reshape(-1, 3))
+    with pytest.raises(lmk.Error, match="frame 2: an unorganised cloud"):
+        lmk.fuse([scene, flat])
+
+
 def test_capture_saves_and_loads_with_its_verdict(tabletop, tmp_path):
     scene, cup = lmk.read_cloud(tabletop), lmk.load_landmark(CUP)
     box = cup.box

@@ -1,0 +1,135 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Looking again (look_again.h) on the tests' table: an L that the first view's edge cuts is found
+// once the head turns towards it, and an absent one is refused after the allowed looks, each named.
+
+#include "lmk/pbd/look_again.h"
+
+#include <gtest/gtest.h>
+
+#include "lmk/eval/mesh.h"
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/pose.h"
+#include "lmk/pr2/simulated_pr2.h"
+#include "tests/landmark/l_shape_scene.h"
+
+namespace lmk {
+namespace {
+
+using test_scenes::box_at;
+using test_scenes::capture_camera;
+using test_scenes::render_scene;
+
+// The robot stands 0.65 m in front of the test table, facing it: the world's +y is the base's +x.
+const Eigen::Isometry3d kWorldBase = pose_from_xyz_rpy({0, -0.65, 0}, {0, 0, 0.5 * M_PI});
+
+// A camera fixed where the tests' capture camera stands that turns to look where it is asked,
+// seeing the table with L-shapes at `copies`; counts its looks.
+class TurningCamera : public Eyes {
+ public:
+  explicit TurningCamera(std::vector<Eigen::Vector2d> copies) : copies_(std::move(copies)) {}
+
+  PointCloud first() const { return view(capture_camera()); }
+
+  CallResult look_at(const Eigen::Vector3d& target, PointCloud& frame) override {
+    ++looks;
+    const Eigen::Vector3d eye = capture_camera().translation();
+    frame = view(camera_look_at(eye, kWorldBase * target, Eigen::Vector3d::UnitZ()));
+    return CallResult::success();
+  }
+  int looks = 0;
+
+ private:
+  PointCloud view(const Eigen::Isometry3d& camera) const {
+    return render_scene(copies_, false, {}, camera).transformed(kWorldBase.inverse());
+  }
+  std::vector<Eigen::Vector2d> copies_;
+};
+
+class LookAgainTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    const Eigen::Vector2d demo(-0.1, -0.15);
+    CaptureSettings capture_settings;
+    capture_settings.base_frame = true;
+    landmark_ = new Landmark(capture(render_scene({demo}, false).transformed(kWorldBase.inverse()),
+                                     box_at(demo).transformed(kWorldBase.inverse()), "l",
+                                     capture_settings));
+  }
+  static void TearDownTestSuite() { delete landmark_; }
+
+  // Touch the L from above.
+  static Program program() {
+    Program p;
+    p.name = "touch l";
+    p.landmarks = {{"l", "l.lmk"}};
+    ProgramStep touch;
+    touch.right =
+        ArmTarget{"l", pose_from_xyz_rpy({0, 0, 0.15}, {0, 0.5 * M_PI, 0}), GripperAction::kOpen};
+    p.steps = {touch};
+    return p;
+  }
+
+  LookedPlan plan_with(TurningCamera& camera, int max_looks) const {
+    SimulatedPr2 robot(Pr2Kinematics(RobotModel::pr2(), 0.25));
+    EXPECT_TRUE(robot.configure().ok());
+    EXPECT_TRUE(robot.activate().ok());
+    JointState state;
+    EXPECT_TRUE(robot.read_joint_state(state).ok());
+    LookAgainSettings looking;
+    looking.max_looks = max_looks;
+    return plan_looking_again(program(), {{"l", *landmark_}}, camera.first(), robot.kinematics(),
+                              state, camera, {}, looking);
+  }
+
+  static Landmark* landmark_;
+};
+
+Landmark* LookAgainTest::landmark_ = nullptr;
+
+// Where the L stands: near the table's right end, where the first view's edge cuts through its box.
+const Eigen::Vector2d kAtTheEdge(0.6, -0.3);
+
+TEST_F(LookAgainTest, ALandmarkTheImagesEdgeCutsIsFoundByLookingAgain) {
+  TurningCamera camera({kAtTheEdge});
+  const LookedPlan once = plan_with(camera, 0);
+  ASSERT_FALSE(once.plan.valid()) << "the first view alone should not settle it";
+  EXPECT_TRUE(once.looks.empty());
+  EXPECT_EQ(camera.looks, 0);
+
+  const LookedPlan looked = plan_with(camera, 2);
+  ASSERT_TRUE(looked.plan.valid())
+      << describe(*looked.plan.refusal) << " " << describe_looks(looked.looks);
+  ASSERT_FALSE(looked.looks.empty());
+  EXPECT_EQ(camera.looks, static_cast<int>(looked.looks.size()));
+  const LocatedLandmark* l = looked.plan.landmark("l");
+  ASSERT_NE(l, nullptr);
+  const Eigen::Vector3d truth = box_at(kAtTheEdge).transformed(kWorldBase.inverse()).center();
+  EXPECT_LT((l->match.box.center() - truth).norm(), 0.0254);
+}
+
+TEST_F(LookAgainTest, AnAbsentLandmarkIsRefusedAfterEveryLookNamingThem) {
+  TurningCamera camera({});
+  const LookedPlan looked = plan_with(camera, 2);
+  ASSERT_FALSE(looked.plan.valid());
+  EXPECT_TRUE(std::holds_alternative<LandmarkNotFound>(*looked.plan.refusal))
+      << describe(*looked.plan.refusal);
+  ASSERT_EQ(looked.looks.size(), 2u);
+  EXPECT_EQ(camera.looks, 2);
+  const std::string said = describe_looks(looked.looks);
+  EXPECT_NE(said.find("after 2 more looks"), std::string::npos) << said;
+  EXPECT_NE(said.find("panned +15 degrees"), std::string::npos) << said;
+  EXPECT_NE(said.find("panned -15 degrees"), std::string::npos) << said;
+  EXPECT_TRUE(looked.plan.steps.empty());
+}
+
+TEST(LookAgainSettings, BadValuesAreRefused) {
+  LookAgainSettings s;
+  s.max_looks = -1;
+  EXPECT_THROW(s.validate(), Error);
+  s.max_looks = 2;
+  s.pattern_angle = 0.0;
+  EXPECT_THROW(s.validate(), Error);
+}
+
+}  // namespace
+}  // namespace lmk
