@@ -7,9 +7,9 @@
 #include <memory>
 
 #include "bindings.h"
-#include "lmk/occupancy/tsdf_volume.h"
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/pose.h"
+#include "lmk/occupancy/tsdf_volume.h"
 
 namespace lmk::python {
 namespace {
@@ -126,7 +126,8 @@ void bind_clouds(py::module_& m) {
       [](const std::vector<std::shared_ptr<PointCloud>>& clouds, const py::object& poses) {
         std::vector<DepthFrame> frames;
         for (std::size_t i = 0; i < clouds.size(); ++i) {
-          if (!clouds[i]) throw py::value_error("fuse: cloud " + std::to_string(i + 1) + " is None");
+          if (!clouds[i])
+            throw py::value_error("fuse: cloud " + std::to_string(i + 1) + " is None");
           frames.push_back({clouds[i].get()});
         }
         if (!poses.is_none()) {
