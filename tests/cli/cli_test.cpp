@@ -797,6 +797,39 @@ TEST_F(Cli, AOneViewLandmarkOfTheVersion2FormatSearchesAsItDid) {
   EXPECT_EQ(j["rejected"].dump(), expected["rejected"].dump());
 }
 
+// Several frames of one scene are fused before the search (docs/cli.md, "Several frames"): the
+// tabletop twice finds the cup where the frame alone does, moved with the frames by --poses; a
+// poses file that does not match the frames, an unorganised frame, or no landmark is refused in
+// one line.
+TEST_F(Cli, SeveralFramesOfOneSceneAreFusedBeforeTheSearch) {
+  const std::string cup = "'" + std::string(LMK_CLI_FIXTURES) + "/cup_v2.lmk'";
+  ASSERT_EQ(lmk("gen " + path("tab.pcd")).exit_code, 0);
+  const auto first_match = [&](const std::string& args) {
+    const CommandResult r = lmk("find " + args + " --json -");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_FALSE(j["matches"].empty()) << r.out;
+    const auto& p = j["matches"][0]["position"];
+    return Eigen::Vector3d(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
+  };
+  const Eigen::Vector3d alone = first_match(path("tab.pcd") + " " + cup);
+  const Eigen::Vector3d fused = first_match(path("tab.pcd") + " " + path("tab.pcd") + " " + cup);
+  EXPECT_LT((fused - alone).norm(), 0.01);
+  std::ofstream(dir_.file("poses.txt")) << "# x y z qx qy qz qw\n1 2 0 0 0 0 1\n1 2 0 0 0 0 1\n";
+  const Eigen::Vector3d moved = first_match(path("tab.pcd") + " " + path("tab.pcd") + " " + cup +
+                                            " --poses " + path("poses.txt"));
+  EXPECT_LT((moved - alone - Eigen::Vector3d(1, 2, 0)).norm(), 0.01);
+
+  std::ofstream(dir_.file("one.txt")) << "0 0 0 0 0 0 1\n";
+  expect_bad_input(
+      "find " + path("tab.pcd") + " " + path("tab.pcd") + " " + cup + " --poses " + path("one.txt"),
+      "1 poses for 2 frames");
+  ASSERT_EQ(lmk("convert " + path("tab.pcd") + " " + path("flat.xyz")).exit_code, 0);
+  expect_bad_input("find " + path("tab.pcd") + " " + path("flat.xyz") + " " + cup,
+                   "frame 2: an unorganised cloud");
+  expect_bad_input("find " + cup, "At least 2 required");
+}
+
 TEST_F(Cli, JsonOutputIsByteIdenticalAcrossThreadsRunsAndTheCache) {
   ASSERT_EQ(lmk("gen --preset paper --types simple/three_balls,cluttered/spray_with_clutter " +
                 path("data"))
