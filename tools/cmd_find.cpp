@@ -15,6 +15,8 @@
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/pose.h"
 #include "lmk/geometry/pose_list.h"
+#include "lmk/geometry/stopwatch.h"
+#include "lmk/geometry/worker_threads.h"
 #include "lmk/landmark/depth_correction_file.h"
 #include "lmk/landmark/find_landmark.h"
 #include "lmk/landmark/internal/find_result_json.h"
@@ -113,7 +115,14 @@ PointCloud read_scene(FindOptions& o) {
   }
   std::vector<DepthFrame> fused;
   for (std::size_t i = 0; i < frames.size(); ++i) fused.push_back({&frames[i], poses[i]});
-  return fuse_frames(fused);
+  const Stopwatch stopwatch;
+  PointCloud scene;
+  with_worker_threads(o.settings.execution.threads, [&] { scene = fuse_frames(fused); });
+  if (o.json != "-") {
+    std::printf("%zu frames fused into one %u x %u frame, seen from the first's sensor (%.2f s)\n",
+                frames.size(), scene.width, scene.height, stopwatch.seconds());
+  }
+  return scene;
 }
 
 int run_find(FindOptions& o) {
