@@ -70,6 +70,10 @@ struct PreparedFrame {
 // Each frame's image (fitting its intrinsics reads every pixel: the frames in parallel).
 std::vector<PreparedFrame> prepare(const std::vector<DepthFrame>& frames) {
   if (frames.empty()) throw Error("fuse: no frame");
+  if (frames.size() > kMaxFusedFrames) {
+    throw Error("fuse: " + std::to_string(frames.size()) + " frames: at most " +
+                std::to_string(kMaxFusedFrames));
+  }
   for (std::size_t i = 0; i < frames.size(); ++i) {
     const std::string what = "fuse: frame " + std::to_string(i + 1);
     const PointCloud* cloud = frames[i].cloud;

@@ -23,6 +23,10 @@
 
 namespace lmk {
 
+/// The most frames one fusion takes: a second of a Kinect's frames, and the memory of 30 frames
+/// held at once (about 110 MB of 640 x 480 clouds).
+inline constexpr std::size_t kMaxFusedFrames = 30;
+
 /// One frame to fuse: an organised cloud (its pixels and its sensor pose, cloud->T_cloud_sensor)
 /// and where the cloud's frame lies in the common frame.
 struct DepthFrame {
@@ -48,8 +52,8 @@ struct FusionSettings {
 
 class TsdfVolume {
  public:
-  /// Fuses `frames` (at least one; each organised, with a pinhole image from its sensor pose).
-  /// Throws lmk::Error naming the frame for one that is not.
+  /// Fuses `frames` (1 to kMaxFusedFrames; each organised, with a pinhole image from its sensor
+  /// pose). Throws lmk::Error naming the frame for one that is not, or for too many.
   static TsdfVolume fuse(const std::vector<DepthFrame>& frames, const FusionSettings& settings);
 
   ~TsdfVolume();

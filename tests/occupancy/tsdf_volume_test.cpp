@@ -200,6 +200,7 @@ TEST(TsdfVolume, OneFrameIsReturnedAsItIsAndBadFramesAreRefused) {
   unorganised.set_unorganized();
   EXPECT_THROW(TsdfVolume::fuse({{&a}, {&unorganised}}, {}), Error);
   EXPECT_THROW(TsdfVolume::fuse({}, {}), Error);
+  EXPECT_THROW(TsdfVolume::fuse(std::vector<DepthFrame>(kMaxFusedFrames + 1, {&a}), {}), Error);
   FusionSettings bad;
   bad.voxel_size = 0.0;
   EXPECT_THROW(TsdfVolume::fuse({{&a}}, bad), Error);
