@@ -16,6 +16,7 @@
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/hash.h"
 #include "lmk/geometry/input_file.h"
+#include "lmk/geometry/pose.h"
 #include "lmk/geometry/version.h"
 #include "lmk/landmark/capture_views.h"
 #include "lmk/landmark/landmark_file.h"
@@ -34,8 +35,7 @@ PointCloud render_fused(GeneratedScene scene, const GenerateOptions& options, st
   const Eigen::Isometry3d camera = scene.T_world_sensor;
   std::vector<PointCloud> renders;
   for (int k = 0; k < options.frames; ++k) {
-    const int step = (k + 1) / 2 * (k % 2 == 1 ? 1 : -1);
-    const double pan = step * options.head_turn * M_PI / 180.0;
+    const double pan = alternating_step(k) * options.head_turn * M_PI / 180.0;
     Eigen::Isometry3d turned = camera;
     turned.linear() = Eigen::AngleAxisd(pan, Eigen::Vector3d::UnitZ()) * camera.linear();
     scene.T_world_sensor = turned;
@@ -187,8 +187,10 @@ Generated generate_benchmark(const std::string& dir, const std::string& preset_n
   if (seeds < 1) throw Error("--seeds must be at least 1 (got " + std::to_string(seeds) + ")");
   if (options.merge && options.shard)
     throw Error("gen: a merge gathers every shard; give no shard");
-  if (options.frames < 1 || options.frames > 30)
-    throw Error("gen: --frames " + std::to_string(options.frames) + ": must be 1 to 30");
+  if (options.frames < 1 || static_cast<std::size_t>(options.frames) > kMaxFusedFrames) {
+    throw Error("gen: --frames " + std::to_string(options.frames) + ": must be 1 to " +
+                std::to_string(kMaxFusedFrames));
+  }
   if (!(options.head_turn >= 0.0 && options.head_turn <= 45.0))
     throw Error("gen: --head-turn " + std::to_string(options.head_turn) +
                 ": must be 0 to 45 degrees");

@@ -130,19 +130,15 @@ PointCloud fused_scene(const RgbdSequence& sequence, std::size_t index, const Us
   const std::size_t first = index - before;
   const std::size_t last = std::min(sequence.frames.size(), first + count);
   std::vector<PointCloud> clouds;
+  clouds.reserve(last - first);  // the frames point into it
   std::vector<DepthFrame> frames{{&used.cloud, Eigen::Isometry3d::Identity()}};
-  clouds.reserve(last - first);
   const Eigen::Isometry3d T_camera_world = used.frame->T_world_camera.inverse();
   for (std::size_t i = first; i < last; ++i) {
     if (i == index) continue;
-    clouds.push_back(load_rgbd_frame(sequence.frames[i]));
-    if (correction) correction->correction.apply(clouds.back());
-  }
-  for (std::size_t i = first, k = 0; i < last; ++i) {
-    if (i == index) continue;
+    PointCloud& cloud = clouds.emplace_back(load_rgbd_frame(sequence.frames[i]));
+    if (correction) correction->correction.apply(cloud);
     // The sequence's poses, refined by registering the whole frame onto the scene's: they are
     // tracking's, good to a centimetre, and a fused surface is only as sharp as its frames agree.
-    const PointCloud& cloud = clouds[k++];
     const IcpResult r = register_frames(reduce_for_registration(cloud), used.reduced,
                                         T_camera_world * sequence.frames[i].T_world_camera);
     frames.push_back({&cloud, r.T_target_source});
@@ -162,8 +158,10 @@ RgbdImport generate_rgbd_dataset(const std::string& sequence_dir, const std::str
         "from-rgbd: views must be 1 to 4, and the view gap a positive multiple of the frame "
         "stride");
   }
-  if (options.fuse < 1 || options.fuse > 30)
-    throw Error("from-rgbd: fuse " + std::to_string(options.fuse) + " frames: must be 1 to 30");
+  if (options.fuse < 1 || options.fuse > kMaxFusedFrames) {
+    throw Error("from-rgbd: fuse " + std::to_string(options.fuse) + " frames: must be 1 to " +
+                std::to_string(kMaxFusedFrames));
+  }
   if (options.calibrate_depth && options.depth_correction)
     throw Error("from-rgbd: either fit the depth correction or give one, not both");
   const RgbdSequence sequence = read_rgbd_sequence(sequence_dir, options.read);

@@ -24,6 +24,9 @@ Eigen::Vector3d rpy_from_rotation(const Eigen::Matrix3d& R);
 double rotation_angle_between(const Eigen::Matrix3d& R_a, const Eigen::Matrix3d& R_b);
 /// True when every coefficient is finite and the linear part is a rotation within `tolerance`.
 bool is_valid_pose(const Eigen::Isometry3d& T, double tolerance = 1e-6);
+/// The k-th (from 0) of a pattern that alternates either side of where it starts, one step further
+/// each time: 0, +1, -1, +2, -2, ... (a head panning about its first view between looks).
+inline int alternating_step(int k) { return (k + 1) / 2 * (k % 2 == 1 ? 1 : -1); }
 /// The nearest proper rigid transform (through a normalised quaternion): rotations composed over
 /// many steps, or built in float, drift from orthonormality by a few 1e-6.
 Eigen::Isometry3d orthonormalized(const Eigen::Isometry3d& T);

@@ -7,12 +7,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/range_image.h"
-#include "lmk/geometry/stopwatch.h"
 #include "lmk/occupancy/detail/vdb_support.h"
 
 namespace lmk {
@@ -21,11 +19,21 @@ namespace vdb = openvdb;
 
 struct TsdfVolume::Grid {
   double voxel = 0.0;
-  vdb::FloatGrid::Ptr distance;  ///< weighted mean truncated distance, band widths
-  vdb::FloatGrid::Ptr weight;    ///< summed weights; active voxels are the allocated ones
+  PinholeIntrinsics first_intrinsics;  ///< the first frame's, fitted to its pixels
+  vdb::FloatGrid::Ptr distance;        ///< weighted mean truncated distance, band widths
+  vdb::FloatGrid::Ptr weight;          ///< summed weights; active voxels are the allocated ones
 };
 
 namespace {
+
+// Where `p` (optical frame, in front of the camera) projects in the image of `k`: u right, v down,
+// pixel centres at whole numbers.
+template <typename Scalar>
+Eigen::Matrix<Scalar, 2, 1> pixel_coordinates(const PinholeIntrinsics& k,
+                                              const Eigen::Matrix<Scalar, 3, 1>& p) {
+  return {static_cast<Scalar>(k.fx) * p.x() / p.z() + static_cast<Scalar>(k.cx),
+          static_cast<Scalar>(k.fy) * p.y() / p.z() + static_cast<Scalar>(k.cy)};
+}
 
 // A frame ready to be looked into: its depth image, its intrinsics and the way from the common
 // frame into its sensor's optical frame.
@@ -47,8 +55,8 @@ struct PreparedFrame {
     const Eigen::Vector3f p = T_sensor_common * x;
     if (!(p.z() > 0.0f)) return {p.z(), nan};
     const PinholeIntrinsics& k = image.intrinsics();
-    const float u = static_cast<float>(k.fx) * p.x() / p.z() + static_cast<float>(k.cx);
-    const float v = static_cast<float>(k.fy) * p.y() / p.z() + static_cast<float>(k.cy);
+    const Eigen::Vector2f pixel = pixel_coordinates(k, p);
+    const float u = pixel.x(), v = pixel.y();
     if (!(u > -0.5f && v > -0.5f && u < k.width - 0.5f && v < k.height - 0.5f)) return {p.z(), nan};
     const std::vector<float>& depth = image.depths();
     const auto at = [&](int col, int row) {
@@ -114,7 +122,7 @@ Measurement measurement_at(double depth, const FusionSettings& s) {
           static_cast<float>((at_one_metre * at_one_metre) / (sigma * sigma))};
 }
 
-// measurement_at() by the millimetre, out to kTableRange: looked up twice per voxel and frame.
+// measurement_at() by the millimetre, out to 10 m: looked up twice per voxel and frame.
 class MeasurementTable {
  public:
   explicit MeasurementTable(const FusionSettings& s) {
@@ -225,8 +233,8 @@ PointCloud render_crossings(const PointCloud& crossings, double voxel_size,
     const Eigen::Vector3f p = T_sensor_common * crossings.points[i];
     if (p.z() <= 0.0f) continue;
     const Eigen::Vector3f n = T_sensor_common.linear() * crossings.normals[i];
-    const float u = static_cast<float>(k.fx) * p.x() / p.z() + static_cast<float>(k.cx);
-    const float v = static_cast<float>(k.fy) * p.y() / p.z() + static_cast<float>(k.cy);
+    const Eigen::Vector2f pixel = pixel_coordinates(k, p);
+    const float u = pixel.x(), v = pixel.y();
     // The pixels the crossing's voxel covers: a splat half a voxel wide about it.
     const float radius = 0.5f * voxel * static_cast<float>(k.fx) / p.z();
     const int u0 = std::max(0, static_cast<int>(std::floor(u - radius + 0.5f)));
@@ -283,6 +291,7 @@ TsdfVolume TsdfVolume::fuse(const std::vector<DepthFrame>& frames, const FusionS
   const std::vector<PreparedFrame> prepared = prepare(frames);
   auto grid = std::make_unique<Grid>();
   grid->voxel = settings.voxel_size;
+  grid->first_intrinsics = prepared.front().image.intrinsics();
   grid->weight = allocate(frames, settings);
   grid->distance = integrate(*grid->weight, prepared, settings);
   return TsdfVolume(std::move(grid));
@@ -293,6 +302,8 @@ std::size_t TsdfVolume::observed_voxels() const {
 }
 
 double TsdfVolume::voxel_size() const { return grid_->voxel; }
+
+const PinholeIntrinsics& TsdfVolume::first_intrinsics() const { return grid_->first_intrinsics; }
 
 std::optional<TsdfVolume::Sample> TsdfVolume::sample(const Eigen::Vector3d& p) const {
   const vdb::Coord c = detail::nearest_voxel(p, 1.0 / grid_->voxel);
@@ -387,14 +398,15 @@ PointCloud fuse_frames(const std::vector<DepthFrame>& frames, const FusionSettin
   // The first frame's view, grown to hold what the other frames saw beyond its edges.
   const DepthFrame& first = frames.front();
   const Eigen::Isometry3d T_common_sensor = first.T_common_cloud * first.cloud->T_cloud_sensor;
-  PinholeIntrinsics k = RangeImage::from_cloud(*first.cloud)->intrinsics();
+  PinholeIntrinsics k = volume.first_intrinsics();
   const PointCloud crossings = volume.surface();
   const Eigen::Isometry3f T_sensor_common = T_common_sensor.inverse().cast<float>();
   double u_min = 0.0, u_max = k.width - 1.0, v_min = 0.0, v_max = k.height - 1.0;
   for (const Eigen::Vector3f& point : crossings.points) {
     const Eigen::Vector3f p = T_sensor_common * point;
     if (p.z() <= 0.0f) continue;
-    const double u = k.fx * p.x() / p.z() + k.cx, v = k.fy * p.y() / p.z() + k.cy;
+    const Eigen::Vector2d pixel = pixel_coordinates(k, Eigen::Vector3d(p.cast<double>()));
+    const double u = pixel.x(), v = pixel.y();
     u_min = std::min(u_min, u), u_max = std::max(u_max, u);
     v_min = std::min(v_min, v), v_max = std::max(v_max, v);
   }

@@ -63,6 +63,8 @@ class TsdfVolume {
   /// Voxels that some frame observed (weight above 0).
   std::size_t observed_voxels() const;
   double voxel_size() const;
+  /// The first frame's intrinsics, fitted to its pixels: the view fuse_frames() renders.
+  const PinholeIntrinsics& first_intrinsics() const;
 
   /// The truncated distance (in band widths, + in front of the surface) and the summed weight at
   /// the voxel nearest to `p` (common frame); nothing where no frame observed it.

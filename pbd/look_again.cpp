@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "lmk/geometry/error.h"
+#include "lmk/geometry/pose.h"
 #include "lmk/occupancy/tsdf_volume.h"
 
 namespace lmk {
@@ -38,7 +39,7 @@ Eigen::Vector3d first_view_target(const PointCloud& first) {
 // The k-th look (from 1) of a missing landmark's pattern: the first view's target turned about
 // the vertical through the sensor by +a, -a, +2a, -2a, ...
 Look pattern_look(const PointCloud& first, int k, double angle) {
-  const int step = (k + 1) / 2 * (k % 2 == 1 ? 1 : -1);
+  const int step = alternating_step(k);
   const Eigen::Vector3d origin = first.T_cloud_sensor.translation();
   const Eigen::Vector3d turned =
       origin + Eigen::AngleAxisd(step * angle, Eigen::Vector3d::UnitZ()) *
@@ -91,7 +92,8 @@ LookedPlan plan_looking_again(const Program& program,
   looking.validate();
   LookedPlan out;
   out.plan = plan(program, landmarks, first, kinematics, start, settings);
-  std::vector<PointCloud> frames{first};
+  std::vector<PointCloud> more;  // the further frames, in order
+  more.reserve(static_cast<std::size_t>(looking.max_looks));
   for (int k = 1; k <= looking.max_looks && out.plan.refusal; ++k) {
     const std::optional<Look> look = next_look(*out.plan.refusal, first, k, looking);
     if (!look) break;
@@ -103,9 +105,9 @@ LookedPlan plan_looking_again(const Program& program,
       out.looks.back().why += " (failed: " + seen.message + ")";
       break;
     }
-    frames.push_back(std::move(frame));
-    std::vector<DepthFrame> fused;
-    for (const PointCloud& f : frames) fused.push_back({&f});
+    more.push_back(std::move(frame));
+    std::vector<DepthFrame> fused{{&first}};
+    for (const PointCloud& f : more) fused.push_back({&f});
     out.plan = plan(program, landmarks, fuse_frames(fused), kinematics, start, settings);
   }
   return out;

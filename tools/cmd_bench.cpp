@@ -128,7 +128,9 @@ int run_bench(const BenchOptions& o) {
   }
   if (o.repeats < 1) throw Error("bench: --repeats must be at least 1");
   if (o.reference_seeds < 1) throw Error("bench: --reference-seeds must be at least 1");
-  if (o.frames < 1 || o.frames > 30) throw Error("bench: --frames must be 1 to 30");
+  if (o.frames < 1 || static_cast<std::size_t>(o.frames) > kMaxFusedFrames) {
+    throw Error("bench: --frames must be 1 to " + std::to_string(kMaxFusedFrames));
+  }
   check_worker_threads(o.threads, "bench: --threads");
   const Workload w = load_workload(o);
   std::printf("workload           %s\n", w.description.c_str());

@@ -17,6 +17,7 @@
 #include "lmk/geometry/pose.h"
 #include "lmk/geometry/stopwatch.h"
 #include "lmk/landmark/depth_correction_file.h"
+#include "lmk/occupancy/tsdf_volume.h"
 #include "tools/bag_input.h"
 #include "tools/cli_common.h"
 #include "tools/progress.h"
@@ -289,7 +290,7 @@ Subcommand add_gen(CLI::App& app) {
                   "With --from-rgbd: each scene fused from N consecutive frames about its own, "
                   "moved by the sequence's poses (lmk find with several frames; default 1: the "
                   "frame alone)")
-      ->check(CLI::Range(1, 30))
+      ->check(CLI::Range(std::size_t{1}, kMaxFusedFrames))
       ->capture_default_str();
   sub->add_option("--gap", options->gap,
                   "With --from-rgbd: MIN MAX frames between a landmark's frame and its scenes "

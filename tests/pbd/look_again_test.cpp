@@ -6,21 +6,17 @@
 
 #include <gtest/gtest.h>
 
-#include "lmk/eval/mesh.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/pose.h"
-#include "lmk/pr2/simulated_pr2.h"
-#include "tests/landmark/l_shape_scene.h"
+#include "tests/pbd/robot_at_table.h"
 
 namespace lmk {
 namespace {
 
 using test_scenes::box_at;
 using test_scenes::capture_camera;
-using test_scenes::render_scene;
-
-// The robot stands 0.65 m in front of the test table, facing it: the world's +y is the base's +x.
-const Eigen::Isometry3d kWorldBase = pose_from_xyz_rpy({0, -0.65, 0}, {0, 0, 0.5 * M_PI});
+using test_scenes::kWorldBase;
+using test_scenes::scene_in_base;
 
 // A camera fixed where the tests' capture camera stands that turns to look where it is asked,
 // seeing the table with L-shapes at `copies`; counts its looks.
@@ -40,21 +36,14 @@ class TurningCamera : public Eyes {
 
  private:
   PointCloud view(const Eigen::Isometry3d& camera) const {
-    return render_scene(copies_, false, {}, camera).transformed(kWorldBase.inverse());
+    return scene_in_base(copies_, false, camera);
   }
   std::vector<Eigen::Vector2d> copies_;
 };
 
 class LookAgainTest : public ::testing::Test {
  protected:
-  static void SetUpTestSuite() {
-    const Eigen::Vector2d demo(-0.1, -0.15);
-    CaptureSettings capture_settings;
-    capture_settings.base_frame = true;
-    landmark_ = new Landmark(capture(render_scene({demo}, false).transformed(kWorldBase.inverse()),
-                                     box_at(demo).transformed(kWorldBase.inverse()), "l",
-                                     capture_settings));
-  }
+  static void SetUpTestSuite() { landmark_ = new Landmark(test_scenes::demonstrated_l()); }
   static void TearDownTestSuite() { delete landmark_; }
 
   // Touch the L from above.
@@ -70,9 +59,7 @@ class LookAgainTest : public ::testing::Test {
   }
 
   LookedPlan plan_with(TurningCamera& camera, int max_looks) const {
-    SimulatedPr2 robot(Pr2Kinematics(RobotModel::pr2(), 0.25));
-    EXPECT_TRUE(robot.configure().ok());
-    EXPECT_TRUE(robot.activate().ok());
+    const SimulatedPr2 robot = test_scenes::robot_at_table();
     JointState state;
     EXPECT_TRUE(robot.read_joint_state(state).ok());
     LookAgainSettings looking;

@@ -10,20 +10,15 @@
 #include "lmk/geometry/pose.h"
 #include "lmk/pbd/execute.h"
 #include "lmk/pr2/simulated_pr2.h"
-#include "tests/landmark/l_shape_scene.h"
+#include "tests/pbd/robot_at_table.h"
 
 namespace lmk {
 namespace {
 
 using test_scenes::box_at;
+using test_scenes::kWorldBase;
 using test_scenes::render_scene;
-
-// The robot stands 0.65 m in front of the test table, facing it: the world's +y is the base's +x.
-const Eigen::Isometry3d kWorldBase = pose_from_xyz_rpy({0, -0.65, 0}, {0, 0, 0.5 * M_PI});
-
-PointCloud scene_in_base(const std::vector<Eigen::Vector2d>& copies, bool distractors) {
-  return render_scene(copies, distractors).transformed(kWorldBase.inverse());
-}
+using test_scenes::scene_in_base;
 
 // A gripper pointing down (its x axis along -z), `height` above the landmark box's centre.
 Eigen::Isometry3d above(double height) {
@@ -32,14 +27,7 @@ Eigen::Isometry3d above(double height) {
 
 class PlanTest : public ::testing::Test {
  protected:
-  static void SetUpTestSuite() {
-    const Eigen::Vector2d demo(-0.1, -0.15);
-    CaptureSettings capture_settings;
-    capture_settings.base_frame = true;
-    const PointCloud demo_scene = scene_in_base({demo}, false);
-    landmark_ = new Landmark(
-        capture(demo_scene, box_at(demo).transformed(kWorldBase.inverse()), "l", capture_settings));
-  }
+  static void SetUpTestSuite() { landmark_ = new Landmark(test_scenes::demonstrated_l()); }
   static void TearDownTestSuite() { delete landmark_; }
 
   Program program() const {
@@ -56,12 +44,7 @@ class PlanTest : public ::testing::Test {
   }
 
   // The torso raised 0.25 m, as a PR2 reaching down onto a table does.
-  SimulatedPr2 robot() const {
-    SimulatedPr2 r(Pr2Kinematics(RobotModel::pr2(), 0.25));
-    EXPECT_TRUE(r.configure().ok());
-    EXPECT_TRUE(r.activate().ok());
-    return r;
-  }
+  SimulatedPr2 robot() const { return test_scenes::robot_at_table(); }
 
   Plan plan_in(const PointCloud& scene, const Program& p, const SimulatedPr2& r,
                const PlanSettings& settings = {}) const {
