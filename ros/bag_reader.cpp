@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <map>
 #include <set>
@@ -141,24 +142,43 @@ std::string bag_cloud_topic(const BagSummary& bag, const std::string& path,
                                            list + ")"));
 }
 
-Frame read_bag_frame(const std::string& path, const BagFrameOptions& options, double seconds) {
+std::vector<Frame> read_bag_frames_at(const std::string& path, const BagFrameOptions& options,
+                                      double seconds, std::size_t count, double window) {
+  if (count == 0) throw Error("at least one bag frame must be read");
   OpenBag open(path, options);
-  std::optional<sensor_msgs::PointCloud2> nearest;
+  // Record times increase: the nearest cloud is the last one whose distance to `seconds` still
+  // shrank. Clouds are kept from there on, until `count` or the window's end.
+  std::vector<std::pair<double, sensor_msgs::PointCloud2>> kept;
   double best = std::numeric_limits<double>::infinity();
   open.for_each_cloud([&](double t, const sensor_msgs::PointCloud2& msg) {
-    if (std::abs(t - seconds) < best) {
+    const bool nearer = std::abs(t - seconds) < best;
+    if (nearer && kept.size() <= 1) {
+      // Still approaching `seconds`: this cloud replaces the candidate for the first.
       best = std::abs(t - seconds);
-      nearest = msg;
+      kept.assign(1, {t, msg});
       return true;
     }
-    return t < seconds;  // record times increase: past the nearest, stop
+    if (window > 0.0 && t - kept.front().first > window) return false;
+    kept.emplace_back(t, msg);
+    return kept.size() < count;
   });
-  if (!nearest) throw Error(path + ": no cloud on " + open.topic);
-  try {
-    return open.frame(*nearest, options);
-  } catch (const Error& e) {
-    throw Error(path + ": " + e.what());
+  if (kept.empty()) throw Error(path + ": no cloud on " + open.topic);
+  if (kept.size() > count) kept.resize(count);
+  std::vector<Frame> frames;
+  for (const auto& [t, msg] : kept) {
+    try {
+      frames.push_back(open.frame(msg, options));
+    } catch (const Error& e) {
+      char when[48];
+      std::snprintf(when, sizeof when, ": the cloud of %.3f s: ", t);
+      throw Error(path + when + e.what());
+    }
   }
+  return frames;
+}
+
+Frame read_bag_frame(const std::string& path, const BagFrameOptions& options, double seconds) {
+  return read_bag_frames_at(path, options, seconds, 1).front();
 }
 
 std::vector<Frame> read_bag_frames(const std::string& path, const BagFrameOptions& options,

@@ -43,6 +43,13 @@ struct BagFrameOptions {
 /// (Frame::base_frame says which frame it is in).
 Frame read_bag_frame(const std::string& path, const BagFrameOptions& options, double seconds);
 
+/// Consecutive clouds of one moment, as Frames in target_frame: from the one recorded nearest
+/// `seconds` after the bag's start, `count` of them, and with `window` > 0 only those recorded
+/// within `window` s of that first one. Each keeps its own sensor pose from TF at its stamp, so
+/// that frames of a head that moved between them can be fused (occupancy/tsdf_volume.h).
+std::vector<Frame> read_bag_frames_at(const std::string& path, const BagFrameOptions& options,
+                                      double seconds, std::size_t count, double window = 0.0);
+
 /// Every `stride`-th cloud of the topic (1: all), as Frames in target_frame.
 std::vector<Frame> read_bag_frames(const std::string& path, const BagFrameOptions& options,
                                    std::size_t stride = 1);

@@ -18,14 +18,23 @@ bool is_bag(const std::string& path);
 struct BagOptions {
   std::string topic;  ///< the PointCloud2 topic; empty: the bag's only one
   double time = 0.0;  ///< s from the bag's start: the frame recorded nearest it
+  /// Consecutive frames from that one, fused into one scene (occupancy/tsdf_volume.h): at most
+  /// `frames` (0: one, or with a window as many as one fusion takes), and with `time_window` > 0
+  /// only those recorded within it of the first.
+  std::size_t frames = 0;
+  double time_window = 0.0;  ///< s; 0: no window
+  /// Whether more than the one frame nearest `time` may be read.
+  bool several() const { return frames > 1 || time_window > 0.0; }
   std::string frame;  ///< frame to search in; empty: base_link when the bag's TF has it
 };
 void add_bag_options(CLI::App* sub, BagOptions& options, bool with_time);
 
-/// The frame of the bag nearest options.time, in options.frame (or base_link, or the cloud's own
-/// frame when the bag's TF has no base_link). `in_base_frame` says whether it is base_link, whose
-/// +z is up.
-PointCloud read_bag_scene(const std::string& path, const BagOptions& options, bool& in_base_frame);
+/// The frames of the bag that options.time, frames and time_window name (one by default: the frame
+/// nearest options.time), in options.frame (or base_link, or the cloud's own frame when the bag's
+/// TF has no base_link), each with its sensor pose from TF. `in_base_frame` says whether they are
+/// in base_link, whose +z is up.
+std::vector<PointCloud> read_bag_scenes(const std::string& path, const BagOptions& options,
+                                        bool& in_base_frame);
 
 /// lmk info on a bag: its duration, topics with their types and counts, and TF frames.
 int print_bag_info(const std::string& path, bool json);

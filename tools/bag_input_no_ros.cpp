@@ -14,7 +14,9 @@ namespace {
 
 }  // namespace
 
-PointCloud read_bag_scene(const std::string& path, const BagOptions&, bool&) { no_ros(path); }
+std::vector<PointCloud> read_bag_scenes(const std::string& path, const BagOptions&, bool&) {
+  no_ros(path);
+}
 int print_bag_info(const std::string& path, bool) { no_ros(path); }
 int write_bag_dataset(const std::string& path, const BagOptions&, std::size_t,
                       const std::vector<std::string>&, const std::string&) {

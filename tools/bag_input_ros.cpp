@@ -9,6 +9,7 @@
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/error.h"
 #include "lmk/landmark/landmark_file.h"
+#include "lmk/occupancy/tsdf_volume.h"
 #include "lmk/ros/bag_reader.h"
 #include "tools/bag_input.h"
 
@@ -29,13 +30,25 @@ ros1::BagFrameOptions frame_options(const BagOptions& options) {
 
 }  // namespace
 
-PointCloud read_bag_scene(const std::string& path, const BagOptions& options, bool& in_base_frame) {
-  const ros1::Frame scene = ros1::read_bag_frame(path, frame_options(options), options.time);
-  in_base_frame = scene.base_frame == kBaseFrame;
-  std::fprintf(stderr, "%s: the frame of %.3f s on %s, in %s\n", path.c_str(), scene.stamp.toSec(),
-               options.topic.empty() ? "its cloud topic" : options.topic.c_str(),
-               scene.base_frame.c_str());
-  return scene.scene;
+std::vector<PointCloud> read_bag_scenes(const std::string& path, const BagOptions& options,
+                                        bool& in_base_frame) {
+  const std::size_t count =
+      options.frames > 0 ? options.frames : (options.time_window > 0.0 ? kMaxFusedFrames : 1);
+  const std::vector<ros1::Frame> frames = ros1::read_bag_frames_at(
+      path, frame_options(options), options.time, count, options.time_window);
+  in_base_frame = frames.front().base_frame == kBaseFrame;
+  const char* topic = options.topic.empty() ? "its cloud topic" : options.topic.c_str();
+  if (frames.size() == 1) {
+    std::fprintf(stderr, "%s: the frame of %.3f s on %s, in %s\n", path.c_str(),
+                 frames.front().stamp.toSec(), topic, frames.front().base_frame.c_str());
+  } else {
+    std::fprintf(stderr, "%s: %zu frames stamped %.3f to %.3f s on %s, in %s\n", path.c_str(),
+                 frames.size(), frames.front().stamp.toSec(), frames.back().stamp.toSec(), topic,
+                 frames.front().base_frame.c_str());
+  }
+  std::vector<PointCloud> scenes;
+  for (const ros1::Frame& f : frames) scenes.push_back(f.scene);
+  return scenes;
 }
 
 int print_bag_info(const std::string& path, bool json) {

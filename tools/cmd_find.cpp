@@ -86,32 +86,51 @@ void print_table(const FindResult& r, const std::string& name) {
   }
 }
 
-PointCloud read_frame(FindOptions& o, const std::string& path) {
+/// The frames of one input: a cloud file's one frame, or a bag's (several with --frames or
+/// --time-window), depth-corrected.
+std::vector<PointCloud> read_frames(FindOptions& o, const std::string& path) {
   bool in_base_frame = false;
-  PointCloud scene = is_bag(path) ? read_bag_scene(path, o.bag, in_base_frame) : read_cloud(path);
-  correct_depth(scene, o.depth_correction);
+  std::vector<PointCloud> frames;
+  if (is_bag(path)) {
+    frames = read_bag_scenes(path, o.bag, in_base_frame);
+  } else {
+    frames.push_back(read_cloud(path));
+  }
+  for (PointCloud& frame : frames) correct_depth(frame, o.depth_correction);
   // A scene in the robot's base frame has +z up, as --base-frame says, unless --up says otherwise.
   if (in_base_frame && !o.settings.scene.up) o.settings.scene.base_frame = true;
-  return scene;
+  return frames;
 }
 
 // The scene: one frame as it is, several fused into one (with --poses, each moved into the common
 // frame first; without, they are in it already: a static head's frames, or clouds in a robot's base
-// frame).
+// frame, as a bag's are).
 PointCloud read_scene(FindOptions& o) {
-  if (o.scenes.size() == 1 && o.poses.empty()) return read_frame(o, o.scenes.front());
-  std::vector<Eigen::Isometry3d> poses(o.scenes.size(), Eigen::Isometry3d::Identity());
-  if (!o.poses.empty()) {
-    poses = read_pose_list(o.poses);
-    if (poses.size() != o.scenes.size()) {
-      throw Error(o.poses + ": " + std::to_string(poses.size()) + " poses for " +
-                  std::to_string(o.scenes.size()) + " frames (one line per frame, in order)");
-    }
+  const bool bag = o.scenes.size() == 1 && is_bag(o.scenes.front());
+  if (bag && !o.poses.empty()) {
+    throw Error("--poses: a bag's frames are placed by its own TF; give no --poses with a bag");
+  }
+  if (!bag && o.bag.several()) {
+    throw Error(
+        "--frames and --time-window choose frames of one bag; give several cloud files "
+        "to fuse them instead");
   }
   std::vector<PointCloud> frames;
   for (const std::string& path : o.scenes) {
-    if (is_bag(path)) throw Error(path + ": a bag cannot be fused with other frames yet");
-    frames.push_back(read_frame(o, path));
+    if (is_bag(path) && o.scenes.size() > 1) {
+      throw Error(path +
+                  ": a bag cannot be fused with other files; use --frames N to fuse its own");
+    }
+    for (PointCloud& frame : read_frames(o, path)) frames.push_back(std::move(frame));
+  }
+  if (frames.size() == 1 && o.poses.empty()) return std::move(frames.front());
+  std::vector<Eigen::Isometry3d> poses(frames.size(), Eigen::Isometry3d::Identity());
+  if (!o.poses.empty()) {
+    poses = read_pose_list(o.poses);
+    if (poses.size() != frames.size()) {
+      throw Error(o.poses + ": " + std::to_string(poses.size()) + " poses for " +
+                  std::to_string(frames.size()) + " frames (one line per frame, in order)");
+    }
   }
   std::vector<DepthFrame> fused;
   for (std::size_t i = 0; i < frames.size(); ++i) fused.push_back({&frames[i], poses[i]});

@@ -84,6 +84,15 @@ nlohmann::json read_json(const std::string& path) {
   return nlohmann::json::parse(in);
 }
 
+/// The scene frames of the session's clouds, as `lmk find` reads them from the bag: in base_link
+/// with the camera's pose from TF.
+ros1::Frame session_frame(std::size_t k) {
+  ::ros::Time::init();
+  tf2_ros::Buffer tf;
+  tf.setTransform(session().camera, "test", true);
+  return ros1::frame_from_cloud(session().clouds.at(k), tf, "base_link", "", ::ros::Duration(0));
+}
+
 TEST(Bags, FindOnABagFrameEqualsFindOnThatFrameInTheBaseFrame) {
   const Session& s = session();
   const ScratchDir dir;
@@ -93,12 +102,7 @@ TEST(Bags, FindOnABagFrameEqualsFindOnThatFrameInTheBaseFrame) {
   ASSERT_EQ(code, 0) << out;
   EXPECT_NE(out.find("in base_link"), std::string::npos) << out;
 
-  ::ros::Time::init();
-  tf2_ros::Buffer tf;
-  tf.setTransform(s.camera, "test", true);
-  const ros1::Frame frame =
-      ros1::frame_from_cloud(s.clouds[1], tf, "base_link", "", ::ros::Duration(0));
-  write_cloud(dir.file("frame.pcd"), frame.scene);
+  write_cloud(dir.file("frame.pcd"), session_frame(1).scene);
   const auto [code2, out2] = run_lmk(dir, {"find", dir.file("frame.pcd"), s.landmark,
                                            "--base-frame", "--json", dir.file("pcd.json")});
   ASSERT_EQ(code2, 0) << out2;
@@ -125,6 +129,64 @@ TEST(Bags, FindOnABagFrameEqualsFindOnThatFrameInTheBaseFrame) {
   ASSERT_EQ(code3, 0) << out3;
   EXPECT_NE(read_json(dir.file("first.json"))["matches"],
             read_json(dir.file("bag.json"))["matches"]);
+}
+
+TEST(Bags, FramesOfABagAreFusedAsTheSameFramesFromFiles) {
+  const Session& s = session();
+  const ScratchDir dir;
+  // --frames 2 from 0.8 s: the second and third clouds.
+  const auto [code, out] = run_lmk(dir, {"find", s.bag, s.landmark, "--time", "0.8", "--frames",
+                                         "2", "--json", dir.file("bag.json")});
+  ASSERT_EQ(code, 0) << out;
+  EXPECT_NE(out.find("2 frames stamped 1700000001.000 to 1700000002.000 s"), std::string::npos)
+      << out;
+  EXPECT_NE(out.find("2 frames fused into one"), std::string::npos) << out;
+
+  for (std::size_t k : {1u, 2u}) {
+    write_cloud(dir.file("frame" + std::to_string(k) + ".pcd"), session_frame(k).scene);
+  }
+  const auto [code2, out2] =
+      run_lmk(dir, {"find", dir.file("frame1.pcd"), dir.file("frame2.pcd"), s.landmark,
+                    "--base-frame", "--json", dir.file("pcd.json")});
+  ASSERT_EQ(code2, 0) << out2;
+  const nlohmann::json from_bag = read_json(dir.file("bag.json"))["matches"];
+  const nlohmann::json from_pcd = read_json(dir.file("pcd.json"))["matches"];
+  ASSERT_FALSE(from_bag.empty());
+  ASSERT_EQ(from_bag.size(), from_pcd.size());
+  // The same matches, to the precision of the sensor pose a PCD's VIEWPOINT keeps (single).
+  for (std::size_t i = 0; i < from_bag.size(); ++i) {
+    const std::vector<double> a = from_bag[i]["position"];
+    const std::vector<double> b = from_pcd[i]["position"];
+    for (int d = 0; d < 3; ++d) EXPECT_NEAR(a[d], b[d], 1e-4) << "match " << i;
+  }
+
+  // A window of 1.5 s from the first cloud holds the first two.
+  const auto [code3, out3] =
+      run_lmk(dir, {"find", s.bag, s.landmark, "--time-window", "1.5", "--json", "-"});
+  ASSERT_EQ(code3, 0) << out3;
+  EXPECT_NE(out3.find("2 frames stamped 1700000000.000 to 1700000001.000 s"), std::string::npos)
+      << out3;
+}
+
+TEST(Bags, FramesAreChosenFromOneBagOnly) {
+  const Session& s = session();
+  const ScratchDir dir;
+  write_cloud(dir.file("frame.pcd"), session_frame(0).scene);
+  write_text(dir.file("poses.txt"), "0 0 0 0 0 0 1\n");
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"find", dir.file("frame.pcd"), s.landmark, "--frames", "2"},
+       "--frames and --time-window choose frames of one bag"},
+      {{"find", s.bag, s.landmark, "--poses", dir.file("poses.txt")},
+       "a bag's frames are placed by its own TF"},
+      {{"find", s.bag, dir.file("frame.pcd"), s.landmark},
+       "a bag cannot be fused with other files"},
+      {{"find", s.bag, s.landmark, "--frames", "31"}, "--frames"},
+  };
+  for (const auto& [args, reason] : cases) {
+    const auto [code, out] = run_lmk(dir, args);
+    EXPECT_EQ(code, 2) << out;
+    EXPECT_NE(out.find(reason), std::string::npos) << out;
+  }
 }
 
 TEST(Bags, InfoListsTopicsTfFramesAndDuration) {
