@@ -16,6 +16,7 @@
 #include "lmk/landmark/internal/find_settings_json.h"
 #include "lmk/landmark/scene_index.h"
 #include "lmk/landmark/slide_check.h"
+#include "lmk/occupancy/tsdf_volume.h"
 #include "lmk/ros/geometry_conversion.h"
 #include "lmk/ros/tf_lookup.h"
 
@@ -44,6 +45,13 @@ LandmarkNodeSettings LandmarkNodeSettings::from_parameters(const ::ros::NodeHand
   private_nh.param("sensor_frame", s.sensor_frame, s.sensor_frame);
   private_nh.param("landmark_directory", s.landmark_directory, default_landmark_directory());
   private_nh.param("frame_timeout", s.frame_timeout, s.frame_timeout);
+  int frames = static_cast<int>(s.frames);
+  private_nh.param("frames", frames, frames);
+  if (frames < 1 || frames > static_cast<int>(kMaxFusedFrames)) {
+    throw Error("~frames: must be 1 to " + std::to_string(kMaxFusedFrames) +
+                " (frames fused per search)");
+  }
+  s.frames = static_cast<std::size_t>(frames);
   private_nh.param("interactive", s.interactive, s.interactive);
   private_nh.param("capture_name", s.capture_name, s.capture_name);
   LandmarkLibrary::check_name(s.capture_name);
@@ -76,7 +84,7 @@ LandmarkNode::LandmarkNode(::ros::NodeHandle nh, ::ros::NodeHandle private_nh,
       library_(settings_.landmark_directory),
       tf_listener_(tf_),
       latest_(nh, settings_.cloud_topic, tf_, settings_.base_frame, settings_.sensor_frame,
-              settings_.depth_correction) {
+              settings_.depth_correction, settings_.frames) {
   // The node's scenes are in the base frame, whose +z is up (docs/landmarks.md, "Up").
   settings_.find.scene.base_frame = true;
   // Captures prepare their frame as the searches do (~find_settings' scene stage).
@@ -117,6 +125,24 @@ std::shared_ptr<const Frame> LandmarkNode::frame() const {
                 "TF reach " + settings_.base_frame + "?)");
   }
   return frame;
+}
+
+std::shared_ptr<const Frame> LandmarkNode::search_frame(std::size_t& fused) const {
+  if (settings_.frames == 1) {
+    fused = 1;
+    return frame();
+  }
+  const std::vector<std::shared_ptr<const Frame>> recent =
+      latest_.wait_recent(settings_.frames, settings_.frame_timeout);
+  if (recent.empty()) return frame();  // says why
+  fused = recent.size();
+  if (fused == 1) return recent.front();
+  // Every frame is in the base frame already, its sensor placed by TF at its own stamp.
+  std::vector<DepthFrame> frames;
+  for (const auto& f : recent) frames.push_back({&f->scene, Eigen::Isometry3d::Identity()});
+  auto out = std::make_shared<Frame>(*recent.back());
+  out->scene = fuse_frames(frames);
+  return out;
 }
 
 // The service handlers answer every failure in the response (success = false and the reason),
@@ -305,7 +331,8 @@ bool LandmarkNode::find(lmk_msgs::FindLandmark::Request& request,
         throw Error("no landmark '" + name + "' in " + library_.directory().string());
       }
     }
-    const std::shared_ptr<const Frame> frame = this->frame();
+    std::size_t fused = 1;
+    const std::shared_ptr<const Frame> frame = search_frame(fused);
     response.header.frame_id = frame->base_frame;
     response.header.stamp = frame->stamp;
     // One index of the frame for every landmark (steps 1-2 of the search).
@@ -322,7 +349,7 @@ bool LandmarkNode::find(lmk_msgs::FindLandmark::Request& request,
                  std::to_string(result.matches.size()) + " match(es)";
     }
     response.success = true;
-    response.message = summary;
+    response.message = fused > 1 ? std::to_string(fused) + " frames fused; " + summary : summary;
     publish_matches(response.matches);
   } catch (const Error& e) {
     response.success = false;

@@ -30,9 +30,12 @@ struct LandmarkNodeSettings {
   std::string base_frame = "base_link";
   std::string sensor_frame;        ///< the camera's optical frame; empty: the cloud's frame
   std::string landmark_directory;  ///< where NAME.lmk files live
-  double frame_timeout = 3.0;      ///< s a service waits for the first frame
-  FindSettings find;               ///< scene.base_frame is always set: scenes are in base_frame
-  bool interactive = true;         ///< serve the RViz capture box (box_capture_markers.h)
+  double frame_timeout = 3.0;      ///< s a service waits for the first frame(s)
+  /// Frames a search fuses (occupancy/tsdf_volume.h): the latest `frames`, each placed by TF at
+  /// its stamp, so the head may move between them. 1: the latest frame alone, as before.
+  std::size_t frames = 1;
+  FindSettings find;        ///< scene.base_frame is always set: scenes are in base_frame
+  bool interactive = true;  ///< serve the RViz capture box (box_capture_markers.h)
   std::string capture_name = "landmark";  ///< RViz captures are NAME, NAME-2, NAME-3, ...
   CaptureSettings capture;                ///< base_frame is always set likewise
   /// The camera's depth error (a file of lmk calibrate-depth, ~depth_correction), undone on every
@@ -40,7 +43,7 @@ struct LandmarkNodeSettings {
   std::optional<DepthCorrection> depth_correction;
 
   /// From the private parameters ~cloud_topic, ~base_frame, ~sensor_frame,
-  /// ~landmark_directory (default $ROS_HOME/lmk/landmarks), ~frame_timeout, ~interactive,
+  /// ~landmark_directory (default $ROS_HOME/lmk/landmarks), ~frame_timeout, ~frames, ~interactive,
   /// ~capture_name, ~depth_correction (a file) and ~find_settings (FindSettings as JSON, one object
   /// per stage, e.g.
   /// {"selection": {"threshold": 0.006}}; json/find_settings_json.h). Throws lmk::Error for a bad
@@ -63,6 +66,10 @@ class LandmarkNode {
  private:
   /// The latest frame; lmk::Error when none has arrived yet.
   std::shared_ptr<const Frame> frame() const;
+  /// What a search runs on: the latest frame, or the latest ~frames fused into one (fewer when
+  /// fewer arrived within ~frame_timeout of start-up), stamped as the newest. `fused` says how
+  /// many frames it holds. lmk::Error when none has arrived yet.
+  std::shared_ptr<const Frame> search_frame(std::size_t& fused) const;
   /// Captures `box` (base frame) from the latest frame, and with `use_added_views` the kept views
   /// after it (registered onto it as `lmk capture A B` registers, place_views), as `name` into the
   /// library, unless the distinctiveness check objects and `force` is off; fills the response

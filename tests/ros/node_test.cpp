@@ -86,11 +86,12 @@ ros1::Frame frame_as_the_node_sees_it() {
   return ros1::frame_from_cloud(*msg, tf, "base_link", "", ::ros::Duration(2.0));
 }
 
-std::unique_ptr<ChildProcess> start_node(const ScratchDir& dir, const std::string& landmarks) {
-  auto node =
-      std::make_unique<ChildProcess>(std::vector<std::string>{LMK_NODE_BINARY, "__name:=lmk_node",
-                                                              "_landmark_directory:=" + landmarks},
-                                     dir.file("lmk_node.log"));
+std::unique_ptr<ChildProcess> start_node(const ScratchDir& dir, const std::string& landmarks,
+                                         const std::vector<std::string>& parameters = {}) {
+  std::vector<std::string> args{LMK_NODE_BINARY, "__name:=lmk_node",
+                                "_landmark_directory:=" + landmarks};
+  args.insert(args.end(), parameters.begin(), parameters.end());
+  auto node = std::make_unique<ChildProcess>(args, dir.file("lmk_node.log"));
   if (!::ros::service::waitForService("/lmk_node/find_landmark", ::ros::Duration(30))) {
     ADD_FAILURE() << "lmk_node did not come up:\n" << node->log();
   }
@@ -173,6 +174,41 @@ TEST(LmkNode, CaptureAndFindThroughTheServicesGiveWhatLmkFindGivesOnTheSameFrame
     EXPECT_EQ(got.terms.landmark_to_scene_count,
               want["terms"]["landmark_to_scene_count"].get<std::size_t>());
     EXPECT_EQ(got.rank, i + 1);
+  }
+}
+
+// ~frames (issue #46): a search fuses the latest frames, as `lmk find A B C` fuses the same frames
+// from files. The fake PR2's head does not move, so they are one view with the camera's noise
+// rendered once; what this checks is that the node fuses what the CLI fuses.
+TEST(LmkNode, WithFramesASearchFusesTheLatestFramesAsLmkFindDoes) {
+  FakePr2 robot(fake_settings("demonstration.pcd"));
+  const ScratchDir dir;
+  fs::create_directories(dir.file("landmarks"));
+  fs::copy_file(demo_data().landmark(), dir.file("landmarks/rim.lmk"));
+  // A generous timeout: the search waits for the third frame after start-up, no longer.
+  const auto node = start_node(dir, dir.file("landmarks"), {"_frames:=3", "_frame_timeout:=60"});
+  lmk_msgs::FindLandmark find;
+  find.request.name = "rim";
+  find = call("/lmk_node/find_landmark", find);
+  ASSERT_TRUE(find.response.success) << find.response.message << "\n" << node->log();
+  EXPECT_EQ(find.response.message.rfind("3 frames fused; rim: ", 0), 0u) << find.response.message;
+  ASSERT_FALSE(find.response.matches.empty());
+
+  const ros1::Frame frame = frame_as_the_node_sees_it();
+  write_cloud(dir.file("frame.pcd"), frame.scene);
+  const auto [code, out] = run_lmk(
+      dir, {"find", dir.file("frame.pcd"), dir.file("frame.pcd"), dir.file("frame.pcd"),
+            dir.file("landmarks/rim.lmk"), "--base-frame", "--json", dir.file("find.json")});
+  ASSERT_EQ(code, 0) << out;
+  std::ifstream in(dir.file("find.json"));
+  const nlohmann::json expected = nlohmann::json::parse(in)["matches"];
+  ASSERT_EQ(expected.size(), find.response.matches.size());
+  // The same places, to the precision of the sensor pose a PCD's VIEWPOINT keeps (single).
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    const geometry_msgs::Point& got = find.response.matches[i].box_pose.position;
+    EXPECT_NEAR(got.x, expected[i]["position"][0].get<double>(), 1e-4) << i;
+    EXPECT_NEAR(got.y, expected[i]["position"][1].get<double>(), 1e-4) << i;
+    EXPECT_NEAR(got.z, expected[i]["position"][2].get<double>(), 1e-4) << i;
   }
 }
 
@@ -432,6 +468,10 @@ TEST(LmkNode, BadParametersStopItWithOneClearLine) {
                                         dir.file("bad4.log"), 60.0);
   EXPECT_EQ(code4, 1) << out4;
   EXPECT_NE(out4.find("lmk_node: " + dir.file("missing.json")), std::string::npos) << out4;
+  const auto [code5, out5] = run_to_end(
+      {LMK_NODE_BINARY, "__name:=lmk_node_bad_frames", "_frames:=31"}, dir.file("bad5.log"), 60.0);
+  EXPECT_EQ(code5, 1) << out5;
+  EXPECT_NE(out5.find("~frames: must be 1 to 30"), std::string::npos) << out5;
 }
 
 /// The plan `lmk pbd run --ros` makes: the same frame, joint state, torso and settings.
