@@ -102,8 +102,9 @@ std::map<std::string, Landmark> load_landmarks_of(const PbdOptions& o, const Pro
   return load_program_landmarks(program, std::filesystem::path(o.program).parent_path().string());
 }
 
-int refused(const Plan& plan) {
-  std::fprintf(stderr, "lmk: refused: %s\n", describe(*plan.refusal).c_str());
+int refused(const Plan& plan, const std::vector<Look>& looks) {
+  const std::string after = looks.empty() ? "" : ", " + describe_looks(looks);
+  std::fprintf(stderr, "lmk: refused: %s%s\n", describe(*plan.refusal).c_str(), after.c_str());
   return kInternalError;  // exit 1: a valid request the robot will not carry out
 }
 
@@ -151,6 +152,11 @@ int run_run(const PbdOptions& o) {
     throw Error("pbd run --ros: --scene does not apply; the robot's camera gives the frame");
   }
   if (o.ros) return run_on_ros(o);
+  if (o.look_again_given) {
+    throw Error(
+        "pbd run --sim: --look-again needs a head that turns: with --ros (the simulated "
+        "run plans on one fixed --scene)");
+  }
   if (!o.sim || o.scene.empty()) {
     throw Error(
         "pbd run: give --sim --scene FILE for the simulated PR2, or --ros for a robot "
@@ -205,6 +211,16 @@ void add_plan_options(CLI::App* sub, PbdOptions& o, bool scene_required) {
       ->capture_default_str();
 }
 
+void add_look_again_option(CLI::App* sub, PbdOptions& o, const std::string& what) {
+  sub->add_option("--look-again", o.look_again,
+                  what +
+                      " the head may take, pointed where they can settle it, when a landmark is "
+                      "missing or doubtful, before refusing (0: refuse at once)")
+      ->check(CLI::Range(0, 8))
+      ->capture_default_str()
+      ->each([&o](const std::string&) { o.look_again_given = true; });
+}
+
 }  // namespace
 
 Subcommand add_pbd(CLI::App& app) {
@@ -231,6 +247,7 @@ Subcommand add_pbd(CLI::App& app) {
   run->add_option("--frame-timeout", o->frame_timeout,
                   "With --ros: seconds to wait for a camera frame and the robot")
       ->capture_default_str();
+  add_look_again_option(run, *o, "With --ros: further frames");
   CLI::App* demo = sub->add_subcommand(
       "demo-tasks", "The paper's six demonstration tasks, end to end on the simulated PR2");
   demo->add_option("--json", o->json, "Also write the results as JSON to FILE");
@@ -240,11 +257,7 @@ Subcommand add_pbd(CLI::App& app) {
                    "Least confidence of a landmark to act on (0 to 1; 0: act on any match)")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
-  demo->add_option("--look-again", o->look_again,
-                   "Further frames the head may take, pointed where they can settle it, when a "
-                   "landmark is missing or doubtful, before refusing (0: refuse at once)")
-      ->check(CLI::Range(0, 8))
-      ->capture_default_str();
+  add_look_again_option(demo, *o, "Further frames");
   demo->add_option("--save", o->save_dir,
                    "Write each task's landmarks, programs and scenes to DIR/taskN");
   demo->add_option("--threads", o->threads, "Search threads; 0 uses every core")

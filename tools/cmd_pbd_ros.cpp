@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // lmk pbd run PROGRAM --ros: a PbD program on a robot under ROS 1 (docs/ros.md, "Run on the PR2").
 // The plan is made on the latest camera frame, in the base frame from TF, from the robot's own
-// joint state and torso height; a refusal sends no goal at all; a controller's abort stops the run
-// and names the step. Ctrl-C cancels the goal under way.
+// joint state and torso height; when a landmark is missing or doubtful the head looks again (at
+// most --look-again further frames, fused with the first); a refusal sends no arm goal at all; a
+// controller's abort stops the run and names the step. Ctrl-C cancels the goal under way.
 
 #include <ros/ros.h>
 #include <tf2_ros/transform_listener.h>
@@ -18,6 +19,7 @@
 #include "lmk/pr2/pr2_kinematics.h"
 #include "lmk/pr2/pr2_robots.h"
 #include "lmk/ros/latest_frame.h"
+#include "lmk/ros/ros_eyes.h"
 #include "lmk/ros/ros_robot.h"
 #include "tools/cli_common.h"
 #include "tools/interrupt.h"
@@ -72,13 +74,25 @@ int run_on_ros(const PbdOptions& o) {
   std::printf("planning on the frame of %.3f s from %s (%zu points), torso at %.3f m\n",
               frame->stamp.toSec(), o.cloud_topic.c_str(), frame->scene.size(),
               kinematics.torso_height());
-  const Plan plan =
-      lmk::plan(program, landmarks, frame->scene, kinematics, state, plan_settings(o));
-  print_plan(plan);
-  if (!plan.valid()) return refused(plan);  // nothing was sent to the robot
-
+  // Looking again points the head, a command: the robot is active from here.
   const CallResult activated = robot.activate();
   if (!activated.ok()) throw Error("pbd run --ros: " + activated.message);
+  ros1::RosEyes eyes(robot, latest, o.frame_timeout);
+  LookAgainSettings looking;
+  looking.max_looks = o.look_again;
+  const LookedPlan looked = plan_looking_again(program, landmarks, frame->scene, kinematics, state,
+                                               eyes, plan_settings(o), looking);
+  for (const Look& look : looked.looks) {
+    std::printf("looked again at (%.3f, %.3f, %.3f): %s\n", look.target.x(), look.target.y(),
+                look.target.z(), look.why.c_str());
+  }
+  const Plan& plan = looked.plan;
+  print_plan(plan);
+  if (!plan.valid()) {  // no arm or gripper goal was sent
+    robot.deactivate();
+    return refused(plan, looked.looks);
+  }
+
   // Ctrl-C: deactivating cancels the goal under way, which ends the run at that step.
   const StopOnSigint sigint;
   std::atomic<bool> done{false};

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "lmk/pbd/execute.h"
+#include "lmk/pbd/look_again.h"
 #include "lmk/pbd/plan.h"
 
 namespace lmk::cli {
@@ -18,7 +19,9 @@ struct PbdOptions {
   double torso = 0.0;
   int threads = 0;
   double min_confidence = kDefaultMinConfidence;  ///< PlanSettings::min_confidence
-  int look_again = 2;  ///< demo-tasks: further frames when a landmark is missing or doubtful
+  /// demo-tasks and run --ros: further frames when a landmark is missing or doubtful
+  int look_again = 2;
+  bool look_again_given = false;  ///< --look-again was on the command line
   bool sim = false, ros = false, json_stdout = false, timings = false;
   std::vector<int> tasks;
   std::string cloud_topic = "/head_mount_kinect/depth_registered/points";
@@ -29,8 +32,8 @@ PlanSettings plan_settings(const PbdOptions& o);
 /// The program's landmarks, their files relative to the program's folder.
 std::map<std::string, Landmark> load_landmarks_of(const PbdOptions& o, const Program& program);
 void print_plan(const Plan& plan);
-/// Prints the refusal; the exit code of a refused run.
-int refused(const Plan& plan);
+/// Prints the refusal, naming the further looks taken before it; the exit code of a refused run.
+int refused(const Plan& plan, const std::vector<Look>& looks = {});
 /// Prints what was executed, or where it stopped and why; the exit code. `seconds` of `clock`
 /// ("robot time", "wall time") is the run's duration.
 int report_execution(const Plan& plan, const ExecutionReport& report, double seconds,

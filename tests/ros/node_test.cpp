@@ -526,13 +526,99 @@ TEST(PbdRunOnRos, DrivesThePr2WithExactlyThePlannedTrajectories) {
             static_cast<int>(next["r_arm_controller/joint_trajectory_action"]));
 }
 
-TEST(PbdRunOnRos, AMissingLandmarkSendsNoGoalAtAll) {
+int arm_and_gripper_goals(const FakePr2& robot) {
+  return robot.total_goals() - robot.goals("head_traj_controller/point_head_action");
+}
+
+TEST(PbdRunOnRos, AMissingLandmarkSendsNoArmGoalAfterLookingAgain) {
   FakePr2 robot(fake_settings("scenario5.pcd"));  // only cups
   const ScratchDir dir;
+  // The head looks twice (--look-again's default), sees no bowl either time, and the run refuses
+  // naming both looks.
   const auto [code, out] = run_lmk(dir, {"pbd", "run", demo_data().program().string(), "--ros"});
   EXPECT_EQ(code, 1) << out;
   EXPECT_NE(out.find("refused: landmark 'bowl_rim' not found"), std::string::npos) << out;
-  EXPECT_EQ(robot.total_goals(), 0);
+  EXPECT_NE(out.find("after 2 more looks (at ("), std::string::npos) << out;
+  EXPECT_EQ(robot.goals("head_traj_controller/point_head_action"), 2);
+  EXPECT_EQ(arm_and_gripper_goals(robot), 0);
+  // --look-again 0 refuses at once: not even the head moves.
+  const auto [code2, out2] =
+      run_lmk(dir, {"pbd", "run", demo_data().program().string(), "--ros", "--look-again", "0"});
+  EXPECT_EQ(code2, 1) << out2;
+  EXPECT_EQ(out2.find("more look"), std::string::npos) << out2;
+  EXPECT_EQ(robot.goals("head_traj_controller/point_head_action"), 2);
+  EXPECT_EQ(arm_and_gripper_goals(robot), 0);
+}
+
+/// The PR2's arms as the fake PR2 starts them: every joint at zero, or at its nearest limit.
+JointState arms_at_rest(const Pr2Kinematics& kinematics) {
+  JointState state;
+  for (const char* group : {"left_arm", "right_arm"}) {
+    const GroupInfo info = *kinematics.group(group);  // alive while its joints are read
+    for (const JointInfo& j : info.joints) {
+      state.names.push_back(j.name);
+      state.positions.push_back(j.continuous() ? 0.0 : std::clamp(0.0, j.lower, j.upper));
+      state.velocities.push_back(0.0);
+    }
+  }
+  return state;
+}
+
+/// `scene` as a camera whose image ends before `box`: every pixel on the box's side of the image,
+/// from the box's nearest corner on, returns nothing.
+PointCloud cut_by_the_image_edge(const PointCloud& scene, const Box& box) {
+  const Eigen::Isometry3d T_sensor_cloud = scene.T_cloud_sensor.inverse();
+  const double side = (T_sensor_cloud * box.pose.translation()).x() > 0.0 ? 1.0 : -1.0;
+  double edge = std::numeric_limits<double>::infinity();  // in x/z, the image's column
+  for (const Eigen::Vector3d& corner : box.corners()) {
+    const Eigen::Vector3d c = T_sensor_cloud * corner;
+    edge = std::min(edge, side * c.x() / c.z());
+  }
+  PointCloud cut = scene;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (std::size_t i = 0; i < cut.size(); ++i) {
+    const Eigen::Vector3d p = T_sensor_cloud * cut.points[i].cast<double>();
+    if (std::isfinite(p.z()) && side * p.x() / p.z() >= edge - 0.02) {
+      cut.points[i].setConstant(nan);
+      if (cut.has_normals()) cut.normals[i].setConstant(nan);
+    }
+  }
+  return cut;
+}
+
+// Looking again (issue #46): the first view's image ends before the bowl; the head turns, the
+// camera then sees it whole, the new frame is fused with the first and the program runs.
+TEST(PbdRunOnRos, ALandmarkTheFirstViewCutIsFoundByLookingAgain) {
+  const PointCloud whole = demo_data().scene("scenario3.pcd");
+  const Program program = load_program(demo_data().program().string());
+  const auto landmarks = load_program_landmarks(program, demo_data().task.string());
+  const Pr2Kinematics kinematics(RobotModel::pr2(), 0.0);
+  const JointState rest = arms_at_rest(kinematics);
+  const Plan in_whole = plan(program, landmarks, whole, kinematics, rest);
+  ASSERT_TRUE(in_whole.valid()) << describe(*in_whole.refusal);
+  const LocatedLandmark* bowl = in_whole.landmark("bowl_rim");
+  ASSERT_NE(bowl, nullptr);
+  const PointCloud cut = cut_by_the_image_edge(whole, bowl->match.box);
+  // The cut frame alone does not show the bowl: without looking again the robot would refuse.
+  const Plan in_cut = plan(program, landmarks, cut, kinematics, rest);
+  ASSERT_FALSE(in_cut.valid());
+  ASSERT_TRUE(std::holds_alternative<LandmarkNotFound>(*in_cut.refusal))
+      << describe(*in_cut.refusal);
+
+  FakePr2Settings settings = fake_settings("scenario3.pcd");
+  settings.scene = cut;
+  settings.scenes_after_head_goals = {whole};
+  FakePr2 robot(settings);
+  const ScratchDir dir;
+  const auto [code, out] = run_lmk(dir, {"pbd", "run", demo_data().program().string(), "--ros"});
+  ASSERT_EQ(code, 0) << out;
+  EXPECT_NE(out.find("looked again at ("), std::string::npos) << out;
+  EXPECT_NE(out.find("for the missing 'bowl_rim'"), std::string::npos) << out;
+  EXPECT_NE(out.find("done"), std::string::npos) << out;
+  EXPECT_EQ(robot.goals("head_traj_controller/point_head_action"), 1);
+  EXPECT_GT(robot.goals("r_arm_controller/joint_trajectory_action") +
+                robot.goals("l_arm_controller/joint_trajectory_action"),
+            0);
 }
 
 TEST(PbdRunOnRos, AnAbortedArmGoalStopsTheRunAndNamesTheStep) {

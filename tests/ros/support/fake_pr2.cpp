@@ -66,8 +66,7 @@ struct FakePr2::Impl {
     }
     joints["torso_lift_joint"] = settings.torso_height;
     joints["l_gripper_joint"] = joints["r_gripper_joint"] = kGripperMaxOpening;
-    cloud_msg = ros1::to_ros(settings.scene.transformed(settings.scene.T_cloud_sensor.inverse()),
-                             settings.sensor_frame);
+    cloud_msg = camera_message(settings.scene);
 
     for (const char* side : {"l", "r"}) {
       const std::string arm_ns = std::string(side) + "_arm_controller/joint_trajectory_action";
@@ -84,6 +83,7 @@ struct FakePr2::Impl {
         nh, "head_traj_controller/point_head_action",
         [this](const auto&) {
           count("head_traj_controller/point_head_action");
+          turn_head();
           head->setSucceeded();
         },
         false);
@@ -108,6 +108,23 @@ struct FakePr2::Impl {
   void count(const std::string& ns) {
     const std::lock_guard<std::mutex> lock(mutex);
     ++goal_counts[ns];
+  }
+
+  /// A cloud of the head Kinect as the camera publishes it: in its optical frame.
+  sensor_msgs::PointCloud2 camera_message(const PointCloud& scene) const {
+    return ros1::to_ros(scene.transformed(settings.scene.T_cloud_sensor.inverse()),
+                        settings.sensor_frame);
+  }
+
+  // The camera's view after the head goal just counted. It changes before the goal succeeds, so a
+  // frame stamped after the client heard of that shows the new view.
+  void turn_head() {
+    const std::vector<PointCloud>& after = settings.scenes_after_head_goals;
+    if (after.empty()) return;
+    const std::lock_guard<std::mutex> lock(mutex);
+    const std::size_t k =
+        static_cast<std::size_t>(goal_counts["head_traj_controller/point_head_action"]);
+    cloud_msg = camera_message(after[std::min(k, after.size()) - 1]);
   }
 
   void execute_arm(const std::string& ns,
@@ -203,8 +220,13 @@ struct FakePr2::Impl {
       joint_states.publish(state);
       tf.sendTransform(transforms);
       if (tick % cloud_every == 0) {
-        cloud_msg.header.stamp = now;
-        cloud.publish(cloud_msg);
+        sensor_msgs::PointCloud2 msg;
+        {
+          const std::lock_guard<std::mutex> lock(mutex);
+          msg = cloud_msg;
+        }
+        msg.header.stamp = now;
+        cloud.publish(msg);
       }
       rate.sleep();
     }

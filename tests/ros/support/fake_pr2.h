@@ -24,6 +24,10 @@ struct FakePr2Settings {
   /// lmk's renderers and `lmk pbd demo-tasks --save` write scenes). It is published in the
   /// optical frame, and TF places that frame at T_base_sensor.
   PointCloud scene;
+  /// What the head Kinect sees after the first, second, ... point-head goal (the last one stays):
+  /// a head that turned towards what the first view cut. Their sensor pose is `scene`'s; empty:
+  /// `scene` whatever the head does.
+  std::vector<PointCloud> scenes_after_head_goals;
   std::string cloud_topic = "/head_mount_kinect/depth_registered/points";
   std::string sensor_frame = "head_mount_kinect_rgb_optical_frame";
   double cloud_rate = 4.0;  ///< Hz
