@@ -63,6 +63,12 @@ int run_on_ros(const PbdOptions& o) {
   tf2_ros::TransformListener tf_listener(tf);
   const ros1::LatestFrame latest(nh, o.cloud_topic, tf, robot_settings.base_frame, "",
                                  load_depth_correction_if_given(o.depth_correction));
+  // The spinner's callbacks use the robot, TF and the camera: on every way out, refusals and errors
+  // too, it stops before they go (declared after them, it is destroyed first).
+  struct StopSpinning {
+    ros::AsyncSpinner& spinner;
+    ~StopSpinning() { spinner.stop(); }
+  } stop_spinning{spinner};
 
   const CallResult configured = robot.configure();
   if (!configured.ok()) throw Error("pbd run --ros: " + configured.message);
@@ -111,7 +117,6 @@ int run_on_ros(const PbdOptions& o) {
   watcher.join();
   robot.deactivate();
   const double seconds = stopwatch.seconds();
-  spinner.stop();
   return report_execution(plan, report, seconds, "wall time");
 }
 
