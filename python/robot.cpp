@@ -4,12 +4,15 @@
 // robot will not carry out raises lmk.Refused with its kind and the CLI's one-line reason.
 #include <pybind11/stl.h>
 
+#include <exception>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "bindings.h"
 #include "lmk/pbd/execute.h"
 #include "lmk/pbd/internal/plan_json.h"
+#include "lmk/pbd/look_again.h"
 #include "lmk/pbd/plan.h"
 #include "lmk/pr2/pr2_robots.h"
 #include "lmk/pr2/simulated_pr2.h"
@@ -26,21 +29,78 @@ std::shared_ptr<SimulatedPr2> simulated_pr2(double torso_height) {
 
 const KinematicsInterface& kinematics(const SimulatedPr2& robot) { return robot.kinematics(); }
 
-// Plans the program file in `scene` for `robot` as it stands; lmk.Refused when the plan is refused.
-Plan plan_or_refuse(const std::string& program_file, const PointCloud& scene, SimulatedPr2& robot,
-                    const py::kwargs& keywords, const py::object& refused) {
+// A Python callable as the robot's eyes (pbd/look_again.h): look(target) points the head at the
+// 3-vector `target` (base frame) and returns the lmk.Cloud it then sees, in the base frame. What it
+// raises is raised again from lmk.plan, not turned into a refusal: a bug in it is the caller's to
+// see.
+class PythonEyes : public Eyes {
+ public:
+  explicit PythonEyes(py::object look) : look_(std::move(look)) {}
+  CallResult look_at(const Eigen::Vector3d& target, PointCloud& frame) override {
+    const py::gil_scoped_acquire gil;
+    try {
+      const py::object seen = look_(py::array_t<double>(3, target.data()));
+      if (!py::isinstance<PointCloud>(seen)) {
+        throw py::type_error("look must return an lmk.Cloud (the frame the head then sees)");
+      }
+      frame = seen.cast<const PointCloud&>();
+      return CallResult::success();
+    } catch (...) {
+      raised_ = std::current_exception();
+      return CallResult::error("look raised");
+    }
+  }
+  /// Raises what look raised, if it did; with the GIL held.
+  void raise_if_raised() const {
+    if (raised_) std::rethrow_exception(raised_);
+  }
+
+ private:
+  py::object look_;
+  std::exception_ptr raised_;
+};
+
+// Takes keyword `name` out of `keywords` when there.
+std::optional<py::object> pop_keyword(py::kwargs& keywords, const char* name) {
+  if (!keywords.contains(name)) return std::nullopt;
+  py::object value = keywords[name];
+  PyDict_DelItemString(keywords.ptr(), name);
+  return value;
+}
+
+// Plans the program file in `scene` for `robot` as it stands, looking again through `look` when
+// given; lmk.Refused when the plan is refused, naming every look.
+LookedPlan plan_or_refuse(const std::string& program_file, const PointCloud& scene,
+                          SimulatedPr2& robot, const py::kwargs& keywords,
+                          const py::object& refused) {
   PlanSettings settings;
   // min_confidence is the program's cut (PlanSettings), not the search's: the search keeps every
   // match, and the plan refuses a doubtful one by name (LandmarkDoubtful).
   py::kwargs search = py::reinterpret_steal<py::kwargs>(PyDict_Copy(keywords.ptr()));
-  if (search.contains("min_confidence")) {
-    const double cut = py::cast<double>(search["min_confidence"]);
+  if (const auto cut_value = pop_keyword(search, "min_confidence")) {
+    const double cut = py::cast<double>(*cut_value);
     if (!(cut >= 0.0 && cut <= 1.0)) throw py::value_error("min_confidence must be in [0, 1]");
     settings.min_confidence = cut;
-    PyDict_DelItemString(search.ptr(), "min_confidence");
+  }
+  const std::optional<py::object> look = pop_keyword(search, "look");
+  LookAgainSettings looking;
+  looking.max_looks = 0;
+  if (look && !look->is_none()) {
+    if (!PyCallable_Check(look->ptr())) throw py::type_error("look must be callable: look(target)");
+    looking.max_looks = 2;
+  }
+  if (const auto k = pop_keyword(search, "look_again")) {
+    looking.max_looks = py::cast<int>(*k);
+    if (looking.max_looks < 0 || looking.max_looks > 8) {
+      throw py::value_error("look_again must be 0 to 8 (further frames)");
+    }
+    if (looking.max_looks > 0 && !(look && !look->is_none())) {
+      throw py::value_error("look_again needs look=callable: the head that looks again");
+    }
   }
   settings.find = settings_from_keywords(search);
-  Plan result;
+  PythonEyes eyes(look ? *look : py::none());
+  LookedPlan result;
   {
     const py::gil_scoped_release release;
     const Program program = load_program(program_file);
@@ -48,15 +108,32 @@ Plan plan_or_refuse(const std::string& program_file, const PointCloud& scene, Si
         load_program_landmarks(program, std::filesystem::path(program_file).parent_path().string());
     JointState state;
     robot.read_joint_state(state);
-    result = plan(program, landmarks, scene, robot.kinematics(), state, settings);
+    result = plan_looking_again(program, landmarks, scene, robot.kinematics(), state, eyes,
+                                settings, looking);
   }
-  if (!result.valid()) {
-    py::object error = refused(describe(*result.refusal));
-    error.attr("kind") = refusal_kind(*result.refusal);
+  eyes.raise_if_raised();
+  if (!result.plan.valid()) {
+    const std::string looks = describe_looks(result.looks);
+    py::object error =
+        refused(describe(*result.plan.refusal) + (looks.empty() ? "" : ", " + looks));
+    error.attr("kind") = refusal_kind(*result.plan.refusal);
     PyErr_SetObject(refused.ptr(), error.ptr());
     throw py::error_already_set();
   }
   return result;
+}
+
+// The plan as `lmk pbd plan --json` gives it, with the further looks when any were taken.
+py::object plan_to_python(const LookedPlan& looked) {
+  py::object out = json_to_python(detail::plan_to_json(looked.plan));
+  if (looked.looks.empty()) return out;
+  py::list looks;
+  for (const Look& look : looked.looks) {
+    looks.append(
+        py::dict("target"_a = py::array_t<double>(3, look.target.data()), "why"_a = look.why));
+  }
+  out["looks"] = looks;
+  return out;
 }
 
 }  // namespace
@@ -122,19 +199,21 @@ void bind_robot(py::module_& m, const py::object& error) {
       "plan",
       [refused](const std::string& program, const PointCloud& scene, SimulatedPr2& robot,
                 const py::kwargs& kwargs) {
-        return json_to_python(
-            detail::plan_to_json(plan_or_refuse(program, scene, robot, kwargs, refused)));
+        return plan_to_python(plan_or_refuse(program, scene, robot, kwargs, refused));
       },
       py::arg("program"), py::arg("scene"), py::arg("robot"),
       "Plans a program file (its landmarks beside it) in `scene` (base frame) for `robot` as it "
       "stands, as `lmk pbd plan --json` does; raises lmk.Refused when the robot would not carry "
       "it out (kind 'landmark-doubtful' for a landmark below min_confidence, default 0.8). "
-      "Search settings are keywords as for lmk.find.");
+      "look=callable(target) -> lmk.Cloud is a head that can look again: when a landmark is "
+      "missing or doubtful it is pointed at the 3-vector target (base frame) and returns what it "
+      "then sees, fused with the frames before (at most look_again times, default 2; the plan's "
+      "'looks' lists them). Search settings are keywords as for lmk.find.");
   m.def(
       "run",
       [refused](const std::string& program, const PointCloud& scene, SimulatedPr2& robot,
                 const py::kwargs& kwargs) {
-        const Plan planned = plan_or_refuse(program, scene, robot, kwargs, refused);
+        const Plan planned = plan_or_refuse(program, scene, robot, kwargs, refused).plan;
         ExecutionReport report;
         {
           const py::gil_scoped_release release;

@@ -313,6 +313,60 @@ def test_plan_and_run_as_lmk_pbd_and_a_refusal_with_its_kind(task4):
     assert isinstance(refused.value, lmk.Error)
 
 
+def cut_by_the_image_edge(cloud, centre, margin=0.15):
+    """`cloud` as a camera whose image ends before `centre` (base frame): every pixel on its side
+    of the image from `margin` (in x/z, about 8 degrees) before it returns nothing."""
+    to_sensor = np.linalg.inv(cloud.sensor_pose)
+    c = to_sensor[:3, :3] @ centre + to_sensor[:3, 3]
+    side = 1.0 if c[0] > 0 else -1.0
+    points = np.array(cloud.points)  # H x W x 3, base frame
+    p = points @ to_sensor[:3, :3].T + to_sensor[:3, 3]
+    with np.errstate(invalid="ignore"):
+        cut = side * p[..., 0] / p[..., 2] >= side * c[0] / c[2] - margin
+    points[cut] = np.nan
+    return lmk.Cloud(points, sensor_pose=cloud.sensor_pose)
+
+
+def test_plan_looks_again_through_a_python_head(task4):
+    program = str(task4 / "drop_in_trash.json")
+    demonstration = lmk.read_cloud(str(task4 / "demonstration.pcd"))
+    planned = lmk.plan(program, demonstration, lmk.SimulatedPr2(torso_height=0.05))
+    trash = next(l for l in planned["landmarks"] if l["name"] == "trash_opening")
+    cut = cut_by_the_image_edge(demonstration, np.array(trash["position"]))
+    with pytest.raises(lmk.Refused, match="trash_opening' not found"):
+        lmk.plan(program, cut, lmk.SimulatedPr2(torso_height=0.05))
+
+    # The head turns and sees the whole scene: the new frame is fused with the cut one.
+    targets = []
+
+    def look(target):
+        targets.append(target)
+        return demonstration
+
+    looked = lmk.plan(program, cut, lmk.SimulatedPr2(torso_height=0.05), look=look)
+    assert looked["valid"] and len(targets) == 1 and targets[0].shape == (3,)
+    assert len(looked["looks"]) == 1 and "missing 'trash_opening'" in looked["looks"][0]["why"]
+    np.testing.assert_allclose(looked["looks"][0]["target"], targets[0])
+
+    # A head that never sees it: refused after look_again looks, naming them.
+    targets.clear()
+    with pytest.raises(lmk.Refused, match="after 1 more look") as refused:
+        lmk.plan(program, cut, lmk.SimulatedPr2(torso_height=0.05), look=lambda t: cut,
+                 look_again=1)
+    assert refused.value.kind == "landmark-not-found"
+    # What the head raises is raised, not turned into a refusal; bad arguments are ValueErrors.
+    def broken(target):
+        raise KeyError("the head's driver is gone")
+    with pytest.raises(KeyError, match="driver is gone"):
+        lmk.plan(program, cut, lmk.SimulatedPr2(torso_height=0.05), look=broken)
+    with pytest.raises(TypeError, match="must return an lmk.Cloud"):
+        lmk.plan(program, cut, lmk.SimulatedPr2(torso_height=0.05), look=lambda t: None)
+    with pytest.raises(ValueError, match="look_again needs look"):
+        lmk.plan(program, cut, lmk.SimulatedPr2(torso_height=0.05), look_again=2)
+    with pytest.raises(ValueError, match="look_again must be 0 to 8"):
+        lmk.plan(program, cut, lmk.SimulatedPr2(torso_height=0.05), look=look, look_again=9)
+
+
 def test_the_stub_names_everything_the_module_has():
     import ast
     stub = os.path.join(os.path.dirname(lmk.__file__), "__init__.pyi")
