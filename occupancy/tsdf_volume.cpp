@@ -3,10 +3,13 @@
 
 #include <openvdb/tools/Morphology.h>
 #include <openvdb/tree/LeafManager.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 
 #include "lmk/geometry/error.h"
@@ -38,8 +41,20 @@ Eigen::Matrix<Scalar, 2, 1> pixel_coordinates(const PinholeIntrinsics& k,
 // A frame ready to be looked into: its depth image, its intrinsics and the way from the common
 // frame into its sensor's optical frame.
 struct PreparedFrame {
+  PreparedFrame(RangeImage range_image, const Eigen::Isometry3f& T)
+      : image(std::move(range_image)),
+        T_sensor_common(T),
+        fx(static_cast<float>(image.intrinsics().fx)),
+        fy(static_cast<float>(image.intrinsics().fy)),
+        cx(static_cast<float>(image.intrinsics().cx)),
+        cy(static_cast<float>(image.intrinsics().cy)),
+        width(image.intrinsics().width),
+        height(image.intrinsics().height) {}
+
   RangeImage image;
   Eigen::Isometry3f T_sensor_common;
+  float fx, fy, cx, cy;  ///< the intrinsics in single precision, read per voxel
+  int width, height;
 
   struct Look {
     float depth;     ///< the point's own depth, m
@@ -54,24 +69,27 @@ struct PreparedFrame {
     const float nan = std::numeric_limits<float>::quiet_NaN();
     const Eigen::Vector3f p = T_sensor_common * x;
     if (!(p.z() > 0.0f)) return {p.z(), nan};
-    const PinholeIntrinsics& k = image.intrinsics();
-    const Eigen::Vector2f pixel = pixel_coordinates(k, p);
-    const float u = pixel.x(), v = pixel.y();
-    if (!(u > -0.5f && v > -0.5f && u < k.width - 0.5f && v < k.height - 0.5f)) return {p.z(), nan};
-    const std::vector<float>& depth = image.depths();
+    const float inverse_z = 1.0f / p.z();
+    const float u = fx * p.x() * inverse_z + cx, v = fy * p.y() * inverse_z + cy;
+    if (!(u > -0.5f && v > -0.5f && u < width - 0.5f && v < height - 0.5f)) return {p.z(), nan};
+    const float* depth = image.depths().data();
     const auto at = [&](int col, int row) {
-      return depth[static_cast<std::size_t>(row) * k.width + col];
+      return depth[static_cast<std::size_t>(row) * static_cast<std::size_t>(width) +
+                   static_cast<std::size_t>(col)];
     };
-    const int u0 = static_cast<int>(std::floor(u)), v0 = static_cast<int>(std::floor(v));
-    if (u0 >= 0 && v0 >= 0 && u0 + 1 < k.width && v0 + 1 < k.height) {
+    // u, v > -0.5: truncation after adding 1 is floor, after adding 0.5 rounding (std::floor and
+    // std::lround are library calls on baseline x86-64, here twice per voxel and frame).
+    const int u0 = static_cast<int>(u + 1.0f) - 1, v0 = static_cast<int>(v + 1.0f) - 1;
+    if (u0 >= 0 && v0 >= 0 && u0 + 1 < width && v0 + 1 < height) {
       const float a = at(u0, v0), b = at(u0 + 1, v0), c = at(u0, v0 + 1), d = at(u0 + 1, v0 + 1);
-      const float lo = std::min({a, b, c, d}), hi = std::max({a, b, c, d});
-      if (std::isfinite(lo) && std::isfinite(hi) && hi - lo <= continuity) {
+      // All four measured (a NaN compares false, so min and max alone could pass one by).
+      if (std::isfinite(a + b + c + d) &&
+          std::max({a, b, c, d}) - std::min({a, b, c, d}) <= continuity) {
         const float fu = u - static_cast<float>(u0), fv = v - static_cast<float>(v0);
         return {p.z(), (1 - fv) * ((1 - fu) * a + fu * b) + fv * ((1 - fu) * c + fu * d)};
       }
     }
-    return {p.z(), at(static_cast<int>(std::lround(u)), static_cast<int>(std::lround(v)))};
+    return {p.z(), at(static_cast<int>(u + 0.5f), static_cast<int>(v + 0.5f))};
   }
 };
 
@@ -102,7 +120,7 @@ std::vector<PreparedFrame> prepare(const std::vector<DepthFrame>& frames) {
     }
     const Eigen::Isometry3d T_common_sensor =
         frames[i].T_common_cloud * frames[i].cloud->T_cloud_sensor;
-    out.push_back({std::move(*images[i]), T_common_sensor.inverse().cast<float>()});
+    out.emplace_back(std::move(*images[i]), T_common_sensor.inverse().cast<float>());
   }
   return out;
 }
@@ -142,17 +160,33 @@ class MeasurementTable {
 // keeps. Free space far from every surface is not stored.
 constexpr int kShell = 2;
 vdb::FloatGrid::Ptr allocate(const std::vector<DepthFrame>& frames, const FusionSettings& s) {
-  auto weight = vdb::FloatGrid::create(0.0f);
-  weight->setTransform(vdb::math::Transform::createLinearTransform(s.voxel_size));
-  auto accessor = weight->getAccessor();
-  const double inverse_voxel = 1.0 / s.voxel_size;
-  for (const DepthFrame& f : frames) {
-    const Eigen::Isometry3f T = f.T_common_cloud.cast<float>();
-    for (const Eigen::Vector3f& p : f.cloud->points) {
-      if (!is_finite(p)) continue;
-      accessor.setValueOn(detail::nearest_voxel((T * p).cast<double>(), inverse_voxel), 0.0f);
+  // Blocks of rows of every frame, marked in parallel into a topology per thread, then merged:
+  // the union of sets, whatever the threads.
+  constexpr std::uint32_t kRows = 32;
+  std::vector<std::pair<std::size_t, std::uint32_t>> blocks;  // frame, first row
+  for (std::size_t f = 0; f < frames.size(); ++f) {
+    for (std::uint32_t row = 0; row < frames[f].cloud->height; row += kRows) {
+      blocks.emplace_back(f, row);
     }
   }
+  const double inverse_voxel = 1.0 / s.voxel_size;
+  tbb::enumerable_thread_specific<vdb::MaskTree> marked;
+  tbb::parallel_for(std::size_t{0}, blocks.size(), [&](std::size_t b) {
+    const DepthFrame& f = frames[blocks[b].first];
+    const Eigen::Isometry3f T = f.T_common_cloud.cast<float>();
+    vdb::tree::ValueAccessor<vdb::MaskTree> accessor(marked.local());
+    const std::size_t width = f.cloud->width;
+    const std::size_t begin = blocks[b].second * width;
+    const std::size_t end = std::min<std::size_t>(begin + kRows * width, f.cloud->points.size());
+    for (std::size_t i = begin; i < end; ++i) {
+      const Eigen::Vector3f& p = f.cloud->points[i];
+      if (!is_finite(p)) continue;
+      accessor.setValueOn(detail::nearest_voxel((T * p).cast<double>(), inverse_voxel));
+    }
+  });
+  auto weight = vdb::FloatGrid::create(0.0f);
+  weight->setTransform(vdb::math::Transform::createLinearTransform(s.voxel_size));
+  for (const vdb::MaskTree& tree : marked) weight->tree().topologyUnion(tree);
   // Two voxels about each measured one hold the crossing and the gradient beside it, and where
   // another frame saw past the surface, its carving; the band sets the values, not the extent.
   vdb::tools::dilateActiveValues(weight->tree(), kShell, vdb::tools::NN_FACE_EDGE_VERTEX,
@@ -172,6 +206,7 @@ vdb::FloatGrid::Ptr integrate(vdb::FloatGrid& weights, const std::vector<Prepare
   vdb::tree::LeafManager<vdb::FloatTree> leaves(weights.tree());
   vdb::FloatTree& distance_tree = distances->tree();
   const double voxel = s.voxel_size;
+  const float voxel_f = static_cast<float>(voxel);
   // Four pixels further apart in depth than two voxels do not hold one surface between them.
   const float continuity = static_cast<float>(2.0 * voxel);
   const MeasurementTable measurements(s);
@@ -182,9 +217,10 @@ vdb::FloatGrid::Ptr integrate(vdb::FloatGrid& weights, const std::vector<Prepare
                         vdb::FloatTree::LeafNodeType* d = distance_tree.probeLeaf(w.origin());
                         for (auto v = w.beginValueOn(); v; ++v) {
                           const vdb::Coord c = v.getCoord();
-                          const Eigen::Vector3f x(static_cast<float>(c.x() * voxel),
-                                                  static_cast<float>(c.y() * voxel),
-                                                  static_cast<float>(c.z() * voxel));
+                          const Eigen::Vector3f x =
+                              voxel_f * Eigen::Vector3f(static_cast<float>(c.x()),
+                                                        static_cast<float>(c.y()),
+                                                        static_cast<float>(c.z()));
                           float sum = 0.0f, weight = 0.0f;
                           for (const PreparedFrame& f : frames) {
                             const PreparedFrame::Look look = f.look(x, continuity);
@@ -212,56 +248,114 @@ vdb::FloatGrid::Ptr integrate(vdb::FloatGrid& weights, const std::vector<Prepare
   return distances;
 }
 
+// One crossing as the camera sees it: in the sensor frame, and the pixels its voxel covers.
+struct Splat {
+  Eigen::Vector3f p, n;  ///< sensor frame
+  int u0 = 0, u1 = -1, v0 = 0, v1 = -1;
+};
+
+// Where the ray of pixel (col, row) meets the splat's tangent plane, sensor frame; the splat's own
+// depth along the ray when the plane is seen edge-on or the meeting strays beyond its voxel.
+Eigen::Vector3f meeting(const Splat& s, const PinholeIntrinsics& k, int col, int row, float voxel) {
+  const Eigen::Vector3f ray(
+      (static_cast<float>(col) - static_cast<float>(k.cx)) / static_cast<float>(k.fx),
+      (static_cast<float>(row) - static_cast<float>(k.cy)) / static_cast<float>(k.fy), 1.0f);
+  const float facing = s.n.dot(ray);
+  if (std::isfinite(facing) && facing * facing > 0.04f * ray.squaredNorm()) {
+    const Eigen::Vector3f on_plane = ray * (s.n.dot(s.p) / facing);
+    if ((on_plane - s.p).squaredNorm() <= voxel * voxel) return on_plane;
+  }
+  return ray * s.p.z();
+}
+
 // The crossings (common frame, with normals) seen by the camera `k` at T_common_sensor, each
 // splatted over the pixels its voxel covers, the nearest kept per pixel (TsdfVolume::render()).
+// Blocks of rows in parallel, each pixel's nearest meeting decided by (depth, crossing): the same
+// frame whatever the threads.
 PointCloud render_crossings(const PointCloud& crossings, double voxel_size,
                             const PinholeIntrinsics& k, const Eigen::Isometry3d& T_common_sensor) {
   k.validate("fuse: render");
   const std::size_t pixels = static_cast<std::size_t>(k.width) * static_cast<std::size_t>(k.height);
   const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float voxel = static_cast<float>(voxel_size);
+  const Eigen::Isometry3f T_sensor_common = T_common_sensor.inverse().cast<float>();
+  std::vector<Splat> splats(crossings.size());
+  tbb::parallel_for(std::size_t{0}, crossings.size(), [&](std::size_t i) {
+    Splat& s = splats[i];
+    s.p = T_sensor_common * crossings.points[i];
+    if (!(s.p.z() > 0.0f)) return;  // behind the camera: an empty window
+    s.n = T_sensor_common.linear() * crossings.normals[i];
+    const Eigen::Vector2f pixel = pixel_coordinates(k, s.p);
+    // The pixels the crossing's voxel covers: a splat half a voxel wide about it.
+    const float radius = 0.5f * voxel * static_cast<float>(k.fx) / s.p.z();
+    // floor(x + 0.5) within the image (truncation is floor from 0 on).
+    const auto first = [](float x, int size) {
+      return static_cast<int>(std::clamp(x + 0.5f, 0.0f, static_cast<float>(size)));
+    };
+    const auto last = [](float x, int size) {
+      return x + 0.5f < 0.0f ? -1 : static_cast<int>(std::min(x + 0.5f, size - 1.0f));
+    };
+    s.u0 = first(pixel.x() - radius, k.width), s.u1 = last(pixel.x() + radius, k.width);
+    s.v0 = first(pixel.y() - radius, k.height), s.v1 = last(pixel.y() + radius, k.height);
+  });
+  // The splats by their first row (in crossing order within a row), and the most rows one spans.
+  std::vector<std::size_t> row_start(static_cast<std::size_t>(k.height) + 1, 0);
+  int span = 0;
+  for (const Splat& s : splats) {
+    if (s.v0 > s.v1 || s.u0 > s.u1) continue;
+    ++row_start[static_cast<std::size_t>(s.v0) + 1];
+    span = std::max(span, s.v1 - s.v0);
+  }
+  for (std::size_t r = 0; r < static_cast<std::size_t>(k.height); ++r) {
+    row_start[r + 1] += row_start[r];
+  }
+  std::vector<std::uint32_t> by_row(row_start.back());
+  std::vector<std::size_t> fill(row_start.begin(), row_start.end() - 1);
+  for (std::size_t i = 0; i < splats.size(); ++i) {
+    const Splat& s = splats[i];
+    if (s.v0 > s.v1 || s.u0 > s.u1) continue;
+    by_row[fill[static_cast<std::size_t>(s.v0)]++] = static_cast<std::uint32_t>(i);
+  }
+  // Per pixel the nearest meeting as (depth's bits, crossing): a positive float's bits order as
+  // the float does, and a tie goes to the first crossing, as a serial pass would keep it.
+  constexpr std::uint64_t kNone = std::numeric_limits<std::uint64_t>::max();
+  std::vector<std::uint64_t> nearest(pixels, kNone);
+  constexpr int kBlockRows = 16;
+  tbb::parallel_for(0, (k.height + kBlockRows - 1) / kBlockRows, [&](int block) {
+    const int top = block * kBlockRows, bottom = std::min(k.height, top + kBlockRows);
+    for (int first_row = std::max(0, top - span); first_row < bottom; ++first_row) {
+      for (std::size_t j = row_start[static_cast<std::size_t>(first_row)];
+           j < row_start[static_cast<std::size_t>(first_row) + 1]; ++j) {
+        const Splat& s = splats[by_row[j]];
+        for (int row = std::max(s.v0, top); row <= std::min(s.v1, bottom - 1); ++row) {
+          for (int col = s.u0; col <= s.u1; ++col) {
+            const float depth = meeting(s, k, col, row, voxel).z();
+            if (!(depth > 0.0f)) continue;
+            std::uint32_t bits;
+            std::memcpy(&bits, &depth, sizeof bits);
+            const std::uint64_t key = (std::uint64_t{bits} << 32) | by_row[j];
+            std::uint64_t& here = nearest[static_cast<std::size_t>(row) * k.width + col];
+            here = std::min(here, key);
+          }
+        }
+      }
+    }
+  });
   PointCloud out;
   out.points.assign(pixels, Eigen::Vector3f::Constant(nan));
   out.normals.assign(pixels, Eigen::Vector3f::Constant(nan));
   out.width = static_cast<std::uint32_t>(k.width);
   out.height = static_cast<std::uint32_t>(k.height);
   out.T_cloud_sensor = T_common_sensor;
-  std::vector<float> depth(pixels, std::numeric_limits<float>::infinity());
-  const Eigen::Isometry3f T_sensor_common = T_common_sensor.inverse().cast<float>();
   const Eigen::Isometry3f T_common_sensor_f = T_common_sensor.cast<float>();
-  const float voxel = static_cast<float>(voxel_size);
-  for (std::size_t i = 0; i < crossings.size(); ++i) {
-    const Eigen::Vector3f p = T_sensor_common * crossings.points[i];
-    if (p.z() <= 0.0f) continue;
-    const Eigen::Vector3f n = T_sensor_common.linear() * crossings.normals[i];
-    const Eigen::Vector2f pixel = pixel_coordinates(k, p);
-    const float u = pixel.x(), v = pixel.y();
-    // The pixels the crossing's voxel covers: a splat half a voxel wide about it.
-    const float radius = 0.5f * voxel * static_cast<float>(k.fx) / p.z();
-    const int u0 = std::max(0, static_cast<int>(std::floor(u - radius + 0.5f)));
-    const int u1 = std::min(k.width - 1, static_cast<int>(std::floor(u + radius + 0.5f)));
-    const int v0 = std::max(0, static_cast<int>(std::floor(v - radius + 0.5f)));
-    const int v1 = std::min(k.height - 1, static_cast<int>(std::floor(v + radius + 0.5f)));
-    for (int row = v0; row <= v1; ++row) {
-      for (int col = u0; col <= u1; ++col) {
-        const Eigen::Vector3f ray(
-            (static_cast<float>(col) - static_cast<float>(k.cx)) / static_cast<float>(k.fx),
-            (static_cast<float>(row) - static_cast<float>(k.cy)) / static_cast<float>(k.fy), 1.0f);
-        // Where the pixel's ray meets the crossing's tangent plane; its own depth when the plane
-        // is seen edge-on or the meeting strays beyond its voxel.
-        Eigen::Vector3f q = ray * p.z();
-        const float facing = n.dot(ray);
-        if (std::isfinite(facing) && std::abs(facing) > 0.2f * ray.norm()) {
-          const Eigen::Vector3f on_plane = ray * (n.dot(p) / facing);
-          if ((on_plane - p).norm() <= voxel) q = on_plane;
-        }
-        const std::size_t index = static_cast<std::size_t>(row) * k.width + col;
-        if (!(q.z() > 0.0f) || q.z() >= depth[index]) continue;
-        depth[index] = q.z();
-        out.points[index] = T_common_sensor_f * q;
-        out.normals[index] = T_common_sensor_f.linear() * n;
-      }
-    }
-  }
+  tbb::parallel_for(std::size_t{0}, pixels, [&](std::size_t index) {
+    if (nearest[index] == kNone) return;
+    const Splat& s = splats[nearest[index] & 0xffffffffu];
+    const int row = static_cast<int>(index / static_cast<std::size_t>(k.width));
+    const int col = static_cast<int>(index % static_cast<std::size_t>(k.width));
+    out.points[index] = T_common_sensor_f * meeting(s, k, col, row, voxel);
+    out.normals[index] = T_common_sensor_f.linear() * s.n;
+  });
   return out;
 }
 
