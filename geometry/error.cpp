@@ -28,6 +28,17 @@ std::size_t utf8_sequence(const std::string& text, std::size_t i) {
   return length;
 }
 
+// The length of the printable character at text[i]: 1 for printable ASCII, 2 to 4 for a UTF-8
+// sequence that is no C1 control (U+0080 to U+009F: a terminal may read U+009B as the start of an
+// escape sequence, as it reads ESC [), 0 for anything else.
+std::size_t printable_character(const std::string& text, std::size_t i) {
+  const auto c = static_cast<unsigned char>(text[i]);
+  if (c < 0x80) return c >= 0x20 && c < 0x7f ? 1 : 0;
+  const std::size_t n = utf8_sequence(text, i);
+  if (n == 2 && c == 0xc2 && static_cast<unsigned char>(text[i + 1]) < 0xa0) return 0;
+  return n;
+}
+
 }  // namespace
 
 bool is_valid_utf8(const std::string& text) {
@@ -47,20 +58,26 @@ std::string printable(const std::string& text, std::size_t max_chars) {
   std::string out;
   std::size_t i = 0;
   while (i < text.size() && out.size() < max_chars) {
-    const auto c = static_cast<unsigned char>(text[i]);
-    if (c >= 0x20 && c < 0x7f) {
-      out += text[i++];
-    } else if (const std::size_t n = c >= 0x80 ? utf8_sequence(text, i) : 0; n > 0) {
-      out += text.substr(i, n);
+    if (const std::size_t n = printable_character(text, i); n > 0) {
+      out.append(text, i, n);
       i += n;
     } else {
       char escaped[8];
-      std::snprintf(escaped, sizeof(escaped), "\\x%02x", c);
+      std::snprintf(escaped, sizeof(escaped), "\\x%02x", static_cast<unsigned char>(text[i]));
       out += escaped;
       ++i;
     }
   }
   return i < text.size() ? out + "..." : out;
+}
+
+bool is_printable_text(const std::string& text) {
+  for (std::size_t i = 0; i < text.size();) {
+    const std::size_t n = printable_character(text, i);
+    if (n == 0) return false;
+    i += n;
+  }
+  return true;
 }
 
 }  // namespace lmk

@@ -22,9 +22,16 @@ class Interrupted : public std::runtime_error {
 };
 
 /// Text from a file made fit for a one-line message: at most `max_chars` bytes, with control
-/// characters and bytes that are not UTF-8 shown as \xNN, so that a binary file cannot garble
-/// the terminal or split the line.
+/// characters (C0, DEL and C1) and bytes that are not UTF-8 shown as \xNN, so that a binary file
+/// cannot garble the terminal or split the line.
 std::string printable(const std::string& text, std::size_t max_chars = 60);
+
+/// How much of what a client or a file sent is echoed back in a message or a log line, bytes.
+inline constexpr std::size_t kEchoedBytes = 200;
+
+/// Whether `text` is well-formed UTF-8 without control characters (C0, DEL, C1): a name or a path
+/// that can be printed as it is.
+bool is_printable_text(const std::string& text);
 
 /// Whether `text` is well-formed UTF-8 (RFC 3629: no overlong forms, no surrogates).
 bool is_valid_utf8(const std::string& text);

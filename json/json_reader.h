@@ -50,6 +50,11 @@ class JsonReader {
     if (!v.is_string() || v.get<std::string>().empty()) {
       fail(where, "'" + key + "' must be a non-empty string");
     }
+    // Names and paths are printed: one with a control character could rewrite a terminal.
+    if (!is_printable_text(v.get<std::string>())) {
+      fail(where, "'" + key + "' must be printable text, not '" +
+                      printable(v.get<std::string>(), kEchoedBytes) + "'");
+    }
     return v.get<std::string>();
   }
 

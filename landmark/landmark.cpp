@@ -16,6 +16,12 @@ void Landmark::validate(const std::string& what) const {
                 std::to_string(kLandmarkFormatVersion) + ")");
   }
   if (name.empty()) throw Error(what + ": landmark name is empty");
+  // The name is printed by every command that shows the landmark: no control character may reach
+  // a terminal through it (issue #47).
+  if (!is_printable_text(name)) {
+    throw Error(what + ": landmark name '" + printable(name, kEchoedBytes) +
+                "' is not printable text (a control character or a byte that is not UTF-8)");
+  }
   check_capture_settings(settings, what);
   check_capture_box(box, settings, what);
   if (!sensor_origin.allFinite()) throw Error(what + ": sensor origin is not finite");

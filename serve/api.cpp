@@ -71,8 +71,10 @@ ApiResponse Api::run_job(const std::string& kind, const nlohmann::json& body, Jo
 
 ApiResponse Api::cancel_job(const std::string& id) {
   const std::optional<bool> cancelled = jobs_->cancel(id);
-  if (!cancelled) throw not_found("no job '" + id + "' (finished jobs are kept for a while only)");
-  if (!*cancelled) throw conflict("job '" + id + "' has finished already");
+  if (!cancelled)
+    throw not_found("no job '" + printable(id, kEchoedBytes) +
+                    "' (finished jobs are kept for a while only)");
+  if (!*cancelled) throw conflict("job '" + printable(id, kEchoedBytes) + "' has finished already");
   return {200, {{"job", id}, {"cancelled", true}}};
 }
 
@@ -93,7 +95,9 @@ ApiResponse Api::job(const std::string& id, const std::string& wait) const {
     seconds = std::min(seconds, kMaxRequestWait);  // a long poll, not a hung connection
   }
   const auto status = jobs_->status(id, seconds);
-  if (!status) throw not_found("no job '" + id + "' (finished jobs are kept for a while only)");
+  if (!status)
+    throw not_found("no job '" + printable(id, kEchoedBytes) +
+                    "' (finished jobs are kept for a while only)");
   return {200, *status};
 }
 

@@ -183,7 +183,8 @@ ApiResponse Api::landmarks() const {
 
 ApiResponse Api::landmark(const std::string& name) const {
   checked_name(name, "landmark");
-  if (!library_.contains(name)) throw not_found("no landmark '" + name + "'");
+  if (!library_.contains(name))
+    throw not_found("no landmark '" + printable(name, kEchoedBytes) + "'");
   const auto l = library_.load(name);
   nlohmann::json j = landmark_summary(name, *l);
   nlohmann::json points = nlohmann::json::array();

@@ -27,7 +27,7 @@ ApiResponse Api::find(const std::string& body_text) {
   std::vector<std::shared_ptr<const LandmarkIndex>> landmarks;
   for (const std::string& name : names) {
     if (!library_.contains(checked_name(name, "find")))
-      throw not_found("find: no landmark '" + name + "'");
+      throw not_found("find: no landmark '" + printable(name, kEchoedBytes) + "'");
     landmarks.push_back(library_.index(name, settings));
   }
   const bool with_rejected = optional_bool(body, "rejected", false, "find");

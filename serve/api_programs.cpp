@@ -48,7 +48,8 @@ nlohmann::json targets_json(const Program& program, const Plan& plan) {
 fs::path Api::program_path(const std::string& name) const {
   if (programs_dir_.empty()) throw not_found("no programs: start lmk serve with --programs DIR");
   const fs::path path = programs_dir_ / (checked_name(name, "program") + ".json");
-  if (!fs::is_regular_file(path)) throw not_found("no program '" + name + "'");
+  if (!fs::is_regular_file(path))
+    throw not_found("no program '" + printable(name, kEchoedBytes) + "'");
   return path;
 }
 

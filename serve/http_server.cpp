@@ -18,6 +18,8 @@
 #include "lmk/geometry/error.h"
 #include "lmk/serve/access_guard.h"
 #include "lmk/serve/api_error.h"
+#include "lmk/serve/connection_limits.h"
+#include "lmk/serve/detail/guarded_server.h"
 #include "lmk/serve/static_files.h"
 
 // After Eigen: glibc's <resolv.h>, which httplib includes, defines `_res`, a name Eigen uses.
@@ -73,6 +75,9 @@ fs::path make_scratch_dir() {
 // dropped.
 constexpr int kListenBacklog = 256;
 
+// HTTP threads: each open connection holds one.
+constexpr int kHttpThreads = 64;
+
 constexpr const char* kJsonContentType = "application/json; charset=utf-8";
 
 void send(httplib::Response& res, const ApiResponse& r) {
@@ -95,19 +100,23 @@ std::optional<std::string> not_utf8_part(const httplib::Request& req) {
   return std::nullopt;
 }
 
+// An error's message as a client gets it: what it echoes is cut (each site at kEchoedBytes, and
+// the whole here) and escaped, whoever prints the body.
+std::string error_text(const std::string& message) { return printable(message, 5 * kEchoedBytes); }
+
 // Runs a request's handler; whatever it throws becomes the request's JSON error.
 template <class F>
 void guarded(httplib::Response& res, F&& handle) {
   try {
     handle();
   } catch (const ApiError& e) {
-    nlohmann::json body = {{"error", e.what()}};
+    nlohmann::json body = {{"error", error_text(e.what())}};
     if (e.details().is_object()) body.update(e.details());
     send(res, {e.status(), body});
   } catch (const Error& e) {
-    send(res, {422, {{"error", e.what()}}});
+    send(res, {422, {{"error", error_text(e.what())}}});
   } catch (const std::exception& e) {
-    send(res, {500, {{"error", std::string("internal error: ") + e.what()}}});
+    send(res, {500, {{"error", "internal error: " + error_text(e.what())}}});
   }
 }
 
@@ -162,7 +171,8 @@ struct HttpServer::Impl {
       : guard(make_guard(settings)),
         scratch(make_scratch_dir()),
         api(std::move(settings), scratch),
-        log(log_in) {}
+        log(log_in),
+        connections(api.settings().connections) {}
   ~Impl() {
     std::error_code ignored;
     fs::remove_all(scratch, ignored);
@@ -180,7 +190,8 @@ struct HttpServer::Impl {
   Api api;
   std::ostream* log;
   std::mutex log_mutex;
-  httplib::Server server;
+  ConnectionTable connections;
+  detail::GuardedServer server{connections};
 };
 
 void HttpServer::Impl::api_route(const char* method, const std::string& pattern,
@@ -200,6 +211,14 @@ void HttpServer::Impl::api_route(const char* method, const std::string& pattern,
 // Every request passes the access guard before it is routed, and before its body is read.
 void HttpServer::Impl::guard_requests() {
   server.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
+    // The headers are in: the body, if any, is due at the least rate from now.
+    if (ConnectionTable::Connection* c = ConnectionTable::current()) {
+      const bool chunked = req.has_header("Transfer-Encoding");
+      connections.headers_read(
+          *c, chunked ? api.settings().max_upload_bytes
+                      : static_cast<std::size_t>(std::min<unsigned long long>(
+                            declared_length(req), api.settings().max_upload_bytes)));
+    }
     const AccessVerdict verdict = guard.check(view_of(req));
     if (!verdict.allowed()) {
       send(res, {verdict.status, {{"error", verdict.error}}});
@@ -263,7 +282,12 @@ void HttpServer::Impl::routes() {
   const auto param = [](const httplib::Request& r, const char* key) {
     return r.has_param(key) ? r.get_param_value(key) : std::string();
   };
-  api_route("GET", "/api/info", [&a](const auto&) { return a.info(); });
+  api_route("GET", "/api/info", [this, &a](const auto&) {
+    ApiResponse info = a.info();
+    info.body["connections"] = {{"open", connections.open_connections()},
+                                {"cut_off", connections.cut_off_connections()}};
+    return info;
+  });
   api_route("GET", "/api/health", [](const auto&) { return Api::health(); });
   api_route("DELETE", "/api/jobs/(.+)", [&a](const auto& r) { return a.cancel_job(r.matches[1]); });
   api_route("GET", "/api/scenes", [&a](const auto&) { return a.scenes(); });
@@ -337,14 +361,18 @@ void HttpServer::Impl::routes() {
     server.set_logger([this](const httplib::Request& req, const httplib::Response& res) {
       if (req.path.rfind("/api/", 0) != 0 && res.status < 400) return;       // the page's own files
       if (req.path.rfind("/api/jobs/", 0) == 0 && res.status < 400) return;  // polling
-      std::string line = req.method + " " + req.path + " " + std::to_string(res.status);
-      if (res.status >= 400 && res.body.size() < 400) line += " " + res.body;
+      // The path is the client's, URL-decoded: escaped, or it could clear the operator's
+      // terminal, set its title or forge a log line (issue #47).
+      std::string line = printable(req.method, 16) + " " + printable(req.path, kEchoedBytes) + " " +
+                         std::to_string(res.status);
+      if (res.status >= 400) line += " " + printable(res.body, 2 * kEchoedBytes);
       std::lock_guard<std::mutex> lock(log_mutex);
       *log << line << std::endl;
     });
   }
-  // Enough threads that the page stays answered while requests wait for searches.
-  server.new_task_queue = [] { return new httplib::ThreadPool(16); };
+  // Enough threads that the page stays answered while requests wait for searches, and while one
+  // client's slow connections hold the most that ConnectionLimits lets them (16 by default).
+  server.new_task_queue = [] { return new httplib::ThreadPool(kHttpThreads); };
 }
 
 HttpServer::HttpServer(ServeSettings settings, std::ostream* log)

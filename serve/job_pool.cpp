@@ -247,7 +247,7 @@ std::optional<nlohmann::json> JobPool::status(const std::string& id, double wait
 nlohmann::json JobPool::wait(const std::string& id) const {
   std::unique_lock<std::mutex> lock(mutex_);
   const auto it = jobs_.find(id);
-  if (it == jobs_.end()) throw not_found("no job '" + id + "'");
+  if (it == jobs_.end()) throw not_found("no job '" + printable(id, kEchoedBytes) + "'");
   const std::shared_ptr<Job> job = it->second;
   asking(*job, +1);
   changed_.wait(lock, [this, &job] { return stopping_ || has_ended(job->state); });

@@ -24,7 +24,8 @@ nlohmann::json parse_body(const std::string& body, const std::string& what) {
 
 std::string required_string(const nlohmann::json& body, const std::string& key,
                             const std::string& what) {
-  if (!body.contains(key)) throw bad_request(what + ": missing field '" + key + "'");
+  if (!body.contains(key))
+    throw bad_request(what + ": missing field '" + printable(key, kEchoedBytes) + "'");
   if (!body[key].is_string()) throw bad_request(what + ": " + key + ": must be a string");
   return body[key].get<std::string>();
 }
@@ -47,7 +48,8 @@ double optional_number(const nlohmann::json& body, const std::string& key, doubl
 
 Eigen::Vector3d required_point(const nlohmann::json& body, const std::string& key,
                                const std::string& what) {
-  if (!body.contains(key)) throw bad_request(what + ": missing field '" + key + "'");
+  if (!body.contains(key))
+    throw bad_request(what + ": missing field '" + printable(key, kEchoedBytes) + "'");
   try {
     return detail::numbers_from_json(body[key], 3, what + ": " + key);
   } catch (const Error& e) {
@@ -56,7 +58,8 @@ Eigen::Vector3d required_point(const nlohmann::json& body, const std::string& ke
 }
 
 Box required_box(const nlohmann::json& body, const std::string& key, const std::string& what) {
-  if (!body.contains(key)) throw bad_request(what + ": missing field '" + key + "'");
+  if (!body.contains(key))
+    throw bad_request(what + ": missing field '" + printable(key, kEchoedBytes) + "'");
   Box box;
   try {
     detail::setting_from_json(body[key], what + ": " + key, box);

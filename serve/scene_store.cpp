@@ -113,7 +113,8 @@ Scene SceneStore::get(const std::string& id) const {
   }
   std::string ids;
   for (const Scene& s : scenes_) ids += (ids.empty() ? "" : ", ") + s.id;
-  throw not_found("no scene '" + id + "' (scenes: " + (ids.empty() ? "none" : ids) + ")");
+  throw not_found("no scene '" + printable(id, kEchoedBytes) +
+                  "' (scenes: " + (ids.empty() ? "none" : ids) + ")");
 }
 
 std::vector<Scene> SceneStore::list() const {

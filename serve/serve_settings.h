@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "lmk/serve/connection_limits.h"
+
 namespace lmk::serve {
 
 struct ServeSettings {
@@ -39,6 +41,8 @@ struct ServeSettings {
   bool base_frame = false;
   std::optional<Eigen::Vector3d> up;
   double torso = 0.0;  ///< m: the simulated PR2's torso for program plans
+  /// Deadlines for a request's headers and body, and the slow connections one client may hold.
+  ConnectionLimits connections;
 };
 
 }  // namespace lmk::serve

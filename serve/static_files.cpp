@@ -4,6 +4,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "lmk/geometry/error.h"
 #include "lmk/serve/api_error.h"
 
 namespace lmk::serve {
@@ -23,12 +24,12 @@ std::string content_type_for(const std::string& name) {
 
 StaticFile web_asset(const std::string& name) {
   if (name.find('/') != std::string::npos || name.find("..") != std::string::npos) {
-    throw forbidden("'" + name + "' is outside the served files");
+    throw forbidden("'" + printable(name, kEchoedBytes) + "' is outside the served files");
   }
   for (const WebAsset& a : web_assets()) {
     if (name == a.name) return {a.text, content_type_for(name)};
   }
-  throw not_found("no page file '" + name + "'");
+  throw not_found("no page file '" + printable(name, kEchoedBytes) + "'");
 }
 
 bool lies_within(const fs::path& path, const fs::path& root) {
@@ -51,12 +52,15 @@ StaticFile confined_file(const fs::path& root, const std::string& relative) {
   for (const fs::path& part : rel) {
     if (part == ".." || part == ".") dot_segment = true;
   }
-  if (escapes || dot_segment) throw forbidden("'" + relative + "' is outside the served files");
+  if (escapes || dot_segment)
+    throw forbidden("'" + printable(relative, kEchoedBytes) + "' is outside the served files");
   // And once resolved: a link inside root must not lead out of it.
   if (!fs::is_directory(root)) throw not_found("three.js is not installed at " + root.string());
   const fs::path file = root / rel;
-  if (!fs::is_regular_file(file)) throw not_found("no file '" + relative + "'");
-  if (!lies_within(file, root)) throw forbidden("'" + relative + "' is outside the served files");
+  if (!fs::is_regular_file(file))
+    throw not_found("no file '" + printable(relative, kEchoedBytes) + "'");
+  if (!lies_within(file, root))
+    throw forbidden("'" + printable(relative, kEchoedBytes) + "' is outside the served files");
   std::ifstream in(file, std::ios::binary);
   std::ostringstream body;
   body << in.rdbuf();

@@ -35,6 +35,20 @@ TEST(TextChecks, PrintableShowsEveryByteOfANameWithANul) {
   EXPECT_EQ(printable("\xed\xa0\x80"), "\\xed\\xa0\\x80");
 }
 
+TEST(TextChecks, ControlCharactersOfEveryKindAreShownNotSent) {
+  // C0, DEL, and C1 in UTF-8 (U+009B reads as ESC [ on some terminals); other UTF-8 stays.
+  EXPECT_EQ(printable("a\x1b[2J\x7f\xc2\x9b"
+                      "1m\xc3\xa9"),
+            "a\\x1b[2J\\x7f\\xc2\\x9b1m\xc3\xa9");
+  EXPECT_TRUE(is_printable_text("caf\xc3\xa9 au lait"));
+  for (const std::string& bad : std::vector<std::string>{"a\nb", "\x1b]0;x\x07", "\xc2\x9b", "\x7f",
+                                                         "\xff", std::string("a\0b", 3)}) {
+    EXPECT_FALSE(is_printable_text(bad)) << printable(bad);
+  }
+  // Echoed input is cut.
+  EXPECT_EQ(printable(std::string(500, 'x'), kEchoedBytes), std::string(kEchoedBytes, 'x') + "...");
+}
+
 TEST(TextChecks, PlainNamesCannotLeaveHideOrReadAsAnOption) {
   for (const std::string good : {"milk", "rack-2", "a.b_c", "9"}) {
     EXPECT_TRUE(is_plain_name(good, 100)) << good;

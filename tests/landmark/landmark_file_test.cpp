@@ -215,6 +215,32 @@ TEST(LandmarkFile, ImportValidates) {
   EXPECT_THROW(import_landmark(dir.file("nowhere")), Error);
 }
 
+// Issue #47: a landmark's name is printed by every command that shows it; one with a control
+// character is neither written nor read.
+TEST(LandmarkFile, ANameWithAControlCharacterIsRefused) {
+  test::ScratchDir dir;
+  Landmark landmark = sample_landmark();
+  landmark.name = "milk\x1b]0;pwned\x07";
+  try {
+    save_landmark(dir.file("bad.lmk"), landmark);
+    ADD_FAILURE() << "saved";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("landmark name 'milk\\x1b]0;pwned\\x07' is not printable"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir.file("bad.lmk")));
+  // Nor through landmark.json, whatever wrote it.
+  export_landmark(sample_landmark(), dir.file("out"));
+  std::ifstream in(dir.file("out/landmark.json"));
+  std::string json((std::istreambuf_iterator<char>(in)), {});
+  const std::string name = "\"name\": \"" + sample_landmark().name + "\"";
+  ASSERT_NE(json.find(name), std::string::npos);
+  json.replace(json.find(name), name.size(), "\"name\": \"a\\u009bb\"");
+  test::write_text(dir.file("out/landmark.json"), json);
+  EXPECT_THROW(import_landmark(dir.file("out")), Error);
+}
+
 }  // namespace
 }  // namespace lmk
 

@@ -106,6 +106,9 @@ TEST(ProgramFile, EveryValidationErrorSaysWhatAndWhere) {
       {"negative duration", "\"duration\": 2.5", "\"duration\": -1", "positive"},
       {"landmark without file", "\"file\": \"rack.lmk\"", "\"file\": \"\"", "'file'"},
       {"landmark called base", "\"name\": \"rack\"", "\"name\": \"base\"", "base"},
+      // Names are printed: an escape sequence in one would rewrite the terminal (issue #47).
+      {"escape in a name", "\"name\": \"rack\"", "\"name\": \"ra\\u001b[2Jck\"",
+       "'name' must be printable text, not 'ra\\x1b[2Jck'"},
       {"unknown policy", "\"nearest-to-demonstration\"", "\"closest\"",
        "landmarks[1].select: unknown instance policy 'closest'"},
       {"symmetry of order one", "\"order\": 0", "\"order\": 1", "order must be 0"},

@@ -35,7 +35,7 @@ void ServeTest::TearDown() {
   server.reset();
 }
 
-void ServeTest::start(serve::ServeSettings settings) {
+void ServeTest::start(serve::ServeSettings settings, std::ostream* log) {
   if (settings.scenes.empty()) settings.scenes = {scene_file, robot_scene_file};
   if (settings.landmarks_dir == serve::ServeSettings().landmarks_dir) {
     settings.landmarks_dir = landmarks_dir;
@@ -43,7 +43,7 @@ void ServeTest::start(serve::ServeSettings settings) {
   if (settings.programs_dir.empty()) settings.programs_dir = programs_dir;
   settings.port = 0;
   settings.base_frame = true;
-  server = std::make_unique<serve::HttpServer>(settings);
+  server = std::make_unique<serve::HttpServer>(settings, log);
   port = server->bind();
   thread = std::thread([this] { server->run(); });
   client = new_client();

@@ -36,8 +36,9 @@ class ServeTest : public ::testing::Test {
   void SetUp() override;
   void TearDown() override;
 
-  /// Starts the server with `settings` over the fixture's files (scenes, directories filled in).
-  void start(serve::ServeSettings settings = {});
+  /// Starts the server with `settings` over the fixture's files (scenes, directories filled in),
+  /// logging its requests to `log` unless it is null.
+  void start(serve::ServeSettings settings = {}, std::ostream* log = nullptr);
 
   /// A client of the running server that sends its token, as the page's cookie does.
   std::unique_ptr<httplib::Client> new_client() const;
