@@ -184,7 +184,10 @@ Generated generate_benchmark(const std::string& dir, const std::string& preset_n
                              const GenerateOptions& options) {
   const BenchmarkPreset& preset = benchmark_preset(preset_name);
   const int seeds = options.seeds.value_or(preset.seeds);
-  if (seeds < 1) throw Error("--seeds must be at least 1 (got " + std::to_string(seeds) + ")");
+  if (seeds < 1 || seeds > kMaxSeedsPerType) {
+    throw Error("--seeds must be 1 to " + std::to_string(kMaxSeedsPerType) + " (got " +
+                std::to_string(seeds) + ")");
+  }
   if (options.merge && options.shard)
     throw Error("gen: a merge gathers every shard; give no shard");
   if (options.frames < 1 || static_cast<std::size_t>(options.frames) > kMaxFusedFrames) {

@@ -6,10 +6,12 @@
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/input_file.h"
+#include "lmk/geometry/pose.h"
 #include "lmk/json/json_reader.h"
 
 namespace lmk {
@@ -37,6 +39,7 @@ std::vector<double> numbers_of(const std::string& text, const std::string& where
 Eigen::Isometry3d rigid_motion(const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
                                const std::string& where) {
   if (!R.allFinite() || !t.allFinite()) throw Error(where + ": the pose is not finite");
+  check_translation(t, where);
   if (!(R.transpose() * R).isApprox(Eigen::Matrix3d::Identity(), 1e-2) || R.determinant() < 0.9) {
     throw Error(where + ": the pose's rotation is not a rotation (not orthonormal, or a mirror)");
   }
@@ -155,6 +158,19 @@ const T* nearest_in_time(const std::vector<std::pair<double, T>>& items, double 
   return &best->second;
 }
 
+// Throws lmk::Error unless `name`, as `list` gives it, names a file inside `dir` after every
+// symbolic link: a sequence's lists may not reach files elsewhere ("../../etc/passwd").
+void check_inside_sequence(const fs::path& dir, const std::string& name, const std::string& list) {
+  std::error_code ec;
+  const fs::path real = fs::weakly_canonical(dir / name, ec);
+  const fs::path root = fs::canonical(dir, ec);
+  const auto [end, ignored] = std::mismatch(root.begin(), root.end(), real.begin(), real.end());
+  if (ec || end != root.end()) {
+    throw Error((dir / "").string() + ": " + list + " names '" + printable(name, kEchoedBytes) +
+                "', outside the sequence's directory");
+  }
+}
+
 RgbdSequence read_tum(const fs::path& dir, const RgbdReadOptions& options) {
   const PinholeIntrinsics k =
       intrinsics_for(dir, options,
@@ -183,7 +199,9 @@ RgbdSequence read_tum(const fs::path& dir, const RgbdReadOptions& options) {
     std::string depth, colour;
   };
   std::vector<Entry> entries;
+  std::string list = "depth.txt";  // the file that names them
   if (const auto assoc = first_existing(dir, {"associations.txt", "associate.txt"})) {
+    list = fs::path(*assoc).filename().string();
     for (const auto& w : tum_lines(*assoc)) {
       if (w.size() != 4) throw Error(*assoc + ": a line needs 4 values: t file t file");
       const bool depth_first = w[1].find("depth") != std::string::npos;
@@ -203,6 +221,17 @@ RgbdSequence read_tum(const fs::path& dir, const RgbdReadOptions& options) {
       const double t = tum_time(w[0], depth_list);
       const std::string* colour = nearest_in_time(colours, t, options.max_time_difference);
       entries.push_back({t, w[1], colour ? *colour : std::string()});
+    }
+  }
+  // Each listed file inside the sequence, as dataset.json's must be; each frame listed once: a
+  // repeated line became two frames of one name, and the writer then blamed its output (#47).
+  std::set<double> listed;
+  for (const Entry& e : entries) {
+    check_inside_sequence(dir, e.depth, list);
+    if (!e.colour.empty()) check_inside_sequence(dir, e.colour, list);
+    if (!listed.insert(e.t).second) {
+      throw Error((dir / "").string() + ": " + list +
+                  " lists the frame at t = " + std::to_string(e.t) + " twice");
     }
   }
   const bool colour = options.colour_registered.value_or(true);
@@ -272,7 +301,8 @@ RgbdSequence read_bop(const fs::path& dir, const RgbdReadOptions& options) {
     frame.depth_file = (dir / "depth" / file).string();
     if (colour && fs::is_regular_file(dir / "rgb" / file))
       frame.colour_file = (dir / "rgb" / file).string();
-    frame.intrinsics = options.intrinsics.value_or(PinholeIntrinsics{K[0], K[4], K[2], K[5]});
+    frame.intrinsics =
+        options.intrinsics.value_or(intrinsics_from_camera_matrix(K.data(), where + ".cam_K"));
     frame.intrinsics.validate(where + ".cam_K");
     frame.metres_per_unit = depth_scale * 1e-3;  // depth_scale x value = mm
     frame.T_world_camera = T_camera_world.inverse();

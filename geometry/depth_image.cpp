@@ -12,11 +12,16 @@
 #include <optional>
 #include <sstream>
 
+#include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/input_file.h"
 #include "lmk/geometry/settings_schema.h"
 
 namespace lmk {
+
+static_assert(kMaxImagePixels <= kMaxCloudPoints,
+              "every depth image lmk reads must become a cloud lmk reads");
+
 namespace {
 
 // The path's extension in lower case: ".png".
@@ -278,14 +283,18 @@ std::optional<std::size_t> PinholeIntrinsics::pixel_of(const Eigen::Vector3d& p,
          static_cast<std::size_t>(u);
 }
 
+PinholeIntrinsics intrinsics_from_camera_matrix(const double* K, const std::string& where) {
+  if (K[1] != 0.0 || K[3] != 0.0 || K[6] != 0.0 || K[7] != 0.0 || K[8] != 1.0) {
+    throw Error(where + ": not a camera matrix without skew (fx 0 cx / 0 fy cy / 0 0 1)");
+  }
+  return {K[0], K[4], K[2], K[5]};
+}
+
 PinholeIntrinsics read_intrinsics(const std::string& path) {
   const std::vector<double> v = numbers_in(path);
   PinholeIntrinsics k;
   if (v.size() == 9) {
-    if (v[1] != 0.0 || v[3] != 0.0 || v[6] != 0.0 || v[7] != 0.0 || v[8] != 1.0) {
-      throw Error(path + ": not a camera matrix (fx 0 cx / 0 fy cy / 0 0 1)");
-    }
-    k = {v[0], v[4], v[2], v[5]};
+    k = intrinsics_from_camera_matrix(v.data(), path);
   } else if (v.size() == 4) {
     k = {v[0], v[1], v[2], v[3]};
   } else {

@@ -16,6 +16,10 @@
 
 namespace lmk {
 
+/// fx, fy, cx, cy of a 3 x 3 camera matrix given row by row; lmk::Error (`where` first) for one
+/// with skew or another last row: the layouts agree on what they accept (issue #47).
+PinholeIntrinsics intrinsics_from_camera_matrix(const double* K, const std::string& where);
+
 /// Reads a 3 x 3 camera matrix (fx 0 cx / 0 fy cy / 0 0 1, whitespace-separated, as 7-Scenes,
 /// 3DMatch and SUN3D write it) or four numbers "fx fy cx cy". lmk::Error names the file and what
 /// is wrong.
@@ -35,9 +39,11 @@ struct ColourImage {
   std::vector<Color> pixels;
 };
 
-/// The most pixels an image may have (a 16K x 16K frame): beyond any depth camera, and a bound on
-/// what a hostile header can make lmk allocate.
-inline constexpr std::uint64_t kMaxImagePixels = std::uint64_t{1} << 28;
+/// The most pixels an image may have (a 4096 x 4096 frame, eight times a 1080p depth camera's),
+/// checked from its header before anything is allocated. A frame becomes a cloud of as many
+/// points, about 57 bytes each on their way (0.9 GB here); an 8000 x 8000 PNG of 140 KB took
+/// 3.65 GB and became a cloud lmk's own reader refuses (issue #47). Below kMaxCloudPoints.
+inline constexpr std::uint64_t kMaxImagePixels = std::uint64_t{1} << 24;
 
 /// Whether `path` names a depth image by its extension (.png or .pgm, any case).
 bool is_depth_image_file(const std::string& path);

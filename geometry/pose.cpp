@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "lmk/geometry/error.h"
 
@@ -26,11 +27,22 @@ Eigen::Isometry3d pose_from_position_quaternion(const Eigen::Vector3d& position,
   return T;
 }
 
+void check_translation(const Eigen::Vector3d& t, const std::string& where) {
+  if (!(t.norm() <= kMaxTranslation)) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.6g", t.norm());
+    throw Error(where + ": the position is " + text + " m from the origin (at most " +
+                std::to_string(static_cast<int>(kMaxTranslation)) +
+                " m: metres, not millimetres?)");
+  }
+}
+
 Eigen::Isometry3d pose_from_unit_quaternion(const Eigen::Vector3d& position,
                                             const Eigen::Vector4d& wxyz, const std::string& where,
                                             const std::string& field) {
   if (!position.allFinite() || !wxyz.allFinite())
     throw Error(where + ": holds a non-finite number");
+  check_translation(position, where);
   if (std::abs(wxyz.norm() - 1.0) > 1e-3) {
     throw Error(where + "." + field + ": is not a unit quaternion [w, x, y, z] (norm " +
                 std::to_string(wxyz.norm()) + ")");
@@ -55,7 +67,7 @@ double rotation_angle_between(const Eigen::Matrix3d& R_a, const Eigen::Matrix3d&
 }
 
 bool is_valid_pose(const Eigen::Isometry3d& T, double tolerance) {
-  if (!T.matrix().allFinite()) return false;
+  if (!T.matrix().allFinite() || !(T.translation().norm() <= kMaxTranslation)) return false;
   const Eigen::Matrix3d R = T.linear();
   return (R.transpose() * R - Eigen::Matrix3d::Identity()).norm() < tolerance &&
          R.determinant() > 0.0;

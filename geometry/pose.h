@@ -22,7 +22,15 @@ Eigen::Isometry3d pose_from_unit_quaternion(const Eigen::Vector3d& position,
 Eigen::Vector3d rpy_from_rotation(const Eigen::Matrix3d& R);
 /// Angle in [0, pi] of the relative rotation R_a^T R_b.
 double rotation_angle_between(const Eigen::Matrix3d& R_a, const Eigen::Matrix3d& R_b);
-/// True when every coefficient is finite and the linear part is a rotation within `tolerance`.
+/// The farthest a pose may place anything from its frame's origin, m: ten kilometres is beyond any
+/// scene a depth camera sees, and 1e308 made every later product overflow (issue #47).
+inline constexpr double kMaxTranslation = 1e4;
+
+/// Throws lmk::Error (`where` first) for a translation farther than kMaxTranslation (or NaN).
+void check_translation(const Eigen::Vector3d& t, const std::string& where);
+
+/// True when every coefficient is finite, the translation within kMaxTranslation and the linear
+/// part a rotation within `tolerance`.
 bool is_valid_pose(const Eigen::Isometry3d& T, double tolerance = 1e-6);
 /// The k-th (from 0) of a pattern that alternates either side of where it starts, one step further
 /// each time: 0, +1, -1, +2, -2, ... (a head panning about its first view between looks).

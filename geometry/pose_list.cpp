@@ -39,10 +39,6 @@ std::vector<Eigen::Isometry3d> parse_pose_list(const std::string& text, const st
     }
     const std::size_t o = values.size() - 7;  // past the timestamp
     const Eigen::Vector3d position(values[o], values[o + 1], values[o + 2]);
-    if (position.allFinite() && position.norm() > kMaxPoseTranslation) {
-      throw Error(at + ": the position is " + std::to_string(position.norm()) +
-                  " m from the origin (at most 1e5 m: metres, not millimetres?)");
-    }
     const Eigen::Vector4d wxyz(values[o + 6], values[o + 3], values[o + 4], values[o + 5]);
     poses.push_back(pose_from_unit_quaternion(position, wxyz, at, "quaternion"));
   }

@@ -16,15 +16,11 @@
 namespace lmk {
 
 /// The poses in `text`, in order. Throws lmk::Error "<where>:<line>: ..." for a line that is not
-/// 7 or 8 numbers, a number that is not finite, a translation beyond kMaxPoseTranslation or a
+/// 7 or 8 numbers, a number that is not finite, a translation beyond kMaxTranslation (pose.h) or a
 /// quaternion that is not of unit length (within 1e-3).
 std::vector<Eigen::Isometry3d> parse_pose_list(const std::string& text, const std::string& where);
 
 /// The file at `path` (read_input_file(), a text file).
 std::vector<Eigen::Isometry3d> read_pose_list(const std::string& path);
-
-/// A frame further than this from the common frame's origin is a unit mistake (millimetres for
-/// metres), not a place a robot's camera goes: 100 km.
-inline constexpr double kMaxPoseTranslation = 1e5;
 
 }  // namespace lmk

@@ -175,7 +175,8 @@ void check(const SettingInfo& info, const std::string& v, const std::string& whe
 }
 
 void check(const SettingInfo& info, const Eigen::Vector3d& v, const std::string& where) {
-  if (!v.allFinite() || v.norm() < 1e-9) {
+  // Its length too: 1e308 1e308 0 has finite parts but no finite length to be divided by.
+  if (!v.allFinite() || !std::isfinite(v.norm()) || v.norm() < 1e-9) {
     refuse(info, where, "", "must be a finite non-zero vector");
   }
 }

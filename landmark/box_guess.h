@@ -43,8 +43,13 @@ struct BoxGuessSettings {
     visit(SettingInfo("margin", "Empty space wanted around the object on each side, m")
               .within(0.0, 0.5),
           s.margin);
-    visit(SettingInfo("min_points", "Fewest points the object may have"), s.min_points);
-    visit(SettingInfo("min_plane_points", "A smaller plane is no support"), s.min_plane_points);
+    visit(SettingInfo("min_points", "Fewest points the object may have (1 to a million)")
+              .within(1, 1e6),
+          s.min_points);
+    // A 1080p frame has 2 million points.
+    visit(SettingInfo("min_plane_points", "A smaller plane is no support (1 to 10 million)")
+              .within(1, 1e7),
+          s.min_plane_points);
   }
 };
 

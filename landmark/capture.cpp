@@ -107,6 +107,11 @@ void check_capture_settings(const CaptureSettings& s, const std::string& what) {
     throw Error(what + ": distance_band (--distance-band): " + std::to_string(s.distance_band) +
                 " must be at least the leaf size (" + std::to_string(s.leaf_size) + ")");
   }
+  if (!(s.distance_band <= kMaxDistanceBandLeaves * s.leaf_size)) {
+    throw Error(what + ": distance_band (--distance-band): " + std::to_string(s.distance_band) +
+                " must be at most " + std::to_string(static_cast<int>(kMaxDistanceBandLeaves)) +
+                " leaves (" + std::to_string(kMaxDistanceBandLeaves * s.leaf_size) + " m)");
+  }
 }
 
 void prepare_capture_as_search(const SceneSettings& scene, CaptureSettings& capture) {

@@ -53,7 +53,9 @@ struct SamplingSettings {
 
   template <class Self, class Visit>
   static void describe(Self& s, Visit&& visit) {
-    visit(SettingInfo("seed", "Random seed of the seed sampling"), s.seed);
+    // Any seed costs the same: the bound only keeps every value a plain whole number.
+    visit(SettingInfo("seed", "Random seed of the seed sampling (0 to 10^18)").within(0, 1e18),
+          s.seed);
     visit(SettingInfo("max_seeds",
                       "Most seeds (default: 1000 for the reference, as the paper; 2000 for fast)")
               .within(1, 1e6),  // a 640 x 480 frame has 307,200 points

@@ -28,6 +28,11 @@ inline constexpr int kLandmarkFormatVersion = 3;
 /// The most views one landmark fuses (Landmark::point_views holds one bit per view).
 inline constexpr std::size_t kMaxLandmarkViews = 16;
 
+/// The widest distance band a landmark may ask for, in leaves (CaptureSettings::distance_band): a
+/// search reads the field a few leaves from the surface, and each leaf more of band costs a layer
+/// of voxels about every point.
+inline constexpr double kMaxDistanceBandLeaves = 40.0;
+
 struct CaptureSettings {
   double leaf_size = 0.005;     ///< voxel leaf of the captured points, m (the paper's 5 mm)
   std::size_t min_points = 30;  ///< fewer points than this after downsampling is an error
@@ -63,19 +68,34 @@ struct CaptureSettings {
   /// the JSON forms (a landmark's export, lmk serve) derive from this list.
   template <class Self, class Visit>
   static void describe(Self& s, Visit&& visit) {
-    visit(SettingInfo("leaf_size", "Voxel leaf of the landmark points, m")
-              .at_least(kMinLeafSize)
+    // As a scene's leaf: a coarser grid describes no shape of a landmark a few tens of cm across.
+    visit(SettingInfo("leaf_size", "Voxel leaf of the landmark points, m (1 mm to 10 cm)")
+              .within(kMinLeafSize, kMaxSceneLeaf)
               .also("leaf"),
           s.leaf_size);
-    visit(SettingInfo("min_points", "Fewest points a landmark may have"), s.min_points);
-    visit(SettingInfo("max_box_side", "Longest allowed box side, m").positive(), s.max_box_side);
-    // At least the leaf too (check_capture_settings): the field's voxels are leaves.
-    visit(SettingInfo("distance_band", "Band of the landmark's distance field, m").positive(),
+    // A landmark of a million 5 mm voxels would fill a 3 m box's faces twice over.
+    visit(SettingInfo("min_points", "Fewest points a landmark may have (1 to a million)")
+              .within(1, 1e6),
+          s.min_points);
+    // A door or a shelf is a landmark; a box larger than a room holds no one object, and the
+    // distance field and empty space it would allocate grow with its volume.
+    visit(SettingInfo("max_box_side", "Longest allowed box side, m (at most 10)")
+              .positive()
+              .at_most(10.0),
+          s.max_box_side);
+    // At least the leaf and at most kMaxDistanceBandLeaves leaves too (check_capture_settings):
+    // the field's voxels are leaves, and a search reads it no further than its threshold and a
+    // few leaves (the default 2 cm). 1e308 asked for 4.7 GB, 5 m for 3 GB in 5 s, 0.5 m for 59 s
+    // and a 27 MB file (issue #47).
+    visit(SettingInfo("distance_band",
+                      "Band of the landmark's distance field, m (at most 0.1 m and 40 leaves)")
+              .positive()
+              .at_most(0.1),
           s.distance_band);
-    visit(
-        SettingInfo("empty_space_margin", "Observed-free space stops this far from any surface, m")
-            .at_least(0.0),
-        s.empty_space_margin);
+    visit(SettingInfo("empty_space_margin",
+                      "Observed-free space stops this far from any surface, m (at most 0.5)")
+              .within(0.0, 0.5),
+          s.empty_space_margin);
     visit(SettingInfo("up",
                       "Up axis X Y Z in the capture frame (default: the sensor's -y, or +z "
                       "in a robot base frame)"),

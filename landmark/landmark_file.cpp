@@ -486,6 +486,8 @@ Landmark import_landmark(const std::string& dir) {
   }
   const nlohmann::json j = read_json_file(json_path);
   Landmark landmark = from_json(j, json_path);
+  // Its settings before its points are read or anything is built from them (issue #47).
+  check_capture_settings(landmark.settings, json_path);
   landmark.points = remove_non_finite(read_cloud((fs::path(dir) / "points.pcd").string()));
   if (landmark.multi_view()) {  // each point's views are its label
     if (!landmark.points.has_labels()) {

@@ -83,8 +83,10 @@ struct PreparedFrame {
     if (u0 >= 0 && v0 >= 0 && u0 + 1 < width && v0 + 1 < height) {
       const float a = at(u0, v0), b = at(u0 + 1, v0), c = at(u0, v0 + 1), d = at(u0 + 1, v0 + 1);
       // All four measured (a NaN compares false, so min and max alone could pass one by).
-      if (std::isfinite(a + b + c + d) &&
-          std::max({a, b, c, d}) - std::min({a, b, c, d}) <= continuity) {
+      // A hole among the four: the ray passes the edge of what the frame measured, and a surface
+      // extended into the hole from the nearest pixel would fatten every silhouette.
+      if (!std::isfinite(a + b + c + d)) return {p.z(), nan};
+      if (std::max({a, b, c, d}) - std::min({a, b, c, d}) <= continuity) {
         const float fu = u - static_cast<float>(u0), fv = v - static_cast<float>(v0);
         return {p.z(), (1 - fv) * ((1 - fu) * a + fu * b) + fv * ((1 - fu) * c + fu * d)};
       }
@@ -206,7 +208,6 @@ vdb::FloatGrid::Ptr integrate(vdb::FloatGrid& weights, const std::vector<Prepare
   vdb::tree::LeafManager<vdb::FloatTree> leaves(weights.tree());
   vdb::FloatTree& distance_tree = distances->tree();
   const double voxel = s.voxel_size;
-  const float voxel_f = static_cast<float>(voxel);
   // Four pixels further apart in depth than two voxels do not hold one surface between them.
   const float continuity = static_cast<float>(2.0 * voxel);
   const MeasurementTable measurements(s);
@@ -217,10 +218,9 @@ vdb::FloatGrid::Ptr integrate(vdb::FloatGrid& weights, const std::vector<Prepare
                         vdb::FloatTree::LeafNodeType* d = distance_tree.probeLeaf(w.origin());
                         for (auto v = w.beginValueOn(); v; ++v) {
                           const vdb::Coord c = v.getCoord();
-                          const Eigen::Vector3f x =
-                              voxel_f * Eigen::Vector3f(static_cast<float>(c.x()),
-                                                        static_cast<float>(c.y()),
-                                                        static_cast<float>(c.z()));
+                          const Eigen::Vector3f x(static_cast<float>(c.x() * voxel),
+                                                  static_cast<float>(c.y() * voxel),
+                                                  static_cast<float>(c.z() * voxel));
                           float sum = 0.0f, weight = 0.0f;
                           for (const PreparedFrame& f : frames) {
                             const PreparedFrame::Look look = f.look(x, continuity);

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "lmk/occupancy/tsdf_volume.h"
+#include "tools/cli_common.h"
 
 namespace lmk::cli {
 
@@ -15,7 +16,7 @@ void add_bag_options(CLI::App* sub, BagOptions& options, bool with_time) {
   if (with_time) {
     sub->add_option("--time", options.time,
                     "With a bag: seconds from its start; the frame recorded nearest is used")
-        ->check(CLI::NonNegativeNumber)
+        ->check(within(0.0, 1e6))  // eleven days of a recording
         ->capture_default_str();
     sub->add_option("--frames", options.frames,
                     "With a bag: fuse this many consecutive frames from that one into the scene "
@@ -25,7 +26,7 @@ void add_bag_options(CLI::App* sub, BagOptions& options, bool with_time) {
                     "With a bag: fuse the frames recorded within this many seconds of that one "
                     "(at most --frames, or " +
                         std::to_string(kMaxFusedFrames) + " without it)")
-        ->check(CLI::Range(0.0, 60.0));
+        ->check(within(0.0, 60.0));
   }
   sub->add_option("--frame", options.frame,
                   "With a bag: the TF frame to express the scene in (default: base_link when the "

@@ -2,6 +2,7 @@
 #include "tools/cli_common.h"
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 
 #include "lmk/geometry/error.h"
@@ -17,6 +18,19 @@ CLI::Validator finite_number() {
         return read_finite_number(text) ? "" : "'" + text + "' is not a finite number";
       },
       "FINITE");
+}
+
+CLI::Validator within(double lo, double hi, bool lo_exclusive) {
+  char range[96];
+  std::snprintf(range, sizeof range, "%s%g, %g]", lo_exclusive ? "(" : "[", lo, hi);
+  const std::string bounds = range;
+  return CLI::Validator(
+      [lo, hi, lo_exclusive, bounds](std::string& text) -> std::string {
+        const std::optional<double> v = read_finite_number(text);
+        if (v && (lo_exclusive ? *v > lo : *v >= lo) && *v <= hi) return "";
+        return "'" + printable(text, kEchoedBytes) + "' is not a number in " + bounds;
+      },
+      "NUMBER in " + bounds);
 }
 
 CLI::Validator non_negative_whole() {
@@ -104,7 +118,10 @@ std::filesystem::path shared_data_dir(const std::string& option) {
 std::optional<Eigen::Vector3d> UpOptions::vector() const {
   if (up.empty()) return std::nullopt;
   const Eigen::Vector3d v(up[0], up[1], up[2]);
-  if (!v.allFinite() || v.norm() < 1e-9) throw Error("--up must be a finite non-zero vector");
+  // Its length too: 1e308 1e308 0 has finite parts but no finite length to be divided by.
+  if (!v.allFinite() || !std::isfinite(v.norm()) || v.norm() < 1e-9) {
+    throw Error("--up must be a finite non-zero vector");
+  }
   return v;
 }
 

@@ -38,6 +38,11 @@ Eigen::Vector3d rpy_degrees(const Eigen::Matrix3d& R);
 /// computations: joint values, positions, angles.
 CLI::Validator finite_number();
 
+/// Refuses a value that is not a finite number within [lo, hi] ("text" in the message), or above
+/// lo when `lo_exclusive`. CLI11's Range, PositiveNumber and NonNegativeNumber let "nan" through
+/// (every comparison with NaN is false): numbers of the hand-written options use this instead.
+CLI::Validator within(double lo, double hi, bool lo_exclusive = false);
+
 /// Refuses a negative whole number before CLI11 stores it in an unsigned field, where "-1" would
 /// wrap around to 2^64 - 1.
 CLI::Validator non_negative_whole();

@@ -89,7 +89,7 @@ Subcommand add_calibrate_depth(CLI::App& app) {
   sub->add_option("--intrinsics", o->intrinsics,
                   "fx fy cx cy in pixels (default: the sequence's intrinsics file)")
       ->expected(4)
-      ->check(CLI::PositiveNumber);
+      ->check(within(0.0, 1e5, true));  // pixels: no depth camera is 100,000 across
   sub->add_option("--cells", o->cells, "C R: cells across and down the image (default 8 6)")
       ->expected(2)
       ->check(CLI::Range(1, 64));

@@ -98,7 +98,7 @@ Subcommand add_convert(CLI::App& app) {
       ->excludes("--intrinsics");
   sub->add_option("--depth-unit", options->depth_unit,
                   "Depth image: metres per depth unit (0.001: millimetres; TUM RGB-D 0.0002)")
-      ->check(CLI::PositiveNumber)
+      ->check(within(0.0, 1.0, true))  // a metre per unit is no depth image
       ->capture_default_str();
   sub->add_option("--colour,--color", options->colour,
                   "Depth image: a colour PNG registered to it, pixel for pixel");

@@ -201,8 +201,9 @@ Subcommand add_gen(CLI::App& app) {
                   "Scene and noise seed; with --preset the first scene seed (default 1: seed 0 is "
                   "where the landmarks are captured)")
       ->check(non_negative_whole());
-  sub->add_option("--seeds", options->seeds, "With --preset: scenes per scene type")
-      ->check(CLI::PositiveNumber);
+  sub->add_option("--seeds", options->seeds,
+                  "With --preset: scenes per scene type (1 to 1000; the paper's are 5 to 10)")
+      ->check(CLI::Range(1, kMaxSeedsPerType));
   sub->add_flag("--hard", options->hard,
                 "With --preset: strong rotations and tilts (any yaw, turned chairs, tilted walls)");
   sub->add_option("--types", options->types,
@@ -221,13 +222,14 @@ Subcommand add_gen(CLI::App& app) {
                   "(../shared/data/mosd/learn): landmarks around the labelled objects, searched in "
                   "rigidly moved copies of their frames")
       ->check(CLI::ExistingDirectory);
-  sub->add_option("--copies", options->copies, "With --from-mosd: moved copies per frame")
-      ->check(CLI::PositiveNumber)
+  sub->add_option("--copies", options->copies,
+                  "With --from-mosd: moved copies per frame (1 to 100)")
+      ->check(CLI::Range(1, 100))
       ->capture_default_str();
   sub->add_option("--frames", options->frames,
                   "With --from-mosd: the first N frames only (0: all). With --preset: each scene "
                   "fused from N renders with their own noise (lmk find with several frames)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0, 100000));
   sub->add_flag("--no-noise", options->no_noise, "Exact depth: no sensor noise or quantisation");
   sub->add_option("--from-bag", options->from_bag,
                   "Write a dataset of a recorded session's frames (ROS bag): scenes in base_link "
@@ -238,7 +240,7 @@ Subcommand add_gen(CLI::App& app) {
   sub->add_option("--stride", options->stride,
                   "With --from-bag: every N-th frame (default 1); with --from-rgbd: landmarks and "
                   "scenes from every N-th frame (default 5)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(std::size_t{1}, std::size_t{100000}));
   add_bag_options(sub, options->bag, false);
   sub->add_option("--from-rgbd", options->from_rgbd,
                   "Write a real-data dataset from an RGB-D sequence with camera poses in DIR "
@@ -256,7 +258,7 @@ Subcommand add_gen(CLI::App& app) {
   sub->add_option("--box-side", options->box_side,
                   "With --from-rgbd: side of the landmark boxes, m (default: 0.15 x the median "
                   "depth, within 0.08-0.4)")
-      ->check(CLI::PositiveNumber);
+      ->check(within(0.0, 3.0, true));  // CaptureSettings::max_box_side
   sub->add_option("--depth-smoothing", options->depth_smoothing,
                   "With --from-rgbd: capture and check the landmarks with this depth smoothing, "
                   "pixels (search them with the same --depth-smoothing)")
@@ -285,7 +287,7 @@ Subcommand add_gen(CLI::App& app) {
                   "With --preset --frames: the k-th render's camera panned by DEG x 0, +1, -1, +2, "
                   "-2, ... about the vertical through it, as a robot's head turns between looks "
                   "(default 0)")
-      ->check(CLI::Range(0.0, 45.0));
+      ->check(within(0.0, 45.0));
   sub->add_option("--fuse", options->fuse,
                   "With --from-rgbd: each scene fused from N consecutive frames about its own, "
                   "moved by the sequence's poses (lmk find with several frames; default 1: the "

@@ -204,7 +204,7 @@ void add_plan_options(CLI::App* sub, PbdOptions& o, bool scene_required) {
   sub->add_option("--min-confidence", o.min_confidence,
                   "Least confidence of a landmark to act on (0 to 1); below it the program is "
                   "refused before anything moves (0: act on any match)")
-      ->check(CLI::Range(0.0, 1.0))
+      ->check(within(0.0, 1.0))
       ->capture_default_str();
   sub->add_option("--threads", o.threads, "Search threads; 0 uses every core")
       ->check(worker_threads())
@@ -255,7 +255,7 @@ Subcommand add_pbd(CLI::App& app) {
   demo->add_option("--task", o->tasks, "Only these tasks (1 to 6)");
   demo->add_option("--min-confidence", o->min_confidence,
                    "Least confidence of a landmark to act on (0 to 1; 0: act on any match)")
-      ->check(CLI::Range(0.0, 1.0))
+      ->check(within(0.0, 1.0))
       ->capture_default_str();
   add_look_again_option(demo, *o, "Further frames");
   demo->add_option("--save", o->save_dir,

@@ -98,13 +98,13 @@ Subcommand add_sensor_check(CLI::App& app) {
       "range (exit 1 when they disagree beyond the tolerance)");
   sub->add_option("--data", o->data, "Shared data directory (default $LMK_SHARED_DATA)");
   sub->add_option("--tolerance", o->tolerance, "Largest relative difference accepted")
-      ->check(CLI::Range(0.0, 10.0))
+      ->check(within(0.0, 10.0))
       ->capture_default_str();
   sub->add_option("--bin", o->bin, "Width of the depth bins, m")
-      ->check(CLI::PositiveNumber)
+      ->check(within(0.0, 10.0, true))
       ->capture_default_str();
   sub->add_option("--min-patches", o->min_patches, "Fewest patches a bin needs to be compared")
-      ->check(CLI::PositiveNumber)
+      ->check(CLI::Range(std::size_t{1}, std::size_t{1000000}))
       ->capture_default_str();
   sub->add_option("--tile", o->patches.tile, "Patch side, pixels")
       ->check(CLI::Range(4, 200))
@@ -112,7 +112,7 @@ Subcommand add_sensor_check(CLI::App& app) {
   sub->add_option(
          "--max-curvature-r2", o->patches.max_curvature_r2,
          "Patches whose residuals a quadratic explains beyond this fraction are not planes")
-      ->check(CLI::Range(0.0, 1.0))
+      ->check(within(0.0, 1.0))
       ->capture_default_str();
   // The simulated sensor's noise, so that a user can calibrate the model on frames of their own.
   sub->add_option("--noise-a", o->sensor.noise_a,

@@ -127,10 +127,10 @@ Subcommand add_serve(CLI::App& app) {
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
   sub->add_option("--max-upload", o->max_upload_mib, "Largest uploaded cloud, MiB")
-      ->check(CLI::Range(0.001, 4096.0))
+      ->check(within(0.001, 4096.0))
       ->capture_default_str();
   sub->add_option("--torso", s.torso, "Simulated PR2 torso height for program plans, m")
-      ->check(CLI::Range(0.0, 0.33))
+      ->check(within(0.0, 0.33))
       ->capture_default_str();
   sub->add_option("--three", s.three_dir,
                   "three.js directory (default: Debian libjs-three's /usr/share/javascript/three)");

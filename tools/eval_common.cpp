@@ -4,7 +4,9 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "lmk/eval/benchmark_dataset.h"
 #include "lmk/geometry/error.h"
+#include "tools/cli_common.h"
 #include "tools/interrupt.h"
 #include "tools/progress.h"
 
@@ -18,8 +20,9 @@ void add_dataset_options(CLI::App* sub, DatasetOptions& o) {
   sub->add_option("--preset", o.preset,
                   "Built-in benchmark, generated on first use: " + presets + " (default paper)")
       ->excludes(dataset);
-  sub->add_option("--seeds", o.seeds, "With a preset: scenes per scene type")
-      ->check(CLI::PositiveNumber)
+  sub->add_option("--seeds", o.seeds,
+                  "With a preset: scenes per scene type (1 to 1000; the paper's are 5 to 10)")
+      ->check(CLI::Range(1, kMaxSeedsPerType))
       ->excludes(dataset);
   sub->add_flag("--hard", o.hard, "With a preset: its strong-rotation variants")->excludes(dataset);
   sub->add_option("--first-seed", o.first_seed,

@@ -216,6 +216,40 @@ TEST(RgbdSequence, BadFilesAndPosesAreClearErrorsNamingThem) {
       std::string::npos);
 }
 
+// Issue #47: the layouts hold to the rules dataset.json holds to, and agree with one another.
+TEST(RgbdSequence, ListedFilesStayInsideFramesAreListedOnceAndCamerasHaveNoSkew) {
+  const ScratchDir dir;
+  const fs::path tum = dir.path() / "tum";
+  fs::create_directories(tum / "depth");
+  write_text((tum / "intrinsics.txt").string(), "500 500 2 1.5");
+  write_text((tum / "groundtruth.txt").string(), "1.0 0 0 0 0 0 0 1\n2.0 0 0 0 0 0 0 1\n");
+  write_text((tum / "depth" / "1.png").string(), flat_depth_png(5000));
+  write_text((dir.path() / "secret.png").string(), flat_depth_png(5000));
+  write_text((tum / "depth.txt").string(), "1.0 depth/1.png\n2.0 ../secret.png\n");
+  std::string why = error_of([&] { read_rgbd_sequence(tum.string()); });
+  EXPECT_NE(why.find("depth.txt names '../secret.png', outside the sequence's directory"),
+            std::string::npos)
+      << why;
+  write_text((tum / "depth.txt").string(), "1.0 depth/1.png\n1.0 depth/1.png\n");
+  why = error_of([&] { read_rgbd_sequence(tum.string()); });
+  EXPECT_NE(why.find("depth.txt lists the frame at t = 1.000000 twice"), std::string::npos) << why;
+
+  const fs::path bop = dir.path() / "bop";
+  fs::create_directories(bop / "depth");
+  write_text((bop / "scene_camera.json").string(),
+             R"({"0": {"cam_K": [600, 0.5, 2, 0, 600, 1.5, 0, 0, 1],
+                        "cam_R_w2c": [1, 0, 0, 0, 1, 0, 0, 0, 1], "cam_t_w2c": [0, 0, 0]}})");
+  write_text((bop / "depth" / "000000.png").string(), flat_depth_png(1000));
+  why = error_of([&] { read_rgbd_sequence(bop.string()); });
+  EXPECT_NE(why.find("cam_K: not a camera matrix without skew"), std::string::npos) << why;
+  // And a translation beyond 10 km, in any layout.
+  write_text((bop / "scene_camera.json").string(),
+             R"({"0": {"cam_K": [600, 0, 2, 0, 600, 1.5, 0, 0, 1],
+                        "cam_R_w2c": [1, 0, 0, 0, 1, 0, 0, 0, 1], "cam_t_w2c": [0, 0, 1e308]}})");
+  why = error_of([&] { read_rgbd_sequence(bop.string()); });
+  EXPECT_NE(why.find("at most 10000 m"), std::string::npos) << why;
+}
+
 // The real sequences: every frame reads, the poses are rigid, and the depth is where the README
 // says (0.9-2.9 m for the kitchen, 0.13-1.4 m for the desk).
 TEST(RgbdSequence, ViewsOutOfRangeAreRefusedBeforeAFrameIsRead) {

@@ -121,6 +121,8 @@ TEST(DepthImage, BadFilesAreClearErrorsNamingTheFile) {
   refused("byte.pgm", "P5\n1 1\n255\n\x01", "16-bit samples");
   refused("short.pgm", "P5\n4 4\n65535\n\x01\x02", "ends early");
   refused("huge.pgm", "P5\n99999999 99999999\n65535\n", "more than lmk reads");
+  // 64 million pixels took 3.65 GB and became a cloud lmk's reader refuses (issue #47).
+  refused("8k.pgm", "P5\n8000 8000\n65535\n", "more than lmk reads");
   refused("depth.jpg", "x", ".png or .pgm");
   EXPECT_NE(error_of([&] { read_depth_image(dir.file("missing.png")); }), "");
 }
