@@ -19,12 +19,14 @@ struct Correspondence {
   double w_a, w_b, difference;
 };
 
-std::vector<Correspondence> correspondences(const std::vector<const PointCloud*>& frames,
-                                            const std::vector<Eigen::Isometry3d>& T_world_camera,
-                                            const PinholeIntrinsics& k,
-                                            const DepthCalibrationSettings& s,
-                                            const DepthCorrection& grid) {
-  std::vector<Correspondence> out;
+// Calls add(correspondence) for each equation of the frames: none is kept, so that the fit's
+// memory is its normal equations whatever the pixel step (every pixel of 25 kitchen frames held
+// over 3 GB of equations, issue #47).
+template <class Add>
+void for_each_correspondence(const std::vector<const PointCloud*>& frames,
+                             const std::vector<Eigen::Isometry3d>& T_world_camera,
+                             const PinholeIntrinsics& k, const DepthCalibrationSettings& s,
+                             const DepthCorrection& grid, Add&& add) {
   for (std::size_t a = 0; a < frames.size(); ++a) {
     for (std::size_t b = 0; b < frames.size(); ++b) {
       const std::size_t gap = a > b ? a - b : b - a;
@@ -47,13 +49,12 @@ std::vector<Correspondence> correspondences(const std::vector<const PointCloud*>
           if (std::abs(difference) > s.max_difference) continue;
           const int ub = static_cast<int>(*pixel % B.width),
                     vb = static_cast<int>(*pixel / B.width);
-          out.push_back({grid.cell(u, v), grid.cell(ub, vb), double(p.z()) * p.z(),
-                         double(m.z()) * m.z(), difference});
+          add(Correspondence{grid.cell(u, v), grid.cell(ub, vb), double(p.z()) * p.z(),
+                             double(m.z()) * m.z(), difference});
         }
       }
     }
   }
-  return out;
 }
 
 }  // namespace
@@ -80,28 +81,33 @@ DepthCalibration fit_depth_correction(const std::vector<const PointCloud*>& fram
       throw Error("depth calibration: every frame must be an organised image of one size");
     }
   }
-  const std::vector<Correspondence> eqs =
-      correspondences(frames, T_world_camera, intrinsics, settings, c);
   const int n = c.cols * c.rows;
-  out.correspondences = eqs.size();
-  if (eqs.size() < 100u * static_cast<std::size_t>(n)) {
-    throw Error("depth calibration: " + std::to_string(eqs.size()) +
-                " correspondences between the frames, too few for " + std::to_string(n) +
-                " cells; give more overlapping frames or fewer cells");
-  }
-  // Normal equations of sum (D_b w_b - D_a w_a - difference)^2, damped towards D = 0.
+  // Normal equations of sum (D_b w_b - D_a w_a - difference)^2, damped towards D = 0 below.
   Eigen::MatrixXd AtA = Eigen::MatrixXd::Zero(n, n);
   Eigen::VectorXd Atb = Eigen::VectorXd::Zero(n);
   double before = 0.0;
-  for (const Correspondence& e : eqs) {
-    const int idx[2] = {e.cell_b, e.cell_a};
-    const double coef[2] = {e.w_b, -e.w_a};
-    for (int i = 0; i < 2; ++i) {
-      Atb[idx[i]] += coef[i] * e.difference;
-      for (int j = 0; j < 2; ++j) AtA(idx[i], idx[j]) += coef[i] * coef[j];
-    }
-    before += e.difference * e.difference;
+  std::size_t count = 0;
+  for_each_correspondence(frames, T_world_camera, intrinsics, settings, c,
+                          [&](const Correspondence& e) {
+                            const int idx[2] = {e.cell_b, e.cell_a};
+                            const double coef[2] = {e.w_b, -e.w_a};
+                            for (int i = 0; i < 2; ++i) {
+                              Atb[idx[i]] += coef[i] * e.difference;
+                              for (int j = 0; j < 2; ++j) {
+                                AtA(idx[i], idx[j]) += coef[i] * coef[j];
+                              }
+                            }
+                            before += e.difference * e.difference;
+                            ++count;
+                          });
+  out.correspondences = count;
+  if (count < 100u * static_cast<std::size_t>(n)) {
+    throw Error("depth calibration: " + std::to_string(count) +
+                " correspondences between the frames, too few for " + std::to_string(n) +
+                " cells; give more overlapping frames or fewer cells");
   }
+  // The residual after the fit from the same sums: |b - A D|^2 = before - 2 D.Atb + D'AtA D.
+  const Eigen::MatrixXd undamped = AtA;
   AtA.diagonal().array() += settings.damping * AtA.diagonal().maxCoeff();
   const Eigen::VectorXd D = AtA.ldlt().solve(Atb);
   // A cell beyond what a depth camera's error can be tells of the data, not of the camera: say
@@ -122,13 +128,9 @@ DepthCalibration fit_depth_correction(const std::vector<const PointCloud*>& fram
     throw Error(text);
   }
   c.per_metre.assign(D.data(), D.data() + n);
-  double after = 0.0;
-  for (const Correspondence& e : eqs) {
-    const double r = e.difference - (D[e.cell_b] * e.w_b - D[e.cell_a] * e.w_a);
-    after += r * r;
-  }
-  out.rms_before = std::sqrt(before / static_cast<double>(eqs.size()));
-  out.rms_after = std::sqrt(after / static_cast<double>(eqs.size()));
+  const double after = std::max(0.0, before - 2.0 * D.dot(Atb) + D.dot(undamped * D));
+  out.rms_before = std::sqrt(before / static_cast<double>(count));
+  out.rms_after = std::sqrt(after / static_cast<double>(count));
   return out;
 }
 

@@ -245,7 +245,7 @@ TEST_F(CliLandmark, CaptureShowExportImportFind) {
 TEST_F(CliLandmark, LeavesBelowAMillimetreAreRefusedUpFront) {
   expect_bad_input("capture " + path("scene.pcd") + " " + carton_ + " --name c -o " +
                        path("c.lmk") + " --leaf 1e-5",
-                   "capture: leaf_size (--leaf-size): 1e-05 must be finite and at least 0.001");
+                   "capture: leaf_size (--leaf-size): 1e-05 must be finite and in [0.001, 0.1]");
   EXPECT_FALSE(std::filesystem::exists(dir_.file("c.lmk")));
   ASSERT_EQ(lmk("capture " + path("scene.pcd") + " " + carton_ + " --name c -o " + path("c.lmk"))
                 .exit_code,
