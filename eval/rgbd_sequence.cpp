@@ -162,10 +162,7 @@ const T* nearest_in_time(const std::vector<std::pair<double, T>>& items, double 
 // symbolic link: a sequence's lists may not reach files elsewhere ("../../etc/passwd").
 void check_inside_sequence(const fs::path& dir, const std::string& name, const std::string& list) {
   std::error_code ec;
-  const fs::path real = fs::weakly_canonical(dir / name, ec);
-  const fs::path root = fs::canonical(dir, ec);
-  const auto [end, ignored] = std::mismatch(root.begin(), root.end(), real.begin(), real.end());
-  if (ec || end != root.end()) {
+  if (!lies_within(dir / name, dir, ec)) {
     throw Error((dir / "").string() + ": " + list + " names '" + printable(name, kEchoedBytes) +
                 "', outside the sequence's directory");
   }

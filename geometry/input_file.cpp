@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -85,6 +86,16 @@ std::string read_input_file(const std::string& path, const InputKind& kind) {
   }
   ::close(fd);
   return bytes;
+}
+
+bool lies_within(const std::filesystem::path& path, const std::filesystem::path& root,
+                 std::error_code& ec) {
+  const std::filesystem::path real = std::filesystem::weakly_canonical(path, ec);
+  if (ec) return false;
+  const std::filesystem::path base = std::filesystem::canonical(root, ec);
+  if (ec) return false;
+  const auto [end, ignored] = std::mismatch(base.begin(), base.end(), real.begin(), real.end());
+  return end == base.end();
 }
 
 }  // namespace lmk

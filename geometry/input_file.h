@@ -6,7 +6,9 @@
 // point clouds, landmarks, programs, datasets, boxes, the robot description and cache entries.
 
 #include <cstdint>
+#include <filesystem>
 #include <string>
+#include <system_error>
 
 namespace lmk {
 
@@ -48,5 +50,11 @@ std::string read_input_file(const std::string& path, const InputKind& kind);
 
 /// Describes a byte count for messages: "512 bytes", "3.2 MiB", "4 GiB".
 std::string describe_bytes(std::uintmax_t bytes);
+
+/// Whether `path` lies inside the directory `root` once every symbolic link is followed: the files
+/// a dataset or a sequence names may not reach elsewhere ("../../etc/passwd", a link out). `ec` is
+/// set, and false returned, when either cannot be resolved (a symbolic link loop).
+bool lies_within(const std::filesystem::path& path, const std::filesystem::path& root,
+                 std::error_code& ec);
 
 }  // namespace lmk

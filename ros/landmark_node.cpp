@@ -118,12 +118,14 @@ LandmarkNode::LandmarkNode(::ros::NodeHandle nh, ::ros::NodeHandle private_nh,
            settings_.cloud_topic.c_str(), settings_.base_frame.c_str());
 }
 
+Error LandmarkNode::no_frame() const {
+  return Error("no frame from " + latest_.topic() + " yet (is the camera publishing, and does " +
+               "TF reach " + settings_.base_frame + "?)");
+}
+
 std::shared_ptr<const Frame> LandmarkNode::frame() const {
   std::shared_ptr<const Frame> frame = latest_.wait(settings_.frame_timeout);
-  if (!frame) {
-    throw Error("no frame from " + latest_.topic() + " yet (is the camera publishing, and does " +
-                "TF reach " + settings_.base_frame + "?)");
-  }
+  if (!frame) throw no_frame();
   return frame;
 }
 
@@ -134,7 +136,7 @@ std::shared_ptr<const Frame> LandmarkNode::search_frame(std::size_t& fused) cons
   }
   const std::vector<std::shared_ptr<const Frame>> recent =
       latest_.wait_recent(settings_.frames, settings_.frame_timeout);
-  if (recent.empty()) return frame();  // says why
+  if (recent.empty()) throw no_frame();  // wait_recent waited ~frame_timeout already
   fused = recent.size();
   if (fused == 1) return recent.front();
   // Every frame is in the base frame already, its sensor placed by TF at its own stamp.

@@ -17,6 +17,7 @@
 #include <optional>
 #include <string>
 
+#include "lmk/geometry/error.h"
 #include "lmk/landmark/find_settings.h"
 #include "lmk/landmark/landmark.h"
 #include "lmk/landmark/landmark_library.h"
@@ -66,6 +67,8 @@ class LandmarkNode {
  private:
   /// The latest frame; lmk::Error when none has arrived yet.
   std::shared_ptr<const Frame> frame() const;
+  /// The error of a service that waited for a frame in vain.
+  Error no_frame() const;
   /// What a search runs on: the latest frame, or the latest ~frames fused into one (fewer when
   /// fewer arrived within ~frame_timeout of start-up), stamped as the newest. `fused` says how
   /// many frames it holds. lmk::Error when none has arrived yet.

@@ -64,7 +64,6 @@ class ConnectionTable {
   std::size_t open_connections() const;
   /// Connections cut off so far, by deadline or by a newer one of the same client.
   std::size_t cut_off_connections() const;
-  const ConnectionLimits& limits() const { return limits_; }
 
   /// The connection the calling thread serves, or null: the request handlers run on the thread
   /// that read the request.
