@@ -1,0 +1,161 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The footprint estimate against the measured peak (issue #47): lmk serve admits a search by it,
+// so it must not fall below what indexing and searching a scene take, on scenes whose memory
+// grows with their points in different ways (surfaces, points scattered near and far, an
+// organised frame). The peak is measured as the growth of this process's high-water mark, reset
+// before each scene (/proc/self/clear_refs; each test case runs in its own process).
+#include "lmk/landmark/scene_footprint.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <random>
+#include <string>
+
+#include "lmk/geometry/cloud_io.h"
+#include "lmk/landmark/find_landmark.h"
+#include "lmk/landmark/landmark_file.h"
+#include "lmk/landmark/landmark_index.h"
+#include "lmk/landmark/scene_index.h"
+#include "tests/landmark/l_shape_scene.h"
+
+namespace lmk {
+namespace {
+
+// kB of this process's status line `field` ("VmRSS", "VmHWM").
+double status_bytes(const std::string& field) {
+  std::ifstream status("/proc/self/status");
+  for (std::string line; std::getline(status, line);) {
+    if (line.rfind(field + ":", 0) == 0) return std::stod(line.substr(field.size() + 1)) * 1024.0;
+  }
+  return 0.0;
+}
+
+// Whether the high-water mark could be reset (Linux 4.0 on; some sandboxes refuse the write).
+bool reset_peak() {
+  std::ofstream clear("/proc/self/clear_refs");
+  clear << "5";
+  clear.close();
+  return static_cast<bool>(clear);
+}
+
+FindSettings settings_for(const PointCloud& scene) {
+  FindSettings s;
+  s.scene.base_frame = !scene.is_organized();
+  s.execution.threads = 2;
+  return s;
+}
+
+// The growth of the peak resident memory while `scene` is indexed, its fine level built and the
+// cup searched in it.
+double measured_peak(const PointCloud& scene, const LandmarkIndex& cup, const FindSettings& s) {
+  const double before = status_bytes("VmRSS");
+  {
+    const SceneIndex index(scene, s.scene);
+    index.fine_tree();
+    index.coarse_tree();
+    const FindResult found = find_landmark(index, cup, s);
+    EXPECT_GE(found.stats.seeds, 0u);
+  }
+  return status_bytes("VmHWM") - before;
+}
+
+PointCloud surfaces(std::size_t n, std::mt19937& rng) {
+  std::uniform_real_distribution<float> u(-2.0f, 2.0f), h(0.0f, 2.5f);
+  std::normal_distribution<float> noise(0.0f, 0.002f);
+  PointCloud c;
+  c.points.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    Eigen::Vector3f p;
+    switch (i % 4) {
+      case 0:
+        p = {u(rng), u(rng), 0.0f};  // the floor
+        break;
+      case 1:
+        p = {u(rng), 2.0f, h(rng)};  // two walls
+        break;
+      case 2:
+        p = {2.0f, u(rng), h(rng)};
+        break;
+      default:
+        p = {0.3f * u(rng), 0.2f * u(rng), 0.75f};  // a table top
+    }
+    c.points.push_back(p + Eigen::Vector3f(noise(rng), noise(rng), noise(rng)));
+  }
+  c.set_unorganized();
+  return c;
+}
+
+PointCloud scattered(std::size_t n, float side, std::mt19937& rng) {
+  std::uniform_real_distribution<float> u(-side / 2, side / 2);
+  PointCloud c;
+  for (std::size_t i = 0; i < n; ++i) c.points.emplace_back(u(rng), u(rng), u(rng) + side / 2);
+  c.set_unorganized();
+  return c;
+}
+
+void expect_estimate_bounds_peak(const std::string& what, const PointCloud& scene) {
+  if (!reset_peak()) GTEST_SKIP() << "/proc/self/clear_refs cannot be written here";
+  const Landmark cup_landmark = load_landmark(LMK_SOURCE_DIR "/tests/cli/fixtures/cup_v2.lmk");
+  const FindSettings s = settings_for(scene);
+  const LandmarkIndex cup(cup_landmark, s);
+  const SceneFootprint f = estimate_scene_footprint(scene, s.scene);
+  ASSERT_TRUE(reset_peak());
+  const double peak = measured_peak(scene, cup, s);
+  std::printf(
+      "%s: %zu points, %zu coarse voxels, %zu field nodes, %zu occupancy nodes: estimate %.0f MB, "
+      "measured %.0f MB\n",
+      what.c_str(), f.points, f.coarse_voxels, f.field_nodes, f.occupancy_nodes, f.bytes / 1e6,
+      peak / 1e6);
+  EXPECT_FALSE(f.over_limit);
+  EXPECT_GE(static_cast<double>(f.bytes), peak) << what << ": the estimate is below the peak";
+  // And not so far above that it refuses what would fit: a price, not a guess.
+  EXPECT_LE(static_cast<double>(f.bytes), 2.5 * peak + 64e6) << what;
+}
+
+TEST(SceneFootprint, TheEstimateBoundsThePeakOfSurfaces) {
+  std::mt19937 rng(1);
+  expect_estimate_bounds_peak("surfaces", surfaces(1'000'000, rng));
+}
+
+TEST(SceneFootprint, TheEstimateBoundsThePeakOfPointsScatteredInARoom) {
+  std::mt19937 rng(2);
+  expect_estimate_bounds_peak("scattered in 3 m", scattered(600'000, 3.0f, rng));
+}
+
+TEST(SceneFootprint, TheEstimateBoundsThePeakOfPointsScatteredFarApart) {
+  // Each point alone in its band: about 3 field nodes (13 KB) per point.
+  std::mt19937 rng(3);
+  expect_estimate_bounds_peak("scattered in 40 m", scattered(20'000, 40.0f, rng));
+}
+
+TEST(SceneFootprint, TheEstimateBoundsThePeakOfAnOrganisedFrame) {
+  expect_estimate_bounds_peak("organised frame",
+                              test_scenes::render_scene(test_scenes::kCopies, true));
+}
+
+// A scene given as a file (LMK_FOOTPRINT_CLOUD): how the estimate was calibrated on 5-million-point
+// scenes, kept out of CI.
+TEST(SceneFootprint, TheEstimateBoundsThePeakOfAGivenCloud) {
+  const char* path = std::getenv("LMK_FOOTPRINT_CLOUD");
+  if (path == nullptr) GTEST_SKIP() << "set LMK_FOOTPRINT_CLOUD to a cloud file";
+  expect_estimate_bounds_peak(path, read_cloud(path));
+}
+
+TEST(SceneFootprint, CountingStopsAtTheLimit) {
+  std::mt19937 rng(4);
+  const PointCloud far = scattered(200'000, 100.0f, rng);
+  const SceneFootprint f = estimate_scene_footprint(far, SceneSettings{}, 500'000'000);
+  EXPECT_TRUE(f.over_limit);
+  EXPECT_GT(f.bytes, 500'000'000u);
+  EXPECT_LT(f.field_nodes, 200'000u);  // stopped near 500 MB of nodes, far before the 600 000
+  const SceneFootprint whole = estimate_scene_footprint(far, SceneSettings{});
+  EXPECT_FALSE(whole.over_limit);
+  EXPECT_GT(whole.field_nodes, 400'000u);
+  EXPECT_GT(whole.bytes, 2'000'000'000u);
+}
+
+}  // namespace
+}  // namespace lmk
