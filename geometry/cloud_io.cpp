@@ -60,7 +60,48 @@ CloudFormat format_from_path(const std::string& path) {
   throw Error(path + ": unknown extension '" + ext + "' (supported: .pcd, .ply, .xyz)");
 }
 
-CloudFile read_cloud_file(const std::string& path) {
+namespace detail {
+
+void too_many_points(const std::string& path, const std::string& count, std::size_t max_points) {
+  const std::string limit = std::to_string(max_points);
+  throw CloudTooLarge(count == "more"
+                          ? path + ": holds more than " + limit + " points, the limit here"
+                          : path + ": declares " + count + " points, over the limit of " + limit);
+}
+
+}  // namespace detail
+
+std::optional<std::size_t> declared_points(const std::string& path) {
+  const CloudFormat format = format_from_path(path);
+  if (format == CloudFormat::kXyz) return std::nullopt;
+  std::ifstream in(path, std::ios::binary);
+  std::string head(64 * 1024, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  std::istringstream lines(head);
+  long long width = -1, height = -1;
+  for (std::string line; std::getline(lines, line);) {
+    std::istringstream words(line);
+    std::string key, a, b;
+    words >> key >> a >> b;
+    const auto count = [](const std::string& w) { return detail::header_count(w).value_or(-1); };
+    if (format == CloudFormat::kPcd) {
+      if (key == "POINTS" && count(a) >= 0) return static_cast<std::size_t>(count(a));
+      if (key == "WIDTH") width = count(a);
+      if (key == "HEIGHT") height = count(a);
+      if (key == "DATA") break;
+    } else {
+      if (key == "element" && a == "vertex" && count(b) >= 0) {
+        return static_cast<std::size_t>(count(b));
+      }
+      if (key == "end_header") break;
+    }
+  }
+  if (width >= 0 && height >= 0) return static_cast<std::size_t>(width * height);
+  return std::nullopt;
+}
+
+CloudFile read_cloud_file(const std::string& path, std::size_t max_points) {
   check_input_file(path, kCloudInput);
   const CloudFormat format = format_from_path(path);
   const std::string bytes = read_cloud_bytes(path);
@@ -68,13 +109,13 @@ CloudFile read_cloud_file(const std::string& path) {
   try {
     switch (format) {
       case CloudFormat::kPcd:
-        file = detail::read_pcd(path, bytes);
+        file = detail::read_pcd(path, bytes, max_points);
         break;
       case CloudFormat::kPly:
-        file = detail::read_ply(path, bytes);
+        file = detail::read_ply(path, bytes, max_points);
         break;
       case CloudFormat::kXyz:
-        file = detail::read_xyz(path, bytes);
+        file = detail::read_xyz(path, bytes, max_points);
         break;
     }
   } catch (const Error&) {
@@ -94,7 +135,9 @@ CloudFile read_cloud_file(const std::string& path) {
   return file;
 }
 
-PointCloud read_cloud(const std::string& path) { return read_cloud_file(path).cloud; }
+PointCloud read_cloud(const std::string& path, std::size_t max_points) {
+  return read_cloud_file(path, max_points).cloud;
+}
 
 void write_cloud(const std::string& path, const PointCloud& cloud, const WriteOptions& options) {
   const CloudFormat format = format_from_path(path);

@@ -7,9 +7,11 @@
 // what is wrong: a missing file, an unknown extension, a truncated or garbage file, a header
 // that disagrees with the data, no x/y/z fields, or no finite point at all. Writes are atomic.
 
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "lmk/geometry/error.h"
 #include "lmk/geometry/point_cloud.h"
 
 namespace lmk {
@@ -38,10 +40,22 @@ struct CloudFile {
 /// naming the supported extensions otherwise.
 CloudFormat format_from_path(const std::string& path);
 
-/// Reads any supported file. Organised clouds keep width x height and their NaN points.
-CloudFile read_cloud_file(const std::string& path);
+/// A cloud with more points than its reader was allowed: refused from the header before anything
+/// is decoded, or as an XYZ file's rows are read, never after a whole oversized cloud is in memory.
+struct CloudTooLarge : Error {
+  using Error::Error;
+};
+
+/// Reads any supported file. Organised clouds keep width x height and their NaN points. More
+/// than `max_points` points: CloudTooLarge.
+CloudFile read_cloud_file(const std::string& path, std::size_t max_points = kMaxCloudPoints);
 /// Reads any supported file and returns the cloud alone.
-PointCloud read_cloud(const std::string& path);
+PointCloud read_cloud(const std::string& path, std::size_t max_points = kMaxCloudPoints);
+
+/// The points a PCD or PLY file's header declares, read from its first 64 KB without decoding
+/// anything; nothing for XYZ, which has no header, or when the header does not say. What a
+/// caller that budgets memory (lmk serve) prices a file at before reading it.
+std::optional<std::size_t> declared_points(const std::string& path);
 
 struct WriteOptions {
   /// PCD: kBinaryCompressed (default), kBinary or kAscii. PLY: kBinary (default) or kAscii;

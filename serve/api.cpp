@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "lmk/serve/api.h"
 
+#include <malloc.h>
+
 #include <cmath>
 
 #include "lmk/geometry/error.h"
@@ -14,9 +16,10 @@ namespace lmk::serve {
 
 Api::Api(ServeSettings settings, const std::filesystem::path& scratch_dir)
     : settings_(std::move(settings)),
+      budget_(settings_.memory_budget > 0 ? settings_.memory_budget : default_memory_budget()),
       scenes_(UploadLimits{settings_.max_uploads, settings_.max_upload_points,
                            settings_.max_uploaded_points},
-              scratch_dir, load_depth_correction_if_given(settings_.depth_correction)),
+              scratch_dir, budget_, load_depth_correction_if_given(settings_.depth_correction)),
       library_(settings_.landmarks_dir) {
   for (const std::string& path : settings_.scenes) scenes_.add_file(path);
   if (!settings_.programs_dir.empty()) {
@@ -42,7 +45,8 @@ ApiResponse Api::info() const {
            {"base_frame", defaults.scene.base_frame},
            {"methods", search_methods()},
            {"metrics", error_metric_names()},
-           {"setting_keys", find_setting_keys()}}};
+           {"setting_keys", find_setting_keys()},
+           {"memory", budget_.to_json()}}};
 }
 
 FindSettings Api::scene_find_settings() const {
@@ -52,9 +56,27 @@ FindSettings Api::scene_find_settings() const {
   return s;
 }
 
-ApiResponse Api::run_job(const std::string& kind, const nlohmann::json& body, JobPool::Work work) {
+MemoryBudget::Reservation Api::reserve_search(const Scene& scene, const SceneSettings& settings,
+                                              const char* kind) {
+  return budget_.reserve(scenes_.search_footprint(scene, settings), "jobs",
+                         std::string(kind) + " in scene " + scene.id);
+}
+
+ApiResponse Api::run_job(const std::string& kind, const nlohmann::json& body,
+                         MemoryBudget::Reservation memory, JobPool::Work work) {
   const bool wait = optional_bool(body, "wait", false, kind);
-  const std::string id = jobs_->submit(kind, std::move(work));
+  // The job holds its reservation until it ends, or until it is dropped unrun (cancelled, the
+  // queue stopped): the pool frees a job's work then.
+  auto held = std::make_shared<MemoryBudget::Reservation>(std::move(memory));
+  JobPool::Work priced = [held, work = std::move(work)](JobProgress& progress) {
+    // What the job freed goes back to the system before its reservation does, so that the next
+    // job admitted finds the memory it was promised (glibc keeps freed pages otherwise).
+    struct GiveBack {
+      ~GiveBack() { malloc_trim(0); }
+    } give_back;
+    return work(progress);
+  };
+  const std::string id = jobs_->submit(kind, std::move(priced));
   if (!wait) return {202, {{"job", id}, {"url", "/api/jobs/" + id}}};
   // Waiting is for scripts: the page polls instead, to show progress.
   const nlohmann::json job = jobs_->status(id, kMaxRequestWait).value();

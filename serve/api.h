@@ -13,6 +13,7 @@
 #include "lmk/landmark/landmark_library.h"
 #include "lmk/serve/cloud_download.h"
 #include "lmk/serve/job_pool.h"
+#include "lmk/serve/memory_budget.h"
 #include "lmk/serve/scene_store.h"
 #include "lmk/serve/serve_settings.h"
 
@@ -41,6 +42,11 @@ class Api {
   // GET /api/scenes/ID/cloud?max_points=N
   ApiResponse scenes() const;
   ApiResponse upload_scene(const std::string& name, const std::string& bytes);
+  /// An upload written to a scratch file as it arrived (new_upload_file).
+  ApiResponse upload_scene(UploadFile& file);
+  std::unique_ptr<UploadFile> new_upload_file(const std::string& name) const {
+    return scenes_.new_upload_file(name);
+  }
   ApiResponse scene(const std::string& id) const;
   /// The scene's points, written a piece at a time (ApiError for a bad id or max_points).
   CloudDownload scene_cloud(const std::string& id, const std::string& max_points) const;
@@ -73,11 +79,17 @@ class Api {
   /// Queues `work`; with body["wait"] true, waits for it up to kMaxRequestWait and answers with
   /// the finished job (200), otherwise (or when it is still running then, or too many requests
   /// wait already) answers 202 with the job's id and where to poll it.
-  ApiResponse run_job(const std::string& kind, const nlohmann::json& body, JobPool::Work work);
+  ApiResponse run_job(const std::string& kind, const nlohmann::json& body,
+                      MemoryBudget::Reservation memory, JobPool::Work work);
+  /// The memory a job of `kind` that indexes `scene` with `settings` and searches it takes,
+  /// reserved (ApiError 503 or 413 when it does not fit).
+  MemoryBudget::Reservation reserve_search(const Scene& scene, const SceneSettings& settings,
+                                           const char* kind);
   /// The program file `name` (NAME.json in the programs directory); ApiError 400/403/404.
   std::filesystem::path program_path(const std::string& name) const;
 
   ServeSettings settings_;
+  MemoryBudget budget_;  // before what holds its reservations: destroyed after them
   SceneStore scenes_;
   LandmarkLibrary library_;
   std::filesystem::path programs_dir_;  ///< canonical; empty: none

@@ -160,13 +160,15 @@ ApiResponse Api::check(const std::string& body_text) {
   required_box(body, "box", "check");
   optional_poses(body, "poses", "check");
   const FindSettings find = scene_find_settings();
-  return run_job("check", body, [scenes, body, find, name](JobProgress& progress) {
-    progress.report(0.0, "capturing '" + name + "'");
-    nlohmann::json registrations = nlohmann::json::array();
-    const Landmark landmark = capture_from(scenes, body, find, name, "check", registrations);
-    progress.report(0.2, "searching '" + name + "' in its own scene");
-    return verdict(landmark, *scenes.front().cloud, registrations, progress);
-  });
+  MemoryBudget::Reservation memory = reserve_search(scenes.front(), find.scene, "check");
+  return run_job(
+      "check", body, std::move(memory), [scenes, body, find, name](JobProgress& progress) {
+        progress.report(0.0, "capturing '" + name + "'");
+        nlohmann::json registrations = nlohmann::json::array();
+        const Landmark landmark = capture_from(scenes, body, find, name, "check", registrations);
+        progress.report(0.2, "searching '" + name + "' in its own scene");
+        return verdict(landmark, *scenes.front().cloud, registrations, progress);
+      });
 }
 
 ApiResponse Api::landmarks() const {
@@ -223,7 +225,7 @@ ApiResponse Api::save_landmark(const std::string& body_text) {
   const auto shared = std::make_shared<const Landmark>(landmark);
   LandmarkLibrary& library = library_;
   ApiResponse answer = run_job(
-      "capture", job_body,
+      "capture", job_body, reserve_search(scene, scene_find_settings().scene, "capture"),
       [shared, scene, overwrite, name, registrations, &library](JobProgress& progress) {
         const nlohmann::json checked = verdict(*shared, *scene.cloud, registrations, progress);
         if (!checked["distinctive"].get<bool>()) {

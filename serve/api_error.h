@@ -16,10 +16,14 @@ class ApiError : public std::runtime_error {
       : std::runtime_error(message), status_(status), details_(std::move(details)) {}
   int status() const { return status_; }
   const nlohmann::json& details() const { return details_; }
+  /// Seconds after which the client may try again (the answer's Retry-After); 0: not said.
+  int retry_after() const { return retry_after_; }
+  void set_retry_after(int seconds) { retry_after_ = seconds; }
 
  private:
   int status_;
   nlohmann::json details_;
+  int retry_after_ = 0;
 };
 
 inline ApiError bad_request(const std::string& m) { return ApiError(400, m); }

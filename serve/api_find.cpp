@@ -32,7 +32,9 @@ ApiResponse Api::find(const std::string& body_text) {
   }
   const bool with_rejected = optional_bool(body, "rejected", false, "find");
 
-  return run_job("find", body, [=](JobProgress& progress) {
+  // One index of the scene serves every landmark, searched one after another: one search's peak.
+  MemoryBudget::Reservation memory = reserve_search(scene, settings.scene, "find");
+  return run_job("find", body, std::move(memory), [=](JobProgress& progress) {
     progress.report(0.0, "indexing scene " + scene.name);
     const SceneIndex index(*scene.cloud, settings.scene);
     nlohmann::json results = nlohmann::json::array();

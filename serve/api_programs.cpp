@@ -106,7 +106,9 @@ ApiResponse Api::plan(const std::string& name, const std::string& body_text) {
   plan_settings.find = scene_find_settings();
   apply_find_settings(body, "plan", plan_settings.find);
 
-  return run_job("plan", body, [=](JobProgress& progress) mutable {
+  // The plan searches the scene for each landmark in turn: one search's peak.
+  MemoryBudget::Reservation memory = reserve_search(scene, plan_settings.find.scene, "plan");
+  return run_job("plan", body, std::move(memory), [=](JobProgress& progress) mutable {
     SimulatedPr2 robot = start_simulated_pr2(torso);
     JointState start;
     robot.read_joint_state(start);

@@ -34,6 +34,10 @@ ApiResponse Api::upload_scene(const std::string& name, const std::string& bytes)
   return {201, scene_summary(scenes_.add_upload(name, bytes))};
 }
 
+ApiResponse Api::upload_scene(UploadFile& file) {
+  return {201, scene_summary(scenes_.add_upload(file))};
+}
+
 ApiResponse Api::scene(const std::string& id) const {
   const Scene s = scenes_.get(id);
   const PointCloud& c = *s.cloud;

@@ -113,6 +113,7 @@ void guarded(httplib::Response& res, F&& handle) {
     nlohmann::json body = {{"error", error_text(e.what())}};
     if (e.details().is_object()) body.update(e.details());
     send(res, {e.status(), body});
+    if (e.retry_after() > 0) res.set_header("Retry-After", std::to_string(e.retry_after()));
   } catch (const Error& e) {
     send(res, {422, {{"error", error_text(e.what())}}});
   } catch (const std::exception& e) {
@@ -238,18 +239,31 @@ void HttpServer::Impl::guard_requests() {
   });
 }
 
-// Reads an upload's cloud, at most --max-upload bytes of it, and hands it to the API.
+// Writes an upload's cloud to a scratch file as it arrives, at most --max-upload bytes of it, and
+// hands the file to the API: no upload is ever whole in memory before it is priced and parsed.
 ApiResponse HttpServer::Impl::upload(const httplib::Request& req,
                                      const httplib::ContentReader& read, std::string name) {
   const std::size_t limit = api.settings().max_upload_bytes;
-  std::string body;
+  std::unique_ptr<UploadFile> file;
+  std::optional<ApiError> refused;  // a bad name: the body is read (and dropped) first, so that
+                                    // the client, still sending, gets the answer
+  std::size_t received = 0;
   bool over = false;
   bool collecting = true;  // in a form, only while its file's part arrives
   const auto receive = [&](const char* data, std::size_t n) {
     if (!collecting) return true;
-    over = body.size() + n > limit;
-    if (!over) body.append(data, n);
-    return !over;
+    over = received + n > limit;
+    if (over) return false;
+    received += n;
+    if (!file && !refused) {
+      try {
+        file = api.new_upload_file(name);
+      } catch (const ApiError& e) {
+        refused = e;
+      }
+    }
+    if (file) file->write(data, n);
+    return true;
   };
   bool complete = false;
   if (req.is_multipart_form_data()) {
@@ -267,13 +281,18 @@ ApiResponse HttpServer::Impl::upload(const httplib::Request& req,
                                    : "upload: the form holds more than one file");
     }
   } else {
+    if (name.empty()) {
+      refused =
+          bad_request("upload: give the file name as ?name=FILE.pcd (its extension is the format)");
+    }
     complete = read(receive);
   }
   // httplib refuses a declared length over the limit before reading: nothing arrives.
-  const bool declared_over = declared_length(req) > limit;
-  if (over || declared_over) throw ApiError(413, reason_for(413, api.settings()));
+  if (over || declared_length(req) > limit) throw ApiError(413, reason_for(413, api.settings()));
+  if (refused) throw *refused;
   if (!complete) throw bad_request("upload: the body was cut short");
-  return api.upload_scene(name, body);
+  if (!file) file = api.new_upload_file(name);  // an empty file: the reader says so
+  return api.upload_scene(*file);
 }
 
 void HttpServer::Impl::routes() {

@@ -31,6 +31,9 @@ struct JobPool::Job {
 
 namespace {
 
+// What a client refused for a full queue is told to wait, s: about what a search takes.
+constexpr int kBusyRetryAfterSeconds = 5;
+
 // A job's state says it has ended: it has its result or its error.
 bool has_ended(const std::string& state) { return state == "done" || state == "failed"; }
 
@@ -130,8 +133,10 @@ bool JobPool::finished(const nlohmann::json& status) {
 std::string JobPool::submit(const std::string& kind, Work work) {
   std::lock_guard<std::mutex> lock(mutex_);
   if (queue_.size() >= limits_.max_queued) {
-    throw ApiError(503, "busy: " + std::to_string(queue_.size()) +
-                            " jobs are waiting; try again when some have finished");
+    ApiError busy(503, "busy: " + std::to_string(queue_.size()) +
+                           " jobs are waiting; try again when some have finished");
+    busy.set_retry_after(kBusyRetryAfterSeconds);
+    throw busy;
   }
   auto job = std::make_shared<Job>(*this, now());
   job->id = "job-" + std::to_string(next_id_++);

@@ -8,10 +8,16 @@
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/plain_name.h"
+#include "lmk/landmark/find_settings.h"
+#include "lmk/landmark/internal/find_settings_json.h"
+#include "lmk/landmark/scene_footprint.h"
 #include "lmk/serve/api_error.h"
 
 namespace lmk::serve {
 namespace {
+
+// Footprints remembered, by scene and settings: forgotten all at once past it.
+constexpr std::size_t kMaxFootprints = 256;
 
 // An uploaded file's name is only a label and the key to its format: a plain file name.
 void check_upload_name(const std::string& name) {
@@ -22,18 +28,70 @@ void check_upload_name(const std::string& name) {
   }
 }
 
+// An upload's parse, per point it may hold, beside the file's bytes read whole: PCL's blob and
+// the cloud (22 bytes a point measured for a binary PCD), an XYZ file's rows growing their vector
+// (53); rounded up.
+constexpr std::size_t kParseBytesPerPoint = 80;
+// The fewest bytes a point of an XYZ file takes ("0 0 0\n"): what bounds its points unread.
+constexpr std::size_t kLeastXyzPointBytes = 6;
+
+std::size_t resident_bytes(const PointCloud& c) {
+  return c.points.capacity() * sizeof(Eigen::Vector3f) +
+         c.normals.capacity() * sizeof(Eigen::Vector3f) + c.colors.capacity() * sizeof(Color) +
+         c.labels.capacity() * sizeof(std::int32_t);
+}
+
 }  // namespace
 
-SceneStore::SceneStore(UploadLimits limits, std::filesystem::path scratch_dir,
-                       std::optional<DepthCorrection> correction)
-    : limits_(limits), scratch_dir_(std::move(scratch_dir)), correction_(std::move(correction)) {}
+UploadFile::UploadFile(std::string name, std::filesystem::path path)
+    : name_(std::move(name)), path_(std::move(path)), file_(std::fopen(path_.c_str(), "wb")) {
+  if (file_ == nullptr)
+    throw Error("cannot create an upload file in " + path_.parent_path().string());
+}
 
-Scene& SceneStore::insert(std::string name, std::string source, PointCloud cloud) {
+UploadFile::~UploadFile() {
+  if (file_ != nullptr) std::fclose(file_);
+  std::error_code ignored;
+  std::filesystem::remove(path_, ignored);
+}
+
+void UploadFile::write(const char* data, std::size_t n) {
+  if (file_ == nullptr || std::fwrite(data, 1, n, file_) != n) {
+    throw Error("cannot write the upload to " + path_.parent_path().string());
+  }
+  bytes_ += n;
+}
+
+std::size_t UploadFile::close() {
+  if (file_ != nullptr) {
+    const bool flushed = std::fclose(file_) == 0;
+    file_ = nullptr;
+    if (!flushed) throw Error("cannot write the upload to " + path_.parent_path().string());
+  }
+  return bytes_;
+}
+
+SceneStore::SceneStore(UploadLimits limits, std::filesystem::path scratch_dir, MemoryBudget& budget,
+                       std::optional<DepthCorrection> correction)
+    : limits_(limits),
+      budget_(budget),
+      scratch_dir_(std::move(scratch_dir)),
+      correction_(std::move(correction)) {}
+
+Scene& SceneStore::insert(std::string name, std::string source, PointCloud cloud,
+                          MemoryBudget::Reservation memory) {
+  // The scene's cloud carries its reservation: the memory is given back when the last holder of
+  // the cloud (the store, or a job under way after the store let it go) drops it.
+  struct Held {
+    PointCloud cloud;
+    MemoryBudget::Reservation memory;
+  };
+  auto held = std::make_shared<Held>(Held{std::move(cloud), std::move(memory)});
   Scene scene;
   scene.id = std::to_string(next_id_++);
   scene.name = std::move(name);
   scene.source = std::move(source);
-  scene.cloud = std::make_shared<const PointCloud>(std::move(cloud));
+  scene.cloud = std::shared_ptr<const PointCloud>(held, &held->cloud);
   scenes_.push_back(std::move(scene));
   return scenes_.back();
 }
@@ -45,65 +103,119 @@ Scene SceneStore::add_file(const std::string& path) {
   } catch (const Error& e) {
     throw Error(path + ": " + e.what());
   }
+  MemoryBudget::Reservation memory = budget_.reserve_anyway(resident_bytes(cloud), "scenes");
   std::lock_guard<std::mutex> lock(mutex_);
-  return insert(std::filesystem::path(path).filename().string(), "file", std::move(cloud));
+  return insert(std::filesystem::path(path).filename().string(), "file", std::move(cloud),
+                std::move(memory));
 }
 
-Scene SceneStore::add_upload(const std::string& name, const std::string& bytes) {
+std::unique_ptr<UploadFile> SceneStore::new_upload_file(const std::string& name) const {
   check_upload_name(name);
   try {
     format_from_path(name);
   } catch (const Error& e) {
     throw bad_request(std::string("upload: ") + e.what());
   }
-  // The readers work on files: parse in the private scratch directory under a name of our own,
-  // then remove it, whatever happens.
+  // The readers work on files: the bytes go to the private scratch directory under a name of our
+  // own, removed whatever happens.
   static std::atomic<unsigned> counter{0};
-  const std::filesystem::path file =
-      scratch_dir_ /
-      ("upload-" + std::to_string(counter++) + std::filesystem::path(name).extension().string());
+  return std::make_unique<UploadFile>(
+      name, scratch_dir_ / ("upload-" + std::to_string(counter++) +
+                            std::filesystem::path(name).extension().string()));
+}
+
+Scene SceneStore::add_upload(const std::string& name, const std::string& bytes) {
+  const std::unique_ptr<UploadFile> file = new_upload_file(name);
+  file->write(bytes.data(), bytes.size());
+  return add_upload(*file);
+}
+
+Scene SceneStore::add_upload(UploadFile& file) {
+  const std::string& name = file.name();
+  const std::size_t size = file.close();
+  const std::string path = file.path().string();
+  // The reader names our scratch file; the user knows the upload by its own name.
+  const auto in_their_words = [&](const Error& e) {
+    std::string message = e.what();
+    if (message.rfind(path, 0) == 0) message = name + message.substr(path.size());
+    return "upload: " + message;
+  };
+  // Priced before it is read: the file's bytes (read whole) and the points it may hold.
+  std::size_t points = std::min(size / kLeastXyzPointBytes, limits_.max_points);
+  try {
+    if (const std::optional<std::size_t> declared = declared_points(path)) {
+      if (*declared > limits_.max_points) {
+        throw ApiError(413, "upload: " + name + " declares " + std::to_string(*declared) +
+                                " points; at most " + std::to_string(limits_.max_points) +
+                                " per upload");
+      }
+      points = *declared;
+    }
+  } catch (const Error& e) {
+    throw bad_request(in_their_words(e));
+  }
+  MemoryBudget::Reservation memory =
+      budget_.reserve(size + points * kParseBytesPerPoint, "uploads", "upload " + name);
   PointCloud cloud;
   try {
-    {
-      std::ofstream out(file, std::ios::binary);
-      out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-      if (!out) throw Error("cannot write the upload to " + scratch_dir_.string());
-    }
-    cloud = read_cloud(file.string());
+    cloud = read_cloud(path, limits_.max_points);
     if (correction_) correction_->apply(cloud);
+  } catch (const CloudTooLarge& e) {
+    throw ApiError(413, in_their_words(e) + " per upload");
   } catch (const Error& e) {
-    std::error_code ignored;
-    std::filesystem::remove(file, ignored);
-    // The reader names our scratch file; the user knows the upload by its own name.
-    std::string message = e.what();
-    const std::string ours = file.string();
-    if (message.rfind(ours, 0) == 0) message = name + message.substr(ours.size());
-    throw bad_request("upload: " + message);
+    throw bad_request(in_their_words(e));
   }
-  std::error_code ignored;
-  std::filesystem::remove(file, ignored);
-  if (cloud.size() > limits_.max_points) {
-    throw ApiError(413, "upload: " + name + " holds " + std::to_string(cloud.size()) +
-                            " points; at most " + std::to_string(limits_.max_points) +
-                            " per upload");
-  }
+  memory.shrink_to(resident_bytes(cloud));
 
   // The oldest uploads go until this one fits: in count and in points kept. A search under way
   // keeps its own reference to its cloud.
   std::lock_guard<std::mutex> lock(mutex_);
   const auto is_upload = [](const Scene& s) { return s.source == "upload"; };
   const auto over = [&] {
-    std::size_t count = 0, points = cloud.size();
+    std::size_t count = 0, kept = cloud.size();
     for (const Scene& s : scenes_) {
       if (!is_upload(s)) continue;
       ++count;
-      points += s.cloud->size();
+      kept += s.cloud->size();
     }
     return count > 0 && ((limits_.max_uploads > 0 && count >= limits_.max_uploads) ||
-                         points > limits_.max_kept_points);
+                         kept > limits_.max_kept_points);
   };
-  while (over()) scenes_.erase(std::find_if(scenes_.begin(), scenes_.end(), is_upload));
-  return insert(name, "upload", std::move(cloud));
+  while (over()) {
+    const auto oldest = std::find_if(scenes_.begin(), scenes_.end(), is_upload);
+    for (auto f = footprints_.begin(); f != footprints_.end();) {
+      f = f->first.rfind(oldest->id + "|", 0) == 0 ? footprints_.erase(f) : std::next(f);
+    }
+    scenes_.erase(oldest);
+  }
+  return insert(name, "upload", std::move(cloud), std::move(memory));
+}
+
+std::size_t SceneStore::search_footprint(const Scene& scene, const SceneSettings& settings) {
+  FindSettings find;
+  find.scene = settings;
+  const std::string key = scene.id + "|" + detail::find_settings_to_json(find)["scene"].dump();
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const auto known = footprints_.find(key);
+    if (known != footprints_.end()) return known->second;
+  }
+  // Outside the lock: a pass over the scene's points, stopped once over the whole budget.
+  const SceneFootprint f = estimate_scene_footprint(*scene.cloud, settings, budget_.budget());
+  if (f.over_limit) {
+    throw ApiError(413, "searching scene " + scene.id + " (" + printable(scene.name, kEchoedBytes) +
+                            ", " + std::to_string(f.points) + " points over " +
+                            std::to_string(f.coarse_voxels) + " coarse voxels) needs over " +
+                            describe_bytes(f.bytes) +
+                            ", more than the server's whole memory budget of " +
+                            describe_bytes(budget_.budget()) +
+                            " (lmk serve --memory-budget); crop it (work_volume) or use a "
+                            "coarser leaf");
+  }
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (footprints_.size() >= kMaxFootprints) footprints_.clear();
+  footprints_[key] = f.bytes;
+  return f.bytes;
 }
 
 Scene SceneStore::get(const std::string& id) const {

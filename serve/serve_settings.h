@@ -36,6 +36,9 @@ struct ServeSettings {
   std::size_t max_queued_jobs = 64;              ///< beyond it, new searches get 503
   /// s: a job nobody has asked about for this long is cancelled (JobLimits::abandon_after).
   double abandon_after = 60.0;
+  /// Bytes the server's uploads, scenes and jobs may take at once, each priced before it starts
+  /// (serve/memory_budget.h); 0: default_memory_budget(), half the machine's memory.
+  std::size_t memory_budget = 0;
   /// The scenes are in a robot base frame (+z up), as `lmk find --base-frame`; otherwise up is
   /// `up`, or the sensor's -y.
   bool base_frame = false;

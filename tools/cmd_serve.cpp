@@ -11,8 +11,10 @@
 
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/error.h"
+#include "lmk/landmark/scene_footprint.h"
 #include "lmk/serve/access_guard.h"
 #include "lmk/serve/http_server.h"
+#include "lmk/serve/memory_budget.h"
 #include "tools/cli_common.h"
 #include "tools/interrupt.h"
 
@@ -23,6 +25,7 @@ struct ServeOptions {
   serve::ServeSettings settings;
   UpOptions up;
   double max_upload_mib = 256.0;
+  double memory_budget_gb = 0.0;  // 0: half the machine's memory
   bool quiet = false;
 };
 
@@ -35,6 +38,8 @@ int run_serve(ServeOptions& o) {
   s.base_frame = o.up.base_frame;
   s.up = o.up.vector();
   s.max_upload_bytes = static_cast<std::size_t>(o.max_upload_mib * 1024.0 * 1024.0);
+  s.memory_budget = o.memory_budget_gb > 0.0 ? static_cast<std::size_t>(o.memory_budget_gb * 1e9)
+                                             : serve::default_memory_budget();
   if (s.token.empty() && !s.no_token) {
     if (const char* token = std::getenv("LMK_SERVE_TOKEN"); token != nullptr) s.token = token;
   }
@@ -56,9 +61,10 @@ int run_serve(ServeOptions& o) {
   serve::HttpServer server(s, o.quiet ? nullptr : &std::cerr);
   const int port = server.bind();
   const std::string host = s.bind.find(':') != std::string::npos ? "[" + s.bind + "]" : s.bind;
-  std::printf("lmk serve: %zu scene%s, landmarks in %s%s\n", s.scenes.size(),
+  std::printf("lmk serve: %zu scene%s, landmarks in %s%s; memory budget %s\n", s.scenes.size(),
               s.scenes.size() == 1 ? "" : "s", s.landmarks_dir.c_str(),
-              s.programs_dir.empty() ? "" : (", programs in " + s.programs_dir).c_str());
+              s.programs_dir.empty() ? "" : (", programs in " + s.programs_dir).c_str(),
+              describe_bytes(s.memory_budget).c_str());
   const std::string query = server.token().empty() ? "" : "?token=" + server.token();
   std::printf("open http://%s:%d/%s (Ctrl-C stops)\n", host.c_str(), port, query.c_str());
   std::fflush(stdout);
@@ -129,6 +135,11 @@ Subcommand add_serve(CLI::App& app) {
   sub->add_option("--max-upload", o->max_upload_mib, "Largest uploaded cloud, MiB")
       ->check(within(0.001, 4096.0))
       ->capture_default_str();
+  sub->add_option("--memory-budget", o->memory_budget_gb,
+                  "Memory the uploads, scenes and jobs may take at once, GB: each is priced before "
+                  "it starts and refused (503, Retry-After) when it does not fit (default: half "
+                  "the machine's memory)")
+      ->check(within(0.1, 1024.0));
   sub->add_option("--torso", s.torso, "Simulated PR2 torso height for program plans, m")
       ->check(within(0.0, 0.33))
       ->capture_default_str();

@@ -32,9 +32,15 @@ inline std::optional<long long> header_count(const std::string& word) {
   return std::stoll(word);
 }
 
-CloudFile read_pcd(const std::string& path, const std::string& bytes);
-CloudFile read_ply(const std::string& path, const std::string& bytes);
-CloudFile read_xyz(const std::string& path, const std::string& bytes);
+// Each reader refuses more than `max_points` points with CloudTooLarge: from the header before
+// anything is decoded (PCD, PLY), or as the rows are read (XYZ).
+CloudFile read_pcd(const std::string& path, const std::string& bytes, std::size_t max_points);
+CloudFile read_ply(const std::string& path, const std::string& bytes, std::size_t max_points);
+CloudFile read_xyz(const std::string& path, const std::string& bytes, std::size_t max_points);
+
+// Throws CloudTooLarge: the file declares `count` points (or "more", as its rows are read).
+[[noreturn]] void too_many_points(const std::string& path, const std::string& count,
+                                  std::size_t max_points);
 
 void write_pcd(const std::filesystem::path& file, const PointCloud& cloud, Encoding encoding);
 void write_ply(const std::filesystem::path& file, const PointCloud& cloud, Encoding encoding);

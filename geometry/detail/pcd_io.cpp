@@ -187,7 +187,7 @@ void check_declared_body(const std::string& path, Declarations d, std::size_t av
 
 }  // namespace
 
-CloudFile read_pcd(const std::string& path, const std::string& bytes) {
+CloudFile read_pcd(const std::string& path, const std::string& bytes, std::size_t max_points) {
   pcl::PCDReader reader;
   pcl::PCLPointCloud2 blob;
   Eigen::Vector4f origin = Eigen::Vector4f::Zero();
@@ -204,6 +204,13 @@ CloudFile read_pcd(const std::string& path, const std::string& bytes) {
   const std::string header_text = bytes.substr(0, offset);
   std::istringstream header(header_text);
   const Declarations header_says = read_declarations(path, header_text);
+  const long long points = header_says.points >= 0 ? header_says.points
+                           : header_says.width >= 0 && header_says.height >= 0
+                               ? header_says.width * header_says.height
+                               : -1;
+  if (points > static_cast<long long>(max_points)) {
+    too_many_points(path, std::to_string(points), max_points);
+  }
   check_declared_body(path, header_says, bytes.size() - offset);
   if (reader.readHeader(header, blob, origin, orientation, version, data_type, pcl_data_idx) < 0) {
     const Declarations& c = header_says;

@@ -273,11 +273,13 @@ void check_ascii_rows(const std::string& path, const PlyHeader& h, const std::st
 
 }  // namespace
 
-CloudFile read_ply(const std::string& path, const std::string& bytes) {
+CloudFile read_ply(const std::string& path, const std::string& bytes, std::size_t max_points) {
   const PlyHeader h = parse_header(path, bytes);
   const std::size_t available = bytes.size() - std::min(h.body_offset, bytes.size());
   for (const PlyElement& e : h.elements) {
-    if (e.name == "vertex") check_vertex_properties(path, e);
+    if (e.name != "vertex") continue;
+    if (e.count > max_points) too_many_points(path, std::to_string(e.count), max_points);
+    check_vertex_properties(path, e);
   }
   // Check the data really holds the vertices, when they come first (as every writer puts them).
   if (!h.elements.empty() && h.elements.front().name == "vertex") {

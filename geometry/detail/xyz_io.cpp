@@ -12,7 +12,7 @@
 
 namespace lmk::detail {
 
-CloudFile read_xyz(const std::string& path, const std::string& bytes) {
+CloudFile read_xyz(const std::string& path, const std::string& bytes, std::size_t max_points) {
   if (bytes.find('\0') != std::string::npos) {
     throw Error(path + ": not a text file (XYZ files hold 'x y z' lines of text)");
   }
@@ -38,10 +38,7 @@ CloudFile read_xyz(const std::string& path, const std::string& bytes) {
       }
       cursor = end;
     }
-    if (file.cloud.points.size() == kMaxCloudPoints) {
-      throw Error(path + ": holds more than lmk's limit of " + std::to_string(kMaxCloudPoints) +
-                  " points");
-    }
+    if (file.cloud.points.size() == max_points) too_many_points(path, "more", max_points);
     file.cloud.points.push_back(p);
   }
   file.cloud.set_unorganized();
