@@ -2,11 +2,6 @@
 // Issue #47: connections that cannot hold `lmk serve`, and nothing a client sends reaches the
 // operator's terminal raw. Slow senders are raw sockets that send a header line now and then; the
 // terminal is the server's log.
-#include <arpa/inet.h>
-#include <netinet/in.h>
-#include <sys/socket.h>
-#include <unistd.h>
-
 #include <chrono>
 #include <sstream>
 
@@ -18,39 +13,6 @@ namespace {
 
 using serve::ConnectionLimits;
 using serve::ConnectionTable;
-
-/// A connection to the test's server that sends whatever it is told, when it is told.
-class RawConnection {
- public:
-  explicit RawConnection(int port) : sock_(::socket(AF_INET, SOCK_STREAM, 0)) {
-    sockaddr_in address{};
-    address.sin_family = AF_INET;
-    address.sin_port = htons(static_cast<std::uint16_t>(port));
-    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    connected_ = ::connect(sock_, reinterpret_cast<sockaddr*>(&address), sizeof address) == 0;
-  }
-  ~RawConnection() { ::close(sock_); }
-  RawConnection(const RawConnection&) = delete;
-  RawConnection& operator=(const RawConnection&) = delete;
-
-  bool connected() const { return connected_; }
-  /// Whether the server still takes bytes (a cut-off connection is reset).
-  bool send(const std::string& bytes) {
-    return ::send(sock_, bytes.data(), bytes.size(), MSG_NOSIGNAL) ==
-           static_cast<ssize_t>(bytes.size());
-  }
-  /// Everything the server sends until it closes the connection.
-  std::string read_to_end() {
-    std::string out;
-    char buffer[4096];
-    for (ssize_t n; (n = ::recv(sock_, buffer, sizeof buffer, 0)) > 0;) out.append(buffer, n);
-    return out;
-  }
-
- private:
-  int sock_;
-  bool connected_ = false;
-};
 
 TEST(ConnectionTable, AClientsNewestSlowConnectionCutsOffItsOldest) {
   ConnectionLimits limits;

@@ -1,6 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "tests/serve/serve_fixture.h"
 
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
 #include <chrono>
 #include <filesystem>
 
@@ -135,6 +140,28 @@ FindSettings ServeTest::scene_settings() {
   FindSettings s;
   s.scene.base_frame = true;
   return s;
+}
+
+RawConnection::RawConnection(int port) : sock_(::socket(AF_INET, SOCK_STREAM, 0)) {
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_port = htons(static_cast<std::uint16_t>(port));
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  connected_ = ::connect(sock_, reinterpret_cast<sockaddr*>(&address), sizeof address) == 0;
+}
+
+RawConnection::~RawConnection() { ::close(sock_); }
+
+bool RawConnection::send(const std::string& bytes) {
+  return ::send(sock_, bytes.data(), bytes.size(), MSG_NOSIGNAL) ==
+         static_cast<ssize_t>(bytes.size());
+}
+
+std::string RawConnection::read_to_end() {
+  std::string out;
+  char buffer[4096];
+  for (ssize_t n; (n = ::recv(sock_, buffer, sizeof buffer, 0)) > 0;) out.append(buffer, n);
+  return out;
 }
 
 nlohmann::json box_json(const Box& box) { return detail::setting_to_json(box); }

@@ -70,6 +70,27 @@ class ServeTest : public ::testing::Test {
   int port = 0;
 };
 
+/// A connection to the test's server that sends whatever it is told, when it is told.
+/// A connection to a server on this machine that sends whatever it is told, when it is told: a
+/// slow sender.
+class RawConnection {
+ public:
+  explicit RawConnection(int port);
+  ~RawConnection();
+  RawConnection(const RawConnection&) = delete;
+  RawConnection& operator=(const RawConnection&) = delete;
+
+  bool connected() const { return connected_; }
+  /// Whether the server still takes bytes (a cut-off connection is reset).
+  bool send(const std::string& bytes);
+  /// Everything the server sends until it closes the connection.
+  std::string read_to_end();
+
+ private:
+  int sock_;
+  bool connected_ = false;
+};
+
 /// A box as the API takes it: {position, quaternion [w,x,y,z], size}.
 nlohmann::json box_json(const Box& box);
 
