@@ -29,7 +29,7 @@ std::int32_t most_frequent_label(const PointCloud& cloud, const Index* begin, co
 
 }  // namespace
 
-PointCloud voxel_downsample(const PointCloud& cloud, double leaf_size) {
+PointCloud voxel_downsample(const PointCloud& cloud, double leaf_size, const StopCheck& stop) {
   if (!(leaf_size > 0.0) || !std::isfinite(leaf_size)) {
     throw Error("voxel_downsample: leaf size must be positive and finite, got " +
                 std::to_string(leaf_size));
@@ -38,7 +38,9 @@ PointCloud voxel_downsample(const PointCloud& cloud, double leaf_size) {
 
   // The points of each voxel in index order, with no sort of the points; only the voxels, far
   // fewer, are sorted by key for the output order.
+  if (stop) stop();
   const detail::VoxelBuckets buckets = detail::bucket_by_voxel(cloud, inv_leaf);
+  if (stop) stop();
   const std::vector<std::uint64_t>& keys = buckets.keys;
   const std::vector<std::size_t>& starts = buckets.starts;
   const std::vector<Index>& members = buckets.members;
@@ -48,6 +50,7 @@ PointCloud voxel_downsample(const PointCloud& cloud, double leaf_size) {
   tbb::parallel_sort(order.begin(), order.end(),
                      [&](std::uint32_t a, std::uint32_t b) { return keys[a] < keys[b]; });
 
+  if (stop) stop();
   PointCloud out;
   out.T_cloud_sensor = cloud.T_cloud_sensor;
   out.points.resize(voxels);
@@ -56,6 +59,7 @@ PointCloud voxel_downsample(const PointCloud& cloud, double leaf_size) {
   if (cloud.has_labels()) out.labels.resize(voxels);
 
   tbb::parallel_for(std::size_t{0}, voxels, [&](std::size_t v) {
+    check_every(stop, v);
     const Index* begin = members.data() + starts[order[v]];
     const Index* end = members.data() + starts[order[v] + 1];
     const double n = static_cast<double>(end - begin);

@@ -4,6 +4,7 @@
 // Step 2 of the paper's FindLandmark (leaf 0.005 m).
 
 #include "lmk/geometry/point_cloud.h"
+#include "lmk/geometry/stop_check.h"
 
 namespace lmk {
 
@@ -17,7 +18,8 @@ inline constexpr double kMinLeafSize = 0.001;
 /// origin) by their centroid. Normals are averaged and renormalised, colours averaged, and a
 /// voxel's label is its most frequent label (smallest on ties). The output is unorganised and
 /// ordered by voxel coordinates (x slowest, z fastest), so it is deterministic whatever the thread
-/// count. Throws lmk::Error for a non-positive leaf or a cloud too large for the leaf.
-PointCloud voxel_downsample(const PointCloud& cloud, double leaf_size);
+/// count. Throws lmk::Error for a non-positive leaf or a cloud too large for the leaf. `stop` is
+/// called between pieces of the work (geometry/stop_check.h).
+PointCloud voxel_downsample(const PointCloud& cloud, double leaf_size, const StopCheck& stop = {});
 
 }  // namespace lmk

@@ -64,7 +64,7 @@ struct VoxelMoments::Impl {
   std::vector<Moments> voxels;
 };
 
-VoxelMoments::VoxelMoments(const PointCloud& cloud, double leaf_size) {
+VoxelMoments::VoxelMoments(const PointCloud& cloud, double leaf_size, const StopCheck& stop) {
   if (!(leaf_size > 0.0) || !std::isfinite(leaf_size)) {
     throw Error("voxel moments: leaf size must be positive and finite, got " +
                 std::to_string(leaf_size));
@@ -73,6 +73,7 @@ VoxelMoments::VoxelMoments(const PointCloud& cloud, double leaf_size) {
   const std::size_t n = cloud.size();
   std::vector<std::uint64_t> keys(n, detail::kNoVoxel);
   tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) {
+    check_every(stop, i);
     if (is_finite(cloud.points[i])) {
       keys[i] = detail::pack_voxel(detail::voxel_coord(cloud.points[i], inv_leaf));
     }
@@ -85,6 +86,7 @@ VoxelMoments::VoxelMoments(const PointCloud& cloud, double leaf_size) {
   std::uint64_t last_key = detail::kNoVoxel;  // neighbouring pixels often share a voxel
   std::uint32_t id = 0;
   for (std::size_t i = 0; i < n; ++i) {
+    check_every(stop, i);
     if (keys[i] == detail::kNoVoxel) continue;
     if (keys[i] != last_key) id = impl->table.insert(keys[i]), last_key = keys[i];
     if (id == voxels.size()) {
@@ -109,11 +111,13 @@ std::vector<Eigen::Vector3f> VoxelMoments::centroids() const {
   return out;
 }
 
-std::vector<Eigen::Vector3f> VoxelMoments::normals(const Eigen::Vector3d& viewpoint) const {
+std::vector<Eigen::Vector3f> VoxelMoments::normals(const Eigen::Vector3d& viewpoint,
+                                                   const StopCheck& stop) const {
   const double leaf = impl_->leaf;
   const std::vector<Moments>& voxels = impl_->voxels;
   std::vector<Eigen::Vector3f> out(size(), Eigen::Vector3f::Constant(std::nanf("")));
   tbb::parallel_for(std::size_t{0}, size(), [&](std::size_t id) {
+    check_every(stop, id);
     const Moments& v = voxels[id];
     const Eigen::Vector3d local = mean_of(v);  // the centroid, from the corner
     // Pool the block of 2x2x2 voxels whose centre is the voxel corner nearest to the centroid,

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "lmk/geometry/point_cloud.h"
+#include "lmk/geometry/stop_check.h"
 
 namespace lmk {
 
@@ -18,7 +19,8 @@ namespace lmk {
 class VoxelMoments {
  public:
   /// Throws lmk::Error for a non-positive leaf or a cloud too large for the leaf.
-  VoxelMoments(const PointCloud& cloud, double leaf_size);
+  /// `stop` is called between pieces of the work (geometry/stop_check.h).
+  VoxelMoments(const PointCloud& cloud, double leaf_size, const StopCheck& stop = {});
 
   std::size_t size() const;  ///< occupied voxels
   /// The centroid of each voxel's points.
@@ -26,7 +28,8 @@ class VoxelMoments {
   /// Each voxel's normal: the principal axes of the raw points in the 2x2x2 block of voxels
   /// nearest to its centroid, a neighbourhood about two leaves across, facing `viewpoint`. NaN
   /// where the block's points lie on a line or number fewer than three.
-  std::vector<Eigen::Vector3f> normals(const Eigen::Vector3d& viewpoint) const;
+  std::vector<Eigen::Vector3f> normals(const Eigen::Vector3d& viewpoint,
+                                       const StopCheck& stop = {}) const;
 
  private:
   struct Impl;

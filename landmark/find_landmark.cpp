@@ -240,7 +240,7 @@ FindResult find_landmark(const PointCloud& scene, const Landmark& landmark,
   with_worker_threads(settings.execution.threads, [&] {
     // The landmark first: its errors (flat, invalid) come before the scene's.
     const LandmarkIndex prepared = LandmarkIndex::borrowing(landmark, settings);
-    const SceneIndex index(scene, settings.scene);
+    const SceneIndex index(scene, settings.scene, settings.execution.stop);
     result = search(index, prepared, settings);
     const double built = index.seconds_to_build() + prepared.seconds_to_build();
     result.stats.seconds_preprocess += built;

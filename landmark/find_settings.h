@@ -233,6 +233,9 @@ struct ExecutionSettings {
   bool keep_suppressed = false;
   /// Called after each seed with (seeds done, seeds in all), possibly from several threads at once.
   std::function<void(std::size_t, std::size_t)> progress;
+  /// Called between pieces of the work, the scene's indexing included, at least every 200 ms or
+  /// so (geometry/stop_check.h); what it throws ends the search. Like progress, no description.
+  StopCheck stop;
 
   template <class Self, class Visit>
   static void describe(Self& s, Visit&& visit) {

@@ -23,6 +23,7 @@
 #include "lmk/geometry/kdtree.h"
 #include "lmk/geometry/point_cloud.h"
 #include "lmk/geometry/range_image.h"
+#include "lmk/geometry/stop_check.h"
 #include "lmk/landmark/scene_settings.h"
 #include "lmk/occupancy/distance_field.h"
 #include "lmk/occupancy/occupancy_grid.h"
@@ -32,7 +33,10 @@ namespace lmk {
 class SceneIndex {
  public:
   /// Throws lmk::Error for bad settings or a scene (after the crop) without a finite point.
-  explicit SceneIndex(const PointCloud& scene, const SceneSettings& settings = {});
+  /// `stop` is called between pieces of the work, here and when the fine level is built
+  /// (geometry/stop_check.h): what it throws stops the indexing.
+  explicit SceneIndex(const PointCloud& scene, const SceneSettings& settings = {},
+                      StopCheck stop = {});
 
   const SceneSettings& settings() const { return settings_; }  ///< as built: resolved()
   const Eigen::Vector3d& up() const { return up_; }
@@ -73,6 +77,7 @@ class SceneIndex {
   std::optional<RangeImage> range_image_;
   bool organised_ = false;
   double seconds_ = 0.0;
+  StopCheck stop_;
 
   mutable std::once_flag coarse_tree_once_;
   mutable std::unique_ptr<KdTree> coarse_tree_;

@@ -100,7 +100,7 @@ struct SlabLeaves {
 // for each voxel the nearest point; ties go to the smaller index, so the result does not depend on
 // the order in which slabs or points are visited.
 SlabLeaves build_slab(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& members,
-                      double voxel, double band, int x0, int x1) {
+                      double voxel, double band, int x0, int x1, const StopCheck& stop) {
   const auto background = static_cast<float>(band * band);
   SlabBlocks blocks(members.size(), background);
   const int reach = static_cast<int>(std::ceil(band / voxel));
@@ -109,7 +109,10 @@ SlabLeaves build_slab(const std::vector<Eigen::Vector3f>& points, const std::vec
   // are looked up once, not once per row (the lookups dominated the build time).
   const int span = 2 * reach / static_cast<int>(FloatLeaf::DIM) + 2;
   std::vector<LeafBlock*> near(static_cast<std::size_t>(span * span * span));
-  for (int index : members) {
+  // A point splats up to (2 reach + 1)^3 voxels: checked more often than a plain point loop.
+  for (std::size_t m = 0; m < members.size(); ++m) {
+    if (stop && m % (kItemsPerStopCheck / 16) == 0) stop();
+    const int index = members[m];
     const Eigen::Vector3d p = points[index].cast<double>() / voxel;  // in voxel units
     const Eigen::Vector3i c = p.array().round().cast<int>();
     const Eigen::Vector3i first(std::max(c.x() - reach, x0), c.y() - reach, c.z() - reach);
@@ -153,7 +156,9 @@ SlabLeaves build_slab(const std::vector<Eigen::Vector3f>& points, const std::vec
   // Blocks whose box corner no point reached stay out of the grids.
   SlabLeaves out;
   const float outside = std::sqrt(background);  // what the square-root pass made of band^2
+  std::size_t converted = 0;
   for (const auto& block : blocks.blocks()) {
+    if (stop && ++converted % 1024 == 0) stop();
     if (std::all_of(block->nearest.begin(), block->nearest.end(), [](std::uint64_t k) {
           return LeafBlock::index_of(k) == LeafBlock::kUnclaimed;
         })) {
@@ -181,7 +186,7 @@ SlabLeaves build_slab(const std::vector<Eigen::Vector3f>& points, const std::vec
 DistanceField::DistanceField() : DistanceField({}, DistanceFieldSettings{}) {}
 
 DistanceField::DistanceField(const std::vector<Eigen::Vector3f>& points,
-                             const DistanceFieldSettings& settings) {
+                             const DistanceFieldSettings& settings, const StopCheck& stop) {
   const double voxel = settings.voxel_size, band = settings.band;
   if (!(voxel > 0.0 && std::isfinite(voxel))) {
     throw Error("distance field: voxel size must be positive and finite");
@@ -203,6 +208,7 @@ DistanceField::DistanceField(const std::vector<Eigen::Vector3f>& points,
   int first = 0, last = -1;
   std::vector<std::pair<int, int>> reach_of(points.size(), {0, -1});
   for (std::size_t i = 0; i < points.size(); ++i) {
+    check_every(stop, i);
     if (!points[i].allFinite()) continue;
     if (points[i].cast<double>().cwiseAbs().maxCoeff() > limit) {
       std::ostringstream message;
@@ -222,6 +228,7 @@ DistanceField::DistanceField(const std::vector<Eigen::Vector3f>& points,
   const int slabs = std::max(0, last - first + 1);
   std::vector<std::vector<int>> members(slabs);
   for (std::size_t i = 0; i < points.size(); ++i) {
+    check_every(stop, i);
     for (int s = reach_of[i].first; s <= reach_of[i].second; ++s) {
       members[s - first].push_back(static_cast<int>(i));
     }
@@ -229,7 +236,7 @@ DistanceField::DistanceField(const std::vector<Eigen::Vector3f>& points,
   std::vector<SlabLeaves> parts(slabs);
   tbb::parallel_for(0, slabs, [&](int s) {
     const int x0 = (first + s) * kSlabVoxels;
-    parts[s] = build_slab(points, members[s], voxel, band, x0, x0 + kSlabVoxels);
+    parts[s] = build_slab(points, members[s], voxel, band, x0, x0 + kSlabVoxels, stop);
   });
 
   const auto transform = vdb::math::Transform::createLinearTransform(voxel);

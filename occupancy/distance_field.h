@@ -15,6 +15,8 @@
 #include <memory>
 #include <vector>
 
+#include "lmk/geometry/stop_check.h"
+
 namespace lmk {
 
 struct DistanceFieldSettings {
@@ -29,7 +31,9 @@ class DistanceField {
   /// The field of `points` (non-finite points are skipped). Parallel over slabs of points, with
   /// the result independent of the thread count. Throws lmk::Error for a non-positive voxel or a
   /// band smaller than one voxel.
-  DistanceField(const std::vector<Eigen::Vector3f>& points, const DistanceFieldSettings& settings);
+  /// `stop` is called between pieces of the work (geometry/stop_check.h).
+  DistanceField(const std::vector<Eigen::Vector3f>& points, const DistanceFieldSettings& settings,
+                const StopCheck& stop = {});
 
   double voxel_size() const;
   double band() const;

@@ -16,7 +16,8 @@ struct OccupancyGrid::Grid {
 
 OccupancyGrid::OccupancyGrid() : OccupancyGrid({}, 0.005) {}
 
-OccupancyGrid::OccupancyGrid(const std::vector<Eigen::Vector3f>& points, double voxel_size) {
+OccupancyGrid::OccupancyGrid(const std::vector<Eigen::Vector3f>& points, double voxel_size,
+                             const StopCheck& stop) {
   if (!(voxel_size > 0.0 && std::isfinite(voxel_size))) {
     throw Error("occupancy grid: voxel size must be positive and finite");
   }
@@ -27,7 +28,9 @@ OccupancyGrid::OccupancyGrid(const std::vector<Eigen::Vector3f>& points, double 
   g->grid->setTransform(openvdb::math::Transform::createLinearTransform(voxel_size));
   auto access = g->grid->getAccessor();
   const double inverse_voxel = 1.0 / voxel_size;
-  for (const auto& p : points) {
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    check_every(stop, i);
+    const Eigen::Vector3f& p = points[i];
     if (p.allFinite())
       access.setValueOn(detail::nearest_voxel(p.cast<double>(), inverse_voxel), true);
   }

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "lmk/geometry/box.h"
+#include "lmk/geometry/stop_check.h"
 
 namespace lmk {
 
@@ -17,8 +18,9 @@ class OccupancyGrid {
  public:
   OccupancyGrid();  ///< nothing occupied
   /// The voxels (side `voxel_size`, m) holding a finite point of `points`. Throws lmk::Error for a
-  /// non-positive voxel.
-  OccupancyGrid(const std::vector<Eigen::Vector3f>& points, double voxel_size);
+  /// non-positive voxel. `stop` is called between pieces of the work (geometry/stop_check.h).
+  OccupancyGrid(const std::vector<Eigen::Vector3f>& points, double voxel_size,
+                const StopCheck& stop = {});
 
   double voxel_size() const;
   std::size_t occupied_voxels() const;

@@ -72,6 +72,7 @@ nlohmann::json verdict(const Landmark& landmark, const PointCloud& scene,
   }
   FindSettings find;
   find.scene.up = landmark.up;  // the capture frame is the scene frame
+  find.execution.stop = progress.stop_check();
   const std::string what = "searching '" + landmark.name + "' in its own scene";
   find.execution.progress = [&progress, &what](std::size_t done, std::size_t total) {
     progress.report(0.2 + 0.8 * static_cast<double>(done) / static_cast<double>(total), what);

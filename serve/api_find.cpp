@@ -36,12 +36,13 @@ ApiResponse Api::find(const std::string& body_text) {
   MemoryBudget::Reservation memory = reserve_search(scene, settings.scene, "find");
   return run_job("find", body, std::move(memory), [=](JobProgress& progress) {
     progress.report(0.0, "indexing scene " + scene.name);
-    const SceneIndex index(*scene.cloud, settings.scene);
+    const SceneIndex index(*scene.cloud, settings.scene, progress.stop_check());
     nlohmann::json results = nlohmann::json::array();
     const double n = static_cast<double>(landmarks.size());
     for (std::size_t i = 0; i < landmarks.size(); ++i) {
       const std::string& name = names[i];
       FindSettings run = settings;
+      run.execution.stop = progress.stop_check();
       run.execution.progress = [&progress, &name, i, n](std::size_t done, std::size_t total) {
         const double part = total > 0 ? static_cast<double>(done) / static_cast<double>(total) : 1;
         progress.report(

@@ -114,6 +114,7 @@ ApiResponse Api::plan(const std::string& name, const std::string& body_text) {
     robot.read_joint_state(start);
     double done = 0.0;
     const double steps = static_cast<double>(program.landmarks.size() + 1);
+    plan_settings.find.execution.stop = progress.stop_check();
     plan_settings.progress = [&](const std::string& line) {
       progress.report(std::min(done++ / steps, 0.99), line);
     };

@@ -158,6 +158,7 @@ std::vector<Candidate> vote(const Stages& st) {
   std::vector<std::vector<PoseVote>> votes(in.seeds.size());
   std::atomic<std::size_t> done{0};
   tbb::parallel_for(std::size_t{0}, in.seeds.size(), [&](std::size_t k) {
+    if (st.s.execution.stop) st.s.execution.stop();  // each item: a few ms at most
     pairs.vote(voters, voter_grid, references[k], st.s.fast.poses_per_seed, 0.75, votes[k],
                st.limit);
     if (progress) progress(++done, in.seeds.size());
@@ -217,6 +218,7 @@ CoarseAlignment coarse_align(const Stages& st, const std::vector<Candidate>& clu
   out.iterations.assign(clusters.size(), 0);
   out.quick.resize(clusters.size());
   tbb::parallel_for(std::size_t{0}, clusters.size(), [&](std::size_t c) {
+    if (st.s.execution.stop) st.s.execution.stop();  // each item: a few ms at most
     const DistanceFieldTarget target(st.index.field(), &st.coarse.normals);
     const IcpResult r = icp(coarse_model.points, target, clusters[c].T_scene_capture, icp_settings);
     out.aligned[c] = r.T_target_source;
@@ -301,6 +303,7 @@ std::vector<Match> fine_align(const Stages& st, const std::vector<Candidate>& cl
   const FineAlignment fine(st);
   std::vector<Match> matches(survivors.size());
   tbb::parallel_for(std::size_t{0}, survivors.size(), [&](std::size_t k) {
+    if (st.s.execution.stop) st.s.execution.stop();  // each item: a few ms at most
     const std::size_t c = survivors[k];
     Match& m = matches[k];
     m = fine.align(st, coarse.aligned[c]);
@@ -365,6 +368,7 @@ std::vector<Match> polish(const Stages& st, std::vector<Match> aligned,
   // Further out than half again the threshold, a few millimetres of polish cannot make a match.
   const double worth_refining = 1.5 * st.in.threshold;
   tbb::parallel_for(std::size_t{0}, matches.size(), [&](std::size_t k) {
+    if (st.s.execution.stop) st.s.execution.stop();  // each item: a few ms at most
     if (matches[k].terms.error < worth_refining) refiner.apply(st, matches[k]);
   });
   return matches;

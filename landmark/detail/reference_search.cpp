@@ -59,6 +59,7 @@ std::vector<Match> reference_candidates(const SearchInput& in) {
   std::atomic<std::size_t> done{0};
 
   tbb::parallel_for(std::size_t{0}, in.seeds.size(), [&](std::size_t s) {
+    if (in.settings.execution.stop) in.settings.execution.stop();
     Worker& w = workers.local();
     Match& m = candidates[s];
     m.seed_index = s;

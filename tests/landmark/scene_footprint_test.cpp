@@ -8,9 +8,12 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <mutex>
 #include <random>
 #include <string>
 
@@ -155,6 +158,58 @@ TEST(SceneFootprint, CountingStopsAtTheLimit) {
   EXPECT_FALSE(whole.over_limit);
   EXPECT_GT(whole.field_nodes, 400'000u);
   EXPECT_GT(whole.bytes, 2'000'000'000u);
+}
+
+// Issue #47: indexing checks for a stop between pieces of its work, often enough that a cancelled
+// search ends within about 200 ms, and ends at the check that throws.
+struct Stopped {};
+
+TEST(StopCheck, IndexingChecksThroughoutAndEndsAtTheCheckThatThrows) {
+  std::mt19937 rng(5);
+  const PointCloud scene = scattered(1'000'000, 3.0f, rng);
+  using Clock = std::chrono::steady_clock;
+  std::mutex mutex;
+  std::size_t checks = 0;
+  double longest = 0.0;
+  Clock::time_point last = Clock::now();
+  const Clock::time_point begin = last;
+  {
+    const SceneIndex index(scene, SceneSettings{}, [&] {
+      std::lock_guard<std::mutex> lock(mutex);
+      const Clock::time_point now = Clock::now();
+      longest = std::max(longest, std::chrono::duration<double>(now - last).count());
+      last = now;
+      ++checks;
+    });
+    index.fine_tree();
+  }
+  const double seconds = std::chrono::duration<double>(Clock::now() - begin).count();
+  std::printf("indexing 1 million scattered points: %zu checks in %.2f s, longest gap %.0f ms\n",
+              checks, seconds, 1000.0 * longest);
+  // Every point loop checks each kItemsPerStopCheck points: the occupancy, the moments (twice),
+  // the normals and the fine level alone pass a million points in all five.
+  EXPECT_GE(checks, 5 * 1'000'000 / kItemsPerStopCheck);
+
+  // A check that throws ends the indexing there: the exception is the caller's own.
+  for (const std::size_t stop_at : {std::size_t{1}, std::size_t{40}, checks / 2}) {
+    std::atomic<std::size_t> calls{0};
+    EXPECT_THROW(SceneIndex(scene, SceneSettings{},
+                            [&] {
+                              if (++calls == stop_at) throw Stopped{};
+                            }),
+                 Stopped)
+        << "stopping at check " << stop_at;
+    EXPECT_LE(calls.load(), stop_at + 64) << "the work went on after the stop";
+  }
+  // And a search: its stop check is asked during the indexing and between candidates.
+  const Landmark cup = load_landmark(LMK_SOURCE_DIR "/tests/cli/fixtures/cup_v2.lmk");
+  FindSettings s;
+  s.scene.base_frame = true;
+  std::atomic<std::size_t> calls{0};
+  s.execution.stop = [&] {
+    if (++calls == 100) throw Stopped{};
+  };
+  EXPECT_THROW(find_landmark(scene, cup, s), Stopped);
 }
 
 }  // namespace

@@ -268,5 +268,38 @@ TEST(ServeBudget, UnderUploadsAndSearchesOf5MillionPointsTheServerKeepsItsBudget
       memory.dump().c_str());
 }
 
+// Ctrl-C with a search under way on a large scene and the queue nearly full: the server exits
+// within 2 s (it took 2.6-3.0 s with 60 jobs queued), having cancelled the rest.
+TEST(ServeBudget, CtrlCStopsTheServerWithinTwoSecondsWhateverIsQueued) {
+  ScratchDir dir;
+  const std::string room = dir.file("room.pcd");
+  write_room(room, 2'000'000);
+  const std::string landmarks = dir.file("landmarks");
+  std::filesystem::create_directories(landmarks);
+  std::filesystem::copy_file(LMK_CLI_FIXTURES "/cup_v2.lmk", landmarks + "/cup.lmk");
+  ServeProcess server({room, "--memory-budget", "1000", "--landmarks", landmarks, "--base-frame",
+                       "--workers", "1"});
+  ASSERT_GT(server.port(), 0) << "lmk serve did not start";
+  auto c = server.client();
+  const nlohmann::json find = {{"scene", "1"}, {"landmarks", {"cup"}}};
+  int queued = 0;
+  for (int i = 0; i < 60; ++i) {
+    const httplib::Result r = c->Post("/api/find", find.dump(), "application/json");
+    ASSERT_TRUE(r);
+    ASSERT_EQ(r->status, 202) << r->body;
+    ++queued;
+  }
+  // The first runs (indexing 2 million points), the rest wait.
+  for (;;) {
+    const nlohmann::json first = nlohmann::json::parse(c->Get("/api/jobs/job-1")->body);
+    if (first["state"] != "queued") break;
+  }
+  const auto [seconds, code] = server.interrupt();
+  std::printf("Ctrl-C with 1 search running and %d queued: exited in %.2f s (code %d)\n",
+              queued - 1, seconds, code);
+  EXPECT_EQ(code, 0);
+  EXPECT_LT(seconds, 2.0);
+}
+
 }  // namespace
 }  // namespace lmk::test
