@@ -65,7 +65,7 @@ namespace detail {
 void too_many_points(const std::string& path, const std::string& count, std::size_t max_points) {
   const std::string limit = std::to_string(max_points);
   throw CloudTooLarge(count == "more"
-                          ? path + ": holds more than " + limit + " points, the limit here"
+                          ? path + ": holds more than " + limit + " points, the most allowed"
                           : path + ": declares " + count + " points, over the limit of " + limit);
 }
 

@@ -39,7 +39,7 @@ PointCloud voxel_downsample(const PointCloud& cloud, double leaf_size, const Sto
   // The points of each voxel in index order, with no sort of the points; only the voxels, far
   // fewer, are sorted by key for the output order.
   if (stop) stop();
-  const detail::VoxelBuckets buckets = detail::bucket_by_voxel(cloud, inv_leaf);
+  const detail::VoxelBuckets buckets = detail::bucket_by_voxel(cloud, inv_leaf, stop);
   if (stop) stop();
   const std::vector<std::uint64_t>& keys = buckets.keys;
   const std::vector<std::size_t>& starts = buckets.starts;

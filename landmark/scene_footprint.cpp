@@ -6,8 +6,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <vector>
 
+#include "lmk/geometry/error.h"
 #include "lmk/geometry/internal/voxel_key.h"
 #include "lmk/geometry/internal/voxel_table.h"
 #include "lmk/landmark/scene_settings.h"
@@ -99,6 +101,27 @@ TreeNodes tree_nodes(std::vector<std::uint64_t>& keys) {
 }
 
 }  // namespace
+
+std::size_t available_memory() {
+  std::ifstream meminfo("/proc/meminfo");
+  for (std::string key; meminfo >> key;) {
+    unsigned long long kb = 0;
+    if (key == "MemAvailable:" && meminfo >> kb) return static_cast<std::size_t>(kb) * 1024;
+    meminfo.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
+  }
+  return std::numeric_limits<std::size_t>::max();
+}
+
+void require_footprint_fits(const PointCloud& scene, const SceneSettings& settings) {
+  const std::size_t available = available_memory();
+  const SceneFootprint f = estimate_scene_footprint(scene, settings, available);
+  if (!f.over_limit) return;
+  throw Error("scene: indexing it would take over " + describe_bytes(f.bytes) + " (" +
+              std::to_string(f.points) + " points in " + std::to_string(f.coarse_voxels) +
+              " coarse voxels), more than the " + describe_bytes(available) +
+              " this machine has available; crop it (--work-volume) or use a coarser leaf "
+              "(--coarse-leaf)");
+}
 
 std::string describe_bytes(std::size_t bytes) {
   char text[32];

@@ -40,6 +40,15 @@ SceneFootprint estimate_scene_footprint(
     const PointCloud& scene, const SceneSettings& settings,
     std::size_t limit = std::numeric_limits<std::size_t>::max());
 
+/// The memory this machine can give now: /proc/meminfo's MemAvailable (SIZE_MAX when unknown).
+std::size_t available_memory();
+
+/// Throws lmk::Error, one line saying what the scene needs and what to change, when indexing and
+/// searching `scene` would take more than available_memory(): such a scene is refused before
+/// anything is built instead of being killed by the kernel (points scattered through a 100 m cube
+/// took over 24 GB). A pass over the points: about 10 ms for a Kinect frame.
+void require_footprint_fits(const PointCloud& scene, const SceneSettings& settings);
+
 /// "0.45 GB", "120 MB": a byte count as users read it.
 std::string describe_bytes(std::size_t bytes);
 

@@ -28,10 +28,6 @@ void check_upload_name(const std::string& name) {
   }
 }
 
-// An upload's parse, per point it may hold, beside the file's bytes read whole: PCL's blob and
-// the cloud (22 bytes a point measured for a binary PCD), an XYZ file's rows growing their vector
-// (53); rounded up.
-constexpr std::size_t kParseBytesPerPoint = 80;
 // The fewest bytes a point of an XYZ file takes ("0 0 0\n"): what bounds its points unread.
 constexpr std::size_t kLeastXyzPointBytes = 6;
 
@@ -42,6 +38,11 @@ std::size_t resident_bytes(const PointCloud& c) {
 }
 
 }  // namespace
+
+std::size_t upload_price(std::size_t file_bytes, std::size_t points) {
+  constexpr std::size_t kParseBytesPerPoint = 80;
+  return file_bytes + points * kParseBytesPerPoint;
+}
 
 UploadFile::UploadFile(std::string name, std::filesystem::path path)
     : name_(std::move(name)), path_(std::move(path)), file_(std::fopen(path_.c_str(), "wb")) {
@@ -155,7 +156,7 @@ Scene SceneStore::add_upload(UploadFile& file) {
     throw bad_request(in_their_words(e));
   }
   MemoryBudget::Reservation memory =
-      budget_.reserve(size + points * kParseBytesPerPoint, "uploads", "upload " + name);
+      budget_.reserve(upload_price(size, points), "uploads", "upload " + name);
   PointCloud cloud;
   try {
     cloud = read_cloud(path, limits_.max_points);

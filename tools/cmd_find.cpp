@@ -21,6 +21,7 @@
 #include "lmk/landmark/find_landmark.h"
 #include "lmk/landmark/internal/find_result_json.h"
 #include "lmk/landmark/landmark_file.h"
+#include "lmk/landmark/scene_footprint.h"
 #include "lmk/occupancy/tsdf_volume.h"
 #include "tools/bag_input.h"
 #include "tools/cli_common.h"
@@ -152,6 +153,8 @@ int run_find(FindOptions& o) {
   }
   const Landmark landmark = load_landmark(o.landmark);
   const PointCloud scene = read_scene(o);
+  // A scene whose index would not fit this machine is refused before anything is built.
+  require_footprint_fits(scene, o.settings.scene);
   ProgressBar bar("find " + landmark.name);
   o.settings.execution.progress = [&bar](std::size_t done, std::size_t total) {
     bar.update(done, total);

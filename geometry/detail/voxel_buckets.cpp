@@ -3,10 +3,11 @@
 
 namespace lmk::detail {
 
-VoxelBuckets bucket_by_voxel(const PointCloud& cloud, double inv_leaf) {
+VoxelBuckets bucket_by_voxel(const PointCloud& cloud, double inv_leaf, const StopCheck& stop) {
   VoxelBuckets b{VoxelTable(cloud.size() / 8), {}, {}, {}};
   std::vector<std::uint32_t> voxel_of(cloud.size(), VoxelTable::kAbsent);
   for (Index i = 0; i < cloud.size(); ++i) {
+    check_every(stop, i);
     if (!is_finite(cloud.points[i])) continue;
     const std::uint64_t key = pack_voxel(voxel_coord(cloud.points[i], inv_leaf));
     voxel_of[i] = b.table.insert(key);
@@ -20,6 +21,7 @@ VoxelBuckets bucket_by_voxel(const PointCloud& cloud, double inv_leaf) {
   b.members.resize(b.starts.back());
   std::vector<std::size_t> fill(b.starts.begin(), b.starts.end() - 1);
   for (Index i = 0; i < cloud.size(); ++i) {
+    check_every(stop, i);
     if (voxel_of[i] != VoxelTable::kAbsent) b.members[fill[voxel_of[i]]++] = i;
   }
   return b;

@@ -12,6 +12,7 @@
 
 #include "lmk/geometry/internal/voxel_table.h"
 #include "lmk/geometry/point_cloud.h"
+#include "lmk/geometry/stop_check.h"
 
 namespace lmk::detail {
 
@@ -23,7 +24,7 @@ struct VoxelBuckets {
 };
 
 /// Voxels of side 1 / inv_leaf anchored at the origin. Throws lmk::Error when the cloud spans too
-/// many voxels for a key (voxel_coord).
-VoxelBuckets bucket_by_voxel(const PointCloud& cloud, double inv_leaf);
+/// many voxels for a key (voxel_coord). `stop` is called between pieces of the work.
+VoxelBuckets bucket_by_voxel(const PointCloud& cloud, double inv_leaf, const StopCheck& stop = {});
 
 }  // namespace lmk::detail

@@ -318,6 +318,37 @@ TEST_F(CliLandmark, BadInputToCaptureAndFind) {
 
 // A depth camera's correction (lmk calibrate-depth's file) is undone on the frame read by capture,
 // find and convert; one that does not fit the frame, or a bad file, is one line naming the file.
+// Issue #47: a scene whose index would not fit the machine is refused in one line before anything
+// is built. A million points scattered through a kilometre each need their own distance-field
+// nodes: about 70 GB, where they had run until the kernel killed lmk.
+TEST_F(CliLandmark, ASceneWhoseIndexWouldNotFitTheMachineIsRefusedUpFront) {
+  std::ifstream meminfo("/proc/meminfo");
+  double available_gb = 0.0;
+  for (std::string key; meminfo >> key;) {
+    double kb = 0.0;
+    if (key == "MemAvailable:" && meminfo >> kb) available_gb = kb / (1024.0 * 1024.0);
+  }
+  if (available_gb > 50.0) GTEST_SKIP() << "this machine has " << available_gb << " GB available";
+  const std::size_t n = 1'000'000;
+  std::ofstream far(dir_.file("far.pcd"), std::ios::binary);
+  far << "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH " << n
+      << "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " << n << "\nDATA binary\n";
+  std::uint32_t state = 12345;
+  for (std::size_t i = 0; i < 3 * n; ++i) {
+    state = state * 1664525u + 1013904223u;  // a fixed sequence, anywhere in +-500 m
+    const float v =
+        static_cast<float>(state >> 8) / static_cast<float>(1u << 24) * 1000.0f - 500.0f;
+    far.write(reinterpret_cast<const char*>(&v), sizeof v);
+  }
+  far.close();
+  ASSERT_EQ(
+      lmk("capture " + path("scene.pcd") + " " + carton_ + " --name carton -o " + path("c.lmk"))
+          .exit_code,
+      0);
+  expect_bad_input("find " + path("far.pcd") + " " + path("c.lmk") + " --base-frame",
+                   "this machine has available; crop it (--work-volume) or use a coarser leaf");
+}
+
 TEST_F(CliLandmark, DepthCorrectionAppliesToTheFrameReadOrIsRefusedInOneLine) {
   const std::string scene = path("scene.pcd");
   const auto correction = [&](const std::string& name, const std::string& image,

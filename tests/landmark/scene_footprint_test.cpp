@@ -23,26 +23,10 @@
 #include "lmk/landmark/landmark_index.h"
 #include "lmk/landmark/scene_index.h"
 #include "tests/landmark/l_shape_scene.h"
+#include "tests/support/test_support.h"
 
 namespace lmk {
 namespace {
-
-// kB of this process's status line `field` ("VmRSS", "VmHWM").
-double status_bytes(const std::string& field) {
-  std::ifstream status("/proc/self/status");
-  for (std::string line; std::getline(status, line);) {
-    if (line.rfind(field + ":", 0) == 0) return std::stod(line.substr(field.size() + 1)) * 1024.0;
-  }
-  return 0.0;
-}
-
-// Whether the high-water mark could be reset (Linux 4.0 on; some sandboxes refuse the write).
-bool reset_peak() {
-  std::ofstream clear("/proc/self/clear_refs");
-  clear << "5";
-  clear.close();
-  return static_cast<bool>(clear);
-}
 
 FindSettings settings_for(const PointCloud& scene) {
   FindSettings s;
@@ -54,7 +38,7 @@ FindSettings settings_for(const PointCloud& scene) {
 // The growth of the peak resident memory while `scene` is indexed, its fine level built and the
 // cup searched in it.
 double measured_peak(const PointCloud& scene, const LandmarkIndex& cup, const FindSettings& s) {
-  const double before = status_bytes("VmRSS");
+  const double before = test::process_status_bytes("VmRSS");
   {
     const SceneIndex index(scene, s.scene);
     index.fine_tree();
@@ -62,7 +46,7 @@ double measured_peak(const PointCloud& scene, const LandmarkIndex& cup, const Fi
     const FindResult found = find_landmark(index, cup, s);
     EXPECT_GE(found.stats.seeds, 0u);
   }
-  return status_bytes("VmHWM") - before;
+  return test::process_status_bytes("VmHWM") - before;
 }
 
 PointCloud surfaces(std::size_t n, std::mt19937& rng) {
@@ -100,12 +84,12 @@ PointCloud scattered(std::size_t n, float side, std::mt19937& rng) {
 }
 
 void expect_estimate_bounds_peak(const std::string& what, const PointCloud& scene) {
-  if (!reset_peak()) GTEST_SKIP() << "/proc/self/clear_refs cannot be written here";
+  if (!test::reset_peak_memory()) GTEST_SKIP() << "/proc/self/clear_refs cannot be written here";
   const Landmark cup_landmark = load_landmark(LMK_SOURCE_DIR "/tests/cli/fixtures/cup_v2.lmk");
   const FindSettings s = settings_for(scene);
   const LandmarkIndex cup(cup_landmark, s);
   const SceneFootprint f = estimate_scene_footprint(scene, s.scene);
-  ASSERT_TRUE(reset_peak());
+  ASSERT_TRUE(test::reset_peak_memory());
   const double peak = measured_peak(scene, cup, s);
   std::printf(
       "%s: %zu points, %zu coarse voxels, %zu field nodes, %zu occupancy nodes: estimate %.0f MB, "
@@ -190,12 +174,14 @@ TEST(StopCheck, IndexingChecksThroughoutAndEndsAtTheCheckThatThrows) {
   // the normals and the fine level alone pass a million points in all five.
   EXPECT_GE(checks, 5 * 1'000'000 / kItemsPerStopCheck);
 
-  // A check that throws ends the indexing there: the exception is the caller's own.
+  // A check that throws ends the indexing there: the exception is the caller's own. Once stopped,
+  // every check throws, as a cancelled job's does: the stages running beside the one that threw
+  // end at their own next check.
   for (const std::size_t stop_at : {std::size_t{1}, std::size_t{40}, checks / 2}) {
     std::atomic<std::size_t> calls{0};
     EXPECT_THROW(SceneIndex(scene, SceneSettings{},
                             [&] {
-                              if (++calls == stop_at) throw Stopped{};
+                              if (++calls >= stop_at) throw Stopped{};
                             }),
                  Stopped)
         << "stopping at check " << stop_at;
@@ -207,7 +193,7 @@ TEST(StopCheck, IndexingChecksThroughoutAndEndsAtTheCheckThatThrows) {
   s.scene.base_frame = true;
   std::atomic<std::size_t> calls{0};
   s.execution.stop = [&] {
-    if (++calls == 100) throw Stopped{};
+    if (++calls >= 100) throw Stopped{};
   };
   EXPECT_THROW(find_landmark(scene, cup, s), Stopped);
 }

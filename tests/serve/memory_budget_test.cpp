@@ -4,11 +4,13 @@
 // while a cloud is parsed; reservations are given back when the work ends.
 #include "lmk/serve/memory_budget.h"
 
+#include <filesystem>
 #include <fstream>
 
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/landmark/scene_footprint.h"
 #include "lmk/serve/api_error.h"
+#include "lmk/serve/scene_store.h"
 #include "tests/serve/serve_fixture.h"
 
 namespace lmk::test {
@@ -48,6 +50,32 @@ TEST(MemoryBudget, ReservationsHoldTheirBytesUntilTheyGo) {
   // What was in memory already is counted, even beyond the budget, and then nothing fits.
   const MemoryBudget::Reservation scenes = budget.reserve_anyway(1200, "scenes");
   EXPECT_THROW(budget.reserve(1, "jobs", "a find"), serve::ApiError);
+}
+
+// The price of an upload bounds what parsing it takes, in each format lmk reads, at the most points
+// the price assumes (the header's count; an XYZ file's size over 6 bytes, here with short rows).
+TEST(UploadPrice, BoundsThePeakOfParsingEachFormat) {
+  ScratchDir dir;
+  const PointCloud cloud = random_cloud(1'000'000, 3, 2.0f);
+  for (const auto& [name, encoding] :
+       {std::pair{"binary.pcd", Encoding::kBinary},
+        std::pair{"compressed.pcd", Encoding::kBinaryCompressed},
+        std::pair{"ascii.pcd", Encoding::kAscii}, std::pair{"binary.ply", Encoding::kBinary},
+        std::pair{"rows.xyz", Encoding::kAscii}}) {
+    const std::string path = dir.file(name);
+    WriteOptions options;
+    options.encoding = encoding;
+    write_cloud(path, cloud, options);
+    const std::size_t size = std::filesystem::file_size(path);
+    const std::size_t points = declared_points(path).value_or(size / 6);
+    if (!reset_peak_memory()) GTEST_SKIP() << "/proc/self/clear_refs cannot be written here";
+    const double before = process_status_bytes("VmRSS");
+    EXPECT_EQ(read_cloud(path).size(), cloud.size());
+    const double peak = process_status_bytes("VmHWM") - before;
+    std::printf("%s: %zu bytes, priced %.0f MB, parsing took %.0f MB\n", name, size,
+                serve::upload_price(size, points) / 1e6, peak / 1e6);
+    EXPECT_GE(static_cast<double>(serve::upload_price(size, points)), peak) << name;
+  }
 }
 
 class ServeMemoryTest : public ServeTest {
