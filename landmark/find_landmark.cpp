@@ -150,6 +150,41 @@ struct Prepared {
   const ConfidenceCalibration* calibration;  ///< null: none fitted for the metric
 };
 
+// Steps 5 and 6 for the scored candidates, and their confidence: what the search and
+// find_near_pose select by.
+void select_and_assess(const SceneIndex& index, const LandmarkIndex& prepared, const Prepared& p,
+                       detail::CandidateSet candidates, bool suppress_overlaps,
+                       FindResult& result) {
+  // Every candidate scored is a rival of the matches (their confidence): keep them before
+  // selection moves them.
+  std::vector<Match> pool = candidates.kept;
+  pool.insert(pool.end(), candidates.suppressed.begin(), candidates.suppressed.end());
+  if (p.settings.execution.keep_suppressed) {
+    for (Match& m : candidates.suppressed) result.suppressed.push_back({std::move(m), kSuppressed});
+  }
+  select(
+      std::move(candidates.kept), p.settings.selection, suppress_overlaps,
+      p.settings.execution.keep_suppressed,
+      [&](const Match& m) {
+        return detail::shows_too_little_to_fix(index, p.landmark, m.T_scene_capture);
+      },
+      result);
+  p.assess(index, prepared, pool, result);
+}
+
+// The fast search's fine alignment and polish started at `T_scene_capture` (step 4 for one
+// candidate), after the checks every entry point makes.
+Match align_at(const SceneIndex& index, const LandmarkIndex& prepared, const Prepared& p,
+               const Eigen::Isometry3d& T_scene_capture) {
+  if (!T_scene_capture.matrix().allFinite()) throw Error("score pose: the pose is not finite");
+  const Indices no_seeds;
+  const detail::SearchInput input{index,     index.coarse(),   p.landmark,
+                                  prepared,  SceneView{index}, p.view,
+                                  no_seeds,  p.metric,         *p.settings.selection.threshold,
+                                  p.settings};
+  return detail::fast_align_and_polish(input, T_scene_capture);
+}
+
 // Steps 3 to 6 in an indexed scene, for inputs already checked.
 FindResult search(const SceneIndex& index, const LandmarkIndex& prepared,
                   const FindSettings& requested) {
@@ -184,21 +219,8 @@ FindResult search(const SceneIndex& index, const LandmarkIndex& prepared,
   stats.seconds_search = stage.seconds();
 
   stage.restart();
-  // Every candidate scored is a rival of the matches (their confidence): keep them before
-  // selection moves them.
-  std::vector<Match> pool = candidates.kept;
-  pool.insert(pool.end(), candidates.suppressed.begin(), candidates.suppressed.end());
-  if (settings.execution.keep_suppressed) {
-    for (Match& m : candidates.suppressed) result.suppressed.push_back({std::move(m), kSuppressed});
-  }
-  select(
-      std::move(candidates.kept), settings.selection, method.suppresses_overlaps(settings),
-      settings.execution.keep_suppressed,
-      [&](const Match& m) {
-        return detail::shows_too_little_to_fix(index, p.landmark, m.T_scene_capture);
-      },
-      result);
-  p.assess(index, prepared, pool, result);
+  select_and_assess(index, prepared, p, std::move(candidates), method.suppresses_overlaps(settings),
+                    result);
   if (settings.execution.keep_aligned_points) {
     for (Match& m : result.matches) {
       m.aligned_points = p.landmark.points.transformed(m.T_scene_capture);
@@ -277,14 +299,29 @@ Match score_pose(const SceneIndex& index, const LandmarkIndex& prepared,
   validate(requested);
   std::string why;
   if (!prepared.suits(requested, &why)) throw Error("find: " + why);
-  if (!T_scene_capture.matrix().allFinite()) throw Error("score pose: the pose is not finite");
   const Prepared p(index, prepared, requested);
-  const Indices no_seeds;
-  const detail::SearchInput input{index,     index.coarse(),   p.landmark,
-                                  prepared,  SceneView{index}, p.view,
-                                  no_seeds,  p.metric,         *p.settings.selection.threshold,
-                                  p.settings};
-  return detail::fast_align_and_polish(input, T_scene_capture);
+  return align_at(index, prepared, p, T_scene_capture);
+}
+
+FindResult find_near_pose(const SceneIndex& index, const LandmarkIndex& prepared,
+                          const FindSettings& requested, const Eigen::Isometry3d& T_predicted) {
+  validate(requested);
+  std::string why;
+  if (!prepared.suits(requested, &why)) throw Error("find: " + why);
+  const Stopwatch total;
+  const Prepared p(index, prepared, requested);
+  FindResult result;
+  result.stats.method = setting_name(p.settings.method);
+  result.stats.metric = p.settings.selection.metric;
+  result.stats.threshold = *p.settings.selection.threshold;
+  result.stats.scene_points = index.input_points();
+  with_worker_threads(requested.execution.threads, [&] {
+    detail::CandidateSet candidates;
+    candidates.kept.push_back(align_at(index, prepared, p, T_predicted));
+    select_and_assess(index, prepared, p, std::move(candidates), false, result);
+  });
+  result.stats.seconds_total = total.seconds();
+  return result;
 }
 
 }  // namespace lmk

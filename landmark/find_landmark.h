@@ -123,6 +123,14 @@ FindResult find_landmark(const SceneIndex& scene, const LandmarkIndex& landmark,
 Match score_pose(const SceneIndex& scene, const LandmarkIndex& landmark,
                  const FindSettings& settings, const Eigen::Isometry3d& T_scene_capture);
 
+/// The landmark looked for only near `T_predicted` (T_scene_capture, as a tracker predicts it from
+/// the frames before): score_pose's fine alignment and polish from there, then the search's own
+/// selection (threshold, coverage, empty space, colour, what the view fixes) and confidence. At
+/// most one match; a candidate turned down is in `rejected` with its reason. A few milliseconds
+/// where a search takes tens: what `Tracker` runs on every frame.
+FindResult find_near_pose(const SceneIndex& scene, const LandmarkIndex& landmark,
+                          const FindSettings& settings, const Eigen::Isometry3d& T_predicted);
+
 /// One line on what the search turned down and why, for users and logs: "" when nothing was, and
 /// "no candidate pose ..." when the scene offered none.
 std::string describe_rejections(const SearchStats& stats);

@@ -1,0 +1,151 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "lmk/landmark/tracker.h"
+
+#include "lmk/geometry/error.h"
+#include "lmk/geometry/stopwatch.h"
+#include "lmk/landmark/landmark_index.h"
+#include "lmk/landmark/scene_index.h"
+
+namespace lmk {
+namespace {
+
+// The box `box` of the capture frame moved by `T_scene_capture`, grown by `margin` on every side.
+Box grown(const Box& box, const Eigen::Isometry3d& T_scene_capture, double margin) {
+  return Box(T_scene_capture * box.pose, box.size + Eigen::Vector3d::Constant(2.0 * margin));
+}
+
+// The match of `r` nearest to `near` (the pose it was last seen at), or the best one without it.
+std::optional<Match> nearest_match(const FindResult& r,
+                                   const std::optional<Eigen::Isometry3d>& near) {
+  if (r.matches.empty()) return std::nullopt;
+  if (!near) return r.matches.front();  // best first
+  const Match* best = &r.matches.front();
+  for (const Match& m : r.matches) {
+    if ((m.T_scene_capture.translation() - near->translation()).norm() <
+        (best->T_scene_capture.translation() - near->translation()).norm()) {
+      best = &m;
+    }
+  }
+  return *best;
+}
+
+}  // namespace
+
+const char* to_string(TrackState state) {
+  switch (state) {
+    case TrackState::found:
+      return "found";
+    case TrackState::tracking:
+      return "tracking";
+    case TrackState::lost:
+      return "lost";
+    case TrackState::found_again:
+      return "found again";
+  }
+  return "?";
+}
+
+struct Tracker::Track {
+  std::shared_ptr<const Landmark> landmark;
+  std::unique_ptr<LandmarkIndex> index;
+  std::optional<Eigen::Isometry3d> last;    ///< T_scene_capture in the last frame it was seen
+  std::optional<Eigen::Isometry3d> before;  ///< and in the frame before that, when followed
+  bool seen = false;                        ///< ever found
+
+  // Constant velocity: the last frame-to-frame motion applied once more.
+  Eigen::Isometry3d predicted() const {
+    if (!before) return *last;
+    return (*last * before->inverse()) * *last;
+  }
+  void seen_at(const Match& m, bool followed) {
+    before = followed ? last : std::nullopt;
+    last = m.T_scene_capture;
+    seen = true;
+  }
+};
+
+Tracker::Tracker(std::vector<std::shared_ptr<const Landmark>> landmarks, TrackSettings settings)
+    : settings_(std::move(settings)) {
+  validate(settings_.find);
+  if (!(settings_.follow_margin >= 0.0 && settings_.follow_margin <= 1.0) ||
+      !(settings_.search_margin >= 0.0 && settings_.search_margin <= 10.0)) {
+    throw Error("track: the follow margin must be in [0, 1] m and the search margin in [0, 10] m");
+  }
+  for (std::shared_ptr<const Landmark>& l : landmarks) {
+    Track t;
+    t.index = std::make_unique<LandmarkIndex>(l, settings_.find);
+    t.landmark = std::move(l);
+    tracks_.push_back(std::move(t));
+  }
+}
+
+Tracker::~Tracker() = default;
+Tracker::Tracker(Tracker&&) noexcept = default;
+Tracker& Tracker::operator=(Tracker&&) noexcept = default;
+
+std::vector<TrackedLandmark> Tracker::update(const PointCloud& frame) {
+  // The whole frame is indexed at most once, for the landmarks that must be searched in it.
+  std::optional<SceneIndex> whole;
+  // A search inside `volume` (the whole frame without one); an empty volume finds nothing.
+  const auto search = [&](const Track& t, const std::optional<Box>& volume) {
+    if (!volume) {
+      if (!whole) whole.emplace(frame, settings_.find.scene, settings_.find.execution.stop);
+      return find_landmark(*whole, *t.index, settings_.find);
+    }
+    SceneSettings s = settings_.find.scene;
+    s.work_volume = volume;
+    try {
+      return find_landmark(SceneIndex(frame, s, settings_.find.execution.stop), *t.index,
+                           settings_.find);
+    } catch (const Error&) {
+      return FindResult();  // no point of the frame in the volume
+    }
+  };
+
+  std::vector<TrackedLandmark> out;
+  for (Track& t : tracks_) {
+    const Stopwatch stopwatch;
+    TrackedLandmark now;
+    now.name = t.landmark->name;
+    if (t.last) {
+      // Followed: aligned from the prediction, in the frame around it only.
+      const Eigen::Isometry3d predicted = t.predicted();
+      SceneSettings s = settings_.find.scene;
+      s.work_volume = grown(t.landmark->box, predicted, settings_.follow_margin);
+      std::optional<FindResult> local;
+      try {
+        local = find_near_pose(SceneIndex(frame, s, settings_.find.execution.stop), *t.index,
+                               settings_.find, predicted);
+      } catch (const Error&) {
+        now.lost_because = "no point of the frame where it was predicted";
+      }
+      if (local && !local->matches.empty()) {
+        now.state = TrackState::tracking;
+        now.match = local->matches.front();
+        t.seen_at(*now.match, true);
+      } else if (local) {
+        now.lost_because = local->rejected.empty() ? "no match" : local->rejected.front().reason;
+      }
+      // Lost here: searched near where it was, then everywhere.
+      if (!now.match) {
+        now.match = nearest_match(
+            search(t, grown(t.landmark->box, *t.last, settings_.search_margin)), t.last);
+      }
+    }
+    if (!now.match) now.match = nearest_match(search(t, std::nullopt), t.last);
+    if (now.match && now.state != TrackState::tracking) {
+      now.state = t.seen ? TrackState::found_again : TrackState::found;
+      t.seen_at(*now.match, false);
+    } else if (!now.match) {
+      now.state = TrackState::lost;
+      t.before.reset();  // its motion is unknown now
+      if (now.lost_because.empty()) now.lost_because = "not found in the frame";
+    }
+    if (now.state != TrackState::lost) now.lost_because.clear();
+    now.seconds = stopwatch.seconds();
+    out.push_back(std::move(now));
+  }
+  return out;
+}
+
+}  // namespace lmk
