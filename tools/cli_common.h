@@ -97,6 +97,7 @@ Subcommand add_gen(CLI::App& app);
 Subcommand add_calibrate_depth(CLI::App& app);
 Subcommand add_capture(CLI::App& app);
 Subcommand add_find(CLI::App& app);
+Subcommand add_track(CLI::App& app);
 Subcommand add_landmark(CLI::App& app);
 Subcommand add_robot(CLI::App& app);
 Subcommand add_eval(CLI::App& app);

@@ -349,6 +349,48 @@ TEST_F(CliLandmark, ASceneWhoseIndexWouldNotFitTheMachineIsRefusedUpFront) {
                    "this machine has available; crop it (--work-volume) or use a coarser leaf");
 }
 
+// Issue #48: lmk track follows a landmark through frames (here the same frame three times, and a
+// directory of them), a line per frame and landmark, JSON lines, and a summary.
+TEST_F(CliLandmark, TrackFollowsALandmarkThroughFramesAndRefusesBadInput) {
+  ASSERT_EQ(
+      lmk("capture " + path("scene.pcd") + " " + carton_ + " --name carton -o " + path("c.lmk"))
+          .exit_code,
+      0);
+  std::filesystem::create_directories(dir_.file("frames"));
+  for (const char* name : {"a.pcd", "b.pcd", "c.pcd"}) {
+    std::filesystem::copy_file(dir_.file("scene.pcd"), dir_.file("frames/") + name);
+  }
+  const CommandResult text = lmk("track " + path("frames") + " " + path("c.lmk"));
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_NE(text.out.find("frame 0 a.pcd: 'carton' found at"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("frame 2 c.pcd: 'carton' tracking at"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("tracked 3 frames; per frame median"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("'carton': followed in 2 frames, lost in 0 (0 losses)"),
+            std::string::npos)
+      << text.out;
+
+  const CommandResult json = lmk("track " + path("scene.pcd") + " " + path("scene.pcd") + " " +
+                                 path("c.lmk") + " --json -");
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  std::istringstream lines(json.out);
+  std::vector<nlohmann::json> records;
+  for (std::string line; std::getline(lines, line);) records.push_back(nlohmann::json::parse(line));
+  ASSERT_EQ(records.size(), 2u) << json.out;
+  EXPECT_EQ(records[0]["state"], "found");
+  EXPECT_EQ(records[1]["state"], "tracking");
+  EXPECT_FALSE(records[1].contains("seconds"));  // only with --timings
+  const std::vector<double> found = records[0]["position"], followed = records[1]["position"];
+  for (int a = 0; a < 3; ++a) EXPECT_NEAR(found[a], followed[a], 0.002);
+
+  expect_bad_input("track " + path("scene.pcd") + " " + path("scene.pcd"),
+                   "track: give at least one landmark file (.lmk)");
+  expect_bad_input("track " + path("c.lmk") + " " + path("c.lmk"), "track: give the frames");
+  std::filesystem::create_directories(dir_.file("empty"));
+  expect_bad_input("track " + path("empty") + " " + path("c.lmk"), "holds no cloud file");
+  expect_bad_input("track " + path("scene.pcd") + " " + path("c.lmk") + " --follow-margin 5",
+                   "--follow-margin");
+}
+
 TEST_F(CliLandmark, DepthCorrectionAppliesToTheFrameReadOrIsRefusedInOneLine) {
   const std::string scene = path("scene.pcd");
   const auto correction = [&](const std::string& name, const std::string& image,

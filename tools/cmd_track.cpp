@@ -1,0 +1,191 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// lmk track FRAMES... LANDMARK.lmk [LANDMARK.lmk...]: landmarks followed through a stream of frames
+// (landmark/tracker.h), frame by frame as they are read, with a line per frame and landmark, JSON
+// lines with --json, and a summary at the end.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "lmk/geometry/atomic_file.h"
+#include "lmk/geometry/cloud_io.h"
+#include "lmk/geometry/error.h"
+#include "lmk/json/pose_json.h"
+#include "lmk/landmark/depth_correction_file.h"
+#include "lmk/landmark/landmark_file.h"
+#include "lmk/landmark/tracker.h"
+#include "tools/cli_common.h"
+
+namespace lmk::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct TrackOptions {
+  std::vector<std::string> inputs;  ///< frames and directories of frames, and the landmarks
+  std::string json, depth_correction;
+  bool timings = false;
+  TrackSettings settings;
+};
+
+bool is_landmark_file(const fs::path& p) { return p.extension() == ".lmk"; }
+
+// The frames named: files in the order given, each directory's cloud files by name.
+std::vector<std::string> frame_files(const std::vector<std::string>& inputs) {
+  std::vector<std::string> frames;
+  for (const std::string& input : inputs) {
+    if (is_landmark_file(input)) continue;
+    if (!fs::is_directory(input)) {
+      format_from_path(input);  // a file of another kind is refused before anything is read
+      frames.push_back(input);
+      continue;
+    }
+    std::vector<std::string> in_dir;
+    for (const fs::directory_entry& e : fs::directory_iterator(input)) {
+      if (!e.is_regular_file()) continue;
+      try {
+        format_from_path(e.path().string());
+        in_dir.push_back(e.path().string());
+      } catch (const Error&) {
+        // not a cloud: another file of the directory (poses, images)
+      }
+    }
+    if (in_dir.empty()) throw Error(input + ": holds no cloud file (.pcd, .ply, .xyz)");
+    std::sort(in_dir.begin(), in_dir.end());
+    frames.insert(frames.end(), in_dir.begin(), in_dir.end());
+  }
+  if (frames.empty()) throw Error("track: give the frames (cloud files or directories of them)");
+  return frames;
+}
+
+nlohmann::json to_json(std::size_t frame, const std::string& file, const TrackedLandmark& t) {
+  nlohmann::json j = {{"frame", frame},
+                      {"file", fs::path(file).filename().string()},
+                      {"landmark", t.name},
+                      {"state", to_string(t.state)},
+                      {"seconds", t.seconds}};
+  if (t.match) {
+    j.update(detail::pose_to_json(t.match->box.pose));
+    j["error"] = t.match->error;
+    j["confidence"] = std::isnan(t.match->confidence.probability)
+                          ? nlohmann::json(nullptr)
+                          : nlohmann::json(t.match->confidence.probability);
+  } else {
+    j["lost_because"] = t.lost_because;
+  }
+  return j;
+}
+
+void print_line(std::size_t frame, const std::string& file, const TrackedLandmark& t,
+                const ErrorMetric& metric) {
+  std::printf("frame %zu %s: '%s' %s", frame, fs::path(file).filename().c_str(), t.name.c_str(),
+              to_string(t.state));
+  if (t.match) {
+    const Eigen::Vector3d c = t.match->box.center();
+    std::printf(" at %.4f %.4f %.4f, error %s", c.x(), c.y(), c.z(),
+                format_error(t.match->error, metric).c_str());
+  } else {
+    std::printf(" (%s)", t.lost_because.c_str());
+  }
+  std::printf(", %.1f ms\n", 1e3 * t.seconds);
+}
+
+double percentile(std::vector<double> v, double q) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v[static_cast<std::size_t>(std::round(q * static_cast<double>(v.size() - 1)))];
+}
+
+int run_track(TrackOptions& o) {
+  std::vector<std::shared_ptr<const Landmark>> landmarks;
+  for (const std::string& input : o.inputs) {
+    if (is_landmark_file(input))
+      landmarks.push_back(std::make_shared<Landmark>(load_landmark(input)));
+  }
+  if (landmarks.empty()) throw Error("track: give at least one landmark file (.lmk)");
+  const std::vector<std::string> frames = frame_files(o.inputs);
+  Tracker tracker(landmarks, o.settings);
+  const ErrorMetric& metric = find_error_metric(o.settings.find.resolved().selection.metric);
+
+  std::string json_lines;
+  std::vector<double> frame_seconds;
+  struct Counts {
+    std::size_t tracking = 0, lost = 0, losses = 0, found_again = 0;
+    bool was_lost = false;
+  };
+  std::vector<Counts> counts(landmarks.size());
+  for (std::size_t f = 0; f < frames.size(); ++f) {
+    PointCloud frame = read_cloud(frames[f]);
+    correct_depth(frame, o.depth_correction);
+    const std::vector<TrackedLandmark> now = tracker.update(frame);
+    double seconds = 0.0;
+    for (std::size_t i = 0; i < now.size(); ++i) {
+      const TrackedLandmark& t = now[i];
+      seconds += t.seconds;
+      Counts& c = counts[i];
+      if (t.state == TrackState::tracking) ++c.tracking;
+      if (t.state == TrackState::found_again) ++c.found_again;
+      if (t.state == TrackState::lost) {
+        ++c.lost;
+        if (!c.was_lost) ++c.losses;
+      }
+      c.was_lost = t.state == TrackState::lost;
+      if (o.json != "-") print_line(f, frames[f], t, metric);
+      if (!o.json.empty())
+        json_lines += json_output(to_json(f, frames[f], t), o.timings).dump() + "\n";
+    }
+    frame_seconds.push_back(seconds);
+  }
+  if (o.json == "-") {
+    std::cout << json_lines;
+  } else if (!o.json.empty()) {
+    write_text_atomically(o.json, json_lines);
+  }
+  FILE* summary = o.json == "-" ? stderr : stdout;
+  std::fprintf(summary, "tracked %zu frames; per frame median %.1f ms, 95th percentile %.1f ms\n",
+               frames.size(), 1e3 * percentile(frame_seconds, 0.5),
+               1e3 * percentile(frame_seconds, 0.95));
+  for (std::size_t i = 0; i < landmarks.size(); ++i) {
+    const Counts& c = counts[i];
+    std::fprintf(
+        summary,
+        "  '%s': followed in %zu frames, lost in %zu (%zu losses), found again %zu times\n",
+        landmarks[i]->name.c_str(), c.tracking, c.lost, c.losses, c.found_again);
+  }
+  return kOk;
+}
+
+}  // namespace
+
+Subcommand add_track(CLI::App& app) {
+  auto o = std::make_shared<TrackOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "track", "Follow landmarks through a sequence of frames: where each is in every frame");
+  sub->add_option("inputs", o->inputs,
+                  "FRAME... LANDMARK.lmk...: cloud files (.pcd, .ply, .xyz) in order, or "
+                  "directories of them (taken by name), and the landmarks to follow")
+      ->required()
+      ->expected(2, -1);
+  add_search_options(sub, o->settings.find, true);
+  sub->add_option("--follow-margin", o->settings.follow_margin,
+                  "m around the predicted box the frame is searched in while following")
+      ->check(within(0.0, 1.0))
+      ->capture_default_str();
+  sub->add_option("--search-margin", o->settings.search_margin,
+                  "m around where a lost landmark was last seen, searched before the whole frame")
+      ->check(within(0.0, 10.0))
+      ->capture_default_str();
+  add_depth_correction_option(sub, o->depth_correction);
+  sub->add_option("--json", o->json,
+                  "Write a JSON line per frame and landmark (frame, file, landmark, state, "
+                  "position, quaternion, error, confidence or lost_because) to FILE, or - for "
+                  "stdout");
+  add_timings_flag(sub, o->timings);
+  return {sub, [o] { return run_track(*o); }};
+}
+
+}  // namespace lmk::cli
