@@ -21,6 +21,7 @@ namespace py = pybind11;
 void bind_clouds(py::module_& m);
 void bind_landmarks(py::module_& m);
 void bind_search(py::module_& m);
+void bind_tracking(py::module_& m);
 void bind_evaluation(py::module_& m);
 /// With lmk.Error, the base of lmk.Refused.
 void bind_robot(py::module_& m, const py::object& error);

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The `lmk` Python module (issue #36): its version, its error type, and the parts defined in
-// clouds.cpp, landmarks.cpp, search.cpp, evaluation.cpp and robot.cpp.
+// clouds.cpp, landmarks.cpp, search.cpp, tracking.cpp, evaluation.cpp and
+// robot.cpp.
 #include <pybind11/pybind11.h>
 
 #include "bindings.h"
@@ -30,6 +31,7 @@ PYBIND11_MODULE(_lmk, m) {
   lmk::python::bind_clouds(m);
   lmk::python::bind_landmarks(m);
   lmk::python::bind_search(m);
+  lmk::python::bind_tracking(m);
   lmk::python::bind_evaluation(m);
   lmk::python::bind_robot(m, error);
 }

@@ -13,6 +13,7 @@ from ._lmk import (  # noqa: F401
     Landmark,
     Refused,
     SimulatedPr2,
+    Tracker,
     ablate,
     __version__,
     capture,

@@ -400,3 +400,22 @@ def test_ablate_metrics_example_draws_a_plot_that_is_not_blank(tmp_path):
     import matplotlib.image
     pixels = matplotlib.image.imread(str(png))
     assert pixels.shape[0] > 100 and pixels.std() > 0.05  # lines and text, not one colour
+
+
+def test_tracker_follows_the_cup_as_lmk_track_does(tabletop, tmp_path):
+    """lmk.Tracker (issue #48): found, then followed, in the frames `lmk track` follows it in."""
+    scene, cup = lmk.read_cloud(tabletop), lmk.load_landmark(CUP)
+    tracker = lmk.Tracker([cup], max_tilt=60)
+    states = [tracker.update(scene)[0] for _ in range(3)]
+    assert [s["state"] for s in states] == ["found", "tracking", "tracking"]
+    cli = [json.loads(line) for line in
+           run("track", tabletop, tabletop, tabletop, CUP, "--json", "-").splitlines()]
+    assert [c["state"] for c in cli] == [s["state"] for s in states]
+    for got, line in zip(states, cli):
+        assert got["pose"].shape == (4, 4)
+        np.testing.assert_allclose(got["box"]["pose"][:3, 3], line["position"], atol=1e-9)
+        assert got["error"] == pytest.approx(line["error"], abs=1e-12)
+    with pytest.raises(ValueError, match="max_tilt"):
+        lmk.Tracker([cup], max_tilt=500)
+    with pytest.raises(ValueError, match="margin"):
+        lmk.Tracker([cup], follow_margin=5.0)

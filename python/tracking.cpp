@@ -1,0 +1,75 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// lmk.Tracker: landmarks followed through frames (landmark/tracker.h, issue #48), with the search's
+// settings as keywords as lmk.find takes them; the GIL released while a frame is tracked.
+#include <pybind11/stl.h>
+
+#include <cmath>
+
+#include "bindings.h"
+#include "lmk/geometry/error.h"
+#include "lmk/landmark/tracker.h"
+
+namespace lmk::python {
+namespace {
+
+py::dict tracked_to_python(const TrackedLandmark& t) {
+  py::dict d;
+  d["name"] = t.name;
+  d["state"] = to_string(t.state);
+  d["seconds"] = t.seconds;
+  if (t.match) {
+    d["pose"] = pose_to_array(t.match->T_scene_capture);
+    d["box"] = box_to_dict(t.match->box);
+    d["error"] = t.match->error;
+    d["confidence"] = t.match->confidence.probability;  // NaN where no calibration applies
+  } else {
+    d["lost_because"] = t.lost_because;
+  }
+  return d;
+}
+
+}  // namespace
+
+void bind_tracking(py::module_& m) {
+  py::class_<Tracker>(m, "Tracker",
+                      "Landmarks followed through a stream of frames: each predicted from its "
+                      "last poses, aligned locally, and searched again when lost (docs/python.md, "
+                      "\"Tracking\").")
+      .def(py::init([](const std::vector<std::shared_ptr<Landmark>>& landmarks,
+                       double follow_margin, double search_margin, const py::kwargs& kwargs) {
+             TrackSettings settings;
+             settings.find = settings_from_keywords(kwargs);
+             settings.follow_margin = follow_margin;
+             settings.search_margin = search_margin;
+             std::vector<std::shared_ptr<const Landmark>> shared;
+             shared.assign(landmarks.begin(), landmarks.end());
+             try {
+               return Tracker(std::move(shared), settings);
+             } catch (const Error& e) {
+               throw py::value_error(e.what());
+             }
+           }),
+           py::arg("landmarks"), py::kw_only(), py::arg("follow_margin") = 0.1,
+           py::arg("search_margin") = 0.5,
+           "A tracker of `landmarks`. Search settings are keywords as lmk.find takes them; "
+           "follow_margin (m) grows the predicted box the frame is searched in, search_margin "
+           "(m) the region a lost landmark is searched in first.")
+      .def(
+          "update",
+          [](Tracker& tracker, const PointCloud& frame) {
+            std::vector<TrackedLandmark> now;
+            {
+              const py::gil_scoped_release release;
+              now = tracker.update(frame);
+            }
+            py::list out;
+            for (const TrackedLandmark& t : now) out.append(tracked_to_python(t));
+            return out;
+          },
+          py::arg("frame"),
+          "The landmarks in the next frame, in the order given: each a dict with 'name', 'state' "
+          "('found', 'tracking', 'lost', 'found again'), 'seconds', and 'pose' (4x4), 'box', "
+          "'error' and 'confidence' when found, or 'lost_because'.");
+}
+
+}  // namespace lmk::python
