@@ -41,7 +41,7 @@ std::size_t resident_bytes(const PointCloud& c) {
 
 std::size_t upload_price(std::size_t file_bytes, std::size_t points) {
   constexpr std::size_t kParseBytesPerPoint = 80;
-  return file_bytes + points * kParseBytesPerPoint;
+  return 2 * file_bytes + points * kParseBytesPerPoint;
 }
 
 UploadFile::UploadFile(std::string name, std::filesystem::path path)

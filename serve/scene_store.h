@@ -27,9 +27,11 @@ struct Scene {
   std::shared_ptr<const PointCloud> cloud;
 };
 
-/// What parsing an upload of `file_bytes` that may hold `points` points takes at its peak: the
-/// bytes, read whole, and per point PCL's blob and the cloud (22 bytes measured for a binary PCD)
-/// or an XYZ file's rows growing their vector (53), rounded up to 80. UploadPrice.* measures it.
+/// What parsing an upload of `file_bytes` that may hold `points` points takes at its peak: its
+/// bytes twice (read whole, and copied once more by PCL's ASCII reader: an ASCII PCD of a million
+/// points took 107 MB for a 36 MB file), and per point PCL's blob and the cloud (22 bytes measured
+/// for a binary PCD) or an XYZ file's rows growing their vector (53), rounded up to 80.
+/// UploadPrice.* measures it.
 std::size_t upload_price(std::size_t file_bytes, std::size_t points);
 
 /// A file of the scratch directory that an upload's bytes are written to as they arrive, so that
