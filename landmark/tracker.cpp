@@ -14,6 +14,15 @@ Box grown(const Box& box, const Eigen::Isometry3d& T_scene_capture, double margi
   return Box(T_scene_capture * box.pose, box.size + Eigen::Vector3d::Constant(2.0 * margin));
 }
 
+// Whether a finite point of `frame` lies in `box`: an index of an empty volume is an error, and an
+// empty volume where a landmark was predicted is no error but a lost landmark.
+bool any_point_in(const PointCloud& frame, const Box& box) {
+  for (const Eigen::Vector3f& p : frame.points) {
+    if (p.allFinite() && box.contains(p)) return true;
+  }
+  return false;
+}
+
 // The match of `r` nearest to `near` (the pose it was last seen at), or the best one without it.
 std::optional<Match> nearest_match(const FindResult& r,
                                    const std::optional<Eigen::Isometry3d>& near) {
@@ -92,14 +101,11 @@ std::vector<TrackedLandmark> Tracker::update(const PointCloud& frame) {
       if (!whole) whole.emplace(frame, settings_.find.scene, settings_.find.execution.stop);
       return find_landmark(*whole, *t.index, settings_.find);
     }
+    if (!any_point_in(frame, *volume)) return FindResult();
     SceneSettings s = settings_.find.scene;
     s.work_volume = volume;
-    try {
-      return find_landmark(SceneIndex(frame, s, settings_.find.execution.stop), *t.index,
-                           settings_.find);
-    } catch (const Error&) {
-      return FindResult();  // no point of the frame in the volume
-    }
+    return find_landmark(SceneIndex(frame, s, settings_.find.execution.stop), *t.index,
+                         settings_.find);
   };
 
   std::vector<TrackedLandmark> out;
@@ -113,10 +119,10 @@ std::vector<TrackedLandmark> Tracker::update(const PointCloud& frame) {
       SceneSettings s = settings_.find.scene;
       s.work_volume = grown(t.landmark->box, predicted, settings_.follow_margin);
       std::optional<FindResult> local;
-      try {
+      if (any_point_in(frame, *s.work_volume)) {
         local = find_near_pose(SceneIndex(frame, s, settings_.find.execution.stop), *t.index,
                                settings_.find, predicted);
-      } catch (const Error&) {
+      } else {
         now.lost_because = "no point of the frame where it was predicted";
       }
       if (local && !local->matches.empty()) {
