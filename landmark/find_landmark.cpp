@@ -92,8 +92,9 @@ void select(std::vector<Match> candidates, const SelectionSettings& s, bool supp
 // What a search of `prepared` in `index` works with once its settings are resolved: the metric
 // and the landmark's view of it.
 struct Prepared {
+  /// lmk::Error when `prepared` was built for other settings (LandmarkIndex::suits()).
   Prepared(const SceneIndex& index, const LandmarkIndex& prepared, const FindSettings& requested)
-      : settings(requested.resolved()),
+      : settings(suited(requested, prepared).resolved()),
         metric(detail::with_colour_term(find_error_metric(settings.selection.metric), settings,
                                         prepared.landmark(), index)),
         landmark(prepared.landmark()),
@@ -103,6 +104,23 @@ struct Prepared {
     // The sensor metric tests empty space beyond the noise, which far away exceeds the landmark
     // distance field's band.
     if (metric.unit == ErrorMetric::Unit::sigma) view.empty_distances = &prepared.empty_distances();
+  }
+
+  static const FindSettings& suited(const FindSettings& requested, const LandmarkIndex& prepared) {
+    std::string why;
+    if (!prepared.suits(requested, &why)) throw Error("find: " + why);
+    return requested;
+  }
+
+  // What every search's statistics start from: the method, metric and threshold it applies, and
+  // the scene's points.
+  SearchStats initial_stats(const SceneIndex& index) const {
+    SearchStats s;
+    s.method = setting_name(settings.method);
+    s.metric = settings.selection.metric;
+    s.threshold = *settings.selection.threshold;
+    s.scene_points = index.input_points();
+    return s;
   }
 
   // The confidence of each match (match_confidence.h), against every candidate in `pool`; those
@@ -188,19 +206,14 @@ Match align_at(const SceneIndex& index, const LandmarkIndex& prepared, const Pre
 // Steps 3 to 6 in an indexed scene, for inputs already checked.
 FindResult search(const SceneIndex& index, const LandmarkIndex& prepared,
                   const FindSettings& requested) {
-  std::string why;
-  if (!prepared.suits(requested, &why)) throw Error("find: " + why);
   const Stopwatch total;
   Stopwatch stage;
   const Prepared p(index, prepared, requested);
   const FindSettings& settings = p.settings;
   const detail::SearchMethodSteps& method = detail::search_method_steps(settings.method);
   FindResult result;
+  result.stats = p.initial_stats(index);
   SearchStats& stats = result.stats;
-  stats.method = setting_name(settings.method);
-  stats.metric = settings.selection.metric;
-  stats.threshold = *settings.selection.threshold;
-  stats.scene_points = index.input_points();
 
   // Seeds: the points the method starts from (step 3).
   const PointCloud& points = method.seed_cloud(index);
@@ -297,8 +310,6 @@ FindResult find_landmark(const SceneIndex& index, const LandmarkIndex& landmark,
 Match score_pose(const SceneIndex& index, const LandmarkIndex& prepared,
                  const FindSettings& requested, const Eigen::Isometry3d& T_scene_capture) {
   validate(requested);
-  std::string why;
-  if (!prepared.suits(requested, &why)) throw Error("find: " + why);
   const Prepared p(index, prepared, requested);
   return align_at(index, prepared, p, T_scene_capture);
 }
@@ -306,15 +317,10 @@ Match score_pose(const SceneIndex& index, const LandmarkIndex& prepared,
 FindResult find_near_pose(const SceneIndex& index, const LandmarkIndex& prepared,
                           const FindSettings& requested, const Eigen::Isometry3d& T_predicted) {
   validate(requested);
-  std::string why;
-  if (!prepared.suits(requested, &why)) throw Error("find: " + why);
   const Stopwatch total;
   const Prepared p(index, prepared, requested);
   FindResult result;
-  result.stats.method = setting_name(p.settings.method);
-  result.stats.metric = p.settings.selection.metric;
-  result.stats.threshold = *p.settings.selection.threshold;
-  result.stats.scene_points = index.input_points();
+  result.stats = p.initial_stats(index);
   with_worker_threads(requested.execution.threads, [&] {
     detail::CandidateSet candidates;
     candidates.kept.push_back(align_at(index, prepared, p, T_predicted));

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <optional>
 #include <vector>
 
 #include "lmk/geometry/error.h"
@@ -72,6 +73,18 @@ detail::VoxelCoord unpack_voxel(std::uint64_t key) {
     key >>= detail::kVoxelKeyBits;
   }
   return c;
+}
+
+// Into `keys`: the voxel (side 1 / inv_leaf) of every finite point of `scene` inside the work
+// volume, when there is one: the points a SceneIndex keeps.
+void voxel_keys(const PointCloud& scene, const std::optional<Box>& work_volume, double inv_leaf,
+                std::vector<std::uint64_t>& keys) {
+  keys.clear();
+  keys.reserve(scene.size());
+  for (const Eigen::Vector3f& p : scene.points) {
+    if (!p.allFinite() || (work_volume && !work_volume->contains(p))) continue;
+    keys.push_back(detail::pack_voxel(detail::voxel_coord(p, inv_leaf)));
+  }
 }
 
 // Sorts `keys` and returns how many differ.
@@ -155,12 +168,7 @@ SceneFootprint estimate_scene_footprint(const PointCloud& scene, const SceneSett
 
   // The coarse voxels of the finite points inside the work volume.
   std::vector<std::uint64_t> keys;
-  keys.reserve(scene.size());
-  const double inv_coarse = 1.0 / r.coarse_leaf;
-  for (const Eigen::Vector3f& p : scene.points) {
-    if (!p.allFinite() || (r.work_volume && !r.work_volume->contains(p))) continue;
-    keys.push_back(detail::pack_voxel(detail::voxel_coord(p, inv_coarse)));
-  }
+  voxel_keys(scene, r.work_volume, 1.0 / r.coarse_leaf, keys);
   f.points = keys.size();
   bytes += static_cast<double>(f.points) * (kPerPointBytes + point_bytes);
   keys.resize(count_distinct(keys));
@@ -203,12 +211,7 @@ SceneFootprint estimate_scene_footprint(const PointCloud& scene, const SceneSett
   if (over()) return f;
 
   // The occupancy grid's leaf nodes: voxels of the paper's leaf, 8 a side.
-  keys.clear();
-  const double inv_node = 1.0 / (kLeafSide * r.leaf_size);
-  for (const Eigen::Vector3f& p : scene.points) {
-    if (!p.allFinite() || (r.work_volume && !r.work_volume->contains(p))) continue;
-    keys.push_back(detail::pack_voxel(detail::voxel_coord(p, inv_node)));
-  }
+  voxel_keys(scene, r.work_volume, 1.0 / (kLeafSide * r.leaf_size), keys);
   const TreeNodes occupancy = tree_nodes(keys);
   f.occupancy_nodes = occupancy.leaves;
   bytes += price(occupancy, kOccupancyLeafBytes, kOccupancyLowerBytes, kOccupancyUpperBytes);

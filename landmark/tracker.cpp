@@ -14,8 +14,8 @@ Box grown(const Box& box, const Eigen::Isometry3d& T_scene_capture, double margi
   return Box(T_scene_capture * box.pose, box.size + Eigen::Vector3d::Constant(2.0 * margin));
 }
 
-// Whether a finite point of `frame` lies in `box`: an index of an empty volume is an error, and an
-// empty volume where a landmark was predicted is no error but a lost landmark.
+// Whether a finite point of `frame` lies in `box`: indexing an empty volume is an error, where an
+// empty volume around a landmark's prediction is no error but a lost landmark.
 bool any_point_in(const PointCloud& frame, const Box& box) {
   for (const Eigen::Vector3f& p : frame.points) {
     if (p.allFinite() && box.contains(p)) return true;
@@ -95,17 +95,21 @@ Tracker& Tracker::operator=(Tracker&&) noexcept = default;
 std::vector<TrackedLandmark> Tracker::update(const PointCloud& frame) {
   // The whole frame is indexed at most once, for the landmarks that must be searched in it.
   std::optional<SceneIndex> whole;
+  // The frame indexed inside `volume` only; nothing when no point of it lies there.
+  const auto index_within = [&](const Box& volume) -> std::optional<SceneIndex> {
+    if (!any_point_in(frame, volume)) return std::nullopt;
+    SceneSettings s = settings_.find.scene;
+    s.work_volume = volume;
+    return std::optional<SceneIndex>(std::in_place, frame, s, settings_.find.execution.stop);
+  };
   // A search inside `volume` (the whole frame without one); an empty volume finds nothing.
   const auto search = [&](const Track& t, const std::optional<Box>& volume) {
     if (!volume) {
       if (!whole) whole.emplace(frame, settings_.find.scene, settings_.find.execution.stop);
       return find_landmark(*whole, *t.index, settings_.find);
     }
-    if (!any_point_in(frame, *volume)) return FindResult();
-    SceneSettings s = settings_.find.scene;
-    s.work_volume = volume;
-    return find_landmark(SceneIndex(frame, s, settings_.find.execution.stop), *t.index,
-                         settings_.find);
+    const std::optional<SceneIndex> near = index_within(*volume);
+    return near ? find_landmark(*near, *t.index, settings_.find) : FindResult();
   };
 
   std::vector<TrackedLandmark> out;
@@ -116,12 +120,10 @@ std::vector<TrackedLandmark> Tracker::update(const PointCloud& frame) {
     if (t.last) {
       // Followed: aligned from the prediction, in the frame around it only.
       const Eigen::Isometry3d predicted = t.predicted();
-      SceneSettings s = settings_.find.scene;
-      s.work_volume = grown(t.landmark->box, predicted, settings_.follow_margin);
       std::optional<FindResult> local;
-      if (any_point_in(frame, *s.work_volume)) {
-        local = find_near_pose(SceneIndex(frame, s, settings_.find.execution.stop), *t.index,
-                               settings_.find, predicted);
+      if (const std::optional<SceneIndex> around =
+              index_within(grown(t.landmark->box, predicted, settings_.follow_margin))) {
+        local = find_near_pose(*around, *t.index, settings_.find, predicted);
       } else {
         now.lost_because = "no point of the frame where it was predicted";
       }

@@ -26,6 +26,10 @@ class ApiError : public std::runtime_error {
   int retry_after_ = 0;
 };
 
+/// Seconds a client refused for want of room (the job queue full, the memory budget spent) is told
+/// to wait before it tries again (Retry-After): about what a search takes.
+inline constexpr int kRetryAfterSeconds = 5;
+
 inline ApiError bad_request(const std::string& m) { return ApiError(400, m); }
 inline ApiError forbidden(const std::string& m) { return ApiError(403, m); }
 inline ApiError not_found(const std::string& m) { return ApiError(404, m); }

@@ -28,9 +28,6 @@ ApiResponse Api::scenes() const {
 }
 
 ApiResponse Api::upload_scene(const std::string& name, const std::string& bytes) {
-  if (name.empty()) {
-    throw bad_request("upload: give the file name as ?name=FILE.pcd (its extension is the format)");
-  }
   return {201, scene_summary(scenes_.add_upload(name, bytes))};
 }
 

@@ -281,10 +281,6 @@ ApiResponse HttpServer::Impl::upload(const httplib::Request& req,
                                    : "upload: the form holds more than one file");
     }
   } else {
-    if (name.empty()) {
-      refused =
-          bad_request("upload: give the file name as ?name=FILE.pcd (its extension is the format)");
-    }
     complete = read(receive);
   }
   // httplib refuses a declared length over the limit before reading: nothing arrives.

@@ -31,9 +31,6 @@ struct JobPool::Job {
 
 namespace {
 
-// What a client refused for a full queue is told to wait, s: about what a search takes.
-constexpr int kBusyRetryAfterSeconds = 5;
-
 // A job's state says it has ended: it has its result or its error.
 bool has_ended(const std::string& state) { return state == "done" || state == "failed"; }
 
@@ -135,7 +132,7 @@ std::string JobPool::submit(const std::string& kind, Work work) {
   if (queue_.size() >= limits_.max_queued) {
     ApiError busy(503, "busy: " + std::to_string(queue_.size()) +
                            " jobs are waiting; try again when some have finished");
-    busy.set_retry_after(kBusyRetryAfterSeconds);
+    busy.set_retry_after(kRetryAfterSeconds);
     throw busy;
   }
   auto job = std::make_shared<Job>(*this, now());

@@ -95,7 +95,7 @@ MemoryBudget::Reservation MemoryBudget::reserve(std::size_t bytes, const char* k
                            describe_bytes(state_->in_use) + " of the server's " +
                            describe_bytes(state_->budget) +
                            " are in use: try again when other work has finished");
-    busy.set_retry_after(kMemoryRetryAfterSeconds);
+    busy.set_retry_after(kRetryAfterSeconds);
     throw busy;
   }
   state_->in_use += bytes;

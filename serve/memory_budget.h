@@ -12,9 +12,6 @@
 
 namespace lmk::serve {
 
-/// Seconds a refused client is told to wait (Retry-After): about what a search takes.
-inline constexpr int kMemoryRetryAfterSeconds = 5;
-
 /// Half the memory this machine (or its cgroup, when that is less) has: what `lmk serve` takes
 /// without --memory-budget.
 std::size_t default_memory_budget();

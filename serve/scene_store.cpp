@@ -111,6 +111,9 @@ Scene SceneStore::add_file(const std::string& path) {
 }
 
 std::unique_ptr<UploadFile> SceneStore::new_upload_file(const std::string& name) const {
+  if (name.empty()) {
+    throw bad_request("upload: give the file name as ?name=FILE.pcd (its extension is the format)");
+  }
   check_upload_name(name);
   try {
     format_from_path(name);

@@ -74,8 +74,8 @@ class SceneStore {
 
   /// Reads a scene file given on the command line; lmk::Error for a bad one.
   Scene add_file(const std::string& path);
-  /// A new scratch file for the upload `name`; ApiError 400 for a name that is not a plain file
-  /// name with a cloud's extension.
+  /// A new scratch file for the upload `name`; ApiError 400 for no name, or one that is not a
+  /// plain file name with a cloud's extension.
   std::unique_ptr<UploadFile> new_upload_file(const std::string& name) const;
   /// Parses an uploaded cloud (its name's extension gives the format). Priced before it is read,
   /// from the file's size and the points its header declares: 413 for more than

@@ -12,7 +12,6 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <future>
 #include <random>
 #include <thread>
@@ -78,13 +77,7 @@ class ServeProcess {
     return c;
   }
   /// The server's peak resident memory so far, bytes (VmHWM).
-  double peak_bytes() const {
-    std::ifstream status("/proc/" + std::to_string(pid_) + "/status");
-    for (std::string line; std::getline(status, line);) {
-      if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) * 1024.0;
-    }
-    return 0.0;
-  }
+  double peak_bytes() const { return process_status_bytes("VmHWM", std::to_string(pid_)); }
   /// Ctrl-C, then the seconds until the process has exited and its exit code.
   std::pair<double, int> interrupt() {
     const Clock::time_point sent = Clock::now();
@@ -132,11 +125,6 @@ void write_room(const std::string& path, std::size_t n) {
   write_cloud(path, c, binary);
 }
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
 // Every answer a client got: 503s must say when to retry; any other 5xx is a failure.
 struct Answers {
   std::mutex mutex;
@@ -170,18 +158,27 @@ httplib::Result post_until_admitted(httplib::Client& c, const std::string& path,
   }
 }
 
+// What both tests serve: a room of `points` points (its path), and a landmark directory holding
+// the cup of tests/cli/fixtures.
+struct ServedFiles {
+  std::string room, landmarks;
+};
+ServedFiles write_served_files(const ScratchDir& dir, std::size_t points) {
+  ServedFiles f{dir.file("room.pcd"), dir.file("landmarks")};
+  write_room(f.room, points);
+  std::filesystem::create_directories(f.landmarks);
+  std::filesystem::copy_file(LMK_CLI_FIXTURES "/cup_v2.lmk", f.landmarks + "/cup.lmk");
+  return f;
+}
+
 constexpr double kBudget = 1.5e9;
 constexpr double kOverhead = 200e6;  // what the issue allows above the budget
 
 TEST(ServeBudget, UnderUploadsAndSearchesOf5MillionPointsTheServerKeepsItsBudget) {
   ScratchDir dir;
-  const std::string room = dir.file("room.pcd");
-  write_room(room, 5'000'000);
-  const std::string landmarks = dir.file("landmarks");
-  std::filesystem::create_directories(landmarks);
-  std::filesystem::copy_file(LMK_CLI_FIXTURES "/cup_v2.lmk", landmarks + "/cup.lmk");
+  const ServedFiles files = write_served_files(dir, 5'000'000);
   ServeProcess server(
-      {"--memory-budget", "1.5", "--landmarks", landmarks, "--base-frame", "--workers", "2"});
+      {"--memory-budget", "1.5", "--landmarks", files.landmarks, "--base-frame", "--workers", "2"});
   ASSERT_GT(server.port(), 0) << "lmk serve did not start";
 
   // 100 slow senders, a header line every half second, all along.
@@ -214,7 +211,7 @@ TEST(ServeBudget, UnderUploadsAndSearchesOf5MillionPointsTheServerKeepsItsBudget
   });
 
   // 4 clients at once: each uploads the room and searches it for the cup.
-  const std::string bytes = read_file(room);
+  const std::string bytes = read_bytes(files.room);
   Answers answers;
   std::vector<std::future<std::string>> clients;
   for (int k = 0; k < 4; ++k) {
@@ -272,13 +269,9 @@ TEST(ServeBudget, UnderUploadsAndSearchesOf5MillionPointsTheServerKeepsItsBudget
 // within 2 s (it took 2.6-3.0 s with 60 jobs queued), having cancelled the rest.
 TEST(ServeBudget, CtrlCStopsTheServerWithinTwoSecondsWhateverIsQueued) {
   ScratchDir dir;
-  const std::string room = dir.file("room.pcd");
-  write_room(room, 2'000'000);
-  const std::string landmarks = dir.file("landmarks");
-  std::filesystem::create_directories(landmarks);
-  std::filesystem::copy_file(LMK_CLI_FIXTURES "/cup_v2.lmk", landmarks + "/cup.lmk");
-  ServeProcess server({room, "--memory-budget", "1000", "--landmarks", landmarks, "--base-frame",
-                       "--workers", "1"});
+  const ServedFiles files = write_served_files(dir, 2'000'000);
+  ServeProcess server({files.room, "--memory-budget", "1000", "--landmarks", files.landmarks,
+                       "--base-frame", "--workers", "1"});
   ASSERT_GT(server.port(), 0) << "lmk serve did not start";
   auto c = server.client();
   const nlohmann::json find = {{"scene", "1"}, {"landmarks", {"cup"}}};

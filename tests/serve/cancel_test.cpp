@@ -3,8 +3,6 @@
 // the indexing did (12.9 s on 5 million points); now every stage checks between pieces of its
 // work, and the job ends at once, giving back its memory.
 #include <chrono>
-#include <fstream>
-#include <iterator>
 #include <random>
 
 #include "lmk/geometry/cloud_io.h"
@@ -26,8 +24,7 @@ std::string scattered_pcd(std::size_t n) {
   WriteOptions binary;
   binary.encoding = Encoding::kBinary;
   write_cloud(dir.file("scattered.pcd"), c, binary);
-  std::ifstream in(dir.file("scattered.pcd"), std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
+  return read_bytes(dir.file("scattered.pcd"));
 }
 
 TEST_F(ServeTest, ACancelledSearchStopsWhileItIndexes) {

@@ -28,7 +28,7 @@ TEST(MemoryBudget, ReservationsHoldTheirBytesUntilTheyGo) {
       ADD_FAILURE() << "500 bytes fitted in the 400 left";
     } catch (const serve::ApiError& e) {
       EXPECT_EQ(e.status(), 503);
-      EXPECT_EQ(e.retry_after(), serve::kMemoryRetryAfterSeconds);
+      EXPECT_EQ(e.retry_after(), serve::kRetryAfterSeconds);
       EXPECT_NE(std::string(e.what()).find("another find needs about"), std::string::npos);
     }
     MemoryBudget::Reservation moved = std::move(a);
@@ -107,7 +107,7 @@ TEST_F(ServeMemoryTest, ASearchIsAdmittedOnlyWhenItsPriceFitsWhatIsLeft) {
   const httplib::Result busy = client->Post("/api/find", find.dump(), "application/json");
   ASSERT_TRUE(busy);
   EXPECT_EQ(busy->status, 503) << busy->body;
-  EXPECT_EQ(busy->get_header_value("Retry-After"), std::to_string(serve::kMemoryRetryAfterSeconds));
+  EXPECT_EQ(busy->get_header_value("Retry-After"), std::to_string(serve::kRetryAfterSeconds));
   EXPECT_NE(busy->body.find("are in use: try again"), std::string::npos) << busy->body;
   const nlohmann::json memory = get("/api/info").body["memory"];
   EXPECT_EQ(memory["refused"], 1);
@@ -159,7 +159,7 @@ TEST_F(ServeMemoryTest, UploadsArePricedBeforeTheyAreReadAndCappedWhileParsed) {
                    "application/octet-stream");
   ASSERT_TRUE(busy);
   EXPECT_EQ(busy->status, 503) << busy->body;
-  EXPECT_EQ(busy->get_header_value("Retry-After"), std::to_string(serve::kMemoryRetryAfterSeconds));
+  EXPECT_EQ(busy->get_header_value("Retry-After"), std::to_string(serve::kRetryAfterSeconds));
   EXPECT_EQ(get("/api/health").status, 200);
 }
 

@@ -60,8 +60,8 @@ std::optional<fs::path> shared_data_dir() {
   return std::nullopt;
 }
 
-double process_status_bytes(const std::string& field) {
-  std::ifstream status("/proc/self/status");
+double process_status_bytes(const std::string& field, const std::string& pid) {
+  std::ifstream status("/proc/" + pid + "/status");
   for (std::string line; std::getline(status, line);) {
     if (line.rfind(field + ":", 0) == 0) return std::stod(line.substr(field.size() + 1)) * 1024.0;
   }

@@ -48,8 +48,9 @@ std::string read_bytes(const std::string& path);
 /// The real data directory (../shared/data, or $LMK_SHARED_DATA), or nothing when absent.
 std::optional<std::filesystem::path> shared_data_dir();
 
-/// This process's /proc/self/status line `field` ("VmRSS", "VmHWM"), bytes; 0 when absent.
-double process_status_bytes(const std::string& field);
+/// The /proc/PID/status line `field` ("VmRSS", "VmHWM") of process `pid` ("self": this one),
+/// bytes; 0 when absent.
+double process_status_bytes(const std::string& field, const std::string& pid = "self");
 /// Resets this process's peak resident memory (VmHWM) to what is resident now; false where the
 /// kernel or a sandbox refuses (/proc/self/clear_refs). Measures the peak of one piece of work.
 bool reset_peak_memory();
