@@ -10,6 +10,7 @@
 #include <optional>
 #include <variant>
 
+#include "lmk/eval/track_sequences.h"
 #include "lmk/geometry/atomic_file.h"
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/error.h"
@@ -146,6 +147,47 @@ PointCloud fused_scene(const RgbdSequence& sequence, std::size_t index, const Us
   return fuse_frames(frames);
 }
 
+// A landmark cut in a frame used, and what the scenes need of it.
+struct Captured {
+  std::size_t frame;
+  std::string name;
+  Landmark landmark;
+  std::vector<std::size_t> box_views;  ///< every view of its box: the scenes keep clear of them
+  std::vector<Eigen::Vector3f> seen;   ///< the box's one-view points, for the hidden fraction
+};
+
+// Each landmark followed through the scenes after its frame, min_gap to max_gap frames on
+// (lmk eval-track): found in the first by a search, then tracked while the camera moves. A frame
+// whose pair was left out (its poses disagree) is still tracked through, with no ground truth.
+std::vector<TrackSequence> sequences_after_capture(const Dataset& dataset,
+                                                   const std::vector<UsedFrame>& frames,
+                                                   const std::vector<char>& written,
+                                                   const std::vector<Captured>& captured,
+                                                   const RgbdDatasetOptions& options) {
+  std::vector<TrackSequence> sequences;
+  for (const Captured& c : captured) {
+    TrackSequence s;
+    s.name = c.name;
+    s.landmark = c.name;
+    for (std::size_t b = c.frame + 1; b < frames.size(); ++b) {
+      const std::size_t gap = options.frame_stride * (b - c.frame);
+      if (gap < options.min_gap || gap > options.max_gap || !written[b]) continue;
+      s.frames.push_back(frames[b].frame->name);
+      for (const DatasetScene& scene : dataset.scenes) {
+        if (scene.name != s.frames.back()) continue;
+        const DatasetPair pair = dataset.pair(scene, c.name);
+        if (!pair.pose_check) continue;
+        if (!s.pose_check) s.pose_check = PoseCheck{};
+        s.pose_check->translation =
+            std::max(s.pose_check->translation, pair.pose_check->translation);
+        s.pose_check->rotation = std::max(s.pose_check->rotation, pair.pose_check->rotation);
+      }
+    }
+    if (s.frames.size() >= 2) sequences.push_back(std::move(s));
+  }
+  return sequences;
+}
+
 }  // namespace
 
 RgbdImport generate_rgbd_dataset(const std::string& sequence_dir, const std::string& out_dir,
@@ -197,13 +239,6 @@ RgbdImport generate_rgbd_dataset(const std::string& sequence_dir, const std::str
   rule.max_boxes = options.boxes_per_frame;
 
   // Landmarks: the rule's boxes in every frame used, captured and checked as `lmk capture` does.
-  struct Captured {
-    std::size_t frame;
-    std::string name;
-    Landmark landmark;
-    std::vector<std::size_t> box_views;  ///< every view of its box: the scenes keep clear of them
-    std::vector<Eigen::Vector3f> seen;   ///< the box's one-view points, for the hidden fraction
-  };
   std::vector<Captured> captured;
   nlohmann::json refusals = nlohmann::json::array();
   const std::size_t steps = 2 * frames.size();
@@ -304,6 +339,7 @@ RgbdImport generate_rgbd_dataset(const std::string& sequence_dir, const std::str
 
   // Scenes: every frame used, with each landmark cut min_gap to max_gap frames away from it.
   nlohmann::json checks = nlohmann::json::array();
+  std::vector<char> written(frames.size(), 0);  // by frame: a scene of the dataset
   for (std::size_t b = 0; b < frames.size(); ++b) {
     DatasetScene scene;
     scene.name = frames[b].frame->name;
@@ -355,10 +391,13 @@ RgbdImport generate_rgbd_dataset(const std::string& sequence_dir, const std::str
                                                  import.depth_calibration)
                                    : frames[b].cloud);
       dataset.scenes.push_back(std::move(scene));
+      written[b] = 1;
     }
     if (options.progress) options.progress(++done, steps);
   }
   save_dataset(out_dir, dataset);
+  save_track_sequences(out_dir, dataset,
+                       sequences_after_capture(dataset, frames, written, captured, options));
 
   nlohmann::json record = {
       {"format", "lmk-rgbd-import"},

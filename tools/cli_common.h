@@ -13,6 +13,10 @@
 #include "lmk/geometry/pinhole_intrinsics.h"
 #include "lmk/landmark/find_landmark.h"
 
+namespace lmk {
+struct TrackSettings;
+}  // namespace lmk
+
 namespace lmk::cli {
 
 /// Exit codes: 0 success, 1 an unexpected internal failure, 2 bad input (a file, an argument).
@@ -90,6 +94,10 @@ void add_search_options(CLI::App* sub, FindSettings& settings, bool with_executi
 /// axis and the base frame, which add_up_options gives.
 void add_capture_options(CLI::App* sub, CaptureSettings& settings);
 
+/// What lmk track and lmk eval-track share: the search's options (with --threads), --follow-margin
+/// and --search-margin.
+void add_track_options(CLI::App* sub, TrackSettings& settings);
+
 Subcommand add_bench(CLI::App& app);
 Subcommand add_info(CLI::App& app);
 Subcommand add_convert(CLI::App& app);
@@ -98,6 +106,7 @@ Subcommand add_calibrate_depth(CLI::App& app);
 Subcommand add_capture(CLI::App& app);
 Subcommand add_find(CLI::App& app);
 Subcommand add_track(CLI::App& app);
+Subcommand add_eval_track(CLI::App& app);
 Subcommand add_landmark(CLI::App& app);
 Subcommand add_robot(CLI::App& app);
 Subcommand add_eval(CLI::App& app);

@@ -2,6 +2,7 @@
 // lmk gen: render synthetic data with the simulated Kinect.
 //   lmk gen OUT.pcd [--seed S] [--no-noise]            one tabletop frame (the demo scene)
 //   lmk gen --preset NAME OUT_DIR [--seeds N] [--hard]  a benchmark dataset (docs/datasets.md)
+//   lmk gen --preset moving OUT_DIR [--frames N]        frame sequences of pushed landmarks
 //   lmk gen OUT_DIR --from-rgbd SEQ                      real cross-view pairs of an RGB-D sequence
 
 #include <cstdio>
@@ -10,6 +11,7 @@
 #include "lmk/eval/benchmark_dataset.h"
 #include "lmk/eval/depth_sensor.h"
 #include "lmk/eval/mosd_dataset.h"
+#include "lmk/eval/moving_dataset.h"
 #include "lmk/eval/rgbd_dataset.h"
 #include "lmk/eval/tabletop_scene.h"
 #include "lmk/geometry/cloud_io.h"
@@ -119,6 +121,30 @@ int run_preset(const GenOptions& options) {
   return kOk;
 }
 
+// The moving preset: sequences for lmk track and lmk eval-track, not scenes of the paper's types.
+int run_moving(const GenOptions& options) {
+  if (options.hard || !options.shard.empty() || options.merge || options.views > 1 ||
+      options.head_turn != 0.0)
+    throw Error("gen --preset moving takes --seeds, --seed, --frames, --types and --no-noise only");
+  MovingOptions moving;
+  if (options.seeds) moving.seeds = *options.seeds;
+  if (options.frames > 0) moving.frames = options.frames;
+  if (options.seed != 0) moving.first_seed = options.seed;
+  moving.noise = !options.no_noise;
+  moving.landmarks = split_commas(options.types);
+  ProgressBar bar("gen moving");
+  moving.progress = [&bar](std::size_t done, std::size_t total) { bar.update(done, total); };
+  const Stopwatch stopwatch;
+  const Dataset dataset = generate_moving_dataset(options.output, moving);
+  std::printf(
+      "wrote dataset 'moving' to %s: %zu landmarks, %d sequences of %d frames each (%.1f s); "
+      "follow them with: lmk eval-track %s\n",
+      options.output.c_str(), dataset.landmarks.size(),
+      static_cast<int>(dataset.landmarks.size()) * moving.seeds, moving.frames, stopwatch.seconds(),
+      options.output.c_str());
+  return kOk;
+}
+
 int run_mosd(const GenOptions& options) {
   MosdOptions mosd;
   mosd.copies = options.copies;
@@ -196,6 +222,9 @@ Subcommand add_gen(CLI::App& app) {
   sub->add_option("output", options->output,
                   "Cloud file to write (.pcd, .ply, .xyz), or with --preset the dataset directory")
       ->required();
+  presets +=
+      "\n  moving: frame sequences at 30 Hz of an object pushed 0.5-3 cm a frame and once carried "
+      "20-40 cm away, the camera still or panning (lmk eval-track)";
   sub->add_option("--preset", options->preset, "Write a benchmark dataset:" + presets);
   sub->add_option("--seed", options->seed,
                   "Scene and noise seed; with --preset the first scene seed (default 1: seed 0 is "
@@ -208,7 +237,8 @@ Subcommand add_gen(CLI::App& app) {
                 "With --preset: strong rotations and tilts (any yaw, turned chairs, tilted walls)");
   sub->add_option("--types", options->types,
                   "With --preset: only these scene types (comma-separated, e.g. "
-                  "simple/three_balls) and the landmarks in context in them");
+                  "simple/three_balls) and the landmarks in context in them; with --preset "
+                  "moving, only these objects (bowl, cup, tide_bottle, spray_bottle)");
   sub->add_option(
       "--shard", options->shard,
       "With --preset: render only shard K of N (K/N), a stable share of the scenes, for "
@@ -228,7 +258,8 @@ Subcommand add_gen(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--frames", options->frames,
                   "With --from-mosd: the first N frames only (0: all). With --preset: each scene "
-                  "fused from N renders with their own noise (lmk find with several frames)")
+                  "fused from N renders with their own noise (lmk find with several frames). "
+                  "With --preset moving: frames per sequence (10 to 3000, default 60)")
       ->check(CLI::Range(0, 100000));
   sub->add_flag("--no-noise", options->no_noise, "Exact depth: no sensor noise or quantisation");
   sub->add_option("--from-bag", options->from_bag,
@@ -321,6 +352,7 @@ Subcommand add_gen(CLI::App& app) {
             throw Error("--seeds, --hard, --types, --shard and --merge need --preset");
           return run_tabletop(*options);
         }
+        if (options->preset == "moving") return run_moving(*options);
         return run_preset(*options);
       }};
 }

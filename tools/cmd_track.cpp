@@ -161,6 +161,18 @@ int run_track(TrackOptions& o) {
 
 }  // namespace
 
+void add_track_options(CLI::App* sub, TrackSettings& settings) {
+  add_search_options(sub, settings.find, true);
+  sub->add_option("--follow-margin", settings.follow_margin,
+                  "m around the predicted box the frame is searched in while following")
+      ->check(within(0.0, 1.0))
+      ->capture_default_str();
+  sub->add_option("--search-margin", settings.search_margin,
+                  "m around where a lost landmark was last seen, searched before the whole frame")
+      ->check(within(0.0, 10.0))
+      ->capture_default_str();
+}
+
 Subcommand add_track(CLI::App& app) {
   auto o = std::make_shared<TrackOptions>();
   CLI::App* sub = app.add_subcommand(
@@ -170,15 +182,7 @@ Subcommand add_track(CLI::App& app) {
                   "directories of them (taken by name), and the landmarks to follow")
       ->required()
       ->expected(2, -1);
-  add_search_options(sub, o->settings.find, true);
-  sub->add_option("--follow-margin", o->settings.follow_margin,
-                  "m around the predicted box the frame is searched in while following")
-      ->check(within(0.0, 1.0))
-      ->capture_default_str();
-  sub->add_option("--search-margin", o->settings.search_margin,
-                  "m around where a lost landmark was last seen, searched before the whole frame")
-      ->check(within(0.0, 10.0))
-      ->capture_default_str();
+  add_track_options(sub, o->settings);
   add_depth_correction_option(sub, o->depth_correction);
   sub->add_option("--json", o->json,
                   "Write a JSON line per frame and landmark (frame, file, landmark, state, "
