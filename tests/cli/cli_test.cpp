@@ -391,6 +391,40 @@ TEST_F(CliLandmark, TrackFollowsALandmarkThroughFramesAndRefusesBadInput) {
                    "--follow-margin");
 }
 
+TEST_F(CliLandmark, EvalTrackScoresTheMovingPresetsSequencesAndRefusesBadInput) {
+  // One short sequence without noise: a bottle pushed about, carried once, put down elsewhere.
+  const CommandResult gen = lmk("gen --preset moving " + path("moving") +
+                                " --types tide_bottle --seeds 1 --frames 12 --no-noise");
+  ASSERT_EQ(gen.exit_code, 0) << gen.err;
+  EXPECT_NE(gen.out.find("1 landmarks, 1 sequences of 12 frames each"), std::string::npos)
+      << gen.out;
+  const CommandResult eval =
+      lmk("eval-track " + path("moving") + " --json " + path("tracking.json"));
+  ASSERT_EQ(eval.exit_code, 0) << eval.err;
+  EXPECT_NE(eval.out.find("moving-tide_bottle-1"), std::string::npos) << eval.out;
+  EXPECT_NE(eval.out.find("frames in view tracked within 10 mm / 5 degrees"), std::string::npos)
+      << eval.out;
+  std::ifstream in(dir_.file("tracking.json"));
+  const nlohmann::json j = nlohmann::json::parse(in);
+  ASSERT_EQ(j["sequences"].size(), 1u);
+  const nlohmann::json& s = j["sequences"][0];
+  EXPECT_EQ(s["frames"].size(), 12u);
+  EXPECT_EQ(s["frames"][0]["state"], "found");
+  EXPECT_LE(s["carry_noticed_after"].get<int>(), 1);
+  EXPECT_LE(s["refound_after"].get<int>(), 4);
+  EXPECT_EQ(s["pose_while_away"], 0);
+
+  expect_bad_input("eval-track " + path("moving") + " --only nothing-like-it",
+                   "no sequence's name holds 'nothing-like-it'");
+  std::filesystem::remove(dir_.file("moving/sequences.json"));
+  expect_bad_input("eval-track " + path("moving"), "holds no sequences");
+  expect_bad_input("gen --preset moving " + path("m2") + " --frames 5",
+                   "--frames must be 10 to 3000");
+  expect_bad_input("gen --preset moving " + path("m2") + " --types chair_corner",
+                   "not 'chair_corner'");
+  expect_bad_input("gen --preset moving " + path("m2") + " --hard", "--preset moving takes");
+}
+
 TEST_F(CliLandmark, DepthCorrectionAppliesToTheFrameReadOrIsRefusedInOneLine) {
   const std::string scene = path("scene.pcd");
   const auto correction = [&](const std::string& name, const std::string& image,
