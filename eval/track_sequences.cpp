@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "lmk/eval/track_sequences.h"
 
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -50,6 +51,15 @@ std::size_t frame_index(const detail::JsonReader& r, const json& j, const std::s
   return v.get<std::size_t>();
 }
 
+// A disagreement: a finite number, 0 or more.
+double distance(const detail::JsonReader& r, const json& j, const std::string& where,
+                const std::string& key) {
+  const json& v = r.field(j, where, key);
+  if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < 0.0)
+    r.fail(where, "'" + key + "' must be a finite number, 0 or more");
+  return v.get<double>();
+}
+
 TrackSequence parse_sequence(const detail::JsonReader& r, const json& j, const std::string& where) {
   if (!j.is_object()) r.fail(where, "must be an object");
   TrackSequence s;
@@ -67,9 +77,8 @@ TrackSequence parse_sequence(const detail::JsonReader& r, const json& j, const s
   }
   if (j.contains("pose_check") && !j["pose_check"].is_null()) {
     const std::string in = where + ".pose_check";
-    const Eigen::VectorXd t = r.numbers(r.field(j["pose_check"], in, "translation_m"), in, 1);
-    const Eigen::VectorXd a = r.numbers(r.field(j["pose_check"], in, "rotation_rad"), in, 1);
-    s.pose_check = PoseCheck{t[0], a[0]};
+    s.pose_check = PoseCheck{distance(r, j["pose_check"], in, "translation_m"),
+                             distance(r, j["pose_check"], in, "rotation_rad")};
   }
   return s;
 }

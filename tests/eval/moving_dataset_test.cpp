@@ -117,6 +117,15 @@ TEST_F(MovingBottle, TheTrackerNoticesTheCarryAndFindsTheBottleAgainWhereItWasPu
 
 TEST_F(MovingBottle, SequencesThatNameWhatTheDatasetDoesNotHoldAreRefused) {
   std::vector<TrackSequence> sequences = load_track_sequences(dir(), *dataset_);
+  // A real sequence's pose check (lmk gen --from-rgbd) is written and read back.
+  sequences[1].pose_check = PoseCheck{0.011, 0.009};
+  save_track_sequences(dir(), *dataset_, sequences);
+  const std::vector<TrackSequence> back = load_track_sequences(dir(), *dataset_);
+  ASSERT_TRUE(back[1].pose_check);
+  EXPECT_DOUBLE_EQ(back[1].pose_check->translation, 0.011);
+  EXPECT_DOUBLE_EQ(back[1].pose_check->rotation, 0.009);
+  EXPECT_FALSE(back[0].pose_check);
+  EXPECT_EQ(back[0].carry->from, sequences[0].carry->from);
   TrackSequence bad = sequences[0];
   bad.name = "other";
   bad.frames.push_back("no-such-scene");
