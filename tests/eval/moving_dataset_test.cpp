@@ -32,8 +32,8 @@ std::vector<std::optional<Eigen::Vector3d>> centres(const Dataset& d, const Trac
   return out;
 }
 
-// Generated once for the tests below: two detergent-bottle sequences of 24 frames, the first with a still
-// camera and the second panning.
+// Generated once for the tests below: two detergent-bottle sequences of 24 frames, the first with a
+// still camera and the second panning.
 class MovingBottle : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
