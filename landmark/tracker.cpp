@@ -92,6 +92,16 @@ Tracker::~Tracker() = default;
 Tracker::Tracker(Tracker&&) noexcept = default;
 Tracker& Tracker::operator=(Tracker&&) noexcept = default;
 
+void Tracker::follow_from(std::size_t landmark, const Eigen::Isometry3d& T_scene_capture) {
+  if (landmark >= tracks_.size())
+    throw Error("track: no landmark " + std::to_string(landmark) + " (" +
+                std::to_string(tracks_.size()) + " followed)");
+  Track& t = tracks_[landmark];
+  t.last = T_scene_capture;
+  t.before.reset();
+  t.seen = true;
+}
+
 std::vector<TrackedLandmark> Tracker::update(const PointCloud& frame) {
   // The whole frame is indexed at most once, for the landmarks that must be searched in it.
   std::optional<SceneIndex> whole;

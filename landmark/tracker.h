@@ -63,6 +63,11 @@ class Tracker {
   /// finite point.
   std::vector<TrackedLandmark> update(const PointCloud& frame);
 
+  /// Landmark `landmark` (its index in the order given) was seen at `T_scene_capture` in the frame
+  /// before the next: a search's or a plan's match. The next update follows it from there instead
+  /// of searching the whole frame. Throws lmk::Error for an index out of range.
+  void follow_from(std::size_t landmark, const Eigen::Isometry3d& T_scene_capture);
+
   const TrackSettings& settings() const { return settings_; }
 
  private:

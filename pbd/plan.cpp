@@ -255,9 +255,10 @@ struct Arms {
 std::optional<Unreachable> solve_steps(const Program& program, const Plan& plan,
                                        const KinematicsInterface& kinematics, const Arms& arms,
                                        const PlanSettings& settings,
-                                       std::vector<PlannedStep>& steps) {
+                                       std::vector<PlannedStep>& steps,
+                                       std::size_t first_step = 0) {
   std::map<Arm, std::vector<double>> current = arms.start;
-  for (std::size_t s = 0; s < program.steps.size(); ++s) {
+  for (std::size_t s = first_step; s < program.steps.size(); ++s) {
     const ProgramStep& step = program.steps[s];
     PlannedStep planned;
     planned.index = s;
@@ -297,16 +298,8 @@ void check_settings(const PlanSettings& s) {
   if (!(s.height_tolerance >= 0.0)) throw Error("plan: the height tolerance must be >= 0");
 }
 
-}  // namespace
-
-Plan plan(const Program& program, const std::map<std::string, Landmark>& landmarks,
-          const PointCloud& scene, const KinematicsInterface& kinematics, const JointState& start,
-          const PlanSettings& settings) {
-  validate_program(program);
-  check_settings(settings);
-  Plan result;
-  result.program = program.name;
-
+// Both arms' groups and their joints in `start`, also recorded as the plan's start.
+Arms arms_at(const KinematicsInterface& kinematics, const JointState& start, Plan& plan) {
   std::map<std::string, double> positions;
   for (std::size_t i = 0; i < start.names.size() && i < start.positions.size(); ++i) {
     positions[start.names[i]] = start.positions[i];
@@ -318,9 +311,51 @@ Plan plan(const Program& program, const std::map<std::string, Landmark>& landmar
     arms.groups[arm] = *group;
     arms.start[arm] = group_start(*group, positions);
     for (std::size_t i = 0; i < group->joints.size(); ++i) {
-      result.start[group->joints[i].name] = arms.start[arm][i];
+      plan.start[group->joints[i].name] = arms.start[arm][i];
     }
   }
+  return arms;
+}
+
+}  // namespace
+
+Plan replan_from(const Program& program, std::vector<LocatedLandmark> located,
+                 const KinematicsInterface& kinematics, const JointState& start,
+                 std::size_t first_step, const PlanSettings& settings) {
+  validate_program(program);
+  check_settings(settings);
+  if (first_step > program.steps.size())
+    throw Error("plan: step " + std::to_string(first_step) + " is past the program's end");
+  Plan result;
+  result.program = program.name;
+  result.landmarks = std::move(located);
+  const Arms arms = arms_at(kinematics, start, result);
+  for (std::size_t s = first_step; s < program.steps.size(); ++s) {
+    for (Arm arm : {Arm::kLeft, Arm::kRight}) {
+      const std::optional<ArmTarget>& target = program.steps[s].arm(arm);
+      if (target && target->relative_to_landmark() && !result.landmark(target->frame))
+        throw Error("plan: step " + std::to_string(s) + " is relative to landmark '" +
+                    target->frame + "', which was not located");
+    }
+  }
+  std::vector<PlannedStep> steps;
+  if (const std::optional<Unreachable> failure =
+          solve_steps(program, result, kinematics, arms, settings, steps, first_step)) {
+    result.refusal = *failure;
+  } else {
+    result.steps = std::move(steps);
+  }
+  return result;
+}
+
+Plan plan(const Program& program, const std::map<std::string, Landmark>& landmarks,
+          const PointCloud& scene, const KinematicsInterface& kinematics, const JointState& start,
+          const PlanSettings& settings) {
+  validate_program(program);
+  check_settings(settings);
+  Plan result;
+  result.program = program.name;
+  const Arms arms = arms_at(kinematics, start, result);
 
   // 1-2. Locate every landmark, or refuse.
   std::vector<Candidates> candidates;

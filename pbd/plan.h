@@ -140,4 +140,13 @@ Plan plan(const Program& program, const std::map<std::string, Landmark>& landmar
           const PointCloud& scene, const KinematicsInterface& kinematics, const JointState& start,
           const PlanSettings& settings = {});
 
+/// Plans `program` again from step `first_step` on, with its landmarks where `located` says and
+/// nothing searched: what a watching execution (watch.h) does when a landmark moved. Targets are
+/// composed and every remaining step's IK solved from the joints `start`, as plan() does; a step
+/// out of reach refuses the plan (Unreachable). The plan's steps keep their program indices.
+/// Throws lmk::Error for a remaining step relative to a landmark `located` lacks.
+Plan replan_from(const Program& program, std::vector<LocatedLandmark> located,
+                 const KinematicsInterface& kinematics, const JointState& start,
+                 std::size_t first_step, const PlanSettings& settings = {});
+
 }  // namespace lmk
