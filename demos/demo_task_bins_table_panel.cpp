@@ -83,6 +83,18 @@ DemoTask bins_task() {
       scenario("drop in recycling, only recycling there", "drop in recycling", std::nullopt,
                {kBinX + 0.02, 0.05, 0.3}),
   };
+  // Issue #48: a person moves the trash bin as the arm arrives over it, before it lets go.
+  DemoScenario pushed =
+      scenario("drop in trash, trash pushed 11 cm as the arm arrives", "drop in trash",
+               Eigen::Vector3d(kBinX, 0.2, 0.0), {kBinX, -0.2, 0.0});
+  pushed.move =
+      DemoMove{"trash", pose_from_xyz_rpy({kBinX - 0.02, 0.09, kFloorInBase}, {0, 0, 0.2}), 1};
+  DemoScenario taken =
+      scenario("drop in trash, trash carried off as the arm arrives (should stop)", "drop in trash",
+               Eigen::Vector3d(kBinX, 0.2, 0.0), {kBinX, -0.2, 0.0}, "trash_opening");
+  taken.move = DemoMove{"trash", std::nullopt, 1};
+  t.scenarios.push_back(pushed);
+  t.scenarios.push_back(taken);
   return t;
 }
 

@@ -26,7 +26,7 @@ fs::path cache_file(const DemoTasksSettings& settings, int task) {
   const ConfidenceCalibration& calibration = builtin_confidence_calibration();
   Fnv1a hash;
   hash.add(kVersion).add_value(kSearchRevision).add_value(settings.min_confidence);
-  hash.add_value(settings.look_again);
+  hash.add_value(settings.look_again).add_value(settings.watch);
   hash.add(calibration.metric).add_value(calibration.bias);
   for (const auto& [name, weight] : calibration.weights) hash.add(name).add_value(weight);
   const std::string key = hash.add_value(task)

@@ -7,6 +7,7 @@
 #include <map>
 
 #include "lmk/demos/demo_task_cache.h"
+#include "lmk/demos/detail/demo_moved_landmark.h"
 #include "lmk/demos/detail/demo_task_definitions.h"
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/error.h"
@@ -363,12 +364,33 @@ DemoScenarioResult run_scenario(const DemoTask& task, std::size_t index,
   result.looks = looked.looks.size();
   const std::size_t motions_before = robot.history().size();
   const double time_before = robot.time();
-  const ExecutionReport execution = execute(plan, robot);
+  ExecutionReport execution;
+  Plan executed = plan;  // the plan the arm last followed: a watched move re-plans
+  std::optional<detail::MovedRun> moved_run;
+  if (scenario.move && plan.valid()) {
+    moved_run = detail::execute_while_moved(program, plan, robot, state.world, *scenario.move,
+                                            recorded.landmarks, settings.watch, plan_settings,
+                                            1000 * (100 * task.number + index));
+    execution = moved_run->report;
+    executed = moved_run->executed;
+    result.replans = moved_run->replans;
+  } else {
+    execution = execute(plan, robot);
+  }
   result.steps_executed = execution.steps_completed;
   const bool moved = robot.history().size() != motions_before || robot.time() != time_before;
   result.refused = !plan.valid();
+  result.stopped = plan.valid() && !execution.completed;
 
-  if (!scenario.should_act) {
+  if (moved_run && !scenario.should_act) {
+    // Carried away while the arm was on its way: stopped, nothing sent after it went.
+    result.success = !execution.completed && moved_run->sent_after_move == 0;
+    result.wrong_motion = moved_run->sent_after_move > 0;
+    result.reason = result.success
+                        ? "stopped: " + execution.error
+                        : "moved on towards where '" + scenario.missing_landmark + "' was" +
+                              (execution.completed ? " and completed" : ": " + execution.error);
+  } else if (!scenario.should_act) {
     // Absent, or present only as a doubtful look-alike: either refusal names the right landmark.
     result.success =
         plan.refusal && refused_landmark(*plan.refusal) == scenario.missing_landmark && !moved;
@@ -388,7 +410,7 @@ DemoScenarioResult run_scenario(const DemoTask& task, std::size_t index,
     }
   } else {
     const std::string off =
-        judge_targets(task, program, plan, state.world, settings, result, state.picked);
+        judge_targets(task, program, executed, state.world, settings, result, state.picked);
     if (!execution.completed) {
       result.reason = "stopped after " + std::to_string(execution.steps_completed) + " of " +
                       std::to_string(plan.steps.size()) + " steps: " + execution.error;
@@ -404,6 +426,7 @@ DemoScenarioResult run_scenario(const DemoTask& task, std::size_t index,
       result.reason =
           std::to_string(execution.steps_completed) + " steps executed; targets within " +
           format_error(result.max_position_error, result.max_rotation_error) + " of the truth";
+      if (moved_run && !moved_run->noticed.empty()) result.reason += "; " + moved_run->noticed[0];
     }
   }
   result.seconds = stopwatch.seconds();

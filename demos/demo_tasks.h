@@ -30,10 +30,12 @@ struct DemoScenarioResult {
   /// a refusal (issue #45).
   bool wrong_motion = false;
   bool refused = false;             ///< the plan was refused: nothing moved
+  bool stopped = false;             ///< planned, but stopped part way (a watched landmark moved)
   double max_position_error = 0.0;  ///< m, over the landmark-relative targets (acting scenarios)
   double max_rotation_error = 0.0;  ///< rad
   double seconds = 0.0;             ///< perception, planning and execution
   std::size_t looks = 0;            ///< further frames the head took (look_again)
+  std::size_t replans = 0;          ///< the program planned again as its landmark moved (watch)
 };
 
 struct DemoTasksReport {
@@ -52,6 +54,9 @@ struct DemoTasksSettings {
   /// Further frames the head may take when a landmark is missing or doubtful (pbd/look_again.h);
   /// 0 refuses at once.
   int look_again = 2;
+  /// Scenarios whose landmark is moved between two steps run watching it (pbd/watch.h): the move
+  /// noticed, the rest re-planned, or the program stopped. false: open loop, as before watching.
+  bool watch = true;
   double max_position_error = 0.02;                 ///< m
   double max_rotation_error = 10.0 * M_PI / 180.0;  ///< rad
   /// If set, each task's landmarks (.lmk) and programs (.json), and every scene (.pcd) are written

@@ -12,12 +12,16 @@ namespace lmk {
 
 std::string demo_tasks_table(const DemoTasksReport& report) {
   TextTable table;
-  table.header = {"task", "scenario", "should act", "success", "outcome", "looks", "reason"};
+  table.header = {"task",    "scenario", "should act", "success",
+                  "outcome", "looks",    "re-plans",   "reason"};
   for (const DemoScenarioResult& r : report.scenarios) {
-    const char* outcome = r.wrong_motion ? "WRONG MOTION" : r.refused ? "refused" : "acted";
+    const char* outcome = r.wrong_motion ? "WRONG MOTION"
+                          : r.refused    ? "refused"
+                          : r.stopped    ? "stopped"
+                                         : "acted";
     table.rows.push_back({std::to_string(r.task) + " " + r.task_title, r.name,
                           r.should_act ? "yes" : "no", r.success ? "yes" : "NO", outcome,
-                          std::to_string(r.looks), r.reason});
+                          std::to_string(r.looks), std::to_string(r.replans), r.reason});
   }
   char total[200];
   std::snprintf(total, sizeof(total),
@@ -38,12 +42,14 @@ nlohmann::json scenario_to_json(const DemoScenarioResult& r) {
           {"success", r.success},
           {"wrong_motion", r.wrong_motion},
           {"refused", r.refused},
+          {"stopped", r.stopped},
           {"reason", r.reason},
           {"steps_executed", r.steps_executed},
           {"max_position_error_m", r.max_position_error},
           {"max_rotation_error_rad", r.max_rotation_error},
           {"seconds", r.seconds},
-          {"looks", r.looks}};
+          {"looks", r.looks},
+          {"replans", r.replans}};
 }
 
 DemoScenarioResult scenario_from_json(const nlohmann::json& j) {
@@ -55,12 +61,14 @@ DemoScenarioResult scenario_from_json(const nlohmann::json& j) {
   r.success = j.at("success").get<bool>();
   r.wrong_motion = j.at("wrong_motion").get<bool>();
   r.refused = j.at("refused").get<bool>();
+  r.stopped = j.value("stopped", false);
   r.reason = j.at("reason").get<std::string>();
   r.steps_executed = j.at("steps_executed").get<std::size_t>();
   r.max_position_error = j.at("max_position_error_m").get<double>();
   r.max_rotation_error = j.at("max_rotation_error_rad").get<double>();
   r.seconds = j.at("seconds").get<double>();
   r.looks = j.value("looks", std::size_t{0});
+  r.replans = j.value("replans", std::size_t{0});
   return r;
 }
 

@@ -176,6 +176,7 @@ int run_demo_tasks_command(const PbdOptions& o) {
   settings.threads = o.threads;
   settings.min_confidence = o.min_confidence;
   settings.look_again = o.look_again;
+  settings.watch = !o.no_watch;
   settings.save_dir = o.save_dir;
   settings.cache_dir = o.cache_dir;
   const StopOnSigint stop;
@@ -258,6 +259,9 @@ Subcommand add_pbd(CLI::App& app) {
       ->check(within(0.0, 1.0))
       ->capture_default_str();
   add_look_again_option(demo, *o, "Further frames");
+  demo->add_flag("--no-watch", o->no_watch,
+                 "Run the scenarios whose landmark moves between two steps open loop, as before "
+                 "programs watched their landmarks (issue #48)");
   demo->add_option("--save", o->save_dir,
                    "Write each task's landmarks, programs and scenes to DIR/taskN");
   demo->add_option("--threads", o->threads, "Search threads; 0 uses every core")

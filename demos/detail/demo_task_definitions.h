@@ -58,6 +58,14 @@ struct DemoProgram {
   std::vector<DemoStep> steps;
 };
 
+/// A person moving an object while the program runs (issue #48): once the arm's `after`-th
+/// trajectory has been sent, object `object` stands at `to`, or is gone when `to` is unset.
+struct DemoMove {
+  std::string object;
+  std::optional<Eigen::Isometry3d> to;
+  std::size_t after = 1;
+};
+
 struct DemoScenario {
   std::string name;
   std::string program;
@@ -68,6 +76,8 @@ struct DemoScenario {
   bool continues_previous = false;
   DemoWorld world;
   std::uint64_t seed = 0;  ///< sensor noise
+  /// The landmark moved between two steps: watching notices it (DemoTasksSettings::watch).
+  std::optional<DemoMove> move;
 };
 
 struct DemoTask {

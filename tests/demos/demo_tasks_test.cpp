@@ -111,13 +111,45 @@ TEST(DemoTasks, RunTheSixTasksOfThePaper) {
 TEST(DemoTasks, NeverActsWhenTheLandmarkIsMissing) {
   int cases = 0;
   for (const DemoScenarioResult& s : report().scenarios) {
-    if (s.should_act) continue;
+    if (s.should_act || s.stopped) continue;  // stopped: carried off once planned (below)
     ++cases;
     EXPECT_TRUE(s.success) << "task " << s.task << ", " << s.name << ": " << s.reason;
     EXPECT_EQ(s.steps_executed, 0u) << s.name;
     EXPECT_EQ(s.reason.rfind("refused, no motion: landmark '", 0), 0u) << s.reason;
   }
   EXPECT_EQ(cases, 4);  // two in task 1, one each in tasks 3 and 4
+}
+
+// Issue #48: the trash bin pushed 11 cm, or carried off, as the arm arrives over it. Watching, the
+// push is noticed and the rest re-planned to the bin's new place, and the carry stops the program
+// with nothing sent after it; open loop (as before watching), the arm drops where the bin was.
+TEST(DemoTasks, AMovedLandmarkIsNoticedWhenWatchedAndMissedOpenLoop) {
+  const auto moved = [](const DemoTasksReport& r) {
+    std::vector<DemoScenarioResult> out;
+    for (const DemoScenarioResult& s : r.scenarios) {
+      if (s.name.find("as the arm arrives") != std::string::npos) out.push_back(s);
+    }
+    return out;
+  };
+  const std::vector<DemoScenarioResult> watched = moved(report());
+  ASSERT_EQ(watched.size(), 2u);
+  EXPECT_TRUE(watched[0].success) << watched[0].reason;
+  EXPECT_EQ(watched[0].replans, 1u);
+  EXPECT_NE(watched[0].reason.find("'trash_opening' moved"), std::string::npos);
+  EXPECT_TRUE(watched[1].success) << watched[1].reason;
+  EXPECT_TRUE(watched[1].stopped);
+  EXPECT_FALSE(watched[1].wrong_motion);
+  EXPECT_NE(watched[1].reason.find("'trash_opening' is lost"), std::string::npos);
+
+  DemoTasksSettings open_loop;
+  open_loop.tasks = {4};
+  open_loop.watch = false;
+  const std::vector<DemoScenarioResult> unwatched = moved(run_demo_tasks(open_loop));
+  ASSERT_EQ(unwatched.size(), 2u);
+  for (const DemoScenarioResult& s : unwatched) {
+    EXPECT_FALSE(s.success) << s.name;
+    EXPECT_TRUE(s.wrong_motion) << s.name << ": " << s.reason;
+  }
 }
 
 // A success is what the criterion says: targets within 2 cm and 10 degrees of the truth and the
