@@ -181,20 +181,30 @@ Frame read_bag_frame(const std::string& path, const BagFrameOptions& options, do
   return read_bag_frames_at(path, options, seconds, 1).front();
 }
 
-std::vector<Frame> read_bag_frames(const std::string& path, const BagFrameOptions& options,
-                                   std::size_t stride) {
+void for_each_bag_frame(const std::string& path, const BagFrameOptions& options, double seconds,
+                        std::size_t stride, const std::function<bool(const Frame&)>& visit) {
   if (stride == 0) throw Error("the stride between bag frames must be at least 1");
   OpenBag open(path, options);
-  std::vector<Frame> frames;
-  std::size_t index = 0;
-  open.for_each_cloud([&](double, const sensor_msgs::PointCloud2& msg) {
-    if (index++ % stride == 0) {
-      try {
-        frames.push_back(open.frame(msg, options));
-      } catch (const Error& e) {
-        throw Error(path + ": cloud " + std::to_string(index - 1) + ": " + e.what());
-      }
+  std::size_t index = 0;  // clouds from `seconds` on
+  open.for_each_cloud([&](double t, const sensor_msgs::PointCloud2& msg) {
+    if (t < seconds || index++ % stride != 0) return true;
+    Frame frame;
+    try {
+      frame = open.frame(msg, options);
+    } catch (const Error& e) {
+      char when[48];
+      std::snprintf(when, sizeof when, ": the cloud of %.3f s: ", t);
+      throw Error(path + when + e.what());
     }
+    return visit(frame);
+  });
+}
+
+std::vector<Frame> read_bag_frames(const std::string& path, const BagFrameOptions& options,
+                                   std::size_t stride) {
+  std::vector<Frame> frames;
+  for_each_bag_frame(path, options, 0.0, stride, [&](const Frame& f) {
+    frames.push_back(f);
     return true;
   });
   return frames;

@@ -4,6 +4,7 @@
 // moved into a frame of its TF tree with the bag's own /tf and /tf_static, as lmk_node would have
 // seen them live.
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -49,6 +50,12 @@ Frame read_bag_frame(const std::string& path, const BagFrameOptions& options, do
 /// that frames of a head that moved between them can be fused (occupancy/tsdf_volume.h).
 std::vector<Frame> read_bag_frames_at(const std::string& path, const BagFrameOptions& options,
                                       double seconds, std::size_t count, double window = 0.0);
+
+/// Every `stride`-th cloud of the topic recorded `seconds` or more after the bag's start, one at a
+/// time, as a Frame in target_frame, until `visit` returns false: what a tracker follows a long
+/// session with, never holding more than one of its frames.
+void for_each_bag_frame(const std::string& path, const BagFrameOptions& options, double seconds,
+                        std::size_t stride, const std::function<bool(const Frame&)>& visit);
 
 /// Every `stride`-th cloud of the topic (1: all), as Frames in target_frame.
 std::vector<Frame> read_bag_frames(const std::string& path, const BagFrameOptions& options,

@@ -94,6 +94,13 @@ LandmarkNode::LandmarkNode(::ros::NodeHandle nh, ::ros::NodeHandle private_nh,
   add_view_service_ = private_nh.advertiseService("add_view", &LandmarkNode::add_view, this);
   find_service_ = private_nh.advertiseService("find_landmark", &LandmarkNode::find, this);
   list_service_ = private_nh.advertiseService("list_landmarks", &LandmarkNode::list, this);
+  LandmarkTrackingSettings tracking;
+  tracking.cloud_topic = settings_.cloud_topic;
+  tracking.base_frame = settings_.base_frame;
+  tracking.sensor_frame = settings_.sensor_frame;
+  tracking.track.find = settings_.find;
+  tracking.depth_correction = settings_.depth_correction;
+  tracking_ = std::make_unique<LandmarkTracking>(private_nh, std::move(tracking), library_, tf_);
   if (settings_.interactive) {
     BoxCaptureMarkers::Actions actions;
     actions.guess = [this](const std::string& f, const Eigen::Vector3d& p) {

@@ -2,7 +2,8 @@
 #pragma once
 // lmk_node's work (docs/ros.md, "lmk_node"): keeps the latest camera frame in the base frame and
 // serves capture_landmark, add_view, find_landmark and list_landmarks over a landmark directory,
-// publishing the last search's matches as a latched MarkerArray for RViz.
+// publishing the last search's matches as a latched MarkerArray for RViz; and ~track, landmarks
+// followed in every frame (landmark_tracking.h).
 
 #include <lmk_msgs/AddView.h>
 #include <lmk_msgs/CaptureLandmark.h>
@@ -22,6 +23,7 @@
 #include "lmk/landmark/landmark.h"
 #include "lmk/landmark/landmark_library.h"
 #include "lmk/ros/box_capture_markers.h"
+#include "lmk/ros/landmark_tracking.h"
 #include "lmk/ros/latest_frame.h"
 
 namespace lmk::ros1 {
@@ -97,6 +99,7 @@ class LandmarkNode {
   mutable std::mutex views_mutex_;
   std::vector<std::shared_ptr<const Frame>> added_views_;  ///< views kept for the next capture
   std::unique_ptr<BoxCaptureMarkers> rviz_box_;
+  std::unique_ptr<LandmarkTracking> tracking_;  ///< ~track (issue #48)
 };
 
 }  // namespace lmk::ros1

@@ -5,6 +5,7 @@
 // reason (tools/bag_input_no_ros.cpp).
 
 #include <CLI/CLI.hpp>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,13 @@ void add_bag_options(CLI::App* sub, BagOptions& options, bool with_time);
 /// in base_link, whose +z is up.
 std::vector<PointCloud> read_bag_scenes(const std::string& path, const BagOptions& options,
                                         bool& in_base_frame);
+
+/// The bag's frames from options.time on, one at a time and in order (options.frame, or base_link
+/// when the bag's TF has it, else the cloud's own frame), each with its sensor pose from TF, until
+/// `visit` returns false: what lmk track follows a recorded session with. `visit` also hears
+/// whether the frame is in base_link, whose +z is up.
+void for_each_bag_scene(const std::string& path, const BagOptions& options,
+                        const std::function<bool(PointCloud& scene, bool in_base_frame)>& visit);
 
 /// lmk info on a bag: its duration, topics with their types and counts, and TF frames.
 int print_bag_info(const std::string& path, bool json);

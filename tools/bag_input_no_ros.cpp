@@ -17,6 +17,10 @@ namespace {
 std::vector<PointCloud> read_bag_scenes(const std::string& path, const BagOptions&, bool&) {
   no_ros(path);
 }
+void for_each_bag_scene(const std::string& path, const BagOptions&,
+                        const std::function<bool(PointCloud&, bool)>&) {
+  no_ros(path);
+}
 int print_bag_info(const std::string& path, bool) { no_ros(path); }
 int write_bag_dataset(const std::string& path, const BagOptions&, std::size_t,
                       const std::vector<std::string>&, const std::string&) {

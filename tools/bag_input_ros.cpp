@@ -51,6 +51,15 @@ std::vector<PointCloud> read_bag_scenes(const std::string& path, const BagOption
   return scenes;
 }
 
+void for_each_bag_scene(const std::string& path, const BagOptions& options,
+                        const std::function<bool(PointCloud& scene, bool in_base_frame)>& visit) {
+  ros1::for_each_bag_frame(path, frame_options(options), options.time, 1,
+                           [&](const ros1::Frame& f) {
+                             PointCloud scene = f.scene;
+                             return visit(scene, f.base_frame == kBaseFrame);
+                           });
+}
+
 int print_bag_info(const std::string& path, bool json) {
   const ros1::BagSummary bag = ros1::summarize_bag(path);
   if (json) {

@@ -157,6 +157,11 @@ int run_run(const PbdOptions& o) {
         "pbd run --sim: --look-again needs a head that turns: with --ros (the simulated "
         "run plans on one fixed --scene)");
   }
+  if (o.watch) {
+    throw Error(
+        "pbd run --sim: --watch needs a camera that keeps looking: with --ros (the simulated "
+        "run has one fixed --scene; lmk pbd demo-tasks shows watching on the simulated PR2)");
+  }
   if (!o.sim || o.scene.empty()) {
     throw Error(
         "pbd run: give --sim --scene FILE for the simulated PR2, or --ros for a robot "
@@ -249,6 +254,10 @@ Subcommand add_pbd(CLI::App& app) {
                   "With --ros: seconds to wait for a camera frame and the robot")
       ->capture_default_str();
   add_look_again_option(run, *o, "With --ros: further frames");
+  run->add_flag("--watch", o->watch,
+                "With --ros: before every step and every grasp or release, follow the landmarks "
+                "in the camera's frames; one moved beyond 1 cm or 5 degrees re-plans the rest, a "
+                "lost one stops the run (docs/pbd.md)");
   CLI::App* demo = sub->add_subcommand(
       "demo-tasks", "The paper's six demonstration tasks, end to end on the simulated PR2");
   demo->add_option("--json", o->json, "Also write the results as JSON to FILE");

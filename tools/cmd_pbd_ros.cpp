@@ -16,6 +16,7 @@
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/stopwatch.h"
 #include "lmk/landmark/depth_correction_file.h"
+#include "lmk/pbd/watch.h"
 #include "lmk/pr2/pr2_kinematics.h"
 #include "lmk/pr2/pr2_robots.h"
 #include "lmk/ros/latest_frame.h"
@@ -44,6 +45,32 @@ std::shared_ptr<const ros1::Frame> wait_for_frame(const ros1::LatestFrame& lates
   throw Error("pbd run --ros: no usable frame on " + latest.topic() + " within " +
               std::to_string(static_cast<int>(timeout)) +
               " s (is the camera publishing, and does TF reach the base frame?)");
+}
+
+// The plan run watching its landmarks (pbd/watch.h): each look the first camera frame taken after
+// the look began (after the motion before it), the landmarks followed by the tracker from where
+// the plan found them.
+ExecutionReport execute_watched(const Program& program, const Plan& plan,
+                                const std::map<std::string, Landmark>& landmarks,
+                                const ros1::LatestFrame& latest, RobotInterface& robot,
+                                const KinematicsInterface& kinematics, const PbdOptions& o) {
+  const PlanSettings planning = plan_settings(o);
+  TrackSettings tracking;
+  tracking.find = planning.find;
+  TrackingWatch watch(
+      plan, landmarks,
+      [&](PointCloud& frame) {
+        const std::shared_ptr<const ros1::Frame> next =
+            latest.wait_newer(::ros::Time::now(), o.frame_timeout);
+        if (!next) return CallResult::error("no new frame on " + latest.topic());
+        frame = next->scene;
+        return CallResult::success();
+      },
+      tracking);
+  const WatchedExecution watched =
+      execute_watching(program, plan, robot, kinematics, watch, {}, planning);
+  for (const std::string& line : watched.noticed) std::printf("watching: %s\n", line.c_str());
+  return watched.report;
 }
 
 }  // namespace
@@ -112,7 +139,9 @@ int run_on_ros(const PbdOptions& o) {
     }
   });
   const Stopwatch stopwatch;
-  const ExecutionReport report = execute(plan, robot);
+  const ExecutionReport report =
+      o.watch ? execute_watched(program, plan, landmarks, latest, robot, kinematics, o)
+              : execute(plan, robot);
   done = true;
   watcher.join();
   robot.deactivate();

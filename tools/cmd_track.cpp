@@ -10,6 +10,7 @@
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "lmk/geometry/atomic_file.h"
 #include "lmk/geometry/cloud_io.h"
@@ -18,6 +19,7 @@
 #include "lmk/landmark/depth_correction_file.h"
 #include "lmk/landmark/landmark_file.h"
 #include "lmk/landmark/tracker.h"
+#include "tools/bag_input.h"
 #include "tools/cli_common.h"
 
 namespace lmk::cli {
@@ -30,6 +32,7 @@ struct TrackOptions {
   std::string json, depth_correction;
   bool timings = false;
   TrackSettings settings;
+  BagOptions bag;  ///< a bag's topic, frame, and the time to start from
 };
 
 bool is_landmark_file(const fs::path& p) { return p.extension() == ".lmk"; }
@@ -64,7 +67,7 @@ std::vector<std::string> frame_files(const std::vector<std::string>& inputs) {
 
 nlohmann::json to_json(std::size_t frame, const std::string& file, const TrackedLandmark& t) {
   nlohmann::json j = {{"frame", frame},
-                      {"file", fs::path(file).filename().string()},
+                      {"file", file},
                       {"landmark", t.name},
                       {"state", to_string(t.state)},
                       {"seconds", t.seconds}};
@@ -82,8 +85,7 @@ nlohmann::json to_json(std::size_t frame, const std::string& file, const Tracked
 
 void print_line(std::size_t frame, const std::string& file, const TrackedLandmark& t,
                 const ErrorMetric& metric) {
-  std::printf("frame %zu %s: '%s' %s", frame, fs::path(file).filename().c_str(), t.name.c_str(),
-              to_string(t.state));
+  std::printf("frame %zu %s: '%s' %s", frame, file.c_str(), t.name.c_str(), to_string(t.state));
   if (t.match) {
     const Eigen::Vector3d c = t.match->box.center();
     std::printf(" at %.4f %.4f %.4f, error %s", c.x(), c.y(), c.z(),
@@ -100,6 +102,45 @@ double percentile(std::vector<double> v, double q) {
   return v[static_cast<std::size_t>(std::round(q * static_cast<double>(v.size() - 1)))];
 }
 
+// The one bag among the inputs, or "" when the frames are cloud files; a bag with other frames,
+// or a second bag, is refused.
+std::string bag_of(const std::vector<std::string>& inputs) {
+  std::string bag;
+  std::size_t frames = 0;
+  for (const std::string& input : inputs) {
+    if (is_landmark_file(input)) continue;
+    ++frames;
+    if (is_bag(input)) bag = input;
+  }
+  if (!bag.empty() && frames > 1)
+    throw Error("track: give one bag, or cloud files and directories, not both");
+  return bag;
+}
+
+// The frames to follow, one at a time and in order, each with the name it is reported by: the
+// files and directories given, or the frames of a bag from --time on.
+void for_each_frame(const TrackOptions& o,
+                    const std::function<void(PointCloud&, const std::string&, bool)>& visit) {
+  const std::string bag = bag_of(o.inputs);
+  if (bag.empty()) {
+    for (const std::string& file : frame_files(o.inputs)) {
+      PointCloud frame = read_cloud(file);
+      correct_depth(frame, o.depth_correction);
+      visit(frame, fs::path(file).filename().string(), false);
+    }
+    return;
+  }
+  if (!o.depth_correction.empty())
+    throw Error("track: --depth-correction applies to cloud files, not to a bag's frames");
+  std::size_t k = 0;
+  const std::string name = fs::path(bag).filename().string();
+  for_each_bag_scene(bag, o.bag, [&](PointCloud& scene, bool in_base_frame) {
+    visit(scene, name + "#" + std::to_string(k++), in_base_frame);
+    return true;
+  });
+  if (k == 0) throw Error(bag + ": no frame from " + std::to_string(o.bag.time) + " s on");
+}
+
 int run_track(TrackOptions& o) {
   std::vector<std::shared_ptr<const Landmark>> landmarks;
   for (const std::string& input : o.inputs) {
@@ -107,8 +148,7 @@ int run_track(TrackOptions& o) {
       landmarks.push_back(std::make_shared<Landmark>(load_landmark(input)));
   }
   if (landmarks.empty()) throw Error("track: give at least one landmark file (.lmk)");
-  const std::vector<std::string> frames = frame_files(o.inputs);
-  Tracker tracker(landmarks, o.settings);
+  std::optional<Tracker> tracker;  // built at the first frame, which says the scene's frame
   const ErrorMetric& metric = find_error_metric(o.settings.find.resolved().selection.metric);
 
   std::string json_lines;
@@ -118,10 +158,14 @@ int run_track(TrackOptions& o) {
     bool was_lost = false;
   };
   std::vector<Counts> counts(landmarks.size());
-  for (std::size_t f = 0; f < frames.size(); ++f) {
-    PointCloud frame = read_cloud(frames[f]);
-    correct_depth(frame, o.depth_correction);
-    const std::vector<TrackedLandmark> now = tracker.update(frame);
+  std::size_t f = 0;
+  for_each_frame(o, [&](PointCloud& frame, const std::string& name, bool in_base_frame) {
+    if (!tracker) {
+      // A bag's frames in base_link: +z is up there.
+      if (in_base_frame) o.settings.find.scene.base_frame = true;
+      tracker.emplace(landmarks, o.settings);
+    }
+    const std::vector<TrackedLandmark> now = tracker->update(frame);
     double seconds = 0.0;
     for (std::size_t i = 0; i < now.size(); ++i) {
       const TrackedLandmark& t = now[i];
@@ -134,21 +178,22 @@ int run_track(TrackOptions& o) {
         if (!c.was_lost) ++c.losses;
       }
       c.was_lost = t.state == TrackState::lost;
-      if (o.json != "-") print_line(f, frames[f], t, metric);
-      if (!o.json.empty())
-        json_lines += json_output(to_json(f, frames[f], t), o.timings).dump() + "\n";
+      if (o.json != "-") print_line(f, name, t, metric);
+      if (o.json.empty()) continue;
+      const std::string line = json_output(to_json(f, name, t), o.timings).dump() + "\n";
+      if (o.json == "-") {
+        std::cout << line << std::flush;  // as it happens: a bag may be long
+      } else {
+        json_lines += line;
+      }
     }
     frame_seconds.push_back(seconds);
-  }
-  if (o.json == "-") {
-    std::cout << json_lines;
-  } else if (!o.json.empty()) {
-    write_text_atomically(o.json, json_lines);
-  }
+    ++f;
+  });
+  if (!o.json.empty() && o.json != "-") write_text_atomically(o.json, json_lines);
   FILE* summary = o.json == "-" ? stderr : stdout;
   std::fprintf(summary, "tracked %zu frames; per frame median %.1f ms, 95th percentile %.1f ms\n",
-               frames.size(), 1e3 * percentile(frame_seconds, 0.5),
-               1e3 * percentile(frame_seconds, 0.95));
+               f, 1e3 * percentile(frame_seconds, 0.5), 1e3 * percentile(frame_seconds, 0.95));
   for (std::size_t i = 0; i < landmarks.size(); ++i) {
     const Counts& c = counts[i];
     std::fprintf(
@@ -184,6 +229,11 @@ Subcommand add_track(CLI::App& app) {
       ->expected(2, -1);
   add_track_options(sub, o->settings);
   add_depth_correction_option(sub, o->depth_correction);
+  add_bag_options(sub, o->bag, false);
+  sub->add_option("--time", o->bag.time,
+                  "With a bag: seconds from its start; its frames are followed from there")
+      ->check(within(0.0, 1e6))
+      ->capture_default_str();
   sub->add_option("--json", o->json,
                   "Write a JSON line per frame and landmark (frame, file, landmark, state, "
                   "position, quaternion, error, confidence or lost_because) to FILE, or - for "

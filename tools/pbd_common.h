@@ -23,6 +23,7 @@ struct PbdOptions {
   int look_again = 2;
   bool look_again_given = false;  ///< --look-again was on the command line
   bool no_watch = false;          ///< demo-tasks: moved landmarks open loop, unwatched
+  bool watch = false;             ///< run --ros: watch the landmarks while the program runs
   bool sim = false, ros = false, json_stdout = false, timings = false;
   std::vector<int> tasks;
   std::string cloud_topic = "/head_mount_kinect/depth_registered/points";

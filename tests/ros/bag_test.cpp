@@ -11,6 +11,7 @@
 
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "lmk/eval/dataset.h"
 #include "lmk/eval/depth_sensor.h"
@@ -187,6 +188,38 @@ TEST(Bags, FramesAreChosenFromOneBagOnly) {
     EXPECT_EQ(code, 2) << out;
     EXPECT_NE(out.find(reason), std::string::npos) << out;
   }
+}
+
+// Issue #48: lmk track reads a bag's frames one at a time, in base_link from the bag's TF, and
+// follows the landmark through them as through the same frames as files.
+TEST(Bags, TrackFollowsALandmarkThroughABagsFrames) {
+  const Session& s = session();
+  const ScratchDir dir;
+  const auto [code, out] = run_lmk(dir, {"track", s.bag, s.landmark, "--json", "-"});
+  ASSERT_EQ(code, 0) << out;
+  std::vector<nlohmann::json> lines;
+  std::istringstream in(out);
+  for (std::string line; std::getline(in, line);) {
+    if (!line.empty() && line.front() == '{') lines.push_back(nlohmann::json::parse(line));
+  }
+  ASSERT_EQ(lines.size(), 3u) << out;
+  EXPECT_EQ(lines[0]["state"], "found");
+  EXPECT_EQ(lines[0]["file"], "session.bag#0");
+  for (std::size_t k = 1; k < 3; ++k) {
+    EXPECT_EQ(lines[k]["state"], "tracking") << k;
+    const std::vector<double> a = lines[0]["position"], b = lines[k]["position"];
+    for (int d = 0; d < 3; ++d) EXPECT_NEAR(a[d], b[d], 0.005) << "frame " << k;
+  }
+  EXPECT_NE(out.find("tracked 3 frames"), std::string::npos) << out;
+
+  // From 0.8 s on: the last two frames; a bag with other frames is refused.
+  const auto [code2, out2] = run_lmk(dir, {"track", s.bag, s.landmark, "--time", "0.8"});
+  ASSERT_EQ(code2, 0) << out2;
+  EXPECT_NE(out2.find("tracked 2 frames"), std::string::npos) << out2;
+  write_cloud(dir.file("frame.pcd"), session_frame(0).scene);
+  const auto [code3, out3] = run_lmk(dir, {"track", s.bag, dir.file("frame.pcd"), s.landmark});
+  EXPECT_EQ(code3, 2) << out3;
+  EXPECT_NE(out3.find("give one bag, or cloud files"), std::string::npos) << out3;
 }
 
 TEST(Bags, InfoListsTopicsTfFramesAndDuration) {

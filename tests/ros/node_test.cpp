@@ -11,6 +11,8 @@
 #include <lmk_msgs/CaptureLandmark.h>
 #include <lmk_msgs/FindLandmark.h>
 #include <lmk_msgs/ListLandmarks.h>
+#include <lmk_msgs/Track.h>
+#include <lmk_msgs/TrackedLandmarks.h>
 #include <pr2_controllers_msgs/JointTrajectoryAction.h>
 #include <ros/callback_queue.h>
 #include <ros/ros.h>
@@ -175,6 +177,73 @@ TEST(LmkNode, CaptureAndFindThroughTheServicesGiveWhatLmkFindGivesOnTheSameFrame
               want["terms"]["landmark_to_scene_count"].get<std::size_t>());
     EXPECT_EQ(got.rank, i + 1);
   }
+}
+
+// ~track (issue #48): a landmark of the directory followed in every frame the camera publishes:
+// ~tracked carries its stamped pose, confidence and state, TF gets lmk/NAME, and a stop ends it.
+TEST(LmkNode, TrackPublishesEachFramesPosesAndATfFramePerLandmark) {
+  const Landmark demonstrated = load_landmark(demo_data().landmark().string());
+  FakePr2 robot(fake_settings("demonstration.pcd"));
+  const ScratchDir dir;
+  const auto node = start_node(dir, dir.file("landmarks"));
+  lmk_msgs::CaptureLandmark capture =
+      call("/lmk_node/capture_landmark",
+           rim_capture(demonstrated, "base_link", Eigen::Isometry3d::Identity()));
+  ASSERT_TRUE(capture.response.success) << capture.response.message << "\n" << node->log();
+
+  lmk_msgs::Track bad;
+  bad.request.landmarks = {"nothing"};
+  bad = call("/lmk_node/track", bad);
+  EXPECT_FALSE(bad.response.success);
+  EXPECT_NE(bad.response.message.find("nothing"), std::string::npos) << bad.response.message;
+
+  lmk_msgs::Track track;
+  track.request.landmarks = {"rim"};
+  track = call("/lmk_node/track", track);
+  ASSERT_TRUE(track.response.success) << track.response.message;
+  EXPECT_EQ(track.response.landmarks, std::vector<std::string>{"rim"});
+
+  // Three frames: the first found by a search, the later ones followed.
+  const Eigen::Vector3d truth = demonstrated.box.center();
+  std::vector<lmk_msgs::TrackedLandmarks> frames;
+  while (frames.size() < 3) {
+    const auto msg = ::ros::topic::waitForMessage<lmk_msgs::TrackedLandmarks>("/lmk_node/tracked",
+                                                                              ::ros::Duration(30));
+    ASSERT_TRUE(msg) << node->log();
+    frames.push_back(*msg);
+  }
+  for (const lmk_msgs::TrackedLandmarks& f : frames) {
+    EXPECT_EQ(f.header.frame_id, "base_link");
+    ASSERT_EQ(f.landmarks.size(), 1u);
+    const lmk_msgs::TrackedLandmark& rim = f.landmarks[0];
+    EXPECT_EQ(rim.name, "rim");
+    ASSERT_NE(rim.state, "lost") << rim.lost_because;
+    const Eigen::Vector3d at(rim.box_pose.position.x, rim.box_pose.position.y,
+                             rim.box_pose.position.z);
+    EXPECT_LT((at - truth).norm(), 0.01);
+    EXPECT_GT(rim.confidence, 0.5);
+  }
+  EXPECT_EQ(frames.back().landmarks[0].state, "tracking");
+
+  // The landmark as a TF frame, where ~tracked says it is.
+  tf2_ros::Buffer tf;
+  tf2_ros::TransformListener listener(tf);
+  ASSERT_TRUE(tf.canTransform("base_link", "lmk/rim", ::ros::Time(0), ::ros::Duration(10)))
+      << node->log();
+  const geometry_msgs::TransformStamped T =
+      tf.lookupTransform("base_link", "lmk/rim", ::ros::Time(0));
+  EXPECT_LT((Eigen::Vector3d(T.transform.translation.x, T.transform.translation.y,
+                             T.transform.translation.z) -
+             truth)
+                .norm(),
+            0.01);
+
+  lmk_msgs::Track stop;
+  stop.request.stop = true;
+  stop = call("/lmk_node/track", stop);
+  EXPECT_TRUE(stop.response.success);
+  EXPECT_NE(stop.response.message.find("stopped following 'rim'"), std::string::npos)
+      << stop.response.message;
 }
 
 // ~frames (issue #46): a search fuses the latest frames, as `lmk find A B C` fuses the same frames
@@ -635,6 +704,49 @@ TEST(PbdRunOnRos, AnAbortedArmGoalStopsTheRunAndNamesTheStep) {
   int arm_goals = 0;
   for (Arm arm : {Arm::kLeft, Arm::kRight}) arm_goals += robot.goals(arm_action(arm));
   EXPECT_EQ(arm_goals, 2);  // nothing after the abort
+}
+
+// Issue #48, --watch: the bowl is taken away once the arm has its first goal. Watching, the run
+// notices before the gripper moves and stops, sending nothing more; unwatched, it goes on.
+TEST(PbdRunOnRos, WatchingStopsWhenTheLandmarkIsTakenWhileTheArmMoves) {
+  FakePr2Settings settings = fake_settings("scenario1.pcd");
+  // The scene without its bowls: every instance's box, grown by 4 cm, emptied (with one left, the
+  // watch would rightly follow the program to it).
+  FindSettings find;
+  find.scene.base_frame = true;
+  const FindResult bowls =
+      find_landmark(settings.scene, load_landmark(demo_data().landmark().string()), find);
+  ASSERT_FALSE(bowls.matches.empty());
+  PointCloud taken = settings.scene;
+  for (const Match& bowl : bowls.matches) {
+    const Box around(bowl.box.pose, bowl.box.size + Eigen::Vector3d::Constant(0.08));
+    for (Eigen::Vector3f& p : taken.points) {
+      if (p.allFinite() && around.contains(p))
+        p.setConstant(std::numeric_limits<float>::quiet_NaN());
+    }
+  }
+  settings.scenes_after_arm_goals = {taken};
+
+  const ScratchDir dir;
+  {
+    FakePr2 robot(settings);
+    const auto [code, out] =
+        run_lmk(dir, {"pbd", "run", demo_data().program().string(), "--ros", "--watch"});
+    EXPECT_EQ(code, 1) << out;
+    EXPECT_NE(out.find("landmark 'bowl_rim' is lost: stopped rather than move towards where it "
+                       "was"),
+              std::string::npos)
+        << out;
+    int arm_goals = 0;
+    for (Arm arm : {Arm::kLeft, Arm::kRight}) arm_goals += robot.goals(arm_action(arm));
+    EXPECT_EQ(arm_goals, 1);  // the first only: no arm goal after the bowls went
+  }
+  FakePr2 robot(settings);
+  const auto [code, out] = run_lmk(dir, {"pbd", "run", demo_data().program().string(), "--ros"});
+  EXPECT_EQ(code, 0) << out;  // open loop: it never looked again, and went on
+  int arm_goals = 0;
+  for (Arm arm : {Arm::kLeft, Arm::kRight}) arm_goals += robot.goals(arm_action(arm));
+  EXPECT_GT(arm_goals, 1);
 }
 
 TEST(PbdRunOnRos, NoMasterOrNoRobotIsOneClearLine) {

@@ -136,6 +136,10 @@ struct FakePr2::Impl {
       trajectories[ns].push_back(goal->trajectory);
       abort = ++arm_goals == abort_at;
       hang = arm_goals == hang_at;
+      const std::vector<PointCloud>& after = settings.scenes_after_arm_goals;
+      if (!after.empty()) {
+        cloud_msg = camera_message(after[std::min<std::size_t>(arm_goals, after.size()) - 1]);
+      }
       abort = abort || hang;  // a held goal moves nothing
       // A real controller runs the trajectory; the fake jumps to its end at once.
       if (!abort && !goal->trajectory.points.empty()) {

@@ -28,6 +28,9 @@ struct FakePr2Settings {
   /// a head that turned towards what the first view cut. Their sensor pose is `scene`'s; empty:
   /// `scene` whatever the head does.
   std::vector<PointCloud> scenes_after_head_goals;
+  /// What it sees after the first, second, ... arm goal (the last one stays): a landmark a person
+  /// moved while the arm was on its way (issue #48). Empty: no such change.
+  std::vector<PointCloud> scenes_after_arm_goals;
   std::string cloud_topic = "/head_mount_kinect/depth_registered/points";
   std::string sensor_frame = "head_mount_kinect_rgb_optical_frame";
   double cloud_rate = 4.0;  ///< Hz
