@@ -38,6 +38,17 @@ InstancePolicy instance_policy_from_name(const std::string& name) {
               "' (best-error, nearest-to-demonstration, demonstrated-height)");
 }
 
+const char* when_moved_name(WhenMoved when) {
+  return when == WhenMoved::kStop ? "stop" : "re-plan";
+}
+
+WhenMoved when_moved_from_name(const std::string& name) {
+  for (WhenMoved w : {WhenMoved::kReplan, WhenMoved::kStop}) {
+    if (name == when_moved_name(w)) return w;
+  }
+  throw Error("unknown answer to a moved landmark '" + name + "' (re-plan, stop)");
+}
+
 const ProgramLandmark* Program::landmark(const std::string& name) const {
   for (const ProgramLandmark& l : landmarks) {
     if (l.name == name) return &l;

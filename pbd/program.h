@@ -80,10 +80,25 @@ struct ProgramLandmark {
   std::optional<InstancePolicy> select;
 };
 
+/// What a watching execution (pbd/watch.h) does when a landmark the remaining steps are relative
+/// to has moved since planning.
+enum class WhenMoved {
+  kReplan,  ///< plan the remaining steps again from the new pose
+  kStop,    ///< stop the program, saying which landmark moved
+};
+/// "re-plan" or "stop".
+const char* when_moved_name(WhenMoved when);
+/// Throws lmk::Error naming the known names.
+WhenMoved when_moved_from_name(const std::string& name);
+
 struct Program {
   std::string name;
   std::vector<ProgramLandmark> landmarks;
   std::vector<ProgramStep> steps;
+  /// What to do when a landmark moves while the program runs watching (issue #48); unset: the
+  /// execution's WatchSettings (re-plan by default). A program that must not adapt (a tool
+  /// hung in one exact place) says stop.
+  std::optional<WhenMoved> when_landmark_moves;
 
   const ProgramLandmark* landmark(const std::string& name) const;
 };

@@ -121,6 +121,13 @@ Program parse(const json& j, const detail::JsonReader& r) {
     }
     p.steps.push_back(std::move(step));
   }
+  if (has(j, "when_landmark_moves")) {
+    try {
+      p.when_landmark_moves = when_moved_from_name(r.text(j, "", "when_landmark_moves"));
+    } catch (const Error& e) {
+      r.fail("when_landmark_moves", e.what());
+    }
+  }
   return p;
 }
 
@@ -139,11 +146,13 @@ std::string program_to_json(const Program& program) {
     if (step.duration) s["duration"] = *step.duration;
     steps.push_back(std::move(s));
   }
-  const json j = {{"format", kFormat},
-                  {"version", kProgramFormatVersion},
-                  {"name", program.name},
-                  {"landmarks", std::move(landmarks)},
-                  {"steps", std::move(steps)}};
+  json j = {{"format", kFormat},
+            {"version", kProgramFormatVersion},
+            {"name", program.name},
+            {"landmarks", std::move(landmarks)},
+            {"steps", std::move(steps)}};
+  if (program.when_landmark_moves)
+    j["when_landmark_moves"] = when_moved_name(*program.when_landmark_moves);
   return j.dump(2) + "\n";
 }
 

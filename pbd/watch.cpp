@@ -102,7 +102,7 @@ class Watcher {
     if (moves.empty()) return Verdict::kGoOn;
     std::string moved;
     for (const Move& m : moves) moved += (moved.empty() ? "" : ", ") + describe_move(m);
-    if (watching_.when_moved == WhenMoved::kStop) {
+    if (program_.when_landmark_moves.value_or(watching_.when_moved) == WhenMoved::kStop) {
       out_.noticed.push_back(when + ": " + moved + ": stopped");
       return stop(when + ": " + moved + " since planning: stopped, as the program asks");
     }

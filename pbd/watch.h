@@ -6,7 +6,8 @@
 // are relative to are now:
 // - one moved beyond the tolerance (1 cm or 5 degrees): the remaining steps are planned again from
 //   its new pose and the arm's joints now (replan_from: reachability checked before any motion),
-//   or the program stops, as WatchSettings says; a re-plan out of reach stops it too;
+//   or the program stops, as the program says (Program::when_landmark_moves, else WatchSettings);
+//   a re-plan out of reach stops it too;
 // - one lost (the tracker cannot follow it): the program stops;
 // - either way it never moves on towards the pose the landmark left.
 // What says where the landmarks are is a LandmarkWatch: on a robot, TrackingWatch, the tracker
@@ -57,16 +58,12 @@ class TrackingWatch : public LandmarkWatch {
   std::vector<TrackedLandmark> last_;
 };
 
-enum class WhenMoved {
-  kReplan,  ///< plan the remaining steps again from the new pose
-  kStop,    ///< stop the program, saying which landmark moved
-};
-
 struct WatchSettings {
   /// A landmark moved when its box centre moved more than this (m) or turned more than
   /// rotation_tolerance from where the plan composed its targets.
   double translation_tolerance = 0.01;
   double rotation_tolerance = 5.0 * M_PI / 180.0;  ///< rad
+  /// For programs that do not say (Program::when_landmark_moves).
   WhenMoved when_moved = WhenMoved::kReplan;
   /// Throws lmk::Error naming the bad value.
   void validate() const;

@@ -81,6 +81,32 @@ TEST(ProgramFile, AnEmptyProgramRoundTrips) {
   expect_same(p, program_from_json(program_to_json(p), "mem"));
 }
 
+// Issue #48: what a program asks a watching execution to do when a landmark moves is kept; a
+// program that says nothing writes no field (older files and tools read it unchanged).
+TEST(ProgramFile, WhatToDoWhenALandmarkMovesRoundTrips) {
+  Program p = two_arm_program();
+  EXPECT_EQ(program_to_json(p).find("when_landmark_moves"), std::string::npos);
+  EXPECT_FALSE(program_from_json(program_to_json(p), "mem").when_landmark_moves);
+  for (WhenMoved when : {WhenMoved::kStop, WhenMoved::kReplan}) {
+    p.when_landmark_moves = when;
+    const Program back = program_from_json(program_to_json(p), "mem");
+    ASSERT_TRUE(back.when_landmark_moves);
+    EXPECT_EQ(*back.when_landmark_moves, when);
+  }
+  std::string text = program_to_json(p);
+  text.replace(text.find("\"re-plan\""), 9, "\"adapt\"");
+  try {
+    program_from_json(text, "prog.json");
+    ADD_FAILURE() << "accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(
+        std::string(e.what()).find(
+            "when_landmark_moves: unknown answer to a moved landmark 'adapt' (re-plan, stop)"),
+        std::string::npos)
+        << e.what();
+  }
+}
+
 // Each case edits a valid program's JSON and names a word the error must contain.
 struct BadProgram {
   const char* what;

@@ -180,6 +180,21 @@ TEST_F(WatchTest, AskedToStopOnAMoveItStopsBeforeTheGripperMoves) {
     EXPECT_EQ(line.find("gripper"), std::string::npos) << line;
 }
 
+TEST_F(WatchTest, AProgramThatSaysStopIsStoppedWhateverTheSettings) {
+  PushedWhileReaching robot(kPushed);
+  Program says_stop = program();
+  says_stop.when_landmark_moves = WhenMoved::kStop;
+  const Plan p = planned(robot);
+  TrackingWatch watch(p, {{"l", *landmark_}},
+                      [&robot](PointCloud& frame) { return robot.frame(frame); });
+  const WatchedExecution done =
+      execute_watching(says_stop, p, robot, robot.kinematics(), watch, {});  // default: re-plan
+  EXPECT_FALSE(done.report.completed);
+  EXPECT_EQ(done.replans, 0u);
+  EXPECT_NE(done.report.error.find("stopped, as the program asks"), std::string::npos)
+      << done.report.error;
+}
+
 TEST_F(WatchTest, ALandmarkTakenAwayStopsTheProgram) {
   PushedWhileReaching robot(std::nullopt);
   const WatchedExecution done = run(robot, {});
