@@ -10,31 +10,17 @@ namespace {
 
 // The simulated PR2, and a person who moves an object once the arm has been sent `move.after`
 // trajectories: the robot's commands pass through unchanged.
-class MovedWhileRunning : public RobotInterface {
+class MovedWhileRunning : public ForwardingRobot {
  public:
   MovedWhileRunning(SimulatedPr2& robot, DemoWorld& world, const DemoMove& move)
-      : robot_(robot), world_(world), move_(move) {}
+      : ForwardingRobot(robot), world_(world), move_(move) {}
 
-  CallResult configure() override { return robot_.configure(); }
-  CallResult activate() override { return robot_.activate(); }
-  CallResult deactivate() override { return robot_.deactivate(); }
-  LifecycleState state() const override { return robot_.state(); }
-  CallResult read_joint_state(JointState& out) const override {
-    return robot_.read_joint_state(out);
-  }
   CallResult send_trajectory(const std::string& group, const JointTrajectory& t) override {
     if (moved_) ++sent_after_move;
-    const CallResult r = robot_.send_trajectory(group, t);
+    const CallResult r = ForwardingRobot::send_trajectory(group, t);
     if (++sent_ == move_.after) happen();
     return r;
   }
-  CallResult command_gripper(const std::string& g, const GripperCommand& c) override {
-    return robot_.command_gripper(g, c);
-  }
-  CallResult gripper_state(const std::string& g, GripperState& out) const override {
-    return robot_.gripper_state(g, out);
-  }
-  CallResult sensor_pose(Eigen::Isometry3d& T) const override { return robot_.sensor_pose(T); }
 
   std::size_t sent_after_move = 0;
 
@@ -48,7 +34,6 @@ class MovedWhileRunning : public RobotInterface {
     moved_ = true;
   }
 
-  SimulatedPr2& robot_;
   DemoWorld& world_;
   const DemoMove& move_;
   std::size_t sent_ = 0;

@@ -159,29 +159,25 @@ struct Captured {
 // Each landmark followed through the scenes after its frame, min_gap to max_gap frames on
 // (lmk eval-track): found in the first by a search, then tracked while the camera moves. A frame
 // whose pair was left out (its poses disagree) is still tracked through, with no ground truth.
-std::vector<TrackSequence> sequences_after_capture(const Dataset& dataset,
-                                                   const std::vector<UsedFrame>& frames,
-                                                   const std::vector<char>& written,
-                                                   const std::vector<Captured>& captured,
-                                                   const RgbdDatasetOptions& options) {
+// `scene_of[b]` is frame b's scene in the dataset, if it has one.
+std::vector<TrackSequence> sequences_after_capture(
+    const Dataset& dataset, const std::vector<std::optional<std::size_t>>& scene_of,
+    const std::vector<Captured>& captured, const RgbdDatasetOptions& options) {
   std::vector<TrackSequence> sequences;
   for (const Captured& c : captured) {
     TrackSequence s;
     s.name = c.name;
     s.landmark = c.name;
-    for (std::size_t b = c.frame + 1; b < frames.size(); ++b) {
+    for (std::size_t b = c.frame + 1; b < scene_of.size(); ++b) {
       const std::size_t gap = options.frame_stride * (b - c.frame);
-      if (gap < options.min_gap || gap > options.max_gap || !written[b]) continue;
-      s.frames.push_back(frames[b].frame->name);
-      for (const DatasetScene& scene : dataset.scenes) {
-        if (scene.name != s.frames.back()) continue;
-        const DatasetPair pair = dataset.pair(scene, c.name);
-        if (!pair.pose_check) continue;
-        if (!s.pose_check) s.pose_check = PoseCheck{};
-        s.pose_check->translation =
-            std::max(s.pose_check->translation, pair.pose_check->translation);
-        s.pose_check->rotation = std::max(s.pose_check->rotation, pair.pose_check->rotation);
-      }
+      if (gap < options.min_gap || gap > options.max_gap || !scene_of[b]) continue;
+      const DatasetScene& scene = dataset.scenes[*scene_of[b]];
+      s.frames.push_back(scene.name);
+      const DatasetPair pair = dataset.pair(scene, c.name);
+      if (!pair.pose_check) continue;
+      if (!s.pose_check) s.pose_check = PoseCheck{};
+      s.pose_check->translation = std::max(s.pose_check->translation, pair.pose_check->translation);
+      s.pose_check->rotation = std::max(s.pose_check->rotation, pair.pose_check->rotation);
     }
     if (s.frames.size() >= 2) sequences.push_back(std::move(s));
   }
@@ -339,7 +335,7 @@ RgbdImport generate_rgbd_dataset(const std::string& sequence_dir, const std::str
 
   // Scenes: every frame used, with each landmark cut min_gap to max_gap frames away from it.
   nlohmann::json checks = nlohmann::json::array();
-  std::vector<char> written(frames.size(), 0);  // by frame: a scene of the dataset
+  std::vector<std::optional<std::size_t>> scene_of(frames.size());  // by frame: its scene
   for (std::size_t b = 0; b < frames.size(); ++b) {
     DatasetScene scene;
     scene.name = frames[b].frame->name;
@@ -390,14 +386,14 @@ RgbdImport generate_rgbd_dataset(const std::string& sequence_dir, const std::str
                   options.fuse > 1 ? fused_scene(sequence, index, frames[b], options.fuse,
                                                  import.depth_calibration)
                                    : frames[b].cloud);
+      scene_of[b] = dataset.scenes.size();
       dataset.scenes.push_back(std::move(scene));
-      written[b] = 1;
     }
     if (options.progress) options.progress(++done, steps);
   }
   save_dataset(out_dir, dataset);
   save_track_sequences(out_dir, dataset,
-                       sequences_after_capture(dataset, frames, written, captured, options));
+                       sequences_after_capture(dataset, scene_of, captured, options));
 
   nlohmann::json record = {
       {"format", "lmk-rgbd-import"},

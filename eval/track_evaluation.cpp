@@ -12,6 +12,7 @@
 #include "lmk/eval/text_table.h"
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/error.h"
+#include "lmk/geometry/statistics.h"
 #include "lmk/geometry/stopwatch.h"
 #include "lmk/json/pose_json.h"
 #include "lmk/landmark/landmark_file.h"
@@ -20,12 +21,6 @@ namespace lmk {
 namespace {
 
 namespace fs = std::filesystem;
-
-double percentile(std::vector<double> v, double q) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v[static_cast<std::size_t>(std::round(q * static_cast<double>(v.size() - 1)))];
-}
 
 // The ground truth of `landmark` in `scene`: its one instance when in view, none when away, and
 // unknown when the dataset lists no pair for them (a real frame whose poses were left unchecked).
@@ -74,11 +69,12 @@ void score(SequenceResult& r, const TrackTolerance& tolerance) {
   }
 }
 
-SequenceResult follow(const std::string& dir, const Dataset& dataset, const TrackSequence& sequence,
-                      const TrackEvaluationOptions& options,
+// The dataset's scenes by name.
+using ScenesByName = std::map<std::string, const DatasetScene*>;
+
+SequenceResult follow(const std::string& dir, const Dataset& dataset, const ScenesByName& scenes,
+                      const TrackSequence& sequence, const TrackEvaluationOptions& options,
                       const std::function<void()>& frame_done) {
-  std::map<std::string, const DatasetScene*> scenes;
-  for (const DatasetScene& s : dataset.scenes) scenes[s.name] = &s;
   const auto landmark_entry =
       std::find_if(dataset.landmarks.begin(), dataset.landmarks.end(),
                    [&](const DatasetLandmark& l) { return l.name == sequence.landmark; });
@@ -172,8 +168,10 @@ TrackEvaluation evaluate_tracking(const std::string& dir, const TrackEvaluationO
   TrackEvaluation evaluation;
   evaluation.dataset = dataset.name;
   evaluation.tolerance = options.tolerance;
+  ScenesByName scenes;
+  for (const DatasetScene& s : dataset.scenes) scenes[s.name] = &s;
   for (const TrackSequence& s : sequences) {
-    evaluation.sequences.push_back(follow(dir, dataset, s, options, [&] {
+    evaluation.sequences.push_back(follow(dir, dataset, scenes, s, options, [&] {
       if (options.progress) options.progress(++done, total);
     }));
   }

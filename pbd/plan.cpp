@@ -6,7 +6,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <numeric>
-#include <set>
 
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/stopwatch.h"
@@ -70,16 +69,8 @@ namespace {
 
 // The landmarks some step is relative to, in the order the program declares them.
 std::vector<const ProgramLandmark*> used_landmarks(const Program& program) {
-  std::set<std::string> used;
-  for (const ProgramStep& step : program.steps) {
-    for (Arm arm : {Arm::kLeft, Arm::kRight}) {
-      if (step.arm(arm) && step.arm(arm)->relative_to_landmark()) used.insert(step.arm(arm)->frame);
-    }
-  }
   std::vector<const ProgramLandmark*> out;
-  for (const ProgramLandmark& l : program.landmarks) {
-    if (used.count(l.name)) out.push_back(&l);
-  }
+  for (const std::string& name : landmarks_used(program)) out.push_back(program.landmark(name));
   return out;
 }
 

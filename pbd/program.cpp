@@ -49,6 +49,21 @@ WhenMoved when_moved_from_name(const std::string& name) {
   throw Error("unknown answer to a moved landmark '" + name + "' (re-plan, stop)");
 }
 
+std::vector<std::string> landmarks_used(const Program& program, std::size_t first_step) {
+  std::set<std::string> used;
+  for (std::size_t s = first_step; s < program.steps.size(); ++s) {
+    for (Arm arm : {Arm::kLeft, Arm::kRight}) {
+      const std::optional<ArmTarget>& target = program.steps[s].arm(arm);
+      if (target && target->relative_to_landmark()) used.insert(target->frame);
+    }
+  }
+  std::vector<std::string> names;
+  for (const ProgramLandmark& l : program.landmarks) {
+    if (used.count(l.name)) names.push_back(l.name);
+  }
+  return names;
+}
+
 const ProgramLandmark* Program::landmark(const std::string& name) const {
   for (const ProgramLandmark& l : landmarks) {
     if (l.name == name) return &l;

@@ -44,6 +44,10 @@ struct ProgramStep {
 
   const std::optional<ArmTarget>& arm(Arm a) const { return a == Arm::kLeft ? left : right; }
   std::optional<ArmTarget>& arm(Arm a) { return a == Arm::kLeft ? left : right; }
+  /// Whether either arm's target is relative to a landmark.
+  bool relative_to_landmark() const {
+    return (left && left->relative_to_landmark()) || (right && right->relative_to_landmark());
+  }
 };
 
 /// Which instance a step goes to when a landmark is found more than once in the scene.
@@ -102,6 +106,10 @@ struct Program {
 
   const ProgramLandmark* landmark(const std::string& name) const;
 };
+
+/// The names of the landmarks the steps from `first_step` on are relative to, in the order the
+/// program declares them: what a plan must locate, and what a watching run must keep an eye on.
+std::vector<std::string> landmarks_used(const Program& program, std::size_t first_step = 0);
 
 /// Checks what a program must satisfy whatever its source: a name; unique, non-empty landmark
 /// names, none called "base"; a demonstrated pose where a symmetry or a policy that compares with

@@ -106,6 +106,37 @@ class RobotInterface {
   virtual CallResult sensor_pose(Eigen::Isometry3d& T_base_sensor) const = 0;
 };
 
+/// A robot that passes every call on to `inner`: derive from it to watch or change a few calls (a
+/// simulated person who moves things as the arm goes, a log of what was sent) and forward the rest.
+/// `inner` must outlive it.
+class ForwardingRobot : public RobotInterface {
+ public:
+  explicit ForwardingRobot(RobotInterface& inner) : inner_(inner) {}
+
+  CallResult configure() override { return inner_.configure(); }
+  CallResult activate() override { return inner_.activate(); }
+  CallResult deactivate() override { return inner_.deactivate(); }
+  LifecycleState state() const override { return inner_.state(); }
+  CallResult read_joint_state(JointState& out) const override {
+    return inner_.read_joint_state(out);
+  }
+  CallResult send_trajectory(const std::string& group, const JointTrajectory& trajectory) override {
+    return inner_.send_trajectory(group, trajectory);
+  }
+  CallResult command_gripper(const std::string& gripper, const GripperCommand& command) override {
+    return inner_.command_gripper(gripper, command);
+  }
+  CallResult gripper_state(const std::string& gripper, GripperState& out) const override {
+    return inner_.gripper_state(gripper, out);
+  }
+  CallResult sensor_pose(Eigen::Isometry3d& T_base_sensor) const override {
+    return inner_.sensor_pose(T_base_sensor);
+  }
+
+ private:
+  RobotInterface& inner_;
+};
+
 struct JointInfo {
   std::string name;
   std::string type;                 ///< "revolute", "continuous" or "prismatic"

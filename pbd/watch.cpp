@@ -3,40 +3,12 @@
 
 #include <cmath>
 #include <cstdio>
-#include <set>
 
 #include "lmk/geometry/error.h"
 #include "lmk/pbd/internal/execute_step.h"
 
 namespace lmk {
 namespace {
-
-// The landmarks the steps from `first_step` on are relative to, in program order.
-std::vector<std::string> landmarks_ahead(const Program& program, std::size_t first_step) {
-  std::set<std::string> seen;
-  std::vector<std::string> names;
-  for (std::size_t s = first_step; s < program.steps.size(); ++s) {
-    for (Arm arm : {Arm::kLeft, Arm::kRight}) {
-      const std::optional<ArmTarget>& target = program.steps[s].arm(arm);
-      if (target && target->relative_to_landmark() && seen.insert(target->frame).second)
-        names.push_back(target->frame);
-    }
-  }
-  return names;
-}
-
-bool relative_to_a_landmark(const ProgramStep& step) {
-  for (Arm arm : {Arm::kLeft, Arm::kRight}) {
-    if (step.arm(arm) && step.arm(arm)->relative_to_landmark()) return true;
-  }
-  return false;
-}
-
-const ProgramLandmark& entry(const Program& program, const std::string& name) {
-  for (const ProgramLandmark& l : program.landmarks)
-    if (l.name == name) return l;
-  throw Error("watch: program '" + program.name + "' declares no landmark '" + name + "'");
-}
 
 // A landmark's move since the plan: its box now, turned within its symmetry to the planned box's
 // orientation (a bowl tracked half a turn round about its axis has not moved), and how far.
@@ -84,7 +56,7 @@ class Watcher {
   // moved, or the stop (the report's error) when one is lost, the watch fails, the settings say
   // stop, or the re-plan is refused.
   Verdict check(std::size_t first_step, const std::string& when) {
-    const std::vector<std::string> names = landmarks_ahead(program_, first_step);
+    const std::vector<std::string> names = landmarks_used(program_, first_step);
     if (names.empty()) return Verdict::kGoOn;
     std::map<std::string, Eigen::Isometry3d> where;
     const CallResult seen = watch_.observe(names, where);
@@ -95,7 +67,8 @@ class Watcher {
       if (it == where.end())
         return stop(when + ": landmark '" + name +
                     "' is lost: stopped rather than move towards where it was");
-      const Move m = move_of(*out_.plan.landmark(name), it->second, entry(program_, name).symmetry);
+      const Move m =
+          move_of(*out_.plan.landmark(name), it->second, program_.landmark(name)->symmetry);
       if (m.distance > watching_.translation_tolerance || m.angle > watching_.rotation_tolerance)
         moves.push_back(m);
     }
@@ -212,7 +185,7 @@ WatchedExecution execute_watching(const Program& program, const Plan& plan, Robo
     }
     if (!send_motions(step, robot, out.report)) return out;
     // A grasp or release where the landmark was: look once more before the fingers move.
-    if (relative_to_a_landmark(program.steps[step.index])) {
+    if (program.steps[step.index].relative_to_landmark()) {
       v = watcher.check(step.index, name + "'s gripper");
       if (v == Watcher::Verdict::kStop) return out;
       if (v == Watcher::Verdict::kReplanned) {

@@ -3,6 +3,7 @@
 
 #include <geometry_msgs/TransformStamped.h>
 #include <lmk_msgs/TrackedLandmarks.h>
+#include <tf2_eigen/tf2_eigen.h>
 #include <visualization_msgs/MarkerArray.h>
 
 #include <cmath>
@@ -131,14 +132,9 @@ void LandmarkTracking::publish(const std::vector<TrackedLandmark>& now, const st
       continue;
     }
     // A TF frame per landmark in view: a robot's code can look up lmk/NAME like any link.
-    geometry_msgs::TransformStamped T;
+    geometry_msgs::TransformStamped T = tf2::eigenToTransform(t.match->box.pose);
     T.header = out.header;
     T.child_frame_id = "lmk/" + t.name;
-    const geometry_msgs::Pose p = lmk::ros1::to_ros(t.match->box.pose);
-    T.transform.translation.x = p.position.x;
-    T.transform.translation.y = p.position.y;
-    T.transform.translation.z = p.position.z;
-    T.transform.rotation = p.orientation;
     broadcaster_.sendTransform(T);
     visualization_msgs::Marker box = box_marker(t.match->box, frame_id, "lmk_tracked", id++);
     box.header.stamp = stamp;

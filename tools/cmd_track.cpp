@@ -15,6 +15,7 @@
 #include "lmk/geometry/atomic_file.h"
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/error.h"
+#include "lmk/geometry/statistics.h"
 #include "lmk/json/pose_json.h"
 #include "lmk/landmark/depth_correction_file.h"
 #include "lmk/landmark/landmark_file.h"
@@ -94,12 +95,6 @@ void print_line(std::size_t frame, const std::string& file, const TrackedLandmar
     std::printf(" (%s)", t.lost_because.c_str());
   }
   std::printf(", %.1f ms\n", 1e3 * t.seconds);
-}
-
-double percentile(std::vector<double> v, double q) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v[static_cast<std::size_t>(std::round(q * static_cast<double>(v.size() - 1)))];
 }
 
 // The one bag among the inputs, or "" when the frames are cloud files; a bag with other frames,

@@ -21,11 +21,17 @@ using test_scenes::scene_in_base;
 
 const Eigen::Vector2d kDemo(-0.1, -0.15);
 
+// The simulated PR2 the tests drive: the first base of PushedWhileReaching, so that it is built
+// before the robot that forwards to it.
+struct AtTheTable {
+  SimulatedPr2 pr2 = test_scenes::robot_at_table();
+};
+
 // The simulated PR2, and a person who moves the L once the arm's first trajectory has run.
-class PushedWhileReaching : public RobotInterface {
+class PushedWhileReaching : private AtTheTable, public ForwardingRobot {
  public:
   explicit PushedWhileReaching(std::optional<Eigen::Vector2d> pushed_to)
-      : robot_(test_scenes::robot_at_table()), pushed_to_(pushed_to) {}
+      : ForwardingRobot(pr2), pushed_to_(pushed_to) {}
 
   // What the head camera sees now: the table with the L where it stands (none once taken).
   CallResult frame(PointCloud& out) const {
@@ -34,45 +40,30 @@ class PushedWhileReaching : public RobotInterface {
     return CallResult::success();
   }
 
-  CallResult configure() override { return robot_.configure(); }
-  CallResult activate() override { return robot_.activate(); }
-  CallResult deactivate() override { return robot_.deactivate(); }
-  LifecycleState state() const override { return robot_.state(); }
-  CallResult read_joint_state(JointState& out) const override {
-    return robot_.read_joint_state(out);
-  }
   CallResult send_trajectory(const std::string& group, const JointTrajectory& t) override {
-    const CallResult r = robot_.send_trajectory(group, t);
+    const CallResult r = ForwardingRobot::send_trajectory(group, t);
     if (++trajectories == 1) where_ = pushed_to_;  // pushed (or taken) as the arm gets there
     return r;
   }
-  CallResult command_gripper(const std::string& g, const GripperCommand& c) override {
-    return robot_.command_gripper(g, c);
-  }
-  CallResult gripper_state(const std::string& g, GripperState& out) const override {
-    return robot_.gripper_state(g, out);
-  }
-  CallResult sensor_pose(Eigen::Isometry3d& T) const override { return robot_.sensor_pose(T); }
 
-  const Pr2Kinematics& kinematics() const { return robot_.kinematics(); }
+  const Pr2Kinematics& kinematics() const { return pr2.kinematics(); }
   // Where the right tool is now, base frame.
   Eigen::Isometry3d tool() const {
     JointState s;
-    EXPECT_TRUE(robot_.read_joint_state(s).ok());
-    const GroupInfo group = *robot_.kinematics().group("right_arm");
+    EXPECT_TRUE(pr2.read_joint_state(s).ok());
+    const GroupInfo group = *pr2.kinematics().group("right_arm");
     std::vector<double> q;
     for (const JointInfo& j : group.joints) {
       for (std::size_t i = 0; i < s.names.size(); ++i)
         if (s.names[i] == j.name) q.push_back(s.positions[i]);
     }
     Eigen::Isometry3d T;
-    EXPECT_TRUE(robot_.kinematics().forward("right_arm", q, T).ok());
+    EXPECT_TRUE(pr2.kinematics().forward("right_arm", q, T).ok());
     return T;
   }
   int trajectories = 0;
 
  private:
-  SimulatedPr2 robot_;
   std::optional<Eigen::Vector2d> where_ = kDemo;
   std::optional<Eigen::Vector2d> pushed_to_;
 };
