@@ -20,6 +20,8 @@
 #include <tf2_ros/transform_listener.h>
 #include <visualization_msgs/InteractiveMarkerFeedback.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -28,6 +30,7 @@
 
 #include "lmk/demos/demo_tasks.h"
 #include "lmk/geometry/cloud_io.h"
+#include "lmk/geometry/range_image.h"
 #include "lmk/landmark/box_guess.h"
 #include "lmk/landmark/landmark_file.h"
 #include "lmk/pbd/plan.h"
@@ -708,22 +711,116 @@ TEST(PbdRunOnRos, AnAbortedArmGoalStopsTheRunAndNamesTheStep) {
 
 // Issue #48, --watch: the bowl is taken away once the arm has its first goal. Watching, the run
 // notices before the gripper moves and stops, sending nothing more; unwatched, it goes on.
-TEST(PbdRunOnRos, WatchingStopsWhenTheLandmarkIsTakenWhileTheArmMoves) {
-  FakePr2Settings settings = fake_settings("scenario1.pcd");
-  // The scene without its bowls: every instance's box, grown by 4 cm, emptied (with one left, the
-  // watch would rightly follow the program to it).
+// The boxes of the bowls lmk finds in `scene` (base_link), each grown by 4 cm on every side: what
+// a person who takes or moves a bowl takes along (the table under it too).
+std::vector<Box> around_the_bowls(const PointCloud& scene) {
   FindSettings find;
   find.scene.base_frame = true;
   const FindResult bowls =
-      find_landmark(settings.scene, load_landmark(demo_data().landmark().string()), find);
-  ASSERT_FALSE(bowls.matches.empty());
+      find_landmark(scene, load_landmark(demo_data().landmark().string()), find);
+  std::vector<Box> around;
+  for (const Match& bowl : bowls.matches)
+    around.emplace_back(bowl.box.pose, bowl.box.size + Eigen::Vector3d::Constant(0.08));
+  return around;
+}
+
+// `scene` (organised) with the points in `moved` shifted by `shift`, as its camera would see it
+// then: every point projected onto its pixel again, the nearest kept.
+PointCloud seen_after_moving(const PointCloud& scene, const std::vector<Box>& moved,
+                             const Eigen::Vector3f& shift) {
+  const std::optional<RangeImage> image = RangeImage::from_cloud(scene);
+  EXPECT_TRUE(image && image->organised());
+  PointCloud out = scene;
+  std::fill(out.points.begin(), out.points.end(),
+            Eigen::Vector3f::Constant(std::numeric_limits<float>::quiet_NaN()));
+  std::vector<float> nearest(scene.size(), std::numeric_limits<float>::infinity());
+  const Eigen::Vector3f sensor = scene.sensor_origin().cast<float>();
+  for (std::size_t i = 0; i < scene.size(); ++i) {
+    Eigen::Vector3f p = scene.points[i];
+    if (!p.allFinite()) continue;
+    if (std::any_of(moved.begin(), moved.end(), [&](const Box& b) { return b.contains(p); }))
+      p += shift;
+    const std::optional<Eigen::Vector2d> pixel = image->project(p);
+    if (!pixel) continue;
+    const long u = std::lround(pixel->x()), v = std::lround(pixel->y());
+    if (u < 0 || v < 0 || u >= static_cast<long>(scene.width) ||
+        v >= static_cast<long>(scene.height))
+      continue;
+    const std::size_t k = static_cast<std::size_t>(v) * scene.width + static_cast<std::size_t>(u);
+    const float range = (p - sensor).norm();
+    if (range >= nearest[k]) continue;
+    nearest[k] = range;
+    out.points[k] = p;
+    if (!scene.colors.empty()) out.colors[k] = scene.colors[i];
+  }
+  return out;
+}
+
+// Where the right gripper ends the `n`-th (0-based) trajectory the fake PR2 received.
+Eigen::Vector3d right_gripper_after(const FakePr2& robot, std::size_t n) {
+  const auto sent = robot.trajectories(arm_action(Arm::kRight));
+  EXPECT_LT(n, sent.size());
+  if (n >= sent.size()) return Eigen::Vector3d::Constant(std::nan(""));
+  const Pr2Kinematics kinematics(RobotModel::pr2(), 0.0);
+  const GroupInfo arm = *kinematics.group("right_arm");
+  std::vector<double> joints;
+  for (const JointInfo& j : arm.joints) {
+    const auto& names = sent[n].joint_names;
+    const auto at = std::find(names.begin(), names.end(), j.name);
+    EXPECT_NE(at, names.end()) << j.name;
+    if (at == names.end()) return Eigen::Vector3d::Constant(std::nan(""));
+    joints.push_back(sent[n].points.back().positions[at - names.begin()]);
+  }
+  Eigen::Isometry3d T_base_tool;
+  EXPECT_TRUE(kinematics.forward("right_arm", joints, T_base_tool).ok());
+  return T_base_tool.translation();
+}
+
+TEST(PbdRunOnRos, WatchingReplansWhenTheLandmarkIsMovedWhileTheArmMoves) {
+  // pick_bowl: approach, grasp and lift relative to the bowl, then a place in the base frame. The
+  // bowls are pushed 5 cm to the robot's left once the approach is under way.
+  FakePr2Settings settings = fake_settings("scenario1.pcd");
+  const std::vector<Box> bowls = around_the_bowls(settings.scene);
+  ASSERT_FALSE(bowls.empty());
+  const Eigen::Vector3f push(0.0f, 0.05f, 0.0f);
+  settings.scenes_after_arm_goals = {seen_after_moving(settings.scene, bowls, push)};
+
+  const ScratchDir dir;
+  Eigen::Vector3d grasp_watched;
+  {
+    FakePr2 robot(settings);
+    const auto [code, out] =
+        run_lmk(dir, {"pbd", "run", demo_data().program().string(), "--ros", "--watch"});
+    ASSERT_EQ(code, 0) << out;
+    EXPECT_NE(out.find("re-planned the remaining"), std::string::npos) << out;
+    // Noticed before the approach's gripper command: the approach again towards the bowl where it
+    // is now, then grasp, lift and place.
+    const auto sent = robot.trajectories(arm_action(Arm::kRight));
+    ASSERT_EQ(sent.size(), 5u) << out;
+    grasp_watched = right_gripper_after(robot, 2);
+  }
+  FakePr2 robot(settings);
+  const auto [code, out] = run_lmk(dir, {"pbd", "run", demo_data().program().string(), "--ros"});
+  ASSERT_EQ(code, 0) << out;  // open loop: it grasps where the bowl was
+  ASSERT_EQ(robot.trajectories(arm_action(Arm::kRight)).size(), 4u) << out;
+  const Eigen::Vector3d grasp_open_loop = right_gripper_after(robot, 1);
+  // The watched grasp followed the bowl; the open-loop one did not.
+  const Eigen::Vector3d followed = grasp_watched - grasp_open_loop;
+  EXPECT_NEAR(followed.y(), push.y(), 0.01) << followed.transpose();
+  EXPECT_LT(std::hypot(followed.x(), followed.z()), 0.01) << followed.transpose();
+}
+
+TEST(PbdRunOnRos, WatchingStopsWhenTheLandmarkIsTakenWhileTheArmMoves) {
+  FakePr2Settings settings = fake_settings("scenario1.pcd");
+  // The scene without its bowls: every instance's box emptied (with one left, the watch would
+  // rightly follow the program to it).
+  const std::vector<Box> bowls = around_the_bowls(settings.scene);
+  ASSERT_FALSE(bowls.empty());
   PointCloud taken = settings.scene;
-  for (const Match& bowl : bowls.matches) {
-    const Box around(bowl.box.pose, bowl.box.size + Eigen::Vector3d::Constant(0.08));
-    for (Eigen::Vector3f& p : taken.points) {
-      if (p.allFinite() && around.contains(p))
-        p.setConstant(std::numeric_limits<float>::quiet_NaN());
-    }
+  for (Eigen::Vector3f& p : taken.points) {
+    if (p.allFinite() &&
+        std::any_of(bowls.begin(), bowls.end(), [&](const Box& b) { return b.contains(p); }))
+      p.setConstant(std::numeric_limits<float>::quiet_NaN());
   }
   settings.scenes_after_arm_goals = {taken};
 
