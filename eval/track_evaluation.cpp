@@ -97,7 +97,12 @@ SequenceResult follow(const std::string& dir, const Dataset& dataset, const Scen
     f.state = now.state;
     f.seconds = now.seconds;
     f.has_pose = now.match.has_value();
-    if (f.has_pose) f.pose = now.match->box.pose;
+    if (f.has_pose) {
+      f.pose = now.match->box.pose;
+      f.error = now.match->error;
+      f.confidence = now.match->confidence.probability;
+      f.freedom = now.match->confidence.freedom;
+    }
     std::optional<Eigen::Isometry3d> truth;
     f.truth = truth_of(scene, sequence.landmark, truth);
     if (f.has_pose && truth) {
@@ -121,6 +126,9 @@ std::string ms(double seconds) {
   std::snprintf(text, sizeof text, "%.1f", 1e3 * seconds);
   return text;
 }
+
+// A number, or null where JSON has none (NaN: no calibration applied).
+nlohmann::json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nullptr; }
 
 std::vector<double> frame_seconds(const SequenceResult& r) {
   std::vector<double> s;
@@ -214,7 +222,12 @@ std::string tracking_json(const TrackEvaluation& e) {
       json j = {{"state", to_string(f.state)},
                 {"truth", truths[static_cast<int>(f.truth)]},
                 {"seconds", f.seconds}};
-      if (f.has_pose) j.update(detail::pose_to_json(f.pose));
+      if (f.has_pose) {
+        j.update(detail::pose_to_json(f.pose));
+        j["error"] = f.error;
+        j["confidence"] = finite_or_null(f.confidence);
+        j["freedom_m"] = finite_or_null(f.freedom);
+      }
       if (f.has_pose && f.truth == FrameTruth::in_view) {
         j["translation_error_m"] = f.translation_error;
         j["rotation_error_rad"] = f.rotation_error;

@@ -36,6 +36,10 @@ struct TrackedFrame {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< the tracked box, when has_pose
   double translation_error = 0.0;  ///< m, when both a pose and an in-view truth exist
   double rotation_error = 0.0;     ///< rad
+  double error = 0.0;              ///< the match's, in the metric's unit, when has_pose
+  /// The match's calibrated confidence (NaN without a calibration) and how far its freest motion
+  /// moves it within the noise (MatchConfidence::freedom), when has_pose.
+  double confidence = 0.0, freedom = 0.0;
   double seconds = 0.0;
 };
 

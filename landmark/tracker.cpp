@@ -5,6 +5,7 @@
 #include "lmk/geometry/stopwatch.h"
 #include "lmk/landmark/landmark_index.h"
 #include "lmk/landmark/scene_index.h"
+#include "lmk/registration/frame_registration.h"
 
 namespace lmk {
 namespace {
@@ -54,21 +55,34 @@ const char* to_string(TrackState state) {
   return "?";
 }
 
+const std::vector<std::string>& setting_names(CameraMotion) {
+  static const std::vector<std::string> names{"auto", "estimated", "none"};
+  return names;
+}
+
+// The frame before, reduced for registration, and the camera's last motion: the next one's start.
+struct Tracker::CameraMotionEstimate {
+  std::optional<PointCloud> before;
+  Eigen::Isometry3d last_motion = Eigen::Isometry3d::Identity();
+};
+
 struct Tracker::Track {
   std::shared_ptr<const Landmark> landmark;
   std::unique_ptr<LandmarkIndex> index;
-  std::optional<Eigen::Isometry3d> last;    ///< T_scene_capture in the last frame it was seen
-  std::optional<Eigen::Isometry3d> before;  ///< and in the frame before that, when followed
-  bool seen = false;                        ///< ever found
+  /// T_scene_capture in the last frame it was seen, and in the frame before that when followed:
+  /// both in the first frame's coordinates (T_first_frame_), where what stands still stays put.
+  std::optional<Eigen::Isometry3d> last;
+  std::optional<Eigen::Isometry3d> before;
+  bool seen = false;  ///< ever found
 
   // Constant velocity: the last frame-to-frame motion applied once more.
   Eigen::Isometry3d predicted() const {
     if (!before) return *last;
     return (*last * before->inverse()) * *last;
   }
-  void seen_at(const Match& m, bool followed) {
+  void seen_at(const Eigen::Isometry3d& T_first_capture, bool followed) {
     before = followed ? last : std::nullopt;
-    last = m.T_scene_capture;
+    last = T_first_capture;
     seen = true;
   }
 };
@@ -80,12 +94,18 @@ Tracker::Tracker(std::vector<std::shared_ptr<const Landmark>> landmarks, TrackSe
       !(settings_.search_margin >= 0.0 && settings_.search_margin <= 10.0)) {
     throw Error("track: the follow margin must be in [0, 1] m and the search margin in [0, 10] m");
   }
+  if (!(settings_.follow_threshold_factor >= 1.0 && settings_.follow_threshold_factor <= 10.0)) {
+    throw Error("track: the follow threshold factor must be in [1, 10]");
+  }
+  follow_ = settings_.find.resolved();
+  *follow_.selection.threshold *= settings_.follow_threshold_factor;
   for (std::shared_ptr<const Landmark>& l : landmarks) {
     Track t;
     t.index = std::make_unique<LandmarkIndex>(l, settings_.find);
     t.landmark = std::move(l);
     tracks_.push_back(std::move(t));
   }
+  motion_ = std::make_unique<CameraMotionEstimate>();
 }
 
 Tracker::~Tracker() = default;
@@ -97,12 +117,46 @@ void Tracker::follow_from(std::size_t landmark, const Eigen::Isometry3d& T_scene
     throw Error("track: no landmark " + std::to_string(landmark) + " (" +
                 std::to_string(tracks_.size()) + " followed)");
   Track& t = tracks_[landmark];
-  t.last = T_scene_capture;
+  t.last = T_first_frame_ * T_scene_capture;
   t.before.reset();
   t.seen = true;
 }
 
+Eigen::Isometry3d Tracker::camera_moved(const PointCloud& frame) {
+  const bool estimate = settings_.camera_motion == CameraMotion::estimated ||
+                        (settings_.camera_motion == CameraMotion::automatic &&
+                         frame.T_cloud_sensor.matrix().isApprox(Eigen::Matrix4d::Identity()));
+  if (!estimate) {
+    motion_->before.reset();
+    return Eigen::Isometry3d::Identity();
+  }
+  PointCloud reduced = reduce_for_registration(frame);
+  Eigen::Isometry3d moved = Eigen::Isometry3d::Identity();
+  if (motion_->before && !motion_->before->empty() && !reduced.empty()) {
+    // Started from the camera's last motion (it mostly moves smoothly), then from standing still
+    // (a shaken camera's next motion is not its last); trusted when it explains half of the frame
+    // before, as a frame of the same place a thirtieth of a second later does.
+    for (const Eigen::Isometry3d& start : {motion_->last_motion, Eigen::Isometry3d::Identity()}) {
+      const IcpResult r = register_frames(*motion_->before, reduced, start);
+      if (2 * r.inliers >= motion_->before->size()) {
+        moved = r.T_target_source;
+        break;
+      }
+    }
+  }
+  motion_->last_motion = moved;
+  motion_->before = std::move(reduced);
+  return moved;
+}
+
 std::vector<TrackedLandmark> Tracker::update(const PointCloud& frame) {
+  // The camera's motion first: T_frame_before, so the first frame's pose in this one follows.
+  const Stopwatch registering;
+  T_first_frame_ = T_first_frame_ * camera_moved(frame).inverse();
+  const Eigen::Isometry3d T_frame_first = T_first_frame_.inverse();
+  // Each landmark's time holds its share of the registration, the work of the frame for all.
+  const double registration_share =
+      tracks_.empty() ? 0.0 : registering.seconds() / static_cast<double>(tracks_.size());
   // The whole frame is indexed at most once, for the landmarks that must be searched in it.
   std::optional<SceneIndex> whole;
   // The frame indexed inside `volume` only; nothing when no point of it lies there.
@@ -129,38 +183,42 @@ std::vector<TrackedLandmark> Tracker::update(const PointCloud& frame) {
     now.name = t.landmark->name;
     if (t.last) {
       // Followed: aligned from the prediction, in the frame around it only.
-      const Eigen::Isometry3d predicted = t.predicted();
+      const Eigen::Isometry3d predicted = T_frame_first * t.predicted();
       std::optional<FindResult> local;
       if (const std::optional<SceneIndex> around =
               index_within(grown(t.landmark->box, predicted, settings_.follow_margin))) {
-        local = find_near_pose(*around, *t.index, settings_.find, predicted);
+        local = find_near_pose(*around, *t.index, follow_, predicted);
       } else {
         now.lost_because = "no point of the frame where it was predicted";
       }
       if (local && !local->matches.empty()) {
         now.state = TrackState::tracking;
         now.match = local->matches.front();
-        t.seen_at(*now.match, true);
+        t.seen_at(T_first_frame_ * now.match->T_scene_capture, true);
       } else if (local) {
         now.lost_because = local->rejected.empty() ? "no match" : local->rejected.front().reason;
       }
       // Lost here: searched near where it was, then everywhere.
       if (!now.match) {
-        now.match = nearest_match(
-            search(t, grown(t.landmark->box, *t.last, settings_.search_margin)), t.last);
+        const Eigen::Isometry3d was = T_frame_first * *t.last;
+        now.match =
+            nearest_match(search(t, grown(t.landmark->box, was, settings_.search_margin)), was);
       }
     }
-    if (!now.match) now.match = nearest_match(search(t, std::nullopt), t.last);
+    if (!now.match) {
+      now.match = nearest_match(search(t, std::nullopt),
+                                t.last ? std::optional(T_frame_first * *t.last) : std::nullopt);
+    }
     if (now.match && now.state != TrackState::tracking) {
       now.state = t.seen ? TrackState::found_again : TrackState::found;
-      t.seen_at(*now.match, false);
+      t.seen_at(T_first_frame_ * now.match->T_scene_capture, false);
     } else if (!now.match) {
       now.state = TrackState::lost;
       t.before.reset();  // its motion is unknown now
       if (now.lost_because.empty()) now.lost_because = "not found in the frame";
     }
     if (now.state != TrackState::lost) now.lost_because.clear();
-    now.seconds = stopwatch.seconds();
+    now.seconds = registration_share + stopwatch.seconds();
     out.push_back(std::move(now));
   }
   return out;

@@ -4,11 +4,15 @@
 // its landmarks once and then moves open-loop drops the object where the bin was when a person
 // nudged it; a tracker says where each landmark is now, and when it has lost one.
 //
-// Per frame and landmark:
-// - predict: the last pose moved on by the last frame-to-frame motion (constant velocity);
+// Per frame, the camera's own motion when the frames are in its own frame (CameraMotion): the
+// tracks are kept in the first frame's coordinates, where what stands still stays put. Then per
+// landmark:
+// - predict: the last pose moved on by its last frame-to-frame motion there (constant velocity);
 // - align locally: the frame indexed inside the predicted box and a margin only, and
 //   find_near_pose from the prediction (the search's own alignment, metric, selection and
 //   confidence), a few milliseconds where a search takes tens;
+// - a match up to follow_threshold_factor times the threshold is kept: the view of the landmark
+//   changes as the camera moves, and the last frame's pose is evidence a search does not have;
 // - when that match is turned down (error, coverage, empty space, confidence) the landmark is lost
 //   in this frame, and searched again: first within `search_margin` of where it was, then in the
 //   whole frame; a match found there is "found again".
@@ -32,6 +36,22 @@ enum class TrackState {
 };
 const char* to_string(TrackState state);
 
+/// How the camera moves between the frames, which a landmark standing still moves by in them.
+enum class CameraMotion {
+  /// `estimated` for frames in their own sensor's frame (T_cloud_sensor the identity: a camera
+  /// held or carried), `none` for frames in another frame (a robot's base frame from TF).
+  automatic,
+  /// Each frame registered onto the one before it (whole-frame ICP, registration/
+  /// frame_registration.h): a landmark standing still is predicted where the camera's motion
+  /// takes it. Without it, a flat or symmetric landmark whose alignment cannot tell where along
+  /// itself it lies stays where it was in the image while the scene turns past it.
+  estimated,
+  /// The frames share one fixed frame: what stands still stays put in it.
+  none,
+};
+/// "auto", "estimated", "none".
+const std::vector<std::string>& setting_names(CameraMotion);
+
 struct TrackSettings {
   FindSettings find;  ///< the search's settings, for following and searching alike
   /// m added on every side of the predicted box to index the frame around it: the motion between
@@ -39,6 +59,13 @@ struct TrackSettings {
   double follow_margin = 0.10;
   /// m around the box where the landmark was last seen, searched first once it is lost.
   double search_margin = 0.5;
+  /// While following, a match is kept up to this many times the search's error threshold. The
+  /// landmark's points were cut from one view; as the camera moves, its other sides turn towards
+  /// the sensor and the error of the right pose creeps up (on the real kitchen frames most losses
+  /// were "error above threshold"), while the last frame's pose is evidence a whole-frame search
+  /// does not have. Every other check (coverage, empty space, confidence) is the search's own.
+  double follow_threshold_factor = 1.5;
+  CameraMotion camera_motion = CameraMotion::automatic;
 };
 
 /// One landmark in one frame.
@@ -72,8 +99,17 @@ class Tracker {
 
  private:
   struct Track;
+  struct CameraMotionEstimate;
+  /// The camera's motion from the frame before to `frame` (T_frame_before), as the settings say.
+  Eigen::Isometry3d camera_moved(const PointCloud& frame);
+
   TrackSettings settings_;
+  FindSettings follow_;  ///< the search's settings while following: the threshold widened
   std::vector<Track> tracks_;
+  /// The last frame's pose in the first frame's, through the camera motions: the tracks' poses are
+  /// kept in the first frame, where what stands still stays put.
+  Eigen::Isometry3d T_first_frame_ = Eigen::Isometry3d::Identity();
+  std::unique_ptr<CameraMotionEstimate> motion_;
 };
 
 }  // namespace lmk

@@ -28,6 +28,13 @@ py::dict tracked_to_python(const TrackedLandmark& t) {
   return d;
 }
 
+CameraMotion camera_motion_named(const std::string& name) {
+  const std::vector<std::string>& names = setting_names(CameraMotion{});
+  for (std::size_t k = 0; k < names.size(); ++k)
+    if (names[k] == name) return static_cast<CameraMotion>(k);
+  throw py::value_error("camera_motion must be 'auto', 'estimated' or 'none', not '" + name + "'");
+}
+
 }  // namespace
 
 void bind_tracking(py::module_& m) {
@@ -36,11 +43,14 @@ void bind_tracking(py::module_& m) {
                       "last poses, aligned locally, and searched again when lost (docs/python.md, "
                       "\"Tracking\").")
       .def(py::init([](const std::vector<std::shared_ptr<Landmark>>& landmarks,
-                       double follow_margin, double search_margin, const py::kwargs& kwargs) {
+                       double follow_margin, double search_margin, double follow_threshold_factor,
+                       const std::string& camera_motion, const py::kwargs& kwargs) {
              TrackSettings settings;
              settings.find = settings_from_keywords(kwargs);
              settings.follow_margin = follow_margin;
              settings.search_margin = search_margin;
+             settings.follow_threshold_factor = follow_threshold_factor;
+             settings.camera_motion = camera_motion_named(camera_motion);
              std::vector<std::shared_ptr<const Landmark>> shared;
              shared.assign(landmarks.begin(), landmarks.end());
              try {
@@ -49,11 +59,17 @@ void bind_tracking(py::module_& m) {
                throw py::value_error(e.what());
              }
            }),
-           py::arg("landmarks"), py::kw_only(), py::arg("follow_margin") = 0.1,
-           py::arg("search_margin") = 0.5,
+           py::arg("landmarks"), py::kw_only(),
+           py::arg("follow_margin") = TrackSettings{}.follow_margin,
+           py::arg("search_margin") = TrackSettings{}.search_margin,
+           py::arg("follow_threshold_factor") = TrackSettings{}.follow_threshold_factor,
+           py::arg("camera_motion") = "auto",
            "A tracker of `landmarks`. Search settings are keywords as lmk.find takes them; "
            "follow_margin (m) grows the predicted box the frame is searched in, search_margin "
-           "(m) the region a lost landmark is searched in first.")
+           "(m) the region a lost landmark is searched in first, follow_threshold_factor how many "
+           "times the error threshold a followed match may reach, camera_motion 'auto', "
+           "'estimated' (each frame registered onto the one before) or 'none' (the frames share "
+           "a fixed frame).")
       .def(
           "update",
           [](Tracker& tracker, const PointCloud& frame) {

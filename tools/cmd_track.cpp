@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -211,6 +212,20 @@ void add_track_options(CLI::App* sub, TrackSettings& settings) {
                   "m around where a lost landmark was last seen, searched before the whole frame")
       ->check(within(0.0, 10.0))
       ->capture_default_str();
+  sub->add_option("--follow-threshold-factor", settings.follow_threshold_factor,
+                  "While following, a match is kept up to this many times the error threshold")
+      ->check(within(1.0, 10.0))
+      ->capture_default_str();
+  std::map<std::string, CameraMotion> motions;
+  for (std::size_t k = 0; k < setting_names(CameraMotion{}).size(); ++k)
+    motions[setting_names(CameraMotion{})[k]] = static_cast<CameraMotion>(k);
+  sub->add_option("--camera-motion", settings.camera_motion,
+                  "How the camera moves between frames: estimated (each frame registered onto the "
+                  "one before), none (the frames share a fixed frame), or auto (estimated for "
+                  "frames in their own sensor's frame)")
+      ->transform(CLI::CheckedTransformer(motions).description(""))
+      ->type_name("auto|estimated|none")
+      ->default_str("auto");
 }
 
 Subcommand add_track(CLI::App& app) {

@@ -54,5 +54,43 @@ TEST(Tracker, FollowsAPushedLandmarkLosesItWhenTakenAndFindsItAgain) {
   expect_at(again[0], back, 8);
 }
 
+// The camera panning (turning about the vertical through itself) by `degrees` and back, frame after
+// frame, as a carried camera shakes, each frame in the camera's own coordinates (no fixed frame):
+// how many of the frames after the first the still L-shape was followed in, each within 5 mm of
+// the truth. Its last motion predicts the next one wrong by twice the pan.
+int frames_followed_while_the_camera_shakes(CameraMotion motion, double degrees, int frames) {
+  const Eigen::Vector2d xy = kCopies[0];
+  const auto landmark =
+      std::make_shared<const Landmark>(capture(render_scene({xy}, true), box_at(xy), "L"));
+  TrackSettings settings;
+  settings.camera_motion = motion;
+  Tracker tracker({landmark}, settings);
+  const Eigen::Vector3d centre = capture_camera().translation();
+  int followed = 0;
+  for (int k = 0; k < frames; ++k) {
+    const Eigen::Isometry3d turn =
+        Eigen::Translation3d(centre) *
+        Eigen::AngleAxisd((k % 2) * degrees * M_PI / 180, Eigen::Vector3d::UnitZ()) *
+        Eigen::Translation3d(-centre);
+    const Eigen::Isometry3d camera = turn * capture_camera();
+    const PointCloud frame = render_scene({xy}, true, {}, camera).transformed(camera.inverse());
+    const std::vector<TrackedLandmark> now = tracker.update(frame);
+    if (now[0].state != TrackState::tracking) continue;
+    const Eigen::Vector3d truth = camera.inverse() * box_at(xy).center();
+    EXPECT_LT((now[0].match->box.center() - truth).norm(), 0.005) << "frame " << k;
+    ++followed;
+  }
+  return followed;
+}
+
+TEST(Tracker, FollowsAStillLandmarkWhileTheCameraShakesByEstimatingItsMotion) {
+  // 3 degrees moves the L-shape about 5 cm in the image's frame; frames in the sensor's own frame
+  // have their camera motion estimated by default.
+  EXPECT_EQ(frames_followed_while_the_camera_shakes(CameraMotion::automatic, 3.0, 8), 7);
+  // Without the estimate, the prediction from its last motion misses it by twice that: lost, and
+  // searched for, every other frame.
+  EXPECT_LT(frames_followed_while_the_camera_shakes(CameraMotion::none, 3.0, 8), 7);
+}
+
 }  // namespace
 }  // namespace lmk
