@@ -179,9 +179,10 @@ json cause_rows_to_json(const std::vector<CauseRow>& rows) {
   json out = json::array();
   for (const CauseRow& r : rows) {
     json missed = json::object(), false_matches = json::object();
-    for (std::size_t k = 0; k < r.missed.size(); ++k) missed[miss_causes()[k]] = r.missed[k];
+    for (std::size_t k = 0; k < r.missed.size(); ++k)
+      missed[to_string(miss_causes()[k])] = r.missed[k];
     for (std::size_t k = 0; k < r.false_matches.size(); ++k)
-      false_matches[false_match_causes()[k]] = r.false_matches[k];
+      false_matches[to_string(false_match_causes()[k])] = r.false_matches[k];
     out.push_back(
         {{"group", r.group},
          {"missed", missed},
@@ -202,7 +203,7 @@ json explanation_to_json(const std::vector<ExplainedCase>& cases) {
                     {"landmark", c.landmark},
                     {"setting", c.setting},
                     {"kind", c.missed ? "missed" : "false match"},
-                    {"cause", c.cause},
+                    {"cause", to_string(c.cause)},
                     {"box", box_to_json(c.box)},
                     {"range_m", c.range},
                     {"hidden", optional_number(c.hidden)},

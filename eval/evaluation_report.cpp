@@ -147,7 +147,7 @@ TextTable case_table(const std::vector<ExplainedCase>& cases, const std::string&
     return v ? format_error(*v, metric) : std::string("-");
   };
   for (const ExplainedCase& c : cases) {
-    t.rows.push_back({c.scene, c.landmark, c.missed ? "missed" : "false match", c.cause,
+    t.rows.push_back({c.scene, c.landmark, c.missed ? "missed" : "false match", to_string(c.cause),
                       format_optional(c.range, 2), error(c.truth_error), error(c.winner_error),
                       format_optional(c.winner_confidence, 2)});
   }

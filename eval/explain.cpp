@@ -21,29 +21,16 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr const char* kNoCandidate = "no candidate";
-constexpr const char* kSuppressed = "suppressed";
-constexpr const char* kOverThreshold = "over threshold";
-constexpr const char* kCoverage = "coverage";
-constexpr const char* kEmptySpace = "empty space";
-// A landmark of several views whose visible part could not fix the pose (view_determinacy.h).
-constexpr const char* kTooLittleShown = "too little shown";
-// The shape matched; the colour term put it over the threshold (detail/colour_term.h).
-constexpr const char* kColourDiffers = "colour differs";
-constexpr const char* kDisplacedTruth = "displaced truth";
-constexpr const char* kOffPose = "off pose";
-constexpr const char* kLookAlike = "look-alike";
-
 // A candidate of the search again, and what became of it.
 struct Candidate {
   const Match* match;
-  std::string fate;  ///< "accepted", or a Rejection's reason
+  std::optional<RejectionReason> rejected;  ///< nothing: accepted
 };
 
 // What a pair's search again left: every candidate, best first.
 std::vector<Candidate> candidates_of(const FindResult& r) {
   std::vector<Candidate> out;
-  for (const Match& m : r.matches) out.push_back({&m, "accepted"});
+  for (const Match& m : r.matches) out.push_back({&m, std::nullopt});
   for (const Rejection& j : r.rejected) out.push_back({&j.candidate, j.reason});
   for (const Rejection& j : r.suppressed) out.push_back({&j.candidate, j.reason});
   std::stable_sort(out.begin(), out.end(), [](const Candidate& a, const Candidate& b) {
@@ -124,9 +111,9 @@ std::vector<ExplainedCase> explain_pair(const FailedPair& f, const SceneIndex& i
       }
     }
     std::vector<CandidateFate> fates;
-    for (const Candidate* n : near) fates.push_back({n->match->error, n->fate});
+    for (const Candidate* n : near) fates.push_back({n->match->error, n->rejected});
     c.cause = miss_cause(fates, t);
-    if (c.cause == kSuppressed) suppressed_truths.push_back(k);
+    if (c.cause == ExplainCause::suppressed) suppressed_truths.push_back(k);
     c.box = Box(p.truth[k], capture_box.size);
     c.range = range(p.truth[k]);
     if (k < p.truth_hidden.size()) c.hidden = p.truth_hidden[k];
@@ -157,7 +144,9 @@ std::vector<ExplainedCase> explain_pair(const FailedPair& f, const SceneIndex& i
     const bool on_instance = std::any_of(p.truth.begin(), p.truth.end(), [&](const auto& truth) {
       return within(truth, found.box.pose, p.symmetry, tolerance, 2.0);
     });
-    c.cause = displaced ? kDisplacedTruth : on_instance ? kOffPose : kLookAlike;
+    c.cause = displaced     ? ExplainCause::displaced_truth
+              : on_instance ? ExplainCause::off_pose
+                            : ExplainCause::look_alike;
     out.push_back(std::move(c));
   }
   return out;
@@ -165,30 +154,68 @@ std::vector<ExplainedCase> explain_pair(const FailedPair& f, const SceneIndex& i
 
 }  // namespace
 
-std::string miss_cause(const std::vector<CandidateFate>& near, double t) {
-  if (near.empty()) return kNoCandidate;
-  for (const CandidateFate& c : near) {
-    if (c.fate == "suppressed by a better match") continue;
-    if (c.fate == "accepted") return c.error < t ? kSuppressed : kOverThreshold;
-    if (c.fate == "error above threshold") return kOverThreshold;
-    if (c.fate == "coverage too low") return kCoverage;
-    if (c.fate == "empty space occupied") return kEmptySpace;
-    if (c.fate == "shows too little to fix its pose") return kTooLittleShown;
-    if (c.fate == "colour differs") return kColourDiffers;
-    return kSuppressed;  // inside a better match
+const char* to_string(ExplainCause cause) {
+  switch (cause) {
+    case ExplainCause::no_candidate:
+      return "no candidate";
+    case ExplainCause::suppressed:
+      return "suppressed";
+    case ExplainCause::over_threshold:
+      return "over threshold";
+    case ExplainCause::coverage:
+      return "coverage";
+    case ExplainCause::empty_space:
+      return "empty space";
+    case ExplainCause::too_little_shown:
+      return "too little shown";
+    case ExplainCause::colour_differs:
+      return "colour differs";
+    case ExplainCause::displaced_truth:
+      return "displaced truth";
+    case ExplainCause::off_pose:
+      return "off pose";
+    case ExplainCause::look_alike:
+      return "look-alike";
   }
-  return kSuppressed;
+  return "?";
 }
 
-const std::vector<std::string>& miss_causes() {
-  static const std::vector<std::string> causes{kNoCandidate,  kSuppressed, kOverThreshold,
-                                               kCoverage,     kEmptySpace, kTooLittleShown,
-                                               kColourDiffers};
+ExplainCause miss_cause(const std::vector<CandidateFate>& near, double t) {
+  for (const CandidateFate& c : near) {
+    if (!c.rejected) return c.error < t ? ExplainCause::suppressed : ExplainCause::over_threshold;
+    switch (*c.rejected) {
+      case RejectionReason::suppressed_by_a_better_match:
+        continue;  // it lost to a better neighbour: the next near one decides
+      case RejectionReason::error_above_threshold:
+        return ExplainCause::over_threshold;
+      case RejectionReason::coverage_too_low:
+        return ExplainCause::coverage;
+      case RejectionReason::empty_space_occupied:
+        return ExplainCause::empty_space;
+      case RejectionReason::too_little_shown:
+        return ExplainCause::too_little_shown;
+      case RejectionReason::colour_differs:
+        return ExplainCause::colour_differs;
+      // A wrong match was preferred: it held the candidate in its box, or was surer.
+      case RejectionReason::inside_a_better_match:
+      case RejectionReason::confidence_too_low:
+        return ExplainCause::suppressed;
+    }
+  }
+  return near.empty() ? ExplainCause::no_candidate : ExplainCause::suppressed;
+}
+
+const std::vector<ExplainCause>& miss_causes() {
+  static const std::vector<ExplainCause> causes{
+      ExplainCause::no_candidate,  ExplainCause::suppressed,  ExplainCause::over_threshold,
+      ExplainCause::coverage,      ExplainCause::empty_space, ExplainCause::too_little_shown,
+      ExplainCause::colour_differs};
   return causes;
 }
 
-const std::vector<std::string>& false_match_causes() {
-  static const std::vector<std::string> causes{kDisplacedTruth, kOffPose, kLookAlike};
+const std::vector<ExplainCause>& false_match_causes() {
+  static const std::vector<ExplainCause> causes{ExplainCause::displaced_truth,
+                                                ExplainCause::off_pose, ExplainCause::look_alike};
   return causes;
 }
 
@@ -352,8 +379,10 @@ std::vector<CauseRow> cause_rows_by_hidden(const std::vector<ExplainedCase>& cas
 TextTable cause_table(const std::vector<CauseRow>& rows, const std::string& metric) {
   TextTable table;
   table.header = {""};
-  for (const std::string& c : miss_causes()) table.header.push_back("missed: " + c);
-  for (const std::string& c : false_match_causes()) table.header.push_back("false: " + c);
+  for (ExplainCause c : miss_causes())
+    table.header.push_back(std::string("missed: ") + to_string(c));
+  for (ExplainCause c : false_match_causes())
+    table.header.push_back(std::string("false: ") + to_string(c));
   table.header.push_back("at truth");
   table.header.push_back("wrong winner");
   table.header.push_back("its confidence");

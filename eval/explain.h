@@ -13,6 +13,8 @@
 //   over threshold      the best near one scored above the threshold
 //   coverage            it failed the coverage test
 //   empty space         it failed the empty-space test
+//   too little shown    a landmark of several views whose visible part could not fix the pose
+//   colour differs      the shape matched; the colour term put it over the threshold
 // A false match's cause:
 //   displaced truth     it suppressed a true candidate of the same pair (within the suppression
 //                       radius of the truth, or holding the truth's centre in its box)
@@ -27,18 +29,36 @@
 #include "lmk/eval/dataset.h"
 #include "lmk/eval/evaluation.h"
 #include "lmk/eval/text_table.h"
+#include "lmk/landmark/find_landmark.h"
 
 namespace lmk {
 
-/// The causes, in the order tables list them.
-const std::vector<std::string>& miss_causes();
-const std::vector<std::string>& false_match_causes();
+/// Why an instance was missed (the first seven) or a false match reported (the last three).
+enum class ExplainCause {
+  no_candidate,
+  suppressed,
+  over_threshold,
+  coverage,
+  empty_space,
+  too_little_shown,  ///< a landmark of several views whose visible part could not fix the pose
+  colour_differs,    ///< the shape matched; the colour term put it over the threshold
+  displaced_truth,
+  off_pose,
+  look_alike,
+};
+/// What tables and JSON say: "no candidate", "suppressed", "over threshold", "coverage", "empty
+/// space", "too little shown", "colour differs", "displaced truth", "off pose", "look-alike".
+const char* to_string(ExplainCause cause);
 
-/// What became of a candidate near a missed instance: "accepted", or the reason selection or
-/// non-max suppression gave (Rejection::reason), with its error.
+/// The causes, in the order tables list them.
+const std::vector<ExplainCause>& miss_causes();
+const std::vector<ExplainCause>& false_match_causes();
+
+/// What became of a candidate near a missed instance: accepted (no reason), or the reason
+/// selection or non-max suppression gave, with its error.
 struct CandidateFate {
   double error = 0.0;
-  std::string fate;
+  std::optional<RejectionReason> rejected;
 };
 
 /// The cause of a miss from the candidates within tolerance of the truth, best (lowest error)
@@ -46,12 +66,12 @@ struct CandidateFate {
 /// the best of neighbours, so one it removed lost to a better one); none near is "no candidate",
 /// and near ones all removed by suppression, or accepted below the threshold yet not reported,
 /// lost to a wrong one.
-std::string miss_cause(const std::vector<CandidateFate>& near, double threshold);
+ExplainCause miss_cause(const std::vector<CandidateFate>& near, double threshold);
 
 struct ExplainedCase {
   std::string scene, landmark, setting;
   bool missed = true;  ///< a missed instance; false: a false match
-  std::string cause;
+  ExplainCause cause = ExplainCause::no_candidate;
   Box box;             ///< the instance's box (missed) or the match's (false match), scene frame
   double range = 0.0;  ///< from the scene's sensor to the box centre, m
   /// A missed instance: the fraction of it the scene's sensor could not see, when the dataset

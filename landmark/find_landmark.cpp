@@ -20,16 +20,6 @@
 namespace lmk {
 namespace {
 
-// Why a candidate was turned down, as Rejection::reason and describe_rejections say it.
-constexpr const char* kRejectedError = "error above threshold";
-constexpr const char* kRejectedColour = "colour differs";
-constexpr const char* kRejectedCoverage = "coverage too low";
-constexpr const char* kRejectedEmptySpace = "empty space occupied";
-constexpr const char* kRejectedOverlap = "inside a better match";
-constexpr const char* kRejectedUndetermined = "shows too little to fix its pose";
-constexpr const char* kRejectedConfidence = "confidence too low";
-constexpr const char* kSuppressed = "suppressed by a better match";
-
 // Steps 5 and 6: non-max suppression on box centres, then the error threshold (and, for metrics
 // that measure them, the coverage and the empty space), then, with `suppress_overlaps` (the fast
 // method's, not the paper's), the matches inside a better match's box (exclusive_boxes).
@@ -45,10 +35,11 @@ void select(std::vector<Match> candidates, const SelectionSettings& s, bool supp
     std::vector<char> is_kept(candidates.size(), 0);
     for (std::size_t i : kept) is_kept[i] = 1;
     for (std::size_t i = 0; i < candidates.size(); ++i) {
-      if (!is_kept[i]) result.suppressed.push_back({candidates[i], kSuppressed});
+      if (!is_kept[i])
+        result.suppressed.push_back({candidates[i], RejectionReason::suppressed_by_a_better_match});
     }
   }
-  const auto reject = [&](Match& m, std::size_t& count, const char* reason) {
+  const auto reject = [&](Match& m, std::size_t& count, RejectionReason reason) {
     ++count;
     result.rejected.push_back({std::move(m), reason});
   };
@@ -58,16 +49,16 @@ void select(std::vector<Match> candidates, const SelectionSettings& s, bool supp
       // Over only by the colour term: the shape matched, the colour did not.
       const bool shape_fits = m.error - m.terms.colour_penalty < stats.threshold;
       if (m.terms.colour_penalty > 0.0 && shape_fits) {
-        reject(m, stats.rejected_colour, kRejectedColour);
+        reject(m, stats.rejected_colour, RejectionReason::colour_differs);
       } else {
-        reject(m, stats.rejected_error, kRejectedError);
+        reject(m, stats.rejected_error, RejectionReason::error_above_threshold);
       }
     } else if (detail::coverage_too_low(m.terms, s)) {
-      reject(m, stats.rejected_coverage, kRejectedCoverage);
+      reject(m, stats.rejected_coverage, RejectionReason::coverage_too_low);
     } else if (detail::empty_space_occupied(m.terms, s)) {
-      reject(m, stats.rejected_empty_space, kRejectedEmptySpace);
+      reject(m, stats.rejected_empty_space, RejectionReason::empty_space_occupied);
     } else if (undetermined(m)) {
-      reject(m, stats.rejected_undetermined, kRejectedUndetermined);
+      reject(m, stats.rejected_undetermined, RejectionReason::too_little_shown);
     } else {
       result.matches.push_back(std::move(m));
     }
@@ -83,7 +74,7 @@ void select(std::vector<Match> candidates, const SelectionSettings& s, bool supp
     if (exclusive[i]) {
       accepted.push_back(std::move(result.matches[i]));
     } else {
-      reject(result.matches[i], stats.rejected_overlap, kRejectedOverlap);
+      reject(result.matches[i], stats.rejected_overlap, RejectionReason::inside_a_better_match);
     }
   }
   result.matches = std::move(accepted);
@@ -153,7 +144,7 @@ struct Prepared {
       m.confidence = detail::assess_match(input, m, rivals);
       if (!passes_confidence(m.confidence.probability, settings.selection.min_confidence)) {
         ++result.stats.rejected_confidence;
-        result.rejected.push_back({std::move(m), kRejectedConfidence});
+        result.rejected.push_back({std::move(m), RejectionReason::confidence_too_low});
       } else {
         kept.push_back(std::move(m));
       }
@@ -178,7 +169,8 @@ void select_and_assess(const SceneIndex& index, const LandmarkIndex& prepared, c
   std::vector<Match> pool = candidates.kept;
   pool.insert(pool.end(), candidates.suppressed.begin(), candidates.suppressed.end());
   if (p.settings.execution.keep_suppressed) {
-    for (Match& m : candidates.suppressed) result.suppressed.push_back({std::move(m), kSuppressed});
+    for (Match& m : candidates.suppressed)
+      result.suppressed.push_back({std::move(m), RejectionReason::suppressed_by_a_better_match});
   }
   select(
       std::move(candidates.kept), p.settings.selection, suppress_overlaps,
@@ -247,22 +239,44 @@ FindResult search(const SceneIndex& index, const LandmarkIndex& prepared,
 
 }  // namespace
 
+const char* to_string(RejectionReason reason) {
+  switch (reason) {
+    case RejectionReason::error_above_threshold:
+      return "error above threshold";
+    case RejectionReason::colour_differs:
+      return "colour differs";
+    case RejectionReason::coverage_too_low:
+      return "coverage too low";
+    case RejectionReason::empty_space_occupied:
+      return "empty space occupied";
+    case RejectionReason::inside_a_better_match:
+      return "inside a better match";
+    case RejectionReason::too_little_shown:
+      return "shows too little to fix its pose";
+    case RejectionReason::confidence_too_low:
+      return "confidence too low";
+    case RejectionReason::suppressed_by_a_better_match:
+      return "suppressed by a better match";
+  }
+  return "?";
+}
+
 std::string describe_rejections(const SearchStats& s) {
   if (s.after_nms == 0) {
     return "no candidate pose: nothing in the scene has the landmark's shape";
   }
   std::string out;
-  const auto add = [&out](std::size_t n, const char* why) {
+  const auto add = [&out](std::size_t n, RejectionReason why) {
     if (n == 0) return;
-    out += (out.empty() ? "rejected: " : ", ") + std::to_string(n) + " " + why;
+    out += (out.empty() ? "rejected: " : ", ") + std::to_string(n) + " " + to_string(why);
   };
-  add(s.rejected_error, kRejectedError);
-  add(s.rejected_colour, kRejectedColour);
-  add(s.rejected_coverage, kRejectedCoverage);
-  add(s.rejected_empty_space, kRejectedEmptySpace);
-  add(s.rejected_overlap, kRejectedOverlap);
-  add(s.rejected_undetermined, kRejectedUndetermined);
-  add(s.rejected_confidence, kRejectedConfidence);
+  add(s.rejected_error, RejectionReason::error_above_threshold);
+  add(s.rejected_colour, RejectionReason::colour_differs);
+  add(s.rejected_coverage, RejectionReason::coverage_too_low);
+  add(s.rejected_empty_space, RejectionReason::empty_space_occupied);
+  add(s.rejected_overlap, RejectionReason::inside_a_better_match);
+  add(s.rejected_undetermined, RejectionReason::too_little_shown);
+  add(s.rejected_confidence, RejectionReason::confidence_too_low);
   return out;
 }
 

@@ -62,7 +62,7 @@ struct SearchStats {
   double seconds_vote = 0.0;       ///< fast, part of seconds_search: voting and clustering
   double seconds_coarse = 0.0;     ///< fast, part of seconds_search: coarse alignment and pruning
   double seconds_fine = 0.0;       ///< fast, part of seconds_search: refinement and scoring
-  double threshold = 0.0;          ///< the error threshold applied, m
+  double threshold = 0.0;          ///< the error threshold applied, in the metric's unit
   /// Candidates left by non-max suppression and then rejected, by the first test they failed.
   std::size_t rejected_error = 0;  ///< error at or above the threshold
   /// Error at or above the threshold only because of the colour term (issue #35): the shape fits.
@@ -79,25 +79,41 @@ struct SearchStats {
   std::string metric;  ///< the metric applied
 };
 
+/// Why a candidate was turned down (step 6), by the first test it failed, or removed by non-max
+/// suppression.
+enum class RejectionReason {
+  error_above_threshold,
+  colour_differs,  ///< over the threshold only by the colour term (issue #35): the shape fits
+  coverage_too_low,
+  empty_space_occupied,
+  inside_a_better_match,  ///< its centre in a better match's box (fast.suppress_overlaps)
+  too_little_shown,       ///< the view could not fix its pose (view_determinacy.h)
+  confidence_too_low,
+  suppressed_by_a_better_match,  ///< within nms_radius of a better candidate
+};
+/// What JSON, logs and describe_rejections() say: "error above threshold", "colour differs",
+/// "coverage too low", "empty space occupied", "inside a better match", "shows too little to fix
+/// its pose", "confidence too low", "suppressed by a better match".
+const char* to_string(RejectionReason reason);
+
 /// A candidate that survived non-max suppression and was then turned down (step 6), with the
 /// first test it failed: what a person looks at to see why an instance was not reported.
 struct Rejection {
   Match candidate;
-  std::string reason;  ///< "error above threshold", "colour differs", "coverage too low",
-                       ///< "empty space occupied", "inside a better match", "shows too little to
-                       ///< fix its pose" or "confidence too low"
+  RejectionReason reason = RejectionReason::error_above_threshold;
 };
 
 struct FindResult {
   std::vector<Match> matches;       ///< sorted by increasing error
   std::vector<Rejection> rejected;  ///< sorted by increasing error
   /// Only with execution.keep_suppressed: the candidates non-max suppression removed (within
-  /// nms_radius of a better candidate), reason "suppressed by a better match", in no set order.
+  /// nms_radius of a better candidate), reason suppressed_by_a_better_match, in no set order.
   std::vector<Rejection> suppressed;
   SearchStats stats;
 };
 
-/// Finds `landmark` in `scene`. Deterministic for a fixed settings.seed whatever the thread count.
+/// Finds `landmark` in `scene`. Deterministic for a fixed settings.sampling.seed whatever the
+/// thread count.
 /// Throws lmk::Error for bad settings (unknown method or metric, non-positive sizes) or when the
 /// scene holds no finite point (after the work-volume crop).
 FindResult find_landmark(const PointCloud& scene, const Landmark& landmark,

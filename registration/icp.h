@@ -4,8 +4,9 @@
 // Gauss-Newton on point-to-point or point-to-plane residuals, reweighted by a robust kernel.
 //
 // The target is found either through a k-d tree (exact nearest neighbours) or through a
-// DistanceField's closest-point grid (O(1) per query, approximate within a voxel). Both are
-// const and thread-safe: any number of ICP runs may share one target.
+// DistanceField's closest-point grid (O(1) per query, approximate within a voxel). A k-d tree
+// target is thread-safe: any number of ICP runs may share one. A distance-field target owns a
+// grid sampler and is not: build one per thread, over one shared field.
 
 #include <Eigen/Geometry>
 #include <limits>

@@ -67,7 +67,7 @@ inline nlohmann::json find_result_to_json(const FindResult& r, bool with_rejecte
     nlohmann::json rejected = nlohmann::json::array();
     for (const Rejection& x : r.rejected) {
       nlohmann::json candidate = match_to_json(x.candidate);
-      candidate["reason"] = x.reason;
+      candidate["reason"] = to_string(x.reason);
       rejected.push_back(candidate);
     }
     j["rejected"] = rejected;

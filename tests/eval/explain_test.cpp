@@ -10,6 +10,7 @@
 #include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "lmk/eval/benchmark_dataset.h"
 #include "lmk/eval/internal/evaluation_json.h"
@@ -39,7 +40,8 @@ class Explain : public test::SimpleScenes {
     for (const ExplainedCase& c : cases) {
       (c.missed ? missed : false_matches) += 1;
       const auto& causes = c.missed ? miss_causes() : false_match_causes();
-      EXPECT_NE(std::find(causes.begin(), causes.end(), c.cause), causes.end()) << c.cause;
+      EXPECT_NE(std::find(causes.begin(), causes.end(), c.cause), causes.end())
+          << to_string(c.cause);
     }
     EXPECT_EQ(missed, all.counts.fn);
     EXPECT_EQ(false_matches, all.counts.fp);
@@ -70,7 +72,7 @@ TEST_F(Explain, AnInstanceInEmptySpaceHasNoCandidate) {
   const auto cases = explain(d);
   const ExplainedCase* c = find_case(cases, "cup", true);
   ASSERT_NE(c, nullptr);
-  EXPECT_EQ(c->cause, "no candidate");
+  EXPECT_EQ(c->cause, ExplainCause::no_candidate);
   ASSERT_TRUE(c->nearest_candidate_translation);
   EXPECT_GT(*c->nearest_candidate_translation, 0.5);
 }
@@ -84,7 +86,7 @@ TEST_F(Explain, ATinyThresholdLeavesTheTruthOverIt) {
   ASSERT_FALSE(cases.empty());
   for (const ExplainedCase& c : cases) {
     EXPECT_TRUE(c.missed);
-    EXPECT_EQ(c.cause, "over threshold") << c.scene << " " << c.landmark;
+    EXPECT_EQ(c.cause, ExplainCause::over_threshold) << c.scene << " " << c.landmark;
     ASSERT_TRUE(c.truth_error);
     EXPECT_GT(*c.truth_error, 0.0002);
     EXPECT_LT(*c.truth_error, 0.006);  // a true pose: within the default threshold
@@ -124,7 +126,7 @@ TEST_F(Explain, SomethingInTheEmptySpaceFailsTheTruthOnIt) {
   const auto cases = explain_evaluation(copy.path().string(), d, e);
   const ExplainedCase* c = find_case(cases, "bowl", true);
   ASSERT_NE(c, nullptr);
-  EXPECT_EQ(c->cause, "empty space");
+  EXPECT_EQ(c->cause, ExplainCause::empty_space);
 }
 
 // A bowl has no turn of its own about its axis: the search aligns it at several turns that fit
@@ -169,10 +171,10 @@ TEST_F(Explain, ATrueTurnThatSuppressionRemovedIsSuppressed) {
   const auto cases = explain(d);
   const ExplainedCase* missed = find_case(cases, "bowl", true);
   ASSERT_NE(missed, nullptr);
-  EXPECT_EQ(missed->cause, "suppressed");
+  EXPECT_EQ(missed->cause, ExplainCause::suppressed);
   const ExplainedCase* false_match = find_case(cases, "bowl", false);
   ASSERT_NE(false_match, nullptr);
-  EXPECT_EQ(false_match->cause, "displaced truth");
+  EXPECT_EQ(false_match->cause, ExplainCause::displaced_truth);
 }
 
 // Full coverage demanded: no real match has every landmark point supported.
@@ -181,7 +183,7 @@ TEST_F(Explain, FullCoverageDemandedFailsTheTruthOnCoverage) {
   s.find.selection.min_coverage = 1.0;
   const auto cases = explain(*dataset_, s);
   ASSERT_FALSE(cases.empty());
-  for (const ExplainedCase& c : cases) EXPECT_EQ(c.cause, "coverage") << c.landmark;
+  for (const ExplainedCase& c : cases) EXPECT_EQ(c.cause, ExplainCause::coverage) << c.landmark;
 }
 
 // The truth moved 3 cm: the match is off the pose (a false match on the instance), and the moved
@@ -192,15 +194,15 @@ TEST_F(Explain, FalseMatchesAreOffThePoseOrLookAlikes) {
   auto cases = explain(moved);
   const ExplainedCase* false_match = find_case(cases, "bowl", false);
   ASSERT_NE(false_match, nullptr);
-  EXPECT_EQ(false_match->cause, "off pose");
+  EXPECT_EQ(false_match->cause, ExplainCause::off_pose);
   ASSERT_NE(find_case(cases, "bowl", true), nullptr);
-  EXPECT_EQ(find_case(cases, "bowl", true)->cause, "no candidate");
+  EXPECT_EQ(find_case(cases, "bowl", true)->cause, ExplainCause::no_candidate);
 
   Dataset removed = *dataset_;
   pair_of(removed, "bowl").instances.clear();
   cases = explain(removed);
   ASSERT_NE(find_case(cases, "bowl", false), nullptr);
-  EXPECT_EQ(find_case(cases, "bowl", false)->cause, "look-alike");
+  EXPECT_EQ(find_case(cases, "bowl", false)->cause, ExplainCause::look_alike);
   EXPECT_FALSE(find_case(cases, "bowl", false)->truth_error);  // no instance to measure at
 }
 
@@ -227,14 +229,14 @@ TEST(CauseRows, ByHiddenCountsEachMissInItsBinAndFalseMatchesInAllOnly) {
   const auto missed = [](std::optional<double> hidden) {
     ExplainedCase c;
     c.missed = true;
-    c.cause = "no candidate";
+    c.cause = ExplainCause::no_candidate;
     c.hidden = hidden;
     c.truth_error = 0.004;
     return c;
   };
   ExplainedCase false_match;
   false_match.missed = false;
-  false_match.cause = "look-alike";
+  false_match.cause = ExplainCause::look_alike;
   const std::vector<ExplainedCase> cases = {missed(0.55), missed(0.1), missed(std::nullopt),
                                             false_match};
   const std::vector<CauseRow> rows = cause_rows_by_hidden(cases);
@@ -261,14 +263,36 @@ TEST(CauseRows, ByHiddenCountsEachMissInItsBinAndFalseMatchesInAllOnly) {
 // better neighbour.
 TEST(MissCause, TheBestNearCandidateThatReachedSelectionDecides) {
   const double t = 0.006;
-  EXPECT_EQ(miss_cause({}, t), "no candidate");
-  EXPECT_EQ(miss_cause({{0.003, "suppressed by a better match"}}, t), "suppressed");
-  EXPECT_EQ(miss_cause({{0.003, "inside a better match"}}, t), "suppressed");
-  EXPECT_EQ(miss_cause({{0.003, "empty space occupied"}, {0.004, "accepted"}}, t), "empty space");
-  EXPECT_EQ(miss_cause({{0.003, "suppressed by a better match"}, {0.004, "coverage too low"}}, t),
-            "coverage");
-  EXPECT_EQ(miss_cause({{0.007, "error above threshold"}}, t), "over threshold");
-  EXPECT_EQ(miss_cause({{0.008, "accepted"}}, t), "over threshold");  // kept up to twice t
+  using R = RejectionReason;
+  using C = ExplainCause;
+  const std::optional<R> accepted;
+  EXPECT_EQ(miss_cause({}, t), C::no_candidate);
+  EXPECT_EQ(miss_cause({{0.003, R::suppressed_by_a_better_match}}, t), C::suppressed);
+  EXPECT_EQ(miss_cause({{0.003, R::inside_a_better_match}}, t), C::suppressed);
+  EXPECT_EQ(miss_cause({{0.003, R::confidence_too_low}}, t), C::suppressed);
+  EXPECT_EQ(miss_cause({{0.003, R::empty_space_occupied}, {0.004, accepted}}, t), C::empty_space);
+  EXPECT_EQ(miss_cause({{0.003, R::suppressed_by_a_better_match}, {0.004, R::coverage_too_low}}, t),
+            C::coverage);
+  EXPECT_EQ(miss_cause({{0.007, R::error_above_threshold}}, t), C::over_threshold);
+  EXPECT_EQ(miss_cause({{0.007, R::colour_differs}}, t), C::colour_differs);
+  EXPECT_EQ(miss_cause({{0.007, R::too_little_shown}}, t), C::too_little_shown);
+  EXPECT_EQ(miss_cause({{0.008, accepted}}, t), C::over_threshold);  // kept up to twice t
+  EXPECT_EQ(miss_cause({{0.004, accepted}}, t), C::suppressed);      // a wrong one won
+}
+
+// Every reason and cause has its own words, the ones JSON has always carried.
+TEST(MissCause, EveryReasonAndCauseSaysItselfInItsOwnWords) {
+  std::set<std::string> reasons;
+  for (int r = 0; r <= static_cast<int>(RejectionReason::suppressed_by_a_better_match); ++r)
+    reasons.insert(to_string(static_cast<RejectionReason>(r)));
+  EXPECT_EQ(reasons.size(), 8u);
+  EXPECT_EQ(reasons.count("?"), 0u);
+  EXPECT_EQ(reasons.count("error above threshold"), 1u);
+  std::set<std::string> causes;
+  for (const auto* list : {&miss_causes(), &false_match_causes()})
+    for (ExplainCause c : *list) causes.insert(to_string(c));
+  EXPECT_EQ(causes.size(), 10u);
+  EXPECT_EQ(causes.count("look-alike"), 1u);
 }
 
 }  // namespace

@@ -117,7 +117,7 @@ TEST(ColourTerm, TurnsDownTheLookAlikeOfTheWrongColour) {
   const auto blue = std::find_if(coloured.rejected.begin(), coloured.rejected.end(),
                                  [](const Rejection& r) { return copy_of(r.candidate) == 1; });
   ASSERT_NE(blue, coloured.rejected.end());
-  EXPECT_EQ(blue->reason, "colour differs");
+  EXPECT_EQ(blue->reason, RejectionReason::colour_differs);
   EXPECT_GT(blue->candidate.terms.colour_difference, 0.5);
   EXPECT_NE(describe_rejections(coloured.stats).find("1 colour differs"), std::string::npos);
 }

@@ -204,7 +204,7 @@ TEST_F(ServeTest, FindGivesWhatTheLibraryFindsWithTheRejectedCandidatesAndProgre
             without_times(detail::find_result_to_json(expected)["matches"]));
   EXPECT_EQ(r["rejected"].size(), expected.rejected.size());
   for (std::size_t i = 0; i < expected.rejected.size(); ++i) {
-    EXPECT_EQ(r["rejected"][i]["reason"], expected.rejected[i].reason);
+    EXPECT_EQ(r["rejected"][i]["reason"], to_string(expected.rejected[i].reason));
   }
   EXPECT_EQ(r["error_unit"], "m");
 
