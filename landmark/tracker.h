@@ -4,9 +4,9 @@
 // its landmarks once and then moves open-loop drops the object where the bin was when a person
 // nudged it; a tracker says where each landmark is now, and when it has lost one.
 //
-// Per frame, the camera's own motion when the frames are in its own frame (CameraMotion): the
-// tracks are kept in the first frame's coordinates, where what stands still stays put. Then per
-// landmark:
+// Per frame, the camera's own motion when asked (CameraMotion::estimated, for frames each in their
+// own sensor's frame): the tracks are kept in the first frame's coordinates, where what stands
+// still stays put. Then per landmark:
 // - predict: the last pose moved on by its last frame-to-frame motion there (constant velocity);
 // - align locally: the frame indexed inside the predicted box and a margin only, and
 //   find_near_pose from the prediction (the search's own alignment, metric, selection and
@@ -38,18 +38,16 @@ const char* to_string(TrackState state);
 
 /// How the camera moves between the frames, which a landmark standing still moves by in them.
 enum class CameraMotion {
-  /// `estimated` for frames in their own sensor's frame (T_cloud_sensor the identity: a camera
-  /// held or carried), `none` for frames in another frame (a robot's base frame from TF).
-  automatic,
-  /// Each frame registered onto the one before it (whole-frame ICP, registration/
-  /// frame_registration.h): a landmark standing still is predicted where the camera's motion
-  /// takes it. Without it, a flat or symmetric landmark whose alignment cannot tell where along
-  /// itself it lies stays where it was in the image while the scene turns past it.
-  estimated,
-  /// The frames share one fixed frame: what stands still stays put in it.
+  /// The frames share one fixed frame (a robot's base frame from TF, a bag read into base_link,
+  /// `lmk gen` scenes with their sensor pose): what stands still stays put in it.
   none,
+  /// The frames are each in their own sensor's frame (a carried camera): each is registered onto
+  /// the one before (whole-frame ICP on 4 cm voxels, registration/frame_registration.h, about
+  /// 18 ms for a 640 x 480 frame), and a landmark standing still is predicted where the camera's
+  /// motion takes it.
+  estimated,
 };
-/// "auto", "estimated", "none".
+/// "none", "estimated".
 const std::vector<std::string>& setting_names(CameraMotion);
 
 struct TrackSettings {
@@ -65,7 +63,7 @@ struct TrackSettings {
   /// were "error above threshold"), while the last frame's pose is evidence a whole-frame search
   /// does not have. Every other check (coverage, empty space, confidence) is the search's own.
   double follow_threshold_factor = 1.5;
-  CameraMotion camera_motion = CameraMotion::automatic;
+  CameraMotion camera_motion = CameraMotion::none;
 };
 
 /// One landmark in one frame.

@@ -32,7 +32,7 @@ CameraMotion camera_motion_named(const std::string& name) {
   const std::vector<std::string>& names = setting_names(CameraMotion{});
   for (std::size_t k = 0; k < names.size(); ++k)
     if (names[k] == name) return static_cast<CameraMotion>(k);
-  throw py::value_error("camera_motion must be 'auto', 'estimated' or 'none', not '" + name + "'");
+  throw py::value_error("camera_motion must be 'none' or 'estimated', not '" + name + "'");
 }
 
 }  // namespace
@@ -63,13 +63,12 @@ void bind_tracking(py::module_& m) {
            py::arg("follow_margin") = TrackSettings{}.follow_margin,
            py::arg("search_margin") = TrackSettings{}.search_margin,
            py::arg("follow_threshold_factor") = TrackSettings{}.follow_threshold_factor,
-           py::arg("camera_motion") = "auto",
+           py::arg("camera_motion") = "none",
            "A tracker of `landmarks`. Search settings are keywords as lmk.find takes them; "
            "follow_margin (m) grows the predicted box the frame is searched in, search_margin "
            "(m) the region a lost landmark is searched in first, follow_threshold_factor how many "
-           "times the error threshold a followed match may reach, camera_motion 'auto', "
-           "'estimated' (each frame registered onto the one before) or 'none' (the frames share "
-           "a fixed frame).")
+           "times the error threshold a followed match may reach, camera_motion 'none' (the frames "
+           "share a fixed frame) or 'estimated' (each frame registered onto the one before).")
       .def(
           "update",
           [](Tracker& tracker, const PointCloud& frame) {

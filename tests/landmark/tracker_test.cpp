@@ -84,9 +84,8 @@ int frames_followed_while_the_camera_shakes(CameraMotion motion, double degrees,
 }
 
 TEST(Tracker, FollowsAStillLandmarkWhileTheCameraShakesByEstimatingItsMotion) {
-  // 3 degrees moves the L-shape about 5 cm in the image's frame; frames in the sensor's own frame
-  // have their camera motion estimated by default.
-  EXPECT_EQ(frames_followed_while_the_camera_shakes(CameraMotion::automatic, 3.0, 8), 7);
+  // 3 degrees moves the L-shape about 5 cm in the camera's frame.
+  EXPECT_EQ(frames_followed_while_the_camera_shakes(CameraMotion::estimated, 3.0, 8), 7);
   // Without the estimate, the prediction from its last motion misses it by twice that: lost, and
   // searched for, every other frame.
   EXPECT_LT(frames_followed_while_the_camera_shakes(CameraMotion::none, 3.0, 8), 7);

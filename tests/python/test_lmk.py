@@ -424,6 +424,6 @@ def test_tracker_follows_the_cup_as_lmk_track_does(tabletop, tmp_path):
     with pytest.raises(ValueError, match="camera_motion"):
         lmk.Tracker([cup], camera_motion="sideways")
     # Named modes as the CLI's: the same states whichever, on one still frame repeated.
-    for motion in ("auto", "estimated", "none"):
+    for motion in ("none", "estimated"):
         again = lmk.Tracker([cup], max_tilt=60, camera_motion=motion)
         assert [again.update(scene)[0]["state"] for _ in range(2)] == ["found", "tracking"]
