@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "lmk/demos/demo_task_cache.h"
+#include "lmk/demos/detail/demo_task_cache.h"
 
 #include <filesystem>
 #include <nlohmann/json.hpp>

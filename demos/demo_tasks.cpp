@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <map>
 
-#include "lmk/demos/demo_task_cache.h"
 #include "lmk/demos/detail/demo_moved_landmark.h"
+#include "lmk/demos/detail/demo_task_cache.h"
 #include "lmk/demos/detail/demo_task_definitions.h"
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/error.h"

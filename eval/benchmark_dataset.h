@@ -123,12 +123,4 @@ std::string benchmark_dataset_home(const std::string& cache_dir);
 std::string cached_benchmark_dataset(const std::string& cache_dir, const std::string& preset,
                                      const GenerateOptions& options = {});
 
-/// A hash of what a dataset holds: dataset.json, the scene files, and each landmark's points, box
-/// and up axis. Raw .lmk bytes are not hashed because OpenVDB writes a random id into every file.
-/// Two datasets with the same fingerprint give the same evaluation.
-std::string dataset_fingerprint(const std::string& dir, const Dataset& dataset);
-/// The same with the dataset's landmarks already loaded, in dataset order.
-std::string dataset_fingerprint(const std::string& dir, const Dataset& dataset,
-                                const std::vector<Landmark>& landmarks);
-
 }  // namespace lmk

@@ -88,4 +88,14 @@ void save_dataset(const std::string& dir, const Dataset& dataset);
 /// issue #35): `name` itself for one view, "<name>-v<views>" beyond.
 std::string views_landmark_name(const std::string& name, std::size_t views);
 
+struct Landmark;
+
+/// A hash of what a dataset holds: dataset.json, the scene files, and each landmark's points, box
+/// and up axis. Raw .lmk bytes are not hashed because OpenVDB writes a random id into every file.
+/// Two datasets with the same fingerprint give the same evaluation (dataset_fingerprint.cpp).
+std::string dataset_fingerprint(const std::string& dir, const Dataset& dataset);
+/// The same with the dataset's landmarks already loaded, in dataset order.
+std::string dataset_fingerprint(const std::string& dir, const Dataset& dataset,
+                                const std::vector<Landmark>& landmarks);
+
 }  // namespace lmk

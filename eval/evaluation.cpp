@@ -13,9 +13,7 @@
 #include <memory>
 #include <mutex>
 
-#include "lmk/eval/benchmark_dataset.h"
 #include "lmk/eval/detail/pair_cache.h"
-#include "lmk/eval/internal/evaluation_json.h"
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/hash.h"
@@ -235,12 +233,8 @@ Evaluation evaluate(const std::string& dir, const Dataset& dataset,
         searched.seconds +=
             index_share +
             landmark.seconds_to_build() / static_cast<double>(jobs_per_landmark[jobs[k].landmark]);
-        const nlohmann::json as_stored =
-            detail::pair_result_to_json(searched, threshold, settings.tolerance);
-        cache.write(searched.scene, searched.landmark, as_stored);
-        // Kept as the cache holds it: a box pose goes through its quaternion there, which is not
-        // bit-exact, so a fresh result and a resumed one must take the same way to be identical.
-        evaluation.pairs[k] = detail::pair_result_from_json(as_stored, scene.name);
+        // Kept as the cache holds it, so that a fresh result and a resumed one agree.
+        evaluation.pairs[k] = cache.store(searched, threshold, settings.tolerance);
         finished(false);
       });
     });

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "lmk/eval/detail/pair_cache.h"
 
-#include "lmk/eval/internal/evaluation_json.h"
+#include "lmk/eval/internal/pair_result_json.h"
 #include "lmk/geometry/atomic_file.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/hash.h"
@@ -36,10 +36,12 @@ std::optional<PairResult> PairCache::read(const std::string& scene,
   }
 }
 
-void PairCache::write(const std::string& scene, const std::string& landmark,
-                      const nlohmann::json& entry) const {
-  if (dir_.empty()) return;
-  write_text_atomically(file(scene, landmark), entry.dump() + "\n");
+PairResult PairCache::store(const PairResult& searched, double threshold,
+                            const MatchTolerance& tolerance) const {
+  const nlohmann::json entry = pair_result_to_json(searched, threshold, tolerance);
+  if (!dir_.empty())
+    write_text_atomically(file(searched.scene, searched.landmark), entry.dump() + "\n");
+  return pair_result_from_json(entry, searched.scene);
 }
 
 fs::path PairCache::file(const std::string& scene, const std::string& landmark) const {

@@ -5,7 +5,6 @@
 // evaluation resumes from what it finished (eval/evaluation.h).
 
 #include <filesystem>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 
@@ -22,9 +21,13 @@ class PairCache {
   /// The stored result of (scene, landmark), or nothing: not stored, damaged, or another pair's.
   std::optional<PairResult> read(const std::string& scene, const std::string& landmark) const;
 
-  /// Stores `entry`, what pair_result_to_json wrote for the pair (scene, landmark), atomically.
-  void write(const std::string& scene, const std::string& landmark,
-             const nlohmann::json& entry) const;
+  /// Stores `searched` as its pair's file, atomically (nothing without a cache), and returns it as
+  /// the file holds it, whether or not there is one: a box pose goes through its quaternion there,
+  /// which is not bit-exact, so a fresh result and a resumed one take the same way and agree.
+  /// `threshold` and `tolerance` mark each match correct or not in the file
+  /// (pair_result_to_json).
+  PairResult store(const PairResult& searched, double threshold,
+                   const MatchTolerance& tolerance) const;
 
   /// The file of the pair (scene, landmark): named by a hash of the names, since scene names are
   /// free text; the file repeats them.

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
-// The JSON forms of evaluation results: a pair's result (the cache's file and the report's
-// per-scene entries), the table rows and the settings. internal/: shared within lmk (the CLI,
-// Python), not installed: lmk's public headers never expose nlohmann-json.
+// The JSON forms of evaluation reports: the table rows and the settings, the ablation, the
+// confidence's evaluation and the explanation; a pair's result is in pair_result_json.h, below
+// them. internal/: shared within lmk (the CLI, Python), not installed: lmk's public headers never
+// expose nlohmann-json.
 
 #include <nlohmann/json.hpp>
 #include <string>
@@ -11,13 +12,9 @@
 #include "lmk/eval/ablation.h"
 #include "lmk/eval/evaluation.h"
 #include "lmk/eval/explain.h"
+#include "lmk/eval/internal/pair_result_json.h"
 
 namespace lmk::detail {
-
-nlohmann::json pair_result_to_json(const PairResult& pair, double threshold,
-                                   const MatchTolerance& tolerance);
-/// Reads what pair_result_to_json wrote; throws lmk::Error naming `where` for anything else.
-PairResult pair_result_from_json(const nlohmann::json& j, const std::string& where);
 
 nlohmann::json rows_to_json(const std::vector<EvaluationRow>& rows);
 

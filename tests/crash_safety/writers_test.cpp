@@ -9,7 +9,7 @@
 
 #include <stdexcept>
 
-#include "lmk/demos/demo_task_cache.h"
+#include "lmk/demos/detail/demo_task_cache.h"
 #include "lmk/eval/dataset.h"
 #include "lmk/eval/detail/pair_cache.h"
 #include "lmk/eval/evaluation_report.h"
@@ -145,10 +145,7 @@ TEST(CrashSafety, EvaluationCacheEntries) {
   const std::array<PairResult, 2> results = two_results_of_a_pair();
   const std::array<std::size_t, 2> found = {1, 2};
   expect_crash_safe_writer(
-      dir.path(),
-      [&](int v) {
-        cache.write("scene", "box", detail::pair_result_to_json(results[v], 0.01, {}));
-      },
+      dir.path(), [&](int v) { cache.store(results[v], 0.01, {}); },
       [&] {
         const std::optional<PairResult> entry = cache.read("scene", "box");
         if (!entry) throw std::runtime_error("the cache entry is missing or damaged");

@@ -13,7 +13,8 @@ detail/ headers are its own: no other module includes them (tests and benchmarks
 inside on purpose, may). What a module shares with the layers above lies in its folder or in its
 internal/ folder (shared within lmk, not installed). An installed header (MODULE/*.h of an
 installed module) includes no internal/ or detail/ header, which a consumer of the installed lmk
-would not find.
+would not find. The evaluation's core (searching and scoring pairs, EVAL_CORE) includes none of
+the reports built on it (ABOVE_EVAL_CORE).
 
 Usage:
     check_layering.py [--root DIR]       exit 1 and one line per violation, if there are any
@@ -37,6 +38,13 @@ ABOVE_ALL = ["tests", "bench"]
 # Modules whose top-level headers are not installed: json/ (header-only, internal) and serve/
 # (the lmk tool's own); tools/ and python/ install no headers.
 NOT_INSTALLED = ["json", "serve", "tools", "python"]
+# The evaluation's core: the pairs searched and scored, cached, and the dataset they come from.
+# The reports built on it (the explanation, the ablation, their JSON) lie above it.
+EVAL_CORE = ["eval/evaluation.h", "eval/evaluation.cpp", "eval/evaluation_protocol.h",
+             "eval/evaluation_protocol.cpp", "eval/dataset.h", "eval/dataset.cpp",
+             "eval/dataset_fingerprint.cpp", "eval/internal/pair_result_json.h",
+             "eval/pair_result_json.cpp", "eval/detail/pair_cache.h", "eval/detail/pair_cache.cpp"]
+ABOVE_EVAL_CORE = ["explain.h", "ablation.h", "internal/evaluation_json.h"]
 SOURCE_SUFFIXES = (".h", ".cpp", ".in")
 INCLUDE = re.compile(r'^\s*#\s*include\s*"([^"]+)"', re.MULTILINE)
 LMK_INCLUDE = re.compile(r"^lmk/([a-z0-9_]+)/(.*)$")
@@ -82,6 +90,9 @@ def violations(files):
         if installed_header and rest.split("/")[0] in ("internal", "detail"):
             found.append(f"{path}: an installed header includes lmk/{included}/{rest}, which is not "
                          f"installed; include it from a source file")
+        if path.replace(os.sep, "/") in EVAL_CORE and included == "eval" and rest in ABOVE_EVAL_CORE:
+            found.append(f"{path}: the evaluation's core includes lmk/eval/{rest}, a report built "
+                         f"on it; share what both need from below (eval/internal/pair_result_json.h)")
         if module in ABOVE_ALL or included == module:
             continue
         if included not in LEVEL:
@@ -172,6 +183,8 @@ def self_test(files):
         "tools/planted_relative.cpp": '#include "../eval/evaluation.h"\n',
         "json/planted_upward.h": '#include "lmk/pbd/plan.h"\n',
         "landmark/planted_public.h": '#include "lmk/landmark/internal/terms_json.h"\n',
+        "eval/evaluation.cpp": '#include "lmk/eval/explain.h"\n',
+        "eval/detail/pair_cache.cpp": '#include "lmk/eval/internal/evaluation_json.h"\n',
     }
     before = set(violations(files))
     failures = []
