@@ -13,6 +13,7 @@
 #include "lmk/landmark/detail/grid_metrics.h"
 #include "lmk/landmark/landmark.h"
 #include "lmk/landmark/scene_index.h"
+#include "tests/landmark/l_shape_scene.h"
 #include "tests/support/test_support.h"
 
 namespace lmk {
@@ -179,6 +180,31 @@ TEST(VisibilityMetric, ATrueMatchsExpectedErrorGrowsWithTheDepthNoise) {
   EXPECT_EQ(match_error_scale(settings, 1.0), 1.0);
   EXPECT_NEAR(match_error_scale(settings, 3.0),
               expected_match_error(settings, 2.0) / expected_match_error(settings, 3.0), 1e-12);
+}
+
+// Every registered metric, on the L-shape's own capture scene: below its default threshold at the
+// true pose, and rising as the candidate slides 1 cm, then 3 cm, along the table. A metric added
+// to the registry is held to this without a test of its own.
+TEST(Metrics, EveryRegisteredMetricIsLowAtTheTruePoseAndRisesWithAnOffset) {
+  using namespace test_scenes;
+  const Eigen::Vector2d xy = kCopies[0];
+  const PointCloud scene = render_scene({xy}, true);
+  const Landmark landmark = capture(scene, box_at(xy), "L");
+  const SceneIndex index(scene, SceneSettings{});
+  const KdTree tree(landmark.points);
+  const std::vector<float> empty = empty_space_distances(landmark, tree);
+  LandmarkView view{landmark.points, tree, landmark.box, landmark};
+  view.empty_distances = &empty;
+  for (const ErrorMetric& metric : error_metrics()) {
+    const auto error_at = [&](double offset) {
+      const Eigen::Isometry3d T(Eigen::Translation3d(offset, 0.0, 0.0));
+      return metric.evaluate(SceneView{index}, view, T).error;
+    };
+    const double at_truth = error_at(0.0), at_1cm = error_at(0.01), at_3cm = error_at(0.03);
+    EXPECT_LT(at_truth, metric.default_threshold) << metric.name;
+    EXPECT_LT(at_truth, at_1cm) << metric.name;
+    EXPECT_LT(at_1cm, at_3cm) << metric.name;
+  }
 }
 
 TEST(Metrics, RegistryFindsByNameAndNamesTheKnownOnes) {
