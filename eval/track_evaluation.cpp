@@ -15,6 +15,7 @@
 #include "lmk/geometry/statistics.h"
 #include "lmk/geometry/stopwatch.h"
 #include "lmk/json/pose_json.h"
+#include "lmk/landmark/internal/confidence_json.h"
 #include "lmk/landmark/landmark_file.h"
 
 namespace lmk {
@@ -127,9 +128,6 @@ std::string ms(double seconds) {
   return text;
 }
 
-// A number, or null where JSON has none (NaN: no calibration applied).
-nlohmann::json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nullptr; }
-
 std::vector<double> frame_seconds(const SequenceResult& r) {
   std::vector<double> s;
   for (const TrackedFrame& f : r.frames) s.push_back(f.seconds);
@@ -225,8 +223,8 @@ std::string tracking_json(const TrackEvaluation& e) {
       if (f.has_pose) {
         j.update(detail::pose_to_json(f.pose));
         j["error"] = f.error;
-        j["confidence"] = finite_or_null(f.confidence);
-        j["freedom_m"] = finite_or_null(f.freedom);
+        j["confidence"] = detail::finite_or_null(f.confidence);  // NaN: no calibration applied
+        j["freedom_m"] = detail::finite_or_null(f.freedom);
       }
       if (f.has_pose && f.truth == FrameTruth::in_view) {
         j["translation_error_m"] = f.translation_error;

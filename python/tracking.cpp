@@ -4,9 +4,11 @@
 #include <pybind11/stl.h>
 
 #include <cmath>
+#include <optional>
 
 #include "bindings.h"
 #include "lmk/geometry/error.h"
+#include "lmk/geometry/settings_schema.h"
 #include "lmk/landmark/tracker.h"
 
 namespace lmk::python {
@@ -29,9 +31,8 @@ py::dict tracked_to_python(const TrackedLandmark& t) {
 }
 
 CameraMotion camera_motion_named(const std::string& name) {
-  const std::vector<std::string>& names = setting_names(CameraMotion{});
-  for (std::size_t k = 0; k < names.size(); ++k)
-    if (names[k] == name) return static_cast<CameraMotion>(k);
+  if (const std::optional<CameraMotion> motion = setting_value_named<CameraMotion>(name))
+    return *motion;
   throw py::value_error("camera_motion must be 'none' or 'estimated', not '" + name + "'");
 }
 
@@ -63,7 +64,7 @@ void bind_tracking(py::module_& m) {
            py::arg("follow_margin") = TrackSettings{}.follow_margin,
            py::arg("search_margin") = TrackSettings{}.search_margin,
            py::arg("follow_threshold_factor") = TrackSettings{}.follow_threshold_factor,
-           py::arg("camera_motion") = "none",
+           py::arg("camera_motion") = setting_name(TrackSettings{}.camera_motion),
            "A tracker of `landmarks`. Search settings are keywords as lmk.find takes them; "
            "follow_margin (m) grows the predicted box the frame is searched in, search_margin "
            "(m) the region a lost landmark is searched in first, follow_threshold_factor how many "

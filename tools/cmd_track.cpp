@@ -8,7 +8,6 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -16,6 +15,7 @@
 #include "lmk/geometry/atomic_file.h"
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/error.h"
+#include "lmk/geometry/settings_schema.h"
 #include "lmk/geometry/statistics.h"
 #include "lmk/json/pose_json.h"
 #include "lmk/landmark/depth_correction_file.h"
@@ -216,16 +216,17 @@ void add_track_options(CLI::App* sub, TrackSettings& settings) {
                   "While following, a match is kept up to this many times the error threshold")
       ->check(within(1.0, 10.0))
       ->capture_default_str();
-  std::map<std::string, CameraMotion> motions;
-  for (std::size_t k = 0; k < setting_names(CameraMotion{}).size(); ++k)
-    motions[setting_names(CameraMotion{})[k]] = static_cast<CameraMotion>(k);
-  sub->add_option("--camera-motion", settings.camera_motion,
-                  "none (the frames share a fixed frame: a robot's base frame, generated scenes) "
-                  "or estimated (frames each in their own camera's frame: each registered onto "
-                  "the one before, about 18 ms a frame)")
-      ->transform(CLI::CheckedTransformer(motions).description(""))
+  sub->add_option_function<std::string>(
+         "--camera-motion",
+         [&settings](const std::string& name) {
+           settings.camera_motion = *setting_value_named<CameraMotion>(name);
+         },
+         "none (the frames share a fixed frame: a robot's base frame, generated scenes) or "
+         "estimated (frames each in their own camera's frame: each registered onto the one "
+         "before, about 18 ms a frame)")
+      ->check(CLI::IsMember(setting_names(CameraMotion{})).description(""))
       ->type_name("none|estimated")
-      ->default_str("none");
+      ->default_str(setting_name(settings.camera_motion));
 }
 
 Subcommand add_track(CLI::App& app) {

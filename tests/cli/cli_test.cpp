@@ -389,6 +389,11 @@ TEST_F(CliLandmark, TrackFollowsALandmarkThroughFramesAndRefusesBadInput) {
   expect_bad_input("track " + path("empty") + " " + path("c.lmk"), "holds no cloud file");
   expect_bad_input("track " + path("scene.pcd") + " " + path("c.lmk") + " --follow-margin 5",
                    "--follow-margin");
+  expect_bad_input(
+      "track " + path("scene.pcd") + " " + path("c.lmk") + " --follow-threshold-factor 0.5",
+      "--follow-threshold-factor");
+  expect_bad_input("track " + path("scene.pcd") + " " + path("c.lmk") + " --camera-motion sideways",
+                   "--camera-motion: sideways not in {none,estimated}");
 }
 
 TEST_F(CliLandmark, EvalTrackScoresTheMovingPresetsSequencesAndRefusesBadInput) {

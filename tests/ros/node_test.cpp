@@ -709,8 +709,6 @@ TEST(PbdRunOnRos, AnAbortedArmGoalStopsTheRunAndNamesTheStep) {
   EXPECT_EQ(arm_goals, 2);  // nothing after the abort
 }
 
-// Issue #48, --watch: the bowl is taken away once the arm has its first goal. Watching, the run
-// notices before the gripper moves and stops, sending nothing more; unwatched, it goes on.
 // The boxes of the bowls lmk finds in `scene` (base_link), each grown by 4 cm on every side: what
 // a person who takes or moves a bowl takes along (the table under it too).
 std::vector<Box> around_the_bowls(const PointCloud& scene) {
@@ -722,6 +720,10 @@ std::vector<Box> around_the_bowls(const PointCloud& scene) {
   for (const Match& bowl : bowls.matches)
     around.emplace_back(bowl.box.pose, bowl.box.size + Eigen::Vector3d::Constant(0.08));
   return around;
+}
+
+bool in_any(const std::vector<Box>& boxes, const Eigen::Vector3f& p) {
+  return std::any_of(boxes.begin(), boxes.end(), [&](const Box& b) { return b.contains(p); });
 }
 
 // `scene` (organised) with the points in `moved` shifted by `shift`, as its camera would see it
@@ -738,8 +740,7 @@ PointCloud seen_after_moving(const PointCloud& scene, const std::vector<Box>& mo
   for (std::size_t i = 0; i < scene.size(); ++i) {
     Eigen::Vector3f p = scene.points[i];
     if (!p.allFinite()) continue;
-    if (std::any_of(moved.begin(), moved.end(), [&](const Box& b) { return b.contains(p); }))
-      p += shift;
+    if (in_any(moved, p)) p += shift;
     const std::optional<Eigen::Vector2d> pixel = image->project(p);
     if (!pixel) continue;
     const long u = std::lround(pixel->x()), v = std::lround(pixel->y());
@@ -810,6 +811,8 @@ TEST(PbdRunOnRos, WatchingReplansWhenTheLandmarkIsMovedWhileTheArmMoves) {
   EXPECT_LT(std::hypot(followed.x(), followed.z()), 0.01) << followed.transpose();
 }
 
+// Issue #48, --watch: the bowl is taken away once the arm has its first goal. Watching, the run
+// notices before the gripper moves and stops, sending nothing more; unwatched, it goes on.
 TEST(PbdRunOnRos, WatchingStopsWhenTheLandmarkIsTakenWhileTheArmMoves) {
   FakePr2Settings settings = fake_settings("scenario1.pcd");
   // The scene without its bowls: every instance's box emptied (with one left, the watch would
@@ -818,9 +821,7 @@ TEST(PbdRunOnRos, WatchingStopsWhenTheLandmarkIsTakenWhileTheArmMoves) {
   ASSERT_FALSE(bowls.empty());
   PointCloud taken = settings.scene;
   for (Eigen::Vector3f& p : taken.points) {
-    if (p.allFinite() &&
-        std::any_of(bowls.begin(), bowls.end(), [&](const Box& b) { return b.contains(p); }))
-      p.setConstant(std::numeric_limits<float>::quiet_NaN());
+    if (p.allFinite() && in_any(bowls, p)) p.setConstant(std::numeric_limits<float>::quiet_NaN());
   }
   settings.scenes_after_arm_goals = {taken};
 
