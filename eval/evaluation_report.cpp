@@ -29,24 +29,19 @@ const std::string kAssumptionsNote =
 // The assumption the curves show: 1 when every pair was searched, else 2.
 int curve_assumption(const Evaluation& e) { return e.settings.in_context_only ? 2 : 1; }
 
-// Whether the evaluation's metric measures errors in sigma rather than metres.
-bool errors_in_sigma(const Evaluation& e) {
-  return find_error_metric(e.settings.find.selection.metric).unit == ErrorMetric::Unit::sigma;
+// How the evaluation's metric shows its errors.
+const ErrorDisplay& shown_errors(const Evaluation& e) {
+  return find_error_metric(e.settings.find.selection.metric).display;
 }
 
 // One line per pair: what was there, what was found, how good the best match was, how long.
 TextTable pair_table(const Evaluation& e) {
   const double threshold = *e.settings.find.selection.threshold;
-  const bool in_sigma = errors_in_sigma(e);
+  const ErrorDisplay& shown = shown_errors(e);
   TextTable t;
-  t.header = {"scene",
-              "landmark",
-              "in context",
-              "truth",
-              "found",
-              "correct",
-              in_sigma ? "best error sigma" : "best error mm",
-              "seconds"};
+  t.header = {
+      "scene",  "landmark", "in context", "truth", "found", "correct", "best error " + shown.label,
+      "seconds"};
   t.numeric = {false, false, false, true, true, true, true, true};
   for (const PairResult& p : e.pairs) {
     const PairInput in = matches_within(p, threshold, e.settings.find.selection.min_confidence);
@@ -55,7 +50,7 @@ TextTable pair_table(const Evaluation& e) {
     if (!p.found.empty()) best = p.found.front().error;
     t.rows.push_back({p.scene, p.landmark, p.in_context ? "yes" : "no",
                       std::to_string(p.truth.size()), std::to_string(in.found.size()),
-                      std::to_string(c.tp), format_optional(best, 2, in_sigma ? 1.0 : 1e3),
+                      std::to_string(c.tp), format_optional(best, 2, shown.scale),
                       format_optional(p.seconds, 3)});
   }
   return t;
@@ -85,9 +80,9 @@ std::string threshold_plot(const Evaluation& e) {
   LinePlot plot;
   plot.title = "Precision (solid) and recall (dashed) against the threshold, assumption " +
                std::to_string(curve_assumption(e));
-  const bool in_sigma = errors_in_sigma(e);
-  const double scale = in_sigma ? 1.0 : 1e3;  // plotted in sigma or in millimetres
-  plot.x_label = in_sigma ? "error threshold (sigma)" : "error threshold (mm)";
+  const ErrorDisplay& shown = shown_errors(e);
+  const double scale = shown.scale;  // plotted as the metric shows its errors
+  plot.x_label = "error threshold (" + shown.label + ")";
   plot.marker_x = scale * *e.settings.find.selection.threshold;
   std::size_t k = 0;
   for (const std::string& setting : evaluation_settings(e)) {

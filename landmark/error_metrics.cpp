@@ -1,12 +1,18 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "lmk/landmark/error_metrics.h"
 
+#include <dlfcn.h>
+
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
+#include <mutex>
 #include <optional>
+#include <sstream>
 
 #include "lmk/geometry/error.h"
+#include "lmk/landmark/detail/coarse_scores.h"
 #include "lmk/landmark/detail/grid_metrics.h"
 #include "lmk/landmark/detail/sensor_metric.h"
 #include "lmk/landmark/landmark.h"
@@ -95,35 +101,126 @@ Indices scene_points_in_box(const SceneView& scene, const Box& box) {
   return out;
 }
 
-const std::vector<ErrorMetric>& error_metrics() {
-  static const std::vector<ErrorMetric> metrics = {
-      {"paper",
-       "Algorithm 2 of Huang & Cakmak: mean of scene->landmark distances over the scene points in "
-       "the box and landmark->scene distances (whole scene) over the unvisited landmark points",
-       paper_metric, 0.0055},
-      {"rapid",
-       "the authors' code: as 'paper', but the landmark->scene term searches only the scene points "
-       "in the box and counts only distances under 5 cm",
-       rapid_metric, 0.0055},
-      {"vdb",
-       "as 'paper', with grid lookups: scene points in the box against the landmark's distance "
-       "field, unvisited landmark points against the scene's, both capped at their bands",
-       vdb_metric, 0.0055},
-      {"visibility",
-       "visibility-aware: every landmark point's distance to the scene surface (capped), plus the "
-       "landmark's observed-empty voxels that the scene occupies; occluded space is not penalised",
-       visibility_metric, 0.006},
-      {"projective",
-       "as 'visibility', seen from the scene's sensor: landmark points behind a nearer scene "
-       "surface are hidden and count neither way, over at least half of the points",
-       projective_metric, 0.006, ErrorMetric::Unit::metres, true},
-      {"sensor",
-       "sensor-aware: residuals in units of the depth noise expected at each point's capture and "
-       "scene depths; points the scene's sensor could not see are unknown, points it saw through "
-       "count against; the free space is checked through the scene's depth image too",
-       sensor_metric, 1.0, ErrorMetric::Unit::sigma},
+namespace {
+
+// A metric in metres, shown in millimetres, ranked and pruned by its surface distance.
+ErrorMetric in_metres(std::string name, std::string description, ErrorMetricFunction evaluate,
+                      double default_threshold, bool hides_occluded = false) {
+  ErrorMetric m;
+  m.name = std::move(name);
+  m.description = std::move(description);
+  m.evaluate = std::move(evaluate);
+  m.default_threshold = default_threshold;
+  m.coarse_score = detail::surface_distance_coarse_score(hides_occluded);
+  m.hides_occluded = hides_occluded;
+  return m;
+}
+
+// The sensor metric: residuals in sigma of the depth noise, its own fit as its coarse score, pruned
+// at twice its default threshold. It tests empty space beyond the noise, which far away exceeds
+// the landmark distance field's band, so it needs the empty voxels' distances; its projective
+// visibility hides what the scene's sensor could not see.
+ErrorMetric in_sigma(std::string name, std::string description, ErrorMetricFunction evaluate) {
+  ErrorMetric m;
+  m.name = std::move(name);
+  m.description = std::move(description);
+  m.evaluate = std::move(evaluate);
+  m.default_threshold = 1.0;
+  m.display = {1.0, 2, "sigma", "sd", "sd"};
+  m.coarse_score = detail::sensor_coarse_score();
+  m.prune_ratio = 2.0;
+  m.noise_normalised = true;
+  m.needs_empty_distances = true;
+  m.hides_occluded = true;
+  return m;
+}
+
+std::vector<ErrorMetric> builtin_metrics() {
+  return {
+      in_metres("paper",
+                "Algorithm 2 of Huang & Cakmak: mean of scene->landmark distances over the scene "
+                "points in the box and landmark->scene distances (whole scene) over the unvisited "
+                "landmark points",
+                paper_metric, 0.0055),
+      in_metres("rapid",
+                "the authors' code: as 'paper', but the landmark->scene term searches only the "
+                "scene points in the box and counts only distances under 5 cm",
+                rapid_metric, 0.0055),
+      in_metres("vdb",
+                "as 'paper', with grid lookups: scene points in the box against the landmark's "
+                "distance field, unvisited landmark points against the scene's, both capped at "
+                "their bands",
+                vdb_metric, 0.0055),
+      in_metres("visibility",
+                "visibility-aware: every landmark point's distance to the scene surface (capped), "
+                "plus the landmark's observed-empty voxels that the scene occupies; occluded space "
+                "is not penalised",
+                visibility_metric, 0.006),
+      in_metres("projective",
+                "as 'visibility', seen from the scene's sensor: landmark points behind a nearer "
+                "scene surface are hidden and count neither way, over at least half of the points",
+                projective_metric, 0.006, /*hides_occluded=*/true),
+      in_sigma("sensor",
+               "sensor-aware: residuals in units of the depth noise expected at each point's "
+               "capture and scene depths; points the scene's sensor could not see are unknown, "
+               "points it saw through count against; the free space is checked through the "
+               "scene's depth image too",
+               sensor_metric),
   };
+}
+
+std::vector<ErrorMetric>& registry() {
+  static std::vector<ErrorMetric> metrics = builtin_metrics();
   return metrics;
+}
+
+// Each library $LMK_METRIC_PLUGINS names, opened and asked to register its metrics. A library
+// stays loaded for the process's life: its metrics' functions live in it.
+void load_metric_plugins() {
+  const char* list = std::getenv(kMetricPluginsVariable);
+  if (!list) return;
+  std::stringstream paths(list);
+  std::string path;
+  while (std::getline(paths, path, ':')) {
+    if (path.empty()) continue;
+    void* library = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (!library) {
+      throw Error(std::string(kMetricPluginsVariable) + ": cannot load '" + path +
+                  "': " + dlerror());
+    }
+    using Register = void (*)();
+    const auto register_metrics =
+        reinterpret_cast<Register>(dlsym(library, "lmk_register_error_metrics"));
+    if (!register_metrics) {
+      throw Error(std::string(kMetricPluginsVariable) + ": '" + path +
+                  "' exports no lmk_register_error_metrics()");
+    }
+    register_metrics();
+  }
+}
+
+}  // namespace
+
+const std::vector<ErrorMetric>& error_metrics() {
+  // Loaded once; a failed load throws to the caller and is tried again by the next.
+  static std::once_flag plugins_loaded;
+  std::call_once(plugins_loaded, load_metric_plugins);
+  return registry();
+}
+
+void register_error_metric(ErrorMetric metric) {
+  const std::string what = "register_error_metric('" + metric.name + "'): ";
+  if (metric.name.empty()) throw Error("register_error_metric: the metric has no name");
+  if (!metric.evaluate) throw Error(what + "no evaluate function");
+  if (!(metric.default_threshold > 0.0) || !std::isfinite(metric.default_threshold)) {
+    throw Error(what + "the default threshold must be positive and finite");
+  }
+  if (!(metric.prune_ratio > 0.0)) throw Error(what + "the prune ratio must be positive");
+  std::vector<ErrorMetric>& metrics = registry();
+  for (const ErrorMetric& m : metrics) {
+    if (m.name == metric.name) throw Error(what + "the name is taken");
+  }
+  metrics.push_back(std::move(metric));
 }
 
 std::vector<float> empty_space_distances(const Landmark& landmark, const KdTree& tree) {
@@ -136,12 +233,9 @@ std::vector<float> empty_space_distances(const Landmark& landmark, const KdTree&
 }
 
 std::string format_error(double value, const ErrorMetric& metric) {
+  const ErrorDisplay& d = metric.display;
   char text[64];
-  if (metric.unit == ErrorMetric::Unit::sigma) {
-    std::snprintf(text, sizeof(text), "%.2f sigma", value);
-  } else {
-    std::snprintf(text, sizeof(text), "%.1f mm", 1000.0 * value);
-  }
+  std::snprintf(text, sizeof(text), "%.*f %s", d.decimals, d.scale * value, d.label.c_str());
   return text;
 }
 

@@ -92,17 +92,62 @@ using ErrorMetricFunction =
     std::function<ErrorTerms(const SceneView& scene, const LandmarkView& landmark,
                              const Eigen::Isometry3d& T_scene_capture)>;
 
+/// How a metric's errors are shown: `value` in the metric's unit is `scale * value` in the shown
+/// unit, printed with `decimals` decimals.
+struct ErrorDisplay {
+  double scale = 1000.0;
+  int decimals = 1;
+  std::string label = "mm";     ///< the shown unit, in sentences and axis labels
+  std::string column = "mm";    ///< the shown unit as a short column suffix ("error_mm")
+  std::string json_unit = "m";  ///< the metric's own unit, as JSON says it ("error_unit")
+};
+
+/// What a metric's coarse score sees once per fast search (step 3 of fast_search.h): the scene and
+/// the landmark, and the points the coarse alignment works with.
+struct CoarseView {
+  const SceneIndex& index;
+  const Landmark& landmark;
+  const PointCloud& model;         ///< the landmark's points at the scene's coarse leaf
+  const PointCloud& sparse_model;  ///< a few hundred of `model`: as many as fix a coarse pose
+  /// As LandmarkView::empty_distances: set when the metric needs_empty_distances.
+  const std::vector<float>* empty_distances;
+  double coarse_leaf;  ///< the scene's coarse leaf, m
+};
+
+/// A cheap estimate of a metric's error for a coarsely aligned candidate, in the metric's unit.
+/// Called from several threads at once.
+using CoarseScore = std::function<double(const Eigen::Isometry3f& T_scene_capture)>;
+/// Builds a metric's coarse score for one search.
+using CoarseScoreFactory = std::function<CoarseScore(const CoarseView& view)>;
+
+/// An error metric, with everything the searches and the reports ask of it: nothing outside the
+/// registry looks at which metric it is.
 struct ErrorMetric {
   std::string name;
   std::string description;
   ErrorMetricFunction evaluate;
   /// The error threshold used when a search sets none, in the metric's unit.
-  double default_threshold;
-  /// The metric's unit: metres, or the expected depth noise (sigma) of each residual.
-  enum class Unit { metres, sigma } unit = Unit::metres;
+  double default_threshold = 0.0;
+  ErrorDisplay display;
+  /// The fast search's coarse score, which ranks the coarsely aligned candidates and prunes those
+  /// beyond prune_bound(). Empty: the metric has none, and the best-voted candidates go on to the
+  /// fine alignment unpruned, up to FastSettings::max_refined.
+  CoarseScoreFactory coarse_score;
+  /// The coarse score beyond this many default thresholds drops a candidate: a coarse pose is a
+  /// leaf or so from its fine one, so a true match's coarse score lies above its final error.
+  double prune_ratio = 2.5;
+  /// Its residuals are divided by the depth noise expected at each point already (its unit is
+  /// that noise's sigma): a match's confidence then takes its error's spread as 1, not as the
+  /// noise in metres.
+  bool noise_normalised = false;
+  /// It reads LandmarkView::empty_distances (and CoarseView's): the search computes them for it.
+  bool needs_empty_distances = false;
   /// Landmark points hidden behind nearer scene surfaces count neither way (hidden_behind(), in
-  /// landmark/detail/grid_metrics.h); the fast search's coarse score hides them too.
+  /// landmark/detail/grid_metrics.h); its coarse score hides them too.
   bool hides_occluded = false;
+
+  /// The coarse score beyond which the fast search drops a candidate, in the metric's unit.
+  double prune_bound() const { return prune_ratio * default_threshold; }
 };
 
 /// `value` (an error or a threshold of `metric`) with its unit: "5.5 mm", "1.30 sigma".
@@ -110,9 +155,19 @@ std::string format_error(double value, const ErrorMetric& metric);
 /// The same for the metric called `name`.
 std::string format_error(double value, const std::string& name);
 
-/// Every registered metric, in a fixed order: "paper", "rapid", "vdb", "visibility", "projective",
-/// "sensor".
+/// Every registered metric: the built-in ones in a fixed order ("paper", "rapid", "vdb",
+/// "visibility", "projective", "sensor"), then those registered, in their order. The first call
+/// loads the metric plugins that $LMK_METRIC_PLUGINS names (load_metric_plugins()).
 const std::vector<ErrorMetric>& error_metrics();
+/// Adds `metric` to the registry, so that every search, evaluation, ablation, the CLI, Python and
+/// the server know it by its name. Register before searching: the registry is not guarded against
+/// searches running at the same time. lmk::Error when the name is empty or taken, the evaluation
+/// is missing or the default threshold is not positive.
+void register_error_metric(ErrorMetric metric);
+/// The environment variable naming metric plugins: shared libraries, separated by ':', each
+/// exporting `extern "C" void lmk_register_error_metrics()`, which calls register_error_metric().
+/// A researcher's metric then runs in lmk's own tools without rebuilding them.
+constexpr const char* kMetricPluginsVariable = "LMK_METRIC_PLUGINS";
 /// The registered metrics' names, in the registry's order.
 std::vector<std::string> error_metric_names();
 /// The metric called `name`; throws lmk::Error listing the known names otherwise.

@@ -92,9 +92,7 @@ struct Prepared {
         view{landmark.points, prepared.tree(), landmark.box, landmark},
         calibration(
             calibration_for(settings.selection.metric, settings.selection.calibration.get())) {
-    // The sensor metric tests empty space beyond the noise, which far away exceeds the landmark
-    // distance field's band.
-    if (metric.unit == ErrorMetric::Unit::sigma) view.empty_distances = &prepared.empty_distances();
+    if (metric.needs_empty_distances) view.empty_distances = &prepared.empty_distances();
   }
 
   static const FindSettings& suited(const FindSettings& requested, const LandmarkIndex& prepared) {
@@ -130,7 +128,6 @@ struct Prepared {
         landmark,
         settings.method == SearchMethod::fast ? prepared.coarse() : coarse,
         prepared.tree(),
-        metric.unit == ErrorMetric::Unit::sigma,
         metric,
         view,
         settings.selection,

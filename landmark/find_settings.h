@@ -97,7 +97,9 @@ struct FastSettings {
   /// planes, few enough not to spend the search aligning look-alikes (docs/evaluation.md, "Tuning
   /// history").
   std::size_t max_candidates = 250;
-  double prune_error = 0.015;    ///< coarse fit beyond which a candidate is dropped, m
+  /// A coarse fit beyond this times the metric's own prune bound (ErrorMetric::prune_bound())
+  /// drops a candidate: 1 prunes where the metric says.
+  double prune_scale = 1.0;
   std::size_t max_refined = 16;  ///< candidates refined fully
   bool refine = true;            ///< Ceres robust refinement of the finalists
   /// Drop a match whose box centre lies in a better match's box (exclusive_boxes): the same object
@@ -130,11 +132,13 @@ struct FastSettings {
           s.poses_per_seed);
     visit(SettingInfo("max_candidates", "Fast: pose clusters aligned coarsely").within(1, 1e5),
           s.max_candidates);
-    // A coarse fit a metre off is no fit.
-    visit(SettingInfo("prune_error", "Fast: coarse fit beyond which a candidate is dropped, m")
+    // A hundred times the metric's bound prunes nothing a fine alignment could save.
+    visit(SettingInfo("prune_scale",
+                      "Fast: scale of the metric's own coarse-fit bound beyond which a candidate "
+                      "is dropped")
               .positive()
-              .at_most(1.0),
-          s.prune_error);
+              .at_most(100.0),
+          s.prune_scale);
     visit(SettingInfo("max_refined", "Fast: candidates refined fully").within(1, 1e4),
           s.max_refined);
     visit(SettingInfo("refine", "Fast: Ceres robust refinement of the finalists"), s.refine);
@@ -150,7 +154,8 @@ struct SelectionSettings {
   /// fast and "paper" for reference.
   std::string metric;
   double nms_radius = 0.03;  ///< step 5: non-max suppression radius on box centres, m
-  /// Step 6: matches need an error below this, m. Unset: the metric's default threshold.
+  /// Step 6: matches need an error below this, in the metric's unit (m, or sigma for `sensor`:
+  /// ErrorMetric::display). Unset: the metric's default threshold.
   std::optional<double> threshold;
   /// Matches need at least this fraction of their points supported by the scene (only for metrics
   /// that measure coverage).
@@ -190,7 +195,8 @@ struct SelectionSettings {
               .positive()
               .at_most(kMaxSensorRange),
           s.nms_radius);
-    visit(SettingInfo("threshold", "Largest error of a match, m (default: the metric's own)")
+    visit(SettingInfo("threshold",
+                      "Largest error of a match, in the metric's unit (default: the metric's own)")
               .positive()
               .at_most(100.0),
           s.threshold);

@@ -10,6 +10,7 @@
 
 #include "bindings.h"
 #include "lmk/geometry/error.h"
+#include "lmk/landmark/error_metrics.h"
 #include "lmk/landmark/find_landmark.h"
 #include "lmk/landmark/internal/find_result_json.h"
 
@@ -75,57 +76,84 @@ py::list matches_to_python(const std::vector<Match>& matches, const nlohmann::js
 
 }  // namespace
 
+namespace {
+
+// lmk.find: the search with the GIL released, heard from through `progress` and Python's signal
+// handlers, its result as `lmk find --json` writes it.
+py::dict find_from_python(const PointCloud& scene, const Landmark& landmark, bool rejected,
+                          const std::function<void(std::size_t, std::size_t)>& progress,
+                          const py::kwargs& kwargs) {
+  FindSettings settings = settings_from_keywords(kwargs);
+  // After each seed, from the search's threads: Python's signal handlers run (Ctrl-C ends
+  // the search there), then `progress`. Each report takes the GIL; the search itself runs
+  // without it. Without `progress`, only the reports on the calling thread take it, and
+  // only when that is Python's main thread, the one thread that runs signal handlers: two
+  // searches from two other threads then never queue for the GIL. The threads count seeds
+  // before they queue for the GIL, so their counts can arrive out of order: Python hears a
+  // count kept under the GIL instead, which rises by one each time.
+  const std::thread::id caller = std::this_thread::get_id();
+  const bool caller_handles_signals =
+      PyThread_get_thread_ident() ==
+      py::module_::import("threading").attr("main_thread")().attr("ident").cast<unsigned long>();
+  std::size_t heard = 0;
+  settings.execution.progress = [&](std::size_t, std::size_t total) {
+    if (!progress && !(caller_handles_signals && std::this_thread::get_id() == caller)) {
+      return;
+    }
+    const py::gil_scoped_acquire acquire;
+    if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    ++heard;
+    if (progress) progress(heard, total);
+  };
+  FindResult result;
+  {
+    const py::gil_scoped_release release;
+    result = find_landmark(scene, landmark, settings);
+  }
+  const nlohmann::json j = detail::find_result_to_json(result, rejected);
+  py::dict out;
+  out["matches"] = matches_to_python(result.matches, j["matches"]);
+  out["stats"] = json_to_python(j["stats"]);
+  out["error_unit"] = j.value("error_unit", "");
+  if (rejected) {
+    std::vector<Match> candidates;
+    for (const Rejection& r : result.rejected) candidates.push_back(r.candidate);
+    out["rejected"] = matches_to_python(candidates, j["rejected"]);
+  }
+  return out;
+}
+
+// lmk.error_metrics(): the registry, with what each metric says of itself.
+py::list error_metrics_to_python() {
+  py::list out;
+  for (const ErrorMetric& metric : error_metrics()) {
+    py::dict d;
+    d["name"] = metric.name;
+    d["description"] = metric.description;
+    d["default_threshold"] = metric.default_threshold;
+    d["error_unit"] = metric.display.json_unit;
+    d["shown_unit"] = metric.display.label;
+    d["shown_scale"] = metric.display.scale;
+    d["coarse_score"] = static_cast<bool>(metric.coarse_score);
+    d["prune_bound"] = metric.prune_bound();
+    d["noise_normalised"] = metric.noise_normalised;
+    d["hides_occluded"] = metric.hides_occluded;
+    out.append(d);
+  }
+  return out;
+}
+
+}  // namespace
+
 void bind_search(py::module_& m) {
   m.def(
-      "find",
-      [](const PointCloud& scene, const Landmark& landmark, bool rejected,
-         const std::function<void(std::size_t, std::size_t)>& progress, const py::kwargs& kwargs) {
-        FindSettings settings = settings_from_keywords(kwargs);
-        // After each seed, from the search's threads: Python's signal handlers run (Ctrl-C ends
-        // the search there), then `progress`. Each report takes the GIL; the search itself runs
-        // without it. Without `progress`, only the reports on the calling thread take it, and
-        // only when that is Python's main thread, the one thread that runs signal handlers: two
-        // searches from two other threads then never queue for the GIL. The threads count seeds
-        // before they queue for the GIL, so their counts can arrive out of order: Python hears a
-        // count kept under the GIL instead, which rises by one each time.
-        const std::thread::id caller = std::this_thread::get_id();
-        const bool caller_handles_signals =
-            PyThread_get_thread_ident() == py::module_::import("threading")
-                                               .attr("main_thread")()
-                                               .attr("ident")
-                                               .cast<unsigned long>();
-        std::size_t heard = 0;
-        settings.execution.progress = [&](std::size_t, std::size_t total) {
-          if (!progress && !(caller_handles_signals && std::this_thread::get_id() == caller)) {
-            return;
-          }
-          const py::gil_scoped_acquire acquire;
-          if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-          ++heard;
-          if (progress) progress(heard, total);
-        };
-        FindResult result;
-        {
-          const py::gil_scoped_release release;
-          result = find_landmark(scene, landmark, settings);
-        }
-        const nlohmann::json j = detail::find_result_to_json(result, rejected);
-        py::dict out;
-        out["matches"] = matches_to_python(result.matches, j["matches"]);
-        out["stats"] = json_to_python(j["stats"]);
-        if (rejected) {
-          std::vector<Match> candidates;
-          for (const Rejection& r : result.rejected) candidates.push_back(r.candidate);
-          out["rejected"] = matches_to_python(candidates, j["rejected"]);
-        }
-        return out;
-      },
-      py::arg("scene"), py::arg("landmark"), py::kw_only(), py::arg("rejected") = false,
-      py::arg("progress") = nullptr,
+      "find", &find_from_python, py::arg("scene"), py::arg("landmark"), py::kw_only(),
+      py::arg("rejected") = false, py::arg("progress") = nullptr,
       "Finds every instance of `landmark` in `scene`. Settings are keywords named as `lmk find`'s "
       "flags (max_tilt=30 for --max-tilt 30), in their units and checked by their rules "
       "(ValueError otherwise). Returns {'matches': [...], 'stats': {...}} as `lmk find --json` "
-      "writes them, each match with its 'pose' (4x4, the capture frame in the scene frame) and "
+      "writes them (and 'error_unit', the metric's: 'm' or 'sd'), each match with its 'pose' (4x4, "
+      "the capture frame in the scene frame) and "
       "'box'; with rejected=True also the rejected candidates and their 'reason'. "
       "progress(done, total) hears of each seed. Ctrl-C (KeyboardInterrupt) ends the search at "
       "its next seed.");
@@ -140,6 +168,12 @@ void bind_search(py::module_& m) {
         return keys;
       },
       "The keywords lmk.find takes: every search setting, as `lmk find`'s flags name them.");
+  m.def("error_metrics", &error_metrics_to_python,
+        "Every error metric lmk.find's `metric` keyword takes, built in or from a plugin that "
+        "$LMK_METRIC_PLUGINS names: its name, description, default threshold and 'error_unit' ('m' "
+        "or 'sd'), how errors are shown ('shown_unit', 'shown_scale'), whether the fast search has "
+        "a coarse score of it and the bound it prunes at, and whether its residuals are in units "
+        "of the depth noise and it hides occluded points.");
 }
 
 }  // namespace lmk::python

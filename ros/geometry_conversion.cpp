@@ -133,7 +133,8 @@ visualization_msgs::Marker box_marker(const Box& box, const std::string& frame_i
 }
 
 visualization_msgs::MarkerArray match_markers(const std::vector<lmk_msgs::LandmarkMatch>& matches,
-                                              const std::string& frame_id) {
+                                              const std::string& frame_id,
+                                              const ErrorMetric& metric) {
   visualization_msgs::MarkerArray array;
   visualization_msgs::Marker clear;
   clear.action = visualization_msgs::Marker::DELETEALL;
@@ -160,8 +161,8 @@ visualization_msgs::MarkerArray match_markers(const std::vector<lmk_msgs::Landma
     label.scale.z = 0.04;  // text height, m
     label.color = rgba(1.0f, 1.0f, 1.0f, 1.0f);
     char text[200];
-    std::snprintf(text, sizeof text, "%s #%u  %.1f mm", match.landmark.c_str(), match.rank,
-                  1000.0 * match.error);
+    std::snprintf(text, sizeof text, "%s #%u  %s", match.landmark.c_str(), match.rank,
+                  format_error(match.error, metric).c_str());
     label.text = text;
     if (std::isfinite(p)) {
       std::snprintf(text, sizeof text, "  confidence %.2f", p);

@@ -40,9 +40,10 @@ visualization_msgs::Marker box_marker(const Box& box, const std::string& frame_i
 /// What the node publishes after a search: a DELETEALL (so that the last search's boxes go), then
 /// per match a box coloured by its confidence (red through yellow to green as it rises from 0 to
 /// 1; without one, the best of each landmark green and the others orange) and a label with the
-/// landmark, rank, error and confidence. Markers carry the stamp 0, so that RViz draws them with
-/// the latest TF.
+/// landmark, rank, error (as `metric`, the search's, shows it) and confidence. Markers carry the
+/// stamp 0, so that RViz draws them with the latest TF.
 visualization_msgs::MarkerArray match_markers(const std::vector<lmk_msgs::LandmarkMatch>& matches,
-                                              const std::string& frame_id);
+                                              const std::string& frame_id,
+                                              const ErrorMetric& metric);
 
 }  // namespace lmk::ros1

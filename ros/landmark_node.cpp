@@ -325,7 +325,8 @@ void LandmarkNode::find_from_rviz(const Box& box) {
 }
 
 void LandmarkNode::publish_matches(const std::vector<lmk_msgs::LandmarkMatch>& matches) {
-  markers_.publish(match_markers(matches, settings_.base_frame));
+  markers_.publish(match_markers(matches, settings_.base_frame,
+                                 find_error_metric(settings_.find.resolved().selection.metric)));
 }
 
 bool LandmarkNode::find(lmk_msgs::FindLandmark::Request& request,

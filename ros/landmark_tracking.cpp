@@ -73,7 +73,9 @@ bool LandmarkTracking::track(lmk_msgs::Track::Request& request,
       response.message =
           names_.empty() ? "was following nothing" : "stopped following " + joined(names_);
       names_.clear();
-      markers_.publish(match_markers({}, settings_.base_frame));
+      markers_.publish(
+          match_markers({}, settings_.base_frame,
+                        find_error_metric(settings_.track.find.resolved().selection.metric)));
       response.success = true;
       return true;
     }

@@ -54,9 +54,6 @@ ApiResponse Api::find(const std::string& body_text) {
       r["landmark"] = name;
       r["box_size"] =
           detail::vector_to_json(landmarks[i]->landmark().box.size);  // every match's box size
-      // The unit of every error: metres, or standard deviations of the sensor's depth noise.
-      const bool sigma = find_error_metric(found.stats.metric).unit == ErrorMetric::Unit::sigma;
-      r["error_unit"] = sigma ? "sd" : "m";
       results.push_back(r);
     }
     progress.report(1.0, "done");

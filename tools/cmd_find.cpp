@@ -60,9 +60,9 @@ void print_table(const FindResult& r, const std::string& name) {
       s.seconds_total, why.c_str());
   if (r.matches.empty()) return;
   const bool grid_terms = !std::isnan(r.matches.front().terms.coverage);
-  const bool in_sigma = find_error_metric(s.metric).unit == ErrorMetric::Unit::sigma;
+  const ErrorDisplay& shown = find_error_metric(s.metric).display;
   std::printf("%4s %9s %9s %9s %8s %8s %8s %9s %10s", "rank", "x", "y", "z", "roll", "pitch", "yaw",
-              in_sigma ? "error_sd" : "error_mm", "confidence");
+              ("error_" + shown.column).c_str(), "confidence");
   if (grid_terms) {
     std::printf(" %8s %11s\n", "coverage", "empty_viol");
   } else {
@@ -73,7 +73,7 @@ void print_table(const FindResult& r, const std::string& name) {
     const Eigen::Vector3d c = m.box.center();
     const Eigen::Vector3d rpy = rpy_degrees(m.box.pose.linear());
     std::printf("%4zu %9.4f %9.4f %9.4f %8.2f %8.2f %8.2f %9.3f %10s", i + 1, c.x(), c.y(), c.z(),
-                rpy.x(), rpy.y(), rpy.z(), in_sigma ? m.error : 1000.0 * m.error,
+                rpy.x(), rpy.y(), rpy.z(), shown.scale * m.error,
                 format_confidence(m.confidence.probability).c_str());
     if (grid_terms) {
       const std::string viol = std::to_string(m.terms.empty_space_violations) + "/" +

@@ -218,8 +218,8 @@ MatchConfidence assess_match(const ConfidenceInput& in, const Match& match,
 
   // The error is a mean over the supporting points; its spread from the noise alone falls with
   // the square root of their count. In metres the residual sigma sets its scale (scaled as the
-  // error was beyond threshold_range); the sensor metric's residuals are in sigma already.
-  const double unit = in.error_in_sigma ? 1.0 : noise * match.terms.range_scale;
+  // error was beyond threshold_range); a noise-normalised metric's residuals are in sigma already.
+  const double unit = in.metric.noise_normalised ? 1.0 : noise * match.terms.range_scale;
   c.error_sigma = unit / std::sqrt(static_cast<double>(std::max<std::size_t>(c.support, 1)));
   c.fit = match.error / unit;
 

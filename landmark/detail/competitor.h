@@ -23,7 +23,6 @@ struct ConfidenceInput {
   /// them, about one per independent patch of noise.
   const PointCloud& coarse_landmark;
   const KdTree& landmark_tree;  ///< the landmark's points, capture frame
-  bool error_in_sigma;          ///< the metric's unit is the sensor's sigma, not metres
   /// The search's metric and its view of the landmark: the poses along a match's freest motion
   /// that no candidate stood at are scored with them (probe_freest_motion()).
   const ErrorMetric& metric;

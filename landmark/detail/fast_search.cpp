@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <unordered_map>
 
@@ -18,6 +19,7 @@
 #include "lmk/landmark/detail/point_pair_voting.h"
 #include "lmk/landmark/detail/relief_seeds.h"
 #include "lmk/landmark/detail/sensor_metric.h"
+#include "lmk/landmark/detail/thinning.h"
 #include "lmk/landmark/non_max_suppression.h"
 #include "lmk/registration/icp.h"
 #include "lmk/registration/refine_pose.h"
@@ -25,34 +27,12 @@
 namespace lmk::detail {
 namespace {
 
-// The coarse fit, in sigma, beyond which a candidate of the sensor metric is dropped: twice the
-// metric's default threshold, as prune_error (15 mm) is for the 6 mm of `visibility`.
-constexpr double kSigmaPrune = 2.0;
-
 struct Candidate {
   Eigen::Isometry3d T_scene_capture;
   Eigen::Vector3d centre;  ///< the landmark box centre under the pose
   double votes = 0.0;
   std::size_t seed = 0;
 };
-
-// Every k-th index below n, so that at most `cap` remain (deterministic: two sets of one size keep
-// the same indices).
-Indices thin_indices(std::size_t n, std::size_t cap) {
-  Indices out;
-  const std::size_t kept = std::min(n, cap);
-  const double step = static_cast<double>(n) / static_cast<double>(std::max<std::size_t>(kept, 1));
-  for (std::size_t k = 0; k < kept; ++k) out.push_back(static_cast<Index>(k * step));
-  return out;
-}
-
-template <class T>
-std::vector<T> thin(const std::vector<T>& items, std::size_t cap) {
-  if (items.size() <= cap) return items;
-  std::vector<T> out;
-  for (Index i : thin_indices(items.size(), cap)) out.push_back(items[i]);
-  return out;
-}
 
 // Step 2: greedy clustering, strongest pose first. A pose joins the first cluster (in order of
 // creation) whose centre is within `distance` and whose rotation is within `angle`; clusters are
@@ -176,7 +156,7 @@ std::vector<Candidate> vote(const Stages& st) {
 struct CoarseAlignment {
   std::vector<Eigen::Isometry3d> aligned;  ///< per cluster
   std::vector<int> iterations;             ///< ICP iterations per cluster
-  std::vector<double> quick;               ///< the cheap score, in the metric's unit
+  std::vector<double> quick;               ///< the metric's coarse score (0 without one)
 };
 
 CoarseAlignment coarse_align(const Stages& st, const std::vector<Candidate>& clusters) {
@@ -189,30 +169,19 @@ CoarseAlignment coarse_align(const Stages& st, const std::vector<Candidate>& clu
   // and half a degree ends it (the fine alignment keeps its own, tight tolerances).
   icp_settings.translation_tolerance = 0.1 * st.leaf;
   icp_settings.rotation_tolerance = 0.01;
-  icp_settings.measure_final = false;  // the candidates are scored below, by the metric's unit
+  icp_settings.measure_final = false;  // the metric's coarse score ranks the candidates
   // A few hundred points fix a coarse pose as well as all of them, and score it as well: the
   // candidates are many, and the score only ranks them for the fine stage, which scores the
   // finalists with every point.
   const PointCloud& model = in.prepared.coarse();
   const PointCloud coarse_model = model.select(thin_indices(model.size(), 400));
-  // The cheap score in the metric's unit: for the sensor metric, its own fit (sigma residuals,
-  // projective visibility), so that a far instance, noisy in millimetres, still ranks first.
-  const bool in_sigma = in.metric.unit == ErrorMetric::Unit::sigma;
-  const Eigen::Vector3f capture_sensor = st.landmark.sensor_origin.cast<float>();
-  std::vector<Eigen::Vector3f> quick_probes;
-  std::vector<float> quick_probe_distances;
-  if (in_sigma) {
-    quick_probes = thin(st.landmark.empty_space.centres(), 300);
-    quick_probe_distances = thin(in.prepared.empty_distances(), 300);
+  // The metric's own cheap score, in its unit (none: every candidate ranks as voted).
+  CoarseScore quick;
+  if (in.metric.coarse_score) {
+    quick = in.metric.coarse_score(
+        {st.index, st.landmark, model, coarse_model,
+         in.metric.needs_empty_distances ? &in.prepared.empty_distances() : nullptr, st.leaf});
   }
-  // A landmark of several views: the thinned points lie further apart than the leaf, and hide
-  // each other only across that spacing.
-  const SeveralViews views{
-      st.landmark.box.center(),
-      2.0 * st.leaf *
-          std::sqrt(std::max(
-              1.0, static_cast<double>(model.size()) /
-                       static_cast<double>(std::max<std::size_t>(coarse_model.size(), 1))))};
   CoarseAlignment out;
   out.aligned.resize(clusters.size());
   out.iterations.assign(clusters.size(), 0);
@@ -223,18 +192,7 @@ CoarseAlignment coarse_align(const Stages& st, const std::vector<Candidate>& clu
     const IcpResult r = icp(coarse_model.points, target, clusters[c].T_scene_capture, icp_settings);
     out.aligned[c] = r.T_target_source;
     out.iterations[c] = r.iterations;
-    const Eigen::Isometry3f T = out.aligned[c].cast<float>();
-    if (in_sigma) {
-      // Space the landmark needs free but the scene's sensor measured a surface in is the
-      // sharpest test at range, where the fit's residuals drown in noise.
-      out.quick[c] =
-          sensor_fit(st.index, model, capture_sensor, T).mean_cost() +
-          empty_space_penalty(st.index, st.landmark, quick_probes, quick_probe_distances, T);
-      return;
-    }
-    out.quick[c] = mean_surface_distance(st.index, coarse_model, T,
-                                         in.metric.hides_occluded ? &st.landmark.box : nullptr,
-                                         st.landmark.multi_view() ? &views : nullptr);
+    out.quick[c] = quick ? quick(out.aligned[c].cast<float>()) : 0.0;
   });
   return out;
 }
@@ -242,8 +200,9 @@ CoarseAlignment coarse_align(const Stages& st, const std::vector<Candidate>& clu
 // Step 3, second half: only candidates whose coarse fit could still pass go on, best first, at
 // most max_refined, one per pose; returned in cluster rank, a deterministic order.
 std::vector<std::size_t> prune(const Stages& st, const CoarseAlignment& coarse) {
-  const double prune_at =
-      st.in.metric.unit == ErrorMetric::Unit::sigma ? kSigmaPrune : st.s.fast.prune_error;
+  const double prune_at = st.in.metric.coarse_score
+                              ? st.s.fast.prune_scale * st.in.metric.prune_bound()
+                              : std::numeric_limits<double>::infinity();
   const std::vector<double>& quick = coarse.quick;
   const std::vector<Eigen::Isometry3d>& aligned = coarse.aligned;
   std::vector<std::size_t> order(quick.size());

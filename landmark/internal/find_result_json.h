@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "lmk/json/pose_json.h"
+#include "lmk/landmark/error_metrics.h"
 #include "lmk/landmark/find_landmark.h"
 #include "lmk/landmark/internal/confidence_json.h"
 #include "lmk/landmark/internal/terms_json.h"
@@ -63,6 +64,10 @@ inline nlohmann::json find_result_to_json(const FindResult& r, bool with_rejecte
   nlohmann::json matches = nlohmann::json::array();
   for (const Match& m : r.matches) matches.push_back(match_to_json(m));
   nlohmann::json j = {{"matches", matches}, {"stats", search_stats_to_json(r.stats)}};
+  // The unit of every error: the metric's own (ErrorDisplay::json_unit), "m" or "sd".
+  if (!r.stats.metric.empty()) {
+    j["error_unit"] = find_error_metric(r.stats.metric).display.json_unit;
+  }
   if (with_rejected) {
     nlohmann::json rejected = nlohmann::json::array();
     for (const Rejection& x : r.rejected) {

@@ -25,10 +25,7 @@
 namespace lmk {
 namespace {
 
-struct CommandResult {
-  int exit_code = -1;
-  std::string out, err;
-};
+using test::CommandResult;
 
 std::string slurp(const std::string& path) {
   std::ifstream in(path);
@@ -41,10 +38,7 @@ class Cli : public ::testing::Test {
  protected:
   // Runs `lmk ARGS` through the shell, capturing stdout and stderr in the scratch directory.
   CommandResult lmk(const std::string& args) {
-    const std::string out = dir_.file("stdout"), err = dir_.file("stderr");
-    const int status = std::system(
-        (std::string("'") + LMK_BINARY + "' " + args + " >'" + out + "' 2>'" + err + "'").c_str());
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+    return test::run_shell(std::string("'") + LMK_BINARY + "' " + args, dir_);
   }
 
   // A bad-input run: exit code 2 and exactly one line on stderr, starting "lmk: error: ".

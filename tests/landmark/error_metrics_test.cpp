@@ -237,8 +237,7 @@ TEST(ErrorMetrics, TheLibraryDocsListEveryRegisteredMetric) {
   std::vector<std::string> registered;
   for (const ErrorMetric& m : error_metrics()) {
     registered.push_back(m.name);
-    const double shown =
-        m.unit == ErrorMetric::Unit::sigma ? m.default_threshold : m.default_threshold * 1000.0;
+    const double shown = m.display.scale * m.default_threshold;
     const std::size_t row = registered.size() - 1;
     if (row < thresholds.size()) {
       EXPECT_DOUBLE_EQ(std::stod(thresholds[row]), shown) << m.name << ": " << thresholds[row];

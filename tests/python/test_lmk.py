@@ -6,6 +6,7 @@ build tree's package, LMK_BINARY to the CLI and LMK_CLI_FIXTURES to tests/cli/fi
 import json
 import os
 import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -50,6 +51,31 @@ def test_find_gives_exactly_lmk_find_json(tabletop):
         # Every match says how sure it is (a calibrated probability) and what competes with it.
         assert 0.0 <= m["confidence"]["probability"] <= 1.0
         assert "competitor" in m["confidence"]
+
+
+def test_error_metrics_are_listed_with_their_units():
+    metrics = {m["name"]: m for m in lmk.error_metrics()}
+    assert list(metrics)[:6] == ["paper", "rapid", "vdb", "visibility", "projective", "sensor"]
+    assert metrics["visibility"]["error_unit"] == "m"
+    assert metrics["sensor"]["error_unit"] == "sd" and metrics["sensor"]["noise_normalised"]
+    assert metrics["visibility"]["prune_bound"] == pytest.approx(0.015)
+
+
+def test_a_metric_from_a_plugin_runs_through_find(tabletop):
+    """A metric only the tests know (tests/metric_plugin), named in $LMK_METRIC_PLUGINS: listed and
+    searched with from Python, in a fresh interpreter, as a user's own would be."""
+    script = (
+        "import json, lmk, sys\n"
+        "names = [m['name'] for m in lmk.error_metrics()]\n"
+        "found = lmk.find(lmk.read_cloud(sys.argv[1]), lmk.load_landmark(sys.argv[2]),"
+        " metric='nearest')\n"
+        "print(json.dumps({'names': names, 'metric': found['stats']['metric'],"
+        " 'unit': found['error_unit'], 'errors': [m['error'] for m in found['matches']]}))\n")
+    env = dict(os.environ, LMK_METRIC_PLUGINS=os.environ["LMK_TEST_METRIC_PLUGIN"])
+    out = json.loads(subprocess.run([sys.executable, "-c", script, tabletop, CUP], check=True,
+                                    capture_output=True, text=True, env=env).stdout)
+    assert out["names"][-1] == "nearest" and out["metric"] == "nearest" and out["unit"] == "m"
+    assert len(out["errors"]) > 0 and all(e < 0.004 for e in out["errors"])
 
 
 def test_settings_are_the_flags_with_their_units_and_checks(tabletop):

@@ -57,7 +57,8 @@ TEST(GeometryConversion, MatchMarkersClearTheLastSearchThenDrawEachMatch) {
   match.error = 0.0042;
   const std::vector<lmk_msgs::LandmarkMatch> matches = {to_ros(match, "cup", 1),
                                                         to_ros(match, "cup", 2)};
-  const visualization_msgs::MarkerArray array = match_markers(matches, "base_link");
+  const visualization_msgs::MarkerArray array =
+      match_markers(matches, "base_link", find_error_metric("visibility"));
   ASSERT_EQ(array.markers.size(), 5u);  // DELETEALL, then a box and a label per match
   EXPECT_EQ(array.markers[0].action, visualization_msgs::Marker::DELETEALL);
   EXPECT_EQ(array.markers[1].type, visualization_msgs::Marker::CUBE);
@@ -65,6 +66,12 @@ TEST(GeometryConversion, MatchMarkersClearTheLastSearchThenDrawEachMatch) {
   EXPECT_NE(array.markers[1].color.g, array.markers[3].color.g);  // the best one stands out
   EXPECT_EQ(array.markers[2].text, "cup #1  4.2 mm");
   EXPECT_NE(array.markers[1].id, array.markers[3].id);
+  // The sensor metric's errors are in sigma, and its labels say so.
+  match.error = 1.3;
+  EXPECT_EQ(match_markers({to_ros(match, "cup", 1)}, "base_link", find_error_metric("sensor"))
+                .markers[2]
+                .text,
+            "cup #1  1.30 sigma");
 }
 
 TEST(GeometryConversion, AMatchCarriesItsConfidenceAndCompetitor) {
@@ -93,7 +100,7 @@ TEST(GeometryConversion, MatchMarkersAreColouredByConfidence) {
   doubtful.confidence.probability = 0.1;
   const visualization_msgs::MarkerArray array = match_markers(
       {to_ros(sure, "cup", 1), to_ros(doubtful, "cup", 2), to_ros(uncalibrated, "cup", 3)},
-      "base_link");
+      "base_link", find_error_metric("visibility"));
   ASSERT_EQ(array.markers.size(), 7u);
   const std_msgs::ColorRGBA& green = array.markers[1].color;
   const std_msgs::ColorRGBA& red = array.markers[3].color;

@@ -2,6 +2,7 @@
 #include "tests/support/test_support.h"
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -50,6 +51,12 @@ void write_text(const std::string& path, const std::string& text) {
 std::string read_bytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   return std::string((std::istreambuf_iterator<char>(in)), {});
+}
+
+CommandResult run_shell(const std::string& command, const ScratchDir& dir) {
+  const std::string out = dir.file("stdout"), err = dir.file("stderr");
+  const int status = std::system((command + " >'" + out + "' 2>'" + err + "'").c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_bytes(out), read_bytes(err)};
 }
 
 std::optional<fs::path> shared_data_dir() {

@@ -45,6 +45,14 @@ void write_text(const std::string& path, const std::string& text);
 /// The bytes of the file at `path`, as is (empty when it cannot be read).
 std::string read_bytes(const std::string& path);
 
+/// A shell command's exit code (-1 when it did not exit) and what it wrote.
+struct CommandResult {
+  int exit_code = -1;
+  std::string out, err;
+};
+/// Runs `command` through the shell, its stdout and stderr captured in files of `dir`.
+CommandResult run_shell(const std::string& command, const ScratchDir& dir);
+
 /// The real data directory (../shared/data, or $LMK_SHARED_DATA), or nothing when absent.
 std::optional<std::filesystem::path> shared_data_dir();
 
