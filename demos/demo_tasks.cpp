@@ -319,16 +319,11 @@ std::string refused_landmark(const Refusal& refusal) {
 }
 
 // Step 3: one scenario, perceived, planned, executed on the simulated PR2 and judged.
-DemoScenarioResult run_scenario(const DemoTask& task, std::size_t index,
-                                const RecordedTask& recorded, ScenarioState& state,
-                                const DemoTasksSettings& settings) {
+// The scenario's world and robot (those of the previous scenario when it continues it), and the
+// head's view of it, saved when the settings say so.
+PointCloud set_up_scenario(const DemoTask& task, std::size_t index, ScenarioState& state,
+                           const DemoTasksSettings& settings) {
   const DemoScenario& scenario = task.scenarios[index];
-  const Stopwatch stopwatch;
-  DemoScenarioResult result;
-  result.task = task.number;
-  result.task_title = task.title;
-  result.name = scenario.name;
-  result.should_act = scenario.should_act;
   if (scenario.continues_previous && state.robot) {
     if (!state.picked.empty() && state.world.object(state.picked)) state.world.remove(state.picked);
   } else {
@@ -342,13 +337,31 @@ DemoScenarioResult run_scenario(const DemoTask& task, std::size_t index,
   if (scenario.continues_previous) {
     require(point_head(robot, robot.kinematics(), task.look_at), task_prefix(task) + ": head");
   }
-  const PointCloud scene = look(robot, state.world, 100 * task.number + index);
+  PointCloud scene = look(robot, state.world, 100 * task.number + index);
   if (!settings.save_dir.empty()) {
     write_cloud((std::filesystem::path(settings.save_dir) / ("task" + std::to_string(task.number)) /
                  ("scenario" + std::to_string(index + 1) + ".pcd"))
                     .string(),
                 scene);
   }
+  return scene;
+}
+
+// What the robot did in a scenario: its plan (after looking again), the execution, the plan the
+// arm last followed, the watched run when the landmark was moved, and whether the robot moved.
+struct ScenarioRun {
+  LookedPlan looked;
+  ExecutionReport execution;
+  Plan executed;
+  std::optional<detail::MovedRun> moved_run;
+  bool moved = false;
+};
+
+ScenarioRun plan_and_execute(const DemoTask& task, std::size_t index, const RecordedTask& recorded,
+                             const PointCloud& scene, ScenarioState& state,
+                             const DemoTasksSettings& settings) {
+  const DemoScenario& scenario = task.scenarios[index];
+  SimulatedPr2& robot = *state.robot;
   const Program& program = recorded.programs.at(scenario.program);
   JointState joints;
   require(robot.read_joint_state(joints), "read joints");
@@ -358,76 +371,117 @@ DemoScenarioResult run_scenario(const DemoTask& task, std::size_t index,
   HeadKinect eyes(robot, state.world, 100 * (100 * task.number + index));
   LookAgainSettings looking;
   looking.max_looks = settings.look_again;
-  const LookedPlan looked = plan_looking_again(
-      program, recorded.landmarks, scene, robot.kinematics(), joints, eyes, plan_settings, looking);
-  const Plan& plan = looked.plan;
-  result.looks = looked.looks.size();
+  ScenarioRun run{plan_looking_again(program, recorded.landmarks, scene, robot.kinematics(), joints,
+                                     eyes, plan_settings, looking),
+                  {},
+                  {},
+                  std::nullopt,
+                  false};
+  const Plan& plan = run.looked.plan;
   const std::size_t motions_before = robot.history().size();
   const double time_before = robot.time();
-  ExecutionReport execution;
-  Plan executed = plan;  // the plan the arm last followed: a watched move re-plans
-  std::optional<detail::MovedRun> moved_run;
+  run.executed = plan;  // the plan the arm last followed: a watched move re-plans
   if (scenario.move && plan.valid()) {
-    moved_run = detail::execute_while_moved(program, plan, robot, state.world, *scenario.move,
-                                            recorded.landmarks, settings.watch, plan_settings,
-                                            1000 * (100 * task.number + index));
-    execution = moved_run->report;
-    executed = moved_run->executed;
-    result.replans = moved_run->replans;
+    run.moved_run = detail::execute_while_moved(program, plan, robot, state.world, *scenario.move,
+                                                recorded.landmarks, settings.watch, plan_settings,
+                                                1000 * (100 * task.number + index));
+    run.execution = run.moved_run->report;
+    run.executed = run.moved_run->executed;
   } else {
-    execution = execute(plan, robot);
+    run.execution = execute(plan, robot);
   }
-  result.steps_executed = execution.steps_completed;
-  const bool moved = robot.history().size() != motions_before || robot.time() != time_before;
-  result.refused = !plan.valid();
-  result.stopped = plan.valid() && !execution.completed;
+  run.moved = robot.history().size() != motions_before || robot.time() != time_before;
+  return run;
+}
 
-  if (moved_run && !scenario.should_act) {
+// The verdict of a scenario the robot should not act in: it refused, naming the missing
+// landmark, or (moved while the arm went) stopped with nothing sent after the move.
+void judge_refusal(const DemoScenario& scenario, const ScenarioRun& run,
+                   DemoScenarioResult& result) {
+  const Plan& plan = run.looked.plan;
+  const ExecutionReport& execution = run.execution;
+  if (run.moved_run) {
     // Carried away while the arm was on its way: stopped, nothing sent after it went.
-    result.success = !execution.completed && moved_run->sent_after_move == 0;
-    result.wrong_motion = moved_run->sent_after_move > 0;
+    result.success = !execution.completed && run.moved_run->sent_after_move == 0;
+    result.wrong_motion = run.moved_run->sent_after_move > 0;
     result.reason = result.success
                         ? "stopped: " + execution.error
                         : "moved on towards where '" + scenario.missing_landmark + "' was" +
                               (execution.completed ? " and completed" : ": " + execution.error);
-  } else if (!scenario.should_act) {
-    // Absent, or present only as a doubtful look-alike: either refusal names the right landmark.
-    result.success =
-        plan.refusal && refused_landmark(*plan.refusal) == scenario.missing_landmark && !moved;
-    if (result.success) {
-      result.reason = "refused, no motion: " + describe(*plan.refusal) + looks_said(looked);
-    } else if (plan.valid()) {
-      result.wrong_motion = moved;
-      result.reason = "acted although '" + scenario.missing_landmark + "' is absent";
-    } else {
-      result.reason = "refused for another reason: " + describe(*plan.refusal);
-    }
-  } else if (!plan.valid()) {
-    result.reason = "refused: " + describe(*plan.refusal) + looks_said(looked);
+    return;
+  }
+  // Absent, or present only as a doubtful look-alike: either refusal names the right landmark.
+  result.success =
+      plan.refusal && refused_landmark(*plan.refusal) == scenario.missing_landmark && !run.moved;
+  if (result.success) {
+    result.reason = "refused, no motion: " + describe(*plan.refusal) + looks_said(run.looked);
+  } else if (plan.valid()) {
+    result.wrong_motion = run.moved;
+    result.reason = "acted although '" + scenario.missing_landmark + "' is absent";
+  } else {
+    result.reason = "refused for another reason: " + describe(*plan.refusal);
+  }
+}
+
+// The verdict of a scenario the robot should act in: every step executed, each target within the
+// tolerance of the truth; otherwise why not, with what the sensor saw of the landmarks.
+void judge_action(const DemoTask& task, const RecordedTask& recorded, const Program& program,
+                  const PointCloud& scene, const ScenarioRun& run, ScenarioState& state,
+                  const DemoTasksSettings& settings, DemoScenarioResult& result) {
+  const Plan& plan = run.looked.plan;
+  const ExecutionReport& execution = run.execution;
+  if (!plan.valid()) {
+    result.reason = "refused: " + describe(*plan.refusal) + looks_said(run.looked);
     if (const auto* missing = std::get_if<LandmarkNotFound>(&*plan.refusal)) {
       result.reason += "; " + what_the_sensor_saw(task.landmark(missing->landmark), state.world,
                                                   scene, recorded.landmarks.at(missing->landmark));
     }
-  } else {
-    const std::string off =
-        judge_targets(task, program, executed, state.world, settings, result, state.picked);
-    if (!execution.completed) {
-      result.reason = "stopped after " + std::to_string(execution.steps_completed) + " of " +
-                      std::to_string(plan.steps.size()) + " steps: " + execution.error;
-    } else if (!off.empty()) {
-      result.wrong_motion = moved;
-      result.reason = off;
-      for (const LocatedLandmark& l : plan.landmarks) {
-        result.reason += "; " + what_the_sensor_saw(task.landmark(l.name), state.world, scene,
-                                                    recorded.landmarks.at(l.name));
-      }
-    } else {
-      result.success = true;
-      result.reason =
-          std::to_string(execution.steps_completed) + " steps executed; targets within " +
-          format_error(result.max_position_error, result.max_rotation_error) + " of the truth";
-      if (moved_run && !moved_run->noticed.empty()) result.reason += "; " + moved_run->noticed[0];
+    return;
+  }
+  const std::string off =
+      judge_targets(task, program, run.executed, state.world, settings, result, state.picked);
+  if (!execution.completed) {
+    result.reason = "stopped after " + std::to_string(execution.steps_completed) + " of " +
+                    std::to_string(plan.steps.size()) + " steps: " + execution.error;
+  } else if (!off.empty()) {
+    result.wrong_motion = run.moved;
+    result.reason = off;
+    for (const LocatedLandmark& l : plan.landmarks) {
+      result.reason += "; " + what_the_sensor_saw(task.landmark(l.name), state.world, scene,
+                                                  recorded.landmarks.at(l.name));
     }
+  } else {
+    result.success = true;
+    result.reason = std::to_string(execution.steps_completed) + " steps executed; targets within " +
+                    format_error(result.max_position_error, result.max_rotation_error) +
+                    " of the truth";
+    if (run.moved_run && !run.moved_run->noticed.empty())
+      result.reason += "; " + run.moved_run->noticed[0];
+  }
+}
+
+DemoScenarioResult run_scenario(const DemoTask& task, std::size_t index,
+                                const RecordedTask& recorded, ScenarioState& state,
+                                const DemoTasksSettings& settings) {
+  const DemoScenario& scenario = task.scenarios[index];
+  const Stopwatch stopwatch;
+  DemoScenarioResult result;
+  result.task = task.number;
+  result.task_title = task.title;
+  result.name = scenario.name;
+  result.should_act = scenario.should_act;
+  const PointCloud scene = set_up_scenario(task, index, state, settings);
+  const ScenarioRun run = plan_and_execute(task, index, recorded, scene, state, settings);
+  result.looks = run.looked.looks.size();
+  if (run.moved_run) result.replans = run.moved_run->replans;
+  result.steps_executed = run.execution.steps_completed;
+  result.refused = !run.looked.plan.valid();
+  result.stopped = run.looked.plan.valid() && !run.execution.completed;
+  if (!scenario.should_act) {
+    judge_refusal(scenario, run, result);
+  } else {
+    judge_action(task, recorded, recorded.programs.at(scenario.program), scene, run, state,
+                 settings, result);
   }
   result.seconds = stopwatch.seconds();
   return result;

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <set>
 
@@ -178,10 +179,11 @@ std::string benchmark_scene_name(const std::string& type, std::uint64_t seed, bo
   return name;
 }
 
-Generated generate_benchmark(const std::string& dir, const std::string& preset_name,
-                             const GenerateOptions& options) {
-  const BenchmarkPreset& preset = benchmark_preset(preset_name);
-  const int seeds = options.seeds.value_or(preset.seeds);
+namespace {
+
+// The options a generation can run with (`seeds` resolved from the preset); lmk::Error naming the
+// first that is not.
+void check_generate_options(const GenerateOptions& options, int seeds) {
   if (seeds < 1 || seeds > kMaxSeedsPerType) {
     throw Error("--seeds must be 1 to " + std::to_string(kMaxSeedsPerType) + " (got " +
                 std::to_string(seeds) + ")");
@@ -195,6 +197,128 @@ Generated generate_benchmark(const std::string& dir, const std::string& preset_n
   if (!(options.head_turn >= 0.0 && options.head_turn <= 45.0))
     throw Error("gen: --head-turn " + std::to_string(options.head_turn) +
                 ": must be 0 to 45 degrees");
+  if (options.views < 1 || options.views > 4) throw Error("gen: --views must be 1 to 4");
+}
+
+// The landmarks the scenes of `types` hold in context, in the libraries' order.
+std::vector<BenchmarkLandmark> landmarks_of(const std::vector<std::string>& types) {
+  std::set<std::string> wanted;
+  for (const std::string& type : types) {
+    for (const std::string& name : make_scene(type, 0, false).in_context)  // unknown types throw
+      wanted.insert(name);
+  }
+  std::vector<BenchmarkLandmark> landmarks;
+  for (const auto* list : {&benchmark_landmarks(), &colour_landmarks()}) {
+    for (const BenchmarkLandmark& l : *list) {
+      if (wanted.count(l.name)) landmarks.push_back(l);
+    }
+  }
+  return landmarks;
+}
+
+// A scene of the dataset: its type, name and seed.
+struct PlannedScene {
+  std::string type, name;
+  std::uint64_t seed;
+};
+
+// The scenes, in dataset order (`planned`), and those this run renders (`mine`: its shard's, none
+// for a merge).
+struct ScenePlan {
+  std::vector<PlannedScene> planned, mine;
+};
+
+ScenePlan plan_scenes(const std::vector<std::string>& types, int seeds, bool hard,
+                      const BenchmarkPreset& preset, const GenerateOptions& options) {
+  ScenePlan plan;
+  for (const std::string& type : types) {
+    for (int k = 0; k < seeds; ++k) {
+      const std::uint64_t seed = options.first_seed + static_cast<std::uint64_t>(k);
+      plan.planned.push_back(
+          {type, benchmark_scene_name(type, seed, hard, preset.variation), seed});
+      const bool in_shard =
+          !options.shard ||
+          scene_shard(plan.planned.back().name, options.shard->count) == options.shard->index;
+      if (in_shard && !options.merge) plan.mine.push_back(plan.planned.back());
+    }
+  }
+  return plan;
+}
+
+// Every landmark in 1 to options.views views, listed in `dataset` and (unless merging) captured
+// into `dir`; returns the one-view captures, which the truth and the hidden fractions use. Every
+// shard captures them; a capture is deterministic, so whichever shard's file lands last holds the
+// same landmark.
+std::map<std::string, Landmark> capture_landmarks(const std::vector<BenchmarkLandmark>& landmarks,
+                                                  const GenerateOptions& options,
+                                                  const std::string& dir, Dataset& dataset,
+                                                  const std::function<void()>& step) {
+  std::map<std::string, Landmark> captured;
+  for (const BenchmarkLandmark& landmark : landmarks) {
+    for (int views = 1; views <= options.views; ++views) {
+      const std::string name = views_landmark_name(landmark.name, static_cast<std::size_t>(views));
+      const std::string file = "landmarks/" + name + ".lmk";
+      dataset.landmarks.push_back({name, file, landmark.symmetry});
+      if (options.merge) continue;
+      const Landmark l = capture_benchmark_landmark(landmark, options.noise, views);
+      save_landmark((fs::path(dir) / file).string(), l);
+      if (views == 1) captured[landmark.name] = l;
+    }
+    if (!options.merge) step();
+  }
+  return captured;
+}
+
+// Scene `p` rendered into `dir` with its ground truth; returns its entry's text, as its part
+// holds it.
+std::string render_benchmark_scene(const PlannedScene& p, const BenchmarkPreset& preset, bool hard,
+                                   const std::vector<BenchmarkLandmark>& landmarks,
+                                   const std::map<std::string, Landmark>& captured,
+                                   const GenerateOptions& options, const std::string& dir) {
+  DatasetScene entry;
+  entry.name = p.name;
+  GeneratedScene scene = make_scene(p.type, p.seed, hard);
+  const std::uint64_t variation_seed = noise_seed(entry.name);
+  if (preset.variation == SceneVariation::viewpoints)
+    view_from_random_viewpoint(scene, captured, variation_seed);
+  if (preset.variation == SceneVariation::occlusion) add_occluders(scene, captured, variation_seed);
+  entry.file = "scenes/" + entry.name + ".pcd";
+  entry.setting = scene.setting;
+  entry.T_scene_sensor = scene.T_world_sensor;
+  entry.up = Eigen::Vector3d::UnitZ();
+  const PointCloud exact = render_scene(scene);
+  for (const DatasetPair& pair : pairs_of(scene, landmarks, captured, exact)) {
+    // A landmark of several views is searched where its one-view landmark is, for the same
+    // instances.
+    for (int views = 1; views <= options.views; ++views) {
+      entry.pairs.push_back(pair);
+      entry.pairs.back().landmark =
+          views_landmark_name(pair.landmark, static_cast<std::size_t>(views));
+    }
+  }
+  write_cloud((fs::path(dir) / entry.file).string(),
+              options.frames > 1 ? render_fused(scene, options, noise_seed(entry.name))
+                                 : render_scene(scene, options.noise, noise_seed(entry.name)));
+  return scene_entry_text(entry);
+}
+
+// lmk::Error naming (up to ten of) the scenes no shard has rendered yet.
+[[noreturn]] void throw_missing_scenes(const std::vector<std::string>& missing,
+                                       std::size_t planned) {
+  std::string names;
+  for (std::size_t k = 0; k < missing.size() && k < 10; ++k) names += (k ? ", " : "") + missing[k];
+  if (missing.size() > 10) names += ", ...";
+  throw Error("gen merge: " + std::to_string(missing.size()) + " of " + std::to_string(planned) +
+              " scenes are not rendered yet (" + names + "): run the shards that hold them");
+}
+
+}  // namespace
+
+Generated generate_benchmark(const std::string& dir, const std::string& preset_name,
+                             const GenerateOptions& options) {
+  const BenchmarkPreset& preset = benchmark_preset(preset_name);
+  const int seeds = options.seeds.value_or(preset.seeds);
+  check_generate_options(options, seeds);
   const bool hard = preset.hard || options.hard;
   const fs::path parts = fs::path(dir) / (".parts-" + generation_key(preset_name, options));
 
@@ -206,60 +330,21 @@ Generated generate_benchmark(const std::string& dir, const std::string& preset_n
 
   const std::vector<std::string>& preset_types =
       preset.colour ? colour_scene_types() : scene_types();
-  std::vector<std::string> types = options.types.empty() ? preset_types : options.types;
-  std::set<std::string> wanted_landmarks;
-  for (const std::string& type : types) {
-    for (const std::string& name : make_scene(type, 0, false).in_context)  // unknown types throw
-      wanted_landmarks.insert(name);
-  }
-  std::vector<BenchmarkLandmark> landmarks;
-  for (const auto* list : {&benchmark_landmarks(), &colour_landmarks()}) {
-    for (const BenchmarkLandmark& l : *list) {
-      if (wanted_landmarks.count(l.name)) landmarks.push_back(l);
-    }
-  }
-  // The scenes, in dataset order, and those this run renders.
-  struct Planned {
-    std::string type, name;
-    std::uint64_t seed;
-  };
-  std::vector<Planned> planned, mine;
-  for (const std::string& type : types) {
-    for (int k = 0; k < seeds; ++k) {
-      const std::uint64_t seed = options.first_seed + static_cast<std::uint64_t>(k);
-      planned.push_back({type, benchmark_scene_name(type, seed, hard, preset.variation), seed});
-      const bool in_shard =
-          !options.shard ||
-          scene_shard(planned.back().name, options.shard->count) == options.shard->index;
-      if (in_shard && !options.merge) mine.push_back(planned.back());
-    }
-  }
+  const std::vector<std::string> types = options.types.empty() ? preset_types : options.types;
+  const std::vector<BenchmarkLandmark> landmarks = landmarks_of(types);
+  const ScenePlan plan = plan_scenes(types, seeds, hard, preset, options);
 
   Generated out;
   Dataset& dataset = out.dataset;
   dataset.name = preset.name + (hard && !preset.hard ? "-hard" : "");
-  const std::size_t total = (options.merge ? 0 : landmarks.size()) + mine.size();
+  const std::size_t total = (options.merge ? 0 : landmarks.size()) + plan.mine.size();
   std::size_t done = 0;
-  const auto step = [&] {
+  const std::function<void()> step = [&] {
     if (options.progress) options.progress(++done, total);
   };
+  const std::map<std::string, Landmark> captured =
+      capture_landmarks(landmarks, options, dir, dataset, step);
 
-  // Every shard captures the landmarks (the scenes' hidden fractions need them); a capture is
-  // deterministic, so whichever shard's file lands last holds the same landmark.
-  if (options.views < 1 || options.views > 4) throw Error("gen: --views must be 1 to 4");
-  std::map<std::string, Landmark> captured;
-  for (const BenchmarkLandmark& landmark : landmarks) {
-    for (int views = 1; views <= options.views; ++views) {
-      const std::string name = views_landmark_name(landmark.name, static_cast<std::size_t>(views));
-      const std::string file = "landmarks/" + name + ".lmk";
-      dataset.landmarks.push_back({name, file, landmark.symmetry});
-      if (options.merge) continue;
-      const Landmark l = capture_benchmark_landmark(landmark, options.noise, views);
-      save_landmark((fs::path(dir) / file).string(), l);
-      if (views == 1) captured[landmark.name] = l;  // the truth and hidden fractions use it
-    }
-    if (!options.merge) step();
-  }
   // A scene's entry is written after its cloud, so an entry means a complete scene.
   const auto part_of = [&](const std::string& name) { return parts / (name + ".json"); };
   const auto read_part = [&](const std::string& name) {
@@ -267,56 +352,31 @@ Generated generate_benchmark(const std::string& dir, const std::string& preset_n
     return parse_scene_entry(read_input_file(where, kDatasetInput), where);
   };
   std::map<std::string, DatasetScene> entries;  // this run's scenes, rendered or found done
-  for (const Planned& p : mine) {
+  for (const PlannedScene& p : plan.mine) {
     if (fs::is_regular_file(part_of(p.name))) {
       entries[p.name] = read_part(p.name);
       ++out.kept;
-      step();
-      continue;
+    } else {
+      // Kept as its part holds it: a pose goes through its quaternion there, which is not
+      // bit-exact, so a scene rendered now and one a shard rendered must take the same way for
+      // dataset.json to be the same whichever ran.
+      const std::string text =
+          render_benchmark_scene(p, preset, hard, landmarks, captured, options, dir);
+      write_text_atomically(part_of(p.name), text);
+      entries[p.name] = parse_scene_entry(text, part_of(p.name).string());
+      ++out.rendered;
     }
-    DatasetScene entry;
-    entry.name = p.name;
-    GeneratedScene scene = make_scene(p.type, p.seed, hard);
-    const std::uint64_t variation_seed = noise_seed(entry.name);
-    if (preset.variation == SceneVariation::viewpoints)
-      view_from_random_viewpoint(scene, captured, variation_seed);
-    if (preset.variation == SceneVariation::occlusion)
-      add_occluders(scene, captured, variation_seed);
-    entry.file = "scenes/" + entry.name + ".pcd";
-    entry.setting = scene.setting;
-    entry.T_scene_sensor = scene.T_world_sensor;
-    entry.up = Eigen::Vector3d::UnitZ();
-    const PointCloud exact = render_scene(scene);
-    for (const DatasetPair& pair : pairs_of(scene, landmarks, captured, exact)) {
-      // A landmark of several views is searched where its one-view landmark is, for the same
-      // instances.
-      for (int views = 1; views <= options.views; ++views) {
-        entry.pairs.push_back(pair);
-        entry.pairs.back().landmark =
-            views_landmark_name(pair.landmark, static_cast<std::size_t>(views));
-      }
-    }
-    write_cloud((fs::path(dir) / entry.file).string(),
-                options.frames > 1 ? render_fused(scene, options, noise_seed(entry.name))
-                                   : render_scene(scene, options.noise, noise_seed(entry.name)));
-    // Kept as its part holds it: a pose goes through its quaternion there, which is not
-    // bit-exact, so a scene rendered now and one a shard rendered must take the same way for
-    // dataset.json to be the same whichever ran.
-    const std::string text = scene_entry_text(entry);
-    write_text_atomically(part_of(entry.name), text);
-    entries[entry.name] = parse_scene_entry(text, part_of(entry.name).string());
-    ++out.rendered;
     step();
   }
   if (options.shard) {
-    for (const Planned& p : mine) dataset.scenes.push_back(entries[p.name]);
+    for (const PlannedScene& p : plan.mine) dataset.scenes.push_back(entries[p.name]);
     return out;
   }
 
   // The whole dataset: every scene's entry, in dataset order, from this run or from the shards'
   // parts, or the names of those missing.
   std::vector<std::string> missing;
-  for (const Planned& p : planned) {
+  for (const PlannedScene& p : plan.planned) {
     if (const auto it = entries.find(p.name); it != entries.end()) {
       dataset.scenes.push_back(it->second);
     } else if (fs::is_regular_file(part_of(p.name))) {
@@ -325,15 +385,7 @@ Generated generate_benchmark(const std::string& dir, const std::string& preset_n
       missing.push_back(p.name);
     }
   }
-  if (!missing.empty()) {
-    std::string names;
-    for (std::size_t k = 0; k < missing.size() && k < 10; ++k)
-      names += (k ? ", " : "") + missing[k];
-    if (missing.size() > 10) names += ", ...";
-    throw Error("gen merge: " + std::to_string(missing.size()) + " of " +
-                std::to_string(planned.size()) + " scenes are not rendered yet (" + names +
-                "): run the shards that hold them");
-  }
+  if (!missing.empty()) throw_missing_scenes(missing, plan.planned.size());
   for (const DatasetLandmark& l : dataset.landmarks) {
     if (!fs::is_regular_file(fs::path(dir) / l.file))
       throw Error("gen merge: " + (fs::path(dir) / l.file).string() + " is missing: run a shard");

@@ -121,8 +121,10 @@ double depth_level_spacing(double z, const DepthSensorSettings& s) {
   return s.disparity_step * z * z / (s.disparity_focal * s.baseline);
 }
 
-PointCloud render_depth(const TriangleMesh& world, const Eigen::Isometry3d& T_world_sensor,
-                        const DepthSensorSettings& s) {
+namespace {
+
+// lmk::Error unless the sensor's settings can render an image.
+void check_sensor_settings(const DepthSensorSettings& s) {
   if (s.width <= 0 || s.height <= 0 || !(s.fx > 0) || !(s.fy > 0) || !(s.min_range > 0) ||
       !(s.max_range > s.min_range) || !(s.disparity_focal > 0) || !(s.baseline > 0) ||
       !(s.disparity_step > 0) || !(s.depth_unit >= 0) ||
@@ -133,39 +135,36 @@ PointCloud render_depth(const TriangleMesh& world, const Eigen::Isometry3d& T_wo
         "must be positive, with max_range > min_range, the depth unit non-negative and the "
         "flying-pixel rate in [0, 1], and the noise window odd");
   }
-  const detail::MeshTree mesh_tree(world);
+}
+
+// Pixel (u, v)'s ray in the world frame, with unit depth along the optical axis.
+Eigen::Vector3d pixel_ray(const Eigen::Isometry3d& T_world_sensor, const DepthSensorSettings& s,
+                          int u, int v) {
+  return Eigen::Vector3d(T_world_sensor.linear() *
+                         Eigen::Vector3d((u - s.cx) / s.fx, (v - s.cy) / s.fy, 1.0));
+}
+
+// The exact depth of every pixel that returns one (NaN otherwise), and for a painted world the
+// triangle it sees and how squarely.
+struct ExactDepth {
+  std::vector<double> depth;
+  std::vector<std::int32_t> seen_triangle;
+  std::vector<double> facing;
+};
+
+ExactDepth exact_depth(const detail::MeshTree& mesh_tree, const Eigen::Isometry3d& T_world_sensor,
+                       const DepthSensorSettings& s, bool painted) {
   const detail::AabbTree& tree = mesh_tree.tree;
-
-  PointCloud cloud;
-  cloud.width = static_cast<std::uint32_t>(s.width);
-  cloud.height = static_cast<std::uint32_t>(s.height);
   const std::size_t pixels = static_cast<std::size_t>(s.width) * s.height;
-  cloud.points.assign(pixels, Eigen::Vector3f::Constant(std::nanf("")));
-  cloud.T_cloud_sensor = T_world_sensor;
-  if (!world.colours.empty()) {
-    if (world.colours.size() != world.triangles.size()) {
-      throw Error("render_depth: a painted mesh needs one colour per triangle");
-    }
-    cloud.colors.assign(pixels, Color{0, 0, 0});
-  }
-  if (mesh_tree.triangles.empty()) return cloud;
-
   const Eigen::Vector3d origin = T_world_sensor.translation();
   const Eigen::Vector3d projector = T_world_sensor * Eigen::Vector3d(s.baseline, 0.0, 0.0);
   const double cos_max_incidence = std::cos(s.max_incidence);
-  const auto ray = [&](int u, int v) {  // world frame, with unit depth along the optical axis
-    return Eigen::Vector3d(T_world_sensor.linear() *
-                           Eigen::Vector3d((u - s.cx) / s.fx, (v - s.cy) / s.fy, 1.0));
-  };
-  // The exact depth of every pixel that returns one (NaN otherwise), and for a painted world the
-  // triangle it sees and how squarely.
-  std::vector<double> depth(pixels, std::nan(""));
-  const bool painted = world.colours.size() == world.triangles.size() && !world.colours.empty();
-  std::vector<std::int32_t> seen_triangle(painted ? pixels : 0, -1);
-  std::vector<double> facing(painted ? pixels : 0, 0.0);
+  ExactDepth out{std::vector<double>(pixels, std::nan("")),
+                 std::vector<std::int32_t>(painted ? pixels : 0, -1),
+                 std::vector<double>(painted ? pixels : 0, 0.0)};
   tbb::parallel_for(0, s.height, [&](int v) {
     for (int u = 0; u < s.width; ++u) {
-      const Eigen::Vector3d direction = ray(u, v);
+      const Eigen::Vector3d direction = pixel_ray(T_world_sensor, s, u, v);
       const auto hit = first_hit(tree, origin, origin + direction);
       if (!hit) continue;
       const Eigen::Vector3d& p = hit->first;
@@ -182,26 +181,54 @@ PointCloud render_depth(const TriangleMesh& world, const Eigen::Isometry3d& T_wo
         if (lit && (lit->first - projector).norm() < (p - projector).norm() - 1e-3) continue;
       }
       const std::size_t i = static_cast<std::size_t>(v) * s.width + u;
-      depth[i] = z;
+      out.depth[i] = z;
       if (painted) {
-        seen_triangle[i] = static_cast<std::int32_t>(&tri - mesh_tree.triangles.data());
-        facing[i] = std::abs(normal.dot(direction.normalized()));
+        out.seen_triangle[i] = static_cast<std::int32_t>(&tri - mesh_tree.triangles.data());
+        out.facing[i] = std::abs(normal.dot(direction.normalized()));
       }
     }
   });
-  std::vector<double> measured = depth;
-  if (s.noise && s.flying_pixel_rate > 0.0) add_flying_pixels(depth, s, measured);
+  return out;
+}
+
+}  // namespace
+
+PointCloud render_depth(const TriangleMesh& world, const Eigen::Isometry3d& T_world_sensor,
+                        const DepthSensorSettings& s) {
+  check_sensor_settings(s);
+  const detail::MeshTree mesh_tree(world);
+
+  PointCloud cloud;
+  cloud.width = static_cast<std::uint32_t>(s.width);
+  cloud.height = static_cast<std::uint32_t>(s.height);
+  const std::size_t pixels = static_cast<std::size_t>(s.width) * s.height;
+  cloud.points.assign(pixels, Eigen::Vector3f::Constant(std::nanf("")));
+  cloud.T_cloud_sensor = T_world_sensor;
+  if (!world.colours.empty()) {
+    if (world.colours.size() != world.triangles.size()) {
+      throw Error("render_depth: a painted mesh needs one colour per triangle");
+    }
+    cloud.colors.assign(pixels, Color{0, 0, 0});
+  }
+  if (mesh_tree.triangles.empty()) return cloud;
+
+  const bool painted = world.colours.size() == world.triangles.size() && !world.colours.empty();
+  const ExactDepth exact = exact_depth(mesh_tree, T_world_sensor, s, painted);
+  std::vector<double> measured = exact.depth;
+  if (s.noise && s.flying_pixel_rate > 0.0) add_flying_pixels(exact.depth, s, measured);
   const std::vector<double> noise = s.noise ? sensor_noise_field(s) : std::vector<double>();
 
+  const Eigen::Vector3d origin = T_world_sensor.translation();
   tbb::parallel_for(0, s.height, [&](int v) {
     for (int u = 0; u < s.width; ++u) {
       const std::size_t i = static_cast<std::size_t>(v) * s.width + u;
       if (std::isnan(measured[i])) continue;
       const double z = s.noise ? sensor_depth(measured[i], noise[i], s) : measured[i];
-      cloud.points[i] = (origin + ray(u, v) * z).cast<float>();
-      if (painted && seen_triangle[i] >= 0) {
-        cloud.colors[i] = shaded_colour(world.colours[static_cast<std::size_t>(seen_triangle[i])],
-                                        facing[i], pixel_stream(s.seed, i, kColourStream), s);
+      cloud.points[i] = (origin + pixel_ray(T_world_sensor, s, u, v) * z).cast<float>();
+      if (painted && exact.seen_triangle[i] >= 0) {
+        cloud.colors[i] =
+            shaded_colour(world.colours[static_cast<std::size_t>(exact.seen_triangle[i])],
+                          exact.facing[i], pixel_stream(s.seed, i, kColourStream), s);
       }
     }
   });

@@ -133,6 +133,185 @@ std::string default_cache_dir() {
   return ".lmk-cache";
 }
 
+namespace {
+
+// A pair to search: a scene and a landmark of the dataset, by index.
+struct PairJob {
+  std::size_t scene, landmark;
+};
+
+// Every pair the settings ask for (in context only, this shard's only), scene by scene.
+std::vector<PairJob> pair_jobs(const Dataset& dataset, const EvaluationSettings& settings) {
+  std::vector<PairJob> jobs;
+  for (std::size_t s = 0; s < dataset.scenes.size(); ++s) {
+    for (std::size_t l = 0; l < dataset.landmarks.size(); ++l) {
+      const DatasetPair truth = dataset.pair(dataset.scenes[s], dataset.landmarks[l].name);
+      if (settings.in_context_only && !truth.in_context) continue;
+      if (settings.shard && pair_shard(dataset.scenes[s].name, dataset.landmarks[l].name,
+                                       settings.shard->count) != settings.shard->index) {
+        continue;
+      }
+      jobs.push_back({s, l});
+    }
+  }
+  return jobs;
+}
+
+// The jobs' ranges [first, last), one per scene.
+std::vector<std::pair<std::size_t, std::size_t>> jobs_by_scene(const std::vector<PairJob>& jobs) {
+  std::vector<std::pair<std::size_t, std::size_t>> ranges;
+  for (std::size_t k = 0; k < jobs.size(); ++k) {
+    if (ranges.empty() || jobs[ranges.back().first].scene != jobs[k].scene)
+      ranges.push_back({k, k});
+    ranges.back().second = k + 1;
+  }
+  return ranges;
+}
+
+// The searches of an evaluation: each scene's pairs from the cache, or searched and cached, into
+// `pairs` (one slot per job); scenes in parallel, and each scene's pairs in parallel.
+class PairSearches {
+ public:
+  PairSearches(const std::string& dir, const Dataset& dataset, const std::vector<PairJob>& jobs,
+               const EvaluationSettings& settings, const FindSettings& find,
+               LandmarkIndexes& landmarks, const detail::PairCache& cache)
+      : dir_(dir),
+        dataset_(dataset),
+        jobs_(jobs),
+        settings_(settings),
+        find_(find),
+        landmarks_(landmarks),
+        cache_(cache),
+        jobs_per_landmark_(dataset.landmarks.size(), 0),
+        missing_(jobs.size(), 0) {
+    for (const PairJob& job : jobs) ++jobs_per_landmark_[job.landmark];
+  }
+
+  // Fills `pairs`; Interrupted when the settings' stop_requested said so.
+  void run(std::vector<PairResult>& pairs) {
+    pairs.resize(jobs_.size());
+    const auto ranges = jobs_by_scene(jobs_);
+    with_worker_threads(settings_.threads, [&] {
+      tbb::parallel_for(std::size_t{0}, ranges.size(), [&](std::size_t s) {
+        run_scene(ranges[s].first, ranges[s].second, pairs);
+      });
+    });
+    if (stopped_) {
+      throw Interrupted("interrupted after " + std::to_string(done_) + " of " +
+                        std::to_string(jobs_.size()) + " pairs; " +
+                        (settings_.cache_dir.empty() ? "nothing is kept without a cache"
+                                                     : "they are cached in " + settings_.cache_dir +
+                                                           ": the same command resumes from them"));
+    }
+  }
+
+  /// Per job: whether it was neither cached nor searched (cached_only: a merge's missing pair).
+  const std::vector<char>& missing() const { return missing_; }
+
+ private:
+  // A scene's jobs [first, last): read from the cache, and only when one is not there is the
+  // scene read, once.
+  void run_scene(std::size_t first, std::size_t last, std::vector<PairResult>& pairs) {
+    const DatasetScene& scene = dataset_.scenes[jobs_[first].scene];
+    std::vector<std::size_t> to_search;
+    for (std::size_t k = first; k < last; ++k) {
+      const std::string& name = dataset_.landmarks[jobs_[k].landmark].name;
+      if (auto hit = cache_.read(scene.name, name)) {
+        pairs[k] = std::move(*hit);
+        finished(true);
+      } else {
+        to_search.push_back(k);
+      }
+    }
+    if (settings_.cached_only) {
+      for (std::size_t k : to_search) missing_[k] = 1;
+      return;
+    }
+    if (to_search.empty() || stopping()) return;
+    search_scene(scene, to_search, pairs);
+  }
+
+  // The scene is indexed once for all of its landmarks (steps 1-2 of the search), as each
+  // landmark is for all of its scenes, and the indexes' build times are shared out among the
+  // pairs that use them.
+  void search_scene(const DatasetScene& scene, const std::vector<std::size_t>& to_search,
+                    std::vector<PairResult>& pairs) {
+    const PointCloud cloud = read_cloud((fs::path(dir_) / scene.file).string());
+    const SceneIndex index(cloud, pair_search(find_, scene).scene);
+    const double index_share = index.seconds_to_build() / static_cast<double>(to_search.size());
+    const double threshold = *find_.selection.threshold;
+    tbb::parallel_for(std::size_t{0}, to_search.size(), [&](std::size_t i) {
+      if (stopping()) return;
+      const std::size_t k = to_search[i];
+      const DatasetLandmark& entry = dataset_.landmarks[jobs_[k].landmark];
+      const LandmarkIndex& landmark = landmarks_[jobs_[k].landmark];
+      PairResult searched =
+          search_pair(index, scene, landmark, entry, dataset_.pair(scene, entry.name), find_);
+      searched.seconds +=
+          index_share +
+          landmark.seconds_to_build() / static_cast<double>(jobs_per_landmark_[jobs_[k].landmark]);
+      // Kept as the cache holds it, so that a fresh result and a resumed one agree.
+      pairs[k] = cache_.store(searched, threshold, settings_.tolerance);
+      finished(false);
+    });
+  }
+
+  bool stopping() {
+    if (!stopped_ && settings_.stop_requested && settings_.stop_requested()) stopped_ = true;
+    return stopped_.load();
+  }
+
+  void finished(bool from_cache) {
+    const std::size_t c = from_cache ? ++cached_ : cached_.load();
+    const std::size_t d = ++done_;
+    if (settings_.progress) settings_.progress(d, jobs_.size(), c);
+  }
+
+  const std::string& dir_;
+  const Dataset& dataset_;
+  const std::vector<PairJob>& jobs_;
+  const EvaluationSettings& settings_;
+  const FindSettings& find_;
+  LandmarkIndexes& landmarks_;
+  const detail::PairCache& cache_;
+  std::vector<std::size_t> jobs_per_landmark_;
+  std::vector<char> missing_;
+  std::atomic<std::size_t> done_{0}, cached_{0};
+  std::atomic<bool> stopped_{false};
+};
+
+// What each pair's landmark says of its demonstration, cached or not: where it was seen from
+// (--by views), its up axis and capture box.
+void add_landmark_context(std::vector<PairResult>& pairs, const std::vector<PairJob>& jobs,
+                          const std::vector<Landmark>& landmarks) {
+  for (std::size_t k = 0; k < jobs.size(); ++k) {
+    const Landmark& l = landmarks[jobs[k].landmark];
+    PairResult& p = pairs[k];
+    p.view_origins =
+        l.multi_view() ? l.view_origins : std::vector<Eigen::Vector3d>{l.sensor_origin};
+    p.landmark_up = l.up;
+    p.capture_box = l.box.pose;
+  }
+}
+
+// The pairs not missing, in job order; the missing ones named in `evaluation.missing`.
+std::vector<PairResult> kept_pairs(Evaluation& evaluation, const Dataset& dataset,
+                                   const std::vector<PairJob>& jobs,
+                                   const std::vector<char>& missing) {
+  std::vector<PairResult> kept;
+  for (std::size_t k = 0; k < jobs.size(); ++k) {
+    if (!missing[k]) {
+      kept.push_back(std::move(evaluation.pairs[k]));
+    } else {
+      evaluation.missing.emplace_back(dataset.scenes[jobs[k].scene].name,
+                                      dataset.landmarks[jobs[k].landmark].name);
+    }
+  }
+  return kept;
+}
+
+}  // namespace
+
 Evaluation evaluate(const std::string& dir, const Dataset& dataset,
                     const EvaluationSettings& settings) {
   const Stopwatch stopwatch;
@@ -150,111 +329,18 @@ Evaluation evaluate(const std::string& dir, const Dataset& dataset,
   }
 
   // Every pair to search, scene by scene, and the landmarks, loaded once.
-  struct Job {
-    std::size_t scene, landmark;
-  };
-  std::vector<Job> jobs;
-  for (std::size_t s = 0; s < dataset.scenes.size(); ++s) {
-    for (std::size_t l = 0; l < dataset.landmarks.size(); ++l) {
-      const DatasetPair truth = dataset.pair(dataset.scenes[s], dataset.landmarks[l].name);
-      if (settings.in_context_only && !truth.in_context) continue;
-      if (settings.shard && pair_shard(dataset.scenes[s].name, dataset.landmarks[l].name,
-                                       settings.shard->count) != settings.shard->index) {
-        continue;
-      }
-      jobs.push_back({s, l});
-    }
-  }
+  const std::vector<PairJob> jobs = pair_jobs(dataset, settings);
   std::vector<Landmark> landmarks;
   for (const DatasetLandmark& entry : dataset.landmarks)
     landmarks.push_back(load_landmark((fs::path(dir) / entry.file).string()));
   LandmarkIndexes landmark_indexes(landmarks, pair_search(find, DatasetScene()));
-  std::vector<std::size_t> jobs_per_landmark(landmarks.size(), 0);
-  for (const Job& job : jobs) ++jobs_per_landmark[job.landmark];
-
   evaluation.fingerprint = dataset_fingerprint(dir, dataset, landmarks);
   const detail::PairCache cache(settings.cache_dir,
                                 evaluation_cache_key(find, evaluation.fingerprint));
-  const double threshold = *find.selection.threshold;
 
-  evaluation.pairs.resize(jobs.size());
-  std::vector<char> missing(jobs.size(), 0);  // cached_only: not in the cache
-  std::atomic<std::size_t> done{0}, cached{0};
-  std::atomic<bool> stopped{false};
-  const auto stopping = [&] {
-    if (!stopped && settings.stop_requested && settings.stop_requested()) stopped = true;
-    return stopped.load();
-  };
-  const auto finished = [&](bool from_cache) {
-    const std::size_t c = from_cache ? ++cached : cached.load();
-    const std::size_t d = ++done;
-    if (settings.progress) settings.progress(d, jobs.size(), c);
-  };
-  // Scenes in parallel, then each scene's pairs: a scene is read once, and only when one of its
-  // pairs is not cached.
-  std::vector<std::pair<std::size_t, std::size_t>> scene_jobs;  // [first, last) per scene
-  for (std::size_t k = 0; k < jobs.size(); ++k) {
-    if (scene_jobs.empty() || jobs[scene_jobs.back().first].scene != jobs[k].scene)
-      scene_jobs.push_back({k, k});
-    scene_jobs.back().second = k + 1;
-  }
-  with_worker_threads(settings.threads, [&] {
-    tbb::parallel_for(std::size_t{0}, scene_jobs.size(), [&](std::size_t s) {
-      const auto [first, last] = scene_jobs[s];
-      const DatasetScene& scene = dataset.scenes[jobs[first].scene];
-      std::vector<std::size_t> to_search;
-      for (std::size_t k = first; k < last; ++k) {
-        const std::string& name = dataset.landmarks[jobs[k].landmark].name;
-        if (auto hit = cache.read(scene.name, name)) {
-          evaluation.pairs[k] = std::move(*hit);
-          finished(true);
-        } else {
-          to_search.push_back(k);
-        }
-      }
-      if (settings.cached_only) {
-        for (std::size_t k : to_search) missing[k] = 1;
-        return;
-      }
-      if (to_search.empty() || stopping()) return;
-      // The scene is indexed once for all of its landmarks (steps 1-2 of the search), as each
-      // landmark is for all of its scenes, and the indexes' build times are shared out among the
-      // pairs that use them.
-      const PointCloud cloud = read_cloud((fs::path(dir) / scene.file).string());
-      const SceneIndex index(cloud, pair_search(find, scene).scene);
-      const double index_share = index.seconds_to_build() / static_cast<double>(to_search.size());
-      tbb::parallel_for(std::size_t{0}, to_search.size(), [&](std::size_t i) {
-        if (stopping()) return;
-        const std::size_t k = to_search[i];
-        const DatasetLandmark& entry = dataset.landmarks[jobs[k].landmark];
-        const LandmarkIndex& landmark = landmark_indexes[jobs[k].landmark];
-        PairResult searched =
-            search_pair(index, scene, landmark, entry, dataset.pair(scene, entry.name), find);
-        searched.seconds +=
-            index_share +
-            landmark.seconds_to_build() / static_cast<double>(jobs_per_landmark[jobs[k].landmark]);
-        // Kept as the cache holds it, so that a fresh result and a resumed one agree.
-        evaluation.pairs[k] = cache.store(searched, threshold, settings.tolerance);
-        finished(false);
-      });
-    });
-  });
-  if (stopped) {
-    throw Interrupted("interrupted after " + std::to_string(done) + " of " +
-                      std::to_string(jobs.size()) + " pairs; " +
-                      (settings.cache_dir.empty() ? "nothing is kept without a cache"
-                                                  : "they are cached in " + settings.cache_dir +
-                                                        ": the same command resumes from them"));
-  }
-  // Where each pair's landmark was demonstrated from, cached or not (--by views).
-  for (std::size_t k = 0; k < jobs.size(); ++k) {
-    const Landmark& l = landmarks[jobs[k].landmark];
-    PairResult& p = evaluation.pairs[k];
-    p.view_origins =
-        l.multi_view() ? l.view_origins : std::vector<Eigen::Vector3d>{l.sensor_origin};
-    p.landmark_up = l.up;
-    p.capture_box = l.box.pose;
-  }
+  PairSearches searches(dir, dataset, jobs, settings, find, landmark_indexes, cache);
+  searches.run(evaluation.pairs);
+  add_landmark_context(evaluation.pairs, jobs, landmarks);
   // Confidences under this evaluation's calibration, for cached pairs as for searched ones: the
   // cache keeps the evidence, so that another calibration needs no search.
   const ConfidenceCalibration* calibration =
@@ -263,16 +349,7 @@ Evaluation evaluate(const std::string& dir, const Dataset& dataset,
     for (FoundBox& f : p.found) calibrate(f.confidence, f.box, calibration);
   }
   // A merge keeps what the cache had and names the rest.
-  std::vector<PairResult> kept;
-  for (std::size_t k = 0; k < jobs.size(); ++k) {
-    if (!missing[k]) {
-      kept.push_back(std::move(evaluation.pairs[k]));
-    } else {
-      evaluation.missing.emplace_back(dataset.scenes[jobs[k].scene].name,
-                                      dataset.landmarks[jobs[k].landmark].name);
-    }
-  }
-  evaluation.pairs = std::move(kept);
+  evaluation.pairs = kept_pairs(evaluation, dataset, jobs, searches.missing());
   evaluation.seconds = stopwatch.seconds();
   return evaluation;
 }

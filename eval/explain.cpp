@@ -67,89 +67,136 @@ struct FailedPair {
   std::vector<std::optional<std::size_t>> assigned;
 };
 
-std::vector<ExplainedCase> explain_pair(const FailedPair& f, const SceneIndex& index,
-                                        const LandmarkIndex& landmark, const FindSettings& find,
-                                        const MatchTolerance& tolerance) {
-  const PairResult& p = *f.result;
-  const double t = *find.selection.threshold;
-  FindSettings settings = pair_search(find, *f.scene);
-  settings.execution.keep_suppressed = true;
-  const FindResult again = find_landmark(index, landmark, settings);
-  const std::vector<Candidate> all = candidates_of(again);
-  const Box& capture_box = landmark.landmark().box;
-  const auto at_truth = [&](std::size_t k) {
-    return score_pose(index, landmark, settings, p.truth[k] * capture_box.pose.inverse());
-  };
-  const auto truth_error = [&](std::size_t k) { return at_truth(k).error; };
-  const auto range = [&](const Eigen::Isometry3d& pose) {
-    return (pose.translation() - p.sensor_position).norm();
-  };
-  // The best reported match assigned to no instance, and how sure the search was of it.
-  std::optional<double> best_wrong, best_wrong_confidence;
-  for (std::size_t i = 0; i < f.assigned.size(); ++i) {
-    if (f.assigned[i] || (best_wrong && *best_wrong <= p.found[i].error)) continue;
-    best_wrong = p.found[i].error;
-    best_wrong_confidence = finite_or_none(p.found[i].confidence.probability);
+// One failed pair searched again, its suppressed candidates kept: why each instance was missed
+// and each false match made.
+class PairExplainer {
+ public:
+  PairExplainer(const FailedPair& f, const SceneIndex& index, const LandmarkIndex& landmark,
+                const FindSettings& find, const MatchTolerance& tolerance)
+      : f_(f),
+        p_(*f.result),
+        index_(index),
+        landmark_(landmark),
+        find_(find),
+        tolerance_(tolerance),
+        settings_(searched_again(find, *f.scene)),
+        again_(find_landmark(index, landmark, settings_)),
+        all_(candidates_of(again_)),
+        capture_box_(landmark.landmark().box) {
+    // The best reported match assigned to no instance, and how sure the search was of it.
+    for (std::size_t i = 0; i < f.assigned.size(); ++i) {
+      if (f.assigned[i] || (best_wrong_ && *best_wrong_ <= p_.found[i].error)) continue;
+      best_wrong_ = p_.found[i].error;
+      best_wrong_confidence_ = finite_or_none(p_.found[i].confidence.probability);
+    }
   }
-  std::vector<ExplainedCase> out;
-  std::vector<char> matched(p.truth.size(), 0);
-  for (const auto& a : f.assigned)
-    if (a) matched[*a] = 1;
-  std::vector<std::size_t> suppressed_truths;
-  for (std::size_t k = 0; k < p.truth.size(); ++k) {
-    if (matched[k] || f.input.is_ignored(k)) continue;
-    ExplainedCase c = case_of(p, true);
+
+  std::vector<ExplainedCase> explain() const {
+    std::vector<ExplainedCase> out;
+    std::vector<char> matched(p_.truth.size(), 0);
+    for (const auto& a : f_.assigned)
+      if (a) matched[*a] = 1;
+    std::vector<std::size_t> suppressed_truths;
+    for (std::size_t k = 0; k < p_.truth.size(); ++k) {
+      if (matched[k] || f_.input.is_ignored(k)) continue;
+      out.push_back(miss(k));
+      if (out.back().cause == ExplainCause::suppressed) suppressed_truths.push_back(k);
+    }
+    for (std::size_t i = 0; i < f_.assigned.size(); ++i) {
+      if (!f_.assigned[i]) out.push_back(false_match(i, suppressed_truths));
+    }
+    return out;
+  }
+
+ private:
+  static FindSettings searched_again(const FindSettings& find, const DatasetScene& scene) {
+    FindSettings settings = pair_search(find, scene);
+    settings.execution.keep_suppressed = true;
+    return settings;
+  }
+
+  // The metric at true instance k, refined from there.
+  Match at_truth(std::size_t k) const {
+    return score_pose(index_, landmark_, settings_, p_.truth[k] * capture_box_.pose.inverse());
+  }
+
+  double range(const Eigen::Isometry3d& pose) const {
+    return (pose.translation() - p_.sensor_position).norm();
+  }
+
+  // Missed instance k: the fate of the candidates near it decides the cause.
+  ExplainedCase miss(std::size_t k) const {
+    ExplainedCase c = case_of(p_, true);
     std::vector<const Candidate*> near;
-    for (const Candidate& cand : all) {
+    for (const Candidate& cand : all_) {
       const Eigen::Isometry3d& pose = cand.match->box.pose;
-      if (within(p.truth[k], pose, p.symmetry, tolerance)) near.push_back(&cand);
-      const double d = (p.truth[k].translation() - pose.translation()).norm();
+      if (within(p_.truth[k], pose, p_.symmetry, tolerance_)) near.push_back(&cand);
+      const double d = (p_.truth[k].translation() - pose.translation()).norm();
       if (!c.nearest_candidate_translation || d < *c.nearest_candidate_translation) {
         c.nearest_candidate_translation = d;
         c.nearest_candidate_rotation =
-            rotation_error(p.truth[k].linear(), pose.linear(), p.symmetry);
+            rotation_error(p_.truth[k].linear(), pose.linear(), p_.symmetry);
       }
     }
     std::vector<CandidateFate> fates;
     for (const Candidate* n : near) fates.push_back({n->match->error, n->rejected});
-    c.cause = miss_cause(fates, t);
-    if (c.cause == ExplainCause::suppressed) suppressed_truths.push_back(k);
-    c.box = Box(p.truth[k], capture_box.size);
-    c.range = range(p.truth[k]);
-    if (k < p.truth_hidden.size()) c.hidden = p.truth_hidden[k];
+    c.cause = miss_cause(fates, *find_.selection.threshold);
+    c.box = Box(p_.truth[k], capture_box_.size);
+    c.range = range(p_.truth[k]);
+    if (k < p_.truth_hidden.size()) c.hidden = p_.truth_hidden[k];
     const Match refined = at_truth(k);
     c.truth_error = refined.error;
-    c.truth_drift_translation = (refined.box.pose.translation() - p.truth[k].translation()).norm();
+    c.truth_drift_translation = (refined.box.pose.translation() - p_.truth[k].translation()).norm();
     c.truth_drift_rotation =
-        rotation_error(p.truth[k].linear(), refined.box.pose.linear(), p.symmetry);
-    c.winner_error = best_wrong;
-    c.winner_confidence = best_wrong_confidence;
-    out.push_back(std::move(c));
+        rotation_error(p_.truth[k].linear(), refined.box.pose.linear(), p_.symmetry);
+    c.winner_error = best_wrong_;
+    c.winner_confidence = best_wrong_confidence_;
+    return c;
   }
-  for (std::size_t i = 0; i < f.assigned.size(); ++i) {
-    if (f.assigned[i]) continue;
-    const FoundBox& found = p.found[i];
-    ExplainedCase c = case_of(p, false);
+
+  // False match i: it displaced a suppressed instance, lies off an instance's pose, or is a
+  // look-alike.
+  ExplainedCase false_match(std::size_t i,
+                            const std::vector<std::size_t>& suppressed_truths) const {
+    const FoundBox& found = p_.found[i];
+    ExplainedCase c = case_of(p_, false);
     c.box = found.box;
     c.range = range(found.box.pose);
     c.winner_error = found.error;
     c.winner_confidence = finite_or_none(found.confidence.probability);
-    if (!p.truth.empty()) c.truth_error = truth_error(0);
-    const double radius = find.selection.nms_radius;
+    if (!p_.truth.empty()) c.truth_error = at_truth(0).error;
+    const double radius = find_.selection.nms_radius;
     const bool displaced =
         std::any_of(suppressed_truths.begin(), suppressed_truths.end(), [&](std::size_t k) {
-          return (p.truth[k].translation() - found.box.center()).norm() < radius ||
-                 found.box.contains(Eigen::Vector3d(p.truth[k].translation()));
+          return (p_.truth[k].translation() - found.box.center()).norm() < radius ||
+                 found.box.contains(Eigen::Vector3d(p_.truth[k].translation()));
         });
-    const bool on_instance = std::any_of(p.truth.begin(), p.truth.end(), [&](const auto& truth) {
-      return within(truth, found.box.pose, p.symmetry, tolerance, 2.0);
+    const bool on_instance = std::any_of(p_.truth.begin(), p_.truth.end(), [&](const auto& truth) {
+      return within(truth, found.box.pose, p_.symmetry, tolerance_, 2.0);
     });
     c.cause = displaced     ? ExplainCause::displaced_truth
               : on_instance ? ExplainCause::off_pose
                             : ExplainCause::look_alike;
-    out.push_back(std::move(c));
+    return c;
   }
-  return out;
+
+  const FailedPair& f_;
+  const PairResult& p_;
+  const SceneIndex& index_;
+  const LandmarkIndex& landmark_;
+  const FindSettings& find_;
+  const MatchTolerance& tolerance_;
+  const FindSettings settings_;
+  const FindResult again_;
+  const std::vector<Candidate> all_;
+  const Box& capture_box_;
+  std::optional<double> best_wrong_, best_wrong_confidence_;
+};
+
+std::vector<ExplainedCase> explain_pair(const FailedPair& f, const SceneIndex& index,
+                                        const LandmarkIndex& landmark, const FindSettings& find,
+                                        const MatchTolerance& tolerance) {
+  return PairExplainer(f, index, landmark, find, tolerance).explain();
 }
 
 }  // namespace

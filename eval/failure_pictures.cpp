@@ -13,6 +13,7 @@
 #include "lmk/geometry/depth_image.h"
 #include "lmk/geometry/range_image.h"
 #include "lmk/landmark/landmark_file.h"
+#include "lmk/landmark/match_confidence.h"
 
 namespace lmk {
 
@@ -87,6 +88,84 @@ std::string percent(double fraction) {
 
 }  // namespace
 
+namespace {
+
+// What the protocol made of a pair: which true instances a match found, and how many matches
+// were false.
+struct PairOutcome {
+  PairInput in;
+  std::vector<std::optional<std::size_t>> assigned;  ///< per match within the cut: its instance
+  std::vector<char> found;                           ///< per true instance
+  std::size_t missed = 0, false_found = 0;
+};
+
+PairOutcome outcome_of(const PairResult& p, const EvaluationSettings& settings) {
+  PairOutcome o;
+  o.in =
+      matches_within(p, *settings.find.selection.threshold, settings.find.selection.min_confidence);
+  o.assigned = assign_matches(o.in, settings.tolerance);
+  o.found.assign(p.truth.size(), 0);
+  for (const auto& a : o.assigned) {
+    if (a) o.found[*a] = 1;
+    o.false_found += a ? 0 : 1;
+  }
+  for (std::size_t t = 0; t < p.truth.size(); ++t) o.missed += !o.found[t] && !o.in.is_ignored(t);
+  return o;
+}
+
+// The picture's boxes (the truth green, or grey where ignored; correct matches blue, false ones
+// red) as SVG lines over `image`, and its caption naming each miss and false match.
+void draw_pair(const PairResult& p, const PairOutcome& o, const RangeImage& image,
+               const Eigen::Vector3d& box_size, const EvaluationSettings& settings,
+               std::string& lines, std::string& caption) {
+  const double threshold = *settings.find.selection.threshold;
+  caption = p.scene + ", " + p.landmark + ": ";
+  for (std::size_t t = 0; t < p.truth.size(); ++t) {
+    lines += box_lines(image, Box(p.truth[t], box_size), "#228833", o.in.is_ignored(t));
+    if (o.found[t] || o.in.is_ignored(t)) continue;
+    char text[96];
+    std::snprintf(text, sizeof(text), "missed instance %zu at %.2f m", t + 1,
+                  (p.truth[t].translation() - p.sensor_position).norm());
+    caption += text;
+    if (t < p.truth_hidden.size()) caption += ", " + percent(p.truth_hidden[t]) + " hidden";
+    caption += "; ";
+  }
+  // The matches matches_within() kept, in its order, which is the assignment's.
+  std::size_t k_found = 0;
+  for (const FoundBox& f : p.found) {
+    if (!(f.error < threshold &&
+          passes_confidence(f.confidence.probability, settings.find.selection.min_confidence))) {
+      continue;
+    }
+    const bool correct = o.assigned[k_found++].has_value();
+    lines += box_lines(image, f.box, correct ? "#4477aa" : "#ee6677", false);
+    if (!correct) {
+      char text[64];
+      std::snprintf(text, sizeof(text), "false match at %.2f m, error ",
+                    (f.box.center() - p.sensor_position).norm());
+      caption += text + format_error(f.error, settings.find.selection.metric) + "; ";
+    }
+  }
+  caption.resize(caption.size() - 2);
+}
+
+// The scene's depth image as a PNG, 480 pixels wide, with `lines` drawn over it.
+std::string picture_svg(const RangeImage& image, const std::string& lines) {
+  const PinholeIntrinsics& k = image.intrinsics();
+  char head[256];
+  std::snprintf(head, sizeof(head),
+                "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"480\" height=\"%d\" "
+                "viewBox=\"0 0 %d %d\">\n",
+                480 * k.height / k.width, k.width, k.height);
+  return std::string(head) + "<image width=\"" + std::to_string(k.width) + "\" height=\"" +
+         std::to_string(k.height) +
+         "\" preserveAspectRatio=\"none\" style=\"image-rendering:pixelated\" "
+         "href=\"data:image/png;base64," +
+         detail::base64(depth_png(image)) + "\"/>\n" + lines + "</svg>";
+}
+
+}  // namespace
+
 FailurePictures failure_pictures(const Evaluation& evaluation, const std::string& dataset_dir,
                                  std::size_t limit) {
   FailurePictures out;
@@ -102,22 +181,10 @@ FailurePictures failure_pictures(const Evaluation& evaluation, const std::string
       if (l.name == name) size = load_landmark((fs::path(dataset_dir) / l.file).string()).box.size;
     return box_sizes[name] = size;
   };
-  const double threshold = *evaluation.settings.find.selection.threshold;
-  const std::string& metric = evaluation.settings.find.selection.metric;
 
   for (const PairResult& p : evaluation.pairs) {
-    const PairInput in =
-        matches_within(p, threshold, evaluation.settings.find.selection.min_confidence);
-    const auto assigned = assign_matches(in, evaluation.settings.tolerance);
-    std::vector<char> found(p.truth.size(), 0);
-    std::size_t false_found = 0;
-    for (const auto& a : assigned) {
-      if (a) found[*a] = 1;
-      false_found += a ? 0 : 1;
-    }
-    std::size_t missed = 0;
-    for (std::size_t t = 0; t < p.truth.size(); ++t) missed += !found[t] && !in.is_ignored(t);
-    if (missed == 0 && false_found == 0) continue;
+    const PairOutcome outcome = outcome_of(p, evaluation.settings);
+    if (outcome.missed == 0 && outcome.false_found == 0) continue;
     ++out.pairs_with_failures;
     const auto scene = scenes.find(p.scene);
     if (out.pictures.size() >= limit || scene == scenes.end()) {
@@ -134,46 +201,12 @@ FailurePictures failure_pictures(const Evaluation& evaluation, const std::string
     FailurePicture picture;
     picture.scene = p.scene;
     picture.landmark = p.landmark;
-    picture.missed = missed;
-    picture.false_found = false_found;
-    const PinholeIntrinsics& k = image->intrinsics();
+    picture.missed = outcome.missed;
+    picture.false_found = outcome.false_found;
     std::string lines;
-    const Eigen::Vector3d size = box_size(p.landmark);
-    std::string caption = p.scene + ", " + p.landmark + ": ";
-    for (std::size_t t = 0; t < p.truth.size(); ++t) {
-      lines += box_lines(*image, Box(p.truth[t], size), "#228833", in.is_ignored(t));
-      if (found[t] || in.is_ignored(t)) continue;
-      char text[96];
-      std::snprintf(text, sizeof(text), "missed instance %zu at %.2f m", t + 1,
-                    (p.truth[t].translation() - p.sensor_position).norm());
-      caption += text;
-      if (t < p.truth_hidden.size()) caption += ", " + percent(p.truth_hidden[t]) + " hidden";
-      caption += "; ";
-    }
-    std::size_t k_found = 0;
-    for (const FoundBox& f : p.found) {
-      if (!(f.error < threshold)) continue;
-      const bool correct = assigned[k_found++].has_value();
-      lines += box_lines(*image, f.box, correct ? "#4477aa" : "#ee6677", false);
-      if (!correct) {
-        char text[64];
-        std::snprintf(text, sizeof(text), "false match at %.2f m, error ",
-                      (f.box.center() - p.sensor_position).norm());
-        caption += text + format_error(f.error, metric) + "; ";
-      }
-    }
-    caption.resize(caption.size() - 2);
-    picture.caption = caption;
-    char head[256];
-    std::snprintf(head, sizeof(head),
-                  "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"480\" height=\"%d\" "
-                  "viewBox=\"0 0 %d %d\">\n",
-                  480 * k.height / k.width, k.width, k.height);
-    picture.svg = std::string(head) + "<image width=\"" + std::to_string(k.width) + "\" height=\"" +
-                  std::to_string(k.height) +
-                  "\" preserveAspectRatio=\"none\" style=\"image-rendering:pixelated\" "
-                  "href=\"data:image/png;base64," +
-                  detail::base64(depth_png(*image)) + "\"/>\n" + lines + "</svg>";
+    draw_pair(p, outcome, *image, box_size(p.landmark), evaluation.settings, lines,
+              picture.caption);
+    picture.svg = picture_svg(*image, lines);
     out.pictures.push_back(std::move(picture));
   }
   return out;

@@ -168,12 +168,8 @@ void check_inside_sequence(const fs::path& dir, const std::string& name, const s
   }
 }
 
-RgbdSequence read_tum(const fs::path& dir, const RgbdReadOptions& options) {
-  const PinholeIntrinsics k =
-      intrinsics_for(dir, options,
-                     " (TUM ships none: freiburg1 517.3 516.5 318.6 255.3, freiburg2 520.9 521.0 "
-                     "325.1 249.7, freiburg3 535.4 539.2 320.1 247.6)");
-  const std::string gt_path = (dir / "groundtruth.txt").string();
+// groundtruth.txt's camera poses, in time order.
+std::vector<std::pair<double, Eigen::Isometry3d>> tum_poses(const std::string& gt_path) {
   std::vector<std::pair<double, Eigen::Isometry3d>> poses;
   for (const auto& w : tum_lines(gt_path)) {
     if (w.size() != 8) throw Error(gt_path + ": a line needs 8 values: t tx ty tz qx qy qz qw");
@@ -189,14 +185,22 @@ RgbdSequence read_tum(const fs::path& dir, const RgbdReadOptions& options) {
   }
   std::sort(poses.begin(), poses.end(),
             [](const auto& a, const auto& b) { return a.first < b.first; });
+  return poses;
+}
 
-  // (depth time, depth file, colour file) from associations.txt, or depth.txt with rgb.txt.
-  struct Entry {
-    double t;
-    std::string depth, colour;
-  };
-  std::vector<Entry> entries;
-  std::string list = "depth.txt";  // the file that names them
+// A frame a TUM sequence lists: its depth time, depth file and colour file.
+struct TumEntry {
+  double t;
+  std::string depth, colour;
+};
+
+// The frames from associations.txt, or depth.txt with rgb.txt; `list` names the file that named
+// them. Each listed file must lie inside the sequence, as dataset.json's must, and each frame be
+// listed once: a repeated line became two frames of one name, and the writer then blamed its
+// output (#47).
+std::vector<TumEntry> tum_entries(const fs::path& dir, const RgbdReadOptions& options) {
+  std::vector<TumEntry> entries;
+  std::string list = "depth.txt";
   if (const auto assoc = first_existing(dir, {"associations.txt", "associate.txt"})) {
     list = fs::path(*assoc).filename().string();
     for (const auto& w : tum_lines(*assoc)) {
@@ -220,10 +224,8 @@ RgbdSequence read_tum(const fs::path& dir, const RgbdReadOptions& options) {
       entries.push_back({t, w[1], colour ? *colour : std::string()});
     }
   }
-  // Each listed file inside the sequence, as dataset.json's must be; each frame listed once: a
-  // repeated line became two frames of one name, and the writer then blamed its output (#47).
   std::set<double> listed;
-  for (const Entry& e : entries) {
+  for (const TumEntry& e : entries) {
     check_inside_sequence(dir, e.depth, list);
     if (!e.colour.empty()) check_inside_sequence(dir, e.colour, list);
     if (!listed.insert(e.t).second) {
@@ -231,10 +233,21 @@ RgbdSequence read_tum(const fs::path& dir, const RgbdReadOptions& options) {
                   " lists the frame at t = " + std::to_string(e.t) + " twice");
     }
   }
+  return entries;
+}
+
+RgbdSequence read_tum(const fs::path& dir, const RgbdReadOptions& options) {
+  const PinholeIntrinsics k =
+      intrinsics_for(dir, options,
+                     " (TUM ships none: freiburg1 517.3 516.5 318.6 255.3, freiburg2 520.9 521.0 "
+                     "325.1 249.7, freiburg3 535.4 539.2 320.1 247.6)");
+  const std::string gt_path = (dir / "groundtruth.txt").string();
+  const std::vector<std::pair<double, Eigen::Isometry3d>> poses = tum_poses(gt_path);
+  const std::vector<TumEntry> entries = tum_entries(dir, options);
   const bool colour = options.colour_registered.value_or(true);
   RgbdSequence sequence;
   sequence.layout = "tum";
-  for (const Entry& e : entries) {
+  for (const TumEntry& e : entries) {
     const Eigen::Isometry3d* pose = nearest_in_time(poses, e.t, options.max_time_difference);
     if (!pose) continue;  // outside the motion capture's coverage: TUM's usual gaps
     RgbdFrame frame;

@@ -152,8 +152,12 @@ vdb::points::PointDataGrid::Ptr make_points_grid(const Landmark& landmark) {
   return grid;
 }
 
-Landmark landmark_from_grid(const vdb::points::PointDataGrid& grid, const std::string& path) {
-  Landmark landmark;
+Eigen::Vector3d eigen_vector(const vdb::Vec3d& v) { return Eigen::Vector3d(v.x(), v.y(), v.z()); }
+
+// The landmark's box, sensor origin, up axis and capture settings, from the grid's metadata;
+// lmk::Error for a version this lmk cannot read or a value missing.
+void read_landmark_meta(const vdb::points::PointDataGrid& grid, const std::string& path,
+                        Landmark& landmark) {
   landmark.format_version = require_meta<vdb::Int32Metadata>(grid, "lmk_format_version", path);
   if (landmark.format_version < 1 || landmark.format_version > kLandmarkFormatVersion) {
     throw Error(path + ": landmark format version " + std::to_string(landmark.format_version) +
@@ -164,9 +168,9 @@ Landmark landmark_from_grid(const vdb::points::PointDataGrid& grid, const std::s
   const vdb::Mat4d pose = require_meta<vdb::Mat4DMetadata>(grid, "lmk_box_pose", path);
   for (int r = 0; r < 4; ++r)
     for (int c = 0; c < 4; ++c) landmark.box.pose.matrix()(r, c) = pose(r, c);
-  const auto eigen = [](const vdb::Vec3d& v) { return Eigen::Vector3d(v.x(), v.y(), v.z()); };
-  landmark.box.size = eigen(require_meta<vdb::Vec3DMetadata>(grid, "lmk_box_size", path));
-  landmark.sensor_origin = eigen(require_meta<vdb::Vec3DMetadata>(grid, "lmk_sensor_origin", path));
+  landmark.box.size = eigen_vector(require_meta<vdb::Vec3DMetadata>(grid, "lmk_box_size", path));
+  landmark.sensor_origin =
+      eigen_vector(require_meta<vdb::Vec3DMetadata>(grid, "lmk_sensor_origin", path));
   landmark.settings.leaf_size = require_meta<vdb::DoubleMetadata>(grid, "lmk_leaf_size", path);
   const std::int64_t min_points = require_meta<vdb::Int64Metadata>(grid, "lmk_min_points", path);
   if (min_points < 0) throw Error(path + ": negative lmk_min_points");
@@ -174,7 +178,7 @@ Landmark landmark_from_grid(const vdb::points::PointDataGrid& grid, const std::s
   landmark.settings.max_box_side =
       require_meta<vdb::DoubleMetadata>(grid, "lmk_max_box_side", path);
   if (landmark.format_version >= 2) {
-    landmark.up = eigen(require_meta<vdb::Vec3DMetadata>(grid, "lmk_up", path));
+    landmark.up = eigen_vector(require_meta<vdb::Vec3DMetadata>(grid, "lmk_up", path));
     landmark.settings.distance_band =
         require_meta<vdb::DoubleMetadata>(grid, "lmk_distance_band", path);
     landmark.settings.empty_space_margin =
@@ -183,80 +187,114 @@ Landmark landmark_from_grid(const vdb::points::PointDataGrid& grid, const std::s
   if (const auto flat = grid.getMetadata<vdb::BoolMetadata>("lmk_allow_flat")) {
     landmark.settings.allow_flat = flat->value();
   }
+}
+
+// A landmark of several views: each view's sensor origin, the first's being lmk_sensor_origin.
+void read_view_origins(const vdb::points::PointDataGrid& grid, const std::string& path,
+                       Landmark& landmark) {
+  const std::int32_t count = require_meta<vdb::Int32Metadata>(grid, "lmk_view_count", path);
+  if (count < 2 || count > static_cast<std::int32_t>(kMaxLandmarkViews)) {
+    throw Error(path + ": corrupt landmark file: " + std::to_string(count) +
+                " views (a landmark of several views has 2 to " +
+                std::to_string(kMaxLandmarkViews) + ")");
+  }
+  landmark.view_origins.push_back(landmark.sensor_origin);
+  for (std::int32_t v = 1; v < count; ++v) {
+    landmark.view_origins.push_back(eigen_vector(require_meta<vdb::Vec3DMetadata>(
+        grid, view_origin_meta(static_cast<std::size_t>(v)), path)));
+  }
+}
+
+// lmk::Error unless `leaf` has `attribute`, with point offsets that fit its array. The leaf's voxel
+// values are running point offsets into its attribute arrays; OpenVDB reads both from the file
+// without checking that they agree (a disagreement failed an assertion inside OpenVDB). They must
+// rise and stay within the array.
+template <typename Leaf>
+void require_attribute(const Leaf& leaf, const char* attribute, const std::string& path) {
+  if (!leaf->hasAttribute(attribute)) {
+    throw Error(path + ": not an lmk landmark file: points lack '" + std::string(attribute) + "'");
+  }
+  const vdb::points::AttributeArray& array = leaf->constAttributeArray(attribute);
+  bool offsets_fit = array.stride() == 1;
+  for (vdb::Index v = 0, previous = 0; offsets_fit && v < leaf->SIZE; ++v) {
+    const vdb::Index offset = leaf->getValue(v);
+    offsets_fit = offset >= previous && offset <= array.dataSize();
+    previous = offset;
+  }
+  if (!offsets_fit) {
+    throw Error(path + ": corrupt landmark file: a leaf's '" + std::string(attribute) +
+                "' array: its point offsets do not fit it");
+  }
+}
+
+// The points' attributes as the grid's leaves hold them, in leaf order: the positions always, the
+// capture order, views and colours when the file has them.
+struct LeafOrderPoints {
+  std::vector<Eigen::Vector3f> positions;
+  std::vector<std::int32_t> order, views, colours;
+};
+
+LeafOrderPoints read_points(const vdb::points::PointDataGrid& grid, const std::string& path,
+                            bool ordered, bool views, bool colours) {
+  LeafOrderPoints out;
+  const auto read_int_attribute = [&](const auto& leaf, const char* attribute,
+                                      std::vector<std::int32_t>& values) {
+    require_attribute(leaf, attribute, path);
+    const vdb::points::AttributeHandle<std::int32_t> handle(leaf->constAttributeArray(attribute));
+    for (auto index = leaf->beginIndexOn(); index; ++index) values.push_back(handle.get(*index));
+  };
+  for (auto leaf = grid.tree().cbeginLeaf(); leaf; ++leaf) {
+    require_attribute(leaf, kPositionAttribute, path);
+    if (views) read_int_attribute(leaf, kViewsAttribute, out.views);
+    if (colours) read_int_attribute(leaf, kColourAttribute, out.colours);
+    const vdb::points::AttributeHandle<vdb::Vec3f> handle(
+        leaf->constAttributeArray(kPositionAttribute));
+    for (auto index = leaf->beginIndexOn(); index; ++index) {
+      const vdb::Vec3f p = handle.get(*index);
+      out.positions.emplace_back(p.x(), p.y(), p.z());
+    }
+    if (ordered) read_int_attribute(leaf, kIndexAttribute, out.order);
+  }
+  return out;
+}
+
+// The points put back into capture order (which the closest-point grid refers to), with their
+// views and colours; lmk::Error unless the stored order is a permutation.
+void restore_capture_order(const LeafOrderPoints& read, bool views, bool colours,
+                           const std::string& path, Landmark& landmark) {
+  const std::vector<std::int32_t>& order = read.order;
+  std::vector<Eigen::Vector3f> points(order.size(), Eigen::Vector3f::Constant(NAN));
+  if (views) landmark.point_views.assign(order.size(), 0);
+  if (colours) landmark.points.colors.assign(order.size(), Color{});
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const auto i = static_cast<std::size_t>(order[k]);
+    if (order[k] < 0 || i >= points.size() || !std::isnan(points[i].x())) {
+      throw Error(path + ": corrupt landmark file: the point indices are not a permutation");
+    }
+    points[i] = read.positions[k];
+    if (views) landmark.point_views[i] = static_cast<std::uint32_t>(read.views[k]);
+    if (colours) landmark.points.colors[i] = unpacked_colour(read.colours[k]);
+  }
+  landmark.points.points = std::move(points);
+}
+
+Landmark landmark_from_grid(const vdb::points::PointDataGrid& grid, const std::string& path) {
+  Landmark landmark;
+  read_landmark_meta(grid, path, landmark);
   // Version 3 holds views, colour or both.
   const bool views = landmark.format_version >= 3 &&
                      grid.getMetadata<vdb::Int32Metadata>("lmk_view_count") != nullptr;
   const auto first_leaf = grid.tree().cbeginLeaf();
   const bool colours =
       landmark.format_version >= 3 && first_leaf && first_leaf->hasAttribute(kColourAttribute);
-  if (views) {
-    const std::int32_t count = require_meta<vdb::Int32Metadata>(grid, "lmk_view_count", path);
-    if (count < 2 || count > static_cast<std::int32_t>(kMaxLandmarkViews)) {
-      throw Error(path + ": corrupt landmark file: " + std::to_string(count) +
-                  " views (a landmark of several views has 2 to " +
-                  std::to_string(kMaxLandmarkViews) + ")");
-    }
-    landmark.view_origins.push_back(landmark.sensor_origin);
-    for (std::int32_t v = 1; v < count; ++v) {
-      landmark.view_origins.push_back(eigen(require_meta<vdb::Vec3DMetadata>(
-          grid, view_origin_meta(static_cast<std::size_t>(v)), path)));
-    }
-  }
+  if (views) read_view_origins(grid, path, landmark);
 
   const bool ordered = landmark.format_version >= 2;
-  const auto require = [&](const auto& leaf, const char* attribute) {
-    if (!leaf->hasAttribute(attribute)) {
-      throw Error(path + ": not an lmk landmark file: points lack '" + std::string(attribute) +
-                  "'");
-    }
-    // The leaf's voxel values are running point offsets into its attribute arrays; OpenVDB reads
-    // both from the file without checking that they agree (a disagreement failed an assertion
-    // inside OpenVDB). They must rise and stay within the array.
-    const vdb::points::AttributeArray& array = leaf->constAttributeArray(attribute);
-    bool offsets_fit = array.stride() == 1;
-    for (vdb::Index v = 0, previous = 0; offsets_fit && v < leaf->SIZE; ++v) {
-      const vdb::Index offset = leaf->getValue(v);
-      offsets_fit = offset >= previous && offset <= array.dataSize();
-      previous = offset;
-    }
-    if (!offsets_fit) {
-      throw Error(path + ": corrupt landmark file: a leaf's '" + std::string(attribute) +
-                  "' array: its point offsets do not fit it");
-    }
-  };
-  std::vector<std::int32_t> order, point_views, point_colours;
-  const auto read_int_attribute = [&](const auto& leaf, const char* attribute,
-                                      std::vector<std::int32_t>& out) {
-    require(leaf, attribute);
-    const vdb::points::AttributeHandle<std::int32_t> handle(leaf->constAttributeArray(attribute));
-    for (auto index = leaf->beginIndexOn(); index; ++index) out.push_back(handle.get(*index));
-  };
-  for (auto leaf = grid.tree().cbeginLeaf(); leaf; ++leaf) {
-    require(leaf, kPositionAttribute);
-    if (views) read_int_attribute(leaf, kViewsAttribute, point_views);
-    if (colours) read_int_attribute(leaf, kColourAttribute, point_colours);
-    const vdb::points::AttributeHandle<vdb::Vec3f> handle(
-        leaf->constAttributeArray(kPositionAttribute));
-    for (auto index = leaf->beginIndexOn(); index; ++index) {
-      const vdb::Vec3f p = handle.get(*index);
-      landmark.points.points.emplace_back(p.x(), p.y(), p.z());
-    }
-    if (ordered) read_int_attribute(leaf, kIndexAttribute, order);
-  }
-  if (ordered) {  // back into capture order, which the closest-point grid refers to
-    std::vector<Eigen::Vector3f> points(order.size(), Eigen::Vector3f::Constant(NAN));
-    if (views) landmark.point_views.assign(order.size(), 0);
-    if (colours) landmark.points.colors.assign(order.size(), Color{});
-    for (std::size_t k = 0; k < order.size(); ++k) {
-      const auto i = static_cast<std::size_t>(order[k]);
-      if (order[k] < 0 || i >= points.size() || !std::isnan(points[i].x())) {
-        throw Error(path + ": corrupt landmark file: the point indices are not a permutation");
-      }
-      points[i] = landmark.points.points[k];
-      if (views) landmark.point_views[i] = static_cast<std::uint32_t>(point_views[k]);
-      if (colours) landmark.points.colors[i] = unpacked_colour(point_colours[k]);
-    }
-    landmark.points.points = std::move(points);
+  LeafOrderPoints read = read_points(grid, path, ordered, views, colours);
+  if (ordered) {
+    restore_capture_order(read, views, colours, path, landmark);
+  } else {
+    landmark.points.points = std::move(read.positions);
   }
   landmark.points.set_unorganized();
   landmark.points.T_cloud_sensor.translation() = landmark.sensor_origin;

@@ -99,10 +99,11 @@ struct SlabLeaves {
 // Splats every point onto the voxel centres within the band whose x index lies in [x0, x1), keeping
 // for each voxel the nearest point; ties go to the smaller index, so the result does not depend on
 // the order in which slabs or points are visited.
-SlabLeaves build_slab(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& members,
-                      double voxel, double band, int x0, int x1, const StopCheck& stop) {
-  const auto background = static_cast<float>(band * band);
-  SlabBlocks blocks(members.size(), background);
+// Every member point splatted into `blocks`: each voxel within the band of it, in slab columns
+// [x0, x1), keeps the nearest point.
+void splat_points(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& members,
+                  double voxel, double band, int x0, int x1, const StopCheck& stop,
+                  SlabBlocks& blocks) {
   const int reach = static_cast<int>(std::ceil(band / voxel));
   const double band_voxels2 = (band / voxel) * (band / voxel);
   // The leaves a point's box of 2 reach + 1 voxels a side can touch, per axis; the point's leaves
@@ -152,8 +153,12 @@ SlabLeaves build_slab(const std::vector<Eigen::Vector3f>& points, const std::vec
       }
     }
   }
+}
 
-  // Blocks whose box corner no point reached stay out of the grids.
+// The blocks as OpenVDB leaves: the distance (the square root of the nearest squared distance)
+// and the closest point's index, active where a point claimed the voxel. Blocks whose box corner
+// no point reached stay out of the grids.
+SlabLeaves leaves_of(const SlabBlocks& blocks, float background, const StopCheck& stop) {
   SlabLeaves out;
   const float outside = std::sqrt(background);  // what the square-root pass made of band^2
   std::size_t converted = 0;
@@ -179,6 +184,14 @@ SlabLeaves build_slab(const std::vector<Eigen::Vector3f>& points, const std::vec
     out.closest.push_back(std::move(closest));
   }
   return out;
+}
+
+SlabLeaves build_slab(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& members,
+                      double voxel, double band, int x0, int x1, const StopCheck& stop) {
+  const auto background = static_cast<float>(band * band);
+  SlabBlocks blocks(members.size(), background);
+  splat_points(points, members, voxel, band, x0, x1, stop, blocks);
+  return leaves_of(blocks, background, stop);
 }
 
 }  // namespace

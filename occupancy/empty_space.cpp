@@ -35,26 +35,9 @@ bool clip_to_box(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen
   return true;
 }
 
-}  // namespace
-
-EmptySpaceGrid::EmptySpaceGrid() {
-  detail::initialize_openvdb();
-  auto g = std::make_shared<Grid>();
-  g->grid = vdb::BoolGrid::create(false);
-  g->grid->setTransform(vdb::math::Transform::createLinearTransform(0.005));
-  grid_ = std::move(g);
-}
-
-EmptySpaceGrid EmptySpaceGrid::observe(const std::vector<Eigen::Vector3f>& scene_points,
-                                       const Eigen::Vector3d& sensor_origin, const Box& box,
-                                       const DistanceField& surface,
-                                       const EmptySpaceSettings& settings) {
-  return observe_views({RayBundle{&scene_points, sensor_origin}}, box, surface, settings);
-}
-
-EmptySpaceGrid EmptySpaceGrid::observe_views(const std::vector<RayBundle>& views, const Box& box,
-                                             const DistanceField& surface,
-                                             const EmptySpaceSettings& settings) {
+// lmk::Error naming the first input the observation cannot use.
+void check_observation(const std::vector<RayBundle>& views, const Box& box,
+                       const EmptySpaceSettings& settings) {
   const double voxel = settings.voxel_size, margin = settings.surface_margin;
   const double unobserved_margin = settings.unobserved_margin;
   if (!(voxel > 0.0 && std::isfinite(voxel))) {
@@ -71,16 +54,18 @@ EmptySpaceGrid EmptySpaceGrid::observe_views(const std::vector<RayBundle>& views
     if (!view.origin.allFinite()) throw Error("empty space: the sensor origin is not finite");
     if (view.ends == nullptr) throw Error("empty space: a view without rays");
   }
+}
 
-  detail::initialize_openvdb();
-  // Every voxel of the box a ray crossed, up to `margin` before its end point. The free ones are
-  // chosen from these once all rays are in (below).
+// Every voxel of the box a ray crossed, up to the surface margin before its end point. The free
+// ones are chosen from these once all rays are in (free_voxels()).
+vdb::BoolGrid::Ptr crossed_voxels(const std::vector<RayBundle>& views, const Box& box,
+                                  const EmptySpaceSettings& settings) {
+  const double voxel = settings.voxel_size, margin = settings.surface_margin;
   auto crossed = vdb::BoolGrid::create(false);
   crossed->setTransform(vdb::math::Transform::createLinearTransform(voxel));
   auto access = crossed->getAccessor();
   const Eigen::Isometry3d T_box_capture = box.pose.inverse();
   const Eigen::Vector3d half = 0.5 * box.size;
-  const auto surface_sampler = surface.sampler();
   for (const RayBundle& view : views) {
     const Eigen::Vector3d& sensor_origin = view.origin;
     const Eigen::Vector3d origin_in_box = T_box_capture * sensor_origin;
@@ -107,16 +92,23 @@ EmptySpaceGrid EmptySpaceGrid::observe_views(const std::vector<RayBundle>& views
       } while (dda.step());
     }
   }
+  return crossed;
+}
 
-  // A crossed voxel is free when it lies `margin` from every measured surface (the landmark's
-  // points) and `unobserved_margin` from every voxel of the box that no ray crossed. Unobserved
-  // space may hold a surface the sensor never returned: the far side of an object, or a face seen
-  // so obliquely that the sensor dropped its depth. Rays that graze such a face cross the voxels
-  // just outside it, and with no measured point there nothing else kept them from being called
-  // free; seen from another side, the face then stood in the landmark's "empty" space (on the
-  // viewpoints preset, a tide bottle seen from its right had 1-2% of its empty space occupied by
-  // its own right face, and was rejected).
+// A crossed voxel is free when it lies the surface margin from every measured surface (the
+// landmark's points) and the unobserved margin from every voxel of the box that no ray crossed.
+// Unobserved space may hold a surface the sensor never returned: the far side of an object, or a
+// face seen so obliquely that the sensor dropped its depth. Rays that graze such a face cross the
+// voxels just outside it, and with no measured point there nothing else kept them from being
+// called free; seen from another side, the face then stood in the landmark's "empty" space (on
+// the viewpoints preset, a tide bottle seen from its right had 1-2% of its empty space occupied by
+// its own right face, and was rejected).
+vdb::BoolGrid::Ptr free_voxels(const vdb::BoolGrid& crossed, const Box& box,
+                               const DistanceField& surface, const EmptySpaceSettings& settings) {
+  const double voxel = settings.voxel_size, margin = settings.surface_margin;
+  const double unobserved_margin = settings.unobserved_margin;
   const int reach = static_cast<int>(std::floor(unobserved_margin / voxel));
+  auto access = crossed.getConstAccessor();
   // Unobserved: in the box and crossed by no ray. Rays sparser than the voxels (a capture from
   // beyond about 3 m, where a Kinect's pixels lie more than 5 mm apart) leave gaps in open air
   // that count as unobserved too: the free space then shrinks, which is never wrong.
@@ -138,10 +130,11 @@ EmptySpaceGrid EmptySpaceGrid::observe_views(const std::vector<RayBundle>& views
     }
     return false;
   };
+  const auto surface_sampler = surface.sampler();
   auto free = vdb::BoolGrid::create(false);
   free->setTransform(vdb::math::Transform::createLinearTransform(voxel));
   auto free_access = free->getAccessor();
-  for (auto it = crossed->cbeginValueOn(); it; ++it) {
+  for (auto it = crossed.cbeginValueOn(); it; ++it) {
     const vdb::Coord c = it.getCoord();
     const Eigen::Vector3f centre(static_cast<float>(c.x() * voxel),
                                  static_cast<float>(c.y() * voxel),
@@ -149,7 +142,33 @@ EmptySpaceGrid EmptySpaceGrid::observe_views(const std::vector<RayBundle>& views
     if (surface_sampler.distance(centre) < margin || near_unobserved(c)) continue;
     free_access.setValueOn(c, true);
   }
+  return free;
+}
 
+}  // namespace
+
+EmptySpaceGrid::EmptySpaceGrid() {
+  detail::initialize_openvdb();
+  auto g = std::make_shared<Grid>();
+  g->grid = vdb::BoolGrid::create(false);
+  g->grid->setTransform(vdb::math::Transform::createLinearTransform(0.005));
+  grid_ = std::move(g);
+}
+
+EmptySpaceGrid EmptySpaceGrid::observe(const std::vector<Eigen::Vector3f>& scene_points,
+                                       const Eigen::Vector3d& sensor_origin, const Box& box,
+                                       const DistanceField& surface,
+                                       const EmptySpaceSettings& settings) {
+  return observe_views({RayBundle{&scene_points, sensor_origin}}, box, surface, settings);
+}
+
+EmptySpaceGrid EmptySpaceGrid::observe_views(const std::vector<RayBundle>& views, const Box& box,
+                                             const DistanceField& surface,
+                                             const EmptySpaceSettings& settings) {
+  check_observation(views, box, settings);
+  detail::initialize_openvdb();
+  const vdb::BoolGrid::Ptr crossed = crossed_voxels(views, box, settings);
+  vdb::BoolGrid::Ptr free = free_voxels(*crossed, box, surface, settings);
   free->setName("empty");
   return from_grid(Grid{free, {}});
 }

@@ -272,13 +272,10 @@ Eigen::Vector3f meeting(const Splat& s, const PinholeIntrinsics& k, int col, int
 // splatted over the pixels its voxel covers, the nearest kept per pixel (TsdfVolume::render()).
 // Blocks of rows in parallel, each pixel's nearest meeting decided by (depth, crossing): the same
 // frame whatever the threads.
-PointCloud render_crossings(const PointCloud& crossings, double voxel_size,
-                            const PinholeIntrinsics& k, const Eigen::Isometry3d& T_common_sensor) {
-  k.validate("fuse: render");
-  const std::size_t pixels = static_cast<std::size_t>(k.width) * static_cast<std::size_t>(k.height);
-  const float nan = std::numeric_limits<float>::quiet_NaN();
-  const float voxel = static_cast<float>(voxel_size);
-  const Eigen::Isometry3f T_sensor_common = T_common_sensor.inverse().cast<float>();
+// Each crossing as a splat in the sensor frame: its point, normal and the pixel window its voxel
+// covers (empty behind the camera).
+std::vector<Splat> splats_of(const PointCloud& crossings, float voxel, const PinholeIntrinsics& k,
+                             const Eigen::Isometry3f& T_sensor_common) {
   std::vector<Splat> splats(crossings.size());
   tbb::parallel_for(std::size_t{0}, crossings.size(), [&](std::size_t i) {
     Splat& s = splats[i];
@@ -298,42 +295,60 @@ PointCloud render_crossings(const PointCloud& crossings, double voxel_size,
     s.u0 = first(pixel.x() - radius, k.width), s.u1 = last(pixel.x() + radius, k.width);
     s.v0 = first(pixel.y() - radius, k.height), s.v1 = last(pixel.y() + radius, k.height);
   });
-  // The splats by their first row (in crossing order within a row), and the most rows one spans.
-  std::vector<std::size_t> row_start(static_cast<std::size_t>(k.height) + 1, 0);
+  return splats;
+}
+
+// The splats by their first row (in crossing order within a row: by_row[row_start[r]] onwards),
+// and the most rows one spans.
+struct SplatRows {
+  std::vector<std::size_t> row_start;
+  std::vector<std::uint32_t> by_row;
   int span = 0;
+};
+
+SplatRows rows_of(const std::vector<Splat>& splats, int height) {
+  SplatRows rows;
+  rows.row_start.assign(static_cast<std::size_t>(height) + 1, 0);
   for (const Splat& s : splats) {
     if (s.v0 > s.v1 || s.u0 > s.u1) continue;
-    ++row_start[static_cast<std::size_t>(s.v0) + 1];
-    span = std::max(span, s.v1 - s.v0);
+    ++rows.row_start[static_cast<std::size_t>(s.v0) + 1];
+    rows.span = std::max(rows.span, s.v1 - s.v0);
   }
-  for (std::size_t r = 0; r < static_cast<std::size_t>(k.height); ++r) {
-    row_start[r + 1] += row_start[r];
+  for (std::size_t r = 0; r < static_cast<std::size_t>(height); ++r) {
+    rows.row_start[r + 1] += rows.row_start[r];
   }
-  std::vector<std::uint32_t> by_row(row_start.back());
-  std::vector<std::size_t> fill(row_start.begin(), row_start.end() - 1);
+  rows.by_row.resize(rows.row_start.back());
+  std::vector<std::size_t> fill(rows.row_start.begin(), rows.row_start.end() - 1);
   for (std::size_t i = 0; i < splats.size(); ++i) {
     const Splat& s = splats[i];
     if (s.v0 > s.v1 || s.u0 > s.u1) continue;
-    by_row[fill[static_cast<std::size_t>(s.v0)]++] = static_cast<std::uint32_t>(i);
+    rows.by_row[fill[static_cast<std::size_t>(s.v0)]++] = static_cast<std::uint32_t>(i);
   }
-  // Per pixel the nearest meeting as (depth's bits, crossing): a positive float's bits order as
-  // the float does, and a tie goes to the first crossing, as a serial pass would keep it.
-  constexpr std::uint64_t kNone = std::numeric_limits<std::uint64_t>::max();
-  std::vector<std::uint64_t> nearest(pixels, kNone);
+  return rows;
+}
+
+constexpr std::uint64_t kNoMeeting = std::numeric_limits<std::uint64_t>::max();
+
+// Per pixel the nearest meeting as (depth's bits, crossing): a positive float's bits order as
+// the float does, and a tie goes to the first crossing, as a serial pass would keep it.
+std::vector<std::uint64_t> nearest_meetings(const std::vector<Splat>& splats, const SplatRows& rows,
+                                            const PinholeIntrinsics& k, float voxel) {
+  const std::size_t pixels = static_cast<std::size_t>(k.width) * static_cast<std::size_t>(k.height);
+  std::vector<std::uint64_t> nearest(pixels, kNoMeeting);
   constexpr int kBlockRows = 16;
   tbb::parallel_for(0, (k.height + kBlockRows - 1) / kBlockRows, [&](int block) {
     const int top = block * kBlockRows, bottom = std::min(k.height, top + kBlockRows);
-    for (int first_row = std::max(0, top - span); first_row < bottom; ++first_row) {
-      for (std::size_t j = row_start[static_cast<std::size_t>(first_row)];
-           j < row_start[static_cast<std::size_t>(first_row) + 1]; ++j) {
-        const Splat& s = splats[by_row[j]];
+    for (int first_row = std::max(0, top - rows.span); first_row < bottom; ++first_row) {
+      for (std::size_t j = rows.row_start[static_cast<std::size_t>(first_row)];
+           j < rows.row_start[static_cast<std::size_t>(first_row) + 1]; ++j) {
+        const Splat& s = splats[rows.by_row[j]];
         for (int row = std::max(s.v0, top); row <= std::min(s.v1, bottom - 1); ++row) {
           for (int col = s.u0; col <= s.u1; ++col) {
             const float depth = meeting(s, k, col, row, voxel).z();
             if (!(depth > 0.0f)) continue;
             std::uint32_t bits;
             std::memcpy(&bits, &depth, sizeof bits);
-            const std::uint64_t key = (std::uint64_t{bits} << 32) | by_row[j];
+            const std::uint64_t key = (std::uint64_t{bits} << 32) | rows.by_row[j];
             std::uint64_t& here = nearest[static_cast<std::size_t>(row) * k.width + col];
             here = std::min(here, key);
           }
@@ -341,6 +356,19 @@ PointCloud render_crossings(const PointCloud& crossings, double voxel_size,
       }
     }
   });
+  return nearest;
+}
+
+PointCloud render_crossings(const PointCloud& crossings, double voxel_size,
+                            const PinholeIntrinsics& k, const Eigen::Isometry3d& T_common_sensor) {
+  k.validate("fuse: render");
+  const std::size_t pixels = static_cast<std::size_t>(k.width) * static_cast<std::size_t>(k.height);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float voxel = static_cast<float>(voxel_size);
+  const std::vector<Splat> splats =
+      splats_of(crossings, voxel, k, T_common_sensor.inverse().cast<float>());
+  const std::vector<std::uint64_t> nearest =
+      nearest_meetings(splats, rows_of(splats, k.height), k, voxel);
   PointCloud out;
   out.points.assign(pixels, Eigen::Vector3f::Constant(nan));
   out.normals.assign(pixels, Eigen::Vector3f::Constant(nan));
@@ -349,7 +377,7 @@ PointCloud render_crossings(const PointCloud& crossings, double voxel_size,
   out.T_cloud_sensor = T_common_sensor;
   const Eigen::Isometry3f T_common_sensor_f = T_common_sensor.cast<float>();
   tbb::parallel_for(std::size_t{0}, pixels, [&](std::size_t index) {
-    if (nearest[index] == kNone) return;
+    if (nearest[index] == kNoMeeting) return;
     const Splat& s = splats[nearest[index] & 0xffffffffu];
     const int row = static_cast<int>(index / static_cast<std::size_t>(k.width));
     const int col = static_cast<int>(index % static_cast<std::size_t>(k.width));

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 
 #include "lmk/geometry/random.h"
 
@@ -132,6 +133,80 @@ double reach_bound(const KinematicChain& chain, Eigen::Vector3d& first_joint_ori
 
 }  // namespace
 
+namespace {
+
+// The starting joints: the seed, or the middle of each joint's range (0 for continuous joints),
+// within the limits; a kBadRequest message instead when the seed does not fit the chain.
+std::optional<std::vector<double>> start_joints(const std::vector<JointInfo>& joints,
+                                                const std::vector<double>& seed, std::string& why) {
+  std::vector<double> start = seed;
+  if (start.empty()) {
+    for (const JointInfo& j : joints)
+      start.push_back(j.continuous() ? 0.0 : 0.5 * (j.lower + j.upper));
+  }
+  if (start.size() != joints.size()) {
+    why = "the seed has " + std::to_string(seed.size()) + " values for " +
+          std::to_string(joints.size()) + " joints";
+    return std::nullopt;
+  }
+  enforce_limits(joints, start, true);
+  return start;
+}
+
+// The solutions from `start` and then from random joints, up to solutions_to_compare of them, and
+// the closest failure.
+struct Attempts {
+  std::vector<Attempt> solutions;
+  Attempt closest_failure;
+};
+
+Attempts attempt_ik(const KinematicChain& chain, const std::vector<JointInfo>& joints,
+                    const Eigen::Isometry3d& T_root_target, const std::vector<double>& start,
+                    const IkSettings& s) {
+  SplitMix64 rng(s.random_seed);
+  Attempts out;
+  for (int attempt = 0;
+       attempt < s.max_attempts && static_cast<int>(out.solutions.size()) < s.solutions_to_compare;
+       ++attempt) {
+    const std::vector<double> q0 = attempt == 0 ? start : chain.random_joints(rng);
+    Attempt a = descend(chain, joints, T_root_target, q0, s, true);
+    if (a.position_error <= s.position_tolerance && a.rotation_error <= s.rotation_tolerance) {
+      out.solutions.push_back(std::move(a));
+    } else if (a.position_error < out.closest_failure.position_error) {
+      out.closest_failure = std::move(a);
+    }
+    // A solution from the caller's own seed is the nearest we can hope for: stop there.
+    if (attempt == 0 && !out.solutions.empty()) break;
+  }
+  return out;
+}
+
+// Why no solution was found: without joint limits, can the chain reach the target at all? That
+// tells the two reasons apart.
+void explain_failure(const KinematicChain& chain, const std::vector<JointInfo>& joints,
+                     const Eigen::Isometry3d& T_root_target, const std::vector<double>& start,
+                     const IkSettings& s, const Attempt& closest_failure, IkResult& result) {
+  SplitMix64 free_rng(s.random_seed + 1);
+  for (int attempt = 0; attempt < s.max_attempts / 3; ++attempt) {
+    const Attempt free = descend(chain, joints, T_root_target,
+                                 attempt == 0 ? start : chain.random_joints(free_rng), s, false);
+    if (free.position_error <= s.position_tolerance &&
+        free.rotation_error <= s.rotation_tolerance) {
+      result.failure = IkFailure::kJointLimits;
+      result.message = "the pose is reachable only outside the joint limits";
+      return;
+    }
+  }
+  result.failure = IkFailure::kOutOfWorkspace;
+  char buffer[160];
+  std::snprintf(buffer, sizeof(buffer),
+                "out of the workspace: the closest pose found is %.3f m and %.1f deg away",
+                closest_failure.position_error, closest_failure.rotation_error * 180.0 / M_PI);
+  result.message = buffer;
+}
+
+}  // namespace
+
 IkResult solve_ik(const KinematicChain& chain, const Eigen::Isometry3d& T_root_target,
                   const std::vector<double>& seed, const IkSettings& s) {
   IkResult result;
@@ -141,18 +216,11 @@ IkResult solve_ik(const KinematicChain& chain, const Eigen::Isometry3d& T_root_t
     result.message = "the target pose is not finite";
     return result;
   }
-  std::vector<double> start = seed;
-  if (start.empty()) {
-    for (const JointInfo& j : joints)
-      start.push_back(j.continuous() ? 0.0 : 0.5 * (j.lower + j.upper));
-  }
-  if (start.size() != joints.size()) {
+  const std::optional<std::vector<double>> start = start_joints(joints, seed, result.message);
+  if (!start) {
     result.failure = IkFailure::kBadRequest;
-    result.message = "the seed has " + std::to_string(seed.size()) + " values for " +
-                     std::to_string(joints.size()) + " joints";
     return result;
   }
-  enforce_limits(joints, start, true);
 
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();
   const double reach = reach_bound(chain, origin);
@@ -168,27 +236,12 @@ IkResult solve_ik(const KinematicChain& chain, const Eigen::Isometry3d& T_root_t
     return result;
   }
 
-  SplitMix64 rng(s.random_seed);
-  std::vector<Attempt> solutions;
-  Attempt closest_failure;
-  for (int attempt = 0;
-       attempt < s.max_attempts && static_cast<int>(solutions.size()) < s.solutions_to_compare;
-       ++attempt) {
-    const std::vector<double> q0 = attempt == 0 ? start : chain.random_joints(rng);
-    Attempt a = descend(chain, joints, T_root_target, q0, s, true);
-    if (a.position_error <= s.position_tolerance && a.rotation_error <= s.rotation_tolerance) {
-      solutions.push_back(std::move(a));
-    } else if (a.position_error < closest_failure.position_error) {
-      closest_failure = std::move(a);
-    }
-    // A solution from the caller's own seed is the nearest we can hope for: stop there.
-    if (attempt == 0 && !solutions.empty()) break;
-  }
-
-  if (!solutions.empty()) {
-    const Attempt* best = &solutions.front();
-    for (const Attempt& a : solutions) {
-      if (joint_distance(joints, a.q, start) < joint_distance(joints, best->q, start)) best = &a;
+  const Attempts attempts = attempt_ik(chain, joints, T_root_target, *start, s);
+  if (!attempts.solutions.empty()) {
+    // The solution nearest the start.
+    const Attempt* best = &attempts.solutions.front();
+    for (const Attempt& a : attempts.solutions) {
+      if (joint_distance(joints, a.q, *start) < joint_distance(joints, best->q, *start)) best = &a;
     }
     result.success = true;
     result.joints = best->q;
@@ -196,27 +249,10 @@ IkResult solve_ik(const KinematicChain& chain, const Eigen::Isometry3d& T_root_t
     result.rotation_error = best->rotation_error;
     return result;
   }
-  result.joints = closest_failure.q;
-  result.position_error = closest_failure.position_error;
-  result.rotation_error = closest_failure.rotation_error;
-  // Without joint limits, can the chain reach the target at all? That tells the two reasons apart.
-  SplitMix64 free_rng(s.random_seed + 1);
-  for (int attempt = 0; attempt < s.max_attempts / 3; ++attempt) {
-    const Attempt free = descend(chain, joints, T_root_target,
-                                 attempt == 0 ? start : chain.random_joints(free_rng), s, false);
-    if (free.position_error <= s.position_tolerance &&
-        free.rotation_error <= s.rotation_tolerance) {
-      result.failure = IkFailure::kJointLimits;
-      result.message = "the pose is reachable only outside the joint limits";
-      return result;
-    }
-  }
-  result.failure = IkFailure::kOutOfWorkspace;
-  char buffer[160];
-  std::snprintf(buffer, sizeof(buffer),
-                "out of the workspace: the closest pose found is %.3f m and %.1f deg away",
-                closest_failure.position_error, closest_failure.rotation_error * 180.0 / M_PI);
-  result.message = buffer;
+  result.joints = attempts.closest_failure.q;
+  result.position_error = attempts.closest_failure.position_error;
+  result.rotation_error = attempts.closest_failure.rotation_error;
+  explain_failure(chain, joints, T_root_target, *start, s, attempts.closest_failure, result);
   return result;
 }
 

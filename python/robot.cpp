@@ -136,18 +136,8 @@ py::object plan_to_python(const LookedPlan& looked) {
   return out;
 }
 
-}  // namespace
-
-void bind_robot(py::module_& m, const py::object& error) {
-  // lmk.Refused(lmk.Error): a valid request the robot will not carry out; `kind` is
-  // "landmark-not-found", "landmark-doubtful" or "unreachable", as `lmk pbd plan --json` names it.
-  const py::object refused = py::reinterpret_steal<py::object>(
-      PyErr_NewExceptionWithDoc("lmk.Refused",
-                                "A plan the robot will not carry out; `kind` says why "
-                                "('landmark-not-found', 'landmark-doubtful', 'unreachable').",
-                                error.ptr(), nullptr));
-  m.attr("Refused") = refused;
-
+// lmk.SimulatedPr2: its kinematics (groups, joints, forward and inverse) and joint state.
+void bind_simulated_pr2(py::module_& m) {
   py::class_<SimulatedPr2, std::shared_ptr<SimulatedPr2>>(
       m, "SimulatedPr2", "lmk's simulated PR2 (the CLI's --sim), configured and active.")
       .def(py::init(&simulated_pr2), py::arg("torso_height") = 0.0)
@@ -194,6 +184,21 @@ void bind_robot(py::module_& m, const py::object& error) {
              return d;
            })
       .def_property_readonly("time", &SimulatedPr2::time, "Simulated seconds so far.");
+}
+
+}  // namespace
+
+void bind_robot(py::module_& m, const py::object& error) {
+  // lmk.Refused(lmk.Error): a valid request the robot will not carry out; `kind` is
+  // "landmark-not-found", "landmark-doubtful" or "unreachable", as `lmk pbd plan --json` names it.
+  const py::object refused = py::reinterpret_steal<py::object>(
+      PyErr_NewExceptionWithDoc("lmk.Refused",
+                                "A plan the robot will not carry out; `kind` says why "
+                                "('landmark-not-found', 'landmark-doubtful', 'unreachable').",
+                                error.ptr(), nullptr));
+  m.attr("Refused") = refused;
+
+  bind_simulated_pr2(m);
 
   m.def(
       "plan",

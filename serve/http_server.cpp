@@ -180,6 +180,9 @@ struct HttpServer::Impl {
   }
 
   void routes();
+  void api_routes();
+  void page_routes();
+  void reply_and_log_settings();
   void guard_requests();
   ApiResponse upload(const httplib::Request& req, const httplib::ContentReader& read,
                      std::string name);
@@ -293,6 +296,13 @@ ApiResponse HttpServer::Impl::upload(const httplib::Request& req,
 
 void HttpServer::Impl::routes() {
   guard_requests();
+  api_routes();
+  page_routes();
+  reply_and_log_settings();
+}
+
+// Every /api path, to Api.
+void HttpServer::Impl::api_routes() {
   Api& a = api;
   const auto param = [](const httplib::Request& r, const char* key) {
     return r.has_param(key) ? r.get_param_value(key) : std::string();
@@ -345,7 +355,10 @@ void HttpServer::Impl::routes() {
   api_route("GET", "/api/programs/(.+)", [&a](const auto& r) { return a.program(r.matches[1]); });
   api_route("POST", "/api/programs/(.+)/plan",
             [&a](const auto& r) { return a.plan(r.matches[1], r.body); });
+}
 
+// The page, its scripts and three.js.
+void HttpServer::Impl::page_routes() {
   const auto file = [](httplib::Response& res, const StaticFile& f) {
     res.set_content(f.body, f.content_type.c_str());
   };
@@ -360,7 +373,11 @@ void HttpServer::Impl::routes() {
   server.Get("/three/(.*)", [file, three](const httplib::Request& req, httplib::Response& res) {
     guarded(res, [&] { file(res, confined_file(three, req.matches[1])); });
   });
+}
 
+// JSON replies for the statuses httplib sets itself and for exceptions, the body limit, the log
+// and the thread pool.
+void HttpServer::Impl::reply_and_log_settings() {
   // Statuses httplib sets itself (404 for no route, 413 for an oversized body) get a JSON reason.
   const ServeSettings& settings = api.settings();
   server.set_error_handler([&settings](const httplib::Request&, httplib::Response& res) {

@@ -123,7 +123,8 @@ nlohmann::json bench_fused(const Workload& w, const BenchOptions& o, const Landm
           {"peak_memory_mib", peak}};
 }
 
-int run_bench(const BenchOptions& o) {
+// lmk::Error naming the first option the benchmark cannot run with.
+void check_bench_options(const BenchOptions& o) {
   if (o.scene.empty() != o.landmark.empty()) {
     throw Error("bench: give both SCENE and LANDMARK, or neither for the built-in workload");
   }
@@ -133,6 +134,112 @@ int run_bench(const BenchOptions& o) {
     throw Error("bench: --frames must be 1 to " + std::to_string(kMaxFusedFrames));
   }
   check_worker_threads(o.threads, "bench: --threads");
+}
+
+// The fast searches' timings, each repeat's, and the work the last one did.
+struct FastRuns {
+  std::vector<double> total, preprocess, search, vote, coarse, fine;
+  std::size_t matches = 0;
+  SearchStats last;
+  double peak_mib = 0.0;
+  double median() const { return median_of(total); }
+};
+
+// Fast: the landmark is prepared once, as a robot or an evaluation does (LandmarkIndex); each
+// repeat is then a whole search from the raw frame, the scene index built for this one landmark
+// (preprocessing amortised over one landmark, the worst case).
+FastRuns run_fast(const Workload& w, const BenchOptions& o, const LandmarkIndex& prepared,
+                  const FindSettings& fast) {
+  FastRuns runs;
+  for (int k = 0; k < o.repeats; ++k) {
+    const SceneIndex index(w.scene, fast.scene);
+    FindResult r = find_landmark(index, prepared, fast);
+    r.stats.seconds_preprocess += index.seconds_to_build();
+    r.stats.seconds_total += index.seconds_to_build();
+    runs.total.push_back(r.stats.seconds_total);
+    runs.preprocess.push_back(r.stats.seconds_preprocess);
+    runs.search.push_back(r.stats.seconds_total - r.stats.seconds_preprocess);
+    runs.vote.push_back(r.stats.seconds_vote);
+    runs.coarse.push_back(r.stats.seconds_coarse);
+    runs.fine.push_back(r.stats.seconds_fine);
+    runs.matches = r.matches.size();
+    runs.last = r.stats;
+  }
+  runs.peak_mib = peak_memory_mib();
+  std::printf("\nfast               %d searches\n", o.repeats);
+  std::printf("  median per search %.4f s (scene preprocessing %.4f s + search %.4f s)\n",
+              runs.median(), median_of(runs.preprocess), median_of(runs.search));
+  std::printf("  stages (median)   vote %.4f s, coarse %.4f s, fine %.4f s\n", median_of(runs.vote),
+              median_of(runs.coarse), median_of(runs.fine));
+  std::printf(
+      "  work              %zu scene points, %zu seeds, %zu poses, %zu clusters, %zu refined\n",
+      runs.last.scene_points_used, runs.last.seeds, runs.last.poses, runs.last.clusters,
+      runs.last.refined);
+  std::printf("  matches           %zu\n", runs.matches);
+  std::printf("  peak memory       %.0f MiB (process, after the fast searches)\n", runs.peak_mib);
+  return runs;
+}
+
+// The reference search: a capped run, extrapolated to the full seed count.
+struct ReferenceRun {
+  std::size_t seeds_run = 0, full_seeds = 0;
+  double per_seed = 0.0, per_search = 0.0, peak_mib = 0.0;
+};
+
+ReferenceRun run_reference(const Workload& w, const BenchOptions& o) {
+  FindSettings reference;
+  reference.method = SearchMethod::reference;
+  reference.execution.threads = o.threads;
+  const FindSettings full = reference.resolved();
+  reference.sampling.max_seeds = o.reference_seeds;
+  const FindResult r = find_landmark(w.scene, w.landmark, reference);
+  ReferenceRun run;
+  run.seeds_run = r.stats.seeds;
+  run.full_seeds =
+      std::min(*full.sampling.max_seeds,
+               static_cast<std::size_t>(std::ceil(full.reference.sample_fraction *
+                                                  static_cast<double>(r.stats.scene_points_used))));
+  run.per_seed = r.stats.seconds_search / static_cast<double>(r.stats.seeds);
+  run.per_search = r.stats.seconds_preprocess + run.per_seed * static_cast<double>(run.full_seeds);
+  run.peak_mib = peak_memory_mib();
+  std::printf("\nreference          %zu seeds run (capped; a full search runs %zu)\n",
+              run.seeds_run, run.full_seeds);
+  std::printf("  per seed          %.4f s\n", run.per_seed);
+  std::printf("  per search        %.1f s (extrapolated: preprocessing + %zu seeds x per seed)\n",
+              run.per_search, run.full_seeds);
+  std::printf("  peak memory       %.0f MiB (process, after both)\n", run.peak_mib);
+  return run;
+}
+
+// --json's record of the run.
+nlohmann::json bench_json(const Workload& w, const BenchOptions& o, const LandmarkIndex& prepared,
+                          const FastRuns& fast, const ReferenceRun& reference, double ratio,
+                          const nlohmann::json& fused) {
+  return {{"workload", w.description},
+          {"threads", o.threads},
+          {"fast",
+           {{"searches", o.repeats},
+            {"seconds_landmark_index", prepared.seconds_to_build()},
+            {"median_seconds_vote", median_of(fast.vote)},
+            {"median_seconds_coarse", median_of(fast.coarse)},
+            {"median_seconds_fine", median_of(fast.fine)},
+            {"median_seconds_per_search", fast.median()},
+            {"median_seconds_preprocess", median_of(fast.preprocess)},
+            {"median_seconds_search", median_of(fast.search)},
+            {"matches", fast.matches},
+            {"peak_memory_mib", fast.peak_mib}}},
+          {"reference",
+           {{"seeds_run", reference.seeds_run},
+            {"seeds_full_search", reference.full_seeds},
+            {"seconds_per_seed", reference.per_seed},
+            {"seconds_per_search_extrapolated", reference.per_search},
+            {"peak_memory_mib", reference.peak_mib}}},
+          {"ratio", ratio},
+          {"fused", fused}};
+}
+
+int run_bench(const BenchOptions& o) {
+  check_bench_options(o);
   const Workload w = load_workload(o);
   std::printf("workload           %s\n", w.description.c_str());
   std::printf("landmark           '%s', %zu points\n", w.landmark.name.c_str(),
@@ -140,93 +247,19 @@ int run_bench(const BenchOptions& o) {
   std::printf("threads            %s\n",
               o.threads > 0 ? std::to_string(o.threads).c_str() : "all cores");
 
-  // Fast: the landmark is prepared once, as a robot or an evaluation does (LandmarkIndex); each
-  // repeat is then a whole search from the raw frame, the scene index built for this one landmark
-  // (preprocessing amortised over one landmark, the worst case).
   FindSettings fast;
   fast.execution.threads = o.threads;
   const LandmarkIndex prepared(w.landmark, fast);
   std::printf("landmark index     %.4f s (once per landmark)\n", prepared.seconds_to_build());
-  std::vector<double> total, preprocess, search, vote, coarse, fine;
-  std::size_t fast_matches = 0;
-  SearchStats last;
-  for (int k = 0; k < o.repeats; ++k) {
-    const SceneIndex index(w.scene, fast.scene);
-    FindResult r = find_landmark(index, prepared, fast);
-    r.stats.seconds_preprocess += index.seconds_to_build();
-    r.stats.seconds_total += index.seconds_to_build();
-    total.push_back(r.stats.seconds_total);
-    preprocess.push_back(r.stats.seconds_preprocess);
-    search.push_back(r.stats.seconds_total - r.stats.seconds_preprocess);
-    vote.push_back(r.stats.seconds_vote);
-    coarse.push_back(r.stats.seconds_coarse);
-    fine.push_back(r.stats.seconds_fine);
-    fast_matches = r.matches.size();
-    last = r.stats;
-  }
-  const double fast_peak = peak_memory_mib();
-  const double fast_median = median_of(total);
-  std::printf("\nfast               %d searches\n", o.repeats);
-  std::printf("  median per search %.4f s (scene preprocessing %.4f s + search %.4f s)\n",
-              fast_median, median_of(preprocess), median_of(search));
-  std::printf("  stages (median)   vote %.4f s, coarse %.4f s, fine %.4f s\n", median_of(vote),
-              median_of(coarse), median_of(fine));
-  std::printf(
-      "  work              %zu scene points, %zu seeds, %zu poses, %zu clusters, %zu refined\n",
-      last.scene_points_used, last.seeds, last.poses, last.clusters, last.refined);
-  std::printf("  matches           %zu\n", fast_matches);
-  std::printf("  peak memory       %.0f MiB (process, after the fast searches)\n", fast_peak);
-
+  const FastRuns fast_runs = run_fast(w, o, prepared, fast);
   nlohmann::json fused = nullptr;
-  if (o.frames > 1) fused = bench_fused(w, o, prepared, fast, fast_median);
-
-  // Reference: a capped run, extrapolated to the full seed count.
-  FindSettings reference;
-  reference.method = SearchMethod::reference;
-  reference.execution.threads = o.threads;
-  const FindSettings full = reference.resolved();
-  reference.sampling.max_seeds = o.reference_seeds;
-  const FindResult r = find_landmark(w.scene, w.landmark, reference);
-  const std::size_t full_seeds =
-      std::min(*full.sampling.max_seeds,
-               static_cast<std::size_t>(std::ceil(full.reference.sample_fraction *
-                                                  static_cast<double>(r.stats.scene_points_used))));
-  const double per_seed = r.stats.seconds_search / static_cast<double>(r.stats.seeds);
-  const double reference_search =
-      r.stats.seconds_preprocess + per_seed * static_cast<double>(full_seeds);
-  const double reference_peak = peak_memory_mib();
-  std::printf("\nreference          %zu seeds run (capped; a full search runs %zu)\n",
-              r.stats.seeds, full_seeds);
-  std::printf("  per seed          %.4f s\n", per_seed);
-  std::printf("  per search        %.1f s (extrapolated: preprocessing + %zu seeds x per seed)\n",
-              reference_search, full_seeds);
-  std::printf("  peak memory       %.0f MiB (process, after both)\n", reference_peak);
-  const double ratio = reference_search / fast_median;
+  if (o.frames > 1) fused = bench_fused(w, o, prepared, fast, fast_runs.median());
+  const ReferenceRun reference = run_reference(w, o);
+  const double ratio = reference.per_search / fast_runs.median();
   std::printf("\nspeed-up           %.0fx (reference per search / fast per search)\n", ratio);
-
   if (!o.json.empty()) {
-    const nlohmann::json out = {{"workload", w.description},
-                                {"threads", o.threads},
-                                {"fast",
-                                 {{"searches", o.repeats},
-                                  {"seconds_landmark_index", prepared.seconds_to_build()},
-                                  {"median_seconds_vote", median_of(vote)},
-                                  {"median_seconds_coarse", median_of(coarse)},
-                                  {"median_seconds_fine", median_of(fine)},
-                                  {"median_seconds_per_search", fast_median},
-                                  {"median_seconds_preprocess", median_of(preprocess)},
-                                  {"median_seconds_search", median_of(search)},
-                                  {"matches", fast_matches},
-                                  {"peak_memory_mib", fast_peak}}},
-                                {"reference",
-                                 {{"seeds_run", r.stats.seeds},
-                                  {"seeds_full_search", full_seeds},
-                                  {"seconds_per_seed", per_seed},
-                                  {"seconds_per_search_extrapolated", reference_search},
-                                  {"peak_memory_mib", reference_peak}}},
-                                {"ratio", ratio},
-                                {"fused", fused}};
-    write_text_atomically(o.json, out.dump(2) + "\n");
+    write_text_atomically(
+        o.json, bench_json(w, o, prepared, fast_runs, reference, ratio, fused).dump(2) + "\n");
   }
   return kOk;
 }

@@ -208,10 +208,8 @@ int run_rgbd(const GenOptions& options) {
   return kOk;
 }
 
-}  // namespace
-
-Subcommand add_gen(CLI::App& app) {
-  auto options = std::make_shared<GenOptions>();
+// The subcommand with its output and the synthetic presets' options.
+CLI::App* add_gen_subcommand(CLI::App& app, GenOptions& o) {
   std::string presets;
   for (const BenchmarkPreset& p : benchmark_presets())
     presets += "\n  " + p.name + ": " + p.description;
@@ -219,142 +217,159 @@ Subcommand add_gen(CLI::App& app) {
       "gen",
       "Render synthetic data with a simulated Kinect v1: one tabletop frame (carton, cup, ball), "
       "or with --preset a benchmark dataset of the paper's scene types");
-  sub->add_option("output", options->output,
+  sub->add_option("output", o.output,
                   "Cloud file to write (.pcd, .ply, .xyz), or with --preset the dataset directory")
       ->required();
   presets +=
       "\n  moving: frame sequences at 30 Hz of an object pushed 0.5-3 cm a frame and once carried "
       "20-40 cm away, the camera still or panning (lmk eval-track)";
-  sub->add_option("--preset", options->preset, "Write a benchmark dataset:" + presets);
-  sub->add_option("--seed", options->seed,
+  sub->add_option("--preset", o.preset, "Write a benchmark dataset:" + presets);
+  sub->add_option("--seed", o.seed,
                   "Scene and noise seed; with --preset the first scene seed (default 1: seed 0 is "
                   "where the landmarks are captured)")
       ->check(non_negative_whole());
-  sub->add_option("--seeds", options->seeds,
+  sub->add_option("--seeds", o.seeds,
                   "With --preset: scenes per scene type (1 to 1000; the paper's are 5 to 10)")
       ->check(CLI::Range(1, kMaxSeedsPerType));
-  sub->add_flag("--hard", options->hard,
+  sub->add_flag("--hard", o.hard,
                 "With --preset: strong rotations and tilts (any yaw, turned chairs, tilted walls)");
-  sub->add_option("--types", options->types,
+  sub->add_option("--types", o.types,
                   "With --preset: only these scene types (comma-separated, e.g. "
                   "simple/three_balls) and the landmarks in context in them; with --preset "
                   "moving, only these objects (bowl, cup, tide_bottle, spray_bottle)");
   sub->add_option(
-      "--shard", options->shard,
+      "--shard", o.shard,
       "With --preset: render only shard K of N (K/N), a stable share of the scenes, for "
       "one machine of a cluster; a rerun renders only what is missing (docs/cluster.md)");
-  sub->add_flag("--merge", options->merge,
+  sub->add_flag("--merge", o.merge,
                 "With --preset: render nothing, write dataset.json once every shard has run, or "
                 "name the scenes still missing")
       ->excludes("--shard");
-  sub->add_option("--from-mosd", options->from_mosd,
+  return sub;
+}
+
+// The options of datasets from recorded data: mOSD's frames and ROS bags.
+void add_recorded_options(CLI::App* sub, GenOptions& o) {
+  sub->add_option("--from-mosd", o.from_mosd,
                   "Write a real-data dataset from the labelled mOSD learn frames in DIR "
                   "(../shared/data/mosd/learn): landmarks around the labelled objects, searched in "
                   "rigidly moved copies of their frames")
       ->check(CLI::ExistingDirectory);
-  sub->add_option("--copies", options->copies,
-                  "With --from-mosd: moved copies per frame (1 to 100)")
+  sub->add_option("--copies", o.copies, "With --from-mosd: moved copies per frame (1 to 100)")
       ->check(CLI::Range(1, 100))
       ->capture_default_str();
-  sub->add_option("--frames", options->frames,
+  sub->add_option("--frames", o.frames,
                   "With --from-mosd: the first N frames only (0: all). With --preset: each scene "
                   "fused from N renders with their own noise (lmk find with several frames). "
                   "With --preset moving: frames per sequence (10 to 3000, default 60)")
       ->check(CLI::Range(0, 100000));
-  sub->add_flag("--no-noise", options->no_noise, "Exact depth: no sensor noise or quantisation");
-  sub->add_option("--from-bag", options->from_bag,
+  sub->add_flag("--no-noise", o.no_noise, "Exact depth: no sensor noise or quantisation");
+  sub->add_option("--from-bag", o.from_bag,
                   "Write a dataset of a recorded session's frames (ROS bag): scenes in base_link "
                   "when its TF has it, the --landmark files, no labelled instance yet")
       ->check(CLI::ExistingFile);
-  sub->add_option("--landmark", options->landmarks, "With --from-bag: a landmark file (.lmk)")
+  sub->add_option("--landmark", o.landmarks, "With --from-bag: a landmark file (.lmk)")
       ->check(CLI::ExistingFile);
-  sub->add_option("--stride", options->stride,
+  sub->add_option("--stride", o.stride,
                   "With --from-bag: every N-th frame (default 1); with --from-rgbd: landmarks and "
                   "scenes from every N-th frame (default 5)")
       ->check(CLI::Range(std::size_t{1}, std::size_t{100000}));
-  add_bag_options(sub, options->bag, false);
-  sub->add_option("--from-rgbd", options->from_rgbd,
+  add_bag_options(sub, o.bag, false);
+}
+
+// The options of datasets from RGB-D sequences with camera poses, and of several views and frames.
+void add_rgbd_options(CLI::App* sub, GenOptions& o) {
+  sub->add_option("--from-rgbd", o.from_rgbd,
                   "Write a real-data dataset from an RGB-D sequence with camera poses in DIR "
                   "(frame-N.depth.png + .pose.txt as in ../shared/data/real, 7-Scenes and 3DMatch; "
                   "TUM RGB-D; BOP): landmarks cut with user-like boxes in every --stride-th frame "
                   "(default 5), searched in the frames --gap frames away")
       ->check(CLI::ExistingDirectory);
-  sub->add_option("--intrinsics", options->intrinsics,
+  sub->add_option("--intrinsics", o.intrinsics,
                   "With --from-rgbd: the depth camera's FX FY CX CY, pixels (default: the "
                   "sequence's intrinsics file)")
       ->expected(4);
-  sub->add_flag("--registered-colour,--registered-color", options->registered_colour,
+  sub->add_flag("--registered-colour,--registered-color", o.registered_colour,
                 "With --from-rgbd: the frames layout's colour images are registered to depth "
                 "(3DMatch's SUN3D frames; 7-Scenes' are not)");
-  sub->add_option("--box-side", options->box_side,
+  sub->add_option("--box-side", o.box_side,
                   "With --from-rgbd: side of the landmark boxes, m (default: 0.15 x the median "
                   "depth, within 0.08-0.4)")
       ->check(within(0.0, 3.0, true));  // CaptureSettings::max_box_side
-  sub->add_option("--depth-smoothing", options->depth_smoothing,
+  sub->add_option("--depth-smoothing", o.depth_smoothing,
                   "With --from-rgbd: capture and check the landmarks with this depth smoothing, "
                   "pixels (search them with the same --depth-smoothing)")
       ->check(CLI::Range(0, kMaxDepthSmoothingRadius))
       ->capture_default_str();
-  sub->add_flag("--calibrate-depth", options->calibrate_depth,
+  sub->add_flag("--calibrate-depth", o.calibrate_depth,
                 "With --from-rgbd: fit the camera's depth error on the frames the dataset does not "
                 "use, given their poses, and correct the frames it uses (import.json records the "
                 "fit)");
-  sub->add_option("--depth-correction", options->depth_correction,
+  sub->add_option("--depth-correction", o.depth_correction,
                   "With --from-rgbd: correct the frames it uses with this depth-correction file "
                   "(lmk calibrate-depth) instead of fitting one")
       ->check(CLI::ExistingFile)
       ->excludes("--calibrate-depth");
   sub->add_option(
-         "--views", options->views,
+         "--views", o.views,
          "Each landmark also captured from 2 up to this many views, named NAME-vK and searched "
          "where NAME is. --preset: its demonstration camera turned by +45, -45, +90 degrees "
          "about the instance; --from-rgbd: its frame and the frames --view-gap, -view-gap, ... "
          "away, registered from the poses, searched --gap frames from the nearest view")
       ->check(CLI::Range(1, 4))
       ->capture_default_str();
-  sub->add_option("--view-gap", options->view_gap,
+  sub->add_option("--view-gap", o.view_gap,
                   "With --from-rgbd --views: frames between a box's views (default 10)");
-  sub->add_option("--head-turn", options->head_turn,
+  sub->add_option("--head-turn", o.head_turn,
                   "With --preset --frames: the k-th render's camera panned by DEG x 0, +1, -1, +2, "
                   "-2, ... about the vertical through it, as a robot's head turns between looks "
                   "(default 0)")
       ->check(within(0.0, 45.0));
-  sub->add_option("--fuse", options->fuse,
+  sub->add_option("--fuse", o.fuse,
                   "With --from-rgbd: each scene fused from N consecutive frames about its own, "
                   "moved by the sequence's poses (lmk find with several frames; default 1: the "
                   "frame alone)")
       ->check(CLI::Range(std::size_t{1}, kMaxFusedFrames))
       ->capture_default_str();
-  sub->add_option("--gap", options->gap,
+  sub->add_option("--gap", o.gap,
                   "With --from-rgbd: MIN MAX frames between a landmark's frame and its scenes "
                   "(default 10 40)")
       ->expected(2);
-  return {
-      sub, [options] {
-        if (!options->from_rgbd.empty()) {
-          if (!options->preset.empty() || !options->from_mosd.empty() || !options->from_bag.empty())
-            throw Error("--from-rgbd excludes --preset, --from-mosd and --from-bag");
-          return run_rgbd(*options);
-        }
-        if (!options->from_bag.empty()) {
-          if (!options->preset.empty() || !options->from_mosd.empty())
-            throw Error("--from-bag excludes --preset and --from-mosd");
-          return write_bag_dataset(options->from_bag, options->bag, options->stride.value_or(1),
-                                   options->landmarks, options->output);
-        }
-        if (!options->from_mosd.empty()) {
-          if (!options->preset.empty()) throw Error("--from-mosd and --preset exclude each other");
-          return run_mosd(*options);
-        }
-        if (options->preset.empty()) {
-          if (options->seeds || options->hard || !options->types.empty() ||
-              !options->shard.empty() || options->merge)
-            throw Error("--seeds, --hard, --types, --shard and --merge need --preset");
-          return run_tabletop(*options);
-        }
-        if (options->preset == "moving") return run_moving(*options);
-        return run_preset(*options);
-      }};
+}
+
+// The dataset or frame the options ask for; lmk::Error for options that exclude each other.
+int run_gen(const GenOptions& o) {
+  if (!o.from_rgbd.empty()) {
+    if (!o.preset.empty() || !o.from_mosd.empty() || !o.from_bag.empty())
+      throw Error("--from-rgbd excludes --preset, --from-mosd and --from-bag");
+    return run_rgbd(o);
+  }
+  if (!o.from_bag.empty()) {
+    if (!o.preset.empty() || !o.from_mosd.empty())
+      throw Error("--from-bag excludes --preset and --from-mosd");
+    return write_bag_dataset(o.from_bag, o.bag, o.stride.value_or(1), o.landmarks, o.output);
+  }
+  if (!o.from_mosd.empty()) {
+    if (!o.preset.empty()) throw Error("--from-mosd and --preset exclude each other");
+    return run_mosd(o);
+  }
+  if (o.preset.empty()) {
+    if (o.seeds || o.hard || !o.types.empty() || !o.shard.empty() || o.merge)
+      throw Error("--seeds, --hard, --types, --shard and --merge need --preset");
+    return run_tabletop(o);
+  }
+  if (o.preset == "moving") return run_moving(o);
+  return run_preset(o);
+}
+
+}  // namespace
+
+Subcommand add_gen(CLI::App& app) {
+  auto options = std::make_shared<GenOptions>();
+  CLI::App* sub = add_gen_subcommand(app, *options);
+  add_recorded_options(sub, *options);
+  add_rgbd_options(sub, *options);
+  return {sub, [options] { return run_gen(*options); }};
 }
 
 }  // namespace lmk::cli

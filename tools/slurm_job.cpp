@@ -99,44 +99,11 @@ std::string shell_quote(const std::string& text) {
   return out + "'";
 }
 
-std::vector<std::pair<std::string, std::string>> slurm_scripts(const SlurmJob& job) {
-  const std::string n = std::to_string(job.tasks);
-  const std::string shard = " --shard \"${SLURM_ARRAY_TASK_ID}/" + n + "\"";
-  const std::string lmk = shell_quote(job.lmk);
-  const std::string cache = " --cache " + shell_quote(job.cache.string());
-  std::vector<std::pair<std::string, std::string>> scripts;
-  if (job.gen_args) {
-    scripts.emplace_back("gen.sbatch",
-                         header(job, "gen", "Renders shard K of " + n + " of the dataset's scenes.",
-                                true, job.cpus_per_task, job.time) +
-                             "exec " + lmk + " gen" + words(*job.gen_args) + shard + "\n");
-    scripts.emplace_back("gen-merge.sbatch",
-                         header(job, "gen-merge", "Writes dataset.json once every shard rendered.",
-                                false, 1, job.merge_time) +
-                             "exec " + lmk + " gen" + words(*job.gen_args) + " --merge\n");
-  }
-  scripts.emplace_back("eval.sbatch",
-                       header(job, "eval",
-                              "Evaluates shard K of " + n +
-                                  " of the pairs into the shared cache; a rerun computes "
-                                  "only the pairs it lacks.",
-                              true, job.cpus_per_task, job.time) +
-                           "exec " + lmk + " eval" + words(job.eval_args) + cache +
-                           " --threads \"${SLURM_CPUS_PER_TASK:-" +
-                           std::to_string(job.cpus_per_task) + "}\"" + shard + "\n");
-  // The table is written under a temporary name and renamed: table.txt is whole or absent.
-  const std::string table = shell_quote((job.dir / "table.txt").string());
-  const std::string partial = shell_quote((job.dir / "table.txt.partial").string());
-  scripts.emplace_back(
-      "merge.sbatch",
-      header(job, "merge",
-             "Prints the table from the cache once every shard has run, or names the pairs "
-             "missing.",
-             false, 1, job.merge_time) +
-          lmk + " eval" + words(job.eval_args) + cache + " --merge" + words(job.merge_args) +
-          " > " + partial + "\nmv " + partial + " " + table + "\ncat " + table + "\n");
+namespace {
 
-  // submit.sh: the chain, or a resubmission of some eval tasks and the merge after them.
+// submit.sh: the chain, or a resubmission of some eval tasks and the merge after them.
+std::string submit_script(const SlurmJob& job) {
+  const std::string n = std::to_string(job.tasks);
   const std::string dataset_json = shell_quote((job.dataset_dir / "dataset.json").string());
   std::string s =
       "#!/bin/bash\n"
@@ -185,7 +152,49 @@ std::vector<std::pair<std::string, std::string>> slurm_scripts(const SlurmJob& j
        "\" once job ${merge%%;*} has run; logs in \"" + shell_quote((job.dir / "logs").string()) +
        "\n"
        "echo \"$evaluation $merge\" > last-submission\n";
-  scripts.emplace_back("submit.sh", s);
+  return s;
+}
+
+}  // namespace
+
+std::vector<std::pair<std::string, std::string>> slurm_scripts(const SlurmJob& job) {
+  const std::string n = std::to_string(job.tasks);
+  const std::string shard = " --shard \"${SLURM_ARRAY_TASK_ID}/" + n + "\"";
+  const std::string lmk = shell_quote(job.lmk);
+  const std::string cache = " --cache " + shell_quote(job.cache.string());
+  std::vector<std::pair<std::string, std::string>> scripts;
+  if (job.gen_args) {
+    scripts.emplace_back("gen.sbatch",
+                         header(job, "gen", "Renders shard K of " + n + " of the dataset's scenes.",
+                                true, job.cpus_per_task, job.time) +
+                             "exec " + lmk + " gen" + words(*job.gen_args) + shard + "\n");
+    scripts.emplace_back("gen-merge.sbatch",
+                         header(job, "gen-merge", "Writes dataset.json once every shard rendered.",
+                                false, 1, job.merge_time) +
+                             "exec " + lmk + " gen" + words(*job.gen_args) + " --merge\n");
+  }
+  scripts.emplace_back("eval.sbatch",
+                       header(job, "eval",
+                              "Evaluates shard K of " + n +
+                                  " of the pairs into the shared cache; a rerun computes "
+                                  "only the pairs it lacks.",
+                              true, job.cpus_per_task, job.time) +
+                           "exec " + lmk + " eval" + words(job.eval_args) + cache +
+                           " --threads \"${SLURM_CPUS_PER_TASK:-" +
+                           std::to_string(job.cpus_per_task) + "}\"" + shard + "\n");
+  // The table is written under a temporary name and renamed: table.txt is whole or absent.
+  const std::string table = shell_quote((job.dir / "table.txt").string());
+  const std::string partial = shell_quote((job.dir / "table.txt.partial").string());
+  scripts.emplace_back(
+      "merge.sbatch",
+      header(job, "merge",
+             "Prints the table from the cache once every shard has run, or names the pairs "
+             "missing.",
+             false, 1, job.merge_time) +
+          lmk + " eval" + words(job.eval_args) + cache + " --merge" + words(job.merge_args) +
+          " > " + partial + "\nmv " + partial + " " + table + "\ncat " + table + "\n");
+
+  scripts.emplace_back("submit.sh", submit_script(job));
   return scripts;
 }
 

@@ -187,21 +187,31 @@ void check_declared_body(const std::string& path, Declarations d, std::size_t av
 
 }  // namespace
 
-CloudFile read_pcd(const std::string& path, const std::string& bytes, std::size_t max_points) {
-  pcl::PCDReader reader;
+namespace {
+
+// What a PCD file's header says: the fields (in `blob`, its data still empty), the sensor pose,
+// the format's version and encoding, and where the body starts.
+struct PcdHeader {
   pcl::PCLPointCloud2 blob;
   Eigen::Vector4f origin = Eigen::Vector4f::Zero();
   Eigen::Quaternionf orientation = Eigen::Quaternionf::Identity();
   int version = 0, data_type = 0;
+  std::size_t offset = 0;
+};
+
+// The header of `bytes`, checked against the body's size and `max_points` before PCL reads it.
+PcdHeader read_pcd_header(pcl::PCDReader& reader, const std::string& path, const std::string& bytes,
+                          std::size_t max_points) {
+  PcdHeader h;
   unsigned int pcl_data_idx = 0;  // unused: lmk finds the body itself, for its size checks
-  const std::size_t offset = body_offset(bytes);
-  if (offset == std::string::npos) {
+  h.offset = body_offset(bytes);
+  if (h.offset == std::string::npos) {
     throw Error(path + ": not a valid PCD file (its header has no DATA line)");
   }
   // PCL's header parser reads on after the DATA line while lines look like header lines: a fuzzed
   // ASCII body beginning "COLUMNS..." and "POINTS 8277990003" made it allocate a terabyte. It is
   // given the header alone.
-  const std::string header_text = bytes.substr(0, offset);
+  const std::string header_text = bytes.substr(0, h.offset);
   std::istringstream header(header_text);
   const Declarations header_says = read_declarations(path, header_text);
   const long long points = header_says.points >= 0 ? header_says.points
@@ -211,8 +221,9 @@ CloudFile read_pcd(const std::string& path, const std::string& bytes, std::size_
   if (points > static_cast<long long>(max_points)) {
     too_many_points(path, std::to_string(points), max_points);
   }
-  check_declared_body(path, header_says, bytes.size() - offset);
-  if (reader.readHeader(header, blob, origin, orientation, version, data_type, pcl_data_idx) < 0) {
+  check_declared_body(path, header_says, bytes.size() - h.offset);
+  if (reader.readHeader(header, h.blob, h.origin, h.orientation, h.version, h.data_type,
+                        pcl_data_idx) < 0) {
     const Declarations& c = header_says;
     if (c.width >= 0 && c.height >= 0 && c.points >= 0 && c.width * c.height != c.points) {
       throw Error(path + ": inconsistent header: WIDTH x HEIGHT = " + std::to_string(c.width) +
@@ -220,39 +231,41 @@ CloudFile read_pcd(const std::string& path, const std::string& bytes, std::size_
     }
     throw Error(path + ": not a valid PCD file (its header could not be parsed)");
   }
-  CloudFile file;
-  file.fields = field_names(blob);
-  require_xyz(blob, path);  // before decoding anything
-  const std::size_t declared = static_cast<std::size_t>(blob.width) * blob.height;
-  const std::size_t step = blob.point_step;
-  const std::size_t available = bytes.size() - std::min(offset, bytes.size());
-  const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
+  return h;
+}
 
+// The body decoded into h.blob, each encoding's size checked first; the encoding it had.
+Encoding read_pcd_body(pcl::PCDReader& reader, const std::string& path, const std::string& bytes,
+                       PcdHeader& h) {
+  const std::size_t declared = static_cast<std::size_t>(h.blob.width) * h.blob.height;
+  const std::size_t step = h.blob.point_step;
+  const std::size_t available = bytes.size() - std::min(h.offset, bytes.size());
+  const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
   int status = 0;
-  if (data_type == 0) {
-    file.encoding = Encoding::kAscii;
+  Encoding encoding = Encoding::kAscii;
+  if (h.data_type == 0) {
     std::size_t tokens_per_row = 0;
-    for (const pcl::PCLPointField& f : blob.fields) tokens_per_row += f.count;
+    for (const pcl::PCLPointField& f : h.blob.fields) tokens_per_row += f.count;
     // A count mismatch is reported first: a file cut mid-row is truncated, not malformed.
-    const AsciiBodyScan scan = scan_ascii_body(bytes, offset, tokens_per_row, declared);
+    const AsciiBodyScan scan = scan_ascii_body(bytes, h.offset, tokens_per_row, declared);
     if (scan.rows != declared) count_mismatch(path, declared, scan.rows);
     if (!scan.first_problem.empty()) throw Error(path + ": " + scan.first_problem);
     std::istringstream body(bytes);
-    body.seekg(static_cast<std::streamoff>(offset));
-    status = reader.readBodyASCII(body, blob, version);
-  } else if (data_type == 1) {
-    file.encoding = Encoding::kBinary;
+    body.seekg(static_cast<std::streamoff>(h.offset));
+    status = reader.readBodyASCII(body, h.blob, h.version);
+  } else if (h.data_type == 1) {
+    encoding = Encoding::kBinary;
     if (step == 0) throw Error(path + ": header declares fields of zero size");
     // Only a shortfall is an error: PCL's writer pads binary files to a page boundary, so
     // trailing bytes are normal.
     if (available < declared * step) count_mismatch(path, declared, available / step);
-    status = reader.readBodyBinary(data, blob, version, false, static_cast<unsigned>(offset));
+    status = reader.readBodyBinary(data, h.blob, h.version, false, static_cast<unsigned>(h.offset));
   } else {
-    file.encoding = Encoding::kBinaryCompressed;
+    encoding = Encoding::kBinaryCompressed;
     // The compressed block starts with its compressed and uncompressed sizes (uint32 each).
     std::uint32_t sizes[2] = {0, 0};
     if (available < sizeof(sizes)) count_mismatch(path, declared, 0);
-    std::memcpy(sizes, data + offset, sizeof(sizes));
+    std::memcpy(sizes, data + h.offset, sizeof(sizes));
     if (available - sizeof(sizes) < sizes[0]) {
       throw Error(path + ": truncated: the compressed block declares " + std::to_string(sizes[0]) +
                   " bytes but the file holds " + std::to_string(available - sizeof(sizes)));
@@ -260,14 +273,25 @@ CloudFile read_pcd(const std::string& path, const std::string& bytes, std::size_
     if (step == 0 || sizes[1] != declared * step) {
       count_mismatch(path, declared, step == 0 ? 0 : sizes[1] / step);
     }
-    status = declared == 0
-                 ? 0
-                 : reader.readBodyBinary(data, blob, version, true, static_cast<unsigned>(offset));
+    status = declared == 0 ? 0
+                           : reader.readBodyBinary(data, h.blob, h.version, true,
+                                                   static_cast<unsigned>(h.offset));
   }
   if (status < 0) throw Error(path + ": corrupt PCD data (PCL could not decode the body)");
+  return encoding;
+}
 
-  file.cloud = from_pcl(blob, path);
-  sensor_from_pcl(origin, orientation, file.cloud);
+}  // namespace
+
+CloudFile read_pcd(const std::string& path, const std::string& bytes, std::size_t max_points) {
+  pcl::PCDReader reader;
+  PcdHeader h = read_pcd_header(reader, path, bytes, max_points);
+  CloudFile file;
+  file.fields = field_names(h.blob);
+  require_xyz(h.blob, path);  // before decoding anything
+  file.encoding = read_pcd_body(reader, path, bytes, h);
+  file.cloud = from_pcl(h.blob, path);
+  sensor_from_pcl(h.origin, h.orientation, file.cloud);
   return file;
 }
 

@@ -189,22 +189,12 @@ std::uint32_t PointPairModel::key(int distance_bin, int a1, int a2, int a3) cons
          static_cast<std::uint32_t>(a3);
 }
 
-void PointPairModel::vote(const PointCloud& scene, const RadiusGrid& grid, Index reference,
-                          int max_poses, double min_fraction, std::vector<PoseVote>& out,
-                          const TiltLimit* tilt) const {
-  out.clear();
+void PointPairModel::accumulate_votes(const PointCloud& scene,
+                                      const std::vector<Neighbor>& neighbours, Index reference,
+                                      const Eigen::Matrix3f& Rs,
+                                      std::vector<std::uint32_t>& votes) const {
   const Eigen::Vector3f& sr = scene.points[reference];
   const Eigen::Vector3f& nr = scene.normals[reference];
-  if (!sr.allFinite() || !nr.allFinite() || points_.empty()) return;
-  const Eigen::Matrix3f Rs = rotation_to_x(nr);
-
-  // Per-thread scratch: a search votes for a thousand seeds, and fresh buffers for each would cost
-  // more in allocation than the voting itself.
-  // Votes are counts: integers add without a floating-point latency in the loop's chain.
-  thread_local std::vector<Neighbor> neighbours;
-  thread_local std::vector<std::uint32_t> votes;
-  grid.radius_unsorted(sr, static_cast<float>(diameter_), neighbours);
-  votes.assign(points_.size() * kAlphaBins, 0);
   const float step = static_cast<float>(distance_step_);
   for (const Neighbor& nb : neighbours) {
     if (nb.index == reference) continue;
@@ -236,18 +226,18 @@ void PointPairModel::vote(const PointCloud& scene, const RadiusGrid& grid, Index
       ++votes[entry.first_vote + std::min(static_cast<int>(alpha), kAlphaBins - 1)];
     }
   }
+}
 
-  // x_scene = Ts^-1 Rx(alpha) Tm x_model, with Tm x = Rm (x - m), Ts x = Rs (x - s_r).
-  const auto rotation = [&](std::uint32_t k) -> Eigen::Matrix3f {
-    return Rs.transpose() * alpha_rotations()[k % kAlphaBins] * to_x_axis_[k / kAlphaBins];
-  };
-  // The tilt is tested only for bins strong enough to enter the best list, a handful per seed.
-  const auto admissible = [&](std::uint32_t k) { return !tilt || tilt->admits(rotation(k)); };
+namespace {
 
-  // The best admissible bins, strongest first; ties go to the lower index, so the result is
-  // deterministic. The scan goes a block of bins at a time: once the list is full, a block whose
-  // strongest bin does not beat the list's weakest holds no candidate (the blocks' maxima are one
-  // vectorised pass; most blocks are skipped).
+// The best `max_poses` bins of `votes` that `admissible` admits, as (votes, bin), strongest first;
+// ties go to the lower index, so the result is deterministic. The scan goes a block of bins at a
+// time: once the list is full, a block whose strongest bin does not beat the list's weakest holds
+// no candidate (the blocks' maxima are one vectorised pass; most blocks are skipped). The
+// admissibility is tested only for bins strong enough to enter the list, a handful per seed.
+template <class Admissible>
+std::vector<std::pair<std::uint32_t, std::uint32_t>> best_bins(
+    const std::vector<std::uint32_t>& votes, int max_poses, const Admissible& admissible) {
   std::vector<std::pair<std::uint32_t, std::uint32_t>> best;
   best.reserve(static_cast<std::size_t>(max_poses) + 1);
   const auto consider = [&](std::uint32_t k) {
@@ -269,6 +259,35 @@ void PointPairModel::vote(const PointCloud& scene, const RadiusGrid& grid, Index
     if (static_cast<int>(best.size()) >= max_poses && strongest <= best.back().first) continue;
     for (std::uint32_t k = block; k < end; ++k) consider(k);
   }
+  return best;
+}
+
+}  // namespace
+
+void PointPairModel::vote(const PointCloud& scene, const RadiusGrid& grid, Index reference,
+                          int max_poses, double min_fraction, std::vector<PoseVote>& out,
+                          const TiltLimit* tilt) const {
+  out.clear();
+  const Eigen::Vector3f& sr = scene.points[reference];
+  const Eigen::Vector3f& nr = scene.normals[reference];
+  if (!sr.allFinite() || !nr.allFinite() || points_.empty()) return;
+  const Eigen::Matrix3f Rs = rotation_to_x(nr);
+
+  // Per-thread scratch: a search votes for a thousand seeds, and fresh buffers for each would cost
+  // more in allocation than the voting itself.
+  // Votes are counts: integers add without a floating-point latency in the loop's chain.
+  thread_local std::vector<Neighbor> neighbours;
+  thread_local std::vector<std::uint32_t> votes;
+  grid.radius_unsorted(sr, static_cast<float>(diameter_), neighbours);
+  votes.assign(points_.size() * kAlphaBins, 0);
+  accumulate_votes(scene, neighbours, reference, Rs, votes);
+
+  // x_scene = Ts^-1 Rx(alpha) Tm x_model, with Tm x = Rm (x - m), Ts x = Rs (x - s_r).
+  const auto rotation = [&](std::uint32_t k) -> Eigen::Matrix3f {
+    return Rs.transpose() * alpha_rotations()[k % kAlphaBins] * to_x_axis_[k / kAlphaBins];
+  };
+  const std::vector<std::pair<std::uint32_t, std::uint32_t>> best = best_bins(
+      votes, max_poses, [&](std::uint32_t k) { return !tilt || tilt->admits(rotation(k)); });
   if (best.empty()) return;
   const float floor_votes =
       static_cast<float>(min_fraction) * static_cast<float>(best.front().first);

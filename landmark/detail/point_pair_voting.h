@@ -75,6 +75,11 @@ class PointPairModel {
     float alpha_in_bins;
   };
   std::uint32_t key(int distance_bin, int a1, int a2, int a3) const;
+  /// Every neighbour pair of the reference point sr (normal nr, Rs taking it to +x) votes for its
+  /// matching model pairs' (model point, alpha) bins in `votes`.
+  void accumulate_votes(const PointCloud& scene, const std::vector<Neighbor>& neighbours,
+                        Index reference, const Eigen::Matrix3f& Rs,
+                        std::vector<std::uint32_t>& votes) const;
 
   std::vector<Eigen::Vector3f> points_;
   std::vector<Eigen::Matrix3f> to_x_axis_;  ///< per model point: rotation taking its normal to +x
