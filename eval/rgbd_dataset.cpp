@@ -51,7 +51,8 @@ double median_depth(const std::vector<UsedFrame>& frames) {
 // The whole-frame registration of frame a onto frame b, started from the camera poses
 // (T_b_a): point-to-plane ICP of a's 2 cm points against b's, correspondences within 5 cm, a Huber
 // loss at 1 cm. Its answer is what the pair's ground truth is checked against.
-IcpResult register_frames(const UsedFrame& a, const UsedFrame& b, const Eigen::Isometry3d& T_b_a) {
+RegistrationResult register_frames(const UsedFrame& a, const UsedFrame& b,
+                                   const Eigen::Isometry3d& T_b_a) {
   return register_frames(a.reduced, b.reduced, T_b_a);
 }
 
@@ -141,8 +142,9 @@ PointCloud fused_scene(const RgbdSequence& sequence, std::size_t index, const Us
     if (correction) correction->correction.apply(cloud);
     // The sequence's poses, refined by registering the whole frame onto the scene's: they are
     // tracking's, good to a centimetre, and a fused surface is only as sharp as its frames agree.
-    const IcpResult r = register_frames(reduce_for_registration(cloud), used.reduced,
-                                        T_camera_world * sequence.frames[i].T_world_camera);
+    const RegistrationResult r =
+        register_frames(reduce_for_registration(cloud), used.reduced,
+                        T_camera_world * sequence.frames[i].T_world_camera);
     frames.push_back({&cloud, r.T_target_source});
   }
   return fuse_frames(frames);
@@ -351,7 +353,8 @@ class LandmarkCutter {
 // checked against the registration of the two whole frames, `reg`; `check` receives the record
 // of the check. Left out (nullopt) when the poses and the registration disagree beyond the bound.
 std::optional<DatasetPair> checked_pair(const Captured& c, const UsedFrame& b,
-                                        const Eigen::Isometry3d& T_b_a, const IcpResult& reg,
+                                        const Eigen::Isometry3d& T_b_a,
+                                        const RegistrationResult& reg,
                                         const RgbdDatasetOptions& options, nlohmann::json& check) {
   const Eigen::Vector3d centre = c.landmark.box.center();
   DatasetPair pair;
@@ -390,7 +393,7 @@ DatasetScene scene_of_frame(const std::vector<UsedFrame>& frames, std::size_t b,
   scene.name = frames[b].frame->name;
   scene.file = "scenes/" + scene.name + ".pcd";
   scene.setting = setting;
-  std::map<std::size_t, IcpResult> registrations;  // by capture frame
+  std::map<std::size_t, RegistrationResult> registrations;  // by capture frame
   for (const Captured& c : captured) {
     const std::size_t gap = frames_apart(c, b, options.frame_stride);
     if (gap < options.min_gap || gap > options.max_gap) continue;

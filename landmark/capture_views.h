@@ -40,16 +40,17 @@ Landmark capture_views(const std::vector<CaptureView>& views, const Box& box,
 /// the views saw (on a tabletop seen from the front and the side, the coarse stage alone settled
 /// 0.7 degrees off the exact pose it started from; the fine one 0.1).
 struct ViewRegistrationSettings {
-  FrameRegistrationSettings coarse;                        ///< 2 cm voxels, 5 cm, Huber 1 cm
-  FrameRegistrationSettings fine{0.01, 0.015, 0.005, 60};  ///< 1 cm voxels, 1.5 cm, Huber 5 mm
+  FrameRegistrationSettings coarse;  ///< 2 cm voxels, 5 cm, Huber 1 cm
+  /// 1 cm voxels, 1.5 cm, Huber 5 mm.
+  FrameRegistrationSettings fine{0.01, {0.015, {RobustKernel::huber, 0.005}}, {60}};
   /// The least share of the view's fine points that must find the first view's surface within
-  /// fine.max_distance: less, and the two frames do not see the same place. A camera panning
-  /// across a kitchen at 2 m keeps 23% of its frame on the first after 25 degrees (7-Scenes
-  /// frames 150 and 195), with residuals no worse than at 3 degrees.
+  /// fine.correspondences.max_distance: less, and the two frames do not see the same place. A
+  /// camera panning across a kitchen at 2 m keeps 23% of its frame on the first after 25 degrees
+  /// (7-Scenes frames 150 and 195), with residuals no worse than at 3 degrees.
   double min_overlap = 0.2;
   /// The largest mean residual of those points, m: more, and the surfaces do not agree. Residuals
-  /// spread evenly up to fine.max_distance average 7.5 mm; registered kitchen frames at 2 m gave
-  /// 3.8-5.0 mm.
+  /// spread evenly up to fine.correspondences.max_distance average 7.5 mm; registered kitchen
+  /// frames at 2 m gave 3.8-5.0 mm.
   double max_residual = 0.007;
 };
 

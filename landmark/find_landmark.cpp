@@ -39,8 +39,8 @@ void select(std::vector<Match> candidates, const SelectionSettings& s, bool supp
         result.suppressed.push_back({candidates[i], RejectionReason::suppressed_by_a_better_match});
     }
   }
-  const auto reject = [&](Match& m, std::size_t& count, RejectionReason reason) {
-    ++count;
+  const auto reject = [&](Match& m, RejectionReason reason) {
+    stats.rejected.add(reason);
     result.rejected.push_back({std::move(m), reason});
   };
   for (std::size_t i : kept) {
@@ -49,16 +49,16 @@ void select(std::vector<Match> candidates, const SelectionSettings& s, bool supp
       // Over only by the colour term: the shape matched, the colour did not.
       const bool shape_fits = m.error - m.terms.colour_penalty < stats.threshold;
       if (m.terms.colour_penalty > 0.0 && shape_fits) {
-        reject(m, stats.rejected_colour, RejectionReason::colour_differs);
+        reject(m, RejectionReason::colour_differs);
       } else {
-        reject(m, stats.rejected_error, RejectionReason::error_above_threshold);
+        reject(m, RejectionReason::error_above_threshold);
       }
     } else if (detail::coverage_too_low(m.terms, s)) {
-      reject(m, stats.rejected_coverage, RejectionReason::coverage_too_low);
+      reject(m, RejectionReason::coverage_too_low);
     } else if (detail::empty_space_occupied(m.terms, s)) {
-      reject(m, stats.rejected_empty_space, RejectionReason::empty_space_occupied);
+      reject(m, RejectionReason::empty_space_occupied);
     } else if (undetermined(m)) {
-      reject(m, stats.rejected_undetermined, RejectionReason::too_little_shown);
+      reject(m, RejectionReason::too_little_shown);
     } else {
       result.matches.push_back(std::move(m));
     }
@@ -74,7 +74,7 @@ void select(std::vector<Match> candidates, const SelectionSettings& s, bool supp
     if (exclusive[i]) {
       accepted.push_back(std::move(result.matches[i]));
     } else {
-      reject(result.matches[i], stats.rejected_overlap, RejectionReason::inside_a_better_match);
+      reject(result.matches[i], RejectionReason::inside_a_better_match);
     }
   }
   result.matches = std::move(accepted);
@@ -105,7 +105,7 @@ struct Prepared {
   // the scene's points.
   SearchStats initial_stats(const SceneIndex& index) const {
     SearchStats s;
-    s.method = setting_name(settings.method);
+    s.method = settings.method;
     s.metric = settings.selection.metric;
     s.threshold = *settings.selection.threshold;
     s.scene_points = index.input_points();
@@ -140,7 +140,7 @@ struct Prepared {
     for (Match& m : result.matches) {
       m.confidence = detail::assess_match(input, m, rivals);
       if (!passes_confidence(m.confidence.probability, settings.selection.min_confidence)) {
-        ++result.stats.rejected_confidence;
+        result.stats.rejected.add(RejectionReason::confidence_too_low);
         result.rejected.push_back({std::move(m), RejectionReason::confidence_too_low});
       } else {
         kept.push_back(std::move(m));
@@ -263,17 +263,15 @@ std::string describe_rejections(const SearchStats& s) {
     return "no candidate pose: nothing in the scene has the landmark's shape";
   }
   std::string out;
-  const auto add = [&out](std::size_t n, RejectionReason why) {
-    if (n == 0) return;
+  for (const RejectionReason why :
+       {RejectionReason::error_above_threshold, RejectionReason::colour_differs,
+        RejectionReason::coverage_too_low, RejectionReason::empty_space_occupied,
+        RejectionReason::inside_a_better_match, RejectionReason::too_little_shown,
+        RejectionReason::confidence_too_low}) {
+    const std::size_t n = s.rejected[why];
+    if (n == 0) continue;
     out += (out.empty() ? "rejected: " : ", ") + std::to_string(n) + " " + to_string(why);
-  };
-  add(s.rejected_error, RejectionReason::error_above_threshold);
-  add(s.rejected_colour, RejectionReason::colour_differs);
-  add(s.rejected_coverage, RejectionReason::coverage_too_low);
-  add(s.rejected_empty_space, RejectionReason::empty_space_occupied);
-  add(s.rejected_overlap, RejectionReason::inside_a_better_match);
-  add(s.rejected_undetermined, RejectionReason::too_little_shown);
-  add(s.rejected_confidence, RejectionReason::confidence_too_low);
+  }
   return out;
 }
 

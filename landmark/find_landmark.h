@@ -8,6 +8,7 @@
 // published, on PCL's ICP as the authors ran it; it is the baseline every other method is
 // measured against.
 
+#include <array>
 #include <functional>
 #include <optional>
 #include <string>
@@ -46,39 +47,6 @@ struct Match {
   PointCloud aligned_points;  ///< only with execution.keep_aligned_points
 };
 
-struct SearchStats {
-  double seconds_preprocess = 0.0;  ///< crop, downsample, indexing, seeding
-  double seconds_search = 0.0;      ///< ICP and scoring of every seed
-  double seconds_select = 0.0;      ///< non-max suppression and threshold
-  double seconds_total = 0.0;
-  std::size_t scene_points = 0;       ///< finite points in the input scene
-  std::size_t scene_points_used = 0;  ///< after crop and downsampling
-  std::size_t seeds = 0;
-  std::size_t icp_iterations = 0;  ///< summed over seeds
-  std::size_t after_nms = 0;       ///< candidates left by non-max suppression
-  std::size_t poses = 0;           ///< fast: poses voted by the seeds
-  std::size_t clusters = 0;        ///< fast: pose clusters aligned coarsely
-  std::size_t refined = 0;         ///< fast: candidates refined fully
-  double seconds_vote = 0.0;       ///< fast, part of seconds_search: voting and clustering
-  double seconds_coarse = 0.0;     ///< fast, part of seconds_search: coarse alignment and pruning
-  double seconds_fine = 0.0;       ///< fast, part of seconds_search: refinement and scoring
-  double threshold = 0.0;          ///< the error threshold applied, in the metric's unit
-  /// Candidates left by non-max suppression and then rejected, by the first test they failed.
-  std::size_t rejected_error = 0;  ///< error at or above the threshold
-  /// Error at or above the threshold only because of the colour term (issue #35): the shape fits.
-  std::size_t rejected_colour = 0;
-  std::size_t rejected_coverage = 0;     ///< coverage below selection.min_coverage
-  std::size_t rejected_empty_space = 0;  ///< empty space occupied beyond the allowance
-  std::size_t rejected_overlap = 0;      ///< centre inside a better match's box
-  /// A landmark of several views whose visible part leaves the pose freer than the whole landmark
-  /// (detail/view_determinacy.h).
-  std::size_t rejected_undetermined = 0;
-  /// Calibrated confidence below selection.min_confidence (issue #45), or none to compare.
-  std::size_t rejected_confidence = 0;
-  std::string method;  ///< the search method run
-  std::string metric;  ///< the metric applied
-};
-
 /// Why a candidate was turned down (step 6), by the first test it failed, or removed by non-max
 /// suppression.
 enum class RejectionReason {
@@ -91,6 +59,49 @@ enum class RejectionReason {
   confidence_too_low,
   suppressed_by_a_better_match,  ///< within nms_radius of a better candidate
 };
+inline constexpr std::size_t kRejectionReasons = 8;
+/// The fast method's own statistics (zero for the reference method).
+struct FastStats {
+  std::size_t poses = 0;        ///< poses voted by the seeds
+  std::size_t clusters = 0;     ///< pose clusters aligned coarsely
+  std::size_t refined = 0;      ///< candidates refined fully
+  double seconds_vote = 0.0;    ///< part of seconds_search: voting and clustering
+  double seconds_coarse = 0.0;  ///< part of seconds_search: coarse alignment and pruning
+  double seconds_fine = 0.0;    ///< part of seconds_search: refinement and scoring
+};
+
+/// Candidates left by non-max suppression and then rejected, counted by the first test they failed
+/// (suppressed_by_a_better_match is not counted here: SearchStats::after_nms says how many
+/// suppression left).
+class RejectionCounts {
+ public:
+  std::size_t operator[](RejectionReason reason) const { return counts_[index(reason)]; }
+  void add(RejectionReason reason) { ++counts_[index(reason)]; }
+
+ private:
+  static std::size_t index(RejectionReason reason) { return static_cast<std::size_t>(reason); }
+  std::array<std::size_t, kRejectionReasons> counts_{};
+};
+
+struct SearchStats {
+  double seconds_preprocess = 0.0;  ///< crop, downsample, indexing, seeding
+  double seconds_search = 0.0;      ///< ICP and scoring of every seed
+  double seconds_select = 0.0;      ///< non-max suppression and threshold
+  double seconds_total = 0.0;
+  std::size_t scene_points = 0;       ///< finite points in the input scene
+  std::size_t scene_points_used = 0;  ///< after crop and downsampling
+  std::size_t seeds = 0;
+  std::size_t icp_iterations = 0;            ///< summed over seeds
+  std::size_t after_nms = 0;                 ///< candidates left by non-max suppression
+  FastStats fast;                            ///< the fast method's stages
+  RejectionCounts rejected;                  ///< of those left by non-max suppression
+  double threshold = 0.0;                    ///< the error threshold applied, in the metric's unit
+  SearchMethod method = SearchMethod::fast;  ///< the search method run
+  /// The metric applied, by its registry name: metrics are an open set (register_error_metric(),
+  /// plugins), so a name, not an enum.
+  std::string metric;
+};
+
 /// What JSON, logs and describe_rejections() say: "error above threshold", "colour differs",
 /// "coverage too low", "empty space occupied", "inside a better match", "shows too little to fix
 /// its pose", "confidence too low", "suppressed by a better match".

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "lmk/geometry/depth_noise.h"
+#include "lmk/registration/point_to_plane.h"
 
 namespace lmk {
 namespace {
@@ -46,16 +47,18 @@ std::vector<Slide> motion_extents(const PointCloud& points, double noise) {
   }
   const double L = std::sqrt(spread / static_cast<double>(n));
   if (!(L > 0.0)) return motions;
-  Eigen::Matrix<double, 6, 6> H = Eigen::Matrix<double, 6, 6>::Zero();
+  // The point-to-plane system of the landmark against itself (ICP's, point_to_plane.h), for a
+  // translation t and a rotation about the centroid scaled by L, so that both are in metres.
+  PointToPlaneSystem system;
   for (std::size_t i = 0; i < points.normals.size(); ++i) {
     if (!is_finite(points.points[i]) || !is_finite(points.normals[i])) continue;
     const Eigen::Vector3d p = points.points[i].cast<double>() - centroid;
     const Eigen::Vector3d normal = points.normals[i].cast<double>().normalized();
     Eigen::Matrix<double, 6, 1> J;
     J << normal, p.cross(normal) / L;
-    H += J * J.transpose();
+    system.add(J, 0.0, 1.0);
   }
-  H /= static_cast<double>(n);
+  const Eigen::Matrix<double, 6, 6> H = system.JtJ / static_cast<double>(n);
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eigen(H);
   // Ascending eigenvalues: the freest direction first.
   for (int k = 0; k < 6; ++k) {

@@ -129,8 +129,7 @@ Eigen::Isometry3d Tracker::camera_moved(const PointCloud& frame) {
   // loss scaled with them.
   FrameRegistrationSettings coarse;
   coarse.leaf = 0.04;
-  coarse.max_distance = 2.5 * coarse.leaf;
-  coarse.huber = 0.5 * coarse.leaf;
+  coarse.correspondences = {2.5 * coarse.leaf, {RobustKernel::huber, 0.5 * coarse.leaf}};
   PointCloud reduced = reduce_for_registration(frame, coarse);
   Eigen::Isometry3d moved = Eigen::Isometry3d::Identity();
   if (motion_->before && !motion_->before->empty() && !reduced.empty()) {
@@ -138,7 +137,7 @@ Eigen::Isometry3d Tracker::camera_moved(const PointCloud& frame) {
     // (a shaken camera's next motion is not its last); trusted when it explains half of the frame
     // before, as a frame of the same place a thirtieth of a second later does.
     for (const Eigen::Isometry3d& start : {motion_->last_motion, Eigen::Isometry3d::Identity()}) {
-      const IcpResult r = register_frames(*motion_->before, reduced, start, coarse);
+      const RegistrationResult r = register_frames(*motion_->before, reduced, start, coarse);
       if (2 * r.inliers >= motion_->before->size()) {
         moved = r.T_target_source;
         break;

@@ -11,15 +11,14 @@ PointCloud reduce_for_registration(const PointCloud& frame,
   return downsample_with_normals(frame, settings.leaf, frame.sensor_origin());
 }
 
-IcpResult register_frames(const PointCloud& source, const PointCloud& target,
-                          const Eigen::Isometry3d& T_target_source,
-                          const FrameRegistrationSettings& settings) {
+RegistrationResult register_frames(const PointCloud& source, const PointCloud& target,
+                                   const Eigen::Isometry3d& T_target_source,
+                                   const FrameRegistrationSettings& settings) {
   const KdTree tree(target);
   const KdTreeTarget icp_target(target, tree);
   IcpSettings icp_settings;
-  icp_settings.max_iterations = settings.max_iterations;
-  icp_settings.max_correspondence_distance = settings.max_distance;
-  icp_settings.loss = {RobustKernel::huber, settings.huber};
+  icp_settings.correspondences = settings.correspondences;
+  icp_settings.termination = settings.termination;
   return icp(source.points, icp_target, T_target_source, icp_settings);
 }
 

@@ -11,10 +11,10 @@
 namespace lmk {
 
 struct FrameRegistrationSettings {
-  double leaf = 0.02;          ///< voxels of the reduced frames, m
-  double max_distance = 0.05;  ///< correspondences farther apart are dropped, m
-  double huber = 0.01;         ///< robust loss scale, m
-  int max_iterations = 40;
+  double leaf = 0.02;  ///< voxels of the reduced frames, m
+  /// Within 5 cm, a Huber loss at 1 cm.
+  Correspondences correspondences{0.05, {RobustKernel::huber, 0.01}};
+  Termination termination{40};
 };
 
 /// A frame reduced for registration: its voxel centroids at settings.leaf with normals facing its
@@ -24,10 +24,10 @@ PointCloud reduce_for_registration(const PointCloud& frame,
 
 /// Point-to-plane ICP of `source`'s reduced points against `target`'s (both from
 /// reduce_for_registration()), from T_target_source: correspondences within max_distance, a Huber
-/// loss at `huber`. IcpResult::inliers over source.size() is the share of the source the target
-/// explains (the overlap); final_error the mean residual of those.
-IcpResult register_frames(const PointCloud& source, const PointCloud& target,
-                          const Eigen::Isometry3d& T_target_source,
-                          const FrameRegistrationSettings& settings = {});
+/// loss at `huber`. RegistrationResult::inliers over source.size() is the share of the source the
+/// target explains (the overlap); final_error the mean residual of those.
+RegistrationResult register_frames(const PointCloud& source, const PointCloud& target,
+                                   const Eigen::Isometry3d& T_target_source,
+                                   const FrameRegistrationSettings& settings = {});
 
 }  // namespace lmk

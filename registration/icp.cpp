@@ -6,6 +6,7 @@
 
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/pose.h"
+#include "lmk/registration/point_to_plane.h"
 
 namespace lmk {
 
@@ -59,11 +60,11 @@ void DistanceFieldTarget::nearest_all(const std::vector<Eigen::Vector3f>& querie
 namespace {
 
 void check(const IcpSettings& s, const IcpTarget& target) {
-  if (s.max_iterations < 1) throw Error("ICP: at least one iteration is needed");
-  if (!(s.max_correspondence_distance > 0.0)) {
+  if (s.termination.max_iterations < 1) throw Error("ICP: at least one iteration is needed");
+  if (!(s.correspondences.max_distance > 0.0)) {
     throw Error("ICP: the correspondence distance must be positive");
   }
-  if (!(s.loss.scale > 0.0 && std::isfinite(s.loss.scale))) {
+  if (!(s.correspondences.loss.scale > 0.0 && std::isfinite(s.correspondences.loss.scale))) {
     throw Error("ICP: the robust loss scale must be positive and finite");
   }
   if (s.mode == IcpMode::point_to_plane && !target.has_normals()) {
@@ -71,31 +72,22 @@ void check(const IcpSettings& s, const IcpTarget& target) {
   }
 }
 
-// One Gauss-Newton system for a small motion (omega, t) applied on the left:
-// q' = q + omega x q + t.
-struct NormalEquations {
-  Eigen::Matrix<double, 6, 6> JtJ = Eigen::Matrix<double, 6, 6>::Zero();
-  Eigen::Matrix<double, 6, 1> Jtr = Eigen::Matrix<double, 6, 1>::Zero();
+// One Gauss-Newton system for a small motion (omega, t) applied on the left,
+// q' = q + omega x q + t, with the residuals' absolute sum and count.
+struct NormalEquations : PointToPlaneSystem {
   double abs_residual_sum = 0.0;
   std::size_t count = 0;
-
-  // Inlined by force: it runs once per correspondence, and out of line its 6x6 sum spilled to the
-  // stack on every call.
-  [[gnu::always_inline]] inline void add(const Eigen::Matrix<double, 6, 1>& J, double r, double w) {
-    const Eigen::Matrix<double, 6, 1> wJ = w * J;
-    JtJ.noalias() += wJ * J.transpose();  // no 6x6 temporary: this runs once per correspondence
-    Jtr.noalias() += wJ * r;
-  }
 };
 
 }  // namespace
 
-IcpResult icp(const std::vector<Eigen::Vector3f>& source, const IcpTarget& target,
-              const Eigen::Isometry3d& T_target_source, const IcpSettings& settings) {
+RegistrationResult icp(const std::vector<Eigen::Vector3f>& source, const IcpTarget& target,
+                       const Eigen::Isometry3d& T_target_source, const IcpSettings& settings) {
   check(settings, target);
-  IcpResult result;
+  RegistrationResult result;
   result.T_target_source = T_target_source;
-  const double max_d2 = settings.max_correspondence_distance * settings.max_correspondence_distance;
+  const double max_d2 =
+      settings.correspondences.max_distance * settings.correspondences.max_distance;
   const bool to_plane = settings.mode == IcpMode::point_to_plane;
   std::vector<Eigen::Vector3f> finite_source;
   finite_source.reserve(source.size());
@@ -107,9 +99,10 @@ IcpResult icp(const std::vector<Eigen::Vector3f>& source, const IcpTarget& targe
   std::vector<char> found;
   queries.reserve(finite_source.size());
 
-  for (int iteration = 0; iteration <= settings.max_iterations; ++iteration) {
+  for (int iteration = 0; iteration <= settings.termination.max_iterations; ++iteration) {
     // The pass after the last step would only measure the error at the final pose.
-    const bool last_step_taken = iteration == settings.max_iterations || result.converged;
+    const bool last_step_taken =
+        iteration == settings.termination.max_iterations || result.converged;
     if (last_step_taken && !settings.measure_final) break;
     NormalEquations eq;
     const Eigen::Isometry3f T = result.T_target_source.cast<float>();
@@ -128,11 +121,11 @@ IcpResult icp(const std::vector<Eigen::Vector3f>& source, const IcpTarget& targe
         const double r = nd.dot(qd - pd);
         Eigen::Matrix<double, 6, 1> J;
         J << qd.cross(nd), nd;
-        eq.add(J, r, settings.loss.weight(r));
+        eq.add(J, r, settings.correspondences.loss.weight(r));
         eq.abs_residual_sum += std::abs(r);
       } else {
         const Eigen::Vector3d r = qd - pd;
-        const double w = settings.loss.weight(r.norm());
+        const double w = settings.correspondences.loss.weight(r.norm());
         // d(q + omega x q + t)/d(omega, t) = [-[q]x, I], row by row.
         for (int axis = 0; axis < 3; ++axis) {
           Eigen::Matrix<double, 6, 1> J = Eigen::Matrix<double, 6, 1>::Zero();
@@ -145,6 +138,7 @@ IcpResult icp(const std::vector<Eigen::Vector3f>& source, const IcpTarget& targe
       ++eq.count;
     }
     result.inliers = eq.count;
+    result.H = eq.JtJ;
     result.final_error = eq.count > 0 ? eq.abs_residual_sum / static_cast<double>(eq.count)
                                       : std::numeric_limits<double>::infinity();
     if (last_step_taken || eq.count < 6) break;
@@ -161,8 +155,8 @@ IcpResult icp(const std::vector<Eigen::Vector3f>& source, const IcpTarget& targe
     step.translation() = t;
     result.T_target_source = step * result.T_target_source;
     result.iterations = iteration + 1;
-    result.converged =
-        t.norm() < settings.translation_tolerance && omega.norm() < settings.rotation_tolerance;
+    result.converged = t.norm() < settings.termination.translation_tolerance &&
+                       omega.norm() < settings.termination.rotation_tolerance;
   }
   result.T_target_source = orthonormalized(result.T_target_source);  // steps compose with drift
   return result;

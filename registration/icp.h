@@ -15,36 +15,36 @@
 #include "lmk/geometry/kdtree.h"
 #include "lmk/geometry/point_cloud.h"
 #include "lmk/occupancy/distance_field.h"
+#include "lmk/registration/registration_result.h"
 #include "lmk/registration/robust_loss.h"
 
 namespace lmk {
 
 enum class IcpMode { point_to_point, point_to_plane };
 
-struct IcpSettings {
-  IcpMode mode = IcpMode::point_to_plane;
+/// Which pairs a registration aligns: each source point with its nearest target point within
+/// max_distance, weighted by the robust loss of its residual.
+struct Correspondences {
+  double max_distance = std::numeric_limits<double>::infinity();  ///< m
+  RobustLoss loss;                                                ///< none by default
+};
+
+/// When a registration stops: after max_iterations steps, or once a step moves the source by less
+/// than both tolerances (converged).
+struct Termination {
   int max_iterations = 30;
-  /// Correspondences farther apart than this are dropped, m.
-  double max_correspondence_distance = std::numeric_limits<double>::infinity();
-  RobustLoss loss;  ///< none by default
-  /// Converged when an iteration moves the source by less than these.
   double translation_tolerance = 1e-5;  ///< m
   double rotation_tolerance = 1e-5;     ///< rad
+};
+
+struct IcpSettings {
+  IcpMode mode = IcpMode::point_to_plane;
+  Correspondences correspondences;
+  Termination termination;
   /// After the last step, one more pass over the correspondences measures `inliers` and
   /// `final_error` at the returned pose. A caller that reads neither (the fast search's alignments,
   /// which score with their own metric) saves that pass, a tenth to a half of a short run.
   bool measure_final = true;
-};
-
-struct IcpResult {
-  Eigen::Isometry3d T_target_source = Eigen::Isometry3d::Identity();
-  int iterations = 0;
-  bool converged = false;
-  /// Correspondences used in the last pass: at the returned pose, or with measure_final off, at
-  /// the pose before the last step.
-  std::size_t inliers = 0;
-  /// Mean absolute residual of those correspondences, m (+inf with none).
-  double final_error = std::numeric_limits<double>::infinity();
 };
 
 /// What ICP aligns to: the nearest target point of a query, with its normal.
@@ -100,7 +100,7 @@ class DistanceFieldTarget : public IcpTarget {
 /// Aligns `source` (points, and for point-to-plane nothing more: the target's normals are used)
 /// to `target`, starting from `T_target_source`. Throws lmk::Error for bad settings, or for
 /// point-to-plane against a target without normals.
-IcpResult icp(const std::vector<Eigen::Vector3f>& source, const IcpTarget& target,
-              const Eigen::Isometry3d& T_target_source, const IcpSettings& settings = {});
+RegistrationResult icp(const std::vector<Eigen::Vector3f>& source, const IcpTarget& target,
+                       const Eigen::Isometry3d& T_target_source, const IcpSettings& settings = {});
 
 }  // namespace lmk

@@ -142,10 +142,11 @@ ceres::LossFunction* make_loss(const RobustLoss& loss) {
 
 }  // namespace
 
-RefineResult refine_pose(const std::vector<Eigen::Vector3f>& source,
-                         const DistanceField& target_field,
-                         const Eigen::Isometry3d& T_target_source, const RefineSettings& settings,
-                         const std::vector<Eigen::Vector3f>& empty_space) {
+RegistrationResult refine_pose(const std::vector<Eigen::Vector3f>& source,
+                               const DistanceField& target_field,
+                               const Eigen::Isometry3d& T_target_source,
+                               const RefineSettings& settings,
+                               const std::vector<Eigen::Vector3f>& empty_space) {
   if (settings.max_iterations < 1) throw Error("refine: at least one iteration is needed");
   if (!(settings.loss.scale > 0.0 && std::isfinite(settings.loss.scale))) {
     throw Error("refine: the robust loss scale must be positive and finite");
@@ -153,7 +154,7 @@ RefineResult refine_pose(const std::vector<Eigen::Vector3f>& source,
   if (!(settings.empty_space_weight >= 0.0) || !(settings.empty_space_margin > 0.0)) {
     throw Error("refine: the empty-space weight must be >= 0 and its margin positive");
   }
-  RefineResult result;
+  RegistrationResult result;
   result.T_target_source = T_target_source;
 
   std::vector<Eigen::Vector3d> moved;
@@ -197,6 +198,7 @@ RefineResult refine_pose(const std::vector<Eigen::Vector3f>& source,
   ceres::Solve(options, &problem, &summary);
   result.initial_cost = summary.initial_cost;
   result.iterations = static_cast<int>(summary.iterations.size());
+  result.converged = summary.termination_type == ceres::CONVERGENCE;
   if (!(summary.final_cost <= summary.initial_cost) || !summary.IsSolutionUsable()) {
     result.final_cost = summary.initial_cost;
     return result;

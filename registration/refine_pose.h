@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "lmk/occupancy/distance_field.h"
+#include "lmk/registration/registration_result.h"
 #include "lmk/registration/robust_loss.h"
 
 namespace lmk {
@@ -23,20 +24,13 @@ struct RefineSettings {
   double empty_space_margin = 0.01;  ///< m
 };
 
-struct RefineResult {
-  Eigen::Isometry3d T_target_source = Eigen::Isometry3d::Identity();
-  double initial_cost = 0.0;  ///< Ceres cost (robustified) at the starting pose
-  double final_cost = 0.0;    ///< at the returned pose; never above initial_cost
-  int iterations = 0;
-};
-
 /// Refines `T_target_source` so that `source` lies on the surface of `target_field`. The
 /// result never has a higher cost than the start: if Ceres fails to improve, the start is
 /// returned. Thread-safe: runs may share one field. Throws lmk::Error for bad settings.
-RefineResult refine_pose(const std::vector<Eigen::Vector3f>& source,
-                         const DistanceField& target_field,
-                         const Eigen::Isometry3d& T_target_source,
-                         const RefineSettings& settings = {},
-                         const std::vector<Eigen::Vector3f>& empty_space = {});
+RegistrationResult refine_pose(const std::vector<Eigen::Vector3f>& source,
+                               const DistanceField& target_field,
+                               const Eigen::Isometry3d& T_target_source,
+                               const RefineSettings& settings = {},
+                               const std::vector<Eigen::Vector3f>& empty_space = {});
 
 }  // namespace lmk

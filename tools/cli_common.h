@@ -100,6 +100,7 @@ void add_track_options(CLI::App* sub, TrackSettings& settings);
 
 Subcommand add_bench(CLI::App& app);
 Subcommand add_info(CLI::App& app);
+Subcommand add_metrics(CLI::App& app);
 Subcommand add_convert(CLI::App& app);
 Subcommand add_gen(CLI::App& app);
 Subcommand add_calibrate_depth(CLI::App& app);

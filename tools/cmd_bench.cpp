@@ -159,9 +159,9 @@ FastRuns run_fast(const Workload& w, const BenchOptions& o, const LandmarkIndex&
     runs.total.push_back(r.stats.seconds_total);
     runs.preprocess.push_back(r.stats.seconds_preprocess);
     runs.search.push_back(r.stats.seconds_total - r.stats.seconds_preprocess);
-    runs.vote.push_back(r.stats.seconds_vote);
-    runs.coarse.push_back(r.stats.seconds_coarse);
-    runs.fine.push_back(r.stats.seconds_fine);
+    runs.vote.push_back(r.stats.fast.seconds_vote);
+    runs.coarse.push_back(r.stats.fast.seconds_coarse);
+    runs.fine.push_back(r.stats.fast.seconds_fine);
     runs.matches = r.matches.size();
     runs.last = r.stats;
   }
@@ -173,8 +173,8 @@ FastRuns run_fast(const Workload& w, const BenchOptions& o, const LandmarkIndex&
               median_of(runs.coarse), median_of(runs.fine));
   std::printf(
       "  work              %zu scene points, %zu seeds, %zu poses, %zu clusters, %zu refined\n",
-      runs.last.scene_points_used, runs.last.seeds, runs.last.poses, runs.last.clusters,
-      runs.last.refined);
+      runs.last.scene_points_used, runs.last.seeds, runs.last.fast.poses, runs.last.fast.clusters,
+      runs.last.fast.refined);
   std::printf("  matches           %zu\n", runs.matches);
   std::printf("  peak memory       %.0f MiB (process, after the fast searches)\n", runs.peak_mib);
   return runs;

@@ -55,9 +55,9 @@ void print_table(const FindResult& r, const std::string& name) {
   std::printf(
       "%zu match%s for '%s' (%s, metric %s, threshold %s, %zu seeds, %zu scene points,"
       " %.2f s%s)\n",
-      r.matches.size(), r.matches.size() == 1 ? "" : "es", name.c_str(), s.method.c_str(),
-      s.metric.c_str(), format_error(s.threshold, s.metric).c_str(), s.seeds, s.scene_points_used,
-      s.seconds_total, why.c_str());
+      r.matches.size(), r.matches.size() == 1 ? "" : "es", name.c_str(),
+      setting_name(s.method).c_str(), s.metric.c_str(), format_error(s.threshold, s.metric).c_str(),
+      s.seeds, s.scene_points_used, s.seconds_total, why.c_str());
   if (r.matches.empty()) return;
   const bool grid_terms = !std::isnan(r.matches.front().terms.coverage);
   const ErrorDisplay& shown = find_error_metric(s.metric).display;

@@ -162,13 +162,12 @@ struct CoarseAlignment {
 CoarseAlignment coarse_align(const Stages& st, const std::vector<Candidate>& clusters) {
   const SearchInput& in = st.in;
   IcpSettings icp_settings;
-  icp_settings.max_iterations = 8;
-  icp_settings.max_correspondence_distance = st.index.field().band();
-  icp_settings.loss = {RobustKernel::huber, st.leaf};
+  icp_settings.termination.max_iterations = 8;
+  icp_settings.correspondences = {st.index.field().band(), {RobustKernel::huber, st.leaf}};
   // A coarse pose only has to reach the fine alignment's basin: a step under a tenth of a leaf
   // and half a degree ends it (the fine alignment keeps its own, tight tolerances).
-  icp_settings.translation_tolerance = 0.1 * st.leaf;
-  icp_settings.rotation_tolerance = 0.01;
+  icp_settings.termination.translation_tolerance = 0.1 * st.leaf;
+  icp_settings.termination.rotation_tolerance = 0.01;
   icp_settings.measure_final = false;  // the metric's coarse score ranks the candidates
   // A few hundred points fix a coarse pose as well as all of them, and score it as well: the
   // candidates are many, and the score only ranks them for the fine stage, which scores the
@@ -189,7 +188,8 @@ CoarseAlignment coarse_align(const Stages& st, const std::vector<Candidate>& clu
   tbb::parallel_for(std::size_t{0}, clusters.size(), [&](std::size_t c) {
     if (st.s.execution.stop) st.s.execution.stop();  // each item: a few ms at most
     const DistanceFieldTarget target(st.index.field(), &st.coarse.normals);
-    const IcpResult r = icp(coarse_model.points, target, clusters[c].T_scene_capture, icp_settings);
+    const RegistrationResult r =
+        icp(coarse_model.points, target, clusters[c].T_scene_capture, icp_settings);
     out.aligned[c] = r.T_target_source;
     out.iterations[c] = r.iterations;
     out.quick[c] = quick ? quick(out.aligned[c].cast<float>()) : 0.0;
@@ -231,15 +231,15 @@ std::vector<std::size_t> prune(const Stages& st, const CoarseAlignment& coarse) 
 // the metric.
 struct FineAlignment {
   explicit FineAlignment(const Stages& st) : points(thin(st.landmark.points.points, 1000)) {
-    icp_settings.max_iterations = 10;  // otherwise the default, tight convergence tolerances
-    icp_settings.max_correspondence_distance = 0.5 * st.index.field().band();
-    icp_settings.loss = {RobustKernel::huber, 0.5 * st.leaf};
+    icp_settings.termination.max_iterations = 10;  // the default, tight tolerances otherwise
+    icp_settings.correspondences = {0.5 * st.index.field().band(),
+                                    {RobustKernel::huber, 0.5 * st.leaf}};
     icp_settings.measure_final = false;  // the metric scores the result
   }
 
   Match align(const Stages& st, const Eigen::Isometry3d& start) const {
     const DistanceFieldTarget target(st.index.field(), &st.coarse.normals);
-    const IcpResult r = icp(points, target, start, icp_settings);
+    const RegistrationResult r = icp(points, target, start, icp_settings);
     Match m;
     m.T_scene_capture = r.T_target_source;
     m.terms = st.in.metric.evaluate(st.in.scene_view, st.in.landmark_view, m.T_scene_capture);
@@ -338,24 +338,24 @@ CandidateSet fast_candidates(const SearchInput& in, SearchStats& stats) {
   const Stages st(in);
   Stopwatch stage;
   std::vector<Candidate> poses = vote(st);
-  stats.poses = poses.size();
+  stats.fast.poses = poses.size();
   // Step 2.
   const std::vector<Candidate> clusters =
       cluster(std::move(poses), std::max(2.0 * st.leaf, 0.1 * in.prepared.diameter()), 0.35,
               st.s.fast.max_candidates);
-  stats.clusters = clusters.size();
-  stats.seconds_vote = stage.seconds();
+  stats.fast.clusters = clusters.size();
+  stats.fast.seconds_vote = stage.seconds();
 
   stage.restart();
   const CoarseAlignment coarse = coarse_align(st, clusters);
   const std::vector<std::size_t> survivors = prune(st, coarse);
-  stats.refined = survivors.size();
-  stats.seconds_coarse = stage.seconds();
+  stats.fast.refined = survivors.size();
+  stats.fast.seconds_coarse = stage.seconds();
 
   stage.restart();
   CandidateSet out;
   out.kept = polish(st, fine_align(st, clusters, coarse, survivors), out.suppressed);
-  stats.seconds_fine = stage.seconds();
+  stats.fast.seconds_fine = stage.seconds();
   return out;
 }
 

@@ -67,6 +67,29 @@ TEST_F(Cli, HelpAndVersion) {
   EXPECT_NE(version.out.find("OpenVDB"), std::string::npos);
 }
 
+// lmk metrics: the registry as a table and as JSON, each metric with its own threshold and prune
+// bound, in its own unit; an unknown name refused in one line.
+TEST_F(Cli, MetricsListsTheRegistryWithWhatEachSaysOfItself) {
+  const CommandResult table = lmk("metrics");
+  ASSERT_EQ(table.exit_code, 0) << table.err;
+  for (const char* line : {"visibility   threshold 6.0 mm", "prunes at 15.0 mm",
+                           "sensor       threshold 1.00 sigma", "prunes at 2.00 sigma"}) {
+    EXPECT_NE(table.out.find(line), std::string::npos) << line << "\n" << table.out;
+  }
+  const CommandResult json = lmk("metrics sensor paper --json");
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  const nlohmann::json j = nlohmann::json::parse(json.out);
+  ASSERT_EQ(j.size(), 2u);
+  EXPECT_EQ(j[0].at("name"), "sensor");
+  EXPECT_EQ(j[0].at("error_unit"), "sd");
+  EXPECT_EQ(j[0].at("noise_normalised"), true);
+  EXPECT_DOUBLE_EQ(j[0].at("prune_bound").get<double>(), 2.0);
+  EXPECT_EQ(j[1].at("name"), "paper");
+  EXPECT_EQ(j[1].at("error_unit"), "m");
+  EXPECT_DOUBLE_EQ(j[1].at("prune_bound").get<double>(), 2.5 * 0.0055);
+  expect_bad_input("metrics nope", "unknown error metric 'nope'");
+}
+
 TEST_F(Cli, UsageErrors) {
   expect_bad_input("", "A subcommand is required");
   expect_bad_input("frobnicate", "frobnicate");

@@ -211,7 +211,7 @@ TEST(BenchmarkDataset, TheColourPresetPaintsOneShapeInSeveralColours) {
               0);
     EXPECT_EQ(by_colour.matches.size(), truth.size());
     for (const Match& m : by_colour.matches) EXPECT_TRUE(correct(m));
-    EXPECT_GT(by_colour.stats.rejected_colour, 0u);
+    EXPECT_GT(by_colour.stats.rejected[RejectionReason::colour_differs], 0u);
   }
 }
 

@@ -113,7 +113,7 @@ TEST(ColourTerm, TurnsDownTheLookAlikeOfTheWrongColour) {
     EXPECT_LT(m.terms.colour_difference, 0.05);
     EXPECT_EQ(m.terms.colour_penalty, 0.0);
   }
-  EXPECT_EQ(coloured.stats.rejected_colour, 1u);
+  EXPECT_EQ(coloured.stats.rejected[RejectionReason::colour_differs], 1u);
   const auto blue = std::find_if(coloured.rejected.begin(), coloured.rejected.end(),
                                  [](const Rejection& r) { return copy_of(r.candidate) == 1; });
   ASSERT_NE(blue, coloured.rejected.end());

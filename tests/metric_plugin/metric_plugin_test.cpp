@@ -79,8 +79,8 @@ TEST(MetricPlugin, ASearchFindsTheLandmarkWithItAndPrunesByItsOwnBound) {
   EXPECT_EQ(copies_found(r), kCopies.size());
   for (const Match& m : r.matches) EXPECT_LT(m.error, 0.004);
   // Its coarse score pruned some of the coarse candidates (the look-alikes), not all.
-  EXPECT_GT(r.stats.refined, 0u);
-  EXPECT_LT(r.stats.refined, r.stats.clusters);
+  EXPECT_GT(r.stats.fast.refined, 0u);
+  EXPECT_LT(r.stats.fast.refined, r.stats.fast.clusters);
 }
 
 // A metric whose coarse score no candidate can pass prunes them all; one without a coarse score
@@ -99,17 +99,17 @@ TEST(MetricPlugin, AMetricsPruningIsItsOwn) {
 
   const LScene l;
   const FindResult none = find_with(l, "nearest_hopeless");
-  EXPECT_GT(none.stats.clusters, 0u);
-  EXPECT_EQ(none.stats.refined, 0u);
+  EXPECT_GT(none.stats.fast.clusters, 0u);
+  EXPECT_EQ(none.stats.fast.refined, 0u);
   EXPECT_TRUE(none.matches.empty());
 
   FindSettings s;
   const FindResult all = find_with(l, "nearest_unranked");
-  EXPECT_EQ(all.stats.refined, std::min(all.stats.clusters, s.fast.max_refined));
+  EXPECT_EQ(all.stats.fast.refined, std::min(all.stats.fast.clusters, s.fast.max_refined));
   // A scale of the bound is the user's: a thousandth of it prunes every candidate of `nearest`.
   s.selection.metric = "nearest";
   s.fast.prune_scale = 1e-3;
-  EXPECT_EQ(find_landmark(l.scene, l.landmark, s).stats.refined, 0u);
+  EXPECT_EQ(find_landmark(l.scene, l.landmark, s).stats.fast.refined, 0u);
 }
 
 TEST(MetricPlugin, RegistrationRefusesWhatASearchCouldNotUse) {
@@ -169,6 +169,13 @@ TEST(MetricPlugin, TheCommandLineFindsEvaluatesAndAblatesWithIt) {
                " --pairs in-context --vary metric=visibility,nearest --out " + quoted("ablation"));
   ASSERT_EQ(ablate.exit_code, 0) << ablate.err;
   EXPECT_NE(ablate.out.find("nearest"), std::string::npos) << ablate.out;
+
+  // lmk metrics lists it after the built-in ones, with the bound it declared (3 x 4 mm).
+  const test::CommandResult metrics = lmk(dir, "metrics --json");
+  ASSERT_EQ(metrics.exit_code, 0) << metrics.err;
+  const nlohmann::json listed = nlohmann::json::parse(metrics.out);
+  EXPECT_EQ(listed.back().at("name"), "nearest");
+  EXPECT_DOUBLE_EQ(listed.back().at("prune_bound").get<double>(), 0.012);
 
   // Without the plugin, the name is refused in one line.
   const test::CommandResult without =

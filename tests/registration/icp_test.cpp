@@ -21,7 +21,8 @@ std::vector<Eigen::Vector3f> moved(const PointCloud& target, const Eigen::Isomet
   return out;
 }
 
-void expect_recovered(const IcpResult& r, const Eigen::Isometry3d& truth, double tolerance) {
+void expect_recovered(const RegistrationResult& r, const Eigen::Isometry3d& truth,
+                      double tolerance) {
   EXPECT_LT((r.T_target_source.translation() - truth.translation()).norm(), tolerance);
   EXPECT_LT(rotation_angle_between(r.T_target_source.linear(), truth.linear()), 10 * tolerance);
   EXPECT_LT(r.final_error, 1e-3);
@@ -36,13 +37,14 @@ TEST_P(IcpModes, RecoversAKnownMotionForwardAndInverse) {
   const KdTreeTarget kd(target, tree);
   IcpSettings s;
   s.mode = GetParam();
-  s.max_iterations = 100;
+  s.termination.max_iterations = 100;
   // Point-to-point has the smaller basin of convergence on planar faces: it starts at half the
   // motion.
   const Eigen::Isometry3d T = test::small_motion(s.mode == IcpMode::point_to_point ? 0.5 : 1.0);
-  const IcpResult forward = icp(moved(target, T), kd, Eigen::Isometry3d::Identity(), s);
+  const RegistrationResult forward = icp(moved(target, T), kd, Eigen::Isometry3d::Identity(), s);
   expect_recovered(forward, T.inverse(), 1e-3);
-  const IcpResult inverse = icp(moved(target, T.inverse()), kd, Eigen::Isometry3d::Identity(), s);
+  const RegistrationResult inverse =
+      icp(moved(target, T.inverse()), kd, Eigen::Isometry3d::Identity(), s);
   expect_recovered(inverse, T, 1e-3);
   EXPECT_TRUE(forward.converged);
 }
@@ -55,9 +57,9 @@ TEST(Icp, DistanceFieldTargetRecoversAKnownMotion) {
   const DistanceField field(target.points, {0.005, 0.05});
   const DistanceFieldTarget grid(field, &target.normals);
   IcpSettings s;
-  s.max_iterations = 60;
+  s.termination.max_iterations = 60;
   const Eigen::Isometry3d T = test::small_motion();
-  const IcpResult r = icp(moved(target, T), grid, Eigen::Isometry3d::Identity(), s);
+  const RegistrationResult r = icp(moved(target, T), grid, Eigen::Isometry3d::Identity(), s);
   EXPECT_LT((r.T_target_source.translation() - T.inverse().translation()).norm(), 2e-3);
   EXPECT_LT(rotation_angle_between(r.T_target_source.linear(), T.inverse().linear()), 0.02);
 }
@@ -109,11 +111,11 @@ TEST(Icp, SkippingTheMeasuringPassChangesNothingButTheMeasurement) {
   const std::vector<Eigen::Vector3f> source = moved(target, test::small_motion());
   for (const int cap : {3, 60}) {
     IcpSettings measured;
-    measured.max_iterations = cap;
+    measured.termination.max_iterations = cap;
     IcpSettings unmeasured = measured;
     unmeasured.measure_final = false;
-    const IcpResult a = icp(source, grid, Eigen::Isometry3d::Identity(), measured);
-    const IcpResult b = icp(source, grid, Eigen::Isometry3d::Identity(), unmeasured);
+    const RegistrationResult a = icp(source, grid, Eigen::Isometry3d::Identity(), measured);
+    const RegistrationResult b = icp(source, grid, Eigen::Isometry3d::Identity(), unmeasured);
     EXPECT_TRUE(a.T_target_source.isApprox(b.T_target_source, 0.0)) << "cap " << cap;
     EXPECT_EQ(a.iterations, b.iterations);
     EXPECT_EQ(a.converged, b.converged);
@@ -137,9 +139,9 @@ TEST(Icp, ARobustKernelResistsThirtyPercentOutliers) {
         0.1f;
   }
   IcpSettings robust;
-  robust.max_iterations = 80;
-  robust.loss = {RobustKernel::tukey, 0.01};
-  const IcpResult r = icp(source, kd, Eigen::Isometry3d::Identity(), robust);
+  robust.termination.max_iterations = 80;
+  robust.correspondences.loss = {RobustKernel::tukey, 0.01};
+  const RegistrationResult r = icp(source, kd, Eigen::Isometry3d::Identity(), robust);
   EXPECT_LT((r.T_target_source.translation() - T.inverse().translation()).norm(), 2e-3);
   EXPECT_LT(rotation_angle_between(r.T_target_source.linear(), T.inverse().linear()), 0.01);
 }
@@ -153,7 +155,7 @@ TEST(Icp, BadSettingsAreErrors) {
   EXPECT_THROW(icp(bare.points, no_normals, Eigen::Isometry3d::Identity()), Error);  // plane
   IcpSettings s;
   s.mode = IcpMode::point_to_point;
-  s.max_iterations = 0;
+  s.termination.max_iterations = 0;
   EXPECT_THROW(icp(bare.points, no_normals, Eigen::Isometry3d::Identity(), s), Error);
   EXPECT_THROW(robust_kernel_from_string("magic"), Error);
   EXPECT_EQ(robust_kernel_from_string("cauchy"), RobustKernel::cauchy);

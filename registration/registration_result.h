@@ -1,0 +1,31 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+// What a rigid registration returns: ICP (icp.h) and the Ceres refinement (refine_pose.h) alike.
+
+#include <Eigen/Geometry>
+#include <cstddef>
+#include <limits>
+
+namespace lmk {
+
+struct RegistrationResult {
+  Eigen::Isometry3d T_target_source = Eigen::Isometry3d::Identity();
+  int iterations = 0;
+  /// ICP: the last step moved the source by less than the tolerances; refinement: Ceres reports
+  /// convergence.
+  bool converged = false;
+  /// ICP: correspondences of the last pass (at the returned pose, or with measure_final off, at
+  /// the pose before the last step), and their mean absolute residual, m (+inf with none).
+  std::size_t inliers = 0;
+  double final_error = std::numeric_limits<double>::infinity();
+  /// Refinement: the robust cost at the start and at the returned pose (never above the start's).
+  double initial_cost = 0.0;
+  double final_cost = 0.0;
+  /// ICP: the Gauss-Newton matrix J^T W J of that last pass for a small motion (omega, t)
+  /// (PointToPlaneSystem, point_to_plane.h). Its small eigenvalues are the motions the
+  /// correspondences leave free; slide_check.h builds the same matrix from a landmark's own
+  /// points. Zero for the refinement.
+  Eigen::Matrix<double, 6, 6> H = Eigen::Matrix<double, 6, 6>::Zero();
+};
+
+}  // namespace lmk
