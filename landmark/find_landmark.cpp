@@ -236,6 +236,11 @@ FindResult search(const SceneIndex& index, const LandmarkIndex& prepared,
 
 }  // namespace
 
+// RejectionCounts holds one count per reason: a reason added after the last must raise it.
+static_assert(static_cast<std::size_t>(RejectionReason::suppressed_by_a_better_match) + 1 ==
+                  kRejectionReasons,
+              "kRejectionReasons must count every RejectionReason");
+
 const char* to_string(RejectionReason reason) {
   switch (reason) {
     case RejectionReason::error_above_threshold:

@@ -29,8 +29,9 @@ tool_packages=(
 # Everything else: tests, benchmarks, the format check, the sanitizer and fuzz builds, ROS, Python
 # and Slurm.
 more_packages=(
-  # the format check (scripts/check-format.sh)
-  clang-format
+  # the format check (scripts/check-format.sh), and the function-length check's extents
+  # (tests/style/check_function_length.py)
+  clang-format universal-ctags
   # tests and benchmarks
   googletest libgtest-dev libgmock-dev libbenchmark-dev
   # the evaluation report's rendering test and lmk serve's browser test (headless Chromium driven

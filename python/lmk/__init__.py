@@ -17,6 +17,7 @@ from ._lmk import (  # noqa: F401
     ablate,
     __version__,
     capture,
+    error_metrics,
     eval,
     find,
     find_setting_keys,
