@@ -12,6 +12,7 @@
 #include "lmk/geometry/error.h"
 #include "lmk/landmark/error_metrics.h"
 #include "lmk/landmark/find_landmark.h"
+#include "lmk/landmark/internal/error_metric_json.h"
 #include "lmk/landmark/internal/find_result_json.h"
 
 namespace lmk::python {
@@ -127,18 +128,7 @@ py::dict find_from_python(const PointCloud& scene, const Landmark& landmark, boo
 py::list error_metrics_to_python() {
   py::list out;
   for (const ErrorMetric& metric : error_metrics()) {
-    py::dict d;
-    d["name"] = metric.name;
-    d["description"] = metric.description;
-    d["default_threshold"] = metric.default_threshold;
-    d["error_unit"] = metric.display.json_unit;
-    d["shown_unit"] = metric.display.label;
-    d["shown_scale"] = metric.display.scale;
-    d["coarse_score"] = static_cast<bool>(metric.coarse_score);
-    d["prune_bound"] = metric.prune_bound();
-    d["noise_normalised"] = metric.noise_normalised;
-    d["hides_occluded"] = metric.hides_occluded;
-    out.append(d);
+    out.append(json_to_python(detail::error_metric_to_json(metric)));
   }
   return out;
 }
@@ -172,8 +162,9 @@ void bind_search(py::module_& m) {
         "Every error metric lmk.find's `metric` keyword takes, built in or from a plugin that "
         "$LMK_METRIC_PLUGINS names: its name, description, default threshold and 'error_unit' ('m' "
         "or 'sd'), how errors are shown ('shown_unit', 'shown_scale'), whether the fast search has "
-        "a coarse score of it and the bound it prunes at, and whether its residuals are in units "
-        "of the depth noise and it hides occluded points.");
+        "a coarse score of it and the bound it prunes at (None without one), and whether its "
+        "residuals are in units of the depth noise, it needs the empty-space distances and it "
+        "hides occluded points: as `lmk metrics --json` writes them.");
 }
 
 }  // namespace lmk::python

@@ -138,7 +138,6 @@ RegistrationResult icp(const std::vector<Eigen::Vector3f>& source, const IcpTarg
       ++eq.count;
     }
     result.inliers = eq.count;
-    result.H = eq.JtJ;
     result.final_error = eq.count > 0 ? eq.abs_residual_sum / static_cast<double>(eq.count)
                                       : std::numeric_limits<double>::infinity();
     if (last_step_taken || eq.count < 6) break;

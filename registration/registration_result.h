@@ -21,11 +21,6 @@ struct RegistrationResult {
   /// Refinement: the robust cost at the start and at the returned pose (never above the start's).
   double initial_cost = 0.0;
   double final_cost = 0.0;
-  /// ICP: the Gauss-Newton matrix J^T W J of that last pass for a small motion (omega, t)
-  /// (PointToPlaneSystem, point_to_plane.h). Its small eigenvalues are the motions the
-  /// correspondences leave free; slide_check.h builds the same matrix from a landmark's own
-  /// points. Zero for the refinement.
-  Eigen::Matrix<double, 6, 6> H = Eigen::Matrix<double, 6, 6>::Zero();
 };
 
 }  // namespace lmk

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "lmk/landmark/error_metrics.h"
+#include "lmk/landmark/internal/error_metric_json.h"
 #include "tools/cli_common.h"
 
 namespace lmk::cli {
@@ -17,18 +18,6 @@ struct MetricsOptions {
   std::vector<std::string> names;  ///< empty: every registered metric
   bool json = false;
 };
-
-nlohmann::json metric_to_json(const ErrorMetric& m) {
-  return {{"name", m.name},
-          {"description", m.description},
-          {"default_threshold", m.default_threshold},
-          {"error_unit", m.display.json_unit},
-          {"coarse_score", static_cast<bool>(m.coarse_score)},
-          {"prune_bound", m.coarse_score ? nlohmann::json(m.prune_bound()) : nlohmann::json()},
-          {"noise_normalised", m.noise_normalised},
-          {"needs_empty_distances", m.needs_empty_distances},
-          {"hides_occluded", m.hides_occluded}};
-}
 
 // One line per metric: its threshold and prune bound as it shows errors, then what it is.
 void print_metric(const ErrorMetric& m) {
@@ -46,7 +35,7 @@ int run_metrics(const MetricsOptions& o) {
   }
   if (o.json) {
     nlohmann::json out = nlohmann::json::array();
-    for (const ErrorMetric* m : shown) out.push_back(metric_to_json(*m));
+    for (const ErrorMetric* m : shown) out.push_back(detail::error_metric_to_json(*m));
     std::cout << out.dump(2) << "\n";
     return kOk;
   }

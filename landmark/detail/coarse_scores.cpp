@@ -3,7 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <memory>
+#include <utility>
+#include <vector>
 
 #include "lmk/landmark/detail/grid_metrics.h"
 #include "lmk/landmark/detail/sensor_metric.h"
@@ -34,23 +35,21 @@ CoarseScoreFactory surface_distance_coarse_score(bool hide_occluded) {
 
 CoarseScoreFactory sensor_coarse_score() {
   return [](const CoarseView& view) -> CoarseScore {
-    struct Probes {
-      std::vector<Eigen::Vector3f> centres;
-      std::vector<float> distances;
-    };
-    auto probes = std::make_shared<Probes>();
     // The metric needs_empty_distances, so the search gives them; without, no probes.
+    std::vector<Eigen::Vector3f> centres;
+    std::vector<float> distances;
     if (view.empty_distances) {
-      probes->centres = thin(view.landmark.empty_space.centres(), 300);
-      probes->distances = thin(*view.empty_distances, 300);
+      centres = thin(view.landmark.empty_space.centres(), 300);
+      distances = thin(*view.empty_distances, 300);
     }
     const SceneIndex* index = &view.index;
     const Landmark* landmark = &view.landmark;
     const PointCloud* model = &view.model;
     const Eigen::Vector3f capture_sensor = view.landmark.sensor_origin.cast<float>();
-    return [=](const Eigen::Isometry3f& T) {
+    return [index, landmark, model, capture_sensor, centres = std::move(centres),
+            distances = std::move(distances)](const Eigen::Isometry3f& T) {
       return sensor_fit(*index, *model, capture_sensor, T).mean_cost() +
-             empty_space_penalty(*index, *landmark, probes->centres, probes->distances, T);
+             empty_space_penalty(*index, *landmark, centres, distances, T);
     };
   };
 }
