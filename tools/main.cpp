@@ -12,6 +12,7 @@
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/version.h"
 #include "lmk/landmark/dependencies.h"
+#include "lmk/landmark/error_metrics.h"
 #include "lmk/occupancy/dependencies.h"
 #include "lmk/pbd/dependencies.h"
 #include "lmk/pr2/dependencies.h"
@@ -36,6 +37,13 @@ std::string version_text() {
   return text;
 }
 
+// One line for a bad input, its message made printable: a message may quote a file's bytes, and
+// 1000 characters hold any path and reason.
+int bad_input(const lmk::Error& e) {
+  std::fprintf(stderr, "lmk: error: %s\n", lmk::printable(e.what(), 1000).c_str());
+  return lmk::cli::kBadInput;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -48,6 +56,13 @@ int main(int argc, char** argv) {
   CLI::App app{"lmk: find custom perceptual landmarks in point clouds, with their 6-DoF poses.",
                "lmk"};
   app.set_version_flag("--version", version_text());
+  // The search options list the metrics, so the registry loads the plugins $LMK_METRIC_PLUGINS
+  // names while the commands are built: one that cannot load is a bad input too.
+  try {
+    lmk::error_metrics();
+  } catch (const lmk::Error& e) {
+    return bad_input(e);
+  }
   app.require_subcommand(1);
   app.failure_message([](const CLI::App*, const CLI::Error& e) {
     return std::string("lmk: error: ") + e.what() + " (see --help)\n";
@@ -94,9 +109,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "lmk: %s\n", e.what());
     return kInterrupted;
   } catch (const lmk::Error& e) {
-    // printable: a message may quote a file's bytes; 1000 characters hold any path and reason.
-    std::fprintf(stderr, "lmk: error: %s\n", lmk::printable(e.what(), 1000).c_str());
-    return kBadInput;
+    return bad_input(e);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "lmk: internal error: %s\n", e.what());
     return kInternalError;

@@ -6,8 +6,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <nlohmann/json.hpp>
+#include <utility>
 
 #include "lmk/geometry/error.h"
 #include "lmk/landmark/capture_views.h"
@@ -176,6 +178,19 @@ TEST(MetricPlugin, TheCommandLineFindsEvaluatesAndAblatesWithIt) {
   const nlohmann::json listed = nlohmann::json::parse(metrics.out);
   EXPECT_EQ(listed.back().at("name"), "nearest");
   EXPECT_DOUBLE_EQ(listed.back().at("prune_bound").get<double>(), 0.012);
+
+  // A plugin that cannot be loaded, or that registers nothing, is refused in one line.
+  for (const auto& [plugin, why] :
+       {std::pair<std::string, std::string>{dir.file("missing.so"), "cannot load"},
+        {LMK_LIBRARY_WITHOUT_METRICS, "exports no lmk_register_error_metrics()"}}) {
+    const test::CommandResult bad = test::run_shell(
+        std::string(kMetricPluginsVariable) + "='" + plugin + "' '" + LMK_BINARY + "' metrics",
+        dir);
+    EXPECT_EQ(bad.exit_code, 2) << plugin;
+    EXPECT_EQ(bad.err.rfind("lmk: error: LMK_METRIC_PLUGINS: ", 0), 0u) << bad.err;
+    EXPECT_NE(bad.err.find(why), std::string::npos) << bad.err;
+    EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+  }
 
   // Without the plugin, the name is refused in one line.
   const test::CommandResult without =
