@@ -19,51 +19,77 @@ bool fit_line(double n, double sx, double sy, double sxx, double sxy, double& a,
   return true;
 }
 
+// Least squares of u = fx x/z + cx and v = fy y/z + cy over every pixel of organised `cloud` with a
+// point in front of its sensor (`T_sensor_cloud`); false when too few pixels fix them.
+bool fit_intrinsics(const PointCloud& cloud, const Eigen::Isometry3f& T_sensor_cloud,
+                    PinholeIntrinsics& k) {
+  double n = 0, sa = 0, su = 0, saa = 0, sau = 0, sb = 0, sv = 0, sbb = 0, sbv = 0;
+  const std::uint32_t w = cloud.width;
+  // Rows and columns as loop counters: a division and a modulo per pixel, twice over 300 000
+  // pixels, cost more than the rest of the fit.
+  const std::size_t size = cloud.size();
+  for (std::size_t row = 0, i = 0; i < size; ++row) {
+    const auto v = static_cast<double>(row);
+    for (std::uint32_t column = 0; column < w && i < size; ++column, ++i) {
+      const Eigen::Vector3f p = T_sensor_cloud * cloud.points[i];
+      if (!p.allFinite() || !(p.z() > 0.0f)) continue;
+      const double a = p.x() / p.z(), b = p.y() / p.z();
+      const auto u = static_cast<double>(column);
+      n += 1, sa += a, su += u, saa += a * a, sau += a * u;
+      sb += b, sv += v, sbb += b * b, sbv += b * v;
+    }
+  }
+  return n >= 100 && fit_line(n, sa, su, saa, sau, k.fx, k.cx) &&
+         fit_line(n, sb, sv, sbb, sbv, k.fy, k.cy);
+}
+
+// The depth of every pixel of organised `cloud` through intrinsics `k`, into `depth`; the RMS of
+// the pixels' distance from where `k` projects their points (infinity for no pixel).
+double fill_depth(const PointCloud& cloud, const Eigen::Isometry3f& T_sensor_cloud,
+                  const PinholeIntrinsics& k, std::vector<float>& depth) {
+  const std::uint32_t w = cloud.width;
+  const std::size_t size = cloud.size();
+  double squared = 0.0, n = 0.0;
+  depth.assign(size, kNothing);
+  for (std::size_t row = 0, i = 0; i < size; ++row) {
+    for (std::uint32_t column = 0; column < w && i < size; ++column, ++i) {
+      const Eigen::Vector3f p = T_sensor_cloud * cloud.points[i];
+      if (!p.allFinite() || !(p.z() > 0.0f)) continue;
+      const double du = k.fx * p.x() / p.z() + k.cx - static_cast<double>(column);
+      const double dv = k.fy * p.y() / p.z() + k.cy - static_cast<double>(row);
+      squared += du * du + dv * dv;
+      n += 1;
+      depth[i] = p.z();
+    }
+  }
+  return n > 0 ? std::sqrt(squared / n) : std::numeric_limits<double>::infinity();
+}
+
 }  // namespace
 
 std::optional<RangeImage> RangeImage::from_cloud(const PointCloud& cloud,
                                                  const PinholeIntrinsics& fallback,
-                                                 double max_fit_rms) {
+                                                 double max_fit_rms,
+                                                 const PinholeIntrinsics* known) {
   RangeImage image;
   image.T_sensor_cloud_ = cloud.T_cloud_sensor.inverse().cast<float>();
   if (cloud.is_organized()) {
-    // u = fx x/z + cx and v = fy y/z + cy, fitted over every pixel with a point in front.
-    double n = 0, sa = 0, su = 0, saa = 0, sau = 0, sb = 0, sv = 0, sbb = 0, sbv = 0;
-    const std::uint32_t w = cloud.width;
-    if (w == 0) return std::nullopt;  // a malformed layout: no rows to fit
-    // Rows and columns as loop counters: a division and a modulo per pixel, twice over 300 000
-    // pixels, cost more than the rest of the fit.
-    const std::size_t size = cloud.size();
-    for (std::size_t row = 0, i = 0; i < size; ++row) {
-      const auto v = static_cast<double>(row);
-      for (std::uint32_t column = 0; column < w && i < size; ++column, ++i) {
-        const Eigen::Vector3f p = image.T_sensor_cloud_ * cloud.points[i];
-        if (!p.allFinite() || !(p.z() > 0.0f)) continue;
-        const double a = p.x() / p.z(), b = p.y() / p.z();
-        const auto u = static_cast<double>(column);
-        n += 1, sa += a, su += u, saa += a * a, sau += a * u;
-        sb += b, sv += v, sbb += b * b, sbv += b * v;
-      }
-    }
+    if (cloud.width == 0) return std::nullopt;  // a malformed layout: no rows to fit
     PinholeIntrinsics& k = image.k_;
-    if (n < 100 || !fit_line(n, sa, su, saa, sau, k.fx, k.cx) ||
-        !fit_line(n, sb, sv, sbb, sbv, k.fy, k.cy))
-      return std::nullopt;
-    k.width = static_cast<int>(w);
+    k.width = static_cast<int>(cloud.width);
     k.height = static_cast<int>(cloud.height);
-    double squared = 0.0;
-    image.depth_.assign(cloud.size(), kNothing);
-    for (std::size_t row = 0, i = 0; i < size; ++row) {
-      for (std::uint32_t column = 0; column < w && i < size; ++column, ++i) {
-        const Eigen::Vector3f p = image.T_sensor_cloud_ * cloud.points[i];
-        if (!p.allFinite() || !(p.z() > 0.0f)) continue;
-        const double du = k.fx * p.x() / p.z() + k.cx - static_cast<double>(column);
-        const double dv = k.fy * p.y() / p.z() + k.cy - static_cast<double>(row);
-        squared += du * du + dv * dv;
-        image.depth_[i] = p.z();
-      }
+    // Known intrinsics of the same image size are kept when they fit these pixels as well as a
+    // fit of its own must.
+    const bool reuse =
+        known && known->width == k.width && known->height == k.height &&
+        fill_depth(cloud, image.T_sensor_cloud_, *known, image.depth_) <= max_fit_rms;
+    if (reuse) {
+      k = *known;
+    } else {
+      if (!fit_intrinsics(cloud, image.T_sensor_cloud_, k)) return std::nullopt;
+      if (!(fill_depth(cloud, image.T_sensor_cloud_, k, image.depth_) <= max_fit_rms))
+        return std::nullopt;
     }
-    if (!(std::sqrt(squared / n) <= max_fit_rms)) return std::nullopt;
     image.colour_ = cloud.colors;
     image.organised_ = true;
     return image;

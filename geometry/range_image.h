@@ -15,6 +15,10 @@
 
 namespace lmk {
 
+/// Pixels of error beyond which an organised cloud's fitted intrinsics say it is no pinhole view
+/// from its recorded pose (RangeImage::from_cloud).
+inline constexpr double kMaxIntrinsicsFitRms = 0.5;
+
 class RangeImage {
  public:
   /// The image of `cloud` seen from its sensor (cloud.T_cloud_sensor).
@@ -26,9 +30,14 @@ class RangeImage {
   /// - An unorganised cloud is projected through `fallback` into a depth buffer that keeps the
   ///   nearest point per pixel.
   /// Nothing for a cloud without a point in front of its sensor.
+  ///
+  /// `known`: the intrinsics of an organised cloud's camera when already fitted, to a frame of the
+  /// same size from the same camera (a tracker's stream): the fit is skipped, half of the work,
+  /// when they project its pixels within `max_fit_rms`; fitted as usual otherwise.
   static std::optional<RangeImage> from_cloud(const PointCloud& cloud,
                                               const PinholeIntrinsics& fallback = {},
-                                              double max_fit_rms = 0.5);
+                                              double max_fit_rms = kMaxIntrinsicsFitRms,
+                                              const PinholeIntrinsics* known = nullptr);
 
   /// What the sensor saw along the ray through `point` (cloud frame).
   struct Look {

@@ -44,7 +44,8 @@ void validate(const SceneSettings& settings) {
   }
 }
 
-SceneIndex::SceneIndex(const PointCloud& scene, const SceneSettings& settings, StopCheck stop)
+SceneIndex::SceneIndex(const PointCloud& scene, const SceneSettings& settings, StopCheck stop,
+                       const PinholeIntrinsics* intrinsics)
     : settings_(settings.resolved()),
       T_scene_sensor_(scene.T_cloud_sensor),
       stop_(std::move(stop)) {
@@ -83,7 +84,7 @@ SceneIndex::SceneIndex(const PointCloud& scene, const SceneSettings& settings, S
   organised_ = frame.is_organized();
   tbb::parallel_invoke(
       [&] {
-        range_image_ = RangeImage::from_cloud(frame);
+        range_image_ = RangeImage::from_cloud(frame, {}, kMaxIntrinsicsFitRms, intrinsics);
         if (stop_) stop_();
         if (whole_frame) cropped_ = remove_non_finite(frame);
         occupancy_ = OccupancyGrid(source.points, settings.leaf_size, stop_);

@@ -34,9 +34,11 @@ class SceneIndex {
  public:
   /// Throws lmk::Error for bad settings or a scene (after the crop) without a finite point.
   /// `stop` is called between pieces of the work, here and when the fine level is built
-  /// (geometry/stop_check.h): what it throws stops the indexing.
+  /// (geometry/stop_check.h): what it throws stops the indexing. `intrinsics`: an organised
+  /// scene's camera intrinsics when already fitted to an earlier frame of the same camera (a
+  /// tracker's stream; RangeImage::from_cloud's `known`), which spares the range image its fit.
   explicit SceneIndex(const PointCloud& scene, const SceneSettings& settings = {},
-                      StopCheck stop = {});
+                      StopCheck stop = {}, const PinholeIntrinsics* intrinsics = nullptr);
 
   const SceneSettings& settings() const { return settings_; }  ///< as built: resolved()
   const Eigen::Vector3d& up() const { return up_; }

@@ -2,6 +2,7 @@
 #include "lmk/landmark/tracker.h"
 
 #include "lmk/geometry/error.h"
+#include "lmk/geometry/range_image.h"
 #include "lmk/geometry/stopwatch.h"
 #include "lmk/landmark/landmark_index.h"
 #include "lmk/landmark/scene_index.h"
@@ -149,12 +150,25 @@ Eigen::Isometry3d Tracker::camera_moved(const PointCloud& frame) {
   return moved;
 }
 
+const PinholeIntrinsics* Tracker::camera_intrinsics(const PointCloud& frame) {
+  // Every index of a frame takes the camera's intrinsics as fitted to the first frame: the frames
+  // of a stream come from one camera, and the fit is half of a range image's work
+  // (RangeImage::from_cloud checks that they still fit, and fits again where they do not).
+  if (!intrinsics_ && frame.is_organized()) {
+    if (const std::optional<RangeImage> image = RangeImage::from_cloud(frame))
+      intrinsics_ = image->intrinsics();
+  }
+  return intrinsics_ ? &*intrinsics_ : nullptr;
+}
+
 std::vector<TrackedLandmark> Tracker::update(const PointCloud& frame) {
   // The camera's motion first: T_frame_before, so the first frame's pose in this one follows.
   const Stopwatch registering;
   T_first_frame_ = T_first_frame_ * camera_moved(frame).inverse();
   const Eigen::Isometry3d T_frame_first = T_first_frame_.inverse();
-  // Each landmark's time holds its share of the registration, the work of the frame for all.
+  const PinholeIntrinsics* const intrinsics = camera_intrinsics(frame);
+  // Each landmark's time holds its share of the registration and the fit, the frame's work for
+  // all.
   const double registration_share =
       tracks_.empty() ? 0.0 : registering.seconds() / static_cast<double>(tracks_.size());
   // The whole frame is indexed at most once, for the landmarks that must be searched in it.
@@ -164,12 +178,14 @@ std::vector<TrackedLandmark> Tracker::update(const PointCloud& frame) {
     if (!any_point_in(frame, volume)) return std::nullopt;
     SceneSettings s = settings_.find.scene;
     s.work_volume = volume;
-    return std::optional<SceneIndex>(std::in_place, frame, s, settings_.find.execution.stop);
+    return std::optional<SceneIndex>(std::in_place, frame, s, settings_.find.execution.stop,
+                                     intrinsics);
   };
   // A search inside `volume` (the whole frame without one); an empty volume finds nothing.
   const auto search = [&](const Track& t, const std::optional<Box>& volume) {
     if (!volume) {
-      if (!whole) whole.emplace(frame, settings_.find.scene, settings_.find.execution.stop);
+      if (!whole)
+        whole.emplace(frame, settings_.find.scene, settings_.find.execution.stop, intrinsics);
       return find_landmark(*whole, *t.index, settings_.find);
     }
     const std::optional<SceneIndex> near = index_within(*volume);

@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "lmk/geometry/pinhole_intrinsics.h"
 #include "lmk/geometry/point_cloud.h"
 #include "lmk/landmark/find_landmark.h"
 #include "lmk/landmark/landmark.h"
@@ -101,6 +102,8 @@ class Tracker {
   struct CameraMotionEstimate;
   /// The camera's motion from the frame before to `frame` (T_frame_before), as the settings say.
   Eigen::Isometry3d camera_moved(const PointCloud& frame);
+  /// The camera's intrinsics, fitted to the first organised frame and kept (null before one).
+  const PinholeIntrinsics* camera_intrinsics(const PointCloud& frame);
 
   TrackSettings settings_;
   FindSettings follow_;  ///< the search's settings while following: the threshold widened
@@ -109,6 +112,9 @@ class Tracker {
   /// kept in the first frame, where what stands still stays put.
   Eigen::Isometry3d T_first_frame_ = Eigen::Isometry3d::Identity();
   std::unique_ptr<CameraMotionEstimate> motion_;
+  /// The camera's intrinsics as fitted to the first organised frame: the later frames' range
+  /// images reuse them (SceneIndex's `intrinsics`).
+  std::optional<PinholeIntrinsics> intrinsics_;
 };
 
 }  // namespace lmk

@@ -59,6 +59,41 @@ TEST(RangeImage, AnOrganisedCloudWithoutColumnsHasNoImage) {
   EXPECT_FALSE(RangeImage::from_cloud(broken).has_value());
 }
 
+// A tracker's stream: the intrinsics fitted to one frame are kept for the next from the same
+// camera, the same image as a fit of its own gives; intrinsics that do not fit, or of another
+// image size, are fitted again.
+TEST(RangeImage, KnownIntrinsicsAreKeptWhereTheyFitAndFittedAgainWhereNot) {
+  const auto first = RangeImage::from_cloud(view(Eigen::Isometry3d::Identity()));
+  ASSERT_TRUE(first.has_value());
+  const PointCloud next = view(pose_from_xyz_rpy({0.1, 0.0, 0.05}, {0.0, 0.05, 0.1}));
+  const auto fitted = RangeImage::from_cloud(next);
+  const auto kept = RangeImage::from_cloud(next, {}, kMaxIntrinsicsFitRms, &first->intrinsics());
+  ASSERT_TRUE(fitted.has_value() && kept.has_value());
+  EXPECT_EQ(kept->intrinsics().fx, first->intrinsics().fx);  // taken, not fitted
+  // Float points: two frames' fits agree to a few millionths of a pixel.
+  EXPECT_NEAR(kept->intrinsics().fx, fitted->intrinsics().fx, 1e-4);
+  EXPECT_EQ(kept->depths(), fitted->depths());
+
+  PinholeIntrinsics wrong = first->intrinsics();
+  wrong.fx *= 1.2;  // 20% off: pixels several columns from where it projects them
+  const auto refitted = RangeImage::from_cloud(next, {}, kMaxIntrinsicsFitRms, &wrong);
+  ASSERT_TRUE(refitted.has_value());
+  EXPECT_EQ(refitted->intrinsics().fx, fitted->intrinsics().fx);
+  EXPECT_EQ(refitted->depths(), fitted->depths());
+
+  PinholeIntrinsics other_size = first->intrinsics();
+  other_size.width = 128;
+  const auto resized = RangeImage::from_cloud(next, {}, kMaxIntrinsicsFitRms, &other_size);
+  ASSERT_TRUE(resized.has_value());
+  EXPECT_EQ(resized->intrinsics().width, 64);
+  EXPECT_EQ(resized->intrinsics().fx, fitted->intrinsics().fx);
+
+  // A cloud no pinhole view explains has no image, whatever intrinsics are offered.
+  PointCloud moved = next;
+  moved.T_cloud_sensor = pose_from_xyz_rpy({0.5, 0.2, 0.0}, {0.0, 0.3, 0.0});
+  EXPECT_FALSE(RangeImage::from_cloud(moved, {}, kMaxIntrinsicsFitRms, &first->intrinsics()));
+}
+
 TEST(RangeImage, AnUnorganisedCloudKeepsTheNearestPointOfEachPixel) {
   PinholeIntrinsics k;
   PointCloud cloud(std::vector<Eigen::Vector3f>{{0, 0, 2.0f}, {0, 0, 1.0f}, {0, 0, 3.0f}});
