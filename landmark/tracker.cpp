@@ -2,7 +2,6 @@
 #include "lmk/landmark/tracker.h"
 
 #include "lmk/geometry/error.h"
-#include "lmk/geometry/range_image.h"
 #include "lmk/geometry/stopwatch.h"
 #include "lmk/landmark/landmark_index.h"
 #include "lmk/landmark/scene_index.h"
@@ -150,15 +149,23 @@ Eigen::Isometry3d Tracker::camera_moved(const PointCloud& frame) {
   return moved;
 }
 
-const PinholeIntrinsics* Tracker::camera_intrinsics(const PointCloud& frame) {
-  // Every index of a frame takes the camera's intrinsics as fitted to the first frame: the frames
-  // of a stream come from one camera, and the fit is half of a range image's work
-  // (RangeImage::from_cloud checks that they still fit, and fits again where they do not).
-  if (!intrinsics_ && frame.is_organized()) {
-    if (const std::optional<RangeImage> image = RangeImage::from_cloud(frame))
-      intrinsics_ = image->intrinsics();
-  }
-  return intrinsics_ ? &*intrinsics_ : nullptr;
+std::unique_ptr<SceneIndex> Tracker::indexed(const PointCloud& frame,
+                                             const SceneSettings& settings) {
+  // Given the camera's intrinsics once an index has fitted them: the frames of a stream come from
+  // one camera, and the fit is half of a range image's work (RangeImage::from_cloud checks that
+  // they still fit, and fits again where they do not).
+  auto index = std::make_unique<SceneIndex>(frame, settings, settings_.find.execution.stop,
+                                            intrinsics_ ? &*intrinsics_ : nullptr);
+  if (!intrinsics_ && index->organised() && index->range_image())
+    intrinsics_ = index->range_image()->intrinsics();
+  return index;
+}
+
+std::unique_ptr<SceneIndex> Tracker::index_within(const PointCloud& frame, const Box& volume) {
+  if (!any_point_in(frame, volume)) return nullptr;
+  SceneSettings s = settings_.find.scene;
+  s.work_volume = volume;
+  return indexed(frame, s);
 }
 
 std::vector<TrackedLandmark> Tracker::update(const PointCloud& frame) {
@@ -166,29 +173,18 @@ std::vector<TrackedLandmark> Tracker::update(const PointCloud& frame) {
   const Stopwatch registering;
   T_first_frame_ = T_first_frame_ * camera_moved(frame).inverse();
   const Eigen::Isometry3d T_frame_first = T_first_frame_.inverse();
-  const PinholeIntrinsics* const intrinsics = camera_intrinsics(frame);
-  // Each landmark's time holds its share of the registration and the fit, the frame's work for
-  // all.
+  // Each landmark's time holds its share of the registration, the work of the frame for all.
   const double registration_share =
       tracks_.empty() ? 0.0 : registering.seconds() / static_cast<double>(tracks_.size());
   // The whole frame is indexed at most once, for the landmarks that must be searched in it.
-  std::optional<SceneIndex> whole;
-  // The frame indexed inside `volume` only; nothing when no point of it lies there.
-  const auto index_within = [&](const Box& volume) -> std::optional<SceneIndex> {
-    if (!any_point_in(frame, volume)) return std::nullopt;
-    SceneSettings s = settings_.find.scene;
-    s.work_volume = volume;
-    return std::optional<SceneIndex>(std::in_place, frame, s, settings_.find.execution.stop,
-                                     intrinsics);
-  };
+  std::unique_ptr<SceneIndex> whole;
   // A search inside `volume` (the whole frame without one); an empty volume finds nothing.
   const auto search = [&](const Track& t, const std::optional<Box>& volume) {
     if (!volume) {
-      if (!whole)
-        whole.emplace(frame, settings_.find.scene, settings_.find.execution.stop, intrinsics);
+      if (!whole) whole = indexed(frame, settings_.find.scene);
       return find_landmark(*whole, *t.index, settings_.find);
     }
-    const std::optional<SceneIndex> near = index_within(*volume);
+    const std::unique_ptr<SceneIndex> near = index_within(frame, *volume);
     return near ? find_landmark(*near, *t.index, settings_.find) : FindResult();
   };
 
@@ -201,8 +197,8 @@ std::vector<TrackedLandmark> Tracker::update(const PointCloud& frame) {
       // Followed: aligned from the prediction, in the frame around it only.
       const Eigen::Isometry3d predicted = T_frame_first * t.predicted();
       std::optional<FindResult> local;
-      if (const std::optional<SceneIndex> around =
-              index_within(grown(t.landmark->box, predicted, settings_.follow_margin))) {
+      if (const std::unique_ptr<SceneIndex> around =
+              index_within(frame, grown(t.landmark->box, predicted, settings_.follow_margin))) {
         local = find_near_pose(*around, *t.index, follow_, predicted);
       } else {
         now.lost_because = "no point of the frame where it was predicted";

@@ -102,8 +102,10 @@ class Tracker {
   struct CameraMotionEstimate;
   /// The camera's motion from the frame before to `frame` (T_frame_before), as the settings say.
   Eigen::Isometry3d camera_moved(const PointCloud& frame);
-  /// The camera's intrinsics, fitted to the first organised frame and kept (null before one).
-  const PinholeIntrinsics* camera_intrinsics(const PointCloud& frame);
+  /// `frame` indexed with `settings`, with the camera's intrinsics once an index has fitted them.
+  std::unique_ptr<SceneIndex> indexed(const PointCloud& frame, const SceneSettings& settings);
+  /// `frame` indexed inside `volume` only; null when no point of it lies there.
+  std::unique_ptr<SceneIndex> index_within(const PointCloud& frame, const Box& volume);
 
   TrackSettings settings_;
   FindSettings follow_;  ///< the search's settings while following: the threshold widened
@@ -112,8 +114,8 @@ class Tracker {
   /// kept in the first frame, where what stands still stays put.
   Eigen::Isometry3d T_first_frame_ = Eigen::Isometry3d::Identity();
   std::unique_ptr<CameraMotionEstimate> motion_;
-  /// The camera's intrinsics as fitted to the first organised frame: the later frames' range
-  /// images reuse them (SceneIndex's `intrinsics`).
+  /// The camera's intrinsics as the first organised frame's index fitted them: the later
+  /// frames' range images reuse them (SceneIndex's `intrinsics`).
   std::optional<PinholeIntrinsics> intrinsics_;
 };
 
