@@ -44,8 +44,26 @@ void validate(const SceneSettings& settings) {
   }
 }
 
+namespace {
+
+// The image of a frame already prepared (prepared_frame), as every index of it holds.
+FrameImage image_of_prepared(const PointCloud& frame, const PinholeIntrinsics* intrinsics) {
+  std::optional<RangeImage> image =
+      RangeImage::from_cloud(frame, {}, kMaxIntrinsicsFitRms, intrinsics);
+  return image ? std::make_shared<const RangeImage>(std::move(*image)) : nullptr;
+}
+
+}  // namespace
+
+FrameImage SceneIndex::frame_image(const PointCloud& scene, const SceneSettings& settings,
+                                   const PinholeIntrinsics* intrinsics) {
+  const std::optional<PointCloud> prepared =
+      prepared_frame(scene, settings.veil_angle, settings.depth_smoothing, settings.depth_noise());
+  return image_of_prepared(prepared ? *prepared : scene, intrinsics);
+}
+
 SceneIndex::SceneIndex(const PointCloud& scene, const SceneSettings& settings, StopCheck stop,
-                       const PinholeIntrinsics* intrinsics)
+                       const SceneIndexReuse& reuse)
     : settings_(settings.resolved()),
       T_scene_sensor_(scene.T_cloud_sensor),
       stop_(std::move(stop)) {
@@ -84,7 +102,7 @@ SceneIndex::SceneIndex(const PointCloud& scene, const SceneSettings& settings, S
   organised_ = frame.is_organized();
   tbb::parallel_invoke(
       [&] {
-        range_image_ = RangeImage::from_cloud(frame, {}, kMaxIntrinsicsFitRms, intrinsics);
+        range_image_ = reuse.image ? *reuse.image : image_of_prepared(frame, reuse.intrinsics);
         if (stop_) stop_();
         if (whole_frame) cropped_ = remove_non_finite(frame);
         occupancy_ = OccupancyGrid(source.points, settings.leaf_size, stop_);

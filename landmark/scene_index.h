@@ -30,15 +30,33 @@
 
 namespace lmk {
 
+/// A frame's range image, built once for every index of that frame (SceneIndex::frame_image): a
+/// tracker indexes one frame around each of its landmarks, and each index would otherwise build
+/// the same image of the whole frame. Null: the frame is no view from its recorded sensor pose.
+using FrameImage = std::shared_ptr<const RangeImage>;
+
+/// What earlier work on the same stream or frame spares an index.
+struct SceneIndexReuse {
+  /// An organised scene's camera intrinsics, already fitted to an earlier frame of the same camera
+  /// (RangeImage::from_cloud's `known`): spares the range image its fit.
+  const PinholeIntrinsics* intrinsics = nullptr;
+  /// This frame's image, from SceneIndex::frame_image with the same scene and settings (the work
+  /// volume aside: the image is always the whole frame's). Nothing: the index builds its own.
+  std::optional<FrameImage> image;
+};
+
 class SceneIndex {
  public:
   /// Throws lmk::Error for bad settings or a scene (after the crop) without a finite point.
   /// `stop` is called between pieces of the work, here and when the fine level is built
-  /// (geometry/stop_check.h): what it throws stops the indexing. `intrinsics`: an organised
-  /// scene's camera intrinsics when already fitted to an earlier frame of the same camera (a
-  /// tracker's stream; RangeImage::from_cloud's `known`), which spares the range image its fit.
+  /// (geometry/stop_check.h): what it throws stops the indexing.
   explicit SceneIndex(const PointCloud& scene, const SceneSettings& settings = {},
-                      StopCheck stop = {}, const PinholeIntrinsics* intrinsics = nullptr);
+                      StopCheck stop = {}, const SceneIndexReuse& reuse = {});
+
+  /// The range image an index of `scene` with `settings` holds (range_image()), for several
+  /// indexes of one frame to share through SceneIndexReuse::image.
+  static FrameImage frame_image(const PointCloud& scene, const SceneSettings& settings,
+                                const PinholeIntrinsics* intrinsics = nullptr);
 
   const SceneSettings& settings() const { return settings_; }  ///< as built: resolved()
   const Eigen::Vector3d& up() const { return up_; }
@@ -51,8 +69,8 @@ class SceneIndex {
   const DistanceField& field() const { return field_; }
   const OccupancyGrid& occupancy() const { return occupancy_; }
   /// What the scene's sensor saw along each ray (the whole scene, before the crop), for
-  /// projective visibility; nothing when the cloud is no view from its recorded sensor pose.
-  const std::optional<RangeImage>& range_image() const { return range_image_; }
+  /// projective visibility; null when the cloud is no view from its recorded sensor pose.
+  const RangeImage* range_image() const { return range_image_.get(); }
   /// Whether the scene was an organised frame, so that its range image holds the sensor's own
   /// pixels (an unorganised cloud's is projected through assumed intrinsics, and its empty pixels
   /// say nothing of what the sensor measured).
@@ -76,7 +94,7 @@ class SceneIndex {
   PointCloud coarse_;
   DistanceField field_;
   OccupancyGrid occupancy_;
-  std::optional<RangeImage> range_image_;
+  FrameImage range_image_;  ///< shared with the other indexes of the frame (SceneIndexReuse)
   bool organised_ = false;
   double seconds_ = 0.0;
   StopCheck stop_;

@@ -149,23 +149,29 @@ Eigen::Isometry3d Tracker::camera_moved(const PointCloud& frame) {
   return moved;
 }
 
-std::unique_ptr<SceneIndex> Tracker::indexed(const PointCloud& frame,
-                                             const SceneSettings& settings) {
-  // Given the camera's intrinsics once an index has fitted them: the frames of a stream come from
-  // one camera, and the fit is half of a range image's work (RangeImage::from_cloud checks that
-  // they still fit, and fits again where they do not).
-  auto index = std::make_unique<SceneIndex>(frame, settings, settings_.find.execution.stop,
-                                            intrinsics_ ? &*intrinsics_ : nullptr);
-  if (!intrinsics_ && index->organised() && index->range_image())
-    intrinsics_ = index->range_image()->intrinsics();
-  return index;
+std::unique_ptr<SceneIndex> Tracker::indexed(const PointCloud& frame, const SceneSettings& settings,
+                                             FrameWork& work) {
+  // The frame's image is built once, for all its indexes. It is given the camera's intrinsics once
+  // an image has fitted them: the frames of a stream come from one camera, and the fit is half of
+  // a range image's work (RangeImage::from_cloud checks that they still fit, and fits again where
+  // they do not).
+  if (!work.image) {
+    work.image =
+        SceneIndex::frame_image(frame, settings_.find.scene, intrinsics_ ? &*intrinsics_ : nullptr);
+    if (!intrinsics_ && frame.is_organized() && *work.image)
+      intrinsics_ = (*work.image)->intrinsics();
+  }
+  SceneIndexReuse reuse;
+  reuse.image = work.image;
+  return std::make_unique<SceneIndex>(frame, settings, settings_.find.execution.stop, reuse);
 }
 
-std::unique_ptr<SceneIndex> Tracker::index_within(const PointCloud& frame, const Box& volume) {
+std::unique_ptr<SceneIndex> Tracker::index_within(const PointCloud& frame, const Box& volume,
+                                                  FrameWork& work) {
   if (!any_point_in(frame, volume)) return nullptr;
   SceneSettings s = settings_.find.scene;
   s.work_volume = volume;
-  return indexed(frame, s);
+  return indexed(frame, s, work);
 }
 
 std::vector<TrackedLandmark> Tracker::update(const PointCloud& frame) {
@@ -178,13 +184,14 @@ std::vector<TrackedLandmark> Tracker::update(const PointCloud& frame) {
       tracks_.empty() ? 0.0 : registering.seconds() / static_cast<double>(tracks_.size());
   // The whole frame is indexed at most once, for the landmarks that must be searched in it.
   std::unique_ptr<SceneIndex> whole;
+  FrameWork work;  // what this frame's indexes share
   // A search inside `volume` (the whole frame without one); an empty volume finds nothing.
   const auto search = [&](const Track& t, const std::optional<Box>& volume) {
     if (!volume) {
-      if (!whole) whole = indexed(frame, settings_.find.scene);
+      if (!whole) whole = indexed(frame, settings_.find.scene, work);
       return find_landmark(*whole, *t.index, settings_.find);
     }
-    const std::unique_ptr<SceneIndex> near = index_within(frame, *volume);
+    const std::unique_ptr<SceneIndex> near = index_within(frame, *volume, work);
     return near ? find_landmark(*near, *t.index, settings_.find) : FindResult();
   };
 
@@ -197,8 +204,8 @@ std::vector<TrackedLandmark> Tracker::update(const PointCloud& frame) {
       // Followed: aligned from the prediction, in the frame around it only.
       const Eigen::Isometry3d predicted = T_frame_first * t.predicted();
       std::optional<FindResult> local;
-      if (const std::unique_ptr<SceneIndex> around =
-              index_within(frame, grown(t.landmark->box, predicted, settings_.follow_margin))) {
+      if (const std::unique_ptr<SceneIndex> around = index_within(
+              frame, grown(t.landmark->box, predicted, settings_.follow_margin), work)) {
         local = find_near_pose(*around, *t.index, follow_, predicted);
       } else {
         now.lost_because = "no point of the frame where it was predicted";

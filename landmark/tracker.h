@@ -26,6 +26,7 @@
 #include "lmk/geometry/point_cloud.h"
 #include "lmk/landmark/find_landmark.h"
 #include "lmk/landmark/landmark.h"
+#include "lmk/landmark/scene_index.h"
 
 namespace lmk {
 
@@ -102,10 +103,16 @@ class Tracker {
   struct CameraMotionEstimate;
   /// The camera's motion from the frame before to `frame` (T_frame_before), as the settings say.
   Eigen::Isometry3d camera_moved(const PointCloud& frame);
-  /// `frame` indexed with `settings`, with the camera's intrinsics once an index has fitted them.
-  std::unique_ptr<SceneIndex> indexed(const PointCloud& frame, const SceneSettings& settings);
+  /// What the indexes of one frame share: its range image, built by the first of them.
+  struct FrameWork {
+    std::optional<FrameImage> image;
+  };
+  /// `frame` indexed with `settings`, sharing `work` with the frame's other indexes.
+  std::unique_ptr<SceneIndex> indexed(const PointCloud& frame, const SceneSettings& settings,
+                                      FrameWork& work);
   /// `frame` indexed inside `volume` only; null when no point of it lies there.
-  std::unique_ptr<SceneIndex> index_within(const PointCloud& frame, const Box& volume);
+  std::unique_ptr<SceneIndex> index_within(const PointCloud& frame, const Box& volume,
+                                           FrameWork& work);
 
   TrackSettings settings_;
   FindSettings follow_;  ///< the search's settings while following: the threshold widened
@@ -114,8 +121,8 @@ class Tracker {
   /// kept in the first frame, where what stands still stays put.
   Eigen::Isometry3d T_first_frame_ = Eigen::Isometry3d::Identity();
   std::unique_ptr<CameraMotionEstimate> motion_;
-  /// The camera's intrinsics as the first organised frame's index fitted them: the later
-  /// frames' range images reuse them (SceneIndex's `intrinsics`).
+  /// The camera's intrinsics as the first organised frame's image fitted them: the later
+  /// frames' range images reuse them (SceneIndexReuse::intrinsics).
   std::optional<PinholeIntrinsics> intrinsics_;
 };
 

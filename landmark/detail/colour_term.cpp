@@ -48,7 +48,7 @@ double closest_hue(const RangeImage& image, const Eigen::Vector3f& mine,
 ColourComparison compare_colours(const SceneView& scene, const LandmarkView& landmark,
                                  const Eigen::Isometry3d& T_scene_capture, double support) {
   ColourComparison c;
-  const std::optional<RangeImage>& image = scene.index.range_image();
+  const RangeImage* image = scene.index.range_image();
   const PointCloud& points = landmark.points;
   if (!points.has_colors() || !image || image->colours().empty()) return c;
   const Eigen::Isometry3f T = T_scene_capture.cast<float>();

@@ -67,7 +67,7 @@ Box occluder_free_zone(const Box& box) {
 }
 
 bool hidden_behind(const SceneIndex& scene, const Eigen::Vector3f& q, const Box& free_zone) {
-  const std::optional<RangeImage>& image = scene.range_image();
+  const RangeImage* image = scene.range_image();
   if (!image) return false;
   const RangeImage::Look look = image->look(q);
   if (!look.in_view || std::isnan(look.measured)) return false;
@@ -84,7 +84,7 @@ bool hidden_behind(const SceneIndex& scene, const Eigen::Vector3f& q, const Box&
 
 bool unseen_by_sensor(const SceneIndex& scene, const Eigen::Vector3f& q, UnseenPoints which) {
   if (which == UnseenPoints::counted || !scene.organised()) return false;
-  const std::optional<RangeImage>& image = scene.range_image();
+  const RangeImage* image = scene.range_image();
   if (!image) return false;  // no pinhole view from its recorded pose
   const RangeImage::Look look = image->look(q);
   return !look.in_view || (which == UnseenPoints::no_return && std::isnan(look.measured));

@@ -151,7 +151,7 @@ SensorFit sensor_fit(const SceneIndex& index, const PointCloud& points,
                      const Eigen::Vector3f& capture_sensor, const Eigen::Isometry3f& T) {
   SensorFit fit;
   const DepthNoise noise = index.settings().depth_noise();
-  const std::optional<RangeImage>& image = index.range_image();
+  const RangeImage* image = index.range_image();
   const Eigen::Vector3f sensor = index.T_scene_sensor().translation().cast<float>();
   const DistanceField::Sampler scene_field(index.field());
   for (std::size_t j = 0; j < points.size(); ++j) {
@@ -195,7 +195,7 @@ ErrorTerms sensor_metric(const SceneView& scene, const LandmarkView& landmark,
   ErrorTerms terms;
   const SceneIndex& index = scene.index;
   const DepthNoise noise = index.settings().depth_noise();
-  const std::optional<RangeImage>& image = index.range_image();
+  const RangeImage* image = index.range_image();
   const Eigen::Isometry3f T = T_scene_capture.cast<float>();
   const SensorFit fit =
       sensor_fit(index, landmark.points, landmark.landmark.sensor_origin.cast<float>(), T);

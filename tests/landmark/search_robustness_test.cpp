@@ -4,8 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
 #include <thread>
+#include <tuple>
 
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/filters.h"
@@ -191,6 +193,55 @@ TEST(SceneIndexSharing, ConcurrentSearchesGiveTheSerialResult) {
       }
     }
   }
+}
+
+// A tracker indexes one frame around each of its landmarks: the indexes share the frame's range
+// image (SceneIndexReuse::image), built once, and search as they would with an image of their own.
+TEST(SceneIndexSharing, IndexesOfOneFrameShareItsImageAndSearchAsWithTheirOwn) {
+  const PointCloud scene = render_scene(kCopies, true);
+  const Landmark landmark = capture(scene, box_at(kCopies[0]), "L");
+  FindSettings s;
+  const FrameImage image = SceneIndex::frame_image(scene, s.scene);
+  ASSERT_NE(image, nullptr);
+
+  const SceneIndex own(scene, s.scene);
+  ASSERT_NE(own.range_image(), nullptr);
+  const PinholeIntrinsics& a = own.range_image()->intrinsics();
+  const PinholeIntrinsics& b = image->intrinsics();
+  EXPECT_EQ(std::tie(a.fx, a.fy, a.cx, a.cy, a.width, a.height),
+            std::tie(b.fx, b.fy, b.cx, b.cy, b.width, b.height));
+  const std::vector<float>& mine = own.range_image()->depths();
+  const std::vector<float>& shared = image->depths();
+  ASSERT_EQ(mine.size(), shared.size());
+  for (std::size_t i = 0; i < mine.size(); ++i) {
+    if (std::isnan(mine[i])) {
+      EXPECT_TRUE(std::isnan(shared[i])) << "pixel " << i;
+    } else {
+      EXPECT_EQ(mine[i], shared[i]) << "pixel " << i;
+    }
+  }
+
+  // An index around one copy only, with the frame's image and with its own.
+  FindSettings around = s;
+  Box volume = box_at(kCopies[0]);
+  volume.size += Eigen::Vector3d::Constant(0.2);
+  around.scene.work_volume = volume;
+  SceneIndexReuse reuse;
+  reuse.image = image;
+  const SceneIndex with_shared(scene, around.scene, {}, reuse);
+  EXPECT_EQ(with_shared.range_image(), image.get());  // the very image, not a copy
+  const SceneIndex with_own(scene, around.scene);
+  const FindResult r1 = find_landmark(with_shared, landmark, around);
+  const FindResult r2 = find_landmark(with_own, landmark, around);
+  ASSERT_EQ(r1.matches.size(), 1u) << describe_rejections(r1.stats);
+  ASSERT_EQ(r2.matches.size(), 1u);
+  EXPECT_EQ(r1.matches[0].error, r2.matches[0].error);
+  EXPECT_EQ(r1.matches[0].confidence.probability, r2.matches[0].confidence.probability);
+  EXPECT_TRUE(r1.matches[0].box.pose.isApprox(r2.matches[0].box.pose, 0.0));
+
+  // A frame that is no view from its sensor pose has no image, shared or not.
+  reuse.image = FrameImage();
+  EXPECT_EQ(SceneIndex(scene, around.scene, {}, reuse).range_image(), nullptr);
 }
 
 TEST(Distinctiveness, NamesEveryOtherCopyInTheCaptureScene) {
