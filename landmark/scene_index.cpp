@@ -55,13 +55,6 @@ FrameImage image_of_prepared(const PointCloud& frame, const PinholeIntrinsics* i
 
 }  // namespace
 
-FrameImage SceneIndex::frame_image(const PointCloud& scene, const SceneSettings& settings,
-                                   const PinholeIntrinsics* intrinsics) {
-  const std::optional<PointCloud> prepared =
-      prepared_frame(scene, settings.veil_angle, settings.depth_smoothing, settings.depth_noise());
-  return image_of_prepared(prepared ? *prepared : scene, intrinsics);
-}
-
 SceneIndex::SceneIndex(const PointCloud& scene, const SceneSettings& settings, StopCheck stop,
                        const SceneIndexReuse& reuse)
     : settings_(settings.resolved()),

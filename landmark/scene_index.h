@@ -30,9 +30,10 @@
 
 namespace lmk {
 
-/// A frame's range image, built once for every index of that frame (SceneIndex::frame_image): a
-/// tracker indexes one frame around each of its landmarks, and each index would otherwise build
-/// the same image of the whole frame. Null: the frame is no view from its recorded sensor pose.
+/// A frame's range image, built by the first index of that frame and shared by the others
+/// (SceneIndex::shared_range_image): a tracker indexes one frame around each of its landmarks, and
+/// each index would otherwise build the same image of the whole frame. Null: the frame is no view
+/// from its recorded sensor pose.
 using FrameImage = std::shared_ptr<const RangeImage>;
 
 /// What earlier work on the same stream or frame spares an index.
@@ -40,8 +41,9 @@ struct SceneIndexReuse {
   /// An organised scene's camera intrinsics, already fitted to an earlier frame of the same camera
   /// (RangeImage::from_cloud's `known`): spares the range image its fit.
   const PinholeIntrinsics* intrinsics = nullptr;
-  /// This frame's image, from SceneIndex::frame_image with the same scene and settings (the work
-  /// volume aside: the image is always the whole frame's). Nothing: the index builds its own.
+  /// This frame's image, from another index of the same scene with the same settings
+  /// (shared_range_image; the work volume aside: the image is always the whole frame's). Nothing:
+  /// the index builds its own.
   std::optional<FrameImage> image;
 };
 
@@ -52,11 +54,6 @@ class SceneIndex {
   /// (geometry/stop_check.h): what it throws stops the indexing.
   explicit SceneIndex(const PointCloud& scene, const SceneSettings& settings = {},
                       StopCheck stop = {}, const SceneIndexReuse& reuse = {});
-
-  /// The range image an index of `scene` with `settings` holds (range_image()), for several
-  /// indexes of one frame to share through SceneIndexReuse::image.
-  static FrameImage frame_image(const PointCloud& scene, const SceneSettings& settings,
-                                const PinholeIntrinsics* intrinsics = nullptr);
 
   const SceneSettings& settings() const { return settings_; }  ///< as built: resolved()
   const Eigen::Vector3d& up() const { return up_; }
@@ -71,6 +68,8 @@ class SceneIndex {
   /// What the scene's sensor saw along each ray (the whole scene, before the crop), for
   /// projective visibility; null when the cloud is no view from its recorded sensor pose.
   const RangeImage* range_image() const { return range_image_.get(); }
+  /// The same image as a handle, for the frame's other indexes (SceneIndexReuse::image).
+  const FrameImage& shared_range_image() const { return range_image_; }
   /// Whether the scene was an organised frame, so that its range image holds the sensor's own
   /// pixels (an unorganised cloud's is projected through assumed intrinsics, and its empty pixels
   /// say nothing of what the sensor measured).

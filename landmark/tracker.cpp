@@ -151,19 +151,18 @@ Eigen::Isometry3d Tracker::camera_moved(const PointCloud& frame) {
 
 std::unique_ptr<SceneIndex> Tracker::indexed(const PointCloud& frame, const SceneSettings& settings,
                                              FrameWork& work) {
-  // The frame's image is built once, for all its indexes. It is given the camera's intrinsics once
-  // an image has fitted them: the frames of a stream come from one camera, and the fit is half of
-  // a range image's work (RangeImage::from_cloud checks that they still fit, and fits again where
-  // they do not).
-  if (!work.image) {
-    work.image =
-        SceneIndex::frame_image(frame, settings_.find.scene, intrinsics_ ? &*intrinsics_ : nullptr);
-    if (!intrinsics_ && frame.is_organized() && *work.image)
-      intrinsics_ = (*work.image)->intrinsics();
-  }
+  // The frame's first index builds its image beside its grids, and the frame's other indexes share
+  // it. The image is given the camera's intrinsics once an image has fitted them: the frames of a
+  // stream come from one camera, and the fit is half of a range image's work
+  // (RangeImage::from_cloud checks that they still fit, and fits again where they do not).
   SceneIndexReuse reuse;
+  reuse.intrinsics = intrinsics_ ? &*intrinsics_ : nullptr;
   reuse.image = work.image;
-  return std::make_unique<SceneIndex>(frame, settings, settings_.find.execution.stop, reuse);
+  auto index = std::make_unique<SceneIndex>(frame, settings, settings_.find.execution.stop, reuse);
+  if (!work.image) work.image = index->shared_range_image();
+  if (!intrinsics_ && index->organised() && index->range_image())
+    intrinsics_ = index->range_image()->intrinsics();
+  return index;
 }
 
 std::unique_ptr<SceneIndex> Tracker::index_within(const PointCloud& frame, const Box& volume,

@@ -201,9 +201,12 @@ TEST(SceneIndexSharing, IndexesOfOneFrameShareItsImageAndSearchAsWithTheirOwn) {
   const PointCloud scene = render_scene(kCopies, true);
   const Landmark landmark = capture(scene, box_at(kCopies[0]), "L");
   FindSettings s;
-  const FrameImage image = SceneIndex::frame_image(scene, s.scene);
+  const SceneIndex first(scene, s.scene);
+  const FrameImage image = first.shared_range_image();
   ASSERT_NE(image, nullptr);
+  EXPECT_EQ(image.get(), first.range_image());
 
+  // The image is the frame's whatever the index: another index builds the same one.
   const SceneIndex own(scene, s.scene);
   ASSERT_NE(own.range_image(), nullptr);
   const PinholeIntrinsics& a = own.range_image()->intrinsics();
