@@ -242,7 +242,7 @@ TEST(SceneIndexSharing, IndexesOfOneFrameShareItsImageAndSearchAsWithTheirOwn) {
   EXPECT_EQ(r1.matches[0].confidence.probability, r2.matches[0].confidence.probability);
   EXPECT_TRUE(r1.matches[0].box.pose.isApprox(r2.matches[0].box.pose, 0.0));
 
-  // A frame that is no view from its sensor pose has no image, shared or not.
+  // An image shared as absent (the frame was no view from its sensor pose) is not built again.
   reuse.image = FrameImage();
   EXPECT_EQ(SceneIndex(scene, around.scene, {}, reuse).range_image(), nullptr);
 }
