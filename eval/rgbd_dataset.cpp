@@ -19,8 +19,8 @@
 #include "lmk/geometry/statistics.h"
 #include "lmk/json/depth_correction_json.h"
 #include "lmk/json/pose_json.h"
+#include "lmk/landmark/capture_check.h"
 #include "lmk/landmark/capture_views.h"
-#include "lmk/landmark/distinctiveness.h"
 #include "lmk/landmark/landmark_file.h"
 #include "lmk/occupancy/tsdf_volume.h"
 #include "lmk/registration/frame_registration.h"
@@ -314,22 +314,22 @@ class LandmarkCutter {
     return capture_views(views, box, name, capture_settings_);
   }
 
-  // The landmark `cut` makes, when the capture accepts it and it passes the distinctiveness check
-  // in its own frame; otherwise the reason is tallied.
+  // The landmark `cut` makes, with its capture check's findings, when the capture accepts it and
+  // it passes the distinctiveness check in its own frame (or keep_warned keeps it anyway);
+  // otherwise the reason is tallied.
   std::optional<Landmark> keep(const std::string& name, const Box& box, std::size_t a,
                                const std::function<Landmark()>& cut) {
     std::string why;
     try {
       Landmark landmark = cut();
-      const DistinctivenessReport check =
-          check_distinctiveness(frames_[a].cloud, landmark, check_settings_);
-      if (!check.found_itself) {
+      landmark.findings = check_capture(landmark, &frames_[a].cloud, check_settings_).findings;
+      const CaptureFindings& f = landmark.findings;
+      if (!f.found_itself) {
         why = "not found in its own frame";
-      } else if (!check.other_instances.empty()) {
+      } else if (f.look_alikes > 0) {
         why = "matches elsewhere in its own frame";
-      } else {
-        return landmark;
       }
+      if (why.empty() || options_.keep_warned) return landmark;
     } catch (const Error& e) {
       why = refusal_reason(e.what());
     }

@@ -55,6 +55,11 @@ struct RgbdDatasetOptions {
   /// A pair whose camera poses and the whole-frame registration disagree beyond these, at the
   /// landmark's centre, is left out: its ground truth cannot be trusted to the protocol's 25.4 mm
   /// and 15 degrees. Half of each.
+  /// Keep the landmarks the capture check warns match elsewhere in their own frame (or miss
+  /// themselves there), as a user who ignores the warning would: their findings say so
+  /// (Landmark::findings), for fitting and checking the confidence's capture prior (issue #59).
+  /// Off: such boxes are refused, as a careful user redraws them.
+  bool keep_warned = false;
   double max_pose_disagreement = 0.0127;                   ///< m
   double max_pose_rotation_disagreement = 0.1309;          ///< rad (7.5 degrees)
   std::function<void(std::size_t, std::size_t)> progress;  ///< (frames done, frames in all)

@@ -20,104 +20,6 @@ namespace {
 
 double median_value(const std::vector<double>& values) { return median(values).value_or(NAN); }
 
-// Points of one patch in the sensor frame, with their pixel coordinates.
-struct PatchPoints {
-  std::vector<Eigen::Vector3d> p;
-  std::vector<Eigen::Vector2d> uv;
-  std::vector<std::size_t> pixels;
-};
-
-// The plane through the points, fitted where a depth camera's error lies: along the rays. A plane
-// n.p + d = 0 seen through the ray (x', y', 1) = p / z is linear in inverse depth,
-// 1/z = -(n.(x', y', 1)) / d, so a least-squares fit of 1/z to (x', y', 1) gives it without the
-// degeneracy of a principal-axes fit on a patch hardly wider than its noise.
-Eigen::Vector4d fit_plane(const std::vector<Eigen::Vector3d>& points) {
-  Eigen::Matrix3d AtA = Eigen::Matrix3d::Zero();
-  Eigen::Vector3d Atb = Eigen::Vector3d::Zero();
-  for (const auto& p : points) {
-    const Eigen::Vector3d ray = p / p.z();
-    AtA += ray * ray.transpose();
-    Atb += ray / p.z();
-  }
-  const Eigen::Vector3d coefficients = AtA.ldlt().solve(Atb);  // 1/z = coefficients . ray
-  const double norm = coefficients.norm();
-  // n = -d coefficients with |n| = 1 and the normal facing the sensor (d > 0).
-  const Eigen::Vector3d n = -coefficients / norm;
-  return Eigen::Vector4d(n.x(), n.y(), n.z(), 1.0 / norm);
-}
-
-// The fraction of the residuals' variance that a quadratic in the pixel coordinates explains.
-double curvature_r2(const std::vector<double>& residuals, const std::vector<Eigen::Vector2d>& uv) {
-  const Eigen::Index n = static_cast<Eigen::Index>(residuals.size());
-  Eigen::MatrixXd A(n, 6);
-  Eigen::VectorXd b(n);
-  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
-  for (const auto& x : uv) mean += x;
-  mean /= static_cast<double>(uv.size());
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const Eigen::Vector2d x = uv[static_cast<std::size_t>(i)] - mean;
-    A.row(i) << 1.0, x.x(), x.y(), x.x() * x.x(), x.x() * x.y(), x.y() * x.y();
-    b[i] = residuals[static_cast<std::size_t>(i)];
-  }
-  const Eigen::VectorXd fit = A * A.colPivHouseholderQr().solve(b);
-  const double total = (b.array() - b.mean()).square().sum();
-  return total > 0.0 ? 1.0 - (b - fit).squaredNorm() / total : 0.0;
-}
-
-// The median gap between consecutive distinct depths (levels closer than 0.05 mm are one level,
-// float rounding); NaN with fewer than three levels.
-double median_level_gap(std::vector<double> depths) {
-  std::sort(depths.begin(), depths.end());
-  std::vector<double> levels;
-  for (double z : depths) {
-    if (levels.empty() || z - levels.back() > 5e-5) levels.push_back(z);
-  }
-  if (levels.size() < 3) return std::nan("");
-  std::vector<double> gaps;
-  for (std::size_t i = 1; i < levels.size(); ++i) gaps.push_back(levels[i] - levels[i - 1]);
-  return median_value(gaps);
-}
-
-// The standard deviation after dropping, twice, what lies beyond 3 of them from the mean: robust
-// to the odd flying pixel, and unlike the median absolute deviation still meaningful when most of
-// a patch lies on one or two depth levels.
-double clipped_sd(const std::vector<double>& values) {
-  double mean = 0.0, sd = std::numeric_limits<double>::infinity();
-  for (int pass = 0; pass < 3; ++pass) {
-    double sum = 0.0, sum2 = 0.0;
-    std::size_t n = 0;
-    for (double v : values) {
-      if (std::abs(v - mean) > 3.0 * sd) continue;
-      sum += v;
-      sum2 += v * v;
-      ++n;
-    }
-    if (n < 2) break;
-    mean = sum / static_cast<double>(n);
-    sd = std::sqrt(std::max(0.0, sum2 / static_cast<double>(n) - mean * mean));
-  }
-  return sd;
-}
-
-// The statistics of a patch's points about `plane` (fitted to them, or to their real twins).
-PlanePatch measure(const PatchPoints& pts, const Eigen::Vector4d& plane) {
-  PlanePatch patch;
-  patch.plane = plane;
-  patch.points = pts.p.size();
-  patch.pixels = pts.pixels;
-  std::vector<double> residuals, depths, abs_dev;
-  double depth = 0.0;
-  for (const auto& p : pts.p) {
-    residuals.push_back(plane.head<3>().dot(p) + plane[3]);
-    depths.push_back(p.z());
-    depth += p.z();
-  }
-  patch.depth = depth / static_cast<double>(pts.p.size());
-  patch.residual_sd = clipped_sd(residuals);
-  patch.level_spacing = median_level_gap(depths);
-  return patch;
-}
-
 }  // namespace
 
 std::vector<PlanePatch> plane_patches(const PointCloud& frame, const std::vector<bool>& keep,
@@ -127,27 +29,16 @@ std::vector<PlanePatch> plane_patches(const PointCloud& frame, const std::vector
   if (!keep.empty() && keep.size() != frame.size())
     throw Error("sensor validation: the point filter must have one entry per point");
   const Eigen::Isometry3d T_sensor_cloud = frame.T_cloud_sensor.inverse();
-  const int tile = s.tile;
-  const auto min_points = static_cast<std::size_t>(std::ceil(s.min_fill * tile * tile));
+  const SensorPointAt at = [&](std::size_t i, Eigen::Vector3d& p) {
+    if (!is_finite(frame.points[i]) || (!keep.empty() && !keep[i])) return false;
+    p = T_sensor_cloud * frame.points[i].cast<double>();
+    return true;
+  };
+  const int width = static_cast<int>(frame.width), height = static_cast<int>(frame.height);
   std::vector<PlanePatch> out;
-  for (int v0 = 0; v0 + tile <= static_cast<int>(frame.height); v0 += tile) {
-    for (int u0 = 0; u0 + tile <= static_cast<int>(frame.width); u0 += tile) {
-      PatchPoints pts;
-      for (int v = v0; v < v0 + tile; ++v) {
-        for (int u = u0; u < u0 + tile; ++u) {
-          const std::size_t i = static_cast<std::size_t>(v) * frame.width + u;
-          if (!is_finite(frame.points[i]) || (!keep.empty() && !keep[i])) continue;
-          pts.p.push_back(T_sensor_cloud * frame.points[i].cast<double>());
-          pts.uv.emplace_back(u, v);
-          pts.pixels.push_back(i);
-        }
-      }
-      if (pts.p.size() < min_points) continue;
-      const Eigen::Vector4d plane = fit_plane(pts.p);
-      std::vector<double> residuals;
-      for (const auto& p : pts.p) residuals.push_back(plane.head<3>().dot(p) + plane[3]);
-      if (curvature_r2(residuals, pts.uv) > s.max_curvature_r2) continue;
-      out.push_back(measure(pts, plane));
+  for (int v0 = 0; v0 + s.tile <= height; v0 += s.tile) {
+    for (int u0 = 0; u0 + s.tile <= width; u0 += s.tile) {
+      if (auto patch = plane_patch_at(at, width, u0, v0, s)) out.push_back(std::move(*patch));
     }
   }
   return out;
@@ -168,7 +59,7 @@ PlanePatch simulate_patch(const PointCloud& frame, const PlanePatch& patch,
     pts.pixels.push_back(i);
   }
   if (pts.p.empty()) return PlanePatch();
-  return measure(pts, fit_plane(pts.p));
+  return measure_patch(pts, fit_ray_plane(pts.p));
 }
 
 SensorValidation::SensorValidation(DepthSensorSettings sensor, double bin_width,

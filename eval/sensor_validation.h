@@ -12,29 +12,10 @@
 #include <vector>
 
 #include "lmk/eval/depth_sensor.h"
+#include "lmk/geometry/plane_patches.h"
 #include "lmk/geometry/point_cloud.h"
 
 namespace lmk {
-
-struct PlanePatchSettings {
-  int tile = 12;  ///< patches are tile x tile pixels of the organised frame
-  /// Least fraction of a tile's pixels that must hold a (kept) point.
-  double min_fill = 0.75;
-  /// Patches whose plane residuals a quadratic in the pixel coordinates explains beyond this
-  /// fraction of their variance are not planes (an edge, a curved surface) and are skipped. Pure
-  /// noise on 100 points leaves about 5%; the staircase of the depth levels on a tilted plane more.
-  double max_curvature_r2 = 0.5;
-};
-
-/// One planar patch: where it is and what the sensor made of it.
-struct PlanePatch {
-  double depth = 0.0;          ///< mean depth along the optical axis, m
-  double residual_sd = 0.0;    ///< of the residuals about the fitted plane, 3-sigma clipped, m
-  double level_spacing = 0.0;  ///< median gap between consecutive distinct depths, m (NaN: < 3)
-  std::size_t points = 0;
-  std::vector<std::size_t> pixels;  ///< the frame's indices of its points
-  Eigen::Vector4d plane;            ///< n.x + d = 0 in the sensor frame, |n| = 1
-};
 
 /// The planar patches of an organised frame, among the points `keep` accepts (empty: all).
 /// Throws lmk::Error for an unorganised frame.

@@ -21,6 +21,8 @@ constexpr double kMarginCap = 20.0;
 constexpr double kFitCap = 10.0;
 constexpr double kRangeCap = 5.0;
 constexpr double kLogFreedomBound = 3.0;
+// A landmark's size is weighed as log10 of its box's diagonal over 10 cm, within +-1 (1 cm to 1 m).
+constexpr double kSizeUnit = 0.1;
 
 double capped(double v, double lo, double hi) {
   if (std::isnan(v)) return hi;
@@ -34,25 +36,48 @@ double log_margin(double margin) {
   return std::copysign(std::log1p(std::abs(m)), m);
 }
 
+// log10 of a distance over `unit`, within +-kLogFreedomBound: 0 and below the lower bound,
+// +infinity the upper; NaN (not measured) 0.
+double log_ratio(double distance, double unit) {
+  const double ratio = distance / unit;
+  if (std::isnan(ratio)) return 0.0;
+  if (!(ratio > 0.0)) return -kLogFreedomBound;
+  return capped(std::log10(ratio), -kLogFreedomBound, kLogFreedomBound);
+}
+
 }  // namespace
 
 const std::vector<std::string>& confidence_feature_names() {
   static const std::vector<std::string> names = {
-      "local_margin", "elsewhere_margin", "fit", "coverage", "log_freedom", "range", "intrusion"};
+      "local_margin",  "elsewhere_margin",   "fit",           "coverage",    "log_freedom",
+      "range",         "intrusion",          "log_size",      "log_support", "seen_fraction",
+      "capture_slide", "capture_look_alike", "capture_warned"};
   return names;
 }
 
 std::vector<double> confidence_features(const MatchConfidence& c) {
-  const double freedom_ratio = c.freedom / kSamePoseDistance;
-  const double log_freedom =
-      freedom_ratio > 0.0 ? std::log10(freedom_ratio) : (std::isnan(freedom_ratio) ? 0.0 : -3.0);
-  return {log_margin(c.local_margin),
-          log_margin(c.elsewhere_margin),
-          capped(c.fit, 0.0, kFitCap),
-          std::isnan(c.coverage) ? 1.0 : c.coverage,
-          capped(log_freedom, -kLogFreedomBound, kLogFreedomBound),
-          capped(c.range, 0.0, kRangeCap),
-          capped(c.intrusion, 0.0, 1.0)};
+  const CaptureFindings& capture = c.capture;
+  const double look_alike =
+      !capture.look_alike_checked
+          ? 0.0
+          : (!capture.found_itself
+                 ? 1.0
+                 : (capture.look_alikes == 0 ? 0.0
+                                             : 1.0 / std::max(1.0, capture.look_alike_ratio)));
+  return {
+      log_margin(c.local_margin),
+      log_margin(c.elsewhere_margin),
+      capped(c.fit, 0.0, kFitCap),
+      std::isnan(c.coverage) ? 1.0 : c.coverage,
+      log_ratio(c.freedom, kSamePoseDistance),
+      capped(c.range, 0.0, kRangeCap),
+      capped(c.intrusion, 0.0, 1.0),
+      std::isnan(c.landmark_size) ? 0.0 : capped(std::log10(c.landmark_size / kSizeUnit), -1, 1),
+      std::log10(static_cast<double>(std::clamp<std::size_t>(c.support, 1, 100000))),
+      std::isnan(c.seen_fraction) ? 1.0 : capped(c.seen_fraction, 0.0, 1.0),
+      capture.present ? log_ratio(capture.slide, kSamePoseDistance) : 0.0,
+      look_alike,
+      capture.present && capture.warned() ? 1.0 : 0.0};
 }
 
 double calibrated_probability(const MatchConfidence& confidence,
@@ -105,6 +130,11 @@ ConfidenceCalibration parse_confidence_calibration(const std::string& text,
   const nlohmann::json& version = field("version");
   if (!version.is_number_integer() || version.get<long long>() < 1) {
     throw fail("'version' must be a positive integer");
+  }
+  if (version.get<long long>() < kConfidenceCalibrationVersion) {
+    throw fail("version " + version.dump() +
+               " weighed margins in the sensor model's units, before the noise measured in the "
+               "frames: refit it with lmk calibrate-confidence");
   }
   if (version.get<long long>() > kConfidenceCalibrationVersion) {
     throw fail("version " + version.dump() + " is newer than this lmk reads (" +

@@ -19,7 +19,10 @@
 
 namespace lmk {
 
-inline constexpr int kConfidenceCalibrationVersion = 1;
+/// Version 2 (issue #59): margins and fit in units of the noise measured in the frames, and the
+/// landmark's and its capture's features. A version-1 file weighed margins in the sensor model's
+/// units: it is refused, to be refitted (`lmk calibrate-confidence`).
+inline constexpr int kConfidenceCalibrationVersion = 2;
 
 struct ConfidenceCalibration {
   std::string metric;     ///< the error metric it was fitted for; others get no probability
@@ -29,14 +32,24 @@ struct ConfidenceCalibration {
 };
 
 /// The features a calibration may weigh, each a bounded function of the evidence:
-///   local_margin      margin against the best slide or turn, in error sigmas, capped at +-20,
-///                     as sign(m) log(1 + |m|) (no rival: the cap)
-///   elsewhere_margin  the same against the best look-alike elsewhere
-///   fit               the error over the residual sigma at the match's range, capped at 10
-///   coverage          share of the landmark the scene supports (1 for metrics without it)
-///   log_freedom       log10 of the freedom over kSamePoseDistance, within [-3, 3]
-///   range             m, capped at 5
-///   intrusion         the share of the empty-space allowance the match uses, in [0, 1]
+///   local_margin       margin against the best slide or turn, in error sigmas, capped at +-20,
+///                      as sign(m) log(1 + |m|) (no rival: the cap)
+///   elsewhere_margin   the same against the best look-alike elsewhere
+///   fit                the error over the residual sigma at the match's range, capped at 10
+///   coverage           share of the landmark the scene supports (1 for metrics without it)
+///   log_freedom        log10 of the freedom over kSamePoseDistance, within [-3, 3]
+///   range              m, capped at 5
+///   intrusion          the share of the empty-space allowance the match uses, in [0, 1]
+///   log_size           log10 of the landmark box's diagonal over 10 cm, within [-1, 1]
+///   log_support        log10 of the supporting landmark points (at least 1)
+///   seen_fraction      share of the landmark the scene's sensor can see at the match (1 unknown)
+///   capture_slide      log10 of the capture check's slide over kSamePoseDistance, within [-3, 3]
+///                      (-3: none; 0 for a landmark without findings)
+///   capture_look_alike 1 over the capture check's look-alike error ratio; 1 when it did not find
+///                      the landmark itself, 0 without a look-alike or without the check
+///   capture_warned     1 when the capture check warned (CaptureFindings::warned), else 0
+/// Margins, fit and freedom are measured against the noise of the frames themselves
+/// (MatchConfidence::scene_noise, capture_noise): from version 2 of the file.
 const std::vector<std::string>& confidence_feature_names();
 
 /// The features of `confidence`, in the order of confidence_feature_names().

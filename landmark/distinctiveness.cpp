@@ -15,6 +15,7 @@ DistinctivenessReport check_distinctiveness(const PointCloud& capture_scene,
   const Eigen::Vector3d captured = landmark.box.center();
   for (const Match& m : report.search.matches) {
     if ((m.box.center() - captured).norm() <= settings.selection.nms_radius) {
+      if (!report.found_itself || m.error < report.own_error) report.own_error = m.error;
       report.found_itself = true;
     } else {
       report.other_instances.push_back(m);

@@ -5,6 +5,7 @@
 // robot could mistake that place for the landmark, so the user should hear about it while the scene
 // is still at hand and can draw a better box (more empty margin, more context).
 
+#include <limits>
 #include <vector>
 
 #include "lmk/geometry/point_cloud.h"
@@ -20,6 +21,9 @@ struct DistinctivenessReport {
   /// Did the search find the captured instance itself? A landmark that its own scene does not
   /// reproduce is too thin for the search (too few points, a featureless shape).
   bool found_itself = false;
+  /// The captured instance's error, in the metric's unit (NaN when not found): what a look-alike's
+  /// error is measured against (CaptureFindings::look_alike_ratio).
+  double own_error = std::numeric_limits<double>::quiet_NaN();
   FindResult search;  ///< the whole search, for its statistics
 };
 

@@ -27,7 +27,7 @@ namespace lmk {
 /// Bumped whenever a search's results change for the same settings and inputs (how seeds are
 /// drawn, how candidates are scored), so that cached evaluations are searched again. What each
 /// revision changed: docs/evaluation.md, "Search revisions".
-inline constexpr int kSearchRevision = 7;
+inline constexpr int kSearchRevision = 8;
 
 struct Match {
   /// The matched box in the scene frame: the capture box moved by T_scene_capture.

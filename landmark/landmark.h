@@ -13,6 +13,7 @@
 #include "lmk/geometry/point_cloud.h"
 #include "lmk/geometry/settings_schema.h"
 #include "lmk/geometry/voxel_grid.h"
+#include "lmk/landmark/capture_findings.h"
 #include "lmk/landmark/scene_settings.h"
 #include "lmk/occupancy/distance_field.h"
 #include "lmk/occupancy/empty_space.h"
@@ -21,9 +22,10 @@ namespace lmk {
 
 /// Version of the landmark model and of its .lmk file; bumped whenever either changes.
 /// Version 2 added the up axis and the distance and empty-space grids; version 3 the views of a
-/// landmark captured from several (Landmark::view_origins). A landmark of one view is still written
-/// as version 2, byte for byte as before.
-inline constexpr int kLandmarkFormatVersion = 3;
+/// landmark captured from several (Landmark::view_origins); version 4 what the capture check found
+/// (Landmark::findings, issue #59). A landmark of one view without findings is still written as
+/// version 2, byte for byte as before.
+inline constexpr int kLandmarkFormatVersion = 4;
 
 /// The most views one landmark fuses (Landmark::point_views holds one bit per view).
 inline constexpr std::size_t kMaxLandmarkViews = 16;
@@ -147,6 +149,9 @@ struct Landmark {
   /// Empty for one view.
   std::vector<std::uint32_t> point_views;
   CaptureSettings settings;
+  /// What the capture check found (capture_check.h): stored from format 4; a file from before
+  /// gains all but the look-alike check on load.
+  CaptureFindings findings;
   int format_version = kLandmarkFormatVersion;
 
   /// Whether the landmark fuses several views: its back may hold points that a sensor looking at

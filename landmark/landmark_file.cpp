@@ -23,7 +23,9 @@
 #include "lmk/json/box_json.h"
 #include "lmk/json/pose_json.h"
 #include "lmk/json/settings_json.h"
+#include "lmk/landmark/capture_check.h"
 #include "lmk/landmark/detail/landmark_container.h"
+#include "lmk/landmark/internal/capture_findings_json.h"
 #include "lmk/occupancy/internal/grids.h"
 
 namespace lmk {
@@ -46,9 +48,35 @@ constexpr const char* kColourAttribute = "capture_colour";
 // 2, byte for byte as lmk wrote it before views and colour existed.
 constexpr int kOneViewFileVersion = 2;
 
+// Version 4, the capture check's findings (capture_findings.h) as JSON text.
+constexpr const char* kFindingsMeta = "lmk_capture_findings";
+// The version that introduced views and colour, written for a landmark without findings that has
+// either.
+constexpr int kViewsFileVersion = 3;
+
 int file_version(const Landmark& landmark) {
-  return landmark.multi_view() || landmark.points.has_colors() ? kLandmarkFormatVersion
+  if (landmark.findings.present) return kLandmarkFormatVersion;
+  return landmark.multi_view() || landmark.points.has_colors() ? kViewsFileVersion
                                                                : kOneViewFileVersion;
+}
+
+// The findings a file stores, or, for a file written before them (or a landmark saved without),
+// what the capture check can measure without the capture scene (capture_check.h).
+void read_findings(const vdb::points::PointDataGrid& grid, const std::string& path,
+                   Landmark& landmark) {
+  const auto meta = grid.getMetadata<vdb::StringMetadata>(kFindingsMeta);
+  if (!meta) {
+    landmark.findings = check_capture(landmark, nullptr).findings;
+    return;
+  }
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(meta->value());
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(path + ": corrupt landmark file: " + kFindingsMeta + " is not JSON (" + e.what() +
+                ")");
+  }
+  landmark.findings = detail::capture_findings_from_json(j, path + ": " + kFindingsMeta);
 }
 
 std::int32_t packed_colour(const Color& c) {
@@ -142,6 +170,11 @@ vdb::points::PointDataGrid::Ptr make_points_grid(const Landmark& landmark) {
                    vdb::DoubleMetadata(landmark.settings.empty_space_margin));
   // Optional: files without it hold a landmark with a shape, as every earlier file does.
   if (landmark.settings.allow_flat) grid->insertMeta("lmk_allow_flat", vdb::BoolMetadata(true));
+  if (landmark.findings.present) {
+    grid->insertMeta(
+        kFindingsMeta,
+        vdb::StringMetadata(detail::capture_findings_to_json(landmark.findings).dump()));
+  }
   if (landmark.multi_view()) {  // the first view's origin is lmk_sensor_origin
     grid->insertMeta("lmk_view_count",
                      vdb::Int32Metadata(static_cast<std::int32_t>(landmark.view_origins.size())));
@@ -319,6 +352,7 @@ nlohmann::json to_json(const Landmark& l) {
                       {"sensor_origin", detail::vector_to_json(l.sensor_origin)},
                       {"capture", detail::settings_to_json(l.settings)},
                       {"up", detail::vector_to_json(l.up)}};
+  if (l.findings.present) j["capture_findings"] = detail::capture_findings_to_json(l.findings);
   if (l.multi_view()) {  // each point's views are points.pcd's labels
     j["view_origins"] = nlohmann::json::array();
     for (const Eigen::Vector3d& o : l.view_origins) {
@@ -348,6 +382,10 @@ Landmark from_json(const nlohmann::json& j, const std::string& path) {
     // Every capture setting by its description; those an older export lacks keep their defaults.
     detail::settings_from_json(j.at("capture"), path + ": capture", l.settings);
     if (j.contains("up")) l.up = detail::numbers_from_json(j.at("up"), 3, path + ": up");
+    if (j.contains("capture_findings")) {
+      l.findings =
+          detail::capture_findings_from_json(j.at("capture_findings"), path + ": capture_findings");
+    }
     if (j.contains("view_origins")) {
       const nlohmann::json& origins = j.at("view_origins");
       if (!origins.is_array()) throw Error(path + ": view_origins must be an array");
@@ -495,6 +533,7 @@ Landmark load_landmark(const std::string& path) {
       prepare_landmark(landmark);
     }
     landmark.validate(path);
+    read_findings(*grid, path, landmark);  // after validation: the slide check reads the points
     return landmark;
   });
 }
@@ -542,6 +581,8 @@ Landmark import_landmark(const std::string& dir) {
   }
   landmark.validate(dir);
   prepare_landmark(landmark);  // the capture scene is not exported: rays to its own points only
+  // An export from before format 4 gains what can be measured without the capture scene.
+  if (!landmark.findings.present) landmark.findings = check_capture(landmark, nullptr).findings;
   return landmark;
 }
 

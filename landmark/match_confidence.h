@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "lmk/geometry/box.h"
+#include "lmk/landmark/capture_findings.h"
 #include "lmk/landmark/slide_check.h"
 
 namespace lmk {
@@ -60,12 +61,31 @@ struct MatchConfidence {
   double local_margin = std::numeric_limits<double>::infinity();
   double elsewhere_margin = std::numeric_limits<double>::infinity();
   /// The uncertainty of the match's error from the depth noise alone, in the metric's unit: the
-  /// residual sigma at the match's range (DepthNoise::residual_sigma) over the square root of the
-  /// supporting landmark points (for the sensor metric, whose residuals are in sigma, 1 over it).
+  /// residual sigma at the match's range over the square root of the supporting landmark points
+  /// (for the sensor metric, whose residuals are in sigma, 1 over it). The residual sigma joins
+  /// the two measurements a residual compares, the scene's and the capture's, and the floor
+  /// (DepthNoise::residual_sigma with scene_noise and capture_noise for the model's).
   double error_sigma = std::numeric_limits<double>::quiet_NaN();
   /// The match's error over the residual sigma at its range: how well it fits for its range.
   double fit = std::numeric_limits<double>::quiet_NaN();
   double range = std::numeric_limits<double>::quiet_NaN();  ///< scene sensor to box centre, m
+  /// One depth measurement's noise at the match, measured in the scene's own frame around it
+  /// (geometry/frame_noise.h: the spread of the frame's planar surfaces at the match's range), m.
+  /// Where the frame does not measure it (an unorganised cloud, too few planes at that range) the
+  /// sensor model's (SceneSettings::depth_noise) stands in, and scene_noise_measured is false.
+  double scene_noise = std::numeric_limits<double>::quiet_NaN();
+  bool scene_noise_measured = false;
+  /// The same in the capture frame at the landmark (CaptureFindings::noise, or the model's), m.
+  double capture_noise = std::numeric_limits<double>::quiet_NaN();
+  /// The landmark as the evidence sees it, inputs of their own rather than hidden in the margin:
+  /// its box's diagonal (m), its points, and the share of them the scene's sensor can see at the
+  /// match (in the image, with a measured depth not clearly in front of them).
+  double landmark_size = std::numeric_limits<double>::quiet_NaN();
+  std::size_t landmark_points = 0;
+  double seen_fraction = std::numeric_limits<double>::quiet_NaN();
+  /// What the capture check found about the landmark (Landmark::findings): a prior every match of
+  /// it carries.
+  CaptureFindings capture;
   /// Landmark points (at the scene's coarse leaf, the noise's independence scale) that have a scene
   /// surface within the support distance at the match.
   std::size_t support = 0;

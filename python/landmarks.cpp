@@ -7,7 +7,8 @@
 #include <memory>
 
 #include "bindings.h"
-#include "lmk/landmark/distinctiveness.h"
+#include "lmk/landmark/capture_check.h"
+#include "lmk/landmark/internal/capture_findings_json.h"
 #include "lmk/landmark/internal/find_result_json.h"
 #include "lmk/landmark/landmark_file.h"
 #include "lmk/landmark/slide_check.h"
@@ -24,27 +25,31 @@ py::array_t<float> points_array(const std::vector<Eigen::Vector3f>& points) {
   return out;
 }
 
-// The check `lmk capture` runs in the capture scene, as a dict: whether the landmark is
-// distinctive, found itself, the other places it matches, and how it can slide within the noise.
-py::dict verdict(const PointCloud& scene, const Landmark& landmark) {
+// The check `lmk capture` runs in the capture scene (landmark/capture_check.h), as a dict: whether
+// the landmark is distinctive, found itself, the other places it matches, how it can slide within
+// the noise, and the findings stored with it. With `look_alikes` false only what needs no search.
+py::object verdict(const PointCloud& scene, Landmark& landmark, bool look_alikes) {
   FindSettings find;
   find.scene.up = landmark.up;  // the capture frame is the scene frame
-  DistinctivenessReport report;
-  std::vector<std::string> slides;
+  CaptureCheck check;
   {
     const py::gil_scoped_release release;
-    report = check_distinctiveness(scene, landmark, find);
-    slides = describe_slides(slide_check(landmark), landmark.box);
+    check = check_capture(landmark, &scene, find, look_alikes);
   }
-  py::list others;
-  for (const Match& m : report.other_instances) {
-    others.append(json_to_python(detail::match_to_json(m)));
-  }
+  landmark.findings = check.findings;
+  if (!look_alikes) return py::none();
   py::dict d;
-  d["distinctive"] = report.found_itself && report.other_instances.empty();
-  d["found_itself"] = report.found_itself;
+  const bool searched = check.look_alikes.has_value();  // not for a flat landmark
+  py::list others;
+  if (searched) {
+    for (const Match& m : check.look_alikes->other_instances)
+      others.append(json_to_python(detail::match_to_json(m)));
+  }
+  d["distinctive"] = !searched || (check.findings.found_itself && check.findings.look_alikes == 0);
+  d["found_itself"] = check.findings.found_itself;
   d["other_instances"] = others;
-  d["slides"] = slides;
+  d["slides"] = describe_slides(check.slides, landmark.box);
+  d["findings"] = json_to_python(detail::capture_findings_to_json(check.findings));
   return d;
 }
 
@@ -82,6 +87,14 @@ void bind_landmarks(py::module_& m) {
           py::arg("points"),
           "The landmark's distance field (the distance grid) at each of N x 3 points of the "
           "capture frame, m; its band's value beyond the band.")
+      .def_property_readonly(
+          "capture_findings",
+          [](const Landmark& l) {
+            return l.findings.present ? json_to_python(detail::capture_findings_to_json(l.findings))
+                                      : py::object(py::none());
+          },
+          "What the capture check found (noise, slide, symmetry_axes, look_alikes, warnings...), "
+          "as stored in the .lmk; None for a landmark built without it.")
       .def_property_readonly("view_count", &Landmark::view_count)
       .def_property_readonly("has_colour", [](const Landmark& l) { return l.points.has_colors(); })
       .def(
@@ -110,7 +123,7 @@ void bind_landmarks(py::module_& m) {
           const py::gil_scoped_release release;
           landmark = capture(cloud, box, name, settings);
         }
-        py::object checked = check ? py::object(verdict(cloud, landmark)) : py::none();
+        py::object checked = verdict(cloud, landmark, check);
         return py::make_tuple(std::make_shared<Landmark>(std::move(landmark)), checked);
       },
       py::arg("cloud"), py::arg("box_pose"), py::arg("box_size"), py::kw_only(), py::arg("name"),
@@ -118,7 +131,8 @@ void bind_landmarks(py::module_& m) {
       "Cuts a landmark out of `cloud` with the box (a 4x4 pose and three sides, m, in the cloud's "
       "frame). `base_frame`: the cloud is in a robot base frame, whose +z is up. Returns "
       "(landmark, verdict): the verdict of `lmk capture`'s checks (distinctive, found_itself, "
-      "other_instances, slides), or None with check=False. Further keywords are `lmk capture`'s "
+      "other_instances, slides, findings), or None with check=False (the findings that need no "
+      "search are stored with the landmark either way). Further keywords are `lmk capture`'s "
       "settings (leaf_size, min_points, distance_band, allow_flat, depth_smoothing, ...), in its "
       "flags' units.");
 }

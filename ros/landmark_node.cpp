@@ -9,9 +9,9 @@
 
 #include "lmk/geometry/error.h"
 #include "lmk/landmark/box_guess.h"
+#include "lmk/landmark/capture_check.h"
 #include "lmk/landmark/capture_views.h"
 #include "lmk/landmark/depth_correction_file.h"
-#include "lmk/landmark/distinctiveness.h"
 #include "lmk/landmark/find_landmark.h"
 #include "lmk/landmark/internal/find_settings_json.h"
 #include "lmk/landmark/scene_index.h"
@@ -238,24 +238,28 @@ void LandmarkNode::capture_box(const std::string& name, const Box& box, bool for
                       view, 100.0 * r.overlap, 1000.0 * r.residual);
         registered += text;
       });
-  const Landmark landmark = capture_views(views, box, name, settings_.capture);
+  Landmark landmark = capture_views(views, box, name, settings_.capture);
   response.views = static_cast<std::uint32_t>(landmark.view_count());
 
-  FindSettings check = settings_.find;
-  check.scene.up = landmark.up;
-  const DistinctivenessReport report = check_distinctiveness(frame->scene, landmark, check);
-  response.found_itself = report.found_itself;
-  for (std::size_t i = 0; i < report.other_instances.size(); ++i) {
+  // The capture check (landmark/capture_check.h), whose findings the file keeps.
+  FindSettings check_settings = settings_.find;
+  check_settings.scene.up = landmark.up;
+  const CaptureCheck check = check_capture(landmark, &frame->scene, check_settings);
+  landmark.findings = check.findings;
+  response.found_itself = check.findings.found_itself;
+  const std::vector<Match> none;
+  const std::vector<Match>& others = check.look_alikes ? check.look_alikes->other_instances : none;
+  for (std::size_t i = 0; i < others.size(); ++i) {
     response.other_instances.push_back(
-        to_ros(report.other_instances[i], landmark.name, static_cast<std::uint32_t>(i + 1)));
+        to_ros(others[i], landmark.name, static_cast<std::uint32_t>(i + 1)));
   }
-  std::string verdict = report.found_itself ? ""
-                                            : "the search does not find it in its own frame (too "
-                                              "few points or too little shape); ";
-  if (!report.other_instances.empty()) {
-    verdict += "it also matches " + std::to_string(report.other_instances.size()) +
-               " other place(s), the best at " +
-               describe(report.other_instances.front().box.center()) + "; ";
+  std::string verdict = check.findings.found_itself
+                            ? ""
+                            : "the search does not find it in its own frame (too few points or "
+                              "too little shape); ";
+  if (!others.empty()) {
+    verdict += "it also matches " + std::to_string(others.size()) +
+               " other place(s), the best at " + describe(others.front().box.center()) + "; ";
   }
   if (!verdict.empty() && !force) {
     response.success = false;
@@ -274,7 +278,7 @@ void LandmarkNode::capture_box(const std::string& name, const Box& box, bool for
     added_views_.clear();
   }
   // The slide check (landmark/slide_check.h): advice shown with the result in RViz, not a refusal.
-  for (const std::string& line : describe_slides(slide_check(landmark), landmark.box))
+  for (const std::string& line : describe_slides(check.slides, landmark.box))
     response.message += "; " + line;
   ROS_INFO("lmk: %s", response.message.c_str());
 }

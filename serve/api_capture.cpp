@@ -5,8 +5,9 @@
 #include "lmk/json/box_json.h"
 #include "lmk/json/pose_json.h"
 #include "lmk/landmark/box_guess.h"
+#include "lmk/landmark/capture_check.h"
 #include "lmk/landmark/capture_views.h"
-#include "lmk/landmark/distinctiveness.h"
+#include "lmk/landmark/internal/capture_findings_json.h"
 #include "lmk/landmark/internal/find_result_json.h"
 #include "lmk/landmark/slide_check.h"
 #include "lmk/serve/api.h"
@@ -58,18 +59,12 @@ Landmark capture_from(const std::vector<Scene>& scenes, const nlohmann::json& bo
   return capture_views(views, box, name, settings);
 }
 
-// The verdict the page shows before the file is written (landmark/distinctiveness.h). The search
-// reports each seed to `progress`, where a cancelled or abandoned job ends.
-// With the landmark's views and how each further one was registered (`registrations`).
-nlohmann::json verdict(const Landmark& landmark, const PointCloud& scene,
+// The verdict the page shows before the file is written: the capture check (landmark/
+// capture_check.h), whose findings it stores in `landmark`. The look-alike search reports each seed
+// to `progress`, where a cancelled or abandoned job ends. With the landmark's views and how each
+// further one was registered (`registrations`).
+nlohmann::json verdict(Landmark& landmark, const PointCloud& scene,
                        const nlohmann::json& registrations, JobProgress& progress) {
-  if (landmark.settings.allow_flat) {
-    return {{"distinctive", true},
-            {"checked", false},
-            {"views", landmark.view_count()},
-            {"registrations", registrations},
-            {"message", "a flat patch matches wherever it fits: no distinctiveness check"}};
-  }
   FindSettings find;
   find.scene.up = landmark.up;  // the capture frame is the scene frame
   find.execution.stop = progress.stop_check();
@@ -77,7 +72,18 @@ nlohmann::json verdict(const Landmark& landmark, const PointCloud& scene,
   find.execution.progress = [&progress, &what](std::size_t done, std::size_t total) {
     progress.report(0.2 + 0.8 * static_cast<double>(done) / static_cast<double>(total), what);
   };
-  const DistinctivenessReport report = check_distinctiveness(scene, landmark, find);
+  const CaptureCheck check = check_capture(landmark, &scene, find);
+  landmark.findings = check.findings;
+  const nlohmann::json findings = detail::capture_findings_to_json(check.findings);
+  if (!check.look_alikes) {  // a flat landmark
+    return {{"distinctive", true},
+            {"checked", false},
+            {"findings", findings},
+            {"views", landmark.view_count()},
+            {"registrations", registrations},
+            {"message", "a flat patch matches wherever it fits: no distinctiveness check"}};
+  }
+  const DistinctivenessReport& report = *check.look_alikes;
   nlohmann::json others = nlohmann::json::array();
   for (const Match& m : report.other_instances) {
     nlohmann::json o = detail::match_to_json(m);
@@ -98,11 +104,12 @@ nlohmann::json verdict(const Landmark& landmark, const PointCloud& scene,
     message = "'" + landmark.name + "' is distinctive in its scene";
   }
   // The slide check (landmark/slide_check.h), apart from the look-alikes: advice, not a refusal.
-  const std::vector<std::string> slides = describe_slides(slide_check(landmark), landmark.box);
+  const std::vector<std::string> slides = describe_slides(check.slides, landmark.box);
   for (const std::string& line : slides) message += "; " + line;
   return {{"distinctive", distinctive},
           {"slides", slides},
           {"checked", true},
+          {"findings", findings},
           {"found_itself", report.found_itself},
           {"other_instances", others},
           {"metric", report.search.stats.metric},
@@ -119,7 +126,8 @@ nlohmann::json landmark_summary(const std::string& name, const Landmark& l) {
           {"up", detail::vector_to_json(l.up)},
           {"allow_flat", l.settings.allow_flat},
           {"views", l.view_count()},
-          {"colour", l.points.has_colors()}};
+          {"colour", l.points.has_colors()},
+          {"warnings", l.findings.warnings()}};
 }
 
 // Writes `landmark` into `library` under `name`; the answer of a capture: its summary and file.
@@ -166,7 +174,7 @@ ApiResponse Api::check(const std::string& body_text) {
       "check", body, std::move(memory), [scenes, body, find, name](JobProgress& progress) {
         progress.report(0.0, "capturing '" + name + "'");
         nlohmann::json registrations = nlohmann::json::array();
-        const Landmark landmark = capture_from(scenes, body, find, name, "check", registrations);
+        Landmark landmark = capture_from(scenes, body, find, name, "check", registrations);
         progress.report(0.2, "searching '" + name + "' in its own scene");
         return verdict(landmark, *scenes.front().cloud, registrations, progress);
       });
@@ -211,9 +219,12 @@ ApiResponse Api::save_landmark(const std::string& body_text) {
                    "' exists already; choose another name or set overwrite");
   }
   nlohmann::json registrations = nlohmann::json::array();
-  const Landmark landmark =
+  Landmark landmark =
       capture_from(scenes, body, scene_find_settings(), name, "capture", registrations);
   if (!check_first) {
+    // What the capture check measures without a search (the noise, the slides) still travels with
+    // the landmark; the look-alike check is the request's "check".
+    landmark.findings = check_capture(landmark, scene.cloud.get(), {}, false).findings;
     nlohmann::json j = save_and_summarise(library_, name, landmark, overwrite);
     j["registrations"] = registrations;
     return {201, j};
@@ -228,12 +239,14 @@ ApiResponse Api::save_landmark(const std::string& body_text) {
   ApiResponse answer = run_job(
       "capture", job_body, reserve_search(scene, scene_find_settings().scene, "capture"),
       [shared, scene, overwrite, name, registrations, &library](JobProgress& progress) {
-        const nlohmann::json checked = verdict(*shared, *scene.cloud, registrations, progress);
+        Landmark checked_landmark = *shared;
+        const nlohmann::json checked =
+            verdict(checked_landmark, *scene.cloud, registrations, progress);
         if (!checked["distinctive"].get<bool>()) {
           throw ApiError(409, "capture: not written: " + checked["message"].get<std::string>(),
                          {{"verdict", checked}});
         }
-        nlohmann::json j = save_and_summarise(library, name, *shared, overwrite);
+        nlohmann::json j = save_and_summarise(library, name, checked_landmark, overwrite);
         j["verdict"] = checked;
         j["registrations"] = registrations;
         return j;

@@ -12,9 +12,9 @@
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/pose.h"
+#include "lmk/landmark/capture_check.h"
 #include "lmk/landmark/capture_views.h"
 #include "lmk/landmark/depth_correction_file.h"
-#include "lmk/landmark/distinctiveness.h"
 #include "lmk/landmark/landmark_file.h"
 #include "lmk/landmark/slide_check.h"
 #include "tools/cli_common.h"
@@ -51,12 +51,10 @@ Box box_from_options(const CaptureOptions& o) {
              {o.size[0], o.size[1], o.size[2]});
 }
 
-// The distinctiveness check: warns on stderr, naming the places, when the landmark also matches
-// somewhere else in its own scene, or when the search misses the captured instance itself.
-void check_in_capture_scene(const PointCloud& scene, const Landmark& landmark) {
-  FindSettings find;
-  find.scene.up = landmark.up;  // the capture frame is the scene frame
-  const DistinctivenessReport report = check_distinctiveness(scene, landmark, find);
+// The look-alike check's verdict (landmark/distinctiveness.h): warns on stderr, naming the places,
+// when the landmark also matches somewhere else in its own scene, or when the search misses the
+// captured instance itself.
+void report_look_alikes(const DistinctivenessReport& report, const Landmark& landmark) {
   if (!report.found_itself) {
     std::fprintf(stderr,
                  "warning: the search does not find '%s' in its own capture scene; the landmark "
@@ -83,10 +81,10 @@ void check_in_capture_scene(const PointCloud& scene, const Landmark& landmark) {
                "more empty margin (--no-check skips this check)\n");
 }
 
-// The slide check (landmark/slide_check.h): warns on stderr, direction by direction, when the
-// landmark's own shape lets it slide or turn within the sensor's noise.
-void check_slides(const Landmark& landmark) {
-  const std::vector<std::string> lines = describe_slides(slide_check(landmark), landmark.box);
+// The slide check's verdict (landmark/slide_check.h): warns on stderr, direction by direction,
+// when the landmark's own shape lets it slide or turn within the capture frame's noise.
+void report_slides(const SlideReport& slides, const Landmark& landmark) {
+  const std::vector<std::string> lines = describe_slides(slides, landmark.box);
   if (lines.empty()) {
     std::printf("check: '%s' fixes its pose in every direction\n", landmark.name.c_str());
     return;
@@ -94,6 +92,15 @@ void check_slides(const Landmark& landmark) {
   std::fprintf(stderr, "warning: '%s' can move within the sensor's noise:\n",
                landmark.name.c_str());
   for (const std::string& line : lines) std::fprintf(stderr, "  %s\n", line.c_str());
+}
+
+// The capture check (landmark/capture_check.h) in the first view's scene: its findings go into the
+// file. --no-check skips the look-alike search, not what needs none (the noise, the slides).
+CaptureCheck check_in_capture_scene(const PointCloud& scene, const Landmark& landmark,
+                                    bool look_alikes) {
+  FindSettings find;
+  find.scene.up = landmark.up;  // the capture frame is the scene frame
+  return check_capture(landmark, &scene, find, look_alikes);
 }
 
 // Where each view's cloud frame lies in the first's (place_views), each registration reported.
@@ -138,7 +145,9 @@ int run_capture(CaptureOptions& o) {
     clouds.push_back(read_cloud(scene));
     correct_depth(clouds.back(), o.depth_correction);
   }
-  const Landmark landmark = capture_views(place(o, clouds, box), box, o.name, o.settings);
+  Landmark landmark = capture_views(place(o, clouds, box), box, o.name, o.settings);
+  const CaptureCheck check = check_in_capture_scene(clouds[0], landmark, !o.no_check);
+  landmark.findings = check.findings;
   save_landmark(o.output, landmark);
   std::printf("wrote %s: landmark '%s', %zu points from %zu view%s, box %.3f x %.3f x %.3f m\n",
               o.output.c_str(), landmark.name.c_str(), landmark.points.size(),
@@ -147,8 +156,8 @@ int run_capture(CaptureOptions& o) {
   if (landmark.settings.allow_flat) {
     std::printf("a flat patch matches wherever it fits: no distinctiveness check\n");
   } else if (!o.no_check) {
-    check_in_capture_scene(clouds[0], landmark);
-    check_slides(landmark);
+    report_look_alikes(*check.look_alikes, landmark);
+    report_slides(check.slides, landmark);
   }
   return kOk;
 }

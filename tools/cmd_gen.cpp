@@ -50,6 +50,7 @@ struct GenOptions {
   std::string from_rgbd;
   std::vector<double> intrinsics;  ///< fx fy cx cy
   bool registered_colour = false;
+  bool keep_warned = false;
   std::optional<double> box_side;
   int depth_smoothing = kDefaultDepthSmoothing;
   bool calibrate_depth = false;
@@ -164,6 +165,7 @@ int run_rgbd(const GenOptions& options) {
   RgbdDatasetOptions rgbd;
   if (!options.intrinsics.empty()) rgbd.read.intrinsics = intrinsics_of_option(options.intrinsics);
   if (options.registered_colour) rgbd.read.colour_registered = true;
+  rgbd.keep_warned = options.keep_warned;
   rgbd.box_side = options.box_side;
   rgbd.depth_smoothing = options.depth_smoothing;
   rgbd.calibrate_depth = options.calibrate_depth;
@@ -292,6 +294,10 @@ void add_rgbd_options(CLI::App* sub, GenOptions& o) {
   sub->add_flag("--registered-colour,--registered-color", o.registered_colour,
                 "With --from-rgbd: the frames layout's colour images are registered to depth "
                 "(3DMatch's SUN3D frames; 7-Scenes' are not)");
+  sub->add_flag("--keep-warned", o.keep_warned,
+                "With --from-rgbd: keep the landmarks the capture check warns match elsewhere in "
+                "their own frame (their findings say so), as a user who ignores the warning would; "
+                "default: refuse them");
   sub->add_option("--box-side", o.box_side,
                   "With --from-rgbd: side of the landmark boxes, m (default: 0.15 x the median "
                   "depth, within 0.08-0.4)")

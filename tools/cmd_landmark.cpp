@@ -2,6 +2,7 @@
 // lmk landmark show FILE | export FILE OUTDIR | import DIR OUT.lmk
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 
@@ -16,6 +17,30 @@ namespace {
 struct LandmarkOptions {
   std::string file, dir, output;
 };
+
+// What the capture check found (landmark/capture_findings.h), as the file keeps it.
+void print_findings(const CaptureFindings& f) {
+  if (std::isfinite(f.noise)) {
+    std::printf("capture noise  %.2f mm (measured in the capture frame)\n", f.noise * 1000.0);
+  } else {
+    std::printf("capture noise  not measured (the sensor model's stands in)\n");
+  }
+  if (f.slide == 0.0) {
+    std::printf("slides         none: the shape fixes its pose within the noise\n");
+  } else if (std::isinf(f.slide)) {
+    std::printf("slides         free %s\n", f.slide_turn ? "turn" : "slide");
+  } else {
+    std::printf("slides         %.1f cm (%s)\n", f.slide * 100.0, f.slide_turn ? "turn" : "slide");
+  }
+  std::printf("symmetry axes  %zu\n", f.symmetry_axes.size());
+  if (!f.look_alike_checked) {
+    std::printf("look-alikes    not checked (lmk landmark upgrade --scene checks them)\n");
+  } else {
+    std::printf("look-alikes    %zu%s\n", f.look_alikes,
+                f.found_itself ? "" : ", and not found in its own capture scene");
+  }
+  for (const std::string& w : f.warnings()) std::printf("warning        %s\n", w.c_str());
+}
 
 int run_show(const LandmarkOptions& o) {
   const Landmark l = load_landmark(o.file);
@@ -46,6 +71,7 @@ int run_show(const LandmarkOptions& o) {
   }
   std::printf("leaf           %.4f m\n", l.settings.leaf_size);
   std::printf("grids          %s\n", grids.c_str());
+  print_findings(l.findings);
   return kOk;
 }
 

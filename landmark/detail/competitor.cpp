@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "lmk/geometry/frame_noise.h"
 #include "lmk/geometry/pose.h"
+#include "lmk/landmark/capture_check.h"
 #include "lmk/landmark/detail/selection_tests.h"
 #include "lmk/landmark/detail/sensor_metric.h"
 #include "lmk/landmark/slide_check.h"
@@ -121,6 +123,45 @@ void measure_support(const ConfidenceInput& in, const Match& match,
   }
 }
 
+// The residual sigma of a landmark point against the scene's surface at the match (issue #59): the
+// scene's noise measured in its own frame around the match, the capture's as the capture check
+// measured it, each the sensor model's where its frame could not measure it, and the floor
+// (DepthNoise::residual_sigma's sum, with measured noise in place of the model's).
+double measure_noise(const ConfidenceInput& in, const Match& match, MatchConfidence& out) {
+  const DepthNoise model = in.index.settings().depth_noise();
+  out.capture_noise = capture_measurement_noise(in.landmark, model);
+  const RangeImage* image = in.index.range_image();
+  const MeasuredNoise measured =
+      image ? measure_noise_at(*image, match.box.center().cast<float>()) : MeasuredNoise{};
+  out.scene_noise_measured = measured.measured();
+  out.scene_noise = measured.measured() ? measured.sigma : model.measurement_sigma(out.range);
+  return std::sqrt(out.scene_noise * out.scene_noise + out.capture_noise * out.capture_noise +
+                   model.floor * model.floor);
+}
+
+// The landmark's own figures (its size, its points, how much of it the scene's sensor can see at
+// the match) and what its capture found.
+void describe_landmark(const ConfidenceInput& in, const Match& match,
+                       const std::vector<Eigen::Vector3f>& points, MatchConfidence& out) {
+  out.landmark_size = in.landmark.box.size.norm();
+  out.landmark_points = in.landmark.points.size();
+  out.capture = in.landmark.findings;
+  const RangeImage* image = in.index.range_image();
+  if (!image || points.empty()) return;
+  // Seen: in the image, with a depth measured there that is not clearly in front of the point
+  // (a nearer surface hides it). Two coarse leaves absorb the noise and the landmark's own
+  // thickness.
+  const double hidden_by = 2.0 * in.index.settings().coarse_leaf;
+  const Eigen::Isometry3f T = match.T_scene_capture.cast<float>();
+  std::size_t seen = 0;
+  for (const Eigen::Vector3f& p : points) {
+    const RangeImage::Look look = image->look(T * p);
+    if (look.in_view && std::isfinite(look.measured) && look.measured > look.depth - hidden_by)
+      ++seen;
+  }
+  out.seen_fraction = static_cast<double>(seen) / static_cast<double>(points.size());
+}
+
 // Probe offsets along one side of a motion: from one same-pose step out to `reach`, half a step
 // apart (so that a pose between two probes lies within a quarter step of one), at most
 // kMaxProbesPerSide.
@@ -200,8 +241,8 @@ MatchConfidence assess_match(const ConfidenceInput& in, const Match& match,
   MatchConfidence c;
   const std::vector<Eigen::Vector3f> points = thinned(in.coarse_landmark, kMaxEvidencePoints);
   c.range = (match.box.center() - in.index.T_scene_sensor().translation()).norm();
-  const double capture_range = (in.landmark.box.center() - in.landmark.sensor_origin).norm();
-  const double noise = in.index.settings().depth_noise().residual_sigma(capture_range, c.range);
+  const double noise = measure_noise(in, match, c);
+  describe_landmark(in, match, points, c);
   measure_support(in, match, points, noise, c);
   c.coverage = match.terms.coverage;
   c.intrusion = empty_space_intrusion(match.terms, in.selection);

@@ -3,7 +3,8 @@
 // The JSON form of a match's confidence (match_confidence.h), shared by `lmk find --json`,
 // `lmk serve`, the evaluation's cache and reports, Python and ROS:
 //   {"probability", "features": {name: value}, "margin", "local_margin", "elsewhere_margin",
-//   "error_sigma", "fit", "range",
+//   "error_sigma", "fit", "range", "scene_noise", "scene_noise_measured", "capture_noise",
+//    "landmark_size", "landmark_points", "seen_fraction", "capture": null | {capture findings},
 //    "support", "freedom", "freest": {"turn", "axis"}, "coverage", "intrusion",
 //    "free_space_seen", "free_space_unconfirmed", "doubt",
 //    "competitor": null | {"kind", "position", "orientation", "error", "distance", "angle"}}
@@ -21,6 +22,7 @@
 #include "lmk/json/box_json.h"
 #include "lmk/json/pose_json.h"
 #include "lmk/landmark/confidence_calibration.h"
+#include "lmk/landmark/internal/capture_findings_json.h"
 #include "lmk/landmark/match_confidence.h"
 
 namespace lmk::detail {
@@ -53,6 +55,13 @@ inline nlohmann::json confidence_to_json(const MatchConfidence& c) {
           {"error_sigma", finite_or_null(c.error_sigma)},
           {"fit", finite_or_null(c.fit)},
           {"range", finite_or_null(c.range)},
+          {"scene_noise", finite_or_null(c.scene_noise)},
+          {"scene_noise_measured", c.scene_noise_measured},
+          {"capture_noise", finite_or_null(c.capture_noise)},
+          {"landmark_size", finite_or_null(c.landmark_size)},
+          {"landmark_points", c.landmark_points},
+          {"seen_fraction", finite_or_null(c.seen_fraction)},
+          {"capture", c.capture.present ? capture_findings_to_json(c.capture) : nullptr},
           {"support", c.support},
           {"freedom", finite_or_null(c.freedom)},
           {"freest", {{"turn", c.freest.turn}, {"axis", vector_to_json(c.freest.axis)}}},
@@ -88,6 +97,21 @@ inline MatchConfidence confidence_from_json(const nlohmann::json& j, const std::
   c.error_sigma = number("error_sigma", nan);
   c.fit = number("fit", nan);
   c.range = number("range", nan);
+  // Absent before search revision 8: the model's noise, nothing known of the landmark.
+  if (j.contains("scene_noise")) {
+    c.scene_noise = number("scene_noise", nan);
+    c.capture_noise = number("capture_noise", nan);
+    c.landmark_size = number("landmark_size", nan);
+    c.seen_fraction = number("seen_fraction", nan);
+    const nlohmann::json& measured = json_field(j, "scene_noise_measured", where);
+    if (!measured.is_boolean()) throw Error(where + ".scene_noise_measured: must be true or false");
+    c.scene_noise_measured = measured.get<bool>();
+    const nlohmann::json& points = json_field(j, "landmark_points", where);
+    if (!points.is_number_unsigned()) throw Error(where + ".landmark_points: must be a count");
+    c.landmark_points = points.get<std::size_t>();
+    const nlohmann::json& capture = json_field(j, "capture", where);
+    if (!capture.is_null()) c.capture = capture_findings_from_json(capture, where + ".capture");
+  }
   const nlohmann::json& support = json_field(j, "support", where);
   if (!support.is_number_unsigned()) throw Error(where + ".support: must be a count");
   c.support = support.get<std::size_t>();

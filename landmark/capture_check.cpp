@@ -1,0 +1,107 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "lmk/landmark/capture_check.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include "lmk/geometry/frame_noise.h"
+#include "lmk/geometry/range_image.h"
+
+namespace lmk {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+double capture_range(const Landmark& landmark) {
+  return (landmark.box.center() - landmark.sensor_origin).norm();
+}
+
+// The slide check's findings: the freest motion that is no symmetry, and the symmetry axes (turns
+// free through half a revolution and more: an axis of revolution).
+void record_slides(const SlideReport& report, CaptureFindings& f) {
+  for (const Slide& s : report.slides) {
+    if (s.turn && !(s.extent < kPi)) {
+      if (f.symmetry_axes.empty()) f.symmetry_centre = s.through;
+      f.symmetry_axes.push_back(s.axis);
+      continue;
+    }
+    if (s.displacement > f.slide) {
+      f.slide = s.displacement;
+      f.slide_axis = s.axis;
+      f.slide_turn = s.turn;
+    }
+  }
+}
+
+}  // namespace
+
+double capture_measurement_noise(const Landmark& landmark, const DepthNoise& model) {
+  if (std::isfinite(landmark.findings.noise)) return landmark.findings.noise;
+  return model.measurement_sigma(capture_range(landmark));
+}
+
+CaptureCheck check_capture(const Landmark& landmark, const PointCloud* scene,
+                           const FindSettings& settings, bool look_alikes) {
+  CaptureCheck check;
+  CaptureFindings& f = check.findings;
+  f.present = true;
+  if (scene) {
+    if (const std::optional<RangeImage> image = RangeImage::from_cloud(*scene)) {
+      const MeasuredNoise noise = measure_noise_at(*image, landmark.box.center().cast<float>());
+      if (noise.measured()) f.noise = noise.sigma;
+    }
+  }
+  if (landmark.settings.allow_flat) return check;
+  // The residual between two measurements of the same surface, each with the capture's noise
+  // (DepthNoise::residual_sigma with the measured noise in place of the model's).
+  const DepthNoise model = settings.scene.depth_noise();
+  const double m =
+      std::isfinite(f.noise) ? f.noise : model.measurement_sigma(capture_range(landmark));
+  check.slides = slide_check(landmark.points, std::sqrt(2.0 * m * m + model.floor * model.floor));
+  record_slides(check.slides, f);
+  if (scene && look_alikes) {
+    check.look_alikes = check_distinctiveness(*scene, landmark, settings);
+    const DistinctivenessReport& r = *check.look_alikes;
+    f.look_alike_checked = true;
+    f.found_itself = r.found_itself;
+    f.look_alikes = r.other_instances.size();
+    if (!r.other_instances.empty() && r.found_itself && r.own_error > 0.0)
+      f.look_alike_ratio = r.other_instances.front().error / r.own_error;
+    else if (!r.other_instances.empty())
+      f.look_alike_ratio = 1.0;  // nothing better to compare with: as good as the landmark
+  }
+  return check;
+}
+
+bool CaptureFindings::warned() const {
+  return slide > 0.0 || (look_alike_checked && (look_alikes > 0 || !found_itself));
+}
+
+std::vector<std::string> CaptureFindings::warnings() const {
+  std::vector<std::string> lines;
+  char text[160];
+  if (slide > 0.0) {
+    // A turn's extent is how far it moves the points: the same yardstick as a slide's.
+    const char* how = slide_turn ? "turns about" : "slides along";
+    if (std::isinf(slide)) {
+      std::snprintf(text, sizeof(text), "%s (%.2f, %.2f, %.2f) freely within the noise", how,
+                    slide_axis.x(), slide_axis.y(), slide_axis.z());
+    } else {
+      std::snprintf(text, sizeof(text),
+                    "%s (%.2f, %.2f, %.2f), moving its points %.0f cm within "
+                    "the noise",
+                    how, slide_axis.x(), slide_axis.y(), slide_axis.z(), slide * 100.0);
+    }
+    lines.push_back(text);
+  }
+  if (look_alike_checked && !found_itself) lines.push_back("not found in its own capture scene");
+  if (look_alike_checked && look_alikes > 0) {
+    std::snprintf(text, sizeof(text), "matches %zu other place%s in its capture scene", look_alikes,
+                  look_alikes == 1 ? "" : "s");
+    lines.push_back(text);
+  }
+  return lines;
+}
+
+}  // namespace lmk
