@@ -15,6 +15,7 @@
 #include "lmk/geometry/pose.h"
 #include "lmk/geometry/stopwatch.h"
 #include "lmk/geometry/voxel_grid.h"
+#include "lmk/landmark/capture_check.h"
 #include "lmk/landmark/landmark_file.h"
 #include "lmk/pbd/execute.h"
 #include "lmk/pbd/joint_motion.h"
@@ -154,7 +155,13 @@ RecordedTask record(const DemoTask& task, const DemoTasksSettings& settings) {
     capture_settings.base_frame = true;
     capture_settings.allow_flat = l.flat;
     boxes[l.name] = drawn_box(task, l);
-    out.landmarks.emplace(l.name, capture(scene, boxes[l.name], l.name, capture_settings));
+    Landmark landmark = capture(scene, boxes[l.name], l.name, capture_settings);
+    // The capture check, as `lmk capture` runs it: its findings travel with the landmark into its
+    // matches' confidence and the recorder's warnings (issue #59).
+    FindSettings check;
+    check.scene.up = landmark.up;
+    landmark.findings = check_capture(landmark, &scene, check).findings;
+    out.landmarks.emplace(l.name, std::move(landmark));
   }
   for (const detail::DemoProgram& p : task.programs) {
     if (settings.progress) settings.progress(task_prefix(task) + ": recording '" + p.name + "'");
@@ -165,7 +172,7 @@ RecordedTask record(const DemoTask& task, const DemoTasksSettings& settings) {
       pl.symmetry = task.landmark(name).symmetry;
       pl.select = task.landmark(name).select;
       declared.push_back(pl);
-      instances.push_back({name, boxes.at(name)});
+      instances.push_back({name, boxes.at(name), out.landmarks.at(name).findings.warnings()});
     }
     Recorder recorder(p.name, declared, instances);
     for (const detail::DemoStep& step : p.steps) {

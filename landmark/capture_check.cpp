@@ -11,17 +11,18 @@ namespace lmk {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kSymmetryTurn = 1.0;  ///< rad
 
 double capture_range(const Landmark& landmark) {
   return (landmark.box.center() - landmark.sensor_origin).norm();
 }
 
 // The slide check's findings: the freest motion that is no symmetry, and the symmetry axes (turns
-// free through half a revolution and more: an axis of revolution).
+// free through a radian and more: an axis of revolution, where the normals' own noise
+// and a faceted surface keep the extent finite; a shape that is no symmetry turns a few degrees).
 void record_slides(const SlideReport& report, CaptureFindings& f) {
   for (const Slide& s : report.slides) {
-    if (s.turn && !(s.extent < kPi)) {
+    if (s.turn && !(s.extent < kSymmetryTurn)) {
       if (f.symmetry_axes.empty()) f.symmetry_centre = s.through;
       f.symmetry_axes.push_back(s.axis);
       continue;

@@ -23,6 +23,7 @@ constexpr double kRangeCap = 5.0;
 constexpr double kLogFreedomBound = 3.0;
 // A landmark's size is weighed as log10 of its box's diagonal over 10 cm, within +-1 (1 cm to 1 m).
 constexpr double kSizeUnit = 0.1;
+constexpr double kPi = 3.14159265358979323846;
 
 double capped(double v, double lo, double hi) {
   if (std::isnan(v)) return hi;
@@ -45,18 +46,43 @@ double log_ratio(double distance, double unit) {
   return capped(std::log10(ratio), -kLogFreedomBound, kLogFreedomBound);
 }
 
+// |log2| of the match's range over the capture's, within [0, 2]: 1 for a landmark seen from twice
+// or half as far as it was captured; 0 unknown.
+double range_change(double range, double capture_range) {
+  const double ratio = range / capture_range;
+  if (!(ratio > 0.0) || !std::isfinite(ratio)) return 0.0;
+  return std::min(std::abs(std::log2(ratio)), 2.0);
+}
+
 }  // namespace
 
 const std::vector<std::string>& confidence_feature_names() {
-  static const std::vector<std::string> names = {
-      "local_margin",  "elsewhere_margin",   "fit",           "coverage",    "log_freedom",
-      "range",         "intrusion",          "log_size",      "log_support", "seen_fraction",
-      "capture_slide", "capture_look_alike", "capture_warned"};
+  static const std::vector<std::string> names = {"local_margin",
+                                                 "elsewhere_margin",
+                                                 "fit",
+                                                 "coverage",
+                                                 "log_freedom",
+                                                 "range",
+                                                 "intrusion",
+                                                 "log_size",
+                                                 "log_support",
+                                                 "seen_fraction",
+                                                 "capture_slide",
+                                                 "capture_look_alike",
+                                                 "capture_warned",
+                                                 "range_change",
+                                                 "view_change",
+                                                 "local_margin_measured",
+                                                 "elsewhere_margin_measured",
+                                                 "fit_measured"};
   return names;
 }
 
 std::vector<double> confidence_features(const MatchConfidence& c) {
   const CaptureFindings& capture = c.capture;
+  // Margins and fit from the model's units into the measured noise's (match_confidence.h).
+  const double ratio = c.model_noise / c.measured_noise;
+  const double to_measured = std::isfinite(ratio) && ratio > 0.0 ? ratio : 1.0;
   const double look_alike =
       !capture.look_alike_checked
           ? 0.0
@@ -77,7 +103,12 @@ std::vector<double> confidence_features(const MatchConfidence& c) {
       std::isnan(c.seen_fraction) ? 1.0 : capped(c.seen_fraction, 0.0, 1.0),
       capture.present ? log_ratio(capture.slide, kSamePoseDistance) : 0.0,
       look_alike,
-      capture.present && capture.warned() ? 1.0 : 0.0};
+      capture.present && capture.warned() ? 1.0 : 0.0,
+      range_change(c.range, c.capture_range),
+      std::isnan(c.view_change) ? 0.0 : capped(c.view_change, 0.0, kPi),
+      log_margin(c.local_margin * to_measured),
+      log_margin(c.elsewhere_margin * to_measured),
+      capped(c.fit * to_measured, 0.0, kFitCap)};
 }
 
 double calibrated_probability(const MatchConfidence& confidence,
@@ -117,7 +148,7 @@ ConfidenceCalibration parse_confidence_calibration(const std::string& text,
   }
   const auto fail = [&](const std::string& problem) -> Error {
     return Error(where + ": " + problem +
-                 " (a confidence calibration, as scripts/fit_confidence.py writes it; "
+                 " (a confidence calibration, as lmk calibrate-confidence writes it; "
                  "docs/file-formats.md)");
   };
   if (!j.is_object()) throw fail("must be a JSON object");
@@ -130,11 +161,6 @@ ConfidenceCalibration parse_confidence_calibration(const std::string& text,
   const nlohmann::json& version = field("version");
   if (!version.is_number_integer() || version.get<long long>() < 1) {
     throw fail("'version' must be a positive integer");
-  }
-  if (version.get<long long>() < kConfidenceCalibrationVersion) {
-    throw fail("version " + version.dump() +
-               " weighed margins in the sensor model's units, before the noise measured in the "
-               "frames: refit it with lmk calibrate-confidence");
   }
   if (version.get<long long>() > kConfidenceCalibrationVersion) {
     throw fail("version " + version.dump() + " is newer than this lmk reads (" +

@@ -2,8 +2,9 @@
 #pragma once
 // The calibration that turns a match's evidence (match_confidence.h) into a probability: a
 // logistic model over a few named features, fitted on labelled searches by
-// scripts/fit_confidence.py and stored as a versioned JSON file (docs/file-formats.md). lmk ships
-// one, fitted for the default metric (landmark/data/confidence_calibration.json, compiled in);
+// `lmk calibrate-confidence` (eval/confidence_fit.h) and stored as a versioned JSON file
+// (docs/file-formats.md). lmk ships one, fitted for the default metric
+// (landmark/data/confidence_calibration.json, compiled in);
 // `--confidence-calibration FILE` reads another.
 //
 //   {"format": "lmk-confidence-calibration", "version": 1, "metric": "visibility",
@@ -19,10 +20,7 @@
 
 namespace lmk {
 
-/// Version 2 (issue #59): margins and fit in units of the noise measured in the frames, and the
-/// landmark's and its capture's features. A version-1 file weighed margins in the sensor model's
-/// units: it is refused, to be refitted (`lmk calibrate-confidence`).
-inline constexpr int kConfidenceCalibrationVersion = 2;
+inline constexpr int kConfidenceCalibrationVersion = 1;
 
 struct ConfidenceCalibration {
   std::string metric;     ///< the error metric it was fitted for; others get no probability
@@ -48,8 +46,13 @@ struct ConfidenceCalibration {
 ///   capture_look_alike 1 over the capture check's look-alike error ratio; 1 when it did not find
 ///                      the landmark itself, 0 without a look-alike or without the check
 ///   capture_warned     1 when the capture check warned (CaptureFindings::warned), else 0
-/// Margins, fit and freedom are measured against the noise of the frames themselves
-/// (MatchConfidence::scene_noise, capture_noise): from version 2 of the file.
+///   range_change       |log2| of the match's range over the capture's, within [0, 2]
+///   view_change        the angle between the capture's and the scene's lines of sight, rad
+///   local_margin_measured, elsewhere_margin_measured, fit_measured
+///                      the three above in units of the noise measured in the frames
+///                      (MatchConfidence::measured_noise) instead of the sensor model's
+/// The features after `intrusion` came with issue #59; a file that weighs none of them reads and
+/// applies as before.
 const std::vector<std::string>& confidence_feature_names();
 
 /// The features of `confidence`, in the order of confidence_feature_names().

@@ -61,14 +61,20 @@ struct MatchConfidence {
   double local_margin = std::numeric_limits<double>::infinity();
   double elsewhere_margin = std::numeric_limits<double>::infinity();
   /// The uncertainty of the match's error from the depth noise alone, in the metric's unit: the
-  /// residual sigma at the match's range over the square root of the supporting landmark points
-  /// (for the sensor metric, whose residuals are in sigma, 1 over it). The residual sigma joins
-  /// the two measurements a residual compares, the scene's and the capture's, and the floor
-  /// (DepthNoise::residual_sigma with scene_noise and capture_noise for the model's).
+  /// residual sigma at the match's range (model_noise) over the square root of the supporting
+  /// landmark points (for the sensor metric, whose residuals are in sigma, 1 over it).
   double error_sigma = std::numeric_limits<double>::quiet_NaN();
   /// The match's error over the residual sigma at its range: how well it fits for its range.
   double fit = std::numeric_limits<double>::quiet_NaN();
   double range = std::numeric_limits<double>::quiet_NaN();  ///< scene sensor to box centre, m
+  /// The residual sigma between a landmark point and the scene's surface at the match, m, from the
+  /// sensor model (DepthNoise::residual_sigma at the capture's and the match's range): what the
+  /// margins, fit and freedom are in units of.
+  double model_noise = std::numeric_limits<double>::quiet_NaN();
+  /// The same from the noise measured in the frames (issue #59): scene_noise, capture_noise and
+  /// the floor. A margin or fit in these units is the one above times model_noise / measured_noise
+  /// (the calibration's *_measured features).
+  double measured_noise = std::numeric_limits<double>::quiet_NaN();
   /// One depth measurement's noise at the match, measured in the scene's own frame around it
   /// (geometry/frame_noise.h: the spread of the frame's planar surfaces at the match's range), m.
   /// Where the frame does not measure it (an unorganised cloud, too few planes at that range) the
@@ -83,6 +89,12 @@ struct MatchConfidence {
   double landmark_size = std::numeric_limits<double>::quiet_NaN();
   std::size_t landmark_points = 0;
   double seen_fraction = std::numeric_limits<double>::quiet_NaN();
+  /// How the match is seen against how the landmark was captured: the capture's range (its sensor
+  /// to its box centre, m), and the angle between the two lines of sight in the landmark's frame
+  /// (rad; with several views, to the nearest view). A landmark seen from twice as far, or from
+  /// another side, shows the search less of what it knows.
+  double capture_range = std::numeric_limits<double>::quiet_NaN();
+  double view_change = std::numeric_limits<double>::quiet_NaN();
   /// What the capture check found about the landmark (Landmark::findings): a prior every match of
   /// it carries.
   CaptureFindings capture;

@@ -339,6 +339,34 @@ Plan replan_from(const Program& program, std::vector<LocatedLandmark> located,
   return result;
 }
 
+std::vector<std::string> capture_warnings(const Program& program,
+                                          const std::map<std::string, Landmark>& landmarks) {
+  std::vector<std::string> names;                      // in order of first use
+  std::map<std::string, std::vector<std::size_t>> at;  // the steps relative to each
+  for (std::size_t i = 0; i < program.steps.size(); ++i) {
+    for (const Arm arm : {Arm::kLeft, Arm::kRight}) {
+      const std::optional<ArmTarget>& target = program.steps[i].arm(arm);
+      if (!target || !target->relative_to_landmark()) continue;
+      std::vector<std::size_t>& steps = at[target->frame];
+      if (steps.empty()) names.push_back(target->frame);
+      if (steps.empty() || steps.back() != i) steps.push_back(i);
+    }
+  }
+  std::vector<std::string> out;
+  for (const std::string& name : names) {
+    const auto l = landmarks.find(name);
+    if (l == landmarks.end() || !l->second.findings.warned()) continue;
+    std::string steps;
+    for (const std::size_t i : at[name]) steps += (steps.empty() ? "" : ", ") + std::to_string(i);
+    std::string line = "landmark '" + name + "' (step" + (at[name].size() == 1 ? " " : "s ") +
+                       steps + ") was warned about at capture: ";
+    const std::vector<std::string> warnings = l->second.findings.warnings();
+    for (std::size_t k = 0; k < warnings.size(); ++k) line += (k ? "; " : "") + warnings[k];
+    out.push_back(line);
+  }
+  return out;
+}
+
 Plan plan(const Program& program, const std::map<std::string, Landmark>& landmarks,
           const PointCloud& scene, const KinematicsInterface& kinematics, const JointState& start,
           const PlanSettings& settings) {
@@ -346,6 +374,7 @@ Plan plan(const Program& program, const std::map<std::string, Landmark>& landmar
   check_settings(settings);
   Plan result;
   result.program = program.name;
+  result.warnings = capture_warnings(program, landmarks);
   const Arms arms = arms_at(kinematics, start, result);
 
   // 1-2. Locate every landmark, or refuse.

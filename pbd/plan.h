@@ -93,6 +93,11 @@ struct Plan {
   /// The arm joints the plan starts from, by joint name: execution checks the robot is there.
   std::map<std::string, double> start;
   std::optional<Refusal> refusal;
+  /// One line per landmark some step uses whose capture check warned (CaptureFindings::warned,
+  /// issue #59): "landmark 'rack' (steps 1, 3) was warned about at capture: slides ...". Such a
+  /// landmark's confidence weighs the warning; a plan acts on it when the confidence passes the
+  /// cut, and says so here, refused or not.
+  std::vector<std::string> warnings;
   bool valid() const { return !refusal; }
   const LocatedLandmark* landmark(const std::string& name) const;
 };
@@ -125,6 +130,11 @@ struct PlanSettings {
   /// Progress lines for long runs ("locating 'rack'", ...); unset: silent.
   std::function<void(const std::string&)> progress;
 };
+
+/// The warnings of Plan::warnings: for each landmark of `landmarks` that a step of `program` is
+/// relative to and whose capture check warned, one line naming it, the steps and the warnings.
+std::vector<std::string> capture_warnings(const Program& program,
+                                          const std::map<std::string, Landmark>& landmarks);
 
 /// The landmarks a program uses, loaded from their .lmk files, by name. Relative file names are
 /// taken relative to `program_dir`. Throws lmk::Error naming the landmark and file that fail.

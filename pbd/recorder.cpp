@@ -134,6 +134,25 @@ Eigen::Isometry3d Recorder::base_pose(std::size_t step, Arm arm) const {
              : instances_[static_cast<std::size_t>(anchor)].box.pose * target->T_frame_ee;
 }
 
+std::vector<std::string> Recorder::warnings() const {
+  std::vector<std::string> out;
+  for (std::size_t step = 0; step < anchors_.size(); ++step) {
+    for (const Arm arm : {Arm::kLeft, Arm::kRight}) {
+      const int anchor = anchors_[step][arm == Arm::kLeft ? 0 : 1];
+      if (anchor == kBase) continue;
+      const LandmarkInstance& instance = instances_[static_cast<std::size_t>(anchor)];
+      if (instance.capture_warnings.empty()) continue;
+      std::string line = "step " + std::to_string(step) + ", " + arm_name(arm) +
+                         " arm: relative to '" + instance.name +
+                         "', which was warned about at capture: ";
+      for (std::size_t k = 0; k < instance.capture_warnings.size(); ++k)
+        line += (k ? "; " : "") + instance.capture_warnings[k];
+      out.push_back(line);
+    }
+  }
+  return out;
+}
+
 void Recorder::set_frame(std::size_t step, Arm arm, const std::string& frame) {
   const Eigen::Isometry3d T_base_ee = base_pose(step, arm);  // checks step and arm
   int anchor = kBase;

@@ -20,6 +20,10 @@ namespace lmk {
 struct LandmarkInstance {
   std::string name;
   Box box;
+  /// What the landmark's capture check warned about (CaptureFindings::warnings(), as the match's
+  /// confidence carries them, issue #59): a step recorded relative to this instance says so
+  /// (Recorder::warnings()). Empty: nothing.
+  std::vector<std::string> capture_warnings = {};
 };
 
 /// Distance from a point to a box: 0 inside, else to the nearest point of the box.
@@ -55,6 +59,11 @@ class Recorder {
   /// the demonstration scene: the one nearest to the tool), keeping its pose in the base frame.
   /// Throws lmk::Error for a bad step or arm, or a landmark without an instance.
   void set_frame(std::size_t step, Arm arm, const std::string& frame);
+
+  /// One line per arm of a recorded step that is relative to an instance whose capture check warned
+  /// (LandmarkInstance::capture_warnings): "step 2, right arm: relative to 'rack', which was
+  /// warned about at capture: ...". What a person recording should hear before relying on it.
+  std::vector<std::string> warnings() const;
 
   /// The recorded pose of an arm in the base frame.
   Eigen::Isometry3d base_pose(std::size_t step, Arm arm) const;

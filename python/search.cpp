@@ -10,6 +10,7 @@
 
 #include "bindings.h"
 #include "lmk/geometry/error.h"
+#include "lmk/landmark/confidence_calibration.h"
 #include "lmk/landmark/error_metrics.h"
 #include "lmk/landmark/find_landmark.h"
 #include "lmk/landmark/internal/error_metric_json.h"
@@ -83,8 +84,12 @@ namespace {
 // handlers, its result as `lmk find --json` writes it.
 py::dict find_from_python(const PointCloud& scene, const Landmark& landmark, bool rejected,
                           const std::function<void(std::size_t, std::size_t)>& progress,
-                          const py::kwargs& kwargs) {
+                          const std::string& calibration, const py::kwargs& kwargs) {
   FindSettings settings = settings_from_keywords(kwargs);
+  if (!calibration.empty()) {  // a file of lmk calibrate-confidence, as `lmk find --calibration`
+    settings.selection.calibration =
+        std::make_shared<const ConfidenceCalibration>(read_confidence_calibration(calibration));
+  }
   // After each seed, from the search's threads: Python's signal handlers run (Ctrl-C ends
   // the search there), then `progress`. Each report takes the GIL; the search itself runs
   // without it. Without `progress`, only the reports on the calling thread take it, and
@@ -138,14 +143,16 @@ py::list error_metrics_to_python() {
 void bind_search(py::module_& m) {
   m.def(
       "find", &find_from_python, py::arg("scene"), py::arg("landmark"), py::kw_only(),
-      py::arg("rejected") = false, py::arg("progress") = nullptr,
+      py::arg("rejected") = false, py::arg("progress") = nullptr, py::arg("calibration") = "",
       "Finds every instance of `landmark` in `scene`. Settings are keywords named as `lmk find`'s "
       "flags (max_tilt=30 for --max-tilt 30), in their units and checked by their rules "
       "(ValueError otherwise). Returns {'matches': [...], 'stats': {...}} as `lmk find --json` "
       "writes them (and 'error_unit', the metric's: 'm' or 'sd'), each match with its 'pose' (4x4, "
       "the capture frame in the scene frame) and "
       "'box'; with rejected=True also the rejected candidates and their 'reason'. "
-      "progress(done, total) hears of each seed. Ctrl-C (KeyboardInterrupt) ends the search at "
+      "progress(done, total) hears of each seed. calibration: a confidence calibration file of "
+      "`lmk calibrate-confidence` (default: lmk's built-in one). Ctrl-C (KeyboardInterrupt) ends "
+      "the search at "
       "its next seed.");
   m.def(
       "find_setting_keys",

@@ -11,6 +11,7 @@
 #include "lmk/landmark/box_guess.h"
 #include "lmk/landmark/capture_check.h"
 #include "lmk/landmark/capture_views.h"
+#include "lmk/landmark/confidence_calibration.h"
 #include "lmk/landmark/depth_correction_file.h"
 #include "lmk/landmark/find_landmark.h"
 #include "lmk/landmark/internal/find_settings_json.h"
@@ -74,6 +75,13 @@ LandmarkNodeSettings LandmarkNodeSettings::from_parameters(const ::ros::NodeHand
     throw Error("~find_settings: is not JSON (" + std::string(e.what()) + ")");
   }
   detail::find_settings_from_json(j, "~find_settings", s.find);
+  // A team's own calibration (`lmk calibrate-confidence`), as `lmk find --calibration` takes it.
+  std::string calibration;
+  private_nh.param("confidence_calibration", calibration, calibration);
+  if (!calibration.empty()) {
+    s.find.selection.calibration =
+        std::make_shared<const ConfidenceCalibration>(read_confidence_calibration(calibration));
+  }
   if (s.base_frame.empty()) throw Error("~base_frame: must name a frame");
   return s;
 }

@@ -7,6 +7,7 @@
 
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/version.h"
+#include "lmk/landmark/confidence_calibration.h"
 #include "lmk/landmark/depth_correction_file.h"
 #include "lmk/landmark/error_metrics.h"
 #include "lmk/serve/api_error.h"
@@ -20,7 +21,11 @@ Api::Api(ServeSettings settings, const std::filesystem::path& scratch_dir)
       scenes_(UploadLimits{settings_.max_uploads, settings_.max_upload_points,
                            settings_.max_uploaded_points},
               scratch_dir, budget_, load_depth_correction_if_given(settings_.depth_correction)),
-      library_(settings_.landmarks_dir) {
+      library_(settings_.landmarks_dir),
+      calibration_(settings_.confidence_calibration.empty()
+                       ? nullptr
+                       : std::make_shared<const ConfidenceCalibration>(
+                             read_confidence_calibration(settings_.confidence_calibration))) {
   for (const std::string& path : settings_.scenes) scenes_.add_file(path);
   if (!settings_.programs_dir.empty()) {
     if (!std::filesystem::is_directory(settings_.programs_dir)) {
@@ -53,6 +58,7 @@ FindSettings Api::scene_find_settings() const {
   FindSettings s;
   s.scene.base_frame = settings_.base_frame;
   s.scene.up = settings_.up;
+  s.selection.calibration = calibration_;
   return s;
 }
 

@@ -92,6 +92,8 @@ class Api {
   MemoryBudget budget_;  // before what holds its reservations: destroyed after them
   SceneStore scenes_;
   LandmarkLibrary library_;
+  /// settings_.confidence_calibration, read once; null: the built-in one.
+  std::shared_ptr<const ConfidenceCalibration> calibration_;
   std::filesystem::path programs_dir_;  ///< canonical; empty: none
   // Last: destroyed first, so that no job outlives what it uses.
   std::unique_ptr<JobPool> jobs_;

@@ -19,6 +19,10 @@ struct ServeSettings {
   /// The depth camera's fitted error (a file of lmk calibrate-depth), undone on every scene read
   /// or uploaded, which must then be that camera's organised frames; empty: none.
   std::string depth_correction;
+  /// A confidence calibration file of `lmk calibrate-confidence` (fitted for this camera) every
+  /// search's confidence uses; empty: lmk's built-in one. Read once at start, never named by a
+  /// request.
+  std::string confidence_calibration;
   std::string bind = "127.0.0.1";  ///< loopback only unless the user says otherwise
   /// Asked of every API request and of the page (docs/serve.md, "Access"); empty: a fresh random
   /// one (HttpServer::token()), unless no_token.

@@ -104,6 +104,7 @@ Subcommand add_metrics(CLI::App& app);
 Subcommand add_convert(CLI::App& app);
 Subcommand add_gen(CLI::App& app);
 Subcommand add_calibrate_depth(CLI::App& app);
+Subcommand add_calibrate_confidence(CLI::App& app);
 Subcommand add_capture(CLI::App& app);
 Subcommand add_find(CLI::App& app);
 Subcommand add_track(CLI::App& app);

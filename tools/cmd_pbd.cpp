@@ -70,6 +70,7 @@ int run_show(const PbdOptions& o) {
 }  // namespace
 
 void print_plan(const Plan& plan) {
+  for (const std::string& w : plan.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   for (const LocatedLandmark& l : plan.landmarks) {
     std::printf("landmark %-16s ", l.name.c_str());
     print_pose("at ", l.T_base_landmark);
@@ -104,6 +105,7 @@ std::map<std::string, Landmark> load_landmarks_of(const PbdOptions& o, const Pro
 
 int refused(const Plan& plan, const std::vector<Look>& looks) {
   const std::string after = looks.empty() ? "" : ", " + describe_looks(looks);
+  for (const std::string& w : plan.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   std::fprintf(stderr, "lmk: refused: %s%s\n", describe(*plan.refusal).c_str(), after.c_str());
   return kInternalError;  // exit 1: a valid request the robot will not carry out
 }

@@ -111,6 +111,10 @@ Subcommand add_serve(CLI::App& app) {
                   "created if missing")
       ->capture_default_str();
   add_depth_correction_option(sub, s.depth_correction);
+  sub->add_option("--calibration,--confidence-calibration", s.confidence_calibration,
+                  "Confidence calibration file (lmk calibrate-confidence) every search uses; "
+                  "default: lmk's built-in one")
+      ->check(CLI::ExistingFile);
   sub->add_option("--programs", s.programs_dir, "Directory of PbD programs (.json) to plan")
       ->check(CLI::ExistingDirectory);
   sub->add_option("--port", s.port, "TCP port; 0 picks a free one")

@@ -111,12 +111,12 @@ void add_search_options(CLI::App* sub, FindSettings& settings, bool with_executi
   // A file, not a setting: read here so that no request to a server can name one
   // (SelectionSettings::calibration).
   sub->add_option_function<std::string>(
-         "--confidence-calibration",
+         "--calibration,--confidence-calibration",
          [&settings](const std::string& path) {
            settings.selection.calibration =
                std::make_shared<const ConfidenceCalibration>(read_confidence_calibration(path));
          },
-         "Confidence calibration file (scripts/fit_confidence.py; default: lmk's built-in one)")
+         "Confidence calibration file (lmk calibrate-confidence; default: lmk's built-in one)")
       ->group("Selection")
       ->type_name("FILE");
 }

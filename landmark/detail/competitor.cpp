@@ -123,20 +123,24 @@ void measure_support(const ConfidenceInput& in, const Match& match,
   }
 }
 
-// The residual sigma of a landmark point against the scene's surface at the match (issue #59): the
-// scene's noise measured in its own frame around the match, the capture's as the capture check
-// measured it, each the sensor model's where its frame could not measure it, and the floor
-// (DepthNoise::residual_sigma's sum, with measured noise in place of the model's).
+// The residual sigma of a landmark point against the scene's surface at the match, two ways: the
+// sensor model's (DepthNoise::residual_sigma at the capture's and the match's range), which the
+// margins, fit and freedom are in units of, and the same sum with the noise measured in the frames
+// (issue #59): the scene's in its own frame around the match, the capture's as the capture check
+// measured it, each the model's where its frame could not measure it. Returns the model's.
 double measure_noise(const ConfidenceInput& in, const Match& match, MatchConfidence& out) {
   const DepthNoise model = in.index.settings().depth_noise();
+  const double capture_range = (in.landmark.box.center() - in.landmark.sensor_origin).norm();
+  out.model_noise = model.residual_sigma(capture_range, out.range);
   out.capture_noise = capture_measurement_noise(in.landmark, model);
   const RangeImage* image = in.index.range_image();
   const MeasuredNoise measured =
       image ? measure_noise_at(*image, match.box.center().cast<float>()) : MeasuredNoise{};
   out.scene_noise_measured = measured.measured();
   out.scene_noise = measured.measured() ? measured.sigma : model.measurement_sigma(out.range);
-  return std::sqrt(out.scene_noise * out.scene_noise + out.capture_noise * out.capture_noise +
-                   model.floor * model.floor);
+  out.measured_noise = std::sqrt(out.scene_noise * out.scene_noise +
+                                 out.capture_noise * out.capture_noise + model.floor * model.floor);
+  return out.model_noise;
 }
 
 // The landmark's own figures (its size, its points, how much of it the scene's sensor can see at
@@ -146,6 +150,19 @@ void describe_landmark(const ConfidenceInput& in, const Match& match,
   out.landmark_size = in.landmark.box.size.norm();
   out.landmark_points = in.landmark.points.size();
   out.capture = in.landmark.findings;
+  const Eigen::Vector3d centre = in.landmark.box.center();
+  out.capture_range = (in.landmark.sensor_origin - centre).norm();
+  // The scene's sensor in the capture frame, against every view the landmark was captured from.
+  const Eigen::Vector3d sensor =
+      match.T_scene_capture.inverse() * in.index.T_scene_sensor().translation();
+  const std::vector<Eigen::Vector3d> origins =
+      in.landmark.multi_view() ? in.landmark.view_origins
+                               : std::vector<Eigen::Vector3d>{in.landmark.sensor_origin};
+  for (const Eigen::Vector3d& origin : origins) {
+    const double angle = std::acos(
+        std::clamp((origin - centre).normalized().dot((sensor - centre).normalized()), -1.0, 1.0));
+    if (!(angle >= out.view_change)) out.view_change = angle;
+  }
   const RangeImage* image = in.index.range_image();
   if (!image || points.empty()) return;
   // Seen: in the image, with a depth measured there that is not clearly in front of the point

@@ -3,8 +3,10 @@
 // The JSON form of a match's confidence (match_confidence.h), shared by `lmk find --json`,
 // `lmk serve`, the evaluation's cache and reports, Python and ROS:
 //   {"probability", "features": {name: value}, "margin", "local_margin", "elsewhere_margin",
-//   "error_sigma", "fit", "range", "scene_noise", "scene_noise_measured", "capture_noise",
-//    "landmark_size", "landmark_points", "seen_fraction", "capture": null | {capture findings},
+//   "error_sigma", "fit", "range", "model_noise", "measured_noise", "scene_noise",
+//   "scene_noise_measured", "capture_noise",
+//    "landmark_size", "landmark_points", "seen_fraction", "capture_range", "view_change",
+//    "capture": null | {capture findings},
 //    "support", "freedom", "freest": {"turn", "axis"}, "coverage", "intrusion",
 //    "free_space_seen", "free_space_unconfirmed", "doubt",
 //    "competitor": null | {"kind", "position", "orientation", "error", "distance", "angle"}}
@@ -41,7 +43,7 @@ inline nlohmann::json confidence_to_json(const MatchConfidence& c) {
     competitor["angle"] = c.competitor.angle;
   }
   // The calibration's inputs as it computes them (confidence_calibration.h), so that
-  // scripts/fit_confidence.py fits on exactly what the search will weigh.
+  // lmk calibrate-confidence fits on exactly what the search will weigh.
   nlohmann::json features = nlohmann::json::object();
   const std::vector<double> values = confidence_features(c);
   for (std::size_t k = 0; k < values.size(); ++k) {
@@ -55,12 +57,16 @@ inline nlohmann::json confidence_to_json(const MatchConfidence& c) {
           {"error_sigma", finite_or_null(c.error_sigma)},
           {"fit", finite_or_null(c.fit)},
           {"range", finite_or_null(c.range)},
+          {"model_noise", finite_or_null(c.model_noise)},
+          {"measured_noise", finite_or_null(c.measured_noise)},
           {"scene_noise", finite_or_null(c.scene_noise)},
           {"scene_noise_measured", c.scene_noise_measured},
           {"capture_noise", finite_or_null(c.capture_noise)},
           {"landmark_size", finite_or_null(c.landmark_size)},
           {"landmark_points", c.landmark_points},
           {"seen_fraction", finite_or_null(c.seen_fraction)},
+          {"capture_range", finite_or_null(c.capture_range)},
+          {"view_change", finite_or_null(c.view_change)},
           {"capture", c.capture.present ? capture_findings_to_json(c.capture) : nullptr},
           {"support", c.support},
           {"freedom", finite_or_null(c.freedom)},
@@ -99,10 +105,14 @@ inline MatchConfidence confidence_from_json(const nlohmann::json& j, const std::
   c.range = number("range", nan);
   // Absent before search revision 8: the model's noise, nothing known of the landmark.
   if (j.contains("scene_noise")) {
+    c.model_noise = number("model_noise", nan);
+    c.measured_noise = number("measured_noise", nan);
     c.scene_noise = number("scene_noise", nan);
     c.capture_noise = number("capture_noise", nan);
     c.landmark_size = number("landmark_size", nan);
     c.seen_fraction = number("seen_fraction", nan);
+    c.capture_range = number("capture_range", nan);
+    c.view_change = number("view_change", nan);
     const nlohmann::json& measured = json_field(j, "scene_noise_measured", where);
     if (!measured.is_boolean()) throw Error(where + ".scene_noise_measured: must be true or false");
     c.scene_noise_measured = measured.get<bool>();

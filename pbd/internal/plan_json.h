@@ -43,7 +43,8 @@ inline nlohmann::json plan_to_json(const Plan& plan) {
   nlohmann::json j = {{"program", plan.program},
                       {"valid", plan.valid()},
                       {"landmarks", landmarks},
-                      {"steps", steps}};
+                      {"steps", steps},
+                      {"warnings", plan.warnings}};
   if (plan.refusal) {
     j["refusal"] = {{"kind", refusal_kind(*plan.refusal)}, {"message", describe(*plan.refusal)}};
     if (const auto* doubtful = std::get_if<LandmarkDoubtful>(&*plan.refusal)) {
