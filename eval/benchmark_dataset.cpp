@@ -12,6 +12,7 @@
 #include "lmk/eval/depth_sensor.h"
 #include "lmk/eval/instance_visibility.h"
 #include "lmk/eval/scene_variations.h"
+#include "lmk/eval/sensor_models.h"
 #include "lmk/geometry/atomic_file.h"
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/error.h"
@@ -74,7 +75,8 @@ std::vector<DatasetPair> pairs_of(const GeneratedScene& scene,
       for (const Box& box : it->second) {
         pair.instances.push_back(box.pose);
         if (model != captured.end())
-          pair.hidden.push_back(hidden_fraction(model->second, box, exact, DepthSensorSettings()));
+          pair.hidden.push_back(
+              hidden_fraction(model->second, box, exact, sensor_model(scene.sensor).settings));
       }
     }
     pairs.push_back(pair);
@@ -124,6 +126,16 @@ const std::vector<BenchmarkPreset>& benchmark_presets() {
        "colour look-alikes: cups, bottles and cartons of one shape in several colours, under "
        "lights 0.6-1.3 times as bright as the demonstration's, eight scenes each",
        8, false, SceneVariation::none, true},
+      // Issue #59: the same worlds through other kinds of depth camera, each from its own ranges
+      // (eval/sensor_models.h), for a confidence that means the same on every sensor.
+      {"realsense",
+       "the 17 scene types through an active-stereo camera (RealSense-like), seen from 0.4-1.5 m "
+       "and demonstrated from 0.6 m, three scenes each",
+       3, false, SceneVariation::viewpoints, false, "realsense"},
+      {"tof",
+       "the 17 scene types through a time-of-flight camera (Kinect v2-like), seen from 0.6-3 m, "
+       "three scenes each",
+       3, false, SceneVariation::viewpoints, false, "tof"},
   };
   return all;
 }
@@ -137,7 +149,19 @@ const BenchmarkPreset& benchmark_preset(const std::string& name) {
   throw Error("unknown preset '" + name + "' (known: " + known + ")");
 }
 
-Landmark capture_benchmark_landmark(const BenchmarkLandmark& landmark, bool noise, int views) {
+// The demonstration camera of `scene` moved along its line of sight to `target` until it is
+// `range` m from it: where `sensor` demonstrates from (the Kinect keeps the scene's own camera).
+void demonstrate_from(GeneratedScene& scene, const std::string& sensor,
+                      const Eigen::Vector3d& target) {
+  scene.sensor = sensor;
+  if (sensor == "kinect") return;
+  const Eigen::Vector3d from = scene.T_world_sensor.translation();
+  const double range = sensor_model(sensor).demonstration_range;
+  scene.T_world_sensor.translation() = target + (from - target).normalized() * range;
+}
+
+Landmark capture_benchmark_landmark(const BenchmarkLandmark& landmark, bool noise, int views,
+                                    const std::string& sensor) {
   GeneratedScene demo = make_scene(landmark.demo_scene, 0, false);
   const auto it = demo.instances.find(landmark.name);
   if (it == demo.instances.end() || it->second.empty()) {
@@ -146,6 +170,7 @@ Landmark capture_benchmark_landmark(const BenchmarkLandmark& landmark, bool nois
   }
   if (views < 1 || views > 4) throw Error("a benchmark landmark takes 1 to 4 views");
   const Box& box = it->second.front();
+  demonstrate_from(demo, sensor, box.center());
   const std::string demo_name = benchmark_scene_name(landmark.demo_scene, 0, false);
   // The demonstration camera, then turned about the vertical through the instance: the viewpoints
   // preset searches from within 60 degrees of the demonstration's side.
@@ -263,7 +288,8 @@ ScenePlan plan_scenes(const std::vector<std::string>& types, int seeds, bool har
 // same landmark.
 std::map<std::string, Landmark> capture_landmarks(const std::vector<BenchmarkLandmark>& landmarks,
                                                   const GenerateOptions& options,
-                                                  const std::string& dir, Dataset& dataset,
+                                                  const std::string& sensor, const std::string& dir,
+                                                  Dataset& dataset,
                                                   const std::function<void()>& step) {
   std::map<std::string, Landmark> captured;
   for (const BenchmarkLandmark& landmark : landmarks) {
@@ -272,7 +298,7 @@ std::map<std::string, Landmark> capture_landmarks(const std::vector<BenchmarkLan
       const std::string file = "landmarks/" + name + ".lmk";
       dataset.landmarks.push_back({name, file, landmark.symmetry});
       if (options.merge) continue;
-      const Landmark l = capture_benchmark_landmark(landmark, options.noise, views);
+      const Landmark l = capture_benchmark_landmark(landmark, options.noise, views, sensor);
       save_landmark((fs::path(dir) / file).string(), l);
       if (views == 1) captured[landmark.name] = l;
     }
@@ -290,9 +316,16 @@ std::string render_benchmark_scene(const PlannedScene& p, const BenchmarkPreset&
   DatasetScene entry;
   entry.name = p.name;
   GeneratedScene scene = make_scene(p.type, p.seed, hard);
+  scene.sensor = preset.sensor;
   const std::uint64_t variation_seed = noise_seed(entry.name);
-  if (preset.variation == SceneVariation::viewpoints)
-    view_from_random_viewpoint(scene, captured, variation_seed);
+  if (preset.variation == SceneVariation::viewpoints) {
+    ViewpointRange range;
+    if (preset.sensor != "kinect") {  // the Kinect's presets keep the range they always had
+      range.min_range = sensor_model(preset.sensor).min_range;
+      range.max_range = sensor_model(preset.sensor).max_range;
+    }
+    view_from_random_viewpoint(scene, captured, variation_seed, range);
+  }
   if (preset.variation == SceneVariation::occlusion) add_occluders(scene, captured, variation_seed);
   entry.file = "scenes/" + entry.name + ".pcd";
   entry.setting = scene.setting;
@@ -355,7 +388,7 @@ Generated generate_benchmark(const std::string& dir, const std::string& preset_n
     if (options.progress) options.progress(++done, total);
   };
   const std::map<std::string, Landmark> captured =
-      capture_landmarks(landmarks, options, dir, dataset, step);
+      capture_landmarks(landmarks, options, preset.sensor, dir, dataset, step);
 
   // A scene's entry is written after its cloud, so an entry means a complete scene.
   const auto part_of = [&](const std::string& name) { return parts / (name + ".json"); };

@@ -20,8 +20,9 @@ namespace lmk {
 /// Bumped whenever the generator's output changes (objects, scene types, sensor, capture), so that
 /// cached benchmark datasets are regenerated.
 // 3: the Kinect model of lmk sensor-check; 4: the viewpoints and occlusion presets; 5: landmarks'
-// empty space stops beside unobserved space (occupancy/empty_space.h)
-inline constexpr int kBenchmarkGeneratorVersion = 5;
+// empty space stops beside unobserved space (occupancy/empty_space.h); 6: the capture check's
+// findings in every landmark, scenes rendered by the preset's sensor model (issue #59)
+inline constexpr int kBenchmarkGeneratorVersion = 6;
 
 /// What a preset changes in the generated scenes (eval/scene_variations.h).
 enum class SceneVariation {
@@ -39,6 +40,10 @@ struct BenchmarkPreset {
   SceneVariation variation = SceneVariation::none;
   /// The colour look-alikes (colour_scene_types(), colour_landmarks()) instead of the paper's.
   bool colour = false;
+  /// The depth camera every scene and landmark is rendered with (eval/sensor_models.h); with
+  /// SceneVariation::viewpoints, seen from that camera's own ranges (SensorModel::min_range,
+  /// max_range) and demonstrated from its demonstration_range.
+  std::string sensor = "kinect";
 };
 
 /// "paper" (the 17 types, one seed each), "paper-x10" (ten seeds each), "rotations" (the hard
@@ -91,9 +96,11 @@ struct Generated {
 
 /// Landmark `landmark` captured in its demonstration scene (its demo_scene type, seed 0, not
 /// hard), in the world frame (z up), with the box of the scene's first instance of it; with
-/// `views` above 1, fused from that many demonstration views (GenerateOptions::views).
+/// `views` above 1, fused from that many demonstration views (GenerateOptions::views). With a
+/// `sensor` other than the Kinect (eval/sensor_models.h), rendered by it and demonstrated from its
+/// demonstration_range: the camera moved along its line of sight to the box.
 Landmark capture_benchmark_landmark(const BenchmarkLandmark& landmark, bool noise = true,
-                                    int views = 1);
+                                    int views = 1, const std::string& sensor = "kinect");
 
 /// The dataset scene name for a scene type and seed: "simple-bowl_and_cup-3", "...-3-hard", and
 /// with a variation "...-3-viewpoints", "...-3-occlusion".

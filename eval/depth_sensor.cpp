@@ -111,9 +111,11 @@ double sensor_depth(double z, double unit_noise, const DepthSensorSettings& s) {
   // quantisation of the disparity from which the sensor triangulates depth, then millimetres.
   const double sigma = s.noise_a + s.noise_b * (z - s.noise_z0) * (z - s.noise_z0);
   const double noisy = z + sigma * unit_noise;
+  // A time-of-flight camera measures no disparity (disparity_step 0): no levels.
   const double fb = s.disparity_focal * s.baseline;
-  const double quantised = std::round(fb / noisy / s.disparity_step) * s.disparity_step;
-  const double depth = fb / quantised;
+  const double depth = s.disparity_step > 0.0
+                           ? fb / (std::round(fb / noisy / s.disparity_step) * s.disparity_step)
+                           : noisy;
   return s.depth_unit > 0.0 ? std::round(depth / s.depth_unit) * s.depth_unit : depth;
 }
 
@@ -127,7 +129,7 @@ namespace {
 void check_sensor_settings(const DepthSensorSettings& s) {
   if (s.width <= 0 || s.height <= 0 || !(s.fx > 0) || !(s.fy > 0) || !(s.min_range > 0) ||
       !(s.max_range > s.min_range) || !(s.disparity_focal > 0) || !(s.baseline > 0) ||
-      !(s.disparity_step > 0) || !(s.depth_unit >= 0) ||
+      !(s.disparity_step >= 0) || !(s.depth_unit >= 0) ||
       !(s.flying_pixel_rate >= 0 && s.flying_pixel_rate <= 1) || !(s.edge_jump > 0) ||
       s.noise_window < 1 || s.noise_window % 2 == 0) {
     throw Error(

@@ -32,7 +32,7 @@ struct DepthSensorSettings {
   /// depth comes in levels z^2 step / (f b) apart: 2.9 mm at 1 m, 18 mm at 2.5 m.
   double baseline = 0.075;            ///< projector-camera baseline, m
   double disparity_focal = 580.0;     ///< pixels
-  double disparity_step = 1.0 / 8.0;  ///< pixels
+  double disparity_step = 1.0 / 8.0;  ///< pixels; 0: no disparity (a time-of-flight camera)
   /// The driver reports whole millimetres (OpenNI's depth image); 0 keeps depth continuous.
   double depth_unit = 0.001;
   /// No return where the projector, `baseline` along the sensor's +x, cannot light the surface:

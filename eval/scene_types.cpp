@@ -7,6 +7,7 @@
 
 #include "lmk/eval/depth_sensor.h"
 #include "lmk/eval/objects.h"
+#include "lmk/eval/sensor_models.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/hash.h"
 #include "lmk/geometry/pose.h"
@@ -421,7 +422,7 @@ const std::vector<std::string>& scene_types() {
 }
 
 PointCloud render_scene(const GeneratedScene& scene, bool noise, std::uint64_t noise_seed) {
-  DepthSensorSettings sensor;
+  DepthSensorSettings sensor = sensor_model(scene.sensor).settings;
   sensor.noise = noise;
   sensor.seed = noise_seed;
   sensor.light = scene.light;

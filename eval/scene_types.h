@@ -41,6 +41,8 @@ struct GeneratedScene {
   std::map<std::string, std::vector<Box>> instances;
   /// The light's gain per channel (DepthSensorSettings::light) where the mesh is painted.
   Eigen::Vector3d light = Eigen::Vector3d::Ones();
+  /// The depth camera it is rendered with (eval/sensor_models.h).
+  std::string sensor = "kinect";
 };
 
 /// The 17 scene types, in the paper's order: "simple/bowl_and_cup", ...
@@ -53,8 +55,8 @@ const std::vector<std::string>& colour_scene_types();
 /// Their landmarks, each one colour of one shape: "red_cup", "blue_bottle", "yellow_carton".
 const std::vector<BenchmarkLandmark>& colour_landmarks();
 
-/// The scene as its sensor sees it (eval/depth_sensor.h): exact depth, the ground truth's view,
-/// or with `noise` the simulated Kinect's, from the noise stream `noise_seed`.
+/// The scene as its sensor (scene.sensor, eval/sensor_models.h) sees it: exact depth, the ground
+/// truth's view, or with `noise` the sensor's noise, from the noise stream `noise_seed`.
 PointCloud render_scene(const GeneratedScene& scene, bool noise = false,
                         std::uint64_t noise_seed = 0);
 

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "lmk/eval/depth_sensor.h"
+#include "lmk/eval/sensor_models.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/random.h"
 
@@ -72,7 +73,7 @@ void view_from_random_viewpoint(GeneratedScene& scene,
     scene.T_world_sensor = random_viewpoint(box.pose.translation(), reference,
                                             seed * 0x9E3779B97F4A7C15ull + k, range);
     const double hidden =
-        hidden_fraction(*landmark, box, render_scene(scene), DepthSensorSettings());
+        hidden_fraction(*landmark, box, render_scene(scene), sensor_model(scene.sensor).settings);
     if (hidden < best_hidden) best = scene.T_world_sensor, best_hidden = hidden;
     if (hidden <= 0.5) break;
   }
@@ -97,7 +98,7 @@ void add_occluders(GeneratedScene& scene, const std::map<std::string, Landmark>&
     const double side = rng.uniform01() < 0.5 ? -1.0 : 1.0;
 
     const std::vector<char> seen_mask =
-        seen_on_instance(*landmark, box, render_scene(scene), DepthSensorSettings());
+        seen_on_instance(*landmark, box, render_scene(scene), sensor_model(scene.sensor).settings);
     const std::vector<Eigen::Vector3d> points = points_on_instance(*landmark, box);
     std::vector<Eigen::Vector3d> seen;
     for (std::size_t i = 0; i < points.size(); ++i)

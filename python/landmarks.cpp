@@ -53,6 +53,12 @@ py::object verdict(const PointCloud& scene, Landmark& landmark, bool look_alikes
   return d;
 }
 
+// Landmark.capture_findings: the .lmk's findings as a dict, or None.
+py::object capture_findings(const Landmark& l) {
+  if (!l.findings.present) return py::none();
+  return json_to_python(detail::capture_findings_to_json(l.findings));
+}
+
 }  // namespace
 
 void bind_landmarks(py::module_& m) {
@@ -87,14 +93,10 @@ void bind_landmarks(py::module_& m) {
           py::arg("points"),
           "The landmark's distance field (the distance grid) at each of N x 3 points of the "
           "capture frame, m; its band's value beyond the band.")
-      .def_property_readonly(
-          "capture_findings",
-          [](const Landmark& l) {
-            return l.findings.present ? json_to_python(detail::capture_findings_to_json(l.findings))
-                                      : py::object(py::none());
-          },
-          "What the capture check found (noise, slide, symmetry_axes, look_alikes, warnings...), "
-          "as stored in the .lmk; None for a landmark built without it.")
+      .def_property_readonly("capture_findings", &capture_findings,
+                             "What the capture check found (noise, slide, symmetry_axes, "
+                             "look_alikes, warnings...), as stored in the .lmk; None for a "
+                             "landmark built without it.")
       .def_property_readonly("view_count", &Landmark::view_count)
       .def_property_readonly("has_colour", [](const Landmark& l) { return l.points.has_colors(); })
       .def(

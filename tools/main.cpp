@@ -44,6 +44,30 @@ int bad_input(const lmk::Error& e) {
   return lmk::cli::kBadInput;
 }
 
+// Every subcommand, registered with `app`, in the order `lmk --help` lists them.
+std::vector<lmk::cli::Subcommand> all_subcommands(CLI::App& app) {
+  using namespace lmk::cli;
+  return {add_info(app),
+          add_convert(app),
+          add_gen(app),
+          add_capture(app),
+          add_find(app),
+          add_track(app),
+          add_eval_track(app),
+          add_landmark(app),
+          add_robot(app),
+          add_bench(app),
+          add_eval(app),
+          add_ablate(app),
+          add_pbd(app),
+          add_sensor_check(app),
+          add_calibrate_depth(app),
+          add_calibrate_confidence(app),
+          add_serve(app),
+          add_slurm(app),
+          add_metrics(app)};
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -68,25 +92,7 @@ int main(int argc, char** argv) {
     return std::string("lmk: error: ") + e.what() + " (see --help)\n";
   });
 
-  const std::vector<Subcommand> subcommands = {add_info(app),
-                                               add_convert(app),
-                                               add_gen(app),
-                                               add_capture(app),
-                                               add_find(app),
-                                               add_track(app),
-                                               add_eval_track(app),
-                                               add_landmark(app),
-                                               add_robot(app),
-                                               add_bench(app),
-                                               add_eval(app),
-                                               add_ablate(app),
-                                               add_pbd(app),
-                                               add_sensor_check(app),
-                                               add_calibrate_depth(app),
-                                               add_calibrate_confidence(app),
-                                               add_serve(app),
-                                               add_slurm(app),
-                                               add_metrics(app)};
+  const std::vector<Subcommand> subcommands = all_subcommands(app);
 
   // CLI11 reports an unknown first word as a missing subcommand; name it instead.
   if (argc > 1 && argv[1][0] != '-') {

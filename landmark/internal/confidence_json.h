@@ -79,6 +79,34 @@ inline nlohmann::json confidence_to_json(const MatchConfidence& c) {
           {"competitor", competitor}};
 }
 
+/// The evidence of issue #59 in confidence_to_json's form into `c`: the noise, measured and
+/// modelled, the landmark's own figures and its capture findings.
+inline void landmark_evidence_from_json(const nlohmann::json& j, const std::string& where,
+                                        MatchConfidence& c) {
+  const auto number = [&](const char* key) {
+    const nlohmann::json& v = json_field(j, key, where);
+    if (v.is_null()) return std::numeric_limits<double>::quiet_NaN();
+    if (!v.is_number()) throw Error(where + "." + key + ": must be a number or null");
+    return v.get<double>();
+  };
+  c.model_noise = number("model_noise");
+  c.measured_noise = number("measured_noise");
+  c.scene_noise = number("scene_noise");
+  c.capture_noise = number("capture_noise");
+  c.landmark_size = number("landmark_size");
+  c.seen_fraction = number("seen_fraction");
+  c.capture_range = number("capture_range");
+  c.view_change = number("view_change");
+  const nlohmann::json& measured = json_field(j, "scene_noise_measured", where);
+  if (!measured.is_boolean()) throw Error(where + ".scene_noise_measured: must be true or false");
+  c.scene_noise_measured = measured.get<bool>();
+  const nlohmann::json& points = json_field(j, "landmark_points", where);
+  if (!points.is_number_unsigned()) throw Error(where + ".landmark_points: must be a count");
+  c.landmark_points = points.get<std::size_t>();
+  const nlohmann::json& capture = json_field(j, "capture", where);
+  if (!capture.is_null()) c.capture = capture_findings_from_json(capture, where + ".capture");
+}
+
 /// The inverse of confidence_to_json. A null margin reads back as +infinity (no rival), a null
 /// freedom as +infinity only when the support had points (a pose free along some direction), other
 /// nulls as NaN.
@@ -104,24 +132,7 @@ inline MatchConfidence confidence_from_json(const nlohmann::json& j, const std::
   c.fit = number("fit", nan);
   c.range = number("range", nan);
   // Absent before search revision 8: the model's noise, nothing known of the landmark.
-  if (j.contains("scene_noise")) {
-    c.model_noise = number("model_noise", nan);
-    c.measured_noise = number("measured_noise", nan);
-    c.scene_noise = number("scene_noise", nan);
-    c.capture_noise = number("capture_noise", nan);
-    c.landmark_size = number("landmark_size", nan);
-    c.seen_fraction = number("seen_fraction", nan);
-    c.capture_range = number("capture_range", nan);
-    c.view_change = number("view_change", nan);
-    const nlohmann::json& measured = json_field(j, "scene_noise_measured", where);
-    if (!measured.is_boolean()) throw Error(where + ".scene_noise_measured: must be true or false");
-    c.scene_noise_measured = measured.get<bool>();
-    const nlohmann::json& points = json_field(j, "landmark_points", where);
-    if (!points.is_number_unsigned()) throw Error(where + ".landmark_points: must be a count");
-    c.landmark_points = points.get<std::size_t>();
-    const nlohmann::json& capture = json_field(j, "capture", where);
-    if (!capture.is_null()) c.capture = capture_findings_from_json(capture, where + ".capture");
-  }
+  if (j.contains("scene_noise")) landmark_evidence_from_json(j, where, c);
   const nlohmann::json& support = json_field(j, "support", where);
   if (!support.is_number_unsigned()) throw Error(where + ".support: must be a count");
   c.support = support.get<std::size_t>();

@@ -10,6 +10,7 @@
 
 #include "lmk/eval/depth_sensor.h"
 #include "lmk/eval/mesh.h"
+#include "lmk/eval/sensor_models.h"
 #include "lmk/geometry/depth_noise.h"
 #include "lmk/geometry/pose.h"
 
@@ -17,9 +18,9 @@ namespace lmk {
 namespace {
 
 // A wall filling the image `z` m away, turned `yaw` radians from facing the sensor, rendered with
-// the simulated Kinect's noise.
-RangeImage wall_at(double z, double yaw, std::uint64_t seed) {
-  DepthSensorSettings sensor;
+// `sensor`'s noise.
+RangeImage wall_at(double z, double yaw, std::uint64_t seed,
+                   DepthSensorSettings sensor = DepthSensorSettings()) {
   sensor.seed = seed;
   TriangleMesh wall;
   wall.append(make_box_mesh({4.0 * z, 4.0 * z, 0.01}), pose_from_xyz_rpy({0, 0, z}, {0, yaw, 0}));
@@ -29,22 +30,31 @@ RangeImage wall_at(double z, double yaw, std::uint64_t seed) {
   return *image;
 }
 
-// What the generator puts into one measurement at depth z: its Gaussian axial noise and the
-// disparity's levels (DepthNoise's defaults are the generator's Kinect), and the driver's
-// millimetres.
-double generator_sigma(double z) {
-  const double sigma = DepthNoise{}.measurement_sigma(z);
-  return std::sqrt(sigma * sigma + 0.001 * 0.001 / 12.0);
+// What the generator puts into one measurement at depth z: its Gaussian axial noise, the
+// disparity's levels (uniform rounding: spacing / sqrt(12)) and the driver's millimetres.
+double generator_sigma(double z, const DepthSensorSettings& s = DepthSensorSettings()) {
+  const double axial = s.noise_a + s.noise_b * (z - s.noise_z0) * (z - s.noise_z0);
+  const double levels = depth_level_spacing(z, s);
+  return std::sqrt(axial * axial + (levels * levels + s.depth_unit * s.depth_unit) / 12.0);
 }
 
 TEST(FrameNoise, AFlatWallsNoiseIsTheGeneratorsAtTwoRanges) {
-  for (const double z : {1.0, 2.5}) {
-    const RangeImage image = wall_at(z, 0.35, 5);
-    // Measured at the image's centre, where the wall lies at depth z.
-    const MeasuredNoise noise = measure_noise_near(image, {319.5, 239.5}, z);
-    ASSERT_TRUE(noise.measured()) << z << " m: " << noise.patches << " patches";
-    EXPECT_NEAR(noise.sigma / generator_sigma(z), 1.0, 0.2)
-        << z << " m: measured " << noise.sigma << ", generator " << generator_sigma(z);
+  // The Kinect's generator noise is DepthNoise's model (lmk sensor-check's fit).
+  EXPECT_NEAR(generator_sigma(2.0),
+              std::hypot(DepthNoise{}.measurement_sigma(2.0), 0.001 / std::sqrt(12.0)), 1e-9);
+  for (const std::string& name : sensor_model_names()) {
+    const SensorModel& model = sensor_model(name);
+    // Two ranges each camera works at: near and far in the benchmark's own range for it.
+    for (const double z : {model.min_range + 0.1, model.max_range - 0.2}) {
+      const RangeImage image = wall_at(z, 0.35, 5, model.settings);
+      const PinholeIntrinsics& k = image.intrinsics();
+      // Measured at the image's centre, where the wall lies at depth z.
+      const MeasuredNoise noise = measure_noise_near(image, {k.cx, k.cy}, z);
+      ASSERT_TRUE(noise.measured()) << name << " at " << z << " m: " << noise.patches << " patches";
+      EXPECT_NEAR(noise.sigma / generator_sigma(z, model.settings), 1.0, 0.2)
+          << name << " at " << z << " m: measured " << noise.sigma << ", generator "
+          << generator_sigma(z, model.settings);
+    }
   }
 }
 

@@ -157,7 +157,10 @@ def test_capture_saves_and_loads_with_its_verdict(tabletop, tmp_path):
     np.testing.assert_array_equal(landmark.points,
                                   lmk.load_landmark(str(tmp_path / "cli.lmk")).points)
     assert verdict["found_itself"]
-    assert set(verdict) == {"distinctive", "found_itself", "other_instances", "slides"}
+    assert set(verdict) == {"distinctive", "found_itself", "other_instances", "slides", "findings"}
+    # What the capture check found travels with the landmark (issue #59).
+    assert verdict["findings"]["look_alike_checked"]
+    assert landmark.capture_findings["look_alikes"] == verdict["findings"]["look_alikes"]
     # The grids: free space inside the box, and the distance field zero on the points.
     assert landmark.empty_space.shape[1] == 3 and len(landmark.empty_space) > 0
     assert np.all(landmark.distance(landmark.points) < 0.005)
