@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -130,7 +131,7 @@ const std::vector<BenchmarkPreset>& benchmark_presets() {
       // (eval/sensor_models.h), for a confidence that means the same on every sensor.
       {"realsense",
        "the 17 scene types through an active-stereo camera (RealSense-like), seen from 0.4-1.5 m "
-       "and demonstrated from 0.6 m, three scenes each",
+       "and demonstrated from within 1.5 m, three scenes each",
        3, false, SceneVariation::viewpoints, false, "realsense"},
       {"tof",
        "the 17 scene types through a time-of-flight camera (Kinect v2-like), seen from 0.6-3 m, "
@@ -149,14 +150,16 @@ const BenchmarkPreset& benchmark_preset(const std::string& name) {
   throw Error("unknown preset '" + name + "' (known: " + known + ")");
 }
 
-// The demonstration camera of `scene` moved along its line of sight to `target` until it is
-// `range` m from it: where `sensor` demonstrates from (the Kinect keeps the scene's own camera).
+// The demonstration camera of `scene` moved along its line of sight to `target` into the range
+// `sensor` works at (the Kinect keeps the scene's own camera): the same view of the landmark, as
+// near as that camera must be, and no nearer (a box seen closer leaves the image).
 void demonstrate_from(GeneratedScene& scene, const std::string& sensor,
                       const Eigen::Vector3d& target) {
   scene.sensor = sensor;
   if (sensor == "kinect") return;
+  const SensorModel& model = sensor_model(sensor);
   const Eigen::Vector3d from = scene.T_world_sensor.translation();
-  const double range = sensor_model(sensor).demonstration_range;
+  const double range = std::clamp((from - target).norm(), model.min_range, model.max_range);
   scene.T_world_sensor.translation() = target + (from - target).normalized() * range;
 }
 

@@ -42,7 +42,7 @@ struct BenchmarkPreset {
   bool colour = false;
   /// The depth camera every scene and landmark is rendered with (eval/sensor_models.h); with
   /// SceneVariation::viewpoints, seen from that camera's own ranges (SensorModel::min_range,
-  /// max_range) and demonstrated from its demonstration_range.
+  /// max_range), and demonstrated from within them.
   std::string sensor = "kinect";
 };
 
@@ -97,8 +97,8 @@ struct Generated {
 /// Landmark `landmark` captured in its demonstration scene (its demo_scene type, seed 0, not
 /// hard), in the world frame (z up), with the box of the scene's first instance of it; with
 /// `views` above 1, fused from that many demonstration views (GenerateOptions::views). With a
-/// `sensor` other than the Kinect (eval/sensor_models.h), rendered by it and demonstrated from its
-/// demonstration_range: the camera moved along its line of sight to the box.
+/// `sensor` other than the Kinect (eval/sensor_models.h), rendered by it, the camera moved along
+/// its line of sight to the box into that sensor's range.
 Landmark capture_benchmark_landmark(const BenchmarkLandmark& landmark, bool noise = true,
                                     int views = 1, const std::string& sensor = "kinect");
 

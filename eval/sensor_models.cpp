@@ -12,7 +12,6 @@ SensorModel kinect() {
   m.name = "kinect";
   m.min_range = 0.7;
   m.max_range = 3.0;
-  m.demonstration_range = 1.2;
   return m;  // DepthSensorSettings' defaults are the Kinect v1's
 }
 
@@ -32,7 +31,6 @@ SensorModel realsense() {
   s.flying_pixel_rate = 0.03;
   m.min_range = 0.4;
   m.max_range = 1.5;
-  m.demonstration_range = 0.6;
   return m;
 }
 
@@ -54,7 +52,6 @@ SensorModel time_of_flight() {
   s.flying_pixel_rate = 0.1;
   m.min_range = 0.6;
   m.max_range = 3.0;
-  m.demonstration_range = 1.2;
   return m;
 }
 

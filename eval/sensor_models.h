@@ -30,10 +30,9 @@ struct SensorModel {
   std::string name;
   DepthSensorSettings settings;  ///< noise on, seed 0: the caller sets both
   /// Where the benchmark places this camera: its distance to what it looks at, m (a
-  /// ViewpointRange's, with the default azimuth and heights), and the distance a landmark is
-  /// demonstrated from.
+  /// ViewpointRange's, with the default azimuth and heights). A landmark is demonstrated from its
+  /// scene's own camera, moved along its line of sight into this range.
   double min_range = 0.7, max_range = 3.0;
-  double demonstration_range = 1.2;
 };
 
 /// "kinect", "realsense", "tof".

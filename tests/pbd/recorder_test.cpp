@@ -8,6 +8,7 @@
 
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/pose.h"
+#include "lmk/pbd/plan.h"
 
 namespace lmk {
 namespace {
@@ -127,6 +128,40 @@ TEST(Recorder, RefusesWhatItCannotRecord) {
   EXPECT_THROW(empty.set_frame(0, Arm::kLeft, "bowl"), Error);
   // An instance of an undeclared landmark.
   EXPECT_THROW(Recorder("p", {}, {{"bowl", box_at({0, 0, 0}, 0, {0.1, 0.1, 0.1})}}), Error);
+}
+
+}  // namespace
+}  // namespace lmk
+
+namespace lmk {
+namespace {
+
+// Issue #59: a step recorded relative to an instance whose capture check warned says so, at
+// record (Recorder::warnings) and at plan (capture_warnings, Plan::warnings); steps relative to
+// the base or to a landmark the check passed say nothing.
+TEST(Recorder, AStepOnAWarnedLandmarkIsFlaggedAtRecordAndAtPlan) {
+  std::vector<LandmarkInstance> instances = {
+      {"rack", box_at({0.6, 0.2, 0.75}, 0.0, {0.3, 0.1, 0.1}), {"matches 2 other places"}},
+      {"bowl", box_at({0.6, -0.3, 0.75}, 0.0, {0.16, 0.16, 0.08})},
+  };
+  Recorder r("hang", {{"rack", "rack.lmk"}, {"bowl", "bowl.lmk"}}, instances);
+  r.save_pose(tool_at({0.6, -0.3, 0.84}), std::nullopt);             // step 0: the bowl
+  r.save_pose(tool_at({0.6, 0.2, 0.85}), tool_at({0.1, 0.9, 1.5}));  // step 1: rack; base
+  const std::vector<std::string> recorded = r.warnings();
+  ASSERT_EQ(recorded.size(), 1u);
+  EXPECT_NE(recorded[0].find("step 1, left arm"), std::string::npos) << recorded[0];
+  EXPECT_NE(recorded[0].find("'rack'"), std::string::npos);
+  EXPECT_NE(recorded[0].find("matches 2 other places"), std::string::npos);
+
+  std::map<std::string, Landmark> landmarks;
+  landmarks["rack"].findings.present = true;
+  landmarks["rack"].findings.look_alike_checked = true;
+  landmarks["rack"].findings.look_alikes = 2;
+  landmarks["bowl"].findings.present = true;  // checked, nothing to warn of
+  const std::vector<std::string> planned = capture_warnings(r.program(), landmarks);
+  ASSERT_EQ(planned.size(), 1u);
+  EXPECT_NE(planned[0].find("landmark 'rack' (step 1)"), std::string::npos) << planned[0];
+  EXPECT_NE(planned[0].find("matches 2 other places"), std::string::npos);
 }
 
 }  // namespace
