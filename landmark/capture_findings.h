@@ -33,8 +33,9 @@ struct CaptureFindings {
   Eigen::Vector3d slide_axis = Eigen::Vector3d::Zero();
   bool slide_turn = false;
   /// Axes about which the landmark turns a radian (57 degrees) or more within the noise (an axis of
-  /// revolution: a bowl, a bottle; three for a ball), capture frame, through `symmetry_centre`. Turns about them are the
-  /// same landmark: the evaluation counts a pose that differs only by them as right.
+  /// revolution: a bowl, a bottle; three for a ball), capture frame, through `symmetry_centre`.
+  /// Turns about them are the same landmark: the evaluation counts a pose that differs only by them
+  /// as right.
   std::vector<Eigen::Vector3d> symmetry_axes;
   Eigen::Vector3d symmetry_centre = Eigen::Vector3d::Zero();
   /// The look-alike check (distinctiveness.h) in the capture scene; the rest is unknown without it.
