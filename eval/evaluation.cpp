@@ -291,6 +291,7 @@ void add_landmark_context(std::vector<PairResult>& pairs, const std::vector<Pair
         l.multi_view() ? l.view_origins : std::vector<Eigen::Vector3d>{l.sensor_origin};
     p.landmark_up = l.up;
     p.capture_box = l.box.pose;
+    p.landmark_size = l.box.size.norm();
   }
 }
 

@@ -76,7 +76,8 @@ struct PairResult {
   std::vector<Eigen::Vector3d> view_origins;
   Eigen::Vector3d landmark_up = -Eigen::Vector3d::UnitY();
   Eigen::Isometry3d capture_box = Eigen::Isometry3d::Identity();
-  bool from_cache = false;  ///< read from the cache rather than searched in this run
+  double landmark_size = 0.0;  ///< the capture box's diagonal, m (issue #59: the table by size)
+  bool from_cache = false;     ///< read from the cache rather than searched in this run
 };
 
 /// An instance of which the sensor sees less than a fifth of the landmark (its recorded hidden

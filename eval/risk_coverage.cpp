@@ -106,6 +106,11 @@ RiskCoveragePoint risk_coverage_at(const RiskCoverage& curve, double cut) {
   return point;
 }
 
+std::function<bool(const PairResult&)> landmark_size_within(double low, double high) {
+  return
+      [low, high](const PairResult& p) { return p.landmark_size >= low && p.landmark_size < high; };
+}
+
 std::function<bool(const PairResult&)> instance_range_within(double low, double high) {
   return [low, high](const PairResult& p) {
     for (std::size_t i = 0; i < p.truth.size(); ++i) {
@@ -209,6 +214,14 @@ TextTable risk_coverage_table(const Evaluation& e, bool ranges) {
       if (in_bin.pairs == 0) continue;
       const std::string label = "instance at " + fixed(bin[0], 0) +
                                 (bin[1] > 100.0 ? "+ m" : "-" + fixed(bin[1], 0) + " m");
+      t.rows.push_back(point_row(label, risk_coverage_at(in_bin, cut), in_bin.pairs));
+    }
+    const double sizes[][2] = {{0.0, 0.1}, {0.1, 0.2}, {0.2, 0.4}, {0.4, 1e9}};
+    for (const auto& bin : sizes) {
+      const RiskCoverage in_bin = risk_coverage(e, landmark_size_within(bin[0], bin[1]));
+      if (in_bin.pairs == 0) continue;
+      const std::string label = "landmark box diagonal " + fixed(100.0 * bin[0], 0) +
+                                (bin[1] > 100.0 ? "+ cm" : "-" + fixed(100.0 * bin[1], 0) + " cm");
       t.rows.push_back(point_row(label, risk_coverage_at(in_bin, cut), in_bin.pairs));
     }
   }

@@ -51,6 +51,9 @@ RiskCoveragePoint risk_coverage_at(const RiskCoverage& curve, double cut);
 /// from the scene's sensor (the answered share within 2 m, at 2-3 m).
 std::function<bool(const PairResult&)> instance_range_within(double low, double high);
 
+/// A selection of the pairs whose landmark's capture box has a diagonal in [low, high) m.
+std::function<bool(const PairResult&)> landmark_size_within(double low, double high);
+
 struct ReliabilityBin {
   double low = 0.0, high = 0.0;  ///< the predicted probabilities it holds, [low, high)
   std::size_t matches = 0;
@@ -79,6 +82,7 @@ inline const std::vector<double>& reported_confidence_cuts() {
 
 /// The risk-coverage table: one row per reported cut (and the evaluation's own), and the rows for
 /// precision 0.95 and 0.98; with `ranges`, one more per 1 m range bin from 0 to 3 m and beyond,
+/// and per landmark size (the capture box's diagonal: under 10 cm, 10-20, 20-40, 40 cm and more),
 /// at the evaluation's cut (kDefaultMinConfidence when it sets none).
 TextTable risk_coverage_table(const Evaluation& evaluation, bool ranges);
 

@@ -79,6 +79,24 @@ TEST(RiskCoverage, ThePointAtACutAndByRange) {
   EXPECT_EQ(risk_coverage_at(far, 0.5).correct, 1u);
 }
 
+// Issue #59: the table by landmark size selects each pair by its landmark's capture box.
+TEST(RiskCoverage, ThePointAtACutByLandmarkSize) {
+  Evaluation e = six_pairs();
+  for (std::size_t k = 0; k < e.pairs.size(); ++k) e.pairs[k].landmark_size = k < 3 ? 0.15 : 0.5;
+  const RiskCoverage small = risk_coverage(e, landmark_size_within(0.1, 0.2));
+  const RiskCoverage large = risk_coverage(e, landmark_size_within(0.4, 1e9));
+  EXPECT_EQ(small.pairs, 3u);
+  EXPECT_EQ(large.pairs, 3u);
+  // At 0.85 the small landmarks answer their two right best matches, the large none.
+  EXPECT_EQ(risk_coverage_at(small, 0.85).answered, 2u);
+  EXPECT_EQ(risk_coverage_at(small, 0.85).correct, 2u);
+  EXPECT_EQ(risk_coverage_at(large, 0.85).answered, 0u);
+  EXPECT_EQ(risk_coverage(e, landmark_size_within(0.2, 0.4)).pairs, 0u);
+  const std::string table = risk_coverage_table(e, true).plain();
+  EXPECT_NE(table.find("landmark box diagonal 10-20 cm"), std::string::npos) << table;
+  EXPECT_NE(table.find("landmark box diagonal 40+ cm"), std::string::npos) << table;
+}
+
 TEST(RiskCoverage, ReliabilityAndCalibrationErrorOfTheProbabilities) {
   const Reliability r = reliability(six_pairs());
   EXPECT_EQ(r.matches, 6u);
