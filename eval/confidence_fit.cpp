@@ -6,7 +6,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
-#include "lmk/eval/evaluation_protocol.h"
+#include "lmk/eval/risk_coverage.h"
 #include "lmk/geometry/error.h"
 
 namespace lmk {
@@ -53,23 +53,10 @@ Eigen::VectorXd fit_logistic(const Eigen::MatrixXd& x, const Eigen::VectorXd& y,
 
 std::vector<ConfidenceSample> confidence_samples(const Evaluation& e) {
   std::vector<ConfidenceSample> out;
-  const double threshold = *e.settings.find.selection.threshold;
-  for (const PairResult& p : e.pairs) {
-    if (!p.in_context) continue;
-    const PairInput input = matches_within(p, threshold);
-    const std::vector<std::optional<std::size_t>> assigned =
-        assign_matches(input, e.settings.tolerance);
-    std::size_t k = 0;
-    for (const FoundBox& f : p.found) {
-      if (!(f.error < threshold)) continue;
-      const std::optional<std::size_t>& on = assigned[k];
-      const bool best = k == 0;
-      ++k;
-      if (on && input.is_ignored(*on)) continue;
-      out.push_back({confidence_features(f.confidence), on.has_value(), best,
-                     f.confidence.free_space_unconfirmed});
-    }
-  }
+  for_each_counted_match(e, [&out](const FoundBox& f, bool right, bool best) {
+    out.push_back(
+        {confidence_features(f.confidence), right, best, f.confidence.free_space_unconfirmed});
+  });
   return out;
 }
 

@@ -21,8 +21,8 @@ struct ConfidenceSample {
   bool unconfirmed = false;      ///< free space nothing confirms: probability 0 whatever the fit
 };
 
-/// The samples of `evaluation`: every match below its threshold in an in-context pair, those on
-/// instances the protocol ignores (kIgnoredHiddenFraction) left out, as reliability() counts them.
+/// The samples of `evaluation`: every match for_each_counted_match() visits (eval/risk_coverage.h),
+/// as reliability() counts them.
 std::vector<ConfidenceSample> confidence_samples(const Evaluation& evaluation);
 
 struct ConfidenceFitSettings {

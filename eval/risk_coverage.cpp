@@ -122,9 +122,22 @@ std::function<bool(const PairResult&)> instance_range_within(double low, double 
   };
 }
 
+void for_each_counted_match(
+    const Evaluation& e, const std::function<void(const FoundBox&, bool right, bool best)>& visit) {
+  const double threshold = *e.settings.find.selection.threshold;
+  for (const PairResult& p : e.pairs) {
+    if (!p.in_context) continue;
+    const Assessed a = assess(p, threshold, e.settings.tolerance);
+    for (std::size_t i = 0; i < a.found.size(); ++i) {
+      const std::optional<std::size_t>& on = a.assigned[i];
+      if (on && a.input.is_ignored(*on)) continue;
+      visit(*a.found[i], on.has_value(), i == 0);
+    }
+  }
+}
+
 Reliability reliability(const Evaluation& e, int bins) {
   Reliability out;
-  const double threshold = *e.settings.find.selection.threshold;
   std::vector<double> predicted(static_cast<std::size_t>(bins), 0.0);
   std::vector<std::size_t> right(static_cast<std::size_t>(bins), 0);
   out.bins.resize(static_cast<std::size_t>(bins));
@@ -132,21 +145,17 @@ Reliability reliability(const Evaluation& e, int bins) {
     out.bins[b].low = static_cast<double>(b) / bins;
     out.bins[b].high = static_cast<double>(b + 1) / bins;
   }
-  for (const PairResult& p : e.pairs) {
-    if (!p.in_context) continue;
-    const Assessed a = assess(p, threshold, e.settings.tolerance);
-    for (std::size_t i = 0; i < a.found.size(); ++i) {
-      const double probability = a.found[i]->confidence.probability;
-      const std::optional<std::size_t>& on = a.assigned[i];
-      if (std::isnan(probability) || (on && a.input.is_ignored(*on))) continue;
-      const auto b = static_cast<std::size_t>(
-          std::clamp(static_cast<int>(std::floor(probability * bins)), 0, bins - 1));
-      ++out.bins[b].matches;
-      predicted[b] += probability;
-      right[b] += on ? 1 : 0;
-      ++out.matches;
-    }
-  }
+  for_each_counted_match(e, [&](const FoundBox& found, bool is_right, bool) {
+    const double probability = found.confidence.probability;
+    if (std::isnan(probability)) return;
+    const auto b = static_cast<std::size_t>(
+        std::clamp(static_cast<int>(std::floor(probability * bins)), 0, bins - 1));
+    ++out.bins[b].matches;
+    predicted[b] += probability;
+    right[b] += is_right ? 1 : 0;
+    out.right += is_right ? 1 : 0;
+    ++out.matches;
+  });
   for (std::size_t b = 0; b < out.bins.size(); ++b) {
     ReliabilityBin& bin = out.bins[b];
     if (bin.matches == 0) continue;

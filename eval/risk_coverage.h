@@ -64,14 +64,21 @@ struct ReliabilityBin {
 struct Reliability {
   std::vector<ReliabilityBin> bins;  ///< 10 bins of predicted probability, empty ones included
   std::size_t matches = 0;
+  std::size_t right = 0;  ///< of those, the ones within tolerance of an instance
   /// Expected calibration error: the matches' share of each bin times its |predicted - observed|.
   double ece = 0.0;
 };
 
-/// The reliability of every match below the threshold in in-context pairs (matches on ignored
-/// instances left out), each counted right when the protocol assigns it to an instance
-/// (assign_matches): what the probability claims to predict. Matches without a probability are
-/// left out.
+/// Calls `visit(found, right, best)` for every match below the evaluation's threshold in its
+/// in-context pairs, best first within each pair (`best`: the pair's best below the threshold),
+/// right when the protocol assigns it to an instance (assign_matches), those on instances the
+/// protocol ignores left out: the matches reliability() and the calibration's fit count.
+void for_each_counted_match(
+    const Evaluation& evaluation,
+    const std::function<void(const FoundBox& found, bool right, bool best)>& visit);
+
+/// The reliability of every match for_each_counted_match() visits: what the probability claims to
+/// predict. Matches without a probability are left out.
 Reliability reliability(const Evaluation& evaluation, int bins = 10);
 
 /// The cuts `lmk eval` reports the curve at, beside the evaluation's own min_confidence.

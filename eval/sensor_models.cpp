@@ -67,7 +67,9 @@ const SensorModel& sensor_model(const std::string& name) {
   for (const SensorModel& m : models) {
     if (m.name == name) return m;
   }
-  throw Error("unknown sensor model '" + name + "' (known: kinect, realsense, tof)");
+  std::string known;
+  for (const std::string& n : sensor_model_names()) known += (known.empty() ? "" : ", ") + n;
+  throw Error("unknown sensor model '" + name + "' (known: " + known + ")");
 }
 
 }  // namespace lmk

@@ -26,11 +26,20 @@ struct DepthNoise {
     return std::sqrt(axial * z2 * axial * z2 + level * level);
   }
 
-  /// The standard deviation of a residual between a landmark point captured at depth z_capture and
-  /// a scene surface measured at depth z_scene: both measurements' errors and the floor.
+  /// `measured` (one measurement's sigma a frame measured itself, geometry/frame_noise.h) where it
+  /// is finite, else this model's at depth z.
+  double measurement_sigma_or(double measured, double z) const {
+    return std::isfinite(measured) ? measured : measurement_sigma(z);
+  }
+
+  /// The standard deviation of a residual between two measurements of sigma `a` and `b` (a
+  /// landmark point's at capture and a scene surface's): both errors and the floor.
+  double residual_of(double a, double b) const { return std::sqrt(a * a + b * b + floor * floor); }
+
+  /// residual_of() with this model's sigmas for a landmark point captured at depth z_capture and a
+  /// scene surface measured at depth z_scene.
   double residual_sigma(double z_capture, double z_scene) const {
-    const double a = measurement_sigma(z_capture), b = measurement_sigma(z_scene);
-    return std::sqrt(a * a + b * b + floor * floor);
+    return residual_of(measurement_sigma(z_capture), measurement_sigma(z_scene));
   }
 };
 

@@ -9,6 +9,7 @@
 // and throw lmk::Error as "<where>.<field>: <problem>".
 
 #include <Eigen/Geometry>
+#include <cmath>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -18,6 +19,11 @@
 namespace lmk::detail {
 
 inline nlohmann::json vector_to_json(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+
+/// `v`, or null where it is not finite (JSON has no infinity or NaN).
+inline nlohmann::json finite_or_null(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
 
 inline nlohmann::json pose_to_json(const Eigen::Isometry3d& T) {
   const Eigen::Quaterniond q(T.linear());

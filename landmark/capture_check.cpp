@@ -37,11 +37,6 @@ void record_slides(const SlideReport& report, CaptureFindings& f) {
 
 }  // namespace
 
-double capture_measurement_noise(const Landmark& landmark, const DepthNoise& model) {
-  if (std::isfinite(landmark.findings.noise)) return landmark.findings.noise;
-  return model.measurement_sigma(capture_range(landmark));
-}
-
 CaptureCheck check_capture(const Landmark& landmark, const PointCloud* scene,
                            const FindSettings& settings, bool look_alikes) {
   CaptureCheck check;
@@ -54,12 +49,10 @@ CaptureCheck check_capture(const Landmark& landmark, const PointCloud* scene,
     }
   }
   if (landmark.settings.allow_flat) return check;
-  // The residual between two measurements of the same surface, each with the capture's noise
-  // (DepthNoise::residual_sigma with the measured noise in place of the model's).
+  // The residual between two measurements of the same surface, each with the capture's noise.
   const DepthNoise model = settings.scene.depth_noise();
-  const double m =
-      std::isfinite(f.noise) ? f.noise : model.measurement_sigma(capture_range(landmark));
-  check.slides = slide_check(landmark.points, std::sqrt(2.0 * m * m + model.floor * model.floor));
+  const double m = model.measurement_sigma_or(f.noise, capture_range(landmark));
+  check.slides = slide_check(landmark.points, model.residual_of(m, m));
   record_slides(check.slides, f);
   if (scene && look_alikes) {
     check.look_alikes = check_distinctiveness(*scene, landmark, settings);

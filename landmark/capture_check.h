@@ -34,8 +34,4 @@ struct CaptureCheck {
 CaptureCheck check_capture(const Landmark& landmark, const PointCloud* capture_scene,
                            const FindSettings& settings = {}, bool look_alikes = true);
 
-/// The depth noise the slide check and a match's confidence take for one measurement at capture:
-/// the measured `findings.noise`, else `model`'s at the landmark's capture range, m.
-double capture_measurement_noise(const Landmark& landmark, const DepthNoise& model);
-
 }  // namespace lmk

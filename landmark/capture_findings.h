@@ -5,8 +5,7 @@
 // whether its own scene holds a look-alike. Stored in the .lmk (format 4), carried into every
 // match's confidence (MatchConfidence::capture) as a prior, and named at a program's record and
 // plan when it warned (pbd). The look-alike check needs the capture scene: a file written before
-// format 4 gains the rest on load (check_capture()), and the look-alike only at `lmk landmark
-// upgrade --scene`.
+// format 4 gains the rest on load (check_capture()); its look-alikes stay unknown.
 
 #include <Eigen/Core>
 #include <cstddef>

@@ -52,11 +52,8 @@ struct Evaluated {
 std::vector<std::string> row(const Evaluated& e) {
   const Reliability r = reliability(e.evaluation);
   const RiskCoverage curve = risk_coverage(e.evaluation);
-  std::size_t right = 0;
-  for (const ReliabilityBin& b : r.bins)
-    right += static_cast<std::size_t>(std::lround(b.observed * static_cast<double>(b.matches)));
   std::vector<std::string> out = {e.name, e.fitted ? "fit" : "check", std::to_string(r.matches),
-                                  std::to_string(right), format_optional(r.ece, 3)};
+                                  std::to_string(r.right), format_optional(r.ece, 3)};
   const auto answered = [&](const std::optional<RiskCoveragePoint>& p) {
     if (!p || p->answered == 0) return std::string("0 of ") + std::to_string(curve.pairs);
     return std::to_string(p->answered) + " of " + std::to_string(curve.pairs) + " at " +

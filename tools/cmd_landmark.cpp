@@ -34,7 +34,7 @@ void print_findings(const CaptureFindings& f) {
   }
   std::printf("symmetry axes  %zu\n", f.symmetry_axes.size());
   if (!f.look_alike_checked) {
-    std::printf("look-alikes    not checked (lmk landmark upgrade --scene checks them)\n");
+    std::printf("look-alikes    not checked (a file from before format 4: capture it again)\n");
   } else {
     std::printf("look-alikes    %zu%s\n", f.look_alikes,
                 f.found_itself ? "" : ", and not found in its own capture scene");

@@ -6,7 +6,6 @@
 
 #include "lmk/geometry/frame_noise.h"
 #include "lmk/geometry/pose.h"
-#include "lmk/landmark/capture_check.h"
 #include "lmk/landmark/detail/selection_tests.h"
 #include "lmk/landmark/detail/sensor_metric.h"
 #include "lmk/landmark/slide_check.h"
@@ -128,18 +127,17 @@ void measure_support(const ConfidenceInput& in, const Match& match,
 // margins, fit and freedom are in units of, and the same sum with the noise measured in the frames
 // (issue #59): the scene's in its own frame around the match, the capture's as the capture check
 // measured it, each the model's where its frame could not measure it. Returns the model's.
+// out.range and out.capture_range (describe_landmark()) set first.
 double measure_noise(const ConfidenceInput& in, const Match& match, MatchConfidence& out) {
   const DepthNoise model = in.index.settings().depth_noise();
-  const double capture_range = (in.landmark.box.center() - in.landmark.sensor_origin).norm();
-  out.model_noise = model.residual_sigma(capture_range, out.range);
-  out.capture_noise = capture_measurement_noise(in.landmark, model);
+  out.model_noise = model.residual_sigma(out.capture_range, out.range);
+  out.capture_noise = model.measurement_sigma_or(in.landmark.findings.noise, out.capture_range);
   const RangeImage* image = in.index.range_image();
   const MeasuredNoise measured =
       image ? measure_noise_at(*image, match.box.center().cast<float>()) : MeasuredNoise{};
   out.scene_noise_measured = measured.measured();
-  out.scene_noise = measured.measured() ? measured.sigma : model.measurement_sigma(out.range);
-  out.measured_noise = std::sqrt(out.scene_noise * out.scene_noise +
-                                 out.capture_noise * out.capture_noise + model.floor * model.floor);
+  out.scene_noise = model.measurement_sigma_or(measured.sigma, out.range);
+  out.measured_noise = model.residual_of(out.capture_noise, out.scene_noise);
   return out.model_noise;
 }
 
@@ -258,8 +256,8 @@ MatchConfidence assess_match(const ConfidenceInput& in, const Match& match,
   MatchConfidence c;
   const std::vector<Eigen::Vector3f> points = thinned(in.coarse_landmark, kMaxEvidencePoints);
   c.range = (match.box.center() - in.index.T_scene_sensor().translation()).norm();
-  const double noise = measure_noise(in, match, c);
   describe_landmark(in, match, points, c);
+  const double noise = measure_noise(in, match, c);
   measure_support(in, match, points, noise, c);
   c.coverage = match.terms.coverage;
   c.intrusion = empty_space_intrusion(match.terms, in.selection);

@@ -24,9 +24,6 @@ namespace lmk::detail {
 inline constexpr std::size_t kMaxSymmetryAxes = 3;
 
 inline nlohmann::json capture_findings_to_json(const CaptureFindings& f) {
-  const auto finite_or_null = [](double v) {
-    return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
-  };
   nlohmann::json axes = nlohmann::json::array();
   for (const Eigen::Vector3d& a : f.symmetry_axes) axes.push_back(vector_to_json(a));
   return {{"noise", finite_or_null(f.noise)},

@@ -29,8 +29,14 @@
 
 namespace lmk::detail {
 
-inline nlohmann::json finite_or_null(double v) {
-  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+/// `object[key]` as a number, `if_null` where it is null; lmk::Error, starting with `at`, for
+/// anything else or a missing key.
+inline double number_or(const nlohmann::json& object, const char* key, double if_null,
+                        const std::string& at) {
+  const nlohmann::json& v = json_field(object, key, at);
+  if (v.is_null()) return if_null;
+  if (!v.is_number()) throw Error(at + "." + key + ": must be a number or null");
+  return v.get<double>();
 }
 
 inline nlohmann::json confidence_to_json(const MatchConfidence& c) {
@@ -84,10 +90,7 @@ inline nlohmann::json confidence_to_json(const MatchConfidence& c) {
 inline void landmark_evidence_from_json(const nlohmann::json& j, const std::string& where,
                                         MatchConfidence& c) {
   const auto number = [&](const char* key) {
-    const nlohmann::json& v = json_field(j, key, where);
-    if (v.is_null()) return std::numeric_limits<double>::quiet_NaN();
-    if (!v.is_number()) throw Error(where + "." + key + ": must be a number or null");
-    return v.get<double>();
+    return number_or(j, key, std::numeric_limits<double>::quiet_NaN(), where);
   };
   c.model_noise = number("model_noise");
   c.measured_noise = number("measured_noise");
@@ -111,15 +114,8 @@ inline void landmark_evidence_from_json(const nlohmann::json& j, const std::stri
 /// freedom as +infinity only when the support had points (a pose free along some direction), other
 /// nulls as NaN.
 inline MatchConfidence confidence_from_json(const nlohmann::json& j, const std::string& where) {
-  const auto number_in = [](const nlohmann::json& object, const char* key, double if_null,
-                            const std::string& at) {
-    const nlohmann::json& v = json_field(object, key, at);
-    if (v.is_null()) return if_null;
-    if (!v.is_number()) throw Error(at + "." + key + ": must be a number or null");
-    return v.get<double>();
-  };
   const auto number = [&](const char* key, double if_null) {
-    return number_in(j, key, if_null, where);
+    return number_or(j, key, if_null, where);
   };
   const double inf = std::numeric_limits<double>::infinity();
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -170,9 +166,9 @@ inline MatchConfidence confidence_from_json(const nlohmann::json& j, const std::
       throw Error(at + ".kind: must be \"slide\", \"turn\" or \"look-alike\"");
     c.competitor.kind = *named;
     c.competitor.box = box_from_json(competitor, at);
-    c.competitor.error = number_in(competitor, "error", inf, at);
-    c.competitor.distance = number_in(competitor, "distance", nan, at);
-    c.competitor.angle = number_in(competitor, "angle", nan, at);
+    c.competitor.error = number_or(competitor, "error", inf, at);
+    c.competitor.distance = number_or(competitor, "distance", nan, at);
+    c.competitor.angle = number_or(competitor, "angle", nan, at);
   }
   return c;
 }
