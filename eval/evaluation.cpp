@@ -21,6 +21,7 @@
 #include "lmk/geometry/stopwatch.h"
 #include "lmk/geometry/version.h"
 #include "lmk/geometry/worker_threads.h"
+#include "lmk/landmark/capture_check.h"
 #include "lmk/landmark/confidence_calibration.h"
 #include "lmk/landmark/error_metrics.h"
 #include "lmk/landmark/internal/find_settings_json.h"
@@ -281,9 +282,10 @@ class PairSearches {
 };
 
 // What each pair's landmark says of its demonstration, cached or not: where it was seen from
-// (--by views), its up axis and capture box.
+// (--by views), its up axis, capture box and, where the dataset gives none and the settings ask
+// for it, the symmetry its capture found.
 void add_landmark_context(std::vector<PairResult>& pairs, const std::vector<PairJob>& jobs,
-                          const std::vector<Landmark>& landmarks) {
+                          const std::vector<Landmark>& landmarks, bool with_capture_symmetry) {
   for (std::size_t k = 0; k < jobs.size(); ++k) {
     const Landmark& l = landmarks[jobs[k].landmark];
     PairResult& p = pairs[k];
@@ -292,6 +294,11 @@ void add_landmark_context(std::vector<PairResult>& pairs, const std::vector<Pair
     p.landmark_up = l.up;
     p.capture_box = l.box.pose;
     p.landmark_size = l.box.size.norm();
+    if (!with_capture_symmetry || p.symmetry.axis) continue;
+    if (const std::optional<Symmetry> found = capture_symmetry(l)) {
+      p.symmetry = *found;
+      p.symmetry_from_capture = true;
+    }
   }
 }
 
@@ -341,7 +348,7 @@ Evaluation evaluate(const std::string& dir, const Dataset& dataset,
 
   PairSearches searches(dir, dataset, jobs, settings, find, landmark_indexes, cache);
   searches.run(evaluation.pairs);
-  add_landmark_context(evaluation.pairs, jobs, landmarks);
+  add_landmark_context(evaluation.pairs, jobs, landmarks, settings.capture_symmetry);
   // Confidences under this evaluation's calibration, for cached pairs as for searched ones: the
   // cache keeps the evidence, so that another calibration needs no search.
   const ConfidenceCalibration* calibration =

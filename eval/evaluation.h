@@ -32,6 +32,11 @@ struct EvaluationSettings {
   /// Evaluation::missing. Needs a cache.
   bool cached_only = false;
   MatchTolerance tolerance;
+  /// Where the dataset gives a landmark no symmetry and its capture found an axis of revolution
+  /// (capture_symmetry(), capture_check.h), count a pose that differs from the truth only by a turn
+  /// about that axis as right (issue #59). lmk eval --no-capture-symmetry turns it off, to see the
+  /// rule's effect on its own.
+  bool capture_symmetry = true;
   /// Called after each pair with (pairs done, pairs in all, of those done how many from the cache),
   /// possibly from several threads at once.
   std::function<void(std::size_t, std::size_t, std::size_t)> progress;
@@ -55,7 +60,10 @@ struct FoundBox {
 struct PairResult {
   std::string scene, landmark, setting;
   bool in_context = false;
+  /// The dataset's symmetry of the landmark, or the one its capture found
+  /// (EvaluationSettings::capture_symmetry; then symmetry_from_capture).
   Symmetry symmetry;
+  bool symmetry_from_capture = false;
   std::vector<Eigen::Isometry3d> truth;
   std::vector<double> truth_hidden;  ///< the dataset's hidden fraction per instance, if it has them
   /// Every match the search kept with an error below twice the threshold, or twice the metric's

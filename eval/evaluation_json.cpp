@@ -91,6 +91,7 @@ json evaluation_to_json(const Evaluation& e, const std::vector<EvaluationRow>& r
           {"tolerance",
            {{"translation_m", e.settings.tolerance.translation},
             {"rotation_rad", e.settings.tolerance.rotation}}},
+          {"capture_symmetry", e.settings.capture_symmetry},
           {"settings", find_settings_to_json(f)},
           {"seconds", e.seconds},
           {"rows", rows_to_json(rows)},

@@ -15,6 +15,11 @@ double rotation_error(const Eigen::Matrix3d& R_truth, const Eigen::Matrix3d& R_f
   return rotation_angle_between(nearest_symmetric_rotation(R_truth, R_found, symmetry), R_found);
 }
 
+double translation_error(const Eigen::Isometry3d& truth, const Eigen::Isometry3d& found,
+                         const Symmetry& symmetry) {
+  return (truth * symmetry.centre - found * symmetry.centre).norm();
+}
+
 void Counts::add(const Counts& other) {
   tp += other.tp;
   fp += other.fp;
@@ -44,7 +49,7 @@ std::optional<std::size_t> match(const PairInput& pair, const Eigen::Isometry3d&
   double best_distance = 0.0;
   for (std::size_t i = 0; i < pair.truth.size(); ++i) {
     if (taken[i]) continue;
-    const double d = (pair.truth[i].translation() - found.translation()).norm();
+    const double d = translation_error(pair.truth[i], found, pair.symmetry);
     if (d > tolerance.translation) continue;
     if (rotation_error(pair.truth[i].linear(), found.linear(), pair.symmetry) >
         tolerance.rotation) {
@@ -58,7 +63,7 @@ std::optional<std::size_t> match(const PairInput& pair, const Eigen::Isometry3d&
 void record_tp(Counts& c, const Eigen::Isometry3d& truth, const Eigen::Isometry3d& found,
                const Symmetry& symmetry) {
   ++c.tp;
-  c.translation_errors.push_back((truth.translation() - found.translation()).norm());
+  c.translation_errors.push_back(translation_error(truth, found, symmetry));
   c.rotation_errors.push_back(rotation_error(truth.linear(), found.linear(), symmetry));
 }
 

@@ -13,8 +13,10 @@
 namespace lmk {
 
 struct MatchTolerance {
-  double translation = 0.0254;  ///< m, between box centres (one inch, as the paper)
-  double rotation = 0.2618;     ///< rad (15 degrees), modulo the symmetry
+  /// m, between box centres (one inch, as the paper), or between the points of a symmetry's axis
+  /// (Symmetry::centre) where it does not pass through the box centre
+  double translation = 0.0254;
+  double rotation = 0.2618;  ///< rad (15 degrees), modulo the symmetry
 };
 
 /// Angle of the rotation from R_truth to R_found, modulo the symmetry. With an axis of revolution
@@ -23,6 +25,12 @@ struct MatchTolerance {
 /// angle from R_truth turned by any multiple of 360/n degrees about a.
 double rotation_error(const Eigen::Matrix3d& R_truth, const Eigen::Matrix3d& R_found,
                       const Symmetry& symmetry);
+
+/// Distance between the two poses' box centres; with a symmetry whose axis passes elsewhere
+/// (Symmetry::centre), between that point of each box instead, which a turn about the axis leaves
+/// in place.
+double translation_error(const Eigen::Isometry3d& truth, const Eigen::Isometry3d& found,
+                         const Symmetry& symmetry);
 
 /// One (scene, landmark) pair: its ground-truth instances and what a method returned.
 struct PairInput {

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "lmk/eval/evaluation_table.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -56,6 +57,33 @@ std::string evaluation_header(const Evaluation& e) {
                 metric.c_str(), format_error(*f.selection.threshold, metric).c_str(),
                 *f.sampling.max_seeds);
   return text;
+}
+
+std::string capture_symmetry_note(const Evaluation& e) {
+  std::vector<std::string> landmarks;
+  Evaluation without = e;
+  for (PairResult& p : without.pairs) {
+    if (!p.symmetry_from_capture) continue;
+    if (std::find(landmarks.begin(), landmarks.end(), p.landmark) == landmarks.end())
+      landmarks.push_back(p.landmark);
+    p.symmetry = Symmetry();
+    p.symmetry_from_capture = false;
+  }
+  if (landmarks.empty()) return "";
+  std::string names;
+  for (const std::string& name : landmarks) names += (names.empty() ? "" : ", ") + name;
+  const double threshold = *e.settings.find.selection.threshold;
+  std::string effect;
+  for (int assumption : {1, 3}) {
+    if (assumption == 1 && e.settings.in_context_only) continue;
+    const std::size_t with = evaluation_row(e, "all", assumption, threshold).counts.tp;
+    const std::size_t plain = evaluation_row(without, "all", assumption, threshold).counts.tp;
+    effect += (effect.empty() ? "" : ", ") + assumption_name(assumption) + " TP " +
+              std::to_string(with) + " (" + std::to_string(plain) + " without it)";
+  }
+  return "symmetry found at capture, where the dataset gives none: " + names +
+         " (a pose turned about its axis counts as right; --no-capture-symmetry leaves it out): " +
+         effect + "\n";
 }
 
 }  // namespace lmk

@@ -19,6 +19,12 @@ TextTable evaluation_table(const std::vector<EvaluationRow>& rows, bool with_tim
 /// What the table measured, in one line: dataset, method, metric, threshold, seeds, pairs.
 std::string evaluation_header(const Evaluation& evaluation);
 
+/// Where the evaluation counted turns about an axis its capture found (issue #59,
+/// EvaluationSettings::capture_symmetry), one line naming those landmarks and the rule's effect on
+/// its own: the "all" rows' true positives with and without it, at the evaluation's threshold and
+/// cut. Empty when no pair used it.
+std::string capture_symmetry_note(const Evaluation& evaluation);
+
 /// The assumption's name in the paper's terms: "1 all pairs", "2 in context", "3 best match".
 std::string assumption_name(int assumption);
 

@@ -41,7 +41,7 @@ std::vector<Candidate> candidates_of(const FindResult& r) {
 
 bool within(const Eigen::Isometry3d& truth, const Eigen::Isometry3d& pose, const Symmetry& symmetry,
             const MatchTolerance& tolerance, double factor = 1.0) {
-  return (truth.translation() - pose.translation()).norm() <= factor * tolerance.translation &&
+  return translation_error(truth, pose, symmetry) <= factor * tolerance.translation &&
          rotation_error(truth.linear(), pose.linear(), symmetry) <= factor * tolerance.rotation;
 }
 
@@ -131,7 +131,7 @@ class PairExplainer {
     for (const Candidate& cand : all_) {
       const Eigen::Isometry3d& pose = cand.match->box.pose;
       if (within(p_.truth[k], pose, p_.symmetry, tolerance_)) near.push_back(&cand);
-      const double d = (p_.truth[k].translation() - pose.translation()).norm();
+      const double d = translation_error(p_.truth[k], pose, p_.symmetry);
       if (!c.nearest_candidate_translation || d < *c.nearest_candidate_translation) {
         c.nearest_candidate_translation = d;
         c.nearest_candidate_rotation =
@@ -146,7 +146,7 @@ class PairExplainer {
     if (k < p_.truth_hidden.size()) c.hidden = p_.truth_hidden[k];
     const Match refined = at_truth(k);
     c.truth_error = refined.error;
-    c.truth_drift_translation = (refined.box.pose.translation() - p_.truth[k].translation()).norm();
+    c.truth_drift_translation = translation_error(p_.truth[k], refined.box.pose, p_.symmetry);
     c.truth_drift_rotation =
         rotation_error(p_.truth[k].linear(), refined.box.pose.linear(), p_.symmetry);
     c.winner_error = best_wrong_;

@@ -47,6 +47,8 @@ json pair_result_to_json(const PairResult& p, double threshold, const MatchToler
           {"in_context", p.in_context},
           {"symmetry_axis", p.symmetry.axis ? vector_to_json(*p.symmetry.axis) : json(nullptr)},
           {"symmetry_order", p.symmetry.order},
+          {"symmetry_centre", vector_to_json(p.symmetry.centre)},
+          {"symmetry_from_capture", p.symmetry_from_capture},
           {"truth", truth},
           {"found", found},
           {"seconds", p.seconds},
@@ -65,6 +67,11 @@ PairResult pair_result_from_json(const json& j, const std::string& where) {
   const json& axis = json_field(j, "symmetry_axis", where);
   if (!axis.is_null()) p.symmetry.axis = numbers_from_json(axis, 3, where + ".symmetry_axis");
   p.symmetry.order = get<int>(j, "symmetry_order", where);
+  // Since issue #59; a pair cached before has its symmetry about the box centre, from the dataset.
+  if (j.contains("symmetry_centre"))
+    p.symmetry.centre = numbers_from_json(j["symmetry_centre"], 3, where + ".symmetry_centre");
+  if (j.contains("symmetry_from_capture"))
+    p.symmetry_from_capture = get<bool>(j, "symmetry_from_capture", where);
   for (const json& t : json_field(j, "truth", where)) p.truth.push_back(pose_from_json(t, where));
   for (const json& m : json_field(j, "found", where)) {
     p.found.push_back(

@@ -107,7 +107,8 @@ SequenceResult follow(const std::string& dir, const Dataset& dataset, const Scen
     std::optional<Eigen::Isometry3d> truth;
     f.truth = truth_of(scene, sequence.landmark, truth);
     if (f.has_pose && truth) {
-      f.translation_error = (now.match->box.pose.translation() - truth->translation()).norm();
+      f.translation_error =
+          translation_error(*truth, now.match->box.pose, landmark_entry->symmetry);
       f.rotation_error =
           rotation_error(truth->linear(), now.match->box.pose.linear(), landmark_entry->symmetry);
     }

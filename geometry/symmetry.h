@@ -17,6 +17,10 @@ namespace lmk {
 struct Symmetry {
   std::optional<Eigen::Vector3d> axis;
   int order = 0;  ///< 0: an axis of revolution; n >= 2: n-fold
+  /// A point the axis passes through, box frame: the box centre unless a capture found the axis
+  /// elsewhere (capture_findings.h). Turning about an axis off the centre moves the box centre, so
+  /// the evaluation compares positions at this point (evaluation_protocol.h, translation_error).
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
 };
 
 /// Among the rotations R * turn that the symmetry makes equivalent to R (turns about the axis, in

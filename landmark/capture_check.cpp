@@ -68,6 +68,17 @@ CaptureCheck check_capture(const Landmark& landmark, const PointCloud* scene,
   return check;
 }
 
+std::optional<Symmetry> capture_symmetry(const Landmark& landmark) {
+  const CaptureFindings& f = landmark.findings;
+  if (!f.present || f.symmetry_axes.empty()) return std::nullopt;
+  const Eigen::Isometry3d box_from_capture = landmark.box.pose.inverse();
+  Symmetry s;
+  s.axis = (box_from_capture.linear() * f.symmetry_axes.front()).normalized();
+  s.order = 0;
+  s.centre = box_from_capture * f.symmetry_centre;
+  return s;
+}
+
 bool CaptureFindings::warned() const {
   return slide > 0.0 || (look_alike_checked && (look_alikes > 0 || !found_itself));
 }

@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "lmk/geometry/point_cloud.h"
+#include "lmk/geometry/symmetry.h"
 #include "lmk/landmark/capture_findings.h"
 #include "lmk/landmark/distinctiveness.h"
 #include "lmk/landmark/find_settings.h"
@@ -33,5 +34,12 @@ struct CaptureCheck {
 /// meant to slide on its plane: it has no slides and no look-alike check.
 CaptureCheck check_capture(const Landmark& landmark, const PointCloud* capture_scene,
                            const FindSettings& settings = {}, bool look_alikes = true);
+
+/// The symmetry the capture found (CaptureFindings::symmetry_axes), in the landmark's box frame
+/// with its axis through the point the capture found it through: an axis of revolution. Nothing
+/// when it found none. A landmark symmetric about several axes (a ball) gets its first only: the
+/// evaluation that uses it (lmk eval, issue #59) then forgives fewer turns than it could, never
+/// more.
+std::optional<Symmetry> capture_symmetry(const Landmark& landmark);
 
 }  // namespace lmk

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // lmk eval [--dataset DIR | --preset NAME] [search options] [--pairs all|in-context]
 //          [--threads N] [--json FILE] [--report DIR] [--cache DIR | --no-cache]
-//          [--shard K/N | --merge] [--explain]
+//          [--shard K/N | --merge] [--explain] [--no-capture-symmetry]
 // The paper's precision/recall table of a search method on a dataset (docs/evaluation.md).
 
 #include <cstdio>
@@ -32,6 +32,7 @@ struct EvalOptions {
   bool merge = false;
   bool timings = false;
   bool explain = false;
+  bool no_capture_symmetry = false;
 };
 
 // --explain: the cause of every miss and false match, as tables on stdout and in the JSON.
@@ -90,14 +91,16 @@ int run_shard(const LoadedDataset& data, EvalOptions& o) {
 int run_eval(EvalOptions& o) {
   if (!o.shard.empty()) o.settings.shard = parse_shard(o.shard);
   o.settings.cached_only = o.merge;
+  o.settings.capture_symmetry = !o.no_capture_symmetry;
   const LoadedDataset data = load_or_generate(o.dataset, o.settings.cache_dir);
   if (o.settings.shard) return run_shard(data, o);
   const Evaluation evaluation =
       evaluate_with_progress(data, o.settings, o.merge ? "merge" : "eval");
   if (!evaluation.missing.empty()) throw Error(describe_missing(evaluation));
   const std::vector<EvaluationRow> rows = evaluation_rows(evaluation);
-  std::printf("%s\n\n%s", evaluation_header(evaluation).c_str(),
-              evaluation_table(rows, o.timings).plain().c_str());
+  std::printf("%s\n\n%s%s", evaluation_header(evaluation).c_str(),
+              evaluation_table(rows, o.timings).plain().c_str(),
+              capture_symmetry_note(evaluation).c_str());
   nlohmann::json json = detail::evaluation_to_json(evaluation, rows);
   // A split of the table, printed under its caption and kept in the JSON under `key`.
   const auto split = [&](const std::vector<EvaluationRow>& by, const char* caption,
@@ -169,6 +172,11 @@ Subcommand add_eval(CLI::App& app) {
                 "false match displacing the truth, off the pose, a look-alike), with the metric "
                 "at the true pose: searches the failed pairs again")
       ->excludes(shard);
+  sub->add_flag(
+      "--no-capture-symmetry", o->no_capture_symmetry,
+      "Count a pose turned about an axis the landmark's capture found symmetric as wrong, "
+      "as the dataset alone says (by default it counts as right where the dataset gives "
+      "the landmark no symmetry)");
   sub->add_option("--report", o->report,
                   "Write report.json, report.md and report.html (with plots) into DIR");
   return {sub, [o] { return run_eval(*o); }};

@@ -40,6 +40,32 @@ TEST(RotationError, AnNFoldSymmetryForgivesItsTurnsOnly) {
   EXPECT_EQ(count_all_matches(pair).fp, 1u);
 }
 
+// A symmetry whose axis misses the box centre (a capture's, issue #59): a turn about it moves the
+// box centre by more than the tolerance, yet the landmark is where it was.
+TEST(TranslationError, AnOffCentreAxisComparesItsOwnPoint) {
+  Symmetry can{Eigen::Vector3d::UnitZ()};
+  can.centre = Eigen::Vector3d(-0.05, 0, 0);  // the axis 5 cm beside the box centre
+  const Eigen::Isometry3d truth = at(0, 0);
+  // The truth turned a quarter turn about that axis: its centre moves 7 cm.
+  const Eigen::Isometry3d turned = truth * Eigen::Translation3d(can.centre) *
+                                   Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()) *
+                                   Eigen::Translation3d(-can.centre);
+  EXPECT_NEAR((turned.translation() - truth.translation()).norm(), 0.05 * std::sqrt(2.0), 1e-9);
+  EXPECT_NEAR(translation_error(truth, turned, can), 0.0, 1e-9);
+  EXPECT_NEAR(rotation_error(truth.linear(), turned.linear(), can), 0.0, 1e-9);
+  PairInput pair;
+  pair.truth = {truth};
+  pair.found = {turned};
+  pair.symmetry = can;
+  EXPECT_EQ(count_all_matches(pair).tp, 1u);
+  EXPECT_EQ(count_best_match(pair).tp, 1u);
+  // About an axis through the box centre the same turn is a miss: the centre moved.
+  pair.symmetry.centre.setZero();
+  EXPECT_EQ(count_all_matches(pair).fp, 1u);
+  // Without a symmetry the positions compared are the box centres, as the paper's.
+  EXPECT_NEAR(translation_error(truth, turned, Symmetry{}), 0.05 * std::sqrt(2.0), 1e-9);
+}
+
 TEST(CountAllMatches, TolerancesDecideTruePositives) {
   PairInput pair;
   pair.truth = {at(0, 0)};

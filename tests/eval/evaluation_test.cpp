@@ -64,6 +64,42 @@ TEST_F(EvaluationTest, FindsEverythingInSimpleScenesAndTabulatesIt) {
   EXPECT_NE(table.find("3 best match"), std::string::npos) << table;
 }
 
+// Issue #59: where the dataset gives a landmark no symmetry, the axis its capture found counts
+// instead (the ball's: its capture finds it turns freely), and only when asked; a symmetry the
+// dataset gives stays the dataset's.
+TEST_F(EvaluationTest, TheCapturesSymmetryCountsWhereTheDatasetGivesNone) {
+  const Evaluation given = run({});
+  for (const PairResult& p : given.pairs) EXPECT_FALSE(p.symmetry_from_capture) << p.landmark;
+  EXPECT_EQ(capture_symmetry_note(given), "");
+
+  Dataset without_symmetry = *dataset_;
+  for (DatasetLandmark& l : without_symmetry.landmarks) l.symmetry = Symmetry();
+  EvaluationSettings settings;
+  const Evaluation with_rule = evaluate(dir_->path().string(), without_symmetry, settings);
+  settings.capture_symmetry = false;
+  const Evaluation without_rule = evaluate(dir_->path().string(), without_symmetry, settings);
+  bool ball_counted = false;
+  for (std::size_t i = 0; i < with_rule.pairs.size(); ++i) {
+    const PairResult &p = with_rule.pairs[i], &q = without_rule.pairs[i];
+    EXPECT_FALSE(q.symmetry_from_capture);
+    EXPECT_FALSE(q.symmetry.axis.has_value());
+    if (p.landmark != "ball") continue;
+    ASSERT_TRUE(p.symmetry_from_capture) << p.scene;
+    ASSERT_TRUE(p.symmetry.axis.has_value());
+    // The ball's axis is the scene's up, z in its box frame as the dataset would give it.
+    EXPECT_NEAR(std::abs(p.symmetry.axis->z()), 1.0, 0.1);
+    ball_counted = true;
+  }
+  EXPECT_TRUE(ball_counted);
+  // The rule only forgives: never fewer true positives, and the note names the landmark.
+  const double threshold = *with_rule.settings.find.selection.threshold;
+  EXPECT_GE(evaluation_row(with_rule, "all", 1, threshold).counts.tp,
+            evaluation_row(without_rule, "all", 1, threshold).counts.tp);
+  const std::string note = capture_symmetry_note(with_rule);
+  EXPECT_NE(note.find("ball"), std::string::npos) << note;
+  EXPECT_EQ(capture_symmetry_note(without_rule), "");
+}
+
 TEST_F(EvaluationTest, ResultsDoNotDependOnThreadsOrTheCache) {
   EvaluationSettings one;
   one.threads = 1;

@@ -73,6 +73,31 @@ TEST(CaptureCheck, ACylinderIsSymmetricAboutItsAxis) {
   EXPECT_LT(f.symmetry_centre.head<2>().norm(), 0.01);
 }
 
+// The capture's axis becomes the evaluation's symmetry in the box frame, through the cylinder's
+// axis even where the box is not centred on it: a turn about that axis keeps the cylinder in place
+// but moves the box's centre.
+TEST(CaptureCheck, TheCapturedAxisIsASymmetryInTheBoxFrame) {
+  TriangleMesh world;
+  world.append(make_cylinder_mesh(0.04, 0.2, 48),
+               pose_from_xyz_rpy({0, 0, kTable + 0.1}, {0, 0, 0}));
+  const PointCloud scene = render_on_table(world);
+  const double yaw = 0.5;  // the box turned about z, and its centre 3 cm off the axis
+  const Box box(pose_from_xyz_rpy({0.03, 0, kTable + 0.11}, {0, 0, yaw}), {0.2, 0.2, 0.26});
+  Landmark landmark = capture(scene, box, "can");
+  landmark.findings = check_capture(landmark, &scene).findings;
+  const std::optional<Symmetry> symmetry = capture_symmetry(landmark);
+  ASSERT_TRUE(symmetry.has_value());
+  ASSERT_TRUE(symmetry->axis.has_value());
+  EXPECT_EQ(symmetry->order, 0);
+  EXPECT_NEAR(std::abs(symmetry->axis->z()), 1.0, 0.05);
+  // The axis's point, back in the capture frame, lies on the cylinder's axis within a centimetre.
+  const Eigen::Vector3d through = box.pose * symmetry->centre;
+  EXPECT_LT(through.head<2>().norm(), 0.01);
+  // A landmark without findings (built by hand) has no captured symmetry.
+  landmark.findings = CaptureFindings();
+  EXPECT_FALSE(capture_symmetry(landmark).has_value());
+}
+
 TEST(CaptureCheck, FindingsTravelInTheFileAndAnOldFileGainsThem) {
   const ScratchDir dir;
   const PointCloud scene = render_scene({kCopies[0], kCopies[1]}, false);
