@@ -8,6 +8,8 @@ find_package(CLI11 REQUIRED)
 find_package(Ceres 2 REQUIRED)
 find_package(CGAL 5 REQUIRED)
 find_package(urdfdom REQUIRED)
+# Planning arm motions around obstacles (lmk::pr2, issue #60): RRT-Connect in joint space.
+find_package(ompl 1.5 REQUIRED)
 # RGB-D depth and colour images (libpng-dev).
 find_package(PNG REQUIRED)
 

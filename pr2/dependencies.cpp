@@ -3,6 +3,8 @@
 
 namespace lmk {
 
-std::vector<DependencyVersion> pr2_dependencies() { return {{"urdfdom", LMK_URDFDOM_VERSION}}; }
+std::vector<DependencyVersion> pr2_dependencies() {
+  return {{"urdfdom", LMK_URDFDOM_VERSION}, {"OMPL", LMK_OMPL_VERSION}};
+}
 
 }  // namespace lmk

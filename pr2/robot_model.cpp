@@ -11,19 +11,13 @@
 
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/input_file.h"
+#include "lmk/pr2/internal/robot_model_impl.h"
 
 namespace lmk {
 
 extern const char* const kPr2Urdf;  // pr2_urdf_data.cpp, generated from pr2/data/pr2.urdf
 
-struct RobotModel::Impl {
-  urdf::ModelInterfaceSharedPtr model;
-  std::string what;  // the file or source, for messages
-};
-
-namespace {
-
-Eigen::Isometry3d to_eigen(const urdf::Pose& pose) {
+Eigen::Isometry3d detail::to_eigen(const urdf::Pose& pose) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.translation() << pose.position.x, pose.position.y, pose.position.z;
   T.linear() =
@@ -32,6 +26,8 @@ Eigen::Isometry3d to_eigen(const urdf::Pose& pose) {
           .toRotationMatrix();
   return T;
 }
+
+namespace {
 
 ChainJoint to_chain_joint(const urdf::Joint& j, const std::string& what) {
   ChainJoint out;
@@ -54,7 +50,7 @@ ChainJoint to_chain_joint(const urdf::Joint& j, const std::string& what) {
                   "' is floating or planar; kinematic chains support revolute, continuous, "
                   "prismatic and fixed joints");
   }
-  out.T_parent_joint = to_eigen(j.parent_to_joint_origin_transform);
+  out.T_parent_joint = detail::to_eigen(j.parent_to_joint_origin_transform);
   const Eigen::Vector3d axis(j.axis.x, j.axis.y, j.axis.z);
   if (out.moves()) {
     if (!(axis.norm() > 0.0)) throw Error(what + ": joint '" + j.name + "' has a zero axis");
@@ -127,7 +123,9 @@ RobotModel RobotModel::from_string(const std::string& xml, const std::string& wh
 }
 
 RobotModel RobotModel::from_file(const std::string& path) {
-  return from_string(read_input_file(path, kRobotInput), path);
+  RobotModel model = from_string(read_input_file(path, kRobotInput), path);
+  model.impl_->dir = std::filesystem::path(path).parent_path().string();
+  return model;
 }
 
 RobotModel RobotModel::pr2() { return from_string(kPr2Urdf, "lmk's PR2 description"); }

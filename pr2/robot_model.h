@@ -4,11 +4,14 @@
 // kinematics over revolute, continuous, prismatic and fixed joints.
 
 #include <Eigen/Geometry>
+#include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "lmk/geometry/random.h"
+#include "lmk/geometry/solid.h"
 #include "lmk/pbd/robot_interface.h"
 
 namespace lmk {
@@ -48,6 +51,25 @@ class KinematicChain {
   std::size_t dof_ = 0;
 };
 
+/// One collision shape of a link (issue #60): a solid placed in the link's frame.
+struct LinkSolid {
+  std::string link;
+  Eigen::Isometry3d T_link_solid = Eigen::Isometry3d::Identity();
+  Solid solid = Solid::sphere(0.01);
+};
+
+struct CollisionShapeSettings {
+  /// A mesh is covered by spheres over cubic cells of this side (cover_with_spheres, solid.h): its
+  /// spheres reach at most cell * sqrt(3) / 2 beyond its surface.
+  double mesh_cell = 0.02;
+  /// Where a mesh named package://NAME/PATH is looked for: DIR/PATH. Empty: the URDF file's own
+  /// directory (a description package holds its meshes beside its urdf/ folder).
+  std::string package_dir;
+  /// Only these links' shapes (empty: every link's): a check that needs the arms alone reads no
+  /// other mesh.
+  std::vector<std::string> only_links;
+};
+
 class RobotModel {
  public:
   /// Parses a URDF file; throws lmk::Error naming the file when it is missing or not valid URDF.
@@ -62,6 +84,23 @@ class RobotModel {
   /// The chain from `root` down to `tip`; throws lmk::Error when either link is unknown or `tip`
   /// does not descend from `root`, or a joint on the way is floating or planar.
   KinematicChain chain(const std::string& root, const std::string& tip) const;
+
+  /// The root link of the description's tree.
+  std::string root_link() const;
+  /// Every link's pose in the root link's frame with the named joints at the given values (rad,
+  /// or m for a prismatic joint) and every other joint at 0. A joint value of a fixed joint is
+  /// ignored; a name that is no joint is an error (lmk::Error).
+  std::map<std::string, Eigen::Isometry3d> link_poses(
+      const std::map<std::string, double>& joints) const;
+  /// The links' <collision> shapes (robot_collision.cpp): boxes, cylinders and spheres as they
+  /// are, STL meshes covered by spheres. Throws lmk::Error naming the link when a mesh cannot be
+  /// read or is of another format. Links without a collision shape have none here.
+  std::vector<LinkSolid> collision_solids(const CollisionShapeSettings& settings = {}) const;
+  /// Every joint of the tree with the links it joins (which touch by design), by joint name.
+  struct TreeJoint {
+    std::string name, parent, child;
+  };
+  std::vector<TreeJoint> tree_joints() const;
 
   ~RobotModel();
   RobotModel(RobotModel&&) noexcept;

@@ -1,0 +1,82 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+// The world an arm must not touch (issue #60), from the frame the robot planned on: the scene's
+// points, thinned to one per voxel and indexed, and the space they hide from the sensor, which the
+// sensor could not see and which counts as occupied unless the settings say otherwise. The points
+// are the same frame the landmarks were found in; nothing but them and the sensor's rays is known.
+
+#include <Eigen/Geometry>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "lmk/geometry/box.h"
+#include "lmk/geometry/point_cloud.h"
+#include "lmk/geometry/solid.h"
+#include "lmk/pbd/motion_check.h"
+
+namespace lmk {
+
+struct CollisionSceneSettings {
+  /// The space the scene's surfaces hide from the sensor (behind what it measured, within its
+  /// view) counts as occupied: the arm never sweeps through what nobody saw. False: as free.
+  bool unknown_is_occupied = true;
+  /// A point counts as hidden when it lies this much deeper than the surface the sensor measured
+  /// along its ray, m: the surface's own thickness and the sensor's noise are not hidden space.
+  double hidden_margin = 0.03;
+  /// The scene's points are thinned to one per voxel of this side, m.
+  double voxel = 0.01;
+  /// The side of the voxels of the distance grid that clears most of a motion's solids at one
+  /// lookup each (geometry/distance_grid.h), m; solids the grid cannot clear are measured exactly.
+  double grid_voxel = 0.015;
+  /// Only points inside this box (base frame) are obstacles: the arms' reach. The default holds a
+  /// PR2's reach and leaves out the floor under it.
+  Box reach = Box(Eigen::Translation3d(0.45, 0.0, 0.95) * Eigen::Isometry3d::Identity(),
+                  Eigen::Vector3d(1.9, 2.4, 1.9));
+};
+
+/// How near a solid comes to the scene.
+struct SceneDistance {
+  /// Signed: the smallest distance from the solid to a scene point (negative: the point lies that
+  /// deep inside), or minus the depth of its surface behind the sensor's measurement where that is
+  /// deeper. Beyond the query's reach, only a lower bound (the distance grid's); +infinity when
+  /// nothing is known anywhere.
+  double distance = 0.0;
+  Eigen::Vector3d where = Eigen::Vector3d::Zero();  ///< the nearest point, base frame
+  bool hidden = false;  ///< the nearest is space the sensor could not see
+};
+
+class CollisionScene {
+ public:
+  /// `scene`: the frame in the robot's base frame, T_cloud_sensor its sensor's pose (an organised
+  /// cloud, for the hidden space; an unorganised one only gives its points).
+  CollisionScene(const PointCloud& scene, const CollisionSceneSettings& settings = {});
+  ~CollisionScene();
+  CollisionScene(CollisionScene&&) noexcept;
+
+  /// The distance of `solid` placed at T_base_solid to the scene, looking `within` m beyond its
+  /// surface. `surface` holds the solid's surface points (solid frame), for the hidden space.
+  /// Scene points the motion intends to touch (`intended`) are no obstacle.
+  SceneDistance distance(const Solid& solid, const Eigen::Isometry3d& T_base_solid,
+                         const std::vector<Eigen::Vector3d>& surface, double within,
+                         const IntendedContact* intended = nullptr) const;
+
+  /// A lower bound of the distance from a sphere at `centre` (base frame) of `radius` to the
+  /// scene, from the distance grid alone: one lookup, for a whole link at once.
+  double lower_bound(const Eigen::Vector3d& centre, double radius) const;
+
+  /// Leaves out the points within `margin` of the given solids (base frame): the robot's own body
+  /// as the sensor saw it.
+  void remove_points_inside(const std::vector<std::pair<const Solid*, Eigen::Isometry3d>>& solids,
+                            double margin);
+
+  std::size_t points() const;
+  const CollisionSceneSettings& settings() const { return settings_; }
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  CollisionSceneSettings settings_;
+};
+
+}  // namespace lmk

@@ -1,0 +1,69 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+// MotionChecker (pbd/motion_check.h) over a robot's body and a scene (issue #60): every sampled
+// configuration of a motion is checked against the scene's points and hidden space
+// (pbd/collision_scene.h) and against the robot's own links, within a padding; a motion that
+// would touch is planned around with OMPL's RRT-Connect in the group's joint space, then
+// shortened and smoothed, within a time budget.
+
+#include <cstdint>
+#include <map>
+#include <memory>
+
+#include "lmk/pbd/collision_scene.h"
+#include "lmk/pbd/motion_check.h"
+#include "lmk/pbd/robot_interface.h"
+#include "lmk/pr2/robot_body.h"
+
+namespace lmk {
+
+struct MotionCheckSettings {
+  double padding = 0.02;        ///< m kept from the scene and between links
+  double planning_time = 2.0;   ///< s allowed to plan around an obstacle
+  bool self_collisions = true;  ///< check the arm against the robot's own body
+  std::uint64_t seed = 1;       ///< the planner's random seed: the same inputs, the same path
+};
+
+class RobotMotionChecker : public MotionChecker {
+ public:
+  /// `kinematics` gives the groups' joints and limits; `state`: where every other joint is (the
+  /// torso, the head, the other arm), by name. Throws lmk::Error for a non-positive padding or
+  /// planning time.
+  RobotMotionChecker(std::shared_ptr<const RobotBody> body,
+                     std::shared_ptr<const CollisionScene> scene,
+                     const KinematicsInterface& kinematics, JointValues state,
+                     const MotionCheckSettings& settings = {});
+
+  double padding() const override { return settings_.padding; }
+  MotionVerdict check_line(const JointValues& from, const JointValues& to,
+                           const IntendedContact& intended = {}) const override;
+  MotionPlan plan_around(const std::string& group, const JointValues& from, const JointValues& to,
+                         const IntendedContact& intended = {}) const override;
+
+  /// One configuration (joints not named as in the state), the links in `moving` (by the body's
+  /// link index) checked: the nearest approach (its distance in `clearance`) and the deepest
+  /// contact within the padding, if any.
+  std::optional<MotionContact> check_state(const JointValues& joints,
+                                           const std::vector<char>& moving,
+                                           const IntendedContact* intended,
+                                           double* clearance = nullptr) const;
+  /// The links (by the body's index) that move when any of `joints` does.
+  std::vector<char> links_moved_by(const std::vector<std::string>& joints) const;
+  /// An upper bound of how far any point of the body moves per radian (or metre) of `joint`.
+  double lever(const std::string& joint) const;
+
+ private:
+  JointValues merged(const JointValues& joints) const;
+  std::shared_ptr<const RobotBody> body_;
+  std::shared_ptr<const CollisionScene> scene_;
+  std::map<std::string, GroupInfo> groups_;
+  std::map<std::string, JointInfo> joint_info_;
+  std::map<std::string, std::vector<char>> moved_by_;
+  std::map<std::string, double> lever_;
+  std::vector<std::size_t> gripper_links_;  // links whose contact with intended points is allowed
+  JointValues state_;
+  Eigen::Isometry3d T_base_root_ = Eigen::Isometry3d::Identity();
+  MotionCheckSettings settings_;
+};
+
+}  // namespace lmk
