@@ -23,6 +23,7 @@
 #include "lmk/pbd/plan.h"
 #include "lmk/pbd/recorder.h"
 #include "lmk/pr2/head_pointing.h"
+#include "lmk/pr2/pr2_motion_check.h"
 #include "lmk/pr2/pr2_robots.h"
 #include "lmk/pr2/simulated_pr2.h"
 
@@ -375,6 +376,8 @@ ScenarioRun plan_and_execute(const DemoTask& task, std::size_t index, const Reco
   PlanSettings plan_settings;
   plan_settings.find.execution.threads = settings.threads;
   plan_settings.min_confidence = settings.min_confidence;
+  if (settings.check_collisions)
+    plan_settings.motion_checker = pr2_motion_checker(robot.kinematics(), settings.motion_check);
   HeadKinect eyes(robot, state.world, 100 * (100 * task.number + index));
   LookAgainSettings looking;
   looking.max_looks = settings.look_again;

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "lmk/landmark/find_landmark.h"
+#include "lmk/pr2/pr2_motion_check.h"
 
 namespace lmk {
 
@@ -57,7 +58,13 @@ struct DemoTasksSettings {
   /// Scenarios whose landmark is moved between two steps run watching it (pbd/watch.h): the move
   /// noticed, the rest re-planned, or the program stopped. false: open loop, as before watching.
   bool watch = true;
-  double max_position_error = 0.02;                 ///< m
+  /// Every arm motion checked against the scene the robot planned on and its own body, and planned
+  /// around what it would touch, before anything moves (issue #60; PlanSettings::motion_checker).
+  /// Off by default for now: the simulated PR2 starts with its arms stretched out into the tasks'
+  /// worlds, and some demonstrated poses put one arm against the other (docs/pbd.md).
+  bool check_collisions = false;
+  Pr2MotionCheckSettings motion_check;  ///< the check's padding, planning time, unknown space
+  double max_position_error = 0.02;     ///< m
   double max_rotation_error = 10.0 * M_PI / 180.0;  ///< rad
   /// If set, each task's landmarks (.lmk) and programs (.json), and every scene (.pcd) are written
   /// there, so that `lmk pbd plan` can replay them.

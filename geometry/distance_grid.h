@@ -10,7 +10,6 @@
 #include <cstddef>
 #include <vector>
 
-
 namespace lmk {
 
 class DistanceGrid {

@@ -16,11 +16,13 @@ namespace lmk {
 struct CollisionScene::Impl {
   PointCloud points;  // thinned, within reach, base frame
   std::unique_ptr<KdTree> tree;
-  std::optional<RangeImage> image;  // of the whole frame, for the hidden space
+  std::optional<RangeImage> image;     // of the whole frame, for the hidden space
   std::unique_ptr<DistanceGrid> grid;  // the points and the hidden space, over the reach
   CollisionSceneSettings settings;
+  std::function<bool(const Eigen::Vector3d&)> known_free;
 
   bool hidden(const Eigen::Vector3d& p) const {
+    if (known_free && known_free(p)) return false;
     const RangeImage::Look look = image->look(p.cast<float>());
     return look.in_view && std::isfinite(look.measured) &&
            look.depth > look.measured + settings.hidden_margin;
@@ -32,7 +34,8 @@ struct CollisionScene::Impl {
     // The reach's axis-aligned bounds in the base frame.
     Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e9), hi = -lo;
     for (int corner = 0; corner < 8; ++corner) {
-      const Eigen::Vector3d local((corner & 1 ? 1 : -1) * half.x(), (corner & 2 ? 1 : -1) * half.y(),
+      const Eigen::Vector3d local((corner & 1 ? 1 : -1) * half.x(),
+                                  (corner & 2 ? 1 : -1) * half.y(),
                                   (corner & 4 ? 1 : -1) * half.z());
       const Eigen::Vector3d p = reach.pose * local;
       lo = lo.cwiseMin(p);
@@ -67,7 +70,8 @@ CollisionScene::CollisionScene(const PointCloud& scene, const CollisionSceneSett
   if (!(settings.grid_voxel > 0.0)) throw Error("collision scene: the grid voxel must be positive");
   impl_->settings = settings;
   impl_->points = voxel_downsample(crop(scene, settings.reach), settings.voxel);
-  if (settings.unknown_is_occupied && scene.is_organized()) impl_->image = RangeImage::from_cloud(scene);
+  if (settings.unknown_is_occupied && scene.is_organized())
+    impl_->image = RangeImage::from_cloud(scene);
   impl_->index();
 }
 
@@ -77,8 +81,8 @@ CollisionScene::CollisionScene(CollisionScene&&) noexcept = default;
 std::size_t CollisionScene::points() const { return impl_->points.size(); }
 
 SceneDistance CollisionScene::distance(const Solid& solid, const Eigen::Isometry3d& T_base_solid,
-                                       const std::vector<Eigen::Vector3d>& surface,
-                                       double within, const IntendedContact* intended) const {
+                                       const std::vector<Eigen::Vector3d>& surface, double within,
+                                       const IntendedContact* intended) const {
   SceneDistance best;
   // The grid first: a solid it clears by more than `within` needs no exact measure.
   const double bound = lower_bound(T_base_solid.translation(), solid.bounding_radius());
@@ -100,6 +104,7 @@ SceneDistance CollisionScene::distance(const Solid& solid, const Eigen::Isometry
   for (const Eigen::Vector3d& s : surface) {
     const Eigen::Vector3d p = T_base_solid * s;
     if (!settings_.reach.contains(p)) continue;
+    if (impl_->known_free && impl_->known_free(p)) continue;
     const RangeImage::Look look = impl_->image->look(p.cast<float>());
     if (!look.in_view || !std::isfinite(look.measured)) continue;
     const double d = look.measured + settings_.hidden_margin - look.depth;
@@ -112,20 +117,17 @@ double CollisionScene::lower_bound(const Eigen::Vector3d& centre, double radius)
   return impl_->grid->distance(centre) - impl_->grid->error_bound() - radius;
 }
 
-void CollisionScene::remove_points_inside(
-    const std::vector<std::pair<const Solid*, Eigen::Isometry3d>>& solids, double margin) {
+void CollisionScene::set_known_free(std::function<bool(const Eigen::Vector3d&)> known_free) {
+  impl_->known_free = std::move(known_free);
+  if (impl_->image) impl_->index();
+}
+
+void CollisionScene::remove_points(const std::function<bool(const Eigen::Vector3d&)>& is_robot) {
   std::vector<Eigen::Vector3f> kept;
   for (const Eigen::Vector3f& q : impl_->points.points) {
-    const Eigen::Vector3d p = q.cast<double>();
-    bool inside = false;
-    for (const auto& [solid, T] : solids) {
-      if (solid->signed_distance(T.inverse() * p) < margin) {
-        inside = true;
-        break;
-      }
-    }
-    if (!inside) kept.push_back(q);
+    if (!is_robot(q.cast<double>())) kept.push_back(q);
   }
+  if (kept.size() == impl_->points.size()) return;
   impl_->points = PointCloud(std::move(kept));
   impl_->index();
 }

@@ -6,6 +6,7 @@
 // are the same frame the landmarks were found in; nothing but them and the sensor's rays is known.
 
 #include <Eigen/Geometry>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -65,10 +66,12 @@ class CollisionScene {
   /// scene, from the distance grid alone: one lookup, for a whole link at once.
   double lower_bound(const Eigen::Vector3d& centre, double radius) const;
 
-  /// Leaves out the points within `margin` of the given solids (base frame): the robot's own body
-  /// as the sensor saw it.
-  void remove_points_inside(const std::vector<std::pair<const Solid*, Eigen::Isometry3d>>& solids,
-                            double margin);
+  /// Leaves out the points `is_robot` says belong to the robot itself (base frame): the arms as
+  /// the sensor saw them are no obstacle to themselves.
+  void remove_points(const std::function<bool(const Eigen::Vector3d&)>& is_robot);
+  /// Space `known_free` says is free is never hidden space (base frame): where the robot's own body
+  /// stands at the start, nothing else can be, whatever the sensor saw in front of it.
+  void set_known_free(std::function<bool(const Eigen::Vector3d&)> known_free);
 
   std::size_t points() const;
   const CollisionSceneSettings& settings() const { return settings_; }

@@ -42,4 +42,42 @@ JointTrajectory joint_line(const GroupInfo& group, const std::vector<double>& fr
   return t;
 }
 
+double path_duration(const GroupInfo& group, const std::vector<double>& from,
+                     const std::vector<std::vector<double>>& waypoints, double speed_fraction) {
+  double total = 0.0;
+  const std::vector<double>* at = &from;
+  for (const std::vector<double>& next : waypoints) {
+    total += motion_duration(group, *at, next, speed_fraction);
+    at = &next;
+  }
+  return total;
+}
+
+JointTrajectory joint_path(const GroupInfo& group, const std::vector<double>& from,
+                           const std::vector<std::vector<double>>& waypoints, double duration,
+                           int points) {
+  if (waypoints.empty()) return joint_line(group, from, from, duration, points);
+  const double full_speed = path_duration(group, from, waypoints, 1.0);
+  const int per_line = std::max(
+      1, (points + static_cast<int>(waypoints.size()) - 1) / static_cast<int>(waypoints.size()));
+  JointTrajectory t;
+  for (const JointInfo& j : group.joints) t.joint_names.push_back(j.name);
+  double start = 0.0;
+  const std::vector<double>* at = &from;
+  for (const std::vector<double>& next : waypoints) {
+    // Lines that take no time at full speed still get an equal share, so times keep increasing.
+    const double share = full_speed > 0.0 ? motion_duration(group, *at, next, 1.0) / full_speed
+                                          : 1.0 / static_cast<double>(waypoints.size());
+    const double seconds = std::max(share * duration, 1e-3);
+    JointTrajectory line = joint_line(group, *at, next, seconds, per_line);
+    for (JointTrajectory::Point& p : line.points) {
+      p.time_from_start += start;
+      t.points.push_back(std::move(p));
+    }
+    start += seconds;
+    at = &next;
+  }
+  return t;
+}
+
 }  // namespace lmk

@@ -19,4 +19,16 @@ double motion_duration(const GroupInfo& group, const std::vector<double>& from,
 JointTrajectory joint_line(const GroupInfo& group, const std::vector<double>& from,
                            const std::vector<double>& to, double duration, int points);
 
+/// The path from `from` through `waypoints` (each a joint vector of the group, the goal last), as
+/// straight lines between them over `duration` seconds in all: each line's share of the time in
+/// proportion to how long it takes at full speed, and at least `points` waypoints in all (issue
+/// #60: a path planned around an obstacle).
+JointTrajectory joint_path(const GroupInfo& group, const std::vector<double>& from,
+                           const std::vector<std::vector<double>>& waypoints, double duration,
+                           int points);
+
+/// The seconds joint_path's path takes with every joint at most at `speed_fraction` of its limit.
+double path_duration(const GroupInfo& group, const std::vector<double>& from,
+                     const std::vector<std::vector<double>>& waypoints, double speed_fraction);
+
 }  // namespace lmk

@@ -64,6 +64,11 @@ class MotionChecker {
   /// between two samples.
   virtual MotionVerdict check_line(const JointValues& from, const JointValues& to,
                                    const IntendedContact& intended = {}) const = 0;
+  /// Whether the configuration `joints` (joints not named as the robot stands) puts any link that
+  /// the named joints move inside the scene, the space the sensor could not see, or the robot: a
+  /// target to move to must not (within the padding it may: it was demonstrated there).
+  virtual std::optional<MotionContact> check_pose(const JointValues& joints,
+                                                  const IntendedContact& intended = {}) const = 0;
   /// A collision-free path for `group`'s joints from `from` to `to`, the other joints held as in
   /// `from`, within the checker's time budget.
   virtual MotionPlan plan_around(const std::string& group, const JointValues& from,

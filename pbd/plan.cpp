@@ -8,6 +8,7 @@
 #include <numeric>
 
 #include "lmk/geometry/error.h"
+#include "lmk/geometry/random.h"
 #include "lmk/geometry/stopwatch.h"
 #include "lmk/landmark/landmark_file.h"
 #include "lmk/landmark/scene_index.h"
@@ -15,9 +16,15 @@
 
 namespace lmk {
 
+namespace {
+constexpr int kTargetRetries = 16;  // IK seeds tried for a target that touches something
+constexpr std::uint64_t kTargetSeed = 60;
+}  // namespace
+
 const char* refusal_kind(const Refusal& refusal) {
   if (std::holds_alternative<LandmarkNotFound>(refusal)) return "landmark-not-found";
   if (std::holds_alternative<LandmarkDoubtful>(refusal)) return "landmark-doubtful";
+  if (std::holds_alternative<Blocked>(refusal)) return "collision";
   return "unreachable";
 }
 
@@ -36,6 +43,10 @@ std::string describe(const Refusal& refusal) {
     }
     return "landmark '" + doubtful->landmark + "' doubtful: " + text +
            (doubtful->doubt.empty() ? "" : ": " + doubtful->doubt);
+  }
+  if (const auto* blocked = std::get_if<Blocked>(&refusal)) {
+    return "step " + std::to_string(blocked->step) + ", " + arm_name(blocked->arm) +
+           " arm: " + describe(blocked->contact) + "; " + blocked->planner;
   }
   const auto& u = std::get<Unreachable>(refusal);
   return "step " + std::to_string(u.step) + ", " + arm_name(u.arm) +
@@ -240,14 +251,182 @@ struct Arms {
   std::map<Arm, std::vector<double>> start;
 };
 
+// The step and arm a step's refusal names.
+std::pair<std::size_t, Arm> step_arm(const Refusal& r) {
+  if (const auto* b = std::get_if<Blocked>(&r)) return {b->step, b->arm};
+  const auto& u = std::get<Unreachable>(r);
+  return {u.step, u.arm};
+}
+
+// The arm a contact's link belongs to (the PR2's "l_"/"r_" names), else `fallback`.
+Arm arm_of(const std::string& link, Arm fallback) {
+  if (link.rfind("l_", 0) == 0) return Arm::kLeft;
+  if (link.rfind("r_", 0) == 0) return Arm::kRight;
+  return fallback;
+}
+
+// One arm's motion with every other joint held as in `from`: its straight line when free, else a
+// path around what the line would touch; the waypoints after the start, the goal last.
+struct ArmMotion {
+  std::vector<std::vector<double>> waypoints;
+  double clearance = 0.0;
+  bool around = false;
+  std::optional<MotionContact> contact;  ///< what the line would touch, when no path was found
+  std::string why;                       ///< the planner's reason then
+};
+
+ArmMotion move_arm(const MotionChecker& checker, const GroupInfo& group, const JointValues& from,
+                   const std::vector<double>& goal, const IntendedContact& intended) {
+  JointValues to;
+  for (std::size_t i = 0; i < group.joints.size(); ++i) to[group.joints[i].name] = goal[i];
+  ArmMotion m;
+  const MotionVerdict line = checker.check_line(from, to, intended);
+  m.clearance = line.clearance;
+  if (line.free()) {
+    m.waypoints = {goal};
+    return m;
+  }
+  const MotionPlan around = checker.plan_around(group.name, from, to, intended);
+  if (!around.found) {
+    m.contact = line.contact;
+    m.why = around.message;
+    return m;
+  }
+  m.waypoints = around.waypoints;
+  m.around = true;
+  m.clearance = checker.padding();  // every segment of the path keeps at least the padding
+  return m;
+}
+
+// A trajectory that holds `q` at `seconds`: a point to wait at, or to wait until.
+JointTrajectory::Point hold(const std::vector<double>& q, double seconds) {
+  JointTrajectory::Point p;
+  p.positions = q;
+  p.time_from_start = seconds;
+  return p;
+}
+
+// The step's arms moved one after the other, each from where the ones before left it, its
+// straight line or a path around; each waits for the ones before it and holds for the ones after.
+std::optional<Refusal> move_in_turn(const MotionChecker& checker, const Arms& arms,
+                                    const std::map<Arm, std::vector<double>>& current,
+                                    const PlanSettings& settings, const JointValues& from,
+                                    PlannedStep& planned) {
+  JointValues state = from;
+  double start = 0.0;
+  std::vector<std::pair<double, double>> spans;  // each arm's [start, end) of the step, s
+  for (PlannedArm& a : planned.arms) {
+    const GroupInfo& group = arms.groups.at(a.arm);
+    const ArmMotion m = move_arm(checker, group, state, a.ik.joints, a.intended);
+    if (m.waypoints.empty()) {
+      return Blocked{planned.index, arm_of(m.contact->link, a.arm), *m.contact, m.why};
+    }
+    const double seconds =
+        std::max(path_duration(group, current.at(a.arm), m.waypoints, settings.speed_fraction),
+                 settings.min_step_duration / static_cast<double>(planned.arms.size()));
+    a.trajectory = joint_path(group, current.at(a.arm), m.waypoints, seconds, settings.waypoints);
+    a.clearance = m.clearance;
+    a.planned_around = m.around;
+    spans.emplace_back(start, start + seconds);
+    start += seconds;
+    for (std::size_t i = 0; i < group.joints.size(); ++i)
+      state[group.joints[i].name] = a.ik.joints[i];
+  }
+  planned.duration = std::max(planned.duration, start);
+  for (std::size_t k = 0; k < planned.arms.size(); ++k) {
+    JointTrajectory& t = planned.arms[k].trajectory;
+    for (JointTrajectory::Point& p : t.points) p.time_from_start += spans[k].first;
+    if (spans[k].first > 0.0)
+      t.points.insert(t.points.begin(), hold(current.at(planned.arms[k].arm), spans[k].first));
+    if (spans[k].second < planned.duration)
+      t.points.push_back(hold(planned.arms[k].ik.joints, planned.duration));
+  }
+  return std::nullopt;
+}
+
+// Issue #60: the step's motions checked before anything moves. Free: each arm keeps its straight
+// line, with the clearance. Touching: one arm's motion goes around what it would touch; with two
+// arms, one moves after the other, each planned around with the other held. Else the step is
+// refused with what the line would touch and where.
+std::optional<Refusal> check_step(const MotionChecker& checker, const Arms& arms,
+                                  const std::map<Arm, std::vector<double>>& current,
+                                  const KinematicsInterface& kinematics,
+                                  const PlanSettings& settings, PlannedStep& planned) {
+  JointValues from, to;
+  IntendedContact all;
+  all.radius = settings.intended_contact_radius;
+  for (PlannedArm& a : planned.arms) {
+    const GroupInfo& group = arms.groups.at(a.arm);
+    for (std::size_t i = 0; i < group.joints.size(); ++i) {
+      from[group.joints[i].name] = current.at(a.arm)[i];
+      to[group.joints[i].name] = a.ik.joints[i];
+    }
+    Eigen::Isometry3d T_start = Eigen::Isometry3d::Identity();
+    a.intended.radius = settings.intended_contact_radius;
+    if (kinematics.forward(group.name, current.at(a.arm), T_start).ok())
+      a.intended.near.push_back(T_start.translation());
+    a.intended.near.push_back(a.T_base_ee.translation());
+    all.near.insert(all.near.end(), a.intended.near.begin(), a.intended.near.end());
+  }
+  const MotionVerdict line = checker.check_line(from, to, all);
+  for (PlannedArm& a : planned.arms) a.clearance = line.clearance;
+  if (line.free()) return std::nullopt;
+  // One arm after the other (with one arm, just it), in the program's order, else the other.
+  std::optional<Refusal> first = move_in_turn(checker, arms, current, settings, from, planned);
+  if (!first || planned.arms.size() < 2) return first;
+  std::reverse(planned.arms.begin(), planned.arms.end());
+  if (!move_in_turn(checker, arms, current, settings, from, planned)) return std::nullopt;
+  std::reverse(planned.arms.begin(), planned.arms.end());
+  return first;
+}
+
+// Joint values drawn within the group's limits (a half turn either way for a continuous joint).
+std::vector<double> random_joints(const GroupInfo& group, SplitMix64& rng) {
+  std::vector<double> q;
+  for (const JointInfo& j : group.joints) {
+    const double lo = j.continuous() ? -M_PI : j.lower, hi = j.continuous() ? M_PI : j.upper;
+    q.push_back(lo + (hi - lo) * rng.uniform01());
+  }
+  return q;
+}
+
+// Issue #60: an IK solution that puts the arm inside something is no target: other solutions of
+// the same pose are tried from random seeds (deterministic per step), the first that touches
+// nothing kept. Without one the solution stays, and the motion's check refuses it, saying so.
+void avoid_touching_targets(const MotionChecker& checker, const GroupInfo& group,
+                            const KinematicsInterface& kinematics,
+                            const std::map<Arm, std::vector<double>>& current, const Arms& arms,
+                            std::size_t step, PlannedArm& a, double intended_radius) {
+  const auto pose_of = [&](const std::vector<double>& q) {
+    JointValues joints;
+    for (const auto& [arm, values] : current) {
+      const GroupInfo& g = arms.groups.at(arm);
+      for (std::size_t i = 0; i < g.joints.size(); ++i) joints[g.joints[i].name] = values[i];
+    }
+    for (std::size_t i = 0; i < group.joints.size(); ++i) joints[group.joints[i].name] = q[i];
+    return joints;
+  };
+  IntendedContact intended;
+  intended.near = {a.T_base_ee.translation()};
+  intended.radius = intended_radius;
+  if (!checker.check_pose(pose_of(a.ik.joints), intended)) return;
+  SplitMix64 rng(kTargetSeed + step);
+  for (int k = 0; k < kTargetRetries; ++k) {
+    const IkResult other = kinematics.inverse(group.name, a.T_base_ee, random_joints(group, rng));
+    if (other.success && !checker.check_pose(pose_of(other.joints), intended)) {
+      a.ik = other;
+      return;
+    }
+  }
+}
+
 // Steps 3-5 for one choice of instances: targets, IK for every step (seeded with the previous
-// one's joints, so that consecutive solutions stay on one branch), and the motions. Fills `steps`,
-// or returns the first step an arm cannot reach.
-std::optional<Unreachable> solve_steps(const Program& program, const Plan& plan,
-                                       const KinematicsInterface& kinematics, const Arms& arms,
-                                       const PlanSettings& settings,
-                                       std::vector<PlannedStep>& steps,
-                                       std::size_t first_step = 0) {
+// one's joints, so that consecutive solutions stay on one branch), and the motions, checked when
+// there is a checker. Fills `steps`, or returns the first step that cannot be carried out.
+std::optional<Refusal> solve_steps(const Program& program, const Plan& plan,
+                                   const KinematicsInterface& kinematics, const Arms& arms,
+                                   const PlanSettings& settings, const MotionChecker* checker,
+                                   std::vector<PlannedStep>& steps, std::size_t first_step = 0) {
   std::map<Arm, std::vector<double>> current = arms.start;
   for (std::size_t s = first_step; s < program.steps.size(); ++s) {
     const ProgramStep& step = program.steps[s];
@@ -266,6 +445,10 @@ std::optional<Unreachable> solve_steps(const Program& program, const Plan& plan,
                         : target->T_frame_ee;
       a.ik = kinematics.inverse(arm_group(arm), a.T_base_ee, current[arm]);
       if (!a.ik.success) return Unreachable{s, arm, a.ik.message};
+      if (checker) {
+        avoid_touching_targets(*checker, arms.groups.at(arm), kinematics, current, arms, s, a,
+                               settings.intended_contact_radius);
+      }
       duration = std::max(duration, motion_duration(arms.groups.at(arm), current[arm], a.ik.joints,
                                                     settings.speed_fraction));
       planned.arms.push_back(std::move(a));
@@ -274,8 +457,13 @@ std::optional<Unreachable> solve_steps(const Program& program, const Plan& plan,
     for (PlannedArm& a : planned.arms) {
       a.trajectory = joint_line(arms.groups.at(a.arm), current[a.arm], a.ik.joints,
                                 planned.duration, settings.waypoints);
-      current[a.arm] = a.ik.joints;
     }
+    if (checker && !planned.arms.empty()) {
+      if (std::optional<Refusal> blocked =
+              check_step(*checker, arms, current, kinematics, settings, planned))
+        return blocked;
+    }
+    for (PlannedArm& a : planned.arms) current[a.arm] = a.ik.joints;
     steps.push_back(std::move(planned));
   }
   return std::nullopt;
@@ -330,8 +518,11 @@ Plan replan_from(const Program& program, std::vector<LocatedLandmark> located,
     }
   }
   std::vector<PlannedStep> steps;
-  if (const std::optional<Unreachable> failure =
-          solve_steps(program, result, kinematics, arms, settings, steps, first_step)) {
+  // No frame to check against here: the robot's own body only (an empty scene).
+  const std::shared_ptr<const MotionChecker> checker =
+      settings.motion_checker ? settings.motion_checker(PointCloud(), start) : nullptr;
+  if (const std::optional<Refusal> failure = solve_steps(
+          program, result, kinematics, arms, settings, checker.get(), steps, first_step)) {
     result.refusal = *failure;
   } else {
     result.steps = std::move(steps);
@@ -394,18 +585,23 @@ Plan plan(const Program& program, const std::map<std::string, Landmark>& landmar
       result.landmarks.push_back(choose(candidates[i], chosen[i]));
     }
   };
-  std::optional<Unreachable> first_failure;
+  if (settings.progress && settings.motion_checker)
+    settings.progress("checking every motion against the scene and the robot");
+  const std::shared_ptr<const MotionChecker> checker =
+      settings.motion_checker ? settings.motion_checker(scene, start) : nullptr;
+  std::optional<Refusal> first_failure;
   while (true) {
     locate(choice);
     std::vector<PlannedStep> steps;
-    const std::optional<Unreachable> failure =
-        solve_steps(program, result, kinematics, arms, settings, steps);
+    const std::optional<Refusal> failure =
+        solve_steps(program, result, kinematics, arms, settings, checker.get(), steps);
     if (!failure) {
       result.steps = std::move(steps);
       return result;
     }
     if (!first_failure) first_failure = failure;
-    const std::string& frame = program.steps[failure->step].arm(failure->arm)->frame;
+    const auto [failed_step, failed_arm] = step_arm(*failure);
+    const std::string& frame = program.steps[failed_step].arm(failed_arm)->frame;
     std::size_t i = 0;
     while (i < candidates.size() && candidates[i].entry->name != frame) ++i;
     if (!settings.try_other_instances || i == candidates.size() ||
@@ -414,9 +610,11 @@ Plan plan(const Program& program, const std::map<std::string, Landmark>& landmar
     }
     ++choice[i];
   }
-  Unreachable refusal = *first_failure;
+  Refusal refusal = *first_failure;
   const std::size_t tried = std::accumulate(choice.begin(), choice.end(), std::size_t{0});
-  if (tried > 0) refusal.reason += " (and with " + std::to_string(tried) + " other instance(s))";
+  const std::string others = " (and with " + std::to_string(tried) + " other instance(s))";
+  if (auto* u = std::get_if<Unreachable>(&refusal); u && tried > 0) u->reason += others;
+  if (auto* b = std::get_if<Blocked>(&refusal); b && tried > 0) b->planner += others;
   result.refusal = refusal;
   locate(std::vector<std::size_t>(candidates.size(), 0));  // report the preferred instances
   return result;

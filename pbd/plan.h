@@ -9,7 +9,9 @@
 //   T_base_ee = T_base_landmark * T_landmark_ee
 
 #include <functional>
+#include <limits>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <variant>
@@ -17,6 +19,7 @@
 
 #include "lmk/landmark/find_landmark.h"
 #include "lmk/landmark/landmark.h"
+#include "lmk/pbd/motion_check.h"
 #include "lmk/pbd/program.h"
 #include "lmk/pbd/robot_interface.h"
 
@@ -47,13 +50,24 @@ struct Unreachable {
   std::string reason;
 };
 
-using Refusal = std::variant<LandmarkNotFound, LandmarkDoubtful, Unreachable>;
+/// Refusal (issue #60): a step's motion would touch the scene, space the sensor could not see, or
+/// the robot itself, and no collision-free path was found around it.
+struct Blocked {
+  std::size_t step = 0;
+  Arm arm = Arm::kRight;
+  MotionContact contact;  ///< what the straight motion would touch first
+  std::string planner;    ///< why no path around it was found
+};
 
-/// "landmark-not-found", "landmark-doubtful" or "unreachable".
+using Refusal = std::variant<LandmarkNotFound, LandmarkDoubtful, Unreachable, Blocked>;
+
+/// "landmark-not-found", "landmark-doubtful", "unreachable" or "collision".
 const char* refusal_kind(const Refusal& refusal);
 /// One line for a person: "landmark 'rack' not found: no candidate pose ...", "landmark 'rack'
 /// doubtful: confidence 0.41 below 0.90: a pose 8 cm along the box's x fits within the noise",
-/// "step 3, right arm: unreachable: ...".
+/// "step 3, right arm: unreachable: ...", "step 3, right arm: link r_forearm_link would pass 1.4 cm
+/// into the scene near (0.62, -0.18, 0.81) m in base_link, 40% of the way; no collision-free path
+/// within 2 s".
 std::string describe(const Refusal& refusal);
 
 /// A landmark where it was found in the scene.
@@ -78,6 +92,14 @@ struct PlannedArm {
   IkResult ik;
   JointTrajectory trajectory;  ///< from the previous step's joints to the solution
   GripperAction gripper = GripperAction::kOpen;
+  /// With motions checked (PlanSettings::motion_checker): the smallest distance the motion keeps
+  /// from the scene and the robot, m (a lower bound beyond a few centimetres); NaN unchecked.
+  double clearance = std::numeric_limits<double>::quiet_NaN();
+  /// Whether the straight joint line would have touched, and the motion goes around instead.
+  bool planned_around = false;
+  /// What the motion may touch on purpose: scene points near the tool frame at its start and at its
+  /// target (the object grasped, the surface placed on), for the gripper's links only.
+  IntendedContact intended;
 };
 
 struct PlannedStep {
@@ -129,6 +151,16 @@ struct PlanSettings {
   int waypoints = 10;              ///< points per joint trajectory
   /// Progress lines for long runs ("locating 'rack'", ...); unset: silent.
   std::function<void(const std::string&)> progress;
+  /// Checks every arm motion against the scene and the robot's own body before anything moves
+  /// (issue #60), built from the frame the plan searched (base frame) and the robot's joints at the
+  /// start: lmk::pr2's pr2_motion_checker() for a PR2. Unset: motions are not checked. replan_from,
+  /// which has no frame, checks against the robot's own body only.
+  std::function<std::shared_ptr<const MotionChecker>(const PointCloud& scene,
+                                                     const JointState& start)>
+      motion_checker;
+  /// Scene points within this of the tool frame at a motion's start and target are what the motion
+  /// means to touch (PlannedArm::intended), m.
+  double intended_contact_radius = 0.08;
 };
 
 /// The warnings of Plan::warnings: for each landmark of `landmarks` that a step of `program` is

@@ -136,7 +136,9 @@ std::vector<Eigen::Isometry3d> RobotBody::place(const JointValues& joints) const
 
 std::optional<MotionContact> RobotBody::self_contact(const std::vector<Eigen::Isometry3d>& placed,
                                                      const std::vector<char>& moving,
-                                                     double padding) const {
+                                                     double padding,
+                                                     const std::vector<double>* required,
+                                                     std::vector<double>* nearest) const {
   std::optional<MotionContact> best;
   const std::size_t n = links_.size();
   std::vector<Eigen::Vector3d> centre(n);
@@ -153,7 +155,7 @@ std::optional<MotionContact> RobotBody::self_contact(const std::vector<Eigen::Is
         for (const Cluster& cb : bounds_[lb].clusters) {
           const double r = ca.radius + cb.radius + padding;
           if ((a_at - placed[bounds_[lb].solids[0]] * cb.centre).squaredNorm() > r * r) continue;
-          closest_pair(ca.solids, cb.solids, placed, padding, links_[la], links_[lb], best);
+          closest_pair(ca.solids, cb.solids, placed, padding, {la, lb}, required, nearest, best);
         }
       }
     }
@@ -163,8 +165,13 @@ std::optional<MotionContact> RobotBody::self_contact(const std::vector<Eigen::Is
 
 void RobotBody::closest_pair(const std::vector<std::size_t>& as, const std::vector<std::size_t>& bs,
                              const std::vector<Eigen::Isometry3d>& placed, double padding,
-                             const std::string& link_a, const std::string& link_b,
+                             std::pair<std::size_t, std::size_t> links,
+                             const std::vector<double>* required, std::vector<double>* nearest,
                              std::optional<MotionContact>& best) const {
+  const auto [la, lb] = links;
+  // What the pair must keep: the less of what each link must (a link that stays must keep the
+  // padding).
+  const double need = required ? std::min((*required)[la], (*required)[lb]) : padding;
   for (std::size_t i : as) {
     const BodySolid& a = solids_[i];
     for (std::size_t j : bs) {
@@ -177,8 +184,13 @@ void RobotBody::closest_pair(const std::vector<std::size_t>& as, const std::vect
       const auto second =
           sphere ? std::nullopt : deepest_point(b, placed[j], a, placed[i], padding);
       for (const auto& hit : {first, second}) {
-        if (!hit || (best && hit->first >= best->distance)) continue;
-        best = MotionContact{link_a, "the robot's " + link_b, hit->first, hit->second, 0.0};
+        if (!hit) continue;
+        if (nearest) {
+          (*nearest)[la] = std::min((*nearest)[la], hit->first);
+          (*nearest)[lb] = std::min((*nearest)[lb], hit->first);
+        }
+        if (hit->first >= need || (best && hit->first >= best->distance)) continue;
+        best = MotionContact{links_[la], "the robot's " + links_[lb], hit->first, hit->second, 0.0};
       }
     }
   }
@@ -186,7 +198,7 @@ void RobotBody::closest_pair(const std::vector<std::size_t>& as, const std::vect
 
 std::vector<char> RobotBody::links_moved_by(const std::string& joint) const {
   const std::map<std::string, Eigen::Isometry3d> still = model_->link_poses({}),
-                                                  moved = model_->link_poses({{joint, 0.5}});
+                                                 moved = model_->link_poses({{joint, 0.5}});
   std::vector<char> out(links_.size(), 0);
   for (std::size_t i = 0; i < links_.size(); ++i)
     out[i] = !still.at(links_[i]).isApprox(moved.at(links_[i]), 1e-9);

@@ -38,12 +38,20 @@ class RobotBody {
   bool may_touch(std::size_t a, std::size_t b) const { return allowed_[a * links_.size() + b]; }
   /// The deepest contact within `padding` between a solid of a link in `moving` (by link index,
   /// nonzero: moving) and any solid of a link it may not touch, at the placement `placed`.
+  /// `required` (by link index, none above `padding`): each link's own padding instead, a pair
+  /// keeping the less of its two links'. `nearest` (by link index, filled with +infinity by the
+  /// caller): each link's nearest approach to another within `padding`.
   std::optional<MotionContact> self_contact(const std::vector<Eigen::Isometry3d>& placed,
-                                            const std::vector<char>& moving, double padding) const;
+                                            const std::vector<char>& moving, double padding,
+                                            const std::vector<double>* required = nullptr,
+                                            std::vector<double>* nearest = nullptr) const;
   /// The link's solids (indices into solids()), and a sphere holding them all at the placement
   /// `placed`: its centre (root frame) and radius.
-  const std::vector<std::size_t>& link_solids(std::size_t link) const { return bounds_[link].solids; }
-  Eigen::Vector3d link_centre(std::size_t link, const std::vector<Eigen::Isometry3d>& placed) const {
+  const std::vector<std::size_t>& link_solids(std::size_t link) const {
+    return bounds_[link].solids;
+  }
+  Eigen::Vector3d link_centre(std::size_t link,
+                              const std::vector<Eigen::Isometry3d>& placed) const {
     return placed[bounds_[link].solids[0]] * bounds_[link].centre;
   }
   double link_radius(std::size_t link) const { return bounds_[link].radius; }
@@ -73,8 +81,8 @@ class RobotBody {
                                   const Eigen::Isometry3d& frame, double& radius) const;
   void closest_pair(const std::vector<std::size_t>& as, const std::vector<std::size_t>& bs,
                     const std::vector<Eigen::Isometry3d>& placed, double padding,
-                    const std::string& link_a, const std::string& link_b,
-                    std::optional<MotionContact>& best) const;
+                    std::pair<std::size_t, std::size_t> links, const std::vector<double>* required,
+                    std::vector<double>* nearest, std::optional<MotionContact>& best) const;
   std::vector<LinkBound> bounds_;
 };
 

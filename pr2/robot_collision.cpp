@@ -71,8 +71,7 @@ std::string RobotModel::root_link() const { return impl_->model->getRoot()->name
 std::map<std::string, Eigen::Isometry3d> RobotModel::link_poses(
     const std::map<std::string, double>& joints) const {
   for (const auto& [name, value] : joints) {
-    if (!impl_->model->getJoint(name))
-      throw Error(impl_->what + ": no joint named '" + name + "'");
+    if (!impl_->model->getJoint(name)) throw Error(impl_->what + ": no joint named '" + name + "'");
   }
   std::map<std::string, Eigen::Isometry3d> poses;
   const std::function<void(const urdf::Link&, const Eigen::Isometry3d&)> walk =
@@ -94,7 +93,8 @@ std::map<std::string, Eigen::Isometry3d> RobotModel::link_poses(
 std::vector<LinkSolid> RobotModel::collision_solids(const CollisionShapeSettings& settings) const {
   std::vector<urdf::LinkSharedPtr> links;
   impl_->model->getLinks(links);
-  std::sort(links.begin(), links.end(), [](const auto& a, const auto& b) { return a->name < b->name; });
+  std::sort(links.begin(), links.end(),
+            [](const auto& a, const auto& b) { return a->name < b->name; });
   std::vector<LinkSolid> out;
   const std::vector<std::string>& only = settings.only_links;
   for (const urdf::LinkSharedPtr& link : links) {

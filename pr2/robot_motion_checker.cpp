@@ -25,6 +25,11 @@ namespace {
 
 constexpr int kLeverSamples = 64;  // random configurations the levers are bounded over
 constexpr double kLeverMargin = 1.1;
+// A link near something at either end of a motion must keep this share of that distance on the way.
+constexpr double kEndClearanceShare = 0.5;
+// Within this much travel of either end (m, the farthest any point moved), a link need only stay
+// out of things: it leaves a grasp, or arrives at one, within the padding by design.
+constexpr double kEndZone = 0.05;
 // The path is shortened and smoothed for at most this share of the time its search took, plus a
 // floor: a path found fast is simplified fast.
 constexpr double kSmoothingShare = 0.5;
@@ -44,6 +49,35 @@ void seed_planner_once(std::uint64_t seed) {
   });
 }
 
+// The group's joint space for the planner: each joint within its limits, a continuous one a half
+// turn beyond either end of the motion.
+std::shared_ptr<ob::RealVectorStateSpace> joint_space(const std::vector<JointInfo>& joints,
+                                                      const std::vector<double>& start,
+                                                      const std::vector<double>& goal) {
+  const unsigned n = static_cast<unsigned>(joints.size());
+  auto space = std::make_shared<ob::RealVectorStateSpace>(n);
+  ob::RealVectorBounds bounds(n);
+  for (unsigned i = 0; i < n; ++i) {
+    const JointInfo& j = joints[i];
+    bounds.setLow(i, j.continuous() ? std::min(start[i], goal[i]) - M_PI : j.lower);
+    bounds.setHigh(i, j.continuous() ? std::max(start[i], goal[i]) + M_PI : j.upper);
+  }
+  space->setBounds(bounds);
+  return space;
+}
+
+// The path's states after its start, as joint vectors.
+std::vector<std::vector<double>> waypoints_of(const og::PathGeometric& path, std::size_t n) {
+  std::vector<std::vector<double>> out;
+  for (std::size_t k = 1; k < path.getStateCount(); ++k) {
+    const auto* v = path.getState(k)->as<ob::RealVectorStateSpace::StateType>();
+    std::vector<double> q(n);
+    for (std::size_t i = 0; i < n; ++i) q[i] = (*v)[i];
+    out.push_back(std::move(q));
+  }
+  return out;
+}
+
 }  // namespace
 
 RobotMotionChecker::RobotMotionChecker(std::shared_ptr<const RobotBody> body,
@@ -56,6 +90,8 @@ RobotMotionChecker::RobotMotionChecker(std::shared_ptr<const RobotBody> body,
       settings_(settings) {
   if (!body_ || !scene_) throw Error("motion check: no robot body or no scene");
   if (!(settings.padding > 0.0)) throw Error("motion check: the padding must be positive");
+  if (!(settings.self_padding >= 0.0))
+    throw Error("motion check: the padding between links must not be negative");
   if (!(settings.planning_time > 0.0))
     throw Error("motion check: the planning time must be positive");
   const RobotModel& model = body_->model();
@@ -127,36 +163,47 @@ std::vector<char> RobotMotionChecker::links_moved_by(const std::vector<std::stri
 std::optional<MotionContact> RobotMotionChecker::check_state(const JointValues& joints,
                                                              const std::vector<char>& moving,
                                                              const IntendedContact* intended,
-                                                             double* clearance) const {
+                                                             double* clearance, const Needs* needs,
+                                                             Needs* measured) const {
   const std::vector<Eigen::Isometry3d> placed = body_->place(merged(joints));
   std::optional<MotionContact> deepest;
   double nearest = std::numeric_limits<double>::infinity();
   const double padding = settings_.padding;
+  if (measured) {
+    measured->scene.assign(moving.size(), std::numeric_limits<double>::infinity());
+    measured->self.assign(moving.size(), std::numeric_limits<double>::infinity());
+  }
   for (std::size_t link = 0; link < moving.size(); ++link) {
     if (!moving[link]) continue;
+    const double need = needs ? needs->scene[link] : padding;
     // The whole link against the grid first: most links are far from everything.
     const double bound = scene_->lower_bound(T_base_root_ * body_->link_centre(link, placed),
                                              body_->link_radius(link));
-    if (bound >= padding) {
-      nearest = std::min(nearest, bound);
-      continue;
-    }
-    const bool hand =
-        std::find(gripper_links_.begin(), gripper_links_.end(), link) != gripper_links_.end();
-    for (std::size_t i : body_->link_solids(link)) {
-      const BodySolid& s = body_->solids()[i];
-      const SceneDistance d = scene_->distance(s.solid, T_base_root_ * placed[i], s.surface,
-                                               padding, hand ? intended : nullptr);
-      nearest = std::min(nearest, d.distance);
-      if (d.distance < padding && (!deepest || d.distance < deepest->distance)) {
-        deepest = MotionContact{body_->links()[link],
-                                d.hidden ? "space the sensor could not see" : "the scene",
-                                d.distance, d.where, 0.0};
+    double link_nearest = bound;
+    if (bound < padding) {
+      const bool hand =
+          std::find(gripper_links_.begin(), gripper_links_.end(), link) != gripper_links_.end();
+      link_nearest = std::numeric_limits<double>::infinity();
+      for (std::size_t i : body_->link_solids(link)) {
+        const BodySolid& s = body_->solids()[i];
+        const SceneDistance d = scene_->distance(s.solid, T_base_root_ * placed[i], s.surface,
+                                                 padding, hand ? intended : nullptr);
+        link_nearest = std::min(link_nearest, d.distance);
+        if (d.distance < need && (!deepest || d.distance < deepest->distance)) {
+          deepest = MotionContact{body_->links()[link],
+                                  d.hidden ? "space the sensor could not see" : "the scene",
+                                  d.distance, d.where, 0.0};
+        }
       }
     }
+    nearest = std::min(nearest, link_nearest);
+    if (measured) measured->scene[link] = link_nearest;
   }
   if (settings_.self_collisions) {
-    if (std::optional<MotionContact> self = body_->self_contact(placed, moving, padding)) {
+    std::optional<MotionContact> self =
+        body_->self_contact(placed, moving, settings_.self_padding, needs ? &needs->self : nullptr,
+                            measured ? &measured->self : nullptr);
+    if (self) {
       self->where = T_base_root_ * self->where;
       nearest = std::min(nearest, self->distance);
       if (!deepest || self->distance < deepest->distance) deepest = self;
@@ -166,22 +213,71 @@ std::optional<MotionContact> RobotMotionChecker::check_state(const JointValues& 
   return deepest;
 }
 
+RobotMotionChecker::Needs RobotMotionChecker::touching_only() const {
+  Needs none;
+  none.scene.assign(body_->links().size(), 0.0);
+  none.self.assign(body_->links().size(), 0.0);
+  return none;
+}
+
+double RobotMotionChecker::sweep(const JointValues& a, const JointValues& b) const {
+  double total = 0.0;
+  for (const auto& [name, value] : b) {
+    const auto from = a.find(name);
+    if (from == a.end()) continue;
+    const auto info = joint_info_.find(name);
+    total +=
+        std::abs(travel(info == joint_info_.end() ? nullptr : &info->second, from->second, value)) *
+        lever(name);
+  }
+  return total;
+}
+
+std::optional<MotionContact> RobotMotionChecker::check_pose(const JointValues& joints,
+                                                            const IntendedContact& intended) const {
+  std::vector<std::string> names;
+  for (const auto& [name, value] : joints) names.push_back(name);
+  const Needs none = touching_only();
+  return check_state(joints, links_moved_by(names), &intended, nullptr, &none);
+}
+
+RobotMotionChecker::Needs RobotMotionChecker::needs_between(const JointValues& from,
+                                                            const JointValues& to,
+                                                            const std::vector<char>& moving,
+                                                            const IntendedContact* intended) const {
+  Needs at_from, at_to;
+  check_state(from, moving, intended, nullptr, nullptr, &at_from);
+  check_state(to, moving, intended, nullptr, nullptr, &at_to);
+  Needs needs;
+  const auto need = [](double padding, double a, double b) {
+    return std::max(0.0, std::min(padding, kEndClearanceShare * std::min(a, b)));
+  };
+  for (std::size_t l = 0; l < moving.size(); ++l) {
+    needs.scene.push_back(need(settings_.padding, at_from.scene[l], at_to.scene[l]));
+    needs.self.push_back(need(settings_.self_padding, at_from.self[l], at_to.self[l]));
+  }
+  return needs;
+}
+
 MotionVerdict RobotMotionChecker::check_line(const JointValues& from, const JointValues& to,
                                              const IntendedContact& intended) const {
   const JointValues a = merged(from);
   std::map<std::string, double> delta;
-  double sweep = 0.0;  // how far any point can move along the line, m
+  double span = 0.0;  // how far any point can move along the line, m
   for (const auto& [name, value] : to) {
     const auto info = joint_info_.find(name);
     const double d = travel(info == joint_info_.end() ? nullptr : &info->second, a.at(name), value);
     if (d == 0.0) continue;
     delta[name] = d;
-    sweep += std::abs(d) * lever(name);
+    span += std::abs(d) * lever(name);
   }
   std::vector<std::string> names;
   for (const auto& [name, d] : delta) names.push_back(name);
   const std::vector<char> moving = links_moved_by(names);
-  const int steps = std::max(1, static_cast<int>(std::ceil(sweep / settings_.padding)));
+  const int steps = std::max(1, static_cast<int>(std::ceil(span / settings_.padding)));
+  JointValues b = a;
+  for (const auto& [name, d] : delta) b[name] = a.at(name) + d;
+  const Needs needs = needs_between(a, b, moving, &intended), ends = touching_only();
   MotionVerdict verdict;
   verdict.clearance = std::numeric_limits<double>::infinity();
   for (int k = 0; k <= steps; ++k) {
@@ -189,7 +285,9 @@ MotionVerdict RobotMotionChecker::check_line(const JointValues& from, const Join
     JointValues q = a;
     for (const auto& [name, d] : delta) q[name] = a.at(name) + t * d;
     double clearance = 0.0;
-    std::optional<MotionContact> contact = check_state(q, moving, &intended, &clearance);
+    const bool near_end = std::min(t, 1.0 - t) * span < kEndZone;
+    std::optional<MotionContact> contact =
+        check_state(q, moving, &intended, &clearance, near_end ? &ends : &needs);
     ++verdict.samples;
     verdict.clearance = std::min(verdict.clearance, clearance);
     if (contact) {
@@ -216,22 +314,14 @@ MotionPlan RobotMotionChecker::plan_around(const std::string& group, const Joint
   for (std::size_t i = 0; i < n; ++i) {
     start[i] = start_state.at(joints[i].name);
     const auto target = to.find(joints[i].name);
-    goal[i] = target == to.end() ? start[i]
-                                 : start[i] + travel(&joints[i], start[i], target->second);
+    goal[i] =
+        target == to.end() ? start[i] : start[i] + travel(&joints[i], start[i], target->second);
     lever_norm += lever(joints[i].name) * lever(joints[i].name);
     names.push_back(joints[i].name);
   }
   lever_norm = std::sqrt(lever_norm);
   seed_planner_once(settings_.seed);
-  auto space = std::make_shared<ob::RealVectorStateSpace>(static_cast<unsigned>(n));
-  ob::RealVectorBounds bounds(static_cast<unsigned>(n));
-  for (std::size_t i = 0; i < n; ++i) {
-    const JointInfo& j = joints[i];
-    // A continuous joint may turn a half turn beyond either end.
-    bounds.setLow(i, j.continuous() ? std::min(start[i], goal[i]) - M_PI : j.lower);
-    bounds.setHigh(i, j.continuous() ? std::max(start[i], goal[i]) + M_PI : j.upper);
-  }
-  space->setBounds(bounds);
+  const auto space = joint_space(joints, start, goal);
   og::SimpleSetup setup(space);
   const std::vector<char> moving = links_moved_by(names);
   const auto values_of = [&](const ob::State* s) {
@@ -240,8 +330,27 @@ MotionPlan RobotMotionChecker::plan_around(const std::string& group, const Joint
     for (std::size_t i = 0; i < n; ++i) q[names[i]] = (*v)[i];
     return q;
   };
+  JointValues goal_state = start_state;
+  for (std::size_t i = 0; i < n; ++i) goal_state[names[i]] = goal[i];
+  const Needs needs = needs_between(start_state, goal_state, moving, &intended),
+              ends = touching_only();
+  MotionPlan plan;
+  // An end that touches has no path: say which, and what it touches.
+  for (const auto& [end, state] :
+       {std::pair<const char*, const JointValues*>{"the start", &start_state},
+        {"the target", &goal_state}}) {
+    if (const std::optional<MotionContact> c =
+            check_state(*state, moving, &intended, nullptr, &ends)) {
+      plan.seconds = clock.seconds();
+      plan.message = std::string("no path: ") + end + " itself touches (" + describe(*c) + ")";
+      return plan;
+    }
+  }
   setup.setStateValidityChecker([&](const ob::State* s) {
-    return space->satisfiesBounds(s) && !check_state(values_of(s), moving, &intended);
+    if (!space->satisfiesBounds(s)) return false;
+    const JointValues q = values_of(s);
+    const bool near_end = std::min(sweep(start_state, q), sweep(goal_state, q)) < kEndZone;
+    return !check_state(q, moving, &intended, nullptr, near_end ? &ends : &needs);
   });
   // Motions are checked at states no farther apart than the padding moves any point
   // (sum |dq_i| lever_i <= |dq| |lever|).
@@ -251,7 +360,6 @@ MotionPlan RobotMotionChecker::plan_around(const std::string& group, const Joint
   for (std::size_t i = 0; i < n; ++i) s0[i] = start[i], s1[i] = goal[i];
   setup.setStartAndGoalStates(s0, s1);
   setup.setPlanner(std::make_shared<og::RRTConnect>(setup.getSpaceInformation()));
-  MotionPlan plan;
   char budget[64];
   std::snprintf(budget, sizeof(budget), "%.3g s", settings_.planning_time);
   const ob::PlannerStatus status = setup.solve(settings_.planning_time);
@@ -263,13 +371,7 @@ MotionPlan RobotMotionChecker::plan_around(const std::string& group, const Joint
   const double solved = clock.seconds();
   setup.simplifySolution(std::min(kSmoothingShare * solved + kSmoothingFloor,
                                   std::max(0.0, settings_.planning_time - solved)));
-  const og::PathGeometric& path = setup.getSolutionPath();
-  for (std::size_t k = 1; k < path.getStateCount(); ++k) {
-    const auto* v = path.getState(k)->as<ob::RealVectorStateSpace::StateType>();
-    std::vector<double> q(n);
-    for (std::size_t i = 0; i < n; ++i) q[i] = (*v)[i];
-    plan.waypoints.push_back(std::move(q));
-  }
+  plan.waypoints = waypoints_of(setup.getSolutionPath(), n);
   plan.found = true;
   plan.seconds = clock.seconds();
   return plan;

@@ -18,7 +18,10 @@
 namespace lmk {
 
 struct MotionCheckSettings {
-  double padding = 0.02;        ///< m kept from the scene and between links
+  double padding = 0.02;  ///< m kept from the scene
+  /// m kept between the robot's own links: its shapes are fitted within millimetres, and its arms
+  /// pass close by design (a hand-over, both hands on one object)
+  double self_padding = 0.01;
   double planning_time = 2.0;   ///< s allowed to plan around an obstacle
   bool self_collisions = true;  ///< check the arm against the robot's own body
   std::uint64_t seed = 1;       ///< the planner's random seed: the same inputs, the same path
@@ -39,14 +42,28 @@ class RobotMotionChecker : public MotionChecker {
                            const IntendedContact& intended = {}) const override;
   MotionPlan plan_around(const std::string& group, const JointValues& from, const JointValues& to,
                          const IntendedContact& intended = {}) const override;
+  std::optional<MotionContact> check_pose(const JointValues& joints,
+                                          const IntendedContact& intended = {}) const override;
+
+  /// What each link (by the body's index) must keep from the scene and from the robot's other
+  /// links, m.
+  struct Needs {
+    std::vector<double> scene, self;
+  };
+  /// What the moving links must keep along a motion from `from` to `to` (whole joint states): the
+  /// paddings, or half of what a link keeps at either end where that is less. A demonstration that
+  /// put the forearm 1 cm from a shelf may go there, but comes no nearer on the way; an end inside
+  /// something still refuses.
+  Needs needs_between(const JointValues& from, const JointValues& to,
+                      const std::vector<char>& moving, const IntendedContact* intended) const;
 
   /// One configuration (joints not named as in the state), the links in `moving` (by the body's
-  /// link index) checked: the nearest approach (its distance in `clearance`) and the deepest
-  /// contact within the padding, if any.
-  std::optional<MotionContact> check_state(const JointValues& joints,
-                                           const std::vector<char>& moving,
-                                           const IntendedContact* intended,
-                                           double* clearance = nullptr) const;
+  /// link index) checked against what they must keep (`needs`; unset: the paddings): the nearest
+  /// approach (its distance in `clearance`) and the deepest contact, if any. `measured`: each
+  /// link's nearest approach, up to the paddings.
+  std::optional<MotionContact> check_state(
+      const JointValues& joints, const std::vector<char>& moving, const IntendedContact* intended,
+      double* clearance = nullptr, const Needs* needs = nullptr, Needs* measured = nullptr) const;
   /// The links (by the body's index) that move when any of `joints` does.
   std::vector<char> links_moved_by(const std::vector<std::string>& joints) const;
   /// An upper bound of how far any point of the body moves per radian (or metre) of `joint`.
@@ -54,6 +71,11 @@ class RobotMotionChecker : public MotionChecker {
 
  private:
   JointValues merged(const JointValues& joints) const;
+  /// Needs of nothing but not going inside: near a motion's ends (kEndZone of travel), where a
+  /// link already within the padding must be free to leave or arrive.
+  Needs touching_only() const;
+  /// How far any point of the body moves from `a` to `b` at most (sum of |dq| times the levers).
+  double sweep(const JointValues& a, const JointValues& b) const;
   std::shared_ptr<const RobotBody> body_;
   std::shared_ptr<const CollisionScene> scene_;
   std::map<std::string, GroupInfo> groups_;

@@ -190,12 +190,13 @@ void bind_simulated_pr2(py::module_& m) {
 
 void bind_robot(py::module_& m, const py::object& error) {
   // lmk.Refused(lmk.Error): a valid request the robot will not carry out; `kind` is
-  // "landmark-not-found", "landmark-doubtful" or "unreachable", as `lmk pbd plan --json` names it.
-  const py::object refused = py::reinterpret_steal<py::object>(
-      PyErr_NewExceptionWithDoc("lmk.Refused",
-                                "A plan the robot will not carry out; `kind` says why "
-                                "('landmark-not-found', 'landmark-doubtful', 'unreachable').",
-                                error.ptr(), nullptr));
+  // "landmark-not-found", "landmark-doubtful", "unreachable" or "collision", as `lmk pbd plan
+  // --json` names it.
+  const py::object refused = py::reinterpret_steal<py::object>(PyErr_NewExceptionWithDoc(
+      "lmk.Refused",
+      "A plan the robot will not carry out; `kind` says why "
+      "('landmark-not-found', 'landmark-doubtful', 'unreachable', 'collision').",
+      error.ptr(), nullptr));
   m.attr("Refused") = refused;
 
   bind_simulated_pr2(m);

@@ -19,6 +19,7 @@
 #include "lmk/pbd/execute.h"
 #include "lmk/pbd/internal/plan_json.h"
 #include "lmk/pbd/plan.h"
+#include "lmk/pr2/pr2_motion_check.h"
 #include "lmk/pr2/pr2_robots.h"
 #include "lmk/pr2/simulated_pr2.h"
 #include "tools/cli_common.h"
@@ -82,14 +83,29 @@ void print_plan(const Plan& plan) {
     for (const PlannedArm& a : s.arms) {
       std::printf("step %-3zu %-5s ", s.index, arm_name(a.arm));
       print_pose("to ", a.T_base_ee);
-      std::printf(", gripper %s, IK %.1e m %.1e rad, %.1f s\n", gripper_action_name(a.gripper),
+      std::printf(", gripper %s, IK %.1e m %.1e rad, %.1f s", gripper_action_name(a.gripper),
                   a.ik.position_error, a.ik.rotation_error, s.duration);
+      if (std::isfinite(a.clearance)) {
+        std::printf(", clearance %.1f cm%s", 100.0 * a.clearance,
+                    a.planned_around ? ", planned around an obstacle" : "");
+      }
+      std::printf("\n");
     }
   }
 }
 
-PlanSettings plan_settings(const PbdOptions& o) {
+Pr2MotionCheckSettings motion_check_settings(const PbdOptions& o) {
+  Pr2MotionCheckSettings check;
+  check.motion.padding = o.padding;
+  check.motion.planning_time = o.planning_time;
+  check.scene.unknown_is_occupied = o.unknown == "occupied";
+  return check;
+}
+
+PlanSettings plan_settings(const PbdOptions& o, const Pr2Kinematics* kinematics) {
   PlanSettings settings;
+  if (kinematics && !o.no_collisions)
+    settings.motion_checker = pr2_motion_checker(*kinematics, motion_check_settings(o));
   settings.find.execution.threads = o.threads;
   settings.min_confidence = o.min_confidence;
   if (!o.policy.empty()) settings.policy = instance_policy_from_name(o.policy);
@@ -135,7 +151,8 @@ Plan plan_program(const PbdOptions& o, SimulatedPr2& robot) {
   correct_depth(scene, o.depth_correction);
   JointState state;
   robot.read_joint_state(state);
-  return plan(program, landmarks, scene, robot.kinematics(), state, plan_settings(o));
+  return plan(program, landmarks, scene, robot.kinematics(), state,
+              plan_settings(o, &robot.kinematics()));
 }
 
 int run_plan(const PbdOptions& o) {
@@ -184,6 +201,8 @@ int run_demo_tasks_command(const PbdOptions& o) {
   settings.min_confidence = o.min_confidence;
   settings.look_again = o.look_again;
   settings.watch = !o.no_watch;
+  settings.check_collisions = o.demo_check_collisions;
+  settings.motion_check = motion_check_settings(o);
   settings.save_dir = o.save_dir;
   settings.cache_dir = o.cache_dir;
   const StopOnSigint stop;
@@ -197,6 +216,33 @@ int run_demo_tasks_command(const PbdOptions& o) {
     write_text_atomically(o.json, j.dump(2) + "\n");
   }
   return kOk;
+}
+
+// Issue #60: every arm motion checked against the scene and the robot before anything moves.
+void add_collision_options(CLI::App* sub, PbdOptions& o, bool on_by_default) {
+  if (on_by_default) {
+    sub->add_flag("--no-check-collisions", o.no_collisions,
+                  "Move along straight joint lines unchecked (by default every motion is checked "
+                  "against the scene, the space it hides and the robot, and planned around what "
+                  "it would touch)");
+  } else {
+    sub->add_flag("--check-collisions", o.demo_check_collisions,
+                  "Check every motion against the scene, the space it hides and the robot, and "
+                  "plan around what it would touch (off here until the demonstration world is "
+                  "collision-free from the robot's start: docs/pbd.md)");
+  }
+  sub->add_option("--padding", o.padding, "Distance kept from the scene and the robot, m")
+      ->check(CLI::Range(0.001, 0.2))
+      ->capture_default_str();
+  sub->add_option("--planning-time", o.planning_time,
+                  "Seconds to find a path around an obstacle before refusing")
+      ->check(CLI::Range(0.01, 60.0))
+      ->capture_default_str();
+  sub->add_option("--unknown", o.unknown,
+                  "The space the sensor could not see: 'occupied' (the arm never sweeps through "
+                  "it) or 'free'")
+      ->check(CLI::IsMember({"occupied", "free"}))
+      ->capture_default_str();
 }
 
 void add_plan_options(CLI::App* sub, PbdOptions& o, bool scene_required) {
@@ -217,6 +263,7 @@ void add_plan_options(CLI::App* sub, PbdOptions& o, bool scene_required) {
   sub->add_option("--threads", o.threads, "Search threads; 0 uses every core")
       ->check(worker_threads())
       ->capture_default_str();
+  add_collision_options(sub, o, true);
 }
 
 void add_look_again_option(CLI::App* sub, PbdOptions& o, const std::string& what) {
@@ -278,6 +325,7 @@ Subcommand add_pbd(CLI::App& app) {
   demo->add_option("--threads", o->threads, "Search threads; 0 uses every core")
       ->check(worker_threads())
       ->capture_default_str();
+  add_collision_options(demo, *o, false);
   demo->add_option("--cache", o->cache_dir,
                    "Keep each finished task's results in DIR; a later run (after Ctrl-C, say) "
                    "takes them from there");

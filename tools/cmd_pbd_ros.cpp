@@ -114,7 +114,7 @@ int run_on_ros(const PbdOptions& o) {
   LookAgainSettings looking;
   looking.max_looks = o.look_again;
   const LookedPlan looked = plan_looking_again(program, landmarks, frame->scene, kinematics, state,
-                                               eyes, plan_settings(o), looking);
+                                               eyes, plan_settings(o, &kinematics), looking);
   for (const Look& look : looked.looks) {
     std::printf("looked again at (%.3f, %.3f, %.3f): %s\n", look.target.x(), look.target.y(),
                 look.target.z(), look.why.c_str());

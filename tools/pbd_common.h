@@ -10,6 +10,7 @@
 #include "lmk/pbd/execute.h"
 #include "lmk/pbd/look_again.h"
 #include "lmk/pbd/plan.h"
+#include "lmk/pr2/pr2_motion_check.h"
 
 namespace lmk::cli {
 
@@ -28,9 +29,19 @@ struct PbdOptions {
   std::vector<int> tasks;
   std::string cloud_topic = "/head_mount_kinect/depth_registered/points";
   double frame_timeout = 10.0;  ///< s
+  /// Issue #60: every motion checked against the scene and the robot (--no-check-collisions: not)
+  bool no_collisions = false;
+  bool demo_check_collisions = false;  ///< demo-tasks --check-collisions
+  double padding = 0.02;               ///< --padding, m
+  double planning_time = 2.0;          ///< --planning-time, s
+  std::string unknown = "occupied";    ///< --unknown: the space the sensor could not see
 };
 
-PlanSettings plan_settings(const PbdOptions& o);
+/// The planner's settings; with `kinematics`, every motion checked for the PR2 it describes
+/// (unless --no-check-collisions).
+PlanSettings plan_settings(const PbdOptions& o, const Pr2Kinematics* kinematics = nullptr);
+/// --padding, --planning-time, --unknown as the PR2's motion check takes them.
+Pr2MotionCheckSettings motion_check_settings(const PbdOptions& o);
 /// The program's landmarks, their files relative to the program's folder.
 std::map<std::string, Landmark> load_landmarks_of(const PbdOptions& o, const Program& program);
 void print_plan(const Plan& plan);

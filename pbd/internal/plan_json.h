@@ -36,6 +36,12 @@ inline nlohmann::json plan_to_json(const Plan& plan) {
       j["joints"] = a.ik.joints;
       j["position_error_m"] = a.ik.position_error;
       j["rotation_error_rad"] = a.ik.rotation_error;
+      // Issue #60: the motion's check, where motions are checked.
+      j["clearance_m"] = finite_or_null(a.clearance);
+      j["planned_around"] = a.planned_around;
+      nlohmann::json near = nlohmann::json::array();
+      for (const Eigen::Vector3d& p : a.intended.near) near.push_back(vector_to_json(p));
+      j["intended_contact"] = {{"near", near}, {"radius_m", a.intended.radius}};
       arms.push_back(j);
     }
     steps.push_back({{"step", s.index}, {"duration", s.duration}, {"arms", arms}});
@@ -47,6 +53,17 @@ inline nlohmann::json plan_to_json(const Plan& plan) {
                       {"warnings", plan.warnings}};
   if (plan.refusal) {
     j["refusal"] = {{"kind", refusal_kind(*plan.refusal)}, {"message", describe(*plan.refusal)}};
+    if (const auto* blocked = std::get_if<Blocked>(&*plan.refusal)) {
+      const MotionContact& c = blocked->contact;
+      j["refusal"]["step"] = blocked->step;
+      j["refusal"]["arm"] = arm_name(blocked->arm);
+      j["refusal"]["contact"] = {{"link", c.link},
+                                 {"obstacle", c.obstacle},
+                                 {"distance_m", c.distance},
+                                 {"where", vector_to_json(c.where)},
+                                 {"along", c.at}};
+      j["refusal"]["planner"] = blocked->planner;
+    }
     if (const auto* doubtful = std::get_if<LandmarkDoubtful>(&*plan.refusal)) {
       nlohmann::json& r = j["refusal"];
       r["landmark"] = doubtful->landmark;

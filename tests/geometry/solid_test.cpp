@@ -15,8 +15,8 @@ namespace {
 
 TEST(Solid, SignedDistancesOfABoxACylinderAndASphere) {
   const Solid box = Solid::box({0.2, 0.4, 0.6});
-  EXPECT_NEAR(box.signed_distance({0, 0, 0}), -0.1, 1e-12);     // the nearest face is x's
-  EXPECT_NEAR(box.signed_distance({0.3, 0, 0}), 0.2, 1e-12);    // 0.2 beyond the x face
+  EXPECT_NEAR(box.signed_distance({0, 0, 0}), -0.1, 1e-12);   // the nearest face is x's
+  EXPECT_NEAR(box.signed_distance({0.3, 0, 0}), 0.2, 1e-12);  // 0.2 beyond the x face
   EXPECT_NEAR(box.signed_distance({0.4, 0.5, 0}), std::hypot(0.3, 0.3), 1e-12);  // off an edge
   const Solid can = Solid::cylinder(0.05, 0.2);
   EXPECT_NEAR(can.signed_distance({0, 0, 0}), -0.05, 1e-12);
@@ -31,7 +31,8 @@ TEST(Solid, SignedDistancesOfABoxACylinderAndASphere) {
 }
 
 TEST(Solid, SurfacePointsLieOnTheSurfaceAndCoverIt) {
-  for (const Solid& s : {Solid::box({0.2, 0.1, 0.3}), Solid::cylinder(0.04, 0.3), Solid::sphere(0.07)}) {
+  for (const Solid& s :
+       {Solid::box({0.2, 0.1, 0.3}), Solid::cylinder(0.04, 0.3), Solid::sphere(0.07)}) {
     const std::vector<Eigen::Vector3d> points = s.surface_points(0.01);
     ASSERT_GT(points.size(), 50u);
     for (const Eigen::Vector3d& p : points) EXPECT_NEAR(s.signed_distance(p), 0.0, 1e-9);

@@ -18,18 +18,17 @@
 namespace lmk {
 namespace {
 
-const char* const kRightArm[] = {"r_shoulder_pan_joint",  "r_shoulder_lift_joint",
-                                 "r_upper_arm_roll_joint", "r_elbow_flex_joint",
-                                 "r_forearm_roll_joint",   "r_wrist_flex_joint",
-                                 "r_wrist_roll_joint"};
+const char* const kRightArm[] = {
+    "r_shoulder_pan_joint", "r_shoulder_lift_joint", "r_upper_arm_roll_joint", "r_elbow_flex_joint",
+    "r_forearm_roll_joint", "r_wrist_flex_joint",    "r_wrist_roll_joint"};
 
 TEST(CollisionModel, ThePr2HasShapesOnItsArmsTorsoHeadAndBase) {
   std::set<std::string> links;
   for (const LinkSolid& s : RobotModel::pr2().collision_solids()) links.insert(s.link);
   for (const char* side : {"r_", "l_"}) {
-    for (const char* link : {"shoulder_pan_link", "shoulder_lift_link", "upper_arm_link",
-                             "elbow_flex_link", "forearm_link", "wrist_flex_link",
-                             "gripper_palm_link"}) {
+    for (const char* link :
+         {"shoulder_pan_link", "shoulder_lift_link", "upper_arm_link", "elbow_flex_link",
+          "forearm_link", "wrist_flex_link", "gripper_palm_link"}) {
       EXPECT_TRUE(links.count(side + std::string(link))) << side << link;
     }
   }
@@ -129,12 +128,10 @@ TEST(CollisionModel, AgreesWithTheFullDescriptionsMeshesNearATable) {
         std::abs(in_table.z()) > 0.25)
       continue;
     ++tried;
-    const bool full_touches =
-        table_distance(full_solids, full.link_poses(joints), full_arm, table, T_root_table,
-                       padding) < padding;
-    const bool ours_touches =
-        table_distance(our_solids, ours.link_poses(joints), our_arm, table, T_root_table,
-                       padding) < padding;
+    const bool full_touches = table_distance(full_solids, full.link_poses(joints), full_arm, table,
+                                             T_root_table, padding) < padding;
+    const bool ours_touches = table_distance(our_solids, ours.link_poses(joints), our_arm, table,
+                                             T_root_table, padding) < padding;
     agree += full_touches == ours_touches;
     touching += full_touches;
   }

@@ -3,8 +3,6 @@
 // refused and planned around; space hidden behind a plate blocks a motion when unknown counts as
 // occupied and not when it counts as free; an object the gripper means to touch does not block it.
 
-#include "lmk/pr2/robot_motion_checker.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,6 +10,7 @@
 
 #include "lmk/geometry/solid.h"
 #include "lmk/pr2/pr2_kinematics.h"
+#include "lmk/pr2/robot_motion_checker.h"
 
 namespace lmk {
 namespace {
@@ -19,7 +18,7 @@ namespace {
 // The right arm at shoulder pan `pan` (rad), every other joint at 0: stretched out level at the
 // shoulder's height (0.74 m with the torso down), pointing `pan` from straight ahead.
 JointValues right_arm(double pan) {
-  return {{"r_shoulder_pan_joint", pan},  {"r_shoulder_lift_joint", 0.0},
+  return {{"r_shoulder_pan_joint", pan},   {"r_shoulder_lift_joint", 0.0},
           {"r_upper_arm_roll_joint", 0.0}, {"r_elbow_flex_joint", 0.0},
           {"r_forearm_roll_joint", 0.0},   {"r_wrist_flex_joint", 0.0},
           {"r_wrist_roll_joint", 0.0}};
@@ -27,7 +26,8 @@ JointValues right_arm(double pan) {
 
 // The rest of the robot: torso down, left arm raised out of the way.
 JointValues rest_of_robot() {
-  return {{"torso_lift_joint", 0.0}, {"l_shoulder_pan_joint", 1.5}, {"l_shoulder_lift_joint", -0.4}};
+  return {
+      {"torso_lift_joint", 0.0}, {"l_shoulder_pan_joint", 1.5}, {"l_shoulder_lift_joint", -0.4}};
 }
 
 // Points over a box's surface, 1 cm apart (base frame).
@@ -77,7 +77,7 @@ TEST_F(MotionCheck, AStraightLineThroughABoxIsRefusedAndPlannedAround) {
   JointValues at = from;
   for (const std::vector<double>& q : plan.waypoints) {
     JointValues next = at;
-    const char* names[] = {"r_shoulder_pan_joint",  "r_shoulder_lift_joint",
+    const char* names[] = {"r_shoulder_pan_joint",   "r_shoulder_lift_joint",
                            "r_upper_arm_roll_joint", "r_elbow_flex_joint",
                            "r_forearm_roll_joint",   "r_wrist_flex_joint",
                            "r_wrist_roll_joint"};
@@ -86,9 +86,11 @@ TEST_F(MotionCheck, AStraightLineThroughABoxIsRefusedAndPlannedAround) {
     EXPECT_TRUE(segment.free()) << describe(*segment.contact);
     at = next;
   }
-  for (const auto& [name, value] : to) EXPECT_NEAR(std::remainder(at[name] - value, 2 * M_PI), 0, 1e-6);
+  for (const auto& [name, value] : to)
+    EXPECT_NEAR(std::remainder(at[name] - value, 2 * M_PI), 0, 1e-6);
   // Nothing in the way: the straight line is free, with its clearance.
-  const MotionVerdict clear = checker(box_points({0.7, 0.6, 0.74}, {0.1, 0.1, 0.4})).check_line(from, to);
+  const MotionVerdict clear =
+      checker(box_points({0.7, 0.6, 0.74}, {0.1, 0.1, 0.4})).check_line(from, to);
   EXPECT_TRUE(clear.free());
   EXPECT_GT(clear.clearance, 0.02);
 }
@@ -137,10 +139,10 @@ TEST_F(MotionCheck, HiddenSpaceBlocksWhenItCountsAsOccupiedAndNotWhenFree) {
 
 TEST_F(MotionCheck, AnObjectTheGripperMeansToTouchDoesNotBlockIt) {
   // A 5 cm cube where the closed fingers end up, straight ahead.
-  const Eigen::Isometry3d tool = kinematics_.T_base_torso() *
-                                 RobotModel::pr2()
-                                     .chain("torso_lift_link", "r_gripper_tool_frame")
-                                     .forward(std::vector<double>(7, 0.0));
+  const Eigen::Isometry3d tool =
+      kinematics_.T_base_torso() * RobotModel::pr2()
+                                       .chain("torso_lift_link", "r_gripper_tool_frame")
+                                       .forward(std::vector<double>(7, 0.0));
   const RobotMotionChecker check = checker(box_points(tool.translation(), {0.05, 0.05, 0.05}));
   const JointValues from = right_arm(-0.4), to = right_arm(0.0);
   const MotionVerdict blind = check.check_line(from, to);

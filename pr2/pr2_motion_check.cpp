@@ -1,0 +1,63 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "lmk/pr2/pr2_motion_check.h"
+
+#include <set>
+
+namespace lmk {
+
+namespace {
+
+// Whether `p` (base frame) lies within `margin` of the body at its placement: the links' spheres
+// first, then the solids of the links that reach it.
+bool on_body(const RobotBody& body, const std::vector<Eigen::Isometry3d>& placed,
+             const Eigen::Isometry3d& T_root_base, const Eigen::Vector3d& p, double margin) {
+  const Eigen::Vector3d q = T_root_base * p;
+  for (std::size_t link = 0; link < body.links().size(); ++link) {
+    const double reach = body.link_radius(link) + margin;
+    if ((body.link_centre(link, placed) - q).squaredNorm() > reach * reach) continue;
+    for (std::size_t i : body.link_solids(link)) {
+      if (body.solids()[i].solid.signed_distance(placed[i].inverse() * q) < margin) return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
+std::shared_ptr<const RobotBody> pr2_body() {
+  static const std::shared_ptr<const RobotBody> body =
+      std::make_shared<RobotBody>(std::make_shared<RobotModel>(RobotModel::pr2()));
+  return body;
+}
+
+std::function<std::shared_ptr<const MotionChecker>(const PointCloud&, const JointState&)>
+pr2_motion_checker(const Pr2Kinematics& kinematics, const Pr2MotionCheckSettings& settings,
+                   std::shared_ptr<const RobotBody> body) {
+  if (!body) body = pr2_body();
+  auto shared_kinematics = std::make_shared<Pr2Kinematics>(kinematics);
+  return [shared_kinematics, settings, body](const PointCloud& scene, const JointState& start) {
+    // The start's joints the body's model has (a robot's joint state also names its grippers'
+    // motors and casters).
+    std::set<std::string> known;
+    for (const RobotModel::TreeJoint& j : body->model().tree_joints()) known.insert(j.name);
+    JointValues state = {{"torso_lift_joint", shared_kinematics->torso_height()}};
+    for (std::size_t i = 0; i < start.names.size() && i < start.positions.size(); ++i)
+      if (known.count(start.names[i])) state[start.names[i]] = start.positions[i];
+    auto collision_scene = std::make_shared<CollisionScene>(scene, settings.scene);
+    const std::vector<Eigen::Isometry3d> placed = body->place(state);
+    const std::map<std::string, Eigen::Isometry3d> links = body->model().link_poses(state);
+    const auto base = links.find("base_link");
+    const Eigen::Isometry3d T_root_base =
+        base == links.end() ? Eigen::Isometry3d::Identity() : base->second;
+    const auto is_robot = [body, placed, T_root_base, margin = settings.self_filter_margin](
+                              const Eigen::Vector3d& p) {
+      return on_body(*body, placed, T_root_base, p, margin);
+    };
+    collision_scene->remove_points(is_robot);
+    collision_scene->set_known_free(is_robot);
+    return std::make_shared<const RobotMotionChecker>(body, collision_scene, *shared_kinematics,
+                                                      state, settings.motion);
+  };
+}
+
+}  // namespace lmk
