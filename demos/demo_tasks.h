@@ -61,7 +61,7 @@ struct DemoTasksSettings {
   /// Every arm motion checked against the scene the robot planned on and its own body, and planned
   /// around what it would touch, before anything moves (issue #60; PlanSettings::motion_checker).
   /// Off by default for now: the simulated PR2 starts with its arms stretched out into the tasks'
-  /// worlds, and some demonstrated poses put one arm against the other (docs/pbd.md).
+  /// worlds, and the demonstrated drop into the trash meets the left elbow there (docs/pbd.md).
   bool check_collisions = false;
   Pr2MotionCheckSettings motion_check;  ///< the check's padding, planning time, unknown space
   double max_position_error = 0.02;     ///< m

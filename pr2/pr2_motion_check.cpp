@@ -49,8 +49,8 @@ pr2_motion_checker(const Pr2Kinematics& kinematics, const Pr2MotionCheckSettings
     const auto base = links.find("base_link");
     const Eigen::Isometry3d T_root_base =
         base == links.end() ? Eigen::Isometry3d::Identity() : base->second;
-    const auto is_robot = [body, placed, T_root_base, margin = settings.self_filter_margin](
-                              const Eigen::Vector3d& p) {
+    const auto is_robot = [body, placed, T_root_base,
+                           margin = settings.self_filter_margin](const Eigen::Vector3d& p) {
       return on_body(*body, placed, T_root_base, p, margin);
     };
     collision_scene->remove_points(is_robot);

@@ -104,7 +104,7 @@ Pr2MotionCheckSettings motion_check_settings(const PbdOptions& o) {
 
 PlanSettings plan_settings(const PbdOptions& o, const Pr2Kinematics* kinematics) {
   PlanSettings settings;
-  if (kinematics && !o.no_collisions)
+  if (kinematics && o.check_collisions)
     settings.motion_checker = pr2_motion_checker(*kinematics, motion_check_settings(o));
   settings.find.execution.threads = o.threads;
   settings.min_confidence = o.min_confidence;
@@ -201,7 +201,7 @@ int run_demo_tasks_command(const PbdOptions& o) {
   settings.min_confidence = o.min_confidence;
   settings.look_again = o.look_again;
   settings.watch = !o.no_watch;
-  settings.check_collisions = o.demo_check_collisions;
+  settings.check_collisions = o.check_collisions;
   settings.motion_check = motion_check_settings(o);
   settings.save_dir = o.save_dir;
   settings.cache_dir = o.cache_dir;
@@ -219,18 +219,10 @@ int run_demo_tasks_command(const PbdOptions& o) {
 }
 
 // Issue #60: every arm motion checked against the scene and the robot before anything moves.
-void add_collision_options(CLI::App* sub, PbdOptions& o, bool on_by_default) {
-  if (on_by_default) {
-    sub->add_flag("--no-check-collisions", o.no_collisions,
-                  "Move along straight joint lines unchecked (by default every motion is checked "
-                  "against the scene, the space it hides and the robot, and planned around what "
-                  "it would touch)");
-  } else {
-    sub->add_flag("--check-collisions", o.demo_check_collisions,
-                  "Check every motion against the scene, the space it hides and the robot, and "
-                  "plan around what it would touch (off here until the demonstration world is "
-                  "collision-free from the robot's start: docs/pbd.md)");
-  }
+void add_collision_options(CLI::App* sub, PbdOptions& o) {
+  sub->add_flag("--check-collisions", o.check_collisions,
+                "Check every motion against the scene, the space it hides and the robot, plan "
+                "around what it would touch, or refuse (off by default for now: docs/pbd.md)");
   sub->add_option("--padding", o.padding, "Distance kept from the scene and the robot, m")
       ->check(CLI::Range(0.001, 0.2))
       ->capture_default_str();
@@ -263,7 +255,7 @@ void add_plan_options(CLI::App* sub, PbdOptions& o, bool scene_required) {
   sub->add_option("--threads", o.threads, "Search threads; 0 uses every core")
       ->check(worker_threads())
       ->capture_default_str();
-  add_collision_options(sub, o, true);
+  add_collision_options(sub, o);
 }
 
 void add_look_again_option(CLI::App* sub, PbdOptions& o, const std::string& what) {
@@ -325,7 +317,7 @@ Subcommand add_pbd(CLI::App& app) {
   demo->add_option("--threads", o->threads, "Search threads; 0 uses every core")
       ->check(worker_threads())
       ->capture_default_str();
-  add_collision_options(demo, *o, false);
+  add_collision_options(demo, *o);
   demo->add_option("--cache", o->cache_dir,
                    "Keep each finished task's results in DIR; a later run (after Ctrl-C, say) "
                    "takes them from there");

@@ -29,16 +29,15 @@ struct PbdOptions {
   std::vector<int> tasks;
   std::string cloud_topic = "/head_mount_kinect/depth_registered/points";
   double frame_timeout = 10.0;  ///< s
-  /// Issue #60: every motion checked against the scene and the robot (--no-check-collisions: not)
-  bool no_collisions = false;
-  bool demo_check_collisions = false;  ///< demo-tasks --check-collisions
-  double padding = 0.02;               ///< --padding, m
-  double planning_time = 2.0;          ///< --planning-time, s
-  std::string unknown = "occupied";    ///< --unknown: the space the sensor could not see
+  /// Issue #60: every motion checked against the scene and the robot (--check-collisions)
+  bool check_collisions = false;
+  double padding = 0.02;             ///< --padding, m
+  double planning_time = 2.0;        ///< --planning-time, s
+  std::string unknown = "occupied";  ///< --unknown: the space the sensor could not see
 };
 
-/// The planner's settings; with `kinematics`, every motion checked for the PR2 it describes
-/// (unless --no-check-collisions).
+/// The planner's settings; with `kinematics` and --check-collisions, every motion checked for the
+/// PR2 it describes.
 PlanSettings plan_settings(const PbdOptions& o, const Pr2Kinematics* kinematics = nullptr);
 /// --padding, --planning-time, --unknown as the PR2's motion check takes them.
 Pr2MotionCheckSettings motion_check_settings(const PbdOptions& o);

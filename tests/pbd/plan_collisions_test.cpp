@@ -14,14 +14,12 @@
 namespace lmk {
 namespace {
 
-const char* const kRight[] = {"r_shoulder_pan_joint",  "r_shoulder_lift_joint",
-                              "r_upper_arm_roll_joint", "r_elbow_flex_joint",
-                              "r_forearm_roll_joint",   "r_wrist_flex_joint",
-                              "r_wrist_roll_joint"};
-const char* const kLeft[] = {"l_shoulder_pan_joint",  "l_shoulder_lift_joint",
-                             "l_upper_arm_roll_joint", "l_elbow_flex_joint",
-                             "l_forearm_roll_joint",   "l_wrist_flex_joint",
-                             "l_wrist_roll_joint"};
+const char* const kRight[] = {
+    "r_shoulder_pan_joint", "r_shoulder_lift_joint", "r_upper_arm_roll_joint", "r_elbow_flex_joint",
+    "r_forearm_roll_joint", "r_wrist_flex_joint",    "r_wrist_roll_joint"};
+const char* const kLeft[] = {
+    "l_shoulder_pan_joint", "l_shoulder_lift_joint", "l_upper_arm_roll_joint", "l_elbow_flex_joint",
+    "l_forearm_roll_joint", "l_wrist_flex_joint",    "l_wrist_roll_joint"};
 
 // The right arm stretched level, pointing `pan` from straight ahead; the left raised aside.
 JointState arms_at(double pan) {
@@ -79,7 +77,8 @@ TEST(PlanCollisions, AStepThroughABoxIsPlannedAroundItOrRefusedSayingWhere) {
   for (std::size_t i = 0; i < 7; ++i)
     EXPECT_NEAR(arm.trajectory.points.back().positions[i], arm.ik.joints[i], 1e-9);
   for (std::size_t k = 1; k < arm.trajectory.points.size(); ++k)
-    EXPECT_GT(arm.trajectory.points[k].time_from_start, arm.trajectory.points[k - 1].time_from_start);
+    EXPECT_GT(arm.trajectory.points[k].time_from_start,
+              arm.trajectory.points[k - 1].time_from_start);
 
   Pr2MotionCheckSettings no_time;
   no_time.motion.planning_time = 1e-4;
