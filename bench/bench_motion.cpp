@@ -20,10 +20,9 @@
 
 namespace {
 
-const char* const kRight[] = {"r_shoulder_pan_joint",  "r_shoulder_lift_joint",
-                              "r_upper_arm_roll_joint", "r_elbow_flex_joint",
-                              "r_forearm_roll_joint",   "r_wrist_flex_joint",
-                              "r_wrist_roll_joint"};
+const char* const kRight[] = {
+    "r_shoulder_pan_joint", "r_shoulder_lift_joint", "r_upper_arm_roll_joint", "r_elbow_flex_joint",
+    "r_forearm_roll_joint", "r_wrist_flex_joint",    "r_wrist_roll_joint"};
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -60,9 +59,8 @@ int main(int argc, char** argv) {
   if (argc == 3 && std::string(argv[1]) == "--scenes") scenes = std::stoi(argv[2]);
   const lmk::Pr2Kinematics kinematics(lmk::RobotModel::pr2(), 0.1);
   const auto body = lmk::pr2_body();
-  const lmk::JointValues rest = {{"torso_lift_joint", 0.1},
-                                 {"l_shoulder_pan_joint", 1.5},
-                                 {"l_shoulder_lift_joint", -0.4}};
+  const lmk::JointValues rest = {
+      {"torso_lift_joint", 0.1}, {"l_shoulder_pan_joint", 1.5}, {"l_shoulder_lift_joint", -0.4}};
   lmk::SplitMix64 rng(60);
   std::vector<double> line_ms, plan_s;
   int found = 0, kept = 0;
@@ -75,8 +73,7 @@ int main(int argc, char** argv) {
     Eigen::Isometry3d hand = Eigen::Isometry3d::Identity();
     if (!kinematics.forward("right_arm", q, hand).ok()) continue;
     const lmk::RobotMotionChecker check(
-        body, std::make_shared<lmk::CollisionScene>(box_at(hand.translation())), kinematics,
-        rest);
+        body, std::make_shared<lmk::CollisionScene>(box_at(hand.translation())), kinematics, rest);
     if (check.check_pose(from) || check.check_pose(to)) continue;  // an end inside the box
     ++kept;
     auto start = std::chrono::steady_clock::now();
@@ -91,7 +88,8 @@ int main(int argc, char** argv) {
   std::printf("scenes        %d (right arm, a box where the line's hand passes half-way)\n", kept);
   std::printf("check a line  median %.2f ms, 95%% %.2f ms\n", percentile(line_ms, 0.5),
               percentile(line_ms, 0.95));
-  std::printf("plan around   %zu lines touched the box: %d paths found, median %.3f s, 95%% %.3f s\n",
-              plan_s.size(), found, percentile(plan_s, 0.5), percentile(plan_s, 0.95));
+  std::printf(
+      "plan around   %zu lines touched the box: %d paths found, median %.3f s, 95%% %.3f s\n",
+      plan_s.size(), found, percentile(plan_s, 0.5), percentile(plan_s, 0.95));
   return 0;
 }

@@ -35,7 +35,11 @@ JointTrajectory joint_line(const GroupInfo& group, const std::vector<double>& fr
     JointTrajectory::Point p;
     p.time_from_start = s * duration;
     for (std::size_t i = 0; i < group.joints.size(); ++i) {
-      p.positions.push_back(from[i] + s * signed_travel(group.joints[i], from[i], to[i]));
+      // The last point is the target itself: from + (to - from) may round past a joint limit the
+      // target sits on.
+      const bool last = k == points && !group.joints[i].continuous();
+      p.positions.push_back(last ? to[i]
+                                 : from[i] + s * signed_travel(group.joints[i], from[i], to[i]));
     }
     t.points.push_back(std::move(p));
   }

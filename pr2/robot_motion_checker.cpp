@@ -66,13 +66,18 @@ std::shared_ptr<ob::RealVectorStateSpace> joint_space(const std::vector<JointInf
   return space;
 }
 
-// The path's states after its start, as joint vectors.
-std::vector<std::vector<double>> waypoints_of(const og::PathGeometric& path, std::size_t n) {
+// The path's states after its start, as joint vectors within the joints' limits: the smoothing's
+// interpolated states may round a hair past a limit the path runs along.
+std::vector<std::vector<double>> waypoints_of(const og::PathGeometric& path,
+                                              const std::vector<JointInfo>& joints) {
   std::vector<std::vector<double>> out;
   for (std::size_t k = 1; k < path.getStateCount(); ++k) {
     const auto* v = path.getState(k)->as<ob::RealVectorStateSpace::StateType>();
-    std::vector<double> q(n);
-    for (std::size_t i = 0; i < n; ++i) q[i] = (*v)[i];
+    std::vector<double> q(joints.size());
+    for (std::size_t i = 0; i < joints.size(); ++i) {
+      q[i] = (*v)[i];
+      if (!joints[i].continuous()) q[i] = std::clamp(q[i], joints[i].lower, joints[i].upper);
+    }
     out.push_back(std::move(q));
   }
   return out;
@@ -371,7 +376,7 @@ MotionPlan RobotMotionChecker::plan_around(const std::string& group, const Joint
   const double solved = clock.seconds();
   setup.simplifySolution(std::min(kSmoothingShare * solved + kSmoothingFloor,
                                   std::max(0.0, settings_.planning_time - solved)));
-  plan.waypoints = waypoints_of(setup.getSolutionPath(), n);
+  plan.waypoints = waypoints_of(setup.getSolutionPath(), joints);
   plan.found = true;
   plan.seconds = clock.seconds();
   return plan;

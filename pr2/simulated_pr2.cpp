@@ -21,6 +21,18 @@ std::string format(double v) {
 
 }  // namespace
 
+const std::map<std::string, double>& pr2_arms_at_sides() {
+  static const std::map<std::string, double> pose = {
+      {"r_shoulder_pan_joint", -1.2},  {"r_shoulder_lift_joint", 1.0},
+      {"r_upper_arm_roll_joint", 0.0}, {"r_elbow_flex_joint", -1.6},
+      {"r_forearm_roll_joint", 0.0},   {"r_wrist_flex_joint", -0.6},
+      {"r_wrist_roll_joint", 0.0},     {"l_shoulder_pan_joint", 1.2},
+      {"l_shoulder_lift_joint", 1.0},  {"l_upper_arm_roll_joint", 0.0},
+      {"l_elbow_flex_joint", -1.6},    {"l_forearm_roll_joint", 0.0},
+      {"l_wrist_flex_joint", -0.6},    {"l_wrist_roll_joint", 0.0}};
+  return pose;
+}
+
 SimulatedPr2::SimulatedPr2(Pr2Kinematics kinematics) : kinematics_(std::move(kinematics)) {}
 
 std::vector<std::string> SimulatedPr2::grippers() { return {"left", "right"}; }
@@ -28,12 +40,18 @@ std::vector<std::string> SimulatedPr2::grippers() { return {"left", "right"}; }
 CallResult SimulatedPr2::configure() {
   if (lifecycle_ == LifecycleState::kActive) return lifecycle_error("configure", lifecycle_);
   positions_.clear();
-  // Every joint starts at zero, or at the nearest limit when zero is outside its range.
+  // Every joint starts at zero, or at the nearest limit when zero is outside its range; then the
+  // arms go to their sides.
   for (const std::string& name : kinematics_.groups()) {
     const GroupInfo info = *kinematics_.group(name);  // keep the group alive while iterating it
     for (const JointInfo& j : info.joints) {
       positions_[j.name] = j.continuous() ? 0.0 : std::clamp(0.0, j.lower, j.upper);
     }
+  }
+  // The arms at the robot's sides, elbows bent, hands out of the space in front (issue #60): where
+  // a PR2 waits, and nowhere inside the world it is about to act in.
+  for (const auto& [name, value] : pr2_arms_at_sides()) {
+    if (positions_.count(name)) positions_[name] = value;
   }
   for (const std::string& g : grippers())
     grippers_[g] = GripperState{kGripperMaxOpening, false, false};

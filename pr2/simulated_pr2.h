@@ -2,7 +2,8 @@
 #pragma once
 // A simulated PR2 behind RobotInterface, for tests and for running PbD programs without hardware.
 //
-// - Lifecycle: configure, then activate; motion commands are refused unless active.
+// - Lifecycle: configure, then activate; motion commands are refused unless active. Configuring
+//   puts the arms at the robot's sides (pr2_arms_at_sides()), the head and torso at zero.
 // - Trajectories run in simulated time and are checked first, whole: joint names in the group's
 //   order, increasing times, positions within limits, velocities within each joint's maximum
 //   (including the first step from the current state). A violating trajectory is refused with the
@@ -24,6 +25,10 @@ struct ExecutedMotion {
   JointTrajectory trajectory;
   double start_time = 0.0, end_time = 0.0;  ///< simulated seconds
 };
+
+/// The arms' joints where the simulated PR2 starts: at its sides, elbows bent, hands out of the
+/// space in front of it.
+const std::map<std::string, double>& pr2_arms_at_sides();
 
 class SimulatedPr2 : public RobotInterface {
  public:
