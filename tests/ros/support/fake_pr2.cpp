@@ -17,6 +17,7 @@
 #include <thread>
 
 #include "lmk/pr2/pr2_kinematics.h"
+#include "lmk/pr2/simulated_pr2.h"
 #include "lmk/ros/cloud_conversion.h"
 
 namespace lmk::test {
@@ -57,13 +58,15 @@ struct FakePr2::Impl {
   explicit Impl(FakePr2Settings s)
       : settings(std::move(s)), kinematics(RobotModel::pr2(), settings.torso_height) {
     nh.setCallbackQueue(&queue);
-    // Every joint at zero, or at the nearest limit, as SimulatedPr2 starts.
+    // Every joint at zero, or at the nearest limit, then the arms at the robot's sides, as
+    // SimulatedPr2 starts.
     for (const std::string& group : kinematics.groups()) {
       const GroupInfo info = *kinematics.group(group);
       for (const JointInfo& j : info.joints) {
         joints[j.name] = j.continuous() ? 0.0 : std::clamp(0.0, j.lower, j.upper);
       }
     }
+    for (const auto& [name, value] : pr2_arms_at_sides()) joints[name] = value;
     joints["torso_lift_joint"] = settings.torso_height;
     joints["l_gripper_joint"] = joints["r_gripper_joint"] = kGripperMaxOpening;
     cloud_msg = camera_message(settings.scene);
