@@ -14,6 +14,7 @@
 #include "lmk/pbd/internal/plan_json.h"
 #include "lmk/pbd/look_again.h"
 #include "lmk/pbd/plan.h"
+#include "lmk/pr2/pr2_motion_check.h"
 #include "lmk/pr2/pr2_robots.h"
 #include "lmk/pr2/simulated_pr2.h"
 
@@ -82,6 +83,11 @@ LookedPlan plan_or_refuse(const std::string& program_file, const PointCloud& sce
     if (!(cut >= 0.0 && cut <= 1.0)) throw py::value_error("min_confidence must be in [0, 1]");
     settings.min_confidence = cut;
   }
+  // collisions=True: every motion checked against the scene and the robot (issue #60), as
+  // `lmk pbd plan --check-collisions` does.
+  if (const auto collisions = pop_keyword(search, "collisions");
+      collisions && py::cast<bool>(*collisions))
+    settings.motion_checker = pr2_motion_checker(robot.kinematics());
   const std::optional<py::object> look = pop_keyword(search, "look");
   LookAgainSettings looking;
   looking.max_looks = 0;
@@ -214,7 +220,9 @@ void bind_robot(py::module_& m, const py::object& error) {
       "look=callable(target) -> lmk.Cloud is a head that can look again: when a landmark is "
       "missing or doubtful it is pointed at the 3-vector target (base frame) and returns what it "
       "then sees, fused with the frames before (at most look_again times, default 2; the plan's "
-      "'looks' lists them). Search settings are keywords as for lmk.find.");
+      "'looks' lists them). collisions=True checks every motion against the scene, the space it "
+      "hides and the robot, plans around what it would touch, or refuses (kind 'collision'), as "
+      "`lmk pbd plan --check-collisions`. Search settings are keywords as for lmk.find.");
   m.def(
       "run",
       [refused](const std::string& program, const PointCloud& scene, SimulatedPr2& robot,

@@ -342,6 +342,24 @@ def test_plan_and_run_as_lmk_pbd_and_a_refusal_with_its_kind(task4):
     assert isinstance(refused.value, lmk.Error)
 
 
+def test_plan_with_collisions_checks_every_motion_as_lmk_pbd_does(task4):
+    program = str(task4 / "drop_in_trash.json")
+    scene = str(task4 / "demonstration.pcd")
+    planned = lmk.plan(program, lmk.read_cloud(scene), lmk.SimulatedPr2(torso_height=0.05),
+                       collisions=True)
+    cli = json.loads(run("pbd", "plan", program, "--torso", "0.05", "--json", "--check-collisions",
+                         "--scene", scene))
+    assert without_times(planned) == without_times(cli)
+    # Every arm's motion was checked: what it may touch (near its start and target), and how
+    # near it came where anything was near (null: nothing within reach, or a motion of nothing).
+    arms = [arm for step in planned["steps"] for arm in step["arms"]]
+    assert arms and all(len(arm["intended_contact"]["near"]) == 2 for arm in arms)
+    assert any(arm["clearance_m"] is not None and arm["clearance_m"] > 0.02 for arm in arms)
+    unchecked = lmk.plan(program, lmk.read_cloud(scene), lmk.SimulatedPr2(torso_height=0.05))
+    for arm in (arm for step in unchecked["steps"] for arm in step["arms"]):
+        assert arm["clearance_m"] is None and not arm["intended_contact"]["near"]
+
+
 def cut_by_the_image_edge(cloud, centre, margin=0.15):
     """`cloud` as a camera whose image ends before `centre` (base frame): every pixel on its side
     of the image from `margin` (in x/z, about 8 degrees) before it returns nothing."""
