@@ -61,15 +61,18 @@ std::string evaluation_header(const Evaluation& e) {
 
 std::string capture_symmetry_note(const Evaluation& e) {
   std::vector<std::string> landmarks;
+  for (const PairResult& p : e.pairs) {
+    if (p.symmetry_from_capture &&
+        std::find(landmarks.begin(), landmarks.end(), p.landmark) == landmarks.end())
+      landmarks.push_back(p.landmark);
+  }
+  if (landmarks.empty()) return "";  // the common case: no copy of the evaluation
   Evaluation without = e;
   for (PairResult& p : without.pairs) {
     if (!p.symmetry_from_capture) continue;
-    if (std::find(landmarks.begin(), landmarks.end(), p.landmark) == landmarks.end())
-      landmarks.push_back(p.landmark);
     p.symmetry = Symmetry();
     p.symmetry_from_capture = false;
   }
-  if (landmarks.empty()) return "";
   std::string names;
   for (const std::string& name : landmarks) names += (names.empty() ? "" : ", ") + name;
   const double threshold = *e.settings.find.selection.threshold;

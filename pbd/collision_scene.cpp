@@ -14,37 +14,40 @@
 namespace lmk {
 
 struct CollisionScene::Impl {
-  PointCloud points;  // thinned, within reach, base frame
+  PointCloud points;  // thinned, within reach, off the robot, base frame
   std::unique_ptr<KdTree> tree;
   std::optional<RangeImage> image;     // of the whole frame, for the hidden space
   std::unique_ptr<DistanceGrid> grid;  // the points and the hidden space, over the reach
   CollisionSceneSettings settings;
-  std::function<bool(const Eigen::Vector3d&)> known_free;
+  std::function<bool(const Eigen::Vector3d&)> robot;  // where the robot stands; may be empty
 
-  bool hidden(const Eigen::Vector3d& p) const {
-    if (known_free && known_free(p)) return false;
+  // How far `p` lies in front of the hidden space along the sensor's ray (negative: that deep in
+  // it), the margin given; nothing where the sensor tells nothing (out of view, no return) or
+  // where the robot stands.
+  std::optional<double> before_hidden(const Eigen::Vector3d& p) const {
+    if (robot && robot(p)) return std::nullopt;
     const RangeImage::Look look = image->look(p.cast<float>());
-    return look.in_view && std::isfinite(look.measured) &&
-           look.depth > look.measured + settings.hidden_margin;
+    if (!look.in_view || !std::isfinite(look.measured)) return std::nullopt;
+    return look.measured + settings.hidden_margin - look.depth;
   }
   void index() {
     tree = std::make_unique<KdTree>(points);
     const Box& reach = settings.reach;
-    const Eigen::Vector3d half = 0.5 * reach.size;
     // The reach's axis-aligned bounds in the base frame.
-    Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e9), hi = -lo;
-    for (int corner = 0; corner < 8; ++corner) {
-      const Eigen::Vector3d local((corner & 1 ? 1 : -1) * half.x(),
-                                  (corner & 2 ? 1 : -1) * half.y(),
-                                  (corner & 4 ? 1 : -1) * half.z());
-      const Eigen::Vector3d p = reach.pose * local;
-      lo = lo.cwiseMin(p);
-      hi = hi.cwiseMax(p);
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()),
+                    hi = -lo;
+    for (const Eigen::Vector3d& corner : reach.corners()) {
+      lo = lo.cwiseMin(corner);
+      hi = hi.cwiseMax(corner);
     }
     grid = std::make_unique<DistanceGrid>(lo, hi, settings.grid_voxel);
     for (const Eigen::Vector3f& p : points.points) grid->occupy(p.cast<double>());
     if (image) {
-      grid->occupy_where([&](const Eigen::Vector3d& c) { return reach.contains(c) && hidden(c); });
+      grid->occupy_where([&](const Eigen::Vector3d& c) {
+        if (!reach.contains(c)) return false;
+        const std::optional<double> before = before_hidden(c);
+        return before && *before < 0.0;
+      });
     }
     grid->compute();
   }
@@ -62,14 +65,23 @@ bool intended_here(const IntendedContact* intended, const Eigen::Vector3d& p) {
 
 }  // namespace
 
-CollisionScene::CollisionScene(const PointCloud& scene, const CollisionSceneSettings& settings)
-    : impl_(std::make_unique<Impl>()), settings_(settings) {
+CollisionScene::CollisionScene(const PointCloud& scene, const CollisionSceneSettings& settings,
+                               std::function<bool(const Eigen::Vector3d&)> robot)
+    : impl_(std::make_unique<Impl>()) {
   if (!(settings.voxel > 0.0)) throw Error("collision scene: the voxel must be positive");
   if (!(settings.hidden_margin >= 0.0))
     throw Error("collision scene: the hidden margin must not be negative");
   if (!(settings.grid_voxel > 0.0)) throw Error("collision scene: the grid voxel must be positive");
   impl_->settings = settings;
+  impl_->robot = std::move(robot);
   impl_->points = voxel_downsample(crop(scene, settings.reach), settings.voxel);
+  if (impl_->robot) {
+    std::vector<Eigen::Vector3f> kept;
+    for (const Eigen::Vector3f& q : impl_->points.points) {
+      if (!impl_->robot(q.cast<double>())) kept.push_back(q);
+    }
+    impl_->points = PointCloud(std::move(kept));
+  }
   if (settings.unknown_is_occupied && scene.is_organized())
     impl_->image = RangeImage::from_cloud(scene);
   impl_->index();
@@ -99,16 +111,13 @@ SceneDistance CollisionScene::distance(const Solid& solid, const Eigen::Isometry
     if (d < best.distance) best = {d, p, false};
   }
   if (!impl_->image) return best;
-  // The hidden space: how far each surface point lies behind what the sensor measured on its ray
-  // (along the ray, the margin given), where that is nearer than the points' own distance.
+  // The hidden space: how far each surface point lies in front of it along the sensor's ray,
+  // where that is nearer than the points' own distance.
   for (const Eigen::Vector3d& s : surface) {
     const Eigen::Vector3d p = T_base_solid * s;
-    if (!settings_.reach.contains(p)) continue;
-    if (impl_->known_free && impl_->known_free(p)) continue;
-    const RangeImage::Look look = impl_->image->look(p.cast<float>());
-    if (!look.in_view || !std::isfinite(look.measured)) continue;
-    const double d = look.measured + settings_.hidden_margin - look.depth;
-    if (d < best.distance && !intended_here(intended, p)) best = {d, p, true};
+    if (!impl_->settings.reach.contains(p)) continue;
+    const std::optional<double> d = impl_->before_hidden(p);
+    if (d && *d < best.distance && !intended_here(intended, p)) best = {*d, p, true};
   }
   return best;
 }
@@ -117,19 +126,6 @@ double CollisionScene::lower_bound(const Eigen::Vector3d& centre, double radius)
   return impl_->grid->distance(centre) - impl_->grid->error_bound() - radius;
 }
 
-void CollisionScene::set_known_free(std::function<bool(const Eigen::Vector3d&)> known_free) {
-  impl_->known_free = std::move(known_free);
-  if (impl_->image) impl_->index();
-}
-
-void CollisionScene::remove_points(const std::function<bool(const Eigen::Vector3d&)>& is_robot) {
-  std::vector<Eigen::Vector3f> kept;
-  for (const Eigen::Vector3f& q : impl_->points.points) {
-    if (!is_robot(q.cast<double>())) kept.push_back(q);
-  }
-  if (kept.size() == impl_->points.size()) return;
-  impl_->points = PointCloud(std::move(kept));
-  impl_->index();
-}
+const CollisionSceneSettings& CollisionScene::settings() const { return impl_->settings; }
 
 }  // namespace lmk

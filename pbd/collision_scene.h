@@ -50,8 +50,12 @@ struct SceneDistance {
 class CollisionScene {
  public:
   /// `scene`: the frame in the robot's base frame, T_cloud_sensor its sensor's pose (an organised
-  /// cloud, for the hidden space; an unorganised one only gives its points).
-  CollisionScene(const PointCloud& scene, const CollisionSceneSettings& settings = {});
+  /// cloud, for the hidden space; an unorganised one only gives its points). `robot` (optional,
+  /// base frame): where the robot's own body stands. Its points are the arms as the sensor saw
+  /// them, no obstacle to themselves, and its space is never hidden space: nothing else can be
+  /// there, whatever the sensor saw in front of it.
+  CollisionScene(const PointCloud& scene, const CollisionSceneSettings& settings = {},
+                 std::function<bool(const Eigen::Vector3d&)> robot = nullptr);
   ~CollisionScene();
   CollisionScene(CollisionScene&&) noexcept;
 
@@ -66,20 +70,12 @@ class CollisionScene {
   /// scene, from the distance grid alone: one lookup, for a whole link at once.
   double lower_bound(const Eigen::Vector3d& centre, double radius) const;
 
-  /// Leaves out the points `is_robot` says belong to the robot itself (base frame): the arms as
-  /// the sensor saw them are no obstacle to themselves.
-  void remove_points(const std::function<bool(const Eigen::Vector3d&)>& is_robot);
-  /// Space `known_free` says is free is never hidden space (base frame): where the robot's own body
-  /// stands at the start, nothing else can be, whatever the sensor saw in front of it.
-  void set_known_free(std::function<bool(const Eigen::Vector3d&)> known_free);
-
   std::size_t points() const;
-  const CollisionSceneSettings& settings() const { return settings_; }
+  const CollisionSceneSettings& settings() const;
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
-  CollisionSceneSettings settings_;
 };
 
 }  // namespace lmk

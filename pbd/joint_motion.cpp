@@ -5,14 +5,21 @@
 #include <cmath>
 
 namespace lmk {
-namespace {
 
-// The joint's travel from a to b: the shorter way round for continuous joints.
 double signed_travel(const JointInfo& j, double a, double b) {
   return j.continuous() ? std::remainder(b - a, 2.0 * M_PI) : b - a;
 }
 
-}  // namespace
+double random_joint(const JointInfo& j, SplitMix64& rng) {
+  const double lo = j.continuous() ? -M_PI : j.lower, hi = j.continuous() ? M_PI : j.upper;
+  return lo + (hi - lo) * rng.uniform01();
+}
+
+std::vector<double> random_joints(const GroupInfo& group, SplitMix64& rng) {
+  std::vector<double> q;
+  for (const JointInfo& j : group.joints) q.push_back(random_joint(j, rng));
+  return q;
+}
 
 double motion_duration(const GroupInfo& group, const std::vector<double>& from,
                        const std::vector<double>& to, double speed_fraction) {

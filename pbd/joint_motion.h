@@ -5,9 +5,18 @@
 
 #include <vector>
 
+#include "lmk/geometry/random.h"
 #include "lmk/pbd/robot_interface.h"
 
 namespace lmk {
+
+/// The joint's travel from a to b: the shorter way round for a continuous joint.
+double signed_travel(const JointInfo& joint, double a, double b);
+
+/// A value drawn uniformly within the joint's limits (within [-pi, pi] for a continuous joint).
+double random_joint(const JointInfo& joint, SplitMix64& rng);
+/// random_joint() of each of the group's joints, in its order.
+std::vector<double> random_joints(const GroupInfo& group, SplitMix64& rng);
 
 /// The seconds a straight joint-space move from `from` to `to` takes with every joint at most at
 /// `speed_fraction` of its limit (0 when nothing moves).

@@ -265,6 +265,11 @@ Arm arm_of(const std::string& link, Arm fallback) {
   return fallback;
 }
 
+// `q`, in the group's order, into `joints` by name.
+void set_joints(const GroupInfo& group, const std::vector<double>& q, JointValues& joints) {
+  for (std::size_t i = 0; i < group.joints.size(); ++i) joints[group.joints[i].name] = q[i];
+}
+
 // One arm's motion with every other joint held as in `from`: its straight line when free, else a
 // path around what the line would touch; the waypoints after the start, the goal last.
 struct ArmMotion {
@@ -278,7 +283,7 @@ struct ArmMotion {
 ArmMotion move_arm(const MotionChecker& checker, const GroupInfo& group, const JointValues& from,
                    const std::vector<double>& goal, const IntendedContact& intended) {
   JointValues to;
-  for (std::size_t i = 0; i < group.joints.size(); ++i) to[group.joints[i].name] = goal[i];
+  set_joints(group, goal, to);
   ArmMotion m;
   const MotionVerdict line = checker.check_line(from, to, intended);
   m.clearance = line.clearance;
@@ -329,8 +334,7 @@ std::optional<Refusal> move_in_turn(const MotionChecker& checker, const Arms& ar
     a.planned_around = m.around;
     spans.emplace_back(start, start + seconds);
     start += seconds;
-    for (std::size_t i = 0; i < group.joints.size(); ++i)
-      state[group.joints[i].name] = a.ik.joints[i];
+    set_joints(group, a.ik.joints, state);
   }
   planned.duration = std::max(planned.duration, start);
   for (std::size_t k = 0; k < planned.arms.size(); ++k) {
@@ -357,10 +361,8 @@ std::optional<Refusal> check_step(const MotionChecker& checker, const Arms& arms
   all.radius = settings.intended_contact_radius;
   for (PlannedArm& a : planned.arms) {
     const GroupInfo& group = arms.groups.at(a.arm);
-    for (std::size_t i = 0; i < group.joints.size(); ++i) {
-      from[group.joints[i].name] = current.at(a.arm)[i];
-      to[group.joints[i].name] = a.ik.joints[i];
-    }
+    set_joints(group, current.at(a.arm), from);
+    set_joints(group, a.ik.joints, to);
     Eigen::Isometry3d T_start = Eigen::Isometry3d::Identity();
     a.intended.radius = settings.intended_contact_radius;
     if (kinematics.forward(group.name, current.at(a.arm), T_start).ok())
@@ -380,16 +382,6 @@ std::optional<Refusal> check_step(const MotionChecker& checker, const Arms& arms
   return first;
 }
 
-// Joint values drawn within the group's limits (a half turn either way for a continuous joint).
-std::vector<double> random_joints(const GroupInfo& group, SplitMix64& rng) {
-  std::vector<double> q;
-  for (const JointInfo& j : group.joints) {
-    const double lo = j.continuous() ? -M_PI : j.lower, hi = j.continuous() ? M_PI : j.upper;
-    q.push_back(lo + (hi - lo) * rng.uniform01());
-  }
-  return q;
-}
-
 // Issue #60: an IK solution that puts the arm inside something is no target: other solutions of
 // the same pose are tried from random seeds (deterministic per step), the first that touches
 // nothing kept. Without one the solution stays, and the motion's check refuses it, saying so.
@@ -399,11 +391,8 @@ void avoid_touching_targets(const MotionChecker& checker, const GroupInfo& group
                             std::size_t step, PlannedArm& a, double intended_radius) {
   const auto pose_of = [&](const std::vector<double>& q) {
     JointValues joints;
-    for (const auto& [arm, values] : current) {
-      const GroupInfo& g = arms.groups.at(arm);
-      for (std::size_t i = 0; i < g.joints.size(); ++i) joints[g.joints[i].name] = values[i];
-    }
-    for (std::size_t i = 0; i < group.joints.size(); ++i) joints[group.joints[i].name] = q[i];
+    for (const auto& [arm, values] : current) set_joints(arms.groups.at(arm), values, joints);
+    set_joints(group, q, joints);
     return joints;
   };
   IntendedContact intended;

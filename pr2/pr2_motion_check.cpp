@@ -43,7 +43,6 @@ pr2_motion_checker(const Pr2Kinematics& kinematics, const Pr2MotionCheckSettings
     JointValues state = {{"torso_lift_joint", shared_kinematics->torso_height()}};
     for (std::size_t i = 0; i < start.names.size() && i < start.positions.size(); ++i)
       if (known.count(start.names[i])) state[start.names[i]] = start.positions[i];
-    auto collision_scene = std::make_shared<CollisionScene>(scene, settings.scene);
     const std::vector<Eigen::Isometry3d> placed = body->place(state);
     const std::map<std::string, Eigen::Isometry3d> links = body->model().link_poses(state);
     const auto base = links.find("base_link");
@@ -53,10 +52,9 @@ pr2_motion_checker(const Pr2Kinematics& kinematics, const Pr2MotionCheckSettings
                            margin = settings.self_filter_margin](const Eigen::Vector3d& p) {
       return on_body(*body, placed, T_root_base, p, margin);
     };
-    collision_scene->remove_points(is_robot);
-    collision_scene->set_known_free(is_robot);
-    return std::make_shared<const RobotMotionChecker>(body, collision_scene, *shared_kinematics,
-                                                      state, settings.motion);
+    return std::make_shared<const RobotMotionChecker>(
+        body, std::make_shared<CollisionScene>(scene, settings.scene, is_robot), *shared_kinematics,
+        state, settings.motion);
   };
 }
 

@@ -15,6 +15,7 @@
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/random.h"
 #include "lmk/geometry/stopwatch.h"
+#include "lmk/pbd/joint_motion.h"
 
 namespace lmk {
 
@@ -34,11 +35,6 @@ constexpr double kEndZone = 0.05;
 // floor: a path found fast is simplified fast.
 constexpr double kSmoothingShare = 0.5;
 constexpr double kSmoothingFloor = 0.05;  // s
-
-// A joint's travel from a to b: the shorter way round for a continuous joint, as joint_line moves.
-double travel(const JointInfo* j, double a, double b) {
-  return j && j->continuous() ? std::remainder(b - a, 2.0 * M_PI) : b - a;
-}
 
 // OMPL's random numbers are seeded once per process, before the first planner draws any.
 void seed_planner_once(std::uint64_t seed) {
@@ -125,10 +121,7 @@ RobotMotionChecker::RobotMotionChecker(std::shared_ptr<const RobotBody> body,
   SplitMix64 rng(settings.seed);
   for (int k = 0; k < kLeverSamples; ++k) {
     JointValues q = state_;
-    for (const auto& [name, j] : joint_info_) {
-      const double lo = j.continuous() ? -M_PI : j.lower, hi = j.continuous() ? M_PI : j.upper;
-      q[name] = lo + (hi - lo) * rng.uniform01();
-    }
+    for (const auto& [name, j] : joint_info_) q[name] = random_joint(j, rng);
     const std::map<std::string, Eigen::Isometry3d> poses = model.link_poses(q);
     const std::vector<Eigen::Isometry3d> placed = body_->place(q);
     for (const auto& [name, moved] : moved_by_) {
@@ -142,6 +135,11 @@ RobotMotionChecker::RobotMotionChecker(std::shared_ptr<const RobotBody> body,
       }
     }
   }
+}
+
+double RobotMotionChecker::travel(const std::string& joint, double a, double b) const {
+  const auto info = joint_info_.find(joint);
+  return info == joint_info_.end() ? b - a : signed_travel(info->second, a, b);
 }
 
 double RobotMotionChecker::lever(const std::string& joint) const {
@@ -230,10 +228,7 @@ double RobotMotionChecker::sweep(const JointValues& a, const JointValues& b) con
   for (const auto& [name, value] : b) {
     const auto from = a.find(name);
     if (from == a.end()) continue;
-    const auto info = joint_info_.find(name);
-    total +=
-        std::abs(travel(info == joint_info_.end() ? nullptr : &info->second, from->second, value)) *
-        lever(name);
+    total += std::abs(travel(name, from->second, value)) * lever(name);
   }
   return total;
 }
@@ -270,8 +265,7 @@ MotionVerdict RobotMotionChecker::check_line(const JointValues& from, const Join
   std::map<std::string, double> delta;
   double span = 0.0;  // how far any point can move along the line, m
   for (const auto& [name, value] : to) {
-    const auto info = joint_info_.find(name);
-    const double d = travel(info == joint_info_.end() ? nullptr : &info->second, a.at(name), value);
+    const double d = travel(name, a.at(name), value);
     if (d == 0.0) continue;
     delta[name] = d;
     span += std::abs(d) * lever(name);
@@ -319,8 +313,8 @@ MotionPlan RobotMotionChecker::plan_around(const std::string& group, const Joint
   for (std::size_t i = 0; i < n; ++i) {
     start[i] = start_state.at(joints[i].name);
     const auto target = to.find(joints[i].name);
-    goal[i] =
-        target == to.end() ? start[i] : start[i] + travel(&joints[i], start[i], target->second);
+    goal[i] = target == to.end() ? start[i]
+                                 : start[i] + signed_travel(joints[i], start[i], target->second);
     lever_norm += lever(joints[i].name) * lever(joints[i].name);
     names.push_back(joints[i].name);
   }

@@ -71,6 +71,9 @@ class RobotMotionChecker : public MotionChecker {
 
  private:
   JointValues merged(const JointValues& joints) const;
+  /// The joint's travel from a to b as joint_line moves it (signed_travel); a joint no group
+  /// names, straight.
+  double travel(const std::string& joint, double a, double b) const;
   /// Needs of nothing but not going inside: near a motion's ends (kEndZone of travel), where a
   /// link already within the padding must be free to leave or arrive.
   Needs touching_only() const;
