@@ -31,7 +31,8 @@ fs::path cache_file(const DemoTasksSettings& settings, int task) {
   const Pr2MotionCheckSettings& m = settings.motion_check;
   hash.add_value(m.motion.padding)
       .add_value(m.motion.self_padding)
-      .add_value(m.motion.planning_time);
+      .add_value(m.motion.planning_time)
+      .add_value(m.motion.planning_checks);
   hash.add_value(m.scene.unknown_is_occupied).add_value(m.self_filter_margin);
   hash.add(calibration.metric).add_value(calibration.bias);
   for (const auto& [name, weight] : calibration.weights) hash.add(name).add_value(weight);

@@ -1,10 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "lmk/geometry/stl_mesh.h"
 
-#include <pcl/PolygonMesh.h>
-#include <pcl/conversions.h>
-#include <pcl/io/vtk_lib_io.h>
-#include <pcl/point_types.h>
+#include <vtkCellArray.h>
+#include <vtkIdList.h>
+#include <vtkNew.h>
+#include <vtkPolyData.h>
+#include <vtkSTLReader.h>
 
 #include <algorithm>
 #include <cmath>
@@ -14,24 +15,34 @@
 
 namespace lmk {
 
+// VTK's own STL reader, not PCL's loadPolygonFileSTL: PCL 1.13's conversion from VTK frees an array
+// it took from malloc with operator delete, which AddressSanitizer rightly refuses.
 StlMesh read_stl_mesh(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
     throw Error("mesh '" + path + "': no such file (a <collision> mesh of the robot description)");
-  pcl::PolygonMesh polygons;
-  if (pcl::io::loadPolygonFileSTL(path, polygons) == 0 || polygons.polygons.empty())
+  vtkNew<vtkSTLReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  vtkPolyData* data = reader->GetOutput();
+  if (reader->GetErrorCode() != 0 || data == nullptr || data->GetNumberOfPolys() == 0)
     throw Error("mesh '" + path + "': not a readable STL file with triangles");
-  pcl::PointCloud<pcl::PointXYZ> cloud;
-  pcl::fromPCLPointCloud2(polygons.cloud, cloud);
   StlMesh mesh;
-  mesh.vertices.reserve(cloud.size());
-  for (const pcl::PointXYZ& p : cloud.points) mesh.vertices.emplace_back(p.x, p.y, p.z);
-  const int n = static_cast<int>(mesh.vertices.size());
-  for (const pcl::Vertices& v : polygons.polygons) {
+  const vtkIdType n = data->GetNumberOfPoints();
+  mesh.vertices.reserve(static_cast<std::size_t>(n));
+  for (vtkIdType i = 0; i < n; ++i) {
+    double p[3];
+    data->GetPoint(i, p);
+    mesh.vertices.emplace_back(p[0], p[1], p[2]);
+  }
+  vtkCellArray* polys = data->GetPolys();
+  vtkNew<vtkIdList> corners;
+  for (polys->InitTraversal(); polys->GetNextCell(corners);) {
     // A polygon of more than three corners is fanned into triangles from its first.
-    for (std::size_t k = 2; k < v.vertices.size(); ++k) {
-      const Eigen::Vector3i t(static_cast<int>(v.vertices[0]), static_cast<int>(v.vertices[k - 1]),
-                              static_cast<int>(v.vertices[k]));
+    for (vtkIdType k = 2; k < corners->GetNumberOfIds(); ++k) {
+      const Eigen::Vector3i t(static_cast<int>(corners->GetId(0)),
+                              static_cast<int>(corners->GetId(k - 1)),
+                              static_cast<int>(corners->GetId(k)));
       if ((t.array() >= 0).all() && (t.array() < n).all()) mesh.triangles.push_back(t);
     }
   }

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
-// Reading a triangle mesh from an STL file (binary or ASCII, with PCL's VTK-based reader), as a
+// Reading a triangle mesh from an STL file (binary or ASCII, with VTK's reader), as a
 // robot description's collision meshes come (issue #60), and spreading points over its surface.
 
 #include <Eigen/Core>

@@ -39,6 +39,7 @@ struct MotionPlan {
   bool found = false;
   std::vector<std::vector<double>> waypoints;  ///< joint vectors after the start, the goal last
   double seconds = 0.0;                        ///< planning time
+  std::size_t checks = 0;                      ///< configurations the planner checked
   std::string message;  ///< why none was found ("no collision-free path within 2 s")
 };
 

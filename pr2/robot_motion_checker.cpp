@@ -1,26 +1,17 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "lmk/pr2/robot_motion_checker.h"
 
-#include <ompl/base/spaces/RealVectorStateSpace.h>
-#include <ompl/geometric/SimpleSetup.h>
-#include <ompl/geometric/planners/rrt/RRTConnect.h>
-#include <ompl/util/Console.h>
-#include <ompl/util/RandomNumbers.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <mutex>
 
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/random.h"
 #include "lmk/geometry/stopwatch.h"
 #include "lmk/pbd/joint_motion.h"
+#include "lmk/pr2/joint_space_planner.h"
 
 namespace lmk {
-
-namespace ob = ompl::base;
-namespace og = ompl::geometric;
 
 namespace {
 
@@ -31,53 +22,6 @@ constexpr double kEndClearanceShare = 0.5;
 // Within this much travel of either end (m, the farthest any point moved), a link need only stay
 // out of things: it leaves a grasp, or arrives at one, within the padding by design.
 constexpr double kEndZone = 0.05;
-// The path is shortened and smoothed for at most this share of the time its search took, plus a
-// floor: a path found fast is simplified fast.
-constexpr double kSmoothingShare = 0.5;
-constexpr double kSmoothingFloor = 0.05;  // s
-
-// OMPL's random numbers are seeded once per process, before the first planner draws any.
-void seed_planner_once(std::uint64_t seed) {
-  static std::once_flag once;
-  std::call_once(once, [seed] {
-    ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
-    ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(seed));
-  });
-}
-
-// The group's joint space for the planner: each joint within its limits, a continuous one a half
-// turn beyond either end of the motion.
-std::shared_ptr<ob::RealVectorStateSpace> joint_space(const std::vector<JointInfo>& joints,
-                                                      const std::vector<double>& start,
-                                                      const std::vector<double>& goal) {
-  const unsigned n = static_cast<unsigned>(joints.size());
-  auto space = std::make_shared<ob::RealVectorStateSpace>(n);
-  ob::RealVectorBounds bounds(n);
-  for (unsigned i = 0; i < n; ++i) {
-    const JointInfo& j = joints[i];
-    bounds.setLow(i, j.continuous() ? std::min(start[i], goal[i]) - M_PI : j.lower);
-    bounds.setHigh(i, j.continuous() ? std::max(start[i], goal[i]) + M_PI : j.upper);
-  }
-  space->setBounds(bounds);
-  return space;
-}
-
-// The path's states after its start, as joint vectors within the joints' limits: the smoothing's
-// interpolated states may round a hair past a limit the path runs along.
-std::vector<std::vector<double>> waypoints_of(const og::PathGeometric& path,
-                                              const std::vector<JointInfo>& joints) {
-  std::vector<std::vector<double>> out;
-  for (std::size_t k = 1; k < path.getStateCount(); ++k) {
-    const auto* v = path.getState(k)->as<ob::RealVectorStateSpace::StateType>();
-    std::vector<double> q(joints.size());
-    for (std::size_t i = 0; i < joints.size(); ++i) {
-      q[i] = (*v)[i];
-      if (!joints[i].continuous()) q[i] = std::clamp(q[i], joints[i].lower, joints[i].upper);
-    }
-    out.push_back(std::move(q));
-  }
-  return out;
-}
 
 }  // namespace
 
@@ -93,8 +37,8 @@ RobotMotionChecker::RobotMotionChecker(std::shared_ptr<const RobotBody> body,
   if (!(settings.padding > 0.0)) throw Error("motion check: the padding must be positive");
   if (!(settings.self_padding >= 0.0))
     throw Error("motion check: the padding between links must not be negative");
-  if (!(settings.planning_time > 0.0))
-    throw Error("motion check: the planning time must be positive");
+  if (!(settings.planning_time > 0.0) || settings.planning_checks == 0)
+    throw Error("motion check: the planning budget (time and configurations) must be positive");
   const RobotModel& model = body_->model();
   const std::map<std::string, Eigen::Isometry3d> zero = model.link_poses({});
   if (const auto base = zero.find("base_link"); base != zero.end())
@@ -319,18 +263,9 @@ MotionPlan RobotMotionChecker::plan_around(const std::string& group, const Joint
     names.push_back(joints[i].name);
   }
   lever_norm = std::sqrt(lever_norm);
-  seed_planner_once(settings_.seed);
-  const auto space = joint_space(joints, start, goal);
-  og::SimpleSetup setup(space);
-  const std::vector<char> moving = links_moved_by(names);
-  const auto values_of = [&](const ob::State* s) {
-    JointValues q = start_state;
-    const auto* v = s->as<ob::RealVectorStateSpace::StateType>();
-    for (std::size_t i = 0; i < n; ++i) q[names[i]] = (*v)[i];
-    return q;
-  };
   JointValues goal_state = start_state;
   for (std::size_t i = 0; i < n; ++i) goal_state[names[i]] = goal[i];
+  const std::vector<char> moving = links_moved_by(names);
   const Needs needs = needs_between(start_state, goal_state, moving, &intended),
               ends = touching_only();
   MotionPlan plan;
@@ -345,34 +280,28 @@ MotionPlan RobotMotionChecker::plan_around(const std::string& group, const Joint
       return plan;
     }
   }
-  setup.setStateValidityChecker([&](const ob::State* s) {
-    if (!space->satisfiesBounds(s)) return false;
-    const JointValues q = values_of(s);
+  JointValues q = start_state;
+  const auto free = [&](const std::vector<double>& v) {
+    for (std::size_t i = 0; i < n; ++i) q[names[i]] = v[i];
     const bool near_end = std::min(sweep(start_state, q), sweep(goal_state, q)) < kEndZone;
     return !check_state(q, moving, &intended, nullptr, near_end ? &ends : &needs);
-  });
+  };
   // Motions are checked at states no farther apart than the padding moves any point
   // (sum |dq_i| lever_i <= |dq| |lever|).
-  setup.getSpaceInformation()->setStateValidityCheckingResolution(
-      std::min(0.05, settings_.padding / std::max(lever_norm, 1e-9) / space->getMaximumExtent()));
-  ob::ScopedState<> s0(space), s1(space);
-  for (std::size_t i = 0; i < n; ++i) s0[i] = start[i], s1[i] = goal[i];
-  setup.setStartAndGoalStates(s0, s1);
-  setup.setPlanner(std::make_shared<og::RRTConnect>(setup.getSpaceInformation()));
-  char budget[64];
-  std::snprintf(budget, sizeof(budget), "%.3g s", settings_.planning_time);
-  const ob::PlannerStatus status = setup.solve(settings_.planning_time);
-  if (status != ob::PlannerStatus::EXACT_SOLUTION) {
-    plan.seconds = clock.seconds();
-    plan.message = std::string("no collision-free path within ") + budget;
+  JointSpacePlannerSettings budget;
+  budget.seconds = settings_.planning_time;
+  budget.checks = settings_.planning_checks;
+  budget.seed = settings_.seed;
+  const JointSpacePath path = plan_joint_path(
+      joints, start, goal, free, settings_.padding / std::max(lever_norm, 1e-9), budget);
+  plan.checks = path.checks;
+  plan.seconds = clock.seconds();
+  if (!path.found) {
+    plan.message = path.why;
     return plan;
   }
-  const double solved = clock.seconds();
-  setup.simplifySolution(std::min(kSmoothingShare * solved + kSmoothingFloor,
-                                  std::max(0.0, settings_.planning_time - solved)));
-  plan.waypoints = waypoints_of(setup.getSolutionPath(), joints);
+  plan.waypoints = path.waypoints;
   plan.found = true;
-  plan.seconds = clock.seconds();
   return plan;
 }
 

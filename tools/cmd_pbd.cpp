@@ -98,6 +98,7 @@ Pr2MotionCheckSettings motion_check_settings(const PbdOptions& o) {
   Pr2MotionCheckSettings check;
   check.motion.padding = o.padding;
   check.motion.planning_time = o.planning_time;
+  check.motion.planning_checks = o.planning_checks;
   check.scene.unknown_is_occupied = o.unknown == "occupied";
   return check;
 }
@@ -229,6 +230,11 @@ void add_collision_options(CLI::App* sub, PbdOptions& o) {
   sub->add_option("--planning-time", o.planning_time,
                   "Seconds to find a path around an obstacle before refusing")
       ->check(CLI::Range(0.01, 60.0))
+      ->capture_default_str();
+  sub->add_option("--planning-checks", o.planning_checks,
+                  "Configurations a path around an obstacle may check before refusing: the "
+                  "budget that does not depend on the machine (the same inputs, the same path)")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{100000000}))
       ->capture_default_str();
   sub->add_option("--unknown", o.unknown,
                   "The space the sensor could not see: 'occupied' (the arm never sweeps through "

@@ -31,8 +31,9 @@ struct PbdOptions {
   double frame_timeout = 10.0;  ///< s
   /// Issue #60: every motion checked against the scene and the robot (--check-collisions)
   bool check_collisions = false;
-  double padding = 0.02;             ///< --padding, m
-  double planning_time = 2.0;        ///< --planning-time, s
+  double padding = 0.02;                                                ///< --padding, m
+  double planning_time = 2.0;                                           ///< --planning-time, s
+  std::size_t planning_checks = MotionCheckSettings{}.planning_checks;  ///< --planning-checks
   std::string unknown = "occupied";  ///< --unknown: the space the sensor could not see
 };
 

@@ -50,9 +50,13 @@ class MotionCheck : public ::testing::Test {
     delete body_;
     body_ = nullptr;
   }
+  // The planner's budget is its configurations checked, not the clock: a slow machine or a
+  // sanitizer build plans the same path.
   static RobotMotionChecker checker(const PointCloud& scene, const CollisionSceneSettings& s = {}) {
+    MotionCheckSettings settings;
+    settings.planning_time = 1e6;
     return RobotMotionChecker(*body_, std::make_shared<CollisionScene>(scene, s), kinematics_,
-                              rest_of_robot());
+                              rest_of_robot(), settings);
   }
   static inline std::shared_ptr<const RobotBody>* body_ = nullptr;
   static inline const Pr2Kinematics kinematics_{};
