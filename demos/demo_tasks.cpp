@@ -45,6 +45,12 @@ std::size_t DemoTasksReport::refusals() const {
       scenarios.begin(), scenarios.end(), [](const DemoScenarioResult& r) { return r.refused; }));
 }
 
+std::size_t DemoTasksReport::contacts() const {
+  std::size_t n = 0;
+  for (const DemoScenarioResult& r : scenarios) n += r.contacts;
+  return n;
+}
+
 namespace {
 
 using detail::DemoArmPose;
@@ -271,6 +277,25 @@ std::string what_the_sensor_saw(const DemoLandmark& l, const DemoWorld& world,
   return out + " (the capture had " + std::to_string(captured.points.size()) + ")";
 }
 
+// The ground truth the simulated PR2 checks its motions against (issue #60): every object's mesh
+// (the floor lies below the arms' reach), built again only when the world has changed.
+std::function<std::shared_ptr<const CollisionScene>()> world_truth(const DemoWorld& world) {
+  struct Built {
+    std::uint64_t revision = 0;
+    std::shared_ptr<const CollisionScene> scene;
+  };
+  auto built = std::make_shared<Built>();
+  return [&world, built] {
+    if (!built->scene || built->revision != world.revision()) {
+      TriangleMesh mesh;
+      for (const PlacedObject& o : world.objects()) mesh.append(o.model.mesh, o.T_base_object);
+      built->scene = ground_truth_scene(mesh.vertices, mesh.triangles);
+      built->revision = world.revision();
+    }
+    return built->scene;
+  };
+}
+
 struct ScenarioState {
   DemoWorld world;
   std::optional<SimulatedPr2> robot;
@@ -340,6 +365,7 @@ PointCloud set_up_scenario(const DemoTask& task, std::size_t index, ScenarioStat
   }
   state.picked.clear();
   SimulatedPr2& robot = *state.robot;
+  robot.contact_world = world_truth(state.world);
   // A scenario that continues the previous one starts from the task's view, wherever the head
   // looked last.
   if (scenario.continues_previous) {
@@ -470,6 +496,17 @@ void judge_action(const DemoTask& task, const RecordedTask& recorded, const Prog
   }
 }
 
+// What a scenario's motions touched, counted apart from its success (the paper's criterion, on
+// the targets): the first contact leads its reason.
+void judge_contacts(const std::vector<ExecutedContact>& contacts, std::size_t before,
+                    DemoScenarioResult& result) {
+  if (contacts.size() <= before) return;
+  result.contacts = contacts.size() - before;
+  const ExecutedContact& first = contacts[before];
+  result.first_contact = first.group + ": " + describe_touch(first.contact);
+  result.reason = "touched (" + result.first_contact + "); " + result.reason;
+}
+
 DemoScenarioResult run_scenario(const DemoTask& task, std::size_t index,
                                 const RecordedTask& recorded, ScenarioState& state,
                                 const DemoTasksSettings& settings) {
@@ -481,6 +518,7 @@ DemoScenarioResult run_scenario(const DemoTask& task, std::size_t index,
   result.name = scenario.name;
   result.should_act = scenario.should_act;
   const PointCloud scene = set_up_scenario(task, index, state, settings);
+  const std::size_t contacts_before = state.robot->contacts().size();
   const ScenarioRun run = plan_and_execute(task, index, recorded, scene, state, settings);
   result.looks = run.looked.looks.size();
   if (run.moved_run) result.replans = run.moved_run->replans;
@@ -493,6 +531,7 @@ DemoScenarioResult run_scenario(const DemoTask& task, std::size_t index,
     judge_action(task, recorded, recorded.programs.at(scenario.program), scene, run, state,
                  settings, result);
   }
+  judge_contacts(state.robot->contacts(), contacts_before, result);
   result.seconds = stopwatch.seconds();
   return result;
 }

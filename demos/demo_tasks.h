@@ -8,7 +8,9 @@
 // Success: when a scenario should act, every landmark-relative target is within 2 cm and 10
 // degrees of the true target (the true landmark pose, modulo its symmetry, composed with
 // T_landmark_ee) and the whole plan executed; when it should not act, the refusal names the
-// missing landmark and the robot made no motion.
+// missing landmark and the robot made no motion. Apart from success, every executed motion is
+// checked against the world's ground truth (its objects' meshes) and the robot's own body, and
+// what touched is counted (DemoScenarioResult::contacts).
 
 #include <functional>
 #include <string>
@@ -37,6 +39,11 @@ struct DemoScenarioResult {
   double seconds = 0.0;             ///< perception, planning and execution
   std::size_t looks = 0;            ///< further frames the head took (look_again)
   std::size_t replans = 0;          ///< the program planned again as its landmark moved (watch)
+  /// Executed motions that touched the world's ground truth or the robot's own body (issue #60:
+  /// SimulatedPr2::contacts), and what the first touched. Counted apart from `success`, which is
+  /// the paper's criterion on the targets.
+  std::size_t contacts = 0;
+  std::string first_contact;
 };
 
 struct DemoTasksReport {
@@ -45,6 +52,7 @@ struct DemoTasksReport {
   std::size_t succeeded() const;
   std::size_t wrong_motions() const;
   std::size_t refusals() const;
+  std::size_t contacts() const;  ///< over every scenario
   std::size_t total() const { return scenarios.size(); }
 };
 
@@ -60,8 +68,8 @@ struct DemoTasksSettings {
   bool watch = true;
   /// Every arm motion checked against the scene the robot planned on and its own body, and planned
   /// around what it would touch, before anything moves (issue #60; PlanSettings::motion_checker).
-  /// Off by default for now: the simulated PR2 starts with its arms stretched out into the tasks'
-  /// worlds, and the demonstrated drop into the trash meets the left elbow there (docs/pbd.md).
+  /// Off by default for now (docs/pbd.md). Whether on or off, the simulated PR2 checks what its
+  /// motions touched against each world's ground truth (DemoScenarioResult::contacts).
   bool check_collisions = false;
   Pr2MotionCheckSettings motion_check;  ///< the check's padding, planning time, unknown space
   double max_position_error = 0.02;     ///< m

@@ -12,8 +12,8 @@ namespace lmk {
 
 std::string demo_tasks_table(const DemoTasksReport& report) {
   TextTable table;
-  table.header = {"task",    "scenario", "should act", "success",
-                  "outcome", "looks",    "re-plans",   "reason"};
+  table.header = {"task",  "scenario", "should act", "success", "outcome",
+                  "looks", "re-plans", "contacts",   "reason"};
   for (const DemoScenarioResult& r : report.scenarios) {
     const char* outcome = r.wrong_motion ? "WRONG MOTION"
                           : r.refused    ? "refused"
@@ -21,14 +21,15 @@ std::string demo_tasks_table(const DemoTasksReport& report) {
                                          : "acted";
     table.rows.push_back({std::to_string(r.task) + " " + r.task_title, r.name,
                           r.should_act ? "yes" : "no", r.success ? "yes" : "NO", outcome,
-                          std::to_string(r.looks), std::to_string(r.replans), r.reason});
+                          std::to_string(r.looks), std::to_string(r.replans),
+                          std::to_string(r.contacts), r.reason});
   }
   char total[200];
   std::snprintf(total, sizeof(total),
                 "succeeded %zu of %zu scenarios (the paper: 26 of 30), %zu wrong motion(s), %zu "
-                "refusal(s), in %.1f s\n",
+                "refusal(s), %zu contact(s), in %.1f s\n",
                 report.succeeded(), report.total(), report.wrong_motions(), report.refusals(),
-                report.seconds);
+                report.contacts(), report.seconds);
   return table.plain() + total;
 }
 
@@ -49,7 +50,9 @@ nlohmann::json scenario_to_json(const DemoScenarioResult& r) {
           {"max_rotation_error_rad", r.max_rotation_error},
           {"seconds", r.seconds},
           {"looks", r.looks},
-          {"replans", r.replans}};
+          {"replans", r.replans},
+          {"contacts", r.contacts},
+          {"first_contact", r.first_contact}};
 }
 
 DemoScenarioResult scenario_from_json(const nlohmann::json& j) {
@@ -69,6 +72,8 @@ DemoScenarioResult scenario_from_json(const nlohmann::json& j) {
   r.seconds = j.at("seconds").get<double>();
   r.looks = j.value("looks", std::size_t{0});
   r.replans = j.value("replans", std::size_t{0});
+  r.contacts = j.value("contacts", std::size_t{0});
+  r.first_contact = j.value("first_contact", std::string());
   return r;
 }
 
@@ -82,6 +87,7 @@ std::string demo_tasks_json(const DemoTasksReport& report) {
                         {"succeeded", report.succeeded()},
                         {"wrong_motions", report.wrong_motions()},
                         {"refusals", report.refusals()},
+                        {"contacts", report.contacts()},
                         {"total", report.total()},
                         {"seconds", report.seconds}}
              .dump(2) +

@@ -2,6 +2,7 @@
 #include "lmk/demos/demo_world.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 
@@ -9,6 +10,17 @@
 #include "lmk/geometry/error.h"
 
 namespace lmk {
+
+namespace {
+
+// Revisions are drawn from one sequence for the whole process, so that two worlds built apart
+// never share one.
+std::uint64_t next_revision() {
+  static std::atomic<std::uint64_t> counter{0};
+  return ++counter;
+}
+
+}  // namespace
 
 void DemoWorld::add(std::string id, ObjectModel model, const Eigen::Isometry3d& T_base_object,
                     std::vector<std::pair<std::string, std::string>> landmarks) {
@@ -20,6 +32,7 @@ void DemoWorld::add(std::string id, ObjectModel model, const Eigen::Isometry3d& 
   o.T_base_object = T_base_object;
   o.landmarks = std::move(landmarks);
   objects_.push_back(std::move(o));
+  revision_ = next_revision();
 }
 
 void DemoWorld::remove(const std::string& id) {
@@ -27,6 +40,7 @@ void DemoWorld::remove(const std::string& id) {
                                [&](const PlacedObject& o) { return o.id == id; });
   if (it == objects_.end()) throw Error("demo world: no object '" + id + "'");
   objects_.erase(it);
+  revision_ = next_revision();
 }
 
 void DemoWorld::hide_under(const std::string& id, const std::string& by) {

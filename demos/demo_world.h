@@ -47,6 +47,9 @@ class DemoWorld {
   void add_free_surface(FreeSurface surface) { surfaces_.push_back(std::move(surface)); }
 
   const std::vector<PlacedObject>& objects() const { return objects_; }
+  /// Changes with every object added or removed: two worlds of the same revision hold the same
+  /// objects (one is a copy of the other). For caches of what is built from the objects.
+  std::uint64_t revision() const { return revision_; }
   const PlacedObject* object(const std::string& id) const;
 
   /// Ground-truth boxes of `landmark`, base frame, with the object each belongs to (hidden ones
@@ -70,6 +73,7 @@ class DemoWorld {
  private:
   std::vector<PlacedObject> objects_;
   std::vector<FreeSurface> surfaces_;
+  std::uint64_t revision_ = 0;
 };
 
 }  // namespace lmk

@@ -23,6 +23,8 @@ namespace og = ompl::geometric;
 
 namespace {
 
+constexpr double kLimitRounding = 1e-9;  // rad or m
+
 // OMPL draws each generator's seed from one process-wide sequence, so a plan would depend on every
 // plan made before it (and on threads' order). Each piece below reseeds its own generator from
 // the plan's seed instead.
@@ -109,6 +111,24 @@ void check_inputs(const std::vector<JointInfo>& joints, const std::vector<double
     throw Error("joint-space planner: the budget (seconds and configurations) must be positive");
 }
 
+// Either end outside the limits: the search would wait for it until the clock ran out, whatever
+// its budget of configurations. An end a rounding past a limit (a + (b - a) != b) is put on it.
+// Returns why not, or "".
+std::string clamp_ends(const std::vector<JointInfo>& joints, std::vector<double>& start,
+                       std::vector<double>& goal) {
+  for (const auto& [end, q] :
+       {std::pair<const char*, std::vector<double>*>{"start", &start}, {"goal", &goal}}) {
+    for (std::size_t i = 0; i < joints.size(); ++i) {
+      if (joints[i].continuous()) continue;
+      double& v = (*q)[i];
+      if (v < joints[i].lower - kLimitRounding || v > joints[i].upper + kLimitRounding)
+        return std::string("no path: the ") + end + " is outside " + joints[i].name + "'s limits";
+      v = std::clamp(v, joints[i].lower, joints[i].upper);
+    }
+  }
+  return "";
+}
+
 }  // namespace
 
 JointSpacePath plan_joint_path(const std::vector<JointInfo>& joints,
@@ -116,11 +136,25 @@ JointSpacePath plan_joint_path(const std::vector<JointInfo>& joints,
                                const std::function<bool(const std::vector<double>&)>& free,
                                double max_step, const JointSpacePlannerSettings& settings) {
   check_inputs(joints, start, goal, max_step, settings);
+  JointSpacePath path;
+  std::vector<double> start_in(start), goal_in(goal);
+  path.why = clamp_ends(joints, start_in, goal_in);
+  if (!path.why.empty()) return path;
+  std::size_t checks = 0;
+  for (const auto& [end, q_end] :
+       {std::pair<const char*, const std::vector<double>*>{"start", &start_in},
+        {"goal", &goal_in}}) {
+    ++checks;
+    if (!free(*q_end)) {
+      path.checks = checks;
+      path.why = std::string("no path: the ") + end + " is not free";
+      return path;
+    }
+  }
   quiet_ompl_once();
-  const auto space = joint_space(joints, start, goal, settings.seed);
+  const auto space = joint_space(joints, start_in, goal_in, settings.seed);
   og::SimpleSetup setup(space);
   const std::size_t n = joints.size();
-  std::size_t checks = 0;
   std::vector<double> q(n);
   setup.setStateValidityChecker([&](const ob::State* s) {
     ++checks;
@@ -132,7 +166,7 @@ JointSpacePath plan_joint_path(const std::vector<JointInfo>& joints,
   const ob::SpaceInformationPtr si = setup.getSpaceInformation();
   si->setStateValidityCheckingResolution(std::min(0.05, max_step / space->getMaximumExtent()));
   ob::ScopedState<> s0(space), s1(space);
-  for (std::size_t i = 0; i < n; ++i) s0[i] = start[i], s1[i] = goal[i];
+  for (std::size_t i = 0; i < n; ++i) s0[i] = start_in[i], s1[i] = goal_in[i];
   setup.setStartAndGoalStates(s0, s1);
   setup.setPlanner(std::make_shared<SeededRRTConnect>(si, local_seed(settings.seed, 1)));
   setup.setup();
@@ -141,24 +175,6 @@ JointSpacePath plan_joint_path(const std::vector<JointInfo>& joints,
     return ob::plannerOrTerminationCondition(
         deadline, ob::PlannerTerminationCondition([&checks, limit] { return checks >= limit; }));
   };
-  JointSpacePath path;
-  // Either end outside the limits or not free: the search would wait for it until the clock ran
-  // out, whatever its budget of configurations.
-  for (const auto& [end, q_end] : {std::pair<const char*, const std::vector<double>*>{"start", &start},
-                                   {"goal", &goal}}) {
-    for (std::size_t i = 0; i < n; ++i) {
-      if (joints[i].continuous() || ((*q_end)[i] >= joints[i].lower && (*q_end)[i] <= joints[i].upper))
-        continue;
-      path.why = std::string("no path: the ") + end + " is outside " + joints[i].name + "'s limits";
-      return path;
-    }
-    ++checks;
-    if (!free(*q_end)) {
-      path.checks = checks;
-      path.why = std::string("no path: the ") + end + " is not free";
-      return path;
-    }
-  }
   const ob::PlannerStatus status = setup.getPlanner()->solve(spent(settings.checks));
   if (status != ob::PlannerStatus::EXACT_SOLUTION) {
     path.checks = checks;

@@ -17,10 +17,10 @@
 namespace lmk {
 
 struct JointSpacePlannerSettings {
-  double seconds = 2.0;            ///< wall-clock budget, s (> 0)
-  std::size_t checks = 20000;      ///< configurations the search and smoothing may check (> 0)
-  std::uint64_t seed = 1;          ///< the search's and the smoothing's random draws
-  double smoothing_share = 0.5;    ///< of what the search spent, also given to the smoothing
+  double seconds = 2.0;               ///< wall-clock budget, s (> 0)
+  std::size_t checks = 20000;         ///< configurations the search and smoothing may check (> 0)
+  std::uint64_t seed = 1;             ///< the search's and the smoothing's random draws
+  double smoothing_share = 0.5;       ///< of what the search spent, also given to the smoothing
   std::size_t smoothing_floor = 500;  ///< configurations the smoothing gets however fast the search
 };
 
@@ -30,8 +30,8 @@ struct JointSpacePath {
   std::vector<std::vector<double>> waypoints;
   std::size_t checks = 0;  ///< configurations checked, the search and the smoothing together
   /// When none was found, why: "no collision-free path within 2 s" (or "within 20000
-  /// configurations checked"), or an end that cannot be passed through ("no path: the goal is outside
-  /// r_upper_arm_roll_joint's limits", "no path: the start is not free").
+  /// configurations checked"), or an end that cannot be passed through ("no path: the goal is
+  /// outside r_upper_arm_roll_joint's limits", "no path: the start is not free").
   std::string why;
 };
 

@@ -81,6 +81,12 @@ RobotMotionChecker::RobotMotionChecker(std::shared_ptr<const RobotBody> body,
   }
 }
 
+RobotMotionChecker RobotMotionChecker::with_state(const JointValues& state) const {
+  RobotMotionChecker copy(*this);
+  for (const auto& [name, value] : state) copy.state_[name] = value;
+  return copy;
+}
+
 double RobotMotionChecker::travel(const std::string& joint, double a, double b) const {
   const auto info = joint_info_.find(joint);
   return info == joint_info_.end() ? b - a : signed_travel(info->second, a, b);

@@ -43,6 +43,10 @@ class RobotMotionChecker : public MotionChecker {
                      const KinematicsInterface& kinematics, JointValues state,
                      const MotionCheckSettings& settings = {});
 
+  /// The same checker with the robot standing at `state` instead (by name; joints it does not name
+  /// as before): no lever is measured again.
+  RobotMotionChecker with_state(const JointValues& state) const;
+
   double padding() const override { return settings_.padding; }
   MotionVerdict check_line(const JointValues& from, const JointValues& to,
                            const IntendedContact& intended = {}) const override;

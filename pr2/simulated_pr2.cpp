@@ -5,6 +5,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "lmk/pr2/pr2_motion_check.h"
+
 namespace lmk {
 namespace {
 
@@ -139,6 +141,21 @@ CallResult SimulatedPr2::check_trajectory(const GroupInfo& group, const JointTra
   return CallResult::success();
 }
 
+void SimulatedPr2::record_contact(const std::string& group, const JointTrajectory& trajectory) {
+  const std::shared_ptr<const CollisionScene> world = contact_world ? contact_world() : nullptr;
+  if (!world) return;
+  JointValues state = positions_;
+  state["torso_lift_joint"] = kinematics_.torso_height();
+  if (world != checked_world_) {  // the levers are measured once per world
+    contact_checker_ = std::make_shared<const RobotMotionChecker>(
+        contact_checker(pr2_body(), world, kinematics_, state));
+    checked_world_ = world;
+  }
+  if (std::optional<MotionContact> c = trajectory_contact(contact_checker_->with_state(state),
+                                                          kinematics_, group, state, trajectory))
+    contacts_.push_back({history_.size(), group, *c});
+}
+
 CallResult SimulatedPr2::send_trajectory(const std::string& group,
                                          const JointTrajectory& trajectory) {
   if (lifecycle_ != LifecycleState::kActive) return lifecycle_error("send_trajectory", lifecycle_);
@@ -146,6 +163,7 @@ CallResult SimulatedPr2::send_trajectory(const std::string& group,
   if (!info) return CallResult::error("unknown group '" + group + "'");
   const CallResult check = check_trajectory(*info, trajectory);
   if (!check.ok()) return check;  // refused whole: nothing moved
+  record_contact(group, trajectory);
   const std::vector<double>& final_q = trajectory.points.back().positions;
   for (std::size_t i = 0; i < info->joints.size(); ++i) {
     const JointInfo& j = info->joints[i];

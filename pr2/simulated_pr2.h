@@ -11,12 +11,15 @@
 // - Grippers open between 0 and 0.09 m. Closing stops at an object's width when the test hook says
 //   an object lies between the fingers; the gripper then reports holding it.
 // - Every executed motion is recorded for inspection.
+// - With a contact world set (issue #60), every executed trajectory is checked against that world's
+//   ground truth and the robot's own body; what touched is kept in contacts(), and nothing stops.
 
 #include <functional>
 #include <map>
 #include <optional>
 
 #include "lmk/pr2/pr2_kinematics.h"
+#include "lmk/pr2/trajectory_contacts.h"
 
 namespace lmk {
 
@@ -24,6 +27,13 @@ struct ExecutedMotion {
   std::string group;
   JointTrajectory trajectory;
   double start_time = 0.0, end_time = 0.0;  ///< simulated seconds
+};
+
+/// What an executed motion touched.
+struct ExecutedContact {
+  std::size_t motion = 0;  ///< its index in SimulatedPr2::history()
+  std::string group;
+  MotionContact contact;  ///< the first contact along it (at: the share of its time)
 };
 
 /// The arms' joints where the simulated PR2 starts: at its sides, elbows bent, hands out of the
@@ -49,6 +59,13 @@ class SimulatedPr2 : public RobotInterface {
   /// Test hook: the width of the object between the named gripper's fingers, if any.
   std::function<std::optional<double>(const std::string& gripper)> object_between_fingers;
 
+  /// The world the robot's motions are checked against (trajectory_contact; lmk's PR2 body): its
+  /// ground truth, asked for at every trajectory, so that a world that changes (an object picked
+  /// up or moved) is seen as it is. Unset or returning null: nothing is checked.
+  std::function<std::shared_ptr<const CollisionScene>()> contact_world;
+  /// The first contact of every executed motion that touched the contact world or the robot.
+  const std::vector<ExecutedContact>& contacts() const { return contacts_; }
+
   const Pr2Kinematics& kinematics() const { return kinematics_; }
   const std::vector<ExecutedMotion>& history() const { return history_; }
   /// The current joint values of a group, in its order.
@@ -59,12 +76,18 @@ class SimulatedPr2 : public RobotInterface {
 
  private:
   CallResult check_trajectory(const GroupInfo& group, const JointTrajectory& t) const;
+  /// The contact check of a trajectory about to run (contact_world).
+  void record_contact(const std::string& group, const JointTrajectory& trajectory);
 
   Pr2Kinematics kinematics_;
   LifecycleState lifecycle_ = LifecycleState::kUnconfigured;
   std::map<std::string, double> positions_;  // every group joint, by name
   std::map<std::string, GripperState> grippers_;
   std::vector<ExecutedMotion> history_;
+  std::vector<ExecutedContact> contacts_;
+  // The contact check's checker, for the world it was built on (its levers measured once).
+  std::shared_ptr<const CollisionScene> checked_world_;
+  std::shared_ptr<const RobotMotionChecker> contact_checker_;
   double time_ = 0.0;
 };
 

@@ -5,13 +5,12 @@
 #include "lmk/geometry/stl_mesh.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-
-#include <unistd.h>
 
 #include "lmk/geometry/error.h"
 

@@ -10,6 +10,7 @@
 #include "lmk/pbd/plan.h"
 #include "lmk/pr2/pr2_motion_check.h"
 #include "lmk/pr2/pr2_robots.h"
+#include "tests/support/robot_scenes.h"
 
 namespace lmk {
 namespace {
@@ -45,14 +46,7 @@ Program sweep_to_straight_ahead(const Pr2Kinematics& kinematics) {
 }
 
 // A tall box in the sweep from the right (pan -1.2) to straight ahead, base frame.
-PointCloud box_in_the_way() {
-  PointCloud cloud;
-  for (const Eigen::Vector3d& p : Solid::box({0.1, 0.1, 0.4}).surface_points(0.01))
-    cloud.points.push_back((p + Eigen::Vector3d(0.7, -0.45, 0.74)).cast<float>());
-  cloud.width = static_cast<std::uint32_t>(cloud.points.size());
-  cloud.height = 1;
-  return cloud;
-}
+PointCloud box_in_the_way() { return test::box_points({0.7, -0.45, 0.74}, {0.1, 0.1, 0.4}); }
 
 TEST(PlanCollisions, AStepThroughABoxIsPlannedAroundItOrRefusedSayingWhere) {
   const Pr2Kinematics kinematics(RobotModel::pr2(), 0.0);

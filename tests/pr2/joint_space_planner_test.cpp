@@ -72,6 +72,11 @@ TEST(JointSpacePlanner, EndsOutsideTheLimitsOrNotFreeAreRefusedAtOnce) {
   EXPECT_FALSE(inside.found);
   EXPECT_EQ(inside.why, "no path: the start is not free");
   EXPECT_EQ(inside.checks, 1u);
+  // A rounding past a limit (start + (goal - start) != goal) is on the limit.
+  const JointSpacePath on_limit =
+      plan_joint_path(two_joints(), {-1.5, 0.0}, {2.0 + 1e-12, 0.0}, outside_disc, 0.01, untimed());
+  ASSERT_TRUE(on_limit.found) << on_limit.why;
+  EXPECT_EQ(on_limit.waypoints.back()[0], 2.0);
 }
 
 TEST(JointSpacePlanner, ABudgetOfConfigurationsEndsASearchWithNoWayThrough) {

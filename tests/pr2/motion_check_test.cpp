@@ -11,6 +11,7 @@
 #include "lmk/geometry/solid.h"
 #include "lmk/pr2/pr2_kinematics.h"
 #include "lmk/pr2/robot_motion_checker.h"
+#include "tests/support/robot_scenes.h"
 
 namespace lmk {
 namespace {
@@ -28,16 +29,6 @@ JointValues right_arm(double pan) {
 JointValues rest_of_robot() {
   return {
       {"torso_lift_joint", 0.0}, {"l_shoulder_pan_joint", 1.5}, {"l_shoulder_lift_joint", -0.4}};
-}
-
-// Points over a box's surface, 1 cm apart (base frame).
-PointCloud box_points(const Eigen::Vector3d& centre, const Eigen::Vector3d& size) {
-  PointCloud cloud;
-  for (const Eigen::Vector3d& p : Solid::box(size).surface_points(0.01))
-    cloud.points.push_back((p + centre).cast<float>());
-  cloud.width = static_cast<std::uint32_t>(cloud.points.size());
-  cloud.height = 1;
-  return cloud;
 }
 
 class MotionCheck : public ::testing::Test {
@@ -64,7 +55,7 @@ class MotionCheck : public ::testing::Test {
 
 TEST_F(MotionCheck, AStraightLineThroughABoxIsRefusedAndPlannedAround) {
   // A tall box the arm's sweep from the right to straight ahead passes through.
-  const RobotMotionChecker check = checker(box_points({0.7, -0.45, 0.74}, {0.1, 0.1, 0.4}));
+  const RobotMotionChecker check = checker(test::box_points({0.7, -0.45, 0.74}, {0.1, 0.1, 0.4}));
   const JointValues from = right_arm(-1.2), to = right_arm(0.0);
   const MotionVerdict line = check.check_line(from, to);
   ASSERT_FALSE(line.free());
@@ -81,11 +72,7 @@ TEST_F(MotionCheck, AStraightLineThroughABoxIsRefusedAndPlannedAround) {
   JointValues at = from;
   for (const std::vector<double>& q : plan.waypoints) {
     JointValues next = at;
-    const char* names[] = {"r_shoulder_pan_joint",   "r_shoulder_lift_joint",
-                           "r_upper_arm_roll_joint", "r_elbow_flex_joint",
-                           "r_forearm_roll_joint",   "r_wrist_flex_joint",
-                           "r_wrist_roll_joint"};
-    for (std::size_t i = 0; i < q.size(); ++i) next[names[i]] = q[i];
+    for (std::size_t i = 0; i < q.size(); ++i) next[test::right_arm_joint_names()[i]] = q[i];
     const MotionVerdict segment = check.check_line(at, next);
     EXPECT_TRUE(segment.free()) << describe(*segment.contact);
     at = next;
@@ -94,7 +81,7 @@ TEST_F(MotionCheck, AStraightLineThroughABoxIsRefusedAndPlannedAround) {
     EXPECT_NEAR(std::remainder(at[name] - value, 2 * M_PI), 0, 1e-6);
   // Nothing in the way: the straight line is free, with its clearance.
   const MotionVerdict clear =
-      checker(box_points({0.7, 0.6, 0.74}, {0.1, 0.1, 0.4})).check_line(from, to);
+      checker(test::box_points({0.7, 0.6, 0.74}, {0.1, 0.1, 0.4})).check_line(from, to);
   EXPECT_TRUE(clear.free());
   EXPECT_GT(clear.clearance, 0.02);
 }
@@ -147,7 +134,8 @@ TEST_F(MotionCheck, AnObjectTheGripperMeansToTouchDoesNotBlockIt) {
       kinematics_.T_base_torso() * RobotModel::pr2()
                                        .chain("torso_lift_link", "r_gripper_tool_frame")
                                        .forward(std::vector<double>(7, 0.0));
-  const RobotMotionChecker check = checker(box_points(tool.translation(), {0.05, 0.05, 0.05}));
+  const RobotMotionChecker check =
+      checker(test::box_points(tool.translation(), {0.05, 0.05, 0.05}));
   const JointValues from = right_arm(-0.4), to = right_arm(0.0);
   const MotionVerdict blind = check.check_line(from, to);
   ASSERT_FALSE(blind.free());
