@@ -47,7 +47,10 @@ run_sanitized() {  # all | unit
   bash scripts/configure-sanitize.sh "$build" -DLMK_WERROR=ON  # clang-14's warnings too
   if [ "$1" = unit ]; then
     cmake --build "$build" -j2 --target "${unit_modules[@]}" fuzz_all
-    selection=(-L "$unit_label")
+    # The collision model's agreement with the real PR2 meshes checks 1,000 configurations against
+    # them exactly: 9 s in Release, well over ten minutes under ASan. The Release suite runs it;
+    # here its STL reader is exercised by the StlMesh tests.
+    selection=(-L "$unit_label" -E "^CollisionModel\.AgreesWithTheFullDescriptionsMeshesNearATable$")
   else
     cmake --build "$build" -j2
   fi
