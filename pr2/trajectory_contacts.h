@@ -51,8 +51,8 @@ std::string describe_touch(const MotionContact& contact);
 
 /// The ground truth of a world for trajectory_contact: points over every triangle of its mesh
 /// (base frame), no farther apart than `spacing`, nothing hidden.
-std::shared_ptr<const CollisionScene> ground_truth_scene(const std::vector<Eigen::Vector3d>& vertices,
-                                                         const std::vector<Eigen::Vector3i>& triangles,
-                                                         double spacing = 0.005);
+std::shared_ptr<const CollisionScene> ground_truth_scene(
+    const std::vector<Eigen::Vector3d>& vertices, const std::vector<Eigen::Vector3i>& triangles,
+    double spacing = 0.005);
 
 }  // namespace lmk

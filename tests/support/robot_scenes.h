@@ -14,10 +14,10 @@ namespace lmk::test {
 
 /// The PR2 right arm's joints, shoulder to wrist.
 inline const std::vector<std::string>& right_arm_joint_names() {
-  static const std::vector<std::string> names = {
-      "r_shoulder_pan_joint", "r_shoulder_lift_joint", "r_upper_arm_roll_joint",
-      "r_elbow_flex_joint",   "r_forearm_roll_joint",  "r_wrist_flex_joint",
-      "r_wrist_roll_joint"};
+  static const std::vector<std::string> names = {"r_shoulder_pan_joint",   "r_shoulder_lift_joint",
+                                                 "r_upper_arm_roll_joint", "r_elbow_flex_joint",
+                                                 "r_forearm_roll_joint",   "r_wrist_flex_joint",
+                                                 "r_wrist_roll_joint"};
   return names;
 }
 
