@@ -7,6 +7,7 @@
 
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/stl_mesh.h"
+#include "lmk/pbd/joint_motion.h"
 
 namespace lmk {
 
@@ -56,7 +57,7 @@ std::optional<MotionContact> trajectory_contact(const RobotMotionChecker& checke
     std::vector<double> q = p.positions;
     const std::vector<double>& last = points.back();
     for (std::size_t i = 0; i < joints.size(); ++i)
-      if (joints[i].continuous()) q[i] = last[i] + std::remainder(q[i] - last[i], 2 * M_PI);
+      if (joints[i].continuous()) q[i] = last[i] + signed_travel(joints[i], last[i], q[i]);
     points.push_back(q);
     times.push_back(p.time_from_start);
   }
