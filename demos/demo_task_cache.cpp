@@ -31,14 +31,16 @@ fs::path cache_file(const DemoTasksSettings& settings, int task) {
   Fnv1a hash;
   hash.add(kVersion).add_value(kSearchRevision).add_value(kJudgeRevision);
   hash.add_value(settings.min_confidence);
-  hash.add_value(settings.look_again).add_value(settings.watch);
+  hash.add_value(settings.look_again).add_value(settings.unseen_looks).add_value(settings.watch);
   hash.add_value(settings.check_collisions);
   const Pr2MotionCheckSettings& m = settings.motion_check;
   hash.add_value(m.motion.padding)
       .add_value(m.motion.self_padding)
       .add_value(m.motion.planning_time)
       .add_value(m.motion.planning_checks);
-  hash.add_value(m.scene.unknown_is_occupied).add_value(m.self_filter_margin);
+  hash.add_value(m.scene.unknown_is_occupied)
+      .add_value(m.scene.unseen_is_occupied)
+      .add_value(m.self_filter_margin);
   hash.add(calibration.metric).add_value(calibration.bias);
   for (const auto& [name, weight] : calibration.weights) hash.add(name).add_value(weight);
   const std::string key = hash.add_value(task)

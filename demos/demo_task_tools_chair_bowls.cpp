@@ -182,12 +182,14 @@ DemoTask bowls_on_shelf_task() {
       part_landmark("bowl_rim", "bowl", "rim", Symmetry{Eigen::Vector3d::UnitZ(), 0});
   rim_landmark.drawn = Box(pose_from_xyz_rpy({0, 0, 0.06}, {0, 0, 0}), {0.17, 0.17, 0.05});
   t.landmarks = {rim_landmark};
-  // Grasp the rim's near side reaching in and down at 60 degrees, fingers closing across the
-  // bowl's wall; lift it; take it out to a place beside the robot.
+  // Grasp the rim's near side reaching in and down at 45 degrees, fingers closing across the
+  // bowl's wall; lift it; take it out to a place beside the robot. (Steeper, the forearm rises
+  // behind the wrist into the shelf's roof, 33 cm above the top board: a demonstrator guiding the
+  // arm keeps it clear.)
   const Eigen::Isometry3d T_bowl = t.demonstration.object("bowl")->T_base_object;
   const Eigen::Vector3d rim = T_bowl * Eigen::Vector3d(-0.075, 0, 0.065 - 0.015);
   const auto tool_at = [](const Eigen::Vector3d& p) {
-    return pose_from_xyz_rpy(p, {0.5 * M_PI, M_PI / 3.0, 0.0});
+    return pose_from_xyz_rpy(p, {0.5 * M_PI, M_PI / 4.0, 0.0});
   };
   const Eigen::Vector3d approach = tool_at(rim).linear().col(0);
   t.programs.push_back(
@@ -195,7 +197,7 @@ DemoTask bowls_on_shelf_task() {
        {"bowl_rim"},
        {right_arm_step("bowl_rim", tool_at(rim - 0.1 * approach), GripperAction::kOpen),
         right_arm_step("bowl_rim", tool_at(rim), GripperAction::kClose),
-        right_arm_step("bowl_rim", tool_at(rim + Eigen::Vector3d(0, 0, 0.08)),
+        right_arm_step("bowl_rim", tool_at(rim + Eigen::Vector3d(0, 0, 0.05)),
                        GripperAction::kClose),
         right_arm_step(kBaseFrame, tool_at({0.45, -0.45, 0.85}), GripperAction::kClose)}});
 

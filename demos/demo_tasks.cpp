@@ -407,6 +407,7 @@ ScenarioRun plan_and_execute(const DemoTask& task, std::size_t index, const Reco
   HeadKinect eyes(robot, state.world, 100 * (100 * task.number + index));
   LookAgainSettings looking;
   looking.max_looks = settings.look_again;
+  looking.unseen_looks = settings.unseen_looks;
   ScenarioRun run{plan_looking_again(program, recorded.landmarks, scene, robot.kinematics(), joints,
                                      eyes, plan_settings, looking),
                   {},

@@ -63,6 +63,9 @@ struct DemoTasksSettings {
   /// Further frames the head may take when a landmark is missing or doubtful (pbd/look_again.h);
   /// 0 refuses at once.
   int look_again = 2;
+  /// With check_collisions: further frames where a motion would pass through space no camera has
+  /// seen (LookAgainSettings::unseen_looks).
+  int unseen_looks = 2;
   /// Scenarios whose landmark is moved between two steps run watching it (pbd/watch.h): the move
   /// noticed, the rest re-planned, or the program stopped. false: open loop, as before watching.
   bool watch = true;

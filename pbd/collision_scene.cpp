@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "lmk/pbd/collision_scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -16,19 +17,61 @@ namespace lmk {
 struct CollisionScene::Impl {
   PointCloud points;  // thinned, within reach, off the robot, base frame
   std::unique_ptr<KdTree> tree;
-  std::optional<RangeImage> image;     // of the whole frame, for the hidden space
+  std::vector<RangeImage> images;      // of the organised frames, for the hidden and unseen space
   std::unique_ptr<DistanceGrid> grid;  // the points and the hidden space, over the reach
   CollisionSceneSettings settings;
   std::function<bool(const Eigen::Vector3d&)> robot;  // where the robot stands; may be empty
 
-  // How far `p` lies in front of the hidden space along the sensor's ray (negative: that deep in
-  // it), the margin given; nothing where the sensor tells nothing (out of view, no return) or
-  // where the robot stands.
-  std::optional<double> before_hidden(const Eigen::Vector3d& p) const {
-    if (robot && robot(p)) return std::nullopt;
-    const RangeImage::Look look = image->look(p.cast<float>());
-    if (!look.in_view || !std::isfinite(look.measured)) return std::nullopt;
-    return look.measured + settings.hidden_margin - look.depth;
+  // What the frames say of `p`, off the robot: how far it lies in front of the hidden space along
+  // the ray of the frame that sees it best, the margin given (negative: that deep in it, hidden
+  // from every frame that has it in view); nothing where some frame measured nothing along its
+  // ray. Out of every frame's view: minus how far it lies outside the nearest view when unseen
+  // space counts as occupied, else nothing. `unseen` says which.
+  std::optional<double> before_hidden(const Eigen::Vector3d& p, bool* unseen = nullptr) const {
+    bool out_of_view = false;
+    const std::optional<double> said = seen_by_frames(p, out_of_view);
+    // The robot's own space is never hidden nor unseen (asked last: it is the dearer question).
+    if (!said || (robot && robot(p))) return std::nullopt;
+    if (unseen) *unseen = out_of_view;
+    return said;
+  }
+  // before_hidden() without the robot.
+  std::optional<double> seen_by_frames(const Eigen::Vector3d& p, bool& out_of_view) const {
+    if (!settings.unknown_is_occupied && !settings.unseen_is_occupied) return std::nullopt;
+    double best = -std::numeric_limits<double>::infinity(), outside = best;
+    bool in_any_view = false;
+    for (const RangeImage& image : images) {
+      const RangeImage::Look look = image.look(p.cast<float>());
+      if (!look.in_view) {
+        if (settings.unseen_is_occupied) outside = std::max(outside, -outside_view(image, p));
+        continue;
+      }
+      in_any_view = true;
+      if (!std::isfinite(look.measured)) return std::nullopt;
+      best = std::max(best, look.measured + settings.hidden_margin - look.depth);
+    }
+    if (in_any_view)
+      return settings.unknown_is_occupied ? std::optional<double>(best) : std::nullopt;
+    if (images.empty() || !settings.unseen_is_occupied || settings.own_column.contains(p))
+      return std::nullopt;
+    out_of_view = true;
+    return outside;
+  }
+  // How far `p`, out of `image`'s view, lies outside it, m: its distance across the image's edge
+  // at its depth, or behind the sensor; at least a millimetre.
+  static double outside_view(const RangeImage& image, const Eigen::Vector3d& p) {
+    const double depth = image.depth_of(p.cast<float>());
+    const std::optional<Eigen::Vector2d> uv = image.project(p.cast<float>());
+    if (!uv || !(depth > 0.0)) return std::max(1e-3, -depth);
+    const PinholeIntrinsics& k = image.intrinsics();
+    const double du = std::max({0.0, -uv->x(), uv->x() - (k.width - 1)});
+    const double dv = std::max({0.0, -uv->y(), uv->y() - (k.height - 1)});
+    return std::max(1e-3, std::max(du / k.fx, dv / k.fy) * depth);
+  }
+  bool in_some_view(const Eigen::Vector3d& p) const {
+    for (const RangeImage& image : images)
+      if (image.look(p.cast<float>()).in_view) return true;
+    return false;
   }
   void index() {
     tree = std::make_unique<KdTree>(points);
@@ -42,11 +85,12 @@ struct CollisionScene::Impl {
     }
     grid = std::make_unique<DistanceGrid>(lo, hi, settings.grid_voxel);
     for (const Eigen::Vector3f& p : points.points) grid->occupy(p.cast<double>());
-    if (image) {
+    if (!images.empty() && (settings.unknown_is_occupied || settings.unseen_is_occupied)) {
       grid->occupy_where([&](const Eigen::Vector3d& c) {
         if (!reach.contains(c)) return false;
-        const std::optional<double> before = before_hidden(c);
-        return before && *before < 0.0;
+        bool out_of_view = false;
+        const std::optional<double> said = seen_by_frames(c, out_of_view);
+        return said && *said < 0.0 && !(robot && robot(c));
       });
     }
     grid->compute();
@@ -67,6 +111,11 @@ bool intended_here(const IntendedContact* intended, const Eigen::Vector3d& p) {
 
 CollisionScene::CollisionScene(const PointCloud& scene, const CollisionSceneSettings& settings,
                                std::function<bool(const Eigen::Vector3d&)> robot)
+    : CollisionScene(std::vector<const PointCloud*>{&scene}, settings, std::move(robot)) {}
+
+CollisionScene::CollisionScene(const std::vector<const PointCloud*>& frames,
+                               const CollisionSceneSettings& settings,
+                               std::function<bool(const Eigen::Vector3d&)> robot)
     : impl_(std::make_unique<Impl>()) {
   if (!(settings.voxel > 0.0)) throw Error("collision scene: the voxel must be positive");
   if (!(settings.hidden_margin >= 0.0))
@@ -74,7 +123,15 @@ CollisionScene::CollisionScene(const PointCloud& scene, const CollisionSceneSett
   if (!(settings.grid_voxel > 0.0)) throw Error("collision scene: the grid voxel must be positive");
   impl_->settings = settings;
   impl_->robot = std::move(robot);
-  impl_->points = voxel_downsample(crop(scene, settings.reach), settings.voxel);
+  std::vector<Eigen::Vector3f> seen;
+  for (const PointCloud* frame : frames) {
+    const PointCloud within = crop(*frame, settings.reach);
+    seen.insert(seen.end(), within.points.begin(), within.points.end());
+    if (!frame->is_organized()) continue;
+    if (std::optional<RangeImage> image = RangeImage::from_cloud(*frame))
+      impl_->images.push_back(std::move(*image));
+  }
+  impl_->points = voxel_downsample(PointCloud(std::move(seen)), settings.voxel);
   if (impl_->robot) {
     std::vector<Eigen::Vector3f> kept;
     for (const Eigen::Vector3f& q : impl_->points.points) {
@@ -82,8 +139,6 @@ CollisionScene::CollisionScene(const PointCloud& scene, const CollisionSceneSett
     }
     impl_->points = PointCloud(std::move(kept));
   }
-  if (settings.unknown_is_occupied && scene.is_organized())
-    impl_->image = RangeImage::from_cloud(scene);
   impl_->index();
 }
 
@@ -110,20 +165,30 @@ SceneDistance CollisionScene::distance(const Solid& solid, const Eigen::Isometry
     const double d = solid.signed_distance(T_solid_base * p);
     if (d < best.distance) best = {d, p, false};
   }
-  if (!impl_->image) return best;
+  if (impl_->images.empty() ||
+      !(impl_->settings.unknown_is_occupied || impl_->settings.unseen_is_occupied))
+    return best;
   // The hidden space: how far each surface point lies in front of it along the sensor's ray,
   // where that is nearer than the points' own distance.
   for (const Eigen::Vector3d& s : surface) {
     const Eigen::Vector3d p = T_base_solid * s;
     if (!impl_->settings.reach.contains(p)) continue;
-    const std::optional<double> d = impl_->before_hidden(p);
-    if (d && *d < best.distance && !intended_here(intended, p)) best = {*d, p, true};
+    bool unseen = false;
+    const std::optional<double> d = impl_->before_hidden(p, &unseen);
+    if (d && *d < best.distance && !intended_here(intended, p)) best = {*d, p, true, unseen};
   }
   return best;
 }
 
 double CollisionScene::lower_bound(const Eigen::Vector3d& centre, double radius) const {
   return impl_->grid->distance(centre) - impl_->grid->error_bound() - radius;
+}
+
+bool CollisionScene::unseen(const Eigen::Vector3d& p) const {
+  const CollisionSceneSettings& s = impl_->settings;
+  if (impl_->images.empty() || !s.reach.contains(p) || s.own_column.contains(p)) return false;
+  if (impl_->in_some_view(p)) return false;
+  return !impl_->robot || !impl_->robot(p);
 }
 
 const CollisionSceneSettings& CollisionScene::settings() const { return impl_->settings; }

@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
-// The world an arm must not touch (issue #60), from the frame the robot planned on: the scene's
-// points, thinned to one per voxel and indexed, and the space they hide from the sensor, which the
-// sensor could not see and which counts as occupied unless the settings say otherwise. The points
-// are the same frame the landmarks were found in; nothing but them and the sensor's rays is known.
+// The world an arm must not touch (issue #60), from the frames the robot saw: the scenes' points,
+// thinned to one per voxel and indexed; the space they hide from the sensor, which counts as
+// occupied unless the settings say otherwise; and the space no frame had in view at all, which a
+// plan looks at before moving through it (pbd/look_again.h). The points are the frames the
+// landmarks were found in; nothing but them and the sensors' rays is known.
 
 #include <Eigen/Geometry>
 #include <functional>
@@ -22,6 +23,11 @@ struct CollisionSceneSettings {
   /// The space the scene's surfaces hide from the sensor (behind what it measured, within its
   /// view) counts as occupied: the arm never sweeps through what nobody saw. False: as free.
   bool unknown_is_occupied = true;
+  /// The space no frame had in its view (outside every image, or behind every sensor) counts as
+  /// occupied: the arm never goes where no camera looked. Off by
+  /// default: one head view leaves most of the arm's way out of sight, and a plan rather looks
+  /// there first (LookAgainSettings::unseen_looks) and reports what stayed unseen.
+  bool unseen_is_occupied = false;
   /// A point counts as hidden when it lies this much deeper than the surface the sensor measured
   /// along its ray, m: the surface's own thickness and the sensor's noise are not hidden space.
   double hidden_margin = 0.03;
@@ -34,6 +40,11 @@ struct CollisionSceneSettings {
   /// PR2's reach and leaves out the floor under it.
   Box reach = Box(Eigen::Translation3d(0.45, 0.0, 0.95) * Eigen::Isometry3d::Identity(),
                   Eigen::Vector3d(1.9, 2.4, 1.9));
+  /// The column over the robot's base (the PR2's 0.67 m square, up to its raised head): the
+  /// torso, the shoulders and the arms at rest stand there, and the head cannot look down into
+  /// it. Its space is never unseen space; its points are obstacles as anywhere.
+  Box own_column = Box(Eigen::Translation3d(0.0, 0.0, 0.8) * Eigen::Isometry3d::Identity(),
+                       Eigen::Vector3d(0.668, 0.668, 1.7));
 };
 
 /// How near a solid comes to the scene.
@@ -45,17 +56,24 @@ struct SceneDistance {
   double distance = 0.0;
   Eigen::Vector3d where = Eigen::Vector3d::Zero();  ///< the nearest point, base frame
   bool hidden = false;  ///< the nearest is space the sensor could not see
+  bool unseen =
+      false;  ///< ... and no frame had it in view (CollisionSceneSettings::unseen_is_occupied)
 };
 
 class CollisionScene {
  public:
-  /// `scene`: the frame in the robot's base frame, T_cloud_sensor its sensor's pose (an organised
-  /// cloud, for the hidden space; an unorganised one only gives its points). `robot` (optional,
-  /// base frame): where the robot's own body stands. Its points are the arms as the sensor saw
-  /// them, no obstacle to themselves, and its space is never hidden space: nothing else can be
-  /// there, whatever the sensor saw in front of it.
-  CollisionScene(const PointCloud& scene, const CollisionSceneSettings& settings = {},
+  /// `frames`: what the robot saw, each in its base frame with T_cloud_sensor its sensor's pose
+  /// (an organised cloud, for the hidden and the unseen space; an unorganised one only gives its
+  /// points). Space one frame saw in front of its measurement is free, whatever another hides.
+  /// `robot` (optional, base frame): where the robot's own body stands. Its points are the arms as
+  /// the sensor saw them, no obstacle to themselves, and its space is neither hidden nor unseen:
+  /// nothing else can be there, whatever the sensor saw in front of it.
+  CollisionScene(const std::vector<const PointCloud*>& frames,
+                 const CollisionSceneSettings& settings = {},
                  std::function<bool(const Eigen::Vector3d&)> robot = nullptr);
+  /// One frame.
+  explicit CollisionScene(const PointCloud& scene, const CollisionSceneSettings& settings = {},
+                          std::function<bool(const Eigen::Vector3d&)> robot = nullptr);
   ~CollisionScene();
   CollisionScene(CollisionScene&&) noexcept;
 
@@ -69,6 +87,11 @@ class CollisionScene {
   /// A lower bound of the distance from a sphere at `centre` (base frame) of `radius` to the
   /// scene, from the distance grid alone: one lookup, for a whole link at once.
   double lower_bound(const Eigen::Vector3d& centre, double radius) const;
+
+  /// Whether `p` (base frame) lies within the reach, off the robot, and in no organised frame's
+  /// view: space nobody looked at. False everywhere when no frame is organised (nothing says
+  /// where the sensor looked).
+  bool unseen(const Eigen::Vector3d& p) const;
 
   std::size_t points() const;
   const CollisionSceneSettings& settings() const;

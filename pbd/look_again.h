@@ -12,6 +12,12 @@
 // - a missing landmark: a pattern about the first view, panning by pattern_angle to one side, then
 //   the other, further each time (a landmark the image's edge cut is seen whole from one of them).
 // An unreachable step is no question of seeing: it is refused at once.
+//
+// Where the arm would go (issue #60), once the landmarks are settled and motions are checked: a
+// motion that passes through space no camera has seen (PlannedArm::unseen), or is refused for
+// touching space its frames hid, is looked at first: the head turns there and the motion check
+// knows what that frame saw (a shelf's top board above the first view). After `unseen_looks` such
+// frames the plan acts on what it saw, and its warnings name what stayed unseen.
 
 #include <Eigen/Core>
 #include <map>
@@ -38,6 +44,9 @@ struct LookAgainSettings {
   /// The pan of a missing landmark's pattern about the first view, rad (15 degrees): a third of a
   /// Kinect's field of view, so that each look keeps most of the first in sight.
   double pattern_angle = 0.2618;
+  /// Further frames where a checked motion would pass through space no camera has seen, or is
+  /// refused for space its frames hid; 0 acts on the first view (and warns).
+  int unseen_looks = 2;
 
   /// Throws lmk::Error naming the bad value.
   void validate() const;
@@ -55,7 +64,8 @@ struct LookedPlan {
 };
 
 /// plan() on `first` (a frame in the base frame), looking again through `eyes` while the refusal
-/// is a missing or doubtful landmark. Each new frame is fused with every frame before it. An
+/// is a missing or doubtful landmark, then where its motions would pass unseen. Each new frame is
+/// fused with every frame before it for the search, and given to the motion check. An
 /// `eyes` that fails to point or see ends the looking: the last plan stands, and the failure is
 /// the last look's `why`.
 LookedPlan plan_looking_again(const Program& program,

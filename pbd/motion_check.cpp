@@ -6,6 +6,12 @@
 
 namespace lmk {
 
+std::string format_point(const Eigen::Vector3d& p) {
+  char text[64];
+  std::snprintf(text, sizeof(text), "(%.2f, %.2f, %.2f)", p.x(), p.y(), p.z());
+  return text;
+}
+
 std::string describe(const MotionContact& c) {
   char text[320];
   const bool into = c.distance < 0.0;

@@ -16,7 +16,9 @@ namespace lmk {
 /// What a motion would touch first.
 struct MotionContact {
   std::string link;  ///< the robot's link that would touch
-  /// What it would touch: "the scene", "space the sensor could not see", or "the robot's <link>".
+  /// What it would touch: "the scene", "space the sensor could not see" (hidden behind what it
+  /// measured), "space no camera has seen" (out of every frame's view, where that counts as
+  /// occupied), or "the robot's <link>".
   std::string obstacle;
   /// Signed distance to the obstacle, m: negative, that deep into it; positive, within the padding.
   double distance = 0.0;
@@ -75,7 +77,19 @@ class MotionChecker {
   virtual MotionPlan plan_around(const std::string& group, const JointValues& from,
                                  const JointValues& to,
                                  const IntendedContact& intended = {}) const = 0;
+  /// Where the links the path moves pass through space no camera has seen (outside every frame's
+  /// view, off the robot, within reach), along the straight joint lines between consecutive states
+  /// of `path` (by name, joints not named as the robot stands): places a few centimetres apart,
+  /// in the order the arm reaches them, for the head to look at before the arm goes. None for a
+  /// checker that knows nothing of views.
+  virtual std::vector<Eigen::Vector3d> unseen_along(const std::vector<JointValues>& path) const {
+    (void)path;
+    return {};
+  }
 };
+
+/// "(0.62, -0.18, 0.81)": a point for a person, to the centimetre.
+std::string format_point(const Eigen::Vector3d& p);
 
 /// One line for a person: "the right forearm would pass 1.4 cm into the scene near (0.62, -0.18,
 /// 0.81) m in base_link".

@@ -458,6 +458,28 @@ std::optional<Refusal> solve_steps(const Program& program, const Plan& plan,
   return std::nullopt;
 }
 
+// Issue #60: where each arm's motion passes through space no camera has seen, and one warning
+// line per such motion: the plan acts on what it saw, and says where it could not look.
+void warn_unseen(const MotionChecker& checker, const Arms& arms, Plan& plan) {
+  for (PlannedStep& step : plan.steps) {
+    for (PlannedArm& a : step.arms) {
+      const GroupInfo& group = arms.groups.at(a.arm);
+      std::vector<JointValues> path;
+      for (const JointTrajectory::Point& p : a.trajectory.points) {
+        path.emplace_back();
+        set_joints(group, p.positions, path.back());
+      }
+      a.unseen = checker.unseen_along(path);
+      if (a.unseen.empty()) continue;
+      plan.warnings.push_back("step " + std::to_string(step.index) + ", " + arm_name(a.arm) +
+                              " arm: passes through space no camera has seen, first near " +
+                              format_point(a.unseen.front()) + " m in base_link (" +
+                              std::to_string(a.unseen.size()) + " place" +
+                              (a.unseen.size() == 1 ? "" : "s") + " 5 cm apart)");
+    }
+  }
+}
+
 void check_settings(const PlanSettings& s) {
   if (!(s.speed_fraction > 0.0 && s.speed_fraction <= 1.0))
     throw Error("plan: the speed fraction must be in (0, 1]");
@@ -509,7 +531,7 @@ Plan replan_from(const Program& program, std::vector<LocatedLandmark> located,
   std::vector<PlannedStep> steps;
   // No frame to check against here: the robot's own body only (an empty scene).
   const std::shared_ptr<const MotionChecker> checker =
-      settings.motion_checker ? settings.motion_checker(PointCloud(), start) : nullptr;
+      settings.motion_checker ? settings.motion_checker({}, start) : nullptr;
   if (const std::optional<Refusal> failure = solve_steps(
           program, result, kinematics, arms, settings, checker.get(), steps, first_step)) {
     result.refusal = *failure;
@@ -549,7 +571,7 @@ std::vector<std::string> capture_warnings(const Program& program,
 
 Plan plan(const Program& program, const std::map<std::string, Landmark>& landmarks,
           const PointCloud& scene, const KinematicsInterface& kinematics, const JointState& start,
-          const PlanSettings& settings) {
+          const PlanSettings& settings, const std::vector<const PointCloud*>& more_frames) {
   validate_program(program);
   check_settings(settings);
   Plan result;
@@ -576,8 +598,10 @@ Plan plan(const Program& program, const std::map<std::string, Landmark>& landmar
   };
   if (settings.progress && settings.motion_checker)
     settings.progress("checking every motion against the scene and the robot");
+  std::vector<const PointCloud*> frames{&scene};
+  frames.insert(frames.end(), more_frames.begin(), more_frames.end());
   const std::shared_ptr<const MotionChecker> checker =
-      settings.motion_checker ? settings.motion_checker(scene, start) : nullptr;
+      settings.motion_checker ? settings.motion_checker(frames, start) : nullptr;
   std::optional<Refusal> first_failure;
   while (true) {
     locate(choice);
@@ -586,6 +610,7 @@ Plan plan(const Program& program, const std::map<std::string, Landmark>& landmar
         solve_steps(program, result, kinematics, arms, settings, checker.get(), steps);
     if (!failure) {
       result.steps = std::move(steps);
+      if (checker) warn_unseen(*checker, arms, result);
       return result;
     }
     if (!first_failure) first_failure = failure;

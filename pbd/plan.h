@@ -100,6 +100,10 @@ struct PlannedArm {
   /// What the motion may touch on purpose: scene points near the tool frame at its start and at its
   /// target (the object grasped, the surface placed on), for the gripper's links only.
   IntendedContact intended;
+  /// With motions checked: where the arm passes through space no camera has seen on its way
+  /// (MotionChecker::unseen_along), in the order it gets there; a look there first
+  /// (plan_looking_again) shows what stands in it. Empty: every place it passes was in view.
+  std::vector<Eigen::Vector3d> unseen;
 };
 
 struct PlannedStep {
@@ -152,10 +156,11 @@ struct PlanSettings {
   /// Progress lines for long runs ("locating 'rack'", ...); unset: silent.
   std::function<void(const std::string&)> progress;
   /// Checks every arm motion against the scene and the robot's own body before anything moves
-  /// (issue #60), built from the frame the plan searched (base frame) and the robot's joints at the
-  /// start: lmk::pr2's pr2_motion_checker() for a PR2. Unset: motions are not checked. replan_from,
-  /// which has no frame, checks against the robot's own body only.
-  std::function<std::shared_ptr<const MotionChecker>(const PointCloud& scene,
+  /// (issue #60), built from the frames the robot saw (base frame: the one the plan searched,
+  /// then any further ones) and its joints at the start: lmk::pr2's pr2_motion_checker() for a
+  /// PR2. Unset: motions are not checked. replan_from, which has no frame, checks against the
+  /// robot's own body only.
+  std::function<std::shared_ptr<const MotionChecker>(const std::vector<const PointCloud*>& frames,
                                                      const JointState& start)>
       motion_checker;
   /// Scene points within this of the tool frame at a motion's start and target are what the motion
@@ -178,9 +183,13 @@ std::map<std::string, Landmark> load_program_landmarks(const Program& program,
 /// declares, by name. Only landmarks some step uses are searched for. Never throws for a refusal:
 /// the plan carries it. Throws lmk::Error for bad input (a declared landmark missing from
 /// `landmarks`, an arm group the kinematics lacks, a start state missing a joint).
+/// `more_frames`: further frames the head took (base frame, organised), for the motion check only:
+/// what any of them saw is known to it. A motion that passes through space no frame had in view
+/// says where (PlannedArm::unseen) and the plan warns.
 Plan plan(const Program& program, const std::map<std::string, Landmark>& landmarks,
           const PointCloud& scene, const KinematicsInterface& kinematics, const JointState& start,
-          const PlanSettings& settings = {});
+          const PlanSettings& settings = {},
+          const std::vector<const PointCloud*>& more_frames = {});
 
 /// Plans `program` again from step `first_step` on, with its landmarks where `located` says and
 /// nothing searched: what a watching execution (watch.h) does when a landmark moved. Targets are

@@ -30,12 +30,14 @@ std::shared_ptr<const RobotBody> pr2_body() {
   return body;
 }
 
-std::function<std::shared_ptr<const MotionChecker>(const PointCloud&, const JointState&)>
+std::function<std::shared_ptr<const MotionChecker>(const std::vector<const PointCloud*>&,
+                                                   const JointState&)>
 pr2_motion_checker(const Pr2Kinematics& kinematics, const Pr2MotionCheckSettings& settings,
                    std::shared_ptr<const RobotBody> body) {
   if (!body) body = pr2_body();
   auto shared_kinematics = std::make_shared<Pr2Kinematics>(kinematics);
-  return [shared_kinematics, settings, body](const PointCloud& scene, const JointState& start) {
+  return [shared_kinematics, settings, body](const std::vector<const PointCloud*>& frames,
+                                             const JointState& start) {
     // The start's joints the body's model has (a robot's joint state also names its grippers'
     // motors and casters).
     std::set<std::string> known;
@@ -53,8 +55,8 @@ pr2_motion_checker(const Pr2Kinematics& kinematics, const Pr2MotionCheckSettings
       return on_body(*body, placed, T_root_base, p, margin);
     };
     return std::make_shared<const RobotMotionChecker>(
-        body, std::make_shared<CollisionScene>(scene, settings.scene, is_robot), *shared_kinematics,
-        state, settings.motion);
+        body, std::make_shared<CollisionScene>(frames, settings.scene, is_robot),
+        *shared_kinematics, state, settings.motion);
   };
 }
 

@@ -26,7 +26,8 @@ std::shared_ptr<const RobotBody> pr2_body();
 
 /// A PlanSettings::motion_checker for the PR2 `kinematics` describes (its torso height where the
 /// start state does not name the torso joint), with `body` (default: pr2_body()).
-std::function<std::shared_ptr<const MotionChecker>(const PointCloud&, const JointState&)>
+std::function<std::shared_ptr<const MotionChecker>(const std::vector<const PointCloud*>&,
+                                                   const JointState&)>
 pr2_motion_checker(const Pr2Kinematics& kinematics, const Pr2MotionCheckSettings& settings = {},
                    std::shared_ptr<const RobotBody> body = nullptr);
 

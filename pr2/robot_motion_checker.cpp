@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <set>
+#include <tuple>
 
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/random.h"
@@ -22,6 +24,9 @@ constexpr double kEndClearanceShare = 0.5;
 // Within this much travel of either end (m, the farthest any point moved), a link need only stay
 // out of things: it leaves a grasp, or arrives at one, within the padding by design.
 constexpr double kEndZone = 0.05;
+// Unseen places along a motion are judged one per cube of this side (m), at states no farther
+// apart than it moves any point: where to look needs no finer answer.
+constexpr double kUnseenCell = 0.05;
 
 }  // namespace
 
@@ -144,7 +149,9 @@ std::optional<MotionContact> RobotMotionChecker::check_state(const JointValues& 
         link_nearest = std::min(link_nearest, d.distance);
         if (d.distance < need && (!deepest || d.distance < deepest->distance)) {
           deepest = MotionContact{body_->links()[link],
-                                  d.hidden ? "space the sensor could not see" : "the scene",
+                                  d.unseen   ? "space no camera has seen"
+                                  : d.hidden ? "space the sensor could not see"
+                                             : "the scene",
                                   d.distance, d.where, 0.0};
         }
       }
@@ -246,6 +253,49 @@ MotionVerdict RobotMotionChecker::check_line(const JointValues& from, const Join
     }
   }
   return verdict;
+}
+
+std::vector<Eigen::Vector3d> RobotMotionChecker::unseen_along(
+    const std::vector<JointValues>& path) const {
+  std::vector<Eigen::Vector3d> out;
+  if (path.empty()) return out;
+  std::vector<std::string> names;
+  for (const auto& [name, value] : path.front()) names.push_back(name);
+  const std::vector<char> moving = links_moved_by(names);
+  // The cubes already looked at: each is judged once, by the first point of the arm in it.
+  std::set<std::tuple<long, long, long>> cells;
+  const auto visit = [&](const JointValues& q) {
+    const std::vector<Eigen::Isometry3d> placed = body_->place(q);
+    for (std::size_t link = 0; link < moving.size(); ++link) {
+      if (!moving[link]) continue;
+      for (std::size_t i : body_->link_solids(link)) {
+        const Eigen::Isometry3d T_base_solid = T_base_root_ * placed[i];
+        for (const Eigen::Vector3d& s : body_->solids()[i].surface) {
+          const Eigen::Vector3d p = T_base_solid * s;
+          const Eigen::Vector3d c = (p / kUnseenCell).array().floor();
+          const auto key = std::make_tuple(static_cast<long>(c.x()), static_cast<long>(c.y()),
+                                           static_cast<long>(c.z()));
+          if (cells.insert(key).second && scene_->unseen(p)) out.push_back(p);
+        }
+      }
+    }
+  };
+  JointValues a = merged(path.front());
+  visit(a);
+  for (std::size_t k = 1; k < path.size(); ++k) {
+    std::map<std::string, double> delta;
+    for (const auto& [name, value] : path[k]) delta[name] = travel(name, a.at(name), value);
+    JointValues b = a;
+    for (const auto& [name, d] : delta) b[name] = a.at(name) + d;
+    const int steps = std::max(1, static_cast<int>(std::ceil(sweep(a, b) / kUnseenCell)));
+    for (int j = 1; j <= steps; ++j) {
+      JointValues q = a;
+      for (const auto& [name, d] : delta) q[name] = a.at(name) + d * j / steps;
+      visit(q);
+    }
+    a = b;
+  }
+  return out;
 }
 
 MotionPlan RobotMotionChecker::plan_around(const std::string& group, const JointValues& from,

@@ -54,6 +54,7 @@ class RobotMotionChecker : public MotionChecker {
                          const IntendedContact& intended = {}) const override;
   std::optional<MotionContact> check_pose(const JointValues& joints,
                                           const IntendedContact& intended = {}) const override;
+  std::vector<Eigen::Vector3d> unseen_along(const std::vector<JointValues>& path) const override;
 
   /// What each link (by the body's index) must keep from the scene and from the robot's other
   /// links, m.

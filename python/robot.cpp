@@ -91,18 +91,24 @@ LookedPlan plan_or_refuse(const std::string& program_file, const PointCloud& sce
   const std::optional<py::object> look = pop_keyword(search, "look");
   LookAgainSettings looking;
   looking.max_looks = 0;
-  if (look && !look->is_none()) {
+  looking.unseen_looks = 0;
+  const bool eyes_given = look && !look->is_none();
+  if (eyes_given) {
     if (!PyCallable_Check(look->ptr())) throw py::type_error("look must be callable: look(target)");
     looking.max_looks = 2;
+    looking.unseen_looks = 2;
   }
-  if (const auto k = pop_keyword(search, "look_again")) {
-    looking.max_looks = py::cast<int>(*k);
-    if (looking.max_looks < 0 || looking.max_looks > 8) {
-      throw py::value_error("look_again must be 0 to 8 (further frames)");
-    }
-    if (looking.max_looks > 0 && !(look && !look->is_none())) {
-      throw py::value_error("look_again needs look=callable: the head that looks again");
-    }
+  // look_again: further frames for a missing or doubtful landmark; unseen_looks: where a checked
+  // motion would pass through space no camera has seen.
+  for (auto [name, count] : {std::pair{"look_again", &looking.max_looks},
+                             std::pair{"unseen_looks", &looking.unseen_looks}}) {
+    const auto k = pop_keyword(search, name);
+    if (!k) continue;
+    *count = py::cast<int>(*k);
+    if (*count < 0 || *count > 8)
+      throw py::value_error(std::string(name) + " must be 0 to 8 (further frames)");
+    if (*count > 0 && !eyes_given)
+      throw py::value_error(std::string(name) + " needs look=callable: the head that looks again");
   }
   settings.find = settings_from_keywords(search);
   PythonEyes eyes(look ? *look : py::none());

@@ -100,6 +100,7 @@ Pr2MotionCheckSettings motion_check_settings(const PbdOptions& o) {
   check.motion.planning_time = o.planning_time;
   check.motion.planning_checks = o.planning_checks;
   check.scene.unknown_is_occupied = o.unknown == "occupied";
+  check.scene.unseen_is_occupied = o.unseen == "occupied";
   return check;
 }
 
@@ -174,8 +175,8 @@ int run_run(const PbdOptions& o) {
   if (o.ros) return run_on_ros(o);
   if (o.look_again_given) {
     throw Error(
-        "pbd run --sim: --look-again needs a head that turns: with --ros (the simulated "
-        "run plans on one fixed --scene)");
+        "pbd run --sim: --look-again and --unseen-looks need a head that turns: with --ros (the "
+        "simulated run plans on one fixed --scene)");
   }
   if (o.watch) {
     throw Error(
@@ -201,6 +202,7 @@ int run_demo_tasks_command(const PbdOptions& o) {
   settings.threads = o.threads;
   settings.min_confidence = o.min_confidence;
   settings.look_again = o.look_again;
+  settings.unseen_looks = o.unseen_looks;
   settings.watch = !o.no_watch;
   settings.check_collisions = o.check_collisions;
   settings.motion_check = motion_check_settings(o);
@@ -241,6 +243,12 @@ void add_collision_options(CLI::App* sub, PbdOptions& o) {
                   "it) or 'free'")
       ->check(CLI::IsMember({"occupied", "free"}))
       ->capture_default_str();
+  sub->add_option("--unseen", o.unseen,
+                  "The space no camera had in view: 'look' (the head looks where a motion would "
+                  "pass through it; what stays unseen is a warning) or 'occupied' (the arm never "
+                  "goes there: from one head view, most motions are refused)")
+      ->check(CLI::IsMember({"look", "occupied"}))
+      ->capture_default_str();
 }
 
 void add_plan_options(CLI::App* sub, PbdOptions& o, bool scene_required) {
@@ -269,6 +277,12 @@ void add_look_again_option(CLI::App* sub, PbdOptions& o, const std::string& what
                   what +
                       " the head may take, pointed where they can settle it, when a landmark is "
                       "missing or doubtful, before refusing (0: refuse at once)")
+      ->check(CLI::Range(0, 8))
+      ->capture_default_str()
+      ->each([&o](const std::string&) { o.look_again_given = true; });
+  sub->add_option("--unseen-looks", o.unseen_looks,
+                  "With --check-collisions: further frames the head may take where a motion would "
+                  "pass through space no camera has seen, before acting on what it saw")
       ->check(CLI::Range(0, 8))
       ->capture_default_str()
       ->each([&o](const std::string&) { o.look_again_given = true; });

@@ -113,6 +113,7 @@ int run_on_ros(const PbdOptions& o) {
   ros1::RosEyes eyes(robot, latest, o.frame_timeout);
   LookAgainSettings looking;
   looking.max_looks = o.look_again;
+  looking.unseen_looks = o.unseen_looks;
   const LookedPlan looked = plan_looking_again(program, landmarks, frame->scene, kinematics, state,
                                                eyes, plan_settings(o, &kinematics), looking);
   for (const Look& look : looked.looks) {

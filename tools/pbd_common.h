@@ -35,6 +35,10 @@ struct PbdOptions {
   double planning_time = 2.0;                                           ///< --planning-time, s
   std::size_t planning_checks = MotionCheckSettings{}.planning_checks;  ///< --planning-checks
   std::string unknown = "occupied";  ///< --unknown: the space the sensor could not see
+  /// --unseen: the space no camera had in view, "look" (looked at first, else acted on with a
+  /// warning) or "occupied" (never passed through)
+  std::string unseen = "look";
+  int unseen_looks = 2;  ///< --unseen-looks: demo-tasks and run --ros, where motions go unseen
 };
 
 /// The planner's settings; with `kinematics` and --check-collisions, every motion checked for the

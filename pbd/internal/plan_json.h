@@ -42,6 +42,10 @@ inline nlohmann::json plan_to_json(const Plan& plan) {
       nlohmann::json near = nlohmann::json::array();
       for (const Eigen::Vector3d& p : a.intended.near) near.push_back(vector_to_json(p));
       j["intended_contact"] = {{"near", near}, {"radius_m", a.intended.radius}};
+      // Where the motion passes through space no camera has seen, in the order the arm gets there.
+      nlohmann::json unseen = nlohmann::json::array();
+      for (const Eigen::Vector3d& p : a.unseen) unseen.push_back(vector_to_json(p));
+      j["unseen"] = unseen;
       arms.push_back(j);
     }
     steps.push_back({{"step", s.index}, {"duration", s.duration}, {"arms", arms}});

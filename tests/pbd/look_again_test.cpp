@@ -1,13 +1,17 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Looking again (look_again.h) on the tests' table: an L that the first view's edge cuts is found
-// once the head turns towards it, and an absent one is refused after the allowed looks, each named.
+// once the head turns towards it, and an absent one is refused after the allowed looks, each named;
+// where the arm would go out of every view is looked at before it goes (issue #60).
 
 #include "lmk/pbd/look_again.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/pose.h"
+#include "lmk/pr2/pr2_motion_check.h"
 #include "tests/pbd/robot_at_table.h"
 
 namespace lmk {
@@ -58,14 +62,21 @@ class LookAgainTest : public ::testing::Test {
     return p;
   }
 
-  LookedPlan plan_with(TurningCamera& camera, int max_looks) const {
+  // `unseen_looks` >= 0: motions are checked (lmk's PR2 body), with that many looks where they
+  // would go unseen.
+  LookedPlan plan_with(TurningCamera& camera, int max_looks, int unseen_looks = -1) const {
     const SimulatedPr2 robot = test_scenes::robot_at_table();
     JointState state;
     EXPECT_TRUE(robot.read_joint_state(state).ok());
     LookAgainSettings looking;
     looking.max_looks = max_looks;
+    PlanSettings settings;
+    if (unseen_looks >= 0) {
+      looking.unseen_looks = unseen_looks;
+      settings.motion_checker = pr2_motion_checker(robot.kinematics());
+    }
     return plan_looking_again(program(), {{"l", *landmark_}}, camera.first(), robot.kinematics(),
-                              state, camera, {}, looking);
+                              state, camera, settings, looking);
   }
 
   static Landmark* landmark_;
@@ -109,12 +120,41 @@ TEST_F(LookAgainTest, AnAbsentLandmarkIsRefusedAfterEveryLookNamingThem) {
   EXPECT_TRUE(looked.plan.steps.empty());
 }
 
+TEST_F(LookAgainTest, WhereTheArmWouldGoUnseenIsLookedAtFirst) {
+  // The L in the middle of the first view; the arm starts at the robot's side, out of it.
+  TurningCamera camera({Eigen::Vector2d(0.3, -0.1)});
+  const LookedPlan blind = plan_with(camera, 0, 0);
+  ASSERT_TRUE(blind.plan.valid()) << describe(*blind.plan.refusal);
+  EXPECT_EQ(camera.looks, 0);
+  ASSERT_FALSE(blind.plan.steps.at(0).arms.at(0).unseen.empty());
+  const auto warned = std::find_if(
+      blind.plan.warnings.begin(), blind.plan.warnings.end(), [](const std::string& w) {
+        return w.find("step 0, right arm: passes through space no camera has seen") !=
+               std::string::npos;
+      });
+  EXPECT_NE(warned, blind.plan.warnings.end());
+
+  const LookedPlan looked = plan_with(camera, 0, 2);
+  ASSERT_TRUE(looked.plan.valid()) << describe(*looked.plan.refusal);
+  ASSERT_FALSE(looked.looks.empty());
+  EXPECT_EQ(camera.looks, static_cast<int>(looked.looks.size()));
+  EXPECT_NE(looked.looks.front().why.find("step 0's right arm would pass through space no camera"),
+            std::string::npos)
+      << looked.looks.front().why;
+  // The look was where the arm would go unseen: fewer of its places stay unseen.
+  EXPECT_LT(looked.plan.steps.at(0).arms.at(0).unseen.size(),
+            blind.plan.steps.at(0).arms.at(0).unseen.size());
+}
+
 TEST(LookAgainSettings, BadValuesAreRefused) {
   LookAgainSettings s;
   s.max_looks = -1;
   EXPECT_THROW(s.validate(), Error);
   s.max_looks = 2;
   s.pattern_angle = 0.0;
+  EXPECT_THROW(s.validate(), Error);
+  s.pattern_angle = 0.2;
+  s.unseen_looks = 9;
   EXPECT_THROW(s.validate(), Error);
 }
 

@@ -128,6 +128,46 @@ TEST_F(MotionCheck, HiddenSpaceBlocksWhenItCountsAsOccupiedAndNotWhenFree) {
   EXPECT_TRUE(seen_only.free()) << describe(*seen_only.contact);
 }
 
+// The plate's camera turned `yaw` (rad) about the vertical: a second frame, looking elsewhere.
+PointCloud turned(PointCloud frame, double yaw) {
+  const Eigen::Isometry3d turn(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
+  for (Eigen::Vector3f& p : frame.points) p = (turn * p.cast<double>()).cast<float>();
+  frame.T_cloud_sensor = turn * frame.T_cloud_sensor;
+  return frame;
+}
+
+TEST_F(MotionCheck, WhereTheArmGoesOutOfEveryViewIsSaidAndBlocksOnlyWhenItCountsAsOccupied) {
+  const PointCloud ahead = plate_seen_from_above();
+  // From the right (pan -1.2 rad, out of the view's 67 degrees) to straight ahead (in view).
+  const JointValues from = right_arm(-1.2), to = right_arm(0.0);
+  const RobotMotionChecker one_view = checker(ahead);
+  const std::vector<Eigen::Vector3d> unseen = one_view.unseen_along({from, to});
+  ASSERT_FALSE(unseen.empty());
+  // In the order the arm gets there: the first at the start, on the right.
+  EXPECT_LT(unseen.front().y(), -0.4) << unseen.front().transpose();
+  EXPECT_TRUE(one_view.unseen_along({to}).empty());
+  // Unseen space counts as free by default: with the plate's shadow free too, the line is free;
+  // with unseen space occupied, it is refused.
+  CollisionSceneSettings shadow_free;
+  shadow_free.unknown_is_occupied = false;
+  EXPECT_TRUE(checker(ahead, shadow_free).check_line(from, to).free());
+  CollisionSceneSettings strict = shadow_free;
+  strict.unseen_is_occupied = true;
+  const MotionVerdict refused = checker(ahead, strict).check_line(from, to);
+  ASSERT_FALSE(refused.free());
+  EXPECT_EQ(refused.contact->obstacle, "space no camera has seen");
+  // A second frame turned to the right sees where the arm starts: fewer places stay unseen, none
+  // of them where the first was.
+  const PointCloud right = turned(ahead, -1.0);
+  MotionCheckSettings settings;
+  const RobotMotionChecker two_views(
+      *body_, std::make_shared<CollisionScene>(std::vector<const PointCloud*>{&ahead, &right}),
+      kinematics_, rest_of_robot(), settings);
+  const std::vector<Eigen::Vector3d> still = two_views.unseen_along({from, to});
+  EXPECT_LT(still.size(), unseen.size());
+  for (const Eigen::Vector3d& p : still) EXPECT_GT((p - unseen.front()).norm(), 0.04);
+}
+
 TEST_F(MotionCheck, AnObjectTheGripperMeansToTouchDoesNotBlockIt) {
   // A 5 cm cube where the closed fingers end up, straight ahead.
   const Eigen::Isometry3d tool =

@@ -355,6 +355,10 @@ def test_plan_with_collisions_checks_every_motion_as_lmk_pbd_does(task4):
     arms = [arm for step in planned["steps"] for arm in step["arms"]]
     assert arms and all(len(arm["intended_contact"]["near"]) == 2 for arm in arms)
     assert any(arm["clearance_m"] is not None and arm["clearance_m"] > 0.02 for arm in arms)
+    # Where a motion goes out of the head's view, the plan says so, and warns once per motion.
+    unseen = [arm for arm in arms if arm["unseen"]]
+    warned = [w for w in planned["warnings"] if "passes through space no camera has seen" in w]
+    assert len(warned) == len(unseen)
     unchecked = lmk.plan(program, lmk.read_cloud(scene), lmk.SimulatedPr2(torso_height=0.05))
     for arm in (arm for step in unchecked["steps"] for arm in step["arms"]):
         assert arm["clearance_m"] is None and not arm["intended_contact"]["near"]
