@@ -173,6 +173,19 @@ std::optional<MotionContact> RobotMotionChecker::check_state(const JointValues& 
   return deepest;
 }
 
+RobotMotionChecker::Needs RobotMotionChecker::needs_at(const Needs& ends_allow,
+                                                       double from_end) const {
+  if (from_end < kEndZone) return touching_only();
+  // What an end allows holds near it only: past the end zone every centimetre of travel asks a
+  // centimetre more, up to the paddings. A link that starts beside a grasped bowl may not graze a
+  // shelf's roof half-way out.
+  const double more = from_end - kEndZone;
+  Needs needs = ends_allow;
+  for (double& n : needs.scene) n = std::min(settings_.padding, n + more);
+  for (double& n : needs.self) n = std::min(settings_.self_padding, n + more);
+  return needs;
+}
+
 RobotMotionChecker::Needs RobotMotionChecker::touching_only() const {
   Needs none;
   none.scene.assign(body_->links().size(), 0.0);
@@ -233,7 +246,7 @@ MotionVerdict RobotMotionChecker::check_line(const JointValues& from, const Join
   const int steps = std::max(1, static_cast<int>(std::ceil(span / settings_.padding)));
   JointValues b = a;
   for (const auto& [name, d] : delta) b[name] = a.at(name) + d;
-  const Needs needs = needs_between(a, b, moving, &intended), ends = touching_only();
+  const Needs needs = needs_between(a, b, moving, &intended);
   MotionVerdict verdict;
   verdict.clearance = std::numeric_limits<double>::infinity();
   for (int k = 0; k <= steps; ++k) {
@@ -241,9 +254,8 @@ MotionVerdict RobotMotionChecker::check_line(const JointValues& from, const Join
     JointValues q = a;
     for (const auto& [name, d] : delta) q[name] = a.at(name) + t * d;
     double clearance = 0.0;
-    const bool near_end = std::min(t, 1.0 - t) * span < kEndZone;
-    std::optional<MotionContact> contact =
-        check_state(q, moving, &intended, &clearance, near_end ? &ends : &needs);
+    const Needs here = needs_at(needs, std::min(t, 1.0 - t) * span);
+    std::optional<MotionContact> contact = check_state(q, moving, &intended, &clearance, &here);
     ++verdict.samples;
     verdict.clearance = std::min(verdict.clearance, clearance);
     if (contact) {
@@ -262,7 +274,8 @@ std::vector<Eigen::Vector3d> RobotMotionChecker::unseen_along(
   std::vector<std::string> names;
   for (const auto& [name, value] : path.front()) names.push_back(name);
   const std::vector<char> moving = links_moved_by(names);
-  // The cubes already looked at: each is judged once, by the first point of the arm in it.
+  // The cubes already judged: each by the first point of the arm in it (judging every point, a
+  // cube the view's edge cuts would be caught too, at twice the time of a plan).
   std::set<std::tuple<long, long, long>> cells;
   const auto visit = [&](const JointValues& q) {
     const std::vector<Eigen::Isometry3d> placed = body_->place(q);
@@ -339,8 +352,8 @@ MotionPlan RobotMotionChecker::plan_around(const std::string& group, const Joint
   JointValues q = start_state;
   const auto free = [&](const std::vector<double>& v) {
     for (std::size_t i = 0; i < n; ++i) q[names[i]] = v[i];
-    const bool near_end = std::min(sweep(start_state, q), sweep(goal_state, q)) < kEndZone;
-    return !check_state(q, moving, &intended, nullptr, near_end ? &ends : &needs);
+    const Needs here = needs_at(needs, std::min(sweep(start_state, q), sweep(goal_state, q)));
+    return !check_state(q, moving, &intended, nullptr, &here);
   };
   // Motions are checked at states no farther apart than the padding moves any point
   // (sum |dq_i| lever_i <= |dq| |lever|).

@@ -63,8 +63,8 @@ class RobotMotionChecker : public MotionChecker {
   };
   /// What the moving links must keep along a motion from `from` to `to` (whole joint states): the
   /// paddings, or half of what a link keeps at either end where that is less. A demonstration that
-  /// put the forearm 1 cm from a shelf may go there, but comes no nearer on the way; an end inside
-  /// something still refuses.
+  /// put the forearm 1 cm from a shelf may go there, but comes no nearer on the way, and only near
+  /// that end (needs_at); an end inside something still refuses.
   Needs needs_between(const JointValues& from, const JointValues& to,
                       const std::vector<char>& moving, const IntendedContact* intended) const;
 
@@ -88,6 +88,10 @@ class RobotMotionChecker : public MotionChecker {
   /// Needs of nothing but not going inside: near a motion's ends (kEndZone of travel), where a
   /// link already within the padding must be free to leave or arrive.
   Needs touching_only() const;
+  /// What the links need `from_end` m of travel from the nearer end of a motion whose ends allow
+  /// `ends_allow` (needs_between): nothing but not going inside within the end zone, then one
+  /// more centimetre per centimetre of travel, up to the paddings.
+  Needs needs_at(const Needs& ends_allow, double from_end) const;
   /// How far any point of the body moves from `a` to `b` at most (sum of |dq| times the levers).
   double sweep(const JointValues& a, const JointValues& b) const;
   std::shared_ptr<const RobotBody> body_;
