@@ -622,6 +622,21 @@ TEST(PbdRunOnRos, AMissingLandmarkSendsNoArmGoalAfterLookingAgain) {
   EXPECT_EQ(arm_and_gripper_goals(robot), 0);
 }
 
+TEST(PbdRunOnRos, AMotionThatWouldTouchAndCannotGoAroundSendsNoArmGoal) {
+  FakePr2 robot(fake_settings("scenario3.pcd"));  // the bowl is there: only the motion refuses
+  const ScratchDir dir;
+  // 20 cm of padding from the shelf and a planner allowed one configuration: the first motion
+  // would come too near, and no way around it is found. Nothing moves, not even the head.
+  const auto [code, out] = run_lmk(
+      dir, {"pbd", "run", demo_data().program().string(), "--ros", "--check-collisions",
+            "--padding", "0.2", "--planning-checks", "1", "--look-again", "0", "--unseen-looks",
+            "0"});
+  EXPECT_EQ(code, 1) << out;
+  EXPECT_NE(out.find("refused: step 0, right arm: link "), std::string::npos) << out;
+  EXPECT_NE(out.find(" m in base_link"), std::string::npos) << out;
+  EXPECT_EQ(robot.total_goals(), 0);
+}
+
 /// The PR2's arms as the fake PR2 starts them: every joint at zero, or at its nearest limit.
 JointState arms_at_rest(const Pr2Kinematics& kinematics) {
   JointState state;
