@@ -32,15 +32,18 @@ Eigen::Isometry3d joint_motion(const urdf::Joint& j, double value) {
   return T;
 }
 
-// The file a <mesh filename> names: package://NAME/PATH in `package_dir`, file://PATH, or a path
-// relative to the URDF's directory.
-std::string mesh_path(const std::string& uri, const std::string& package_dir,
+// The file a <mesh filename> names: package://NAME/PATH in NAME's folder (settings.package_path),
+// else in settings.package_dir, file://PATH, or a path relative to the URDF's directory.
+std::string mesh_path(const std::string& uri, const CollisionShapeSettings& settings,
                       const std::string& urdf_dir) {
   const std::string package = "package://", file = "file://";
   if (uri.rfind(package, 0) == 0) {
     const std::size_t slash = uri.find('/', package.size());
     const std::string rest = slash == std::string::npos ? "" : uri.substr(slash + 1);
-    return (std::filesystem::path(package_dir.empty() ? urdf_dir : package_dir) / rest).string();
+    const std::string name = uri.substr(package.size(), slash - package.size());
+    std::string dir = settings.package_path ? settings.package_path(name) : "";
+    if (dir.empty()) dir = settings.package_dir.empty() ? urdf_dir : settings.package_dir;
+    return (std::filesystem::path(dir) / rest).string();
   }
   if (uri.rfind(file, 0) == 0) return uri.substr(file.size());
   return (std::filesystem::path(urdf_dir) / uri).string();
@@ -119,8 +122,7 @@ std::vector<LinkSolid> RobotModel::collision_solids(const CollisionShapeSettings
           break;
         case urdf::Geometry::MESH: {
           const auto& m = static_cast<const urdf::Mesh&>(g);
-          add_mesh(m, link->name, T, mesh_path(m.filename, settings.package_dir, impl_->dir),
-                   settings, out);
+          add_mesh(m, link->name, T, mesh_path(m.filename, settings, impl_->dir), settings, out);
           break;
         }
       }

@@ -4,6 +4,7 @@
 // kinematics over revolute, continuous, prismatic and fixed joints.
 
 #include <Eigen/Geometry>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -65,6 +66,10 @@ struct CollisionShapeSettings {
   /// Where a mesh named package://NAME/PATH is looked for: DIR/PATH. Empty: the URDF file's own
   /// directory (a description package holds its meshes beside its urdf/ folder).
   std::string package_dir;
+  /// Where package NAME's folder is, before package_dir: on a robot under ROS, its package path
+  /// (a robot_description names meshes in its description package). Unset, or "" for a package
+  /// it does not know: package_dir.
+  std::function<std::string(const std::string& package)> package_path;
   /// Only these links' shapes (empty: every link's): a check that needs the arms alone reads no
   /// other mesh.
   std::vector<std::string> only_links;

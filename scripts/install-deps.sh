@@ -50,6 +50,8 @@ more_packages=(
   libtf2-ros-dev libtf2-eigen-dev libinteractive-markers-dev librosbag-dev libpcl-conversions-dev
   python3-gencpp python3-genmsg ros-message-generation python3-rosmaster python3-roslaunch
   python3-rostest python3-rospy python3-rosbag catkin python3-catkin-pkg
+  # roslib: lmk pbd run --ros finds robot_description's meshes through the package paths
+  libroslib-dev
   # lmk_msgs from Python and the shell: genpy generates it; rosservice and rospy's examples need
   # the geometry messages it embeds
   python3-genpy python3-rosservice python3-geometry-msgs

@@ -104,10 +104,12 @@ Pr2MotionCheckSettings motion_check_settings(const PbdOptions& o) {
   return check;
 }
 
-PlanSettings plan_settings(const PbdOptions& o, const Pr2Kinematics* kinematics) {
+PlanSettings plan_settings(const PbdOptions& o, const Pr2Kinematics* kinematics,
+                           std::shared_ptr<const RobotBody> body) {
   PlanSettings settings;
   if (kinematics && o.check_collisions)
-    settings.motion_checker = pr2_motion_checker(*kinematics, motion_check_settings(o));
+    settings.motion_checker =
+        pr2_motion_checker(*kinematics, motion_check_settings(o), std::move(body));
   settings.find.execution.threads = o.threads;
   settings.min_confidence = o.min_confidence;
   if (!o.policy.empty()) settings.policy = instance_policy_from_name(o.policy);

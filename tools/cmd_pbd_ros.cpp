@@ -5,6 +5,7 @@
 // most --look-again further frames, fused with the first); a refusal sends no arm goal at all; a
 // controller's abort stops the run and names the step. Ctrl-C cancels the goal under way.
 
+#include <ros/package.h>
 #include <ros/ros.h>
 #include <tf2_ros/transform_listener.h>
 
@@ -73,6 +74,27 @@ ExecutionReport execute_watched(const Program& program, const Plan& plan,
   return watched.report;
 }
 
+// The robot's collision model for --check-collisions: its robot_description's <collision> shapes
+// (meshes found through ROS's package paths), or lmk's own PR2 description where none is set.
+std::shared_ptr<const RobotBody> robot_description_body() {
+  std::string urdf;
+  if (!ros::param::get("robot_description", urdf) || urdf.empty()) {
+    std::printf("collision model: lmk's PR2 description (no robot_description parameter)\n");
+    return nullptr;
+  }
+  CollisionShapeSettings shapes;
+  shapes.package_path = [](const std::string& name) { return ros::package::getPath(name); };
+  try {
+    auto model = std::make_shared<RobotModel>(RobotModel::from_string(urdf, "robot_description"));
+    auto body = std::make_shared<const RobotBody>(model, shapes);
+    std::printf("collision model: robot_description's %s, %zu collision shapes\n",
+                model->name().c_str(), body->solids().size());
+    return body;
+  } catch (const Error& e) {
+    throw Error(std::string("pbd run --ros: ") + e.what());
+  }
+}
+
 }  // namespace
 
 int run_on_ros(const PbdOptions& o) {
@@ -114,8 +136,10 @@ int run_on_ros(const PbdOptions& o) {
   LookAgainSettings looking;
   looking.max_looks = o.look_again;
   looking.unseen_looks = o.unseen_looks;
+  const std::shared_ptr<const RobotBody> body =
+      o.check_collisions ? robot_description_body() : nullptr;
   const LookedPlan looked = plan_looking_again(program, landmarks, frame->scene, kinematics, state,
-                                               eyes, plan_settings(o, &kinematics), looking);
+                                               eyes, plan_settings(o, &kinematics, body), looking);
   for (const Look& look : looked.looks) {
     std::printf("looked again at (%.3f, %.3f, %.3f): %s\n", look.target.x(), look.target.y(),
                 look.target.z(), look.why.c_str());

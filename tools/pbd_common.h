@@ -43,7 +43,9 @@ struct PbdOptions {
 
 /// The planner's settings; with `kinematics` and --check-collisions, every motion checked for the
 /// PR2 it describes.
-PlanSettings plan_settings(const PbdOptions& o, const Pr2Kinematics* kinematics = nullptr);
+/// `body`: the robot's collision model (unset: lmk's PR2 description's).
+PlanSettings plan_settings(const PbdOptions& o, const Pr2Kinematics* kinematics = nullptr,
+                           std::shared_ptr<const RobotBody> body = nullptr);
 /// --padding, --planning-time, --unknown as the PR2's motion check takes them.
 Pr2MotionCheckSettings motion_check_settings(const PbdOptions& o);
 /// The program's landmarks, their files relative to the program's folder.

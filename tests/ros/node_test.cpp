@@ -24,6 +24,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -627,14 +628,42 @@ TEST(PbdRunOnRos, AMotionThatWouldTouchAndCannotGoAroundSendsNoArmGoal) {
   const ScratchDir dir;
   // 20 cm of padding from the shelf and a planner allowed one configuration: the first motion
   // would come too near, and no way around it is found. Nothing moves, not even the head.
-  const auto [code, out] = run_lmk(
-      dir, {"pbd", "run", demo_data().program().string(), "--ros", "--check-collisions",
-            "--padding", "0.2", "--planning-checks", "1", "--look-again", "0", "--unseen-looks",
-            "0"});
+  const auto [code, out] =
+      run_lmk(dir, {"pbd", "run", demo_data().program().string(), "--ros", "--check-collisions",
+                    "--padding", "0.2", "--planning-checks", "1", "--look-again", "0",
+                    "--unseen-looks", "0"});
   EXPECT_EQ(code, 1) << out;
   EXPECT_NE(out.find("refused: step 0, right arm: link "), std::string::npos) << out;
   EXPECT_NE(out.find(" m in base_link"), std::string::npos) << out;
   EXPECT_EQ(robot.total_goals(), 0);
+}
+
+TEST(PbdRunOnRos, TheCollisionModelIsReadFromRobotDescription) {
+  FakePr2 robot(fake_settings("scenario3.pcd"));
+  struct Description {  // robot_description for this test only, whatever fails
+    explicit Description(const std::string& urdf) { ::ros::param::set("/robot_description", urdf); }
+    ~Description() { ::ros::param::del("/robot_description"); }
+  };
+  const ScratchDir dir;
+  const std::vector<std::string> run = {"pbd", "run", demo_data().program().string(), "--ros",
+                                        "--check-collisions"};
+  {
+    std::ifstream in(std::string(LMK_SOURCE_DIR) + "/pr2/data/pr2.urdf");
+    const Description pr2(std::string(std::istreambuf_iterator<char>(in), {}));
+    const auto [code, out] = run_lmk(dir, run);
+    EXPECT_EQ(code, 0) << out;
+    EXPECT_NE(out.find("collision model: robot_description's pr2, "), std::string::npos) << out;
+  }
+  const int goals = robot.total_goals();
+  {
+    // A description that is no robot: one clear line, and nothing moves.
+    const Description broken("<robot name=\"broken\"></robot>");
+    const auto [code, out] = run_lmk(dir, run);
+    EXPECT_EQ(code, 2) << out;
+    EXPECT_NE(out.find("pbd run --ros: "), std::string::npos) << out;
+    EXPECT_NE(out.find("robot_description"), std::string::npos) << out;
+    EXPECT_EQ(robot.total_goals(), goals);
+  }
 }
 
 /// The PR2's arms as the fake PR2 starts them: every joint at zero, or at its nearest limit.
