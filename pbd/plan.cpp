@@ -422,6 +422,9 @@ std::optional<Refusal> solve_steps(const Program& program, const Plan& plan,
     PlannedStep planned;
     planned.index = s;
     double duration = step.duration.value_or(0.0);
+    // Where the arms stand as this step's targets are chosen: an arm already solved at its target,
+    // so that the other's target is not chosen inside it (both hands on one chair).
+    std::map<Arm, std::vector<double>> at_targets = current;
     for (Arm arm : {Arm::kLeft, Arm::kRight}) {
       const std::optional<ArmTarget>& target = step.arm(arm);
       if (!target) continue;
@@ -435,9 +438,10 @@ std::optional<Refusal> solve_steps(const Program& program, const Plan& plan,
       a.ik = kinematics.inverse(arm_group(arm), a.T_base_ee, current[arm]);
       if (!a.ik.success) return Unreachable{s, arm, a.ik.message};
       if (checker) {
-        avoid_touching_targets(*checker, arms.groups.at(arm), kinematics, current, arms, s, a,
+        avoid_touching_targets(*checker, arms.groups.at(arm), kinematics, at_targets, arms, s, a,
                                settings.intended_contact_radius);
       }
+      at_targets[arm] = a.ik.joints;
       duration = std::max(duration, motion_duration(arms.groups.at(arm), current[arm], a.ik.joints,
                                                     settings.speed_fraction));
       planned.arms.push_back(std::move(a));

@@ -190,6 +190,21 @@ TEST(DemoTasks, LookingWhereTheArmGoesUnseenTouchesNoMoreAndSucceedsAsOften) {
   EXPECT_EQ(looking.succeeded(), not_looking.succeeded());
 }
 
+// Issue #60: both hands on the chair's backrest with every motion checked. The second arm's target
+// is chosen clear of the first arm at its own target: at 50 degrees the first IK solutions put the
+// right upper arm into the left forearm, and the scenario was refused.
+TEST(DemoTasks, BothHandsOnTheChairActWithEveryMotionChecked) {
+  DemoTasksSettings checked;
+  checked.tasks = {2};
+  checked.check_collisions = true;
+  const DemoTasksReport r = run_demo_tasks(checked);
+  ASSERT_EQ(r.scenarios.size(), 5u);
+  for (const DemoScenarioResult& s : r.scenarios) {
+    EXPECT_TRUE(s.success) << s.name << ": " << s.reason;
+    EXPECT_EQ(s.contacts, 0u) << s.name << ": " << s.first_contact;
+  }
+}
+
 TEST(DemoTasks, JsonHoldsEveryScenario) {
   const auto j = nlohmann::json::parse(demo_tasks_json(report()));
   ASSERT_EQ(j["scenarios"].size(), report().total());
