@@ -6,6 +6,7 @@
 #include "lmk/json/pose_json.h"
 #include "lmk/pbd/internal/plan_json.h"
 #include "lmk/pbd/plan.h"
+#include "lmk/pr2/pr2_motion_check.h"
 #include "lmk/pr2/pr2_robots.h"
 #include "lmk/pr2/simulated_pr2.h"
 #include "lmk/serve/api.h"
@@ -41,6 +42,40 @@ nlohmann::json targets_json(const Program& program, const Plan& plan) {
     }
   }
   return targets;
+}
+
+// Issue #60: where each arm's tool frame goes along its planned motion, base frame, from where it
+// stood before the step: the swept path the page draws.
+nlohmann::json tool_paths_json(const Plan& plan, const KinematicsInterface& kinematics) {
+  std::map<Arm, std::vector<double>> at;  // each arm's joints before the step
+  for (const Arm arm : {Arm::kLeft, Arm::kRight}) {
+    const std::optional<GroupInfo> group = kinematics.group(arm_group(arm));
+    if (!group) continue;
+    for (const JointInfo& j : group->joints) {
+      const auto start = plan.start.find(j.name);
+      at[arm].push_back(start == plan.start.end() ? 0.0 : start->second);
+    }
+  }
+  const auto add_tool = [&](Arm arm, const std::vector<double>& q, nlohmann::json& points) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    if (kinematics.forward(arm_group(arm), q, T).ok())
+      points.push_back(detail::vector_to_json(T.translation()));
+  };
+  nlohmann::json paths = nlohmann::json::array();
+  for (const PlannedStep& step : plan.steps) {
+    for (const PlannedArm& a : step.arms) {
+      nlohmann::json points = nlohmann::json::array();
+      add_tool(a.arm, at[a.arm], points);
+      for (const JointTrajectory::Point& p : a.trajectory.points)
+        add_tool(a.arm, p.positions, points);
+      paths.push_back({{"step", step.index},
+                       {"arm", arm_name(a.arm)},
+                       {"planned_around", a.planned_around},
+                       {"points", points}});
+      at[a.arm] = a.ik.joints;
+    }
+  }
+  return paths;
 }
 
 }  // namespace
@@ -90,6 +125,14 @@ ApiResponse Api::plan(const std::string& name, const std::string& body_text) {
   const fs::path path = program_path(name);
   const Scene scene = scenes_.get(required_string(body, "scene", "plan"));
   const double torso = optional_number(body, "torso", settings_.torso, "plan");
+  // Issue #60: every motion checked against the scene and the robot, as lmk pbd plan
+  // --check-collisions does; the padding as its --padding.
+  const bool collisions = optional_bool(body, "collisions", false, "plan");
+  Pr2MotionCheckSettings check;
+  check.motion.padding = optional_number(body, "padding", check.motion.padding, "plan");
+  if (!(check.motion.padding >= 0.001 && check.motion.padding <= 0.2))
+    throw bad_request("plan: padding " + std::to_string(check.motion.padding) +
+                      " m: must be 0.001 to 0.2");
   const Program program = load_program(path.string());
   // A program names its landmark files; they must stay within the directories lmk serve was given.
   for (const ProgramLandmark& l : program.landmarks) {
@@ -112,6 +155,7 @@ ApiResponse Api::plan(const std::string& name, const std::string& body_text) {
     SimulatedPr2 robot = start_simulated_pr2(torso);
     JointState start;
     robot.read_joint_state(start);
+    if (collisions) plan_settings.motion_checker = pr2_motion_checker(robot.kinematics(), check);
     double done = 0.0;
     const double steps = static_cast<double>(program.landmarks.size() + 1);
     plan_settings.find.execution.stop = progress.stop_check();
@@ -124,7 +168,8 @@ ApiResponse Api::plan(const std::string& name, const std::string& body_text) {
     return nlohmann::json{{"name", name},
                           {"scene", scene.id},
                           {"plan", detail::plan_to_json(p)},
-                          {"targets", targets_json(program, p)}};
+                          {"targets", targets_json(program, p)},
+                          {"paths", tool_paths_json(p, robot.kinematics())}};
   });
 }
 

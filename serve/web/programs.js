@@ -34,7 +34,12 @@ export class ProgramsPanel {
     out.textContent = `planning '${name}'…`;
     try {
       const result = await runJob(
-          `/api/programs/${encodeURIComponent(name)}/plan`, {scene: this.app.sceneId}, (p) => {
+          `/api/programs/${encodeURIComponent(name)}/plan`,
+          {
+            scene: this.app.sceneId,
+            collisions: document.getElementById('plan-collisions').checked,
+          },
+          (p) => {
             progress.value = p.fraction;
             out.textContent = p.message;
           });
@@ -48,7 +53,7 @@ export class ProgramsPanel {
   }
 
   show(result) {
-    const {plan, targets} = result;
+    const {plan, targets, paths} = result;
     const out = document.getElementById('plan-result');
     out.replaceChildren();
     const line = (text, cls = '') => {
@@ -67,11 +72,27 @@ export class ProgramsPanel {
           `step ${t.step} ${t.arm} in ${t.frame}: gripper ${t.gripper}` +
           (t.pose ? '' : ' (landmark not located)'));
     }
+    // Issue #60: each checked motion's clearance, and where it goes unseen.
+    for (const step of plan.steps) {
+      for (const arm of step.arms) {
+        if (arm.clearance_m === null) continue;
+        line(
+            `step ${step.step} ${arm.arm} motion: clearance ${(100 * arm.clearance_m).toFixed(1)} cm` +
+            (arm.planned_around ? ', planned around an obstacle' : '') +
+            (arm.unseen.length ? `, ${arm.unseen.length} places no camera has seen` : ''));
+      }
+    }
+    for (const w of plan.warnings) line(`warning: ${w}`);
     if (plan.refusal) {
       line(`refused (${plan.refusal.kind}): ${plan.refusal.message}`, 'bad');
     } else {
       line(`plan valid: ${plan.steps.length} steps`, 'good');
     }
+    // The tool frames' swept paths, and what a refused motion would touch.
+    const contact = plan.refusal && plan.refusal.contact;
+    this.app.viewer.showPaths(
+        (paths || []).map((p) => ({points: p.points, around: p.planned_around})),
+        contact ? {where: contact.where, label: `${contact.link}: ${contact.obstacle}`} : null);
     const posed = targets.filter((t) => t.pose);
     this.app.viewer.showTargets(posed.map((t) => ({
                                             pose: t.pose,

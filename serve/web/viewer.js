@@ -105,7 +105,7 @@ export class Viewer {
     });
     this.scene.add(this.handles);
     this.layers = {};
-    for (const name of ['cloud', 'sensor', 'matches', 'targets', 'edit']) {
+    for (const name of ['cloud', 'sensor', 'matches', 'targets', 'paths', 'edit']) {
       this.layers[name] = new THREE.Group();
       this.scene.add(this.layers[name]);
     }
@@ -277,6 +277,29 @@ export class Viewer {
       frame.add(new THREE.AxesHelper(0.04));
       this.layers.targets.add(frame);
       this.addLabel(frame, t.label, 'targets');
+    }
+    this.requestRender();
+  }
+
+  /**
+   * Draws the arms' swept paths [{points, around}] (the tool frame along each motion; a path
+   * planned around an obstacle in orange) and, when a motion was refused, the place it would
+   * touch {where, label} as a red ball.
+   */
+  showPaths(paths, contact) {
+    this.clear('paths');
+    for (const p of paths) {
+      const geometry = new THREE.BufferGeometry().setFromPoints(
+          p.points.map((q) => new THREE.Vector3(...q)));
+      const colour = p.around ? 0xff8800 : 0x33ccff;
+      this.layers.paths.add(new THREE.Line(geometry, new THREE.LineBasicMaterial({color: colour})));
+    }
+    if (contact) {
+      const ball = new THREE.Mesh(
+          new THREE.SphereGeometry(0.015, 16, 12), new THREE.MeshBasicMaterial({color: 0xff2222}));
+      ball.position.set(...contact.where);
+      this.layers.paths.add(ball);
+      this.addLabel(ball, contact.label, 'paths');
     }
     this.requestRender();
   }

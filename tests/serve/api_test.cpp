@@ -407,6 +407,36 @@ TEST_F(ServeTest, ProgramsArePlannedAsOnTheRobotAndTheirFilesStayInTheirDirector
     EXPECT_EQ(result["targets"][0]["pose"].is_null(), expected.landmarks.empty()) << id;
   }
 
+  // Issue #60: with collisions, every motion checked as lmk pbd plan --check-collisions checks it;
+  // each arm's swept tool path comes back for the page to draw, from where the arm stood.
+  // A step in the base frame ahead of the right shoulder, above the table; one into the table's
+  // shadow is refused naming what the forearm would touch, where.
+  const auto reach_to = [&](const std::string& name, const Eigen::Vector3d& p) {
+    Program ahead = reach;
+    ahead.name = name;
+    ahead.steps[0].right =
+        ArmTarget{kBaseFrame, Eigen::Isometry3d(Eigen::Translation3d(p)), GripperAction::kOpen};
+    save_program((fs::path(programs_dir) / (name + ".json")).string(), ahead);
+  };
+  reach_to("low", {0.55, -0.19, 0.75});
+  const nlohmann::json low = run("/api/programs/low/plan", {{"scene", "2"}, {"collisions", true}});
+  ASSERT_EQ(low["plan"]["refusal"]["kind"], "collision") << low.dump();
+  EXPECT_EQ(low["plan"]["refusal"]["contact"]["where"].size(), 3u);
+  EXPECT_TRUE(low["paths"].empty());
+  reach_to("ahead", {0.55, -0.19, 1.05});
+  const nlohmann::json checked =
+      run("/api/programs/ahead/plan", {{"scene", "2"}, {"collisions", true}});
+  ASSERT_FALSE(checked["plan"]["steps"].empty()) << checked.dump();
+  for (const auto& step : checked["plan"]["steps"])
+    for (const auto& arm : step["arms"]) EXPECT_FALSE(arm["clearance_m"].is_null()) << arm.dump();
+  ASSERT_EQ(checked["paths"].size(), 1u);
+  EXPECT_EQ(checked["paths"][0]["arm"], "right");
+  EXPECT_GE(checked["paths"][0]["points"].size(), 2u);
+  const nlohmann::json unchecked = run("/api/programs/ahead/plan", {{"scene", "2"}});
+  for (const auto& step : unchecked["plan"]["steps"])
+    for (const auto& arm : step["arms"]) EXPECT_TRUE(arm["clearance_m"].is_null());
+  EXPECT_EQ(post("/api/programs/ahead/plan", {{"scene", "2"}, {"padding", 0.5}}).status, 400);
+
   const Reply outside = post("/api/programs/escape/plan", {{"scene", "2"}});
   EXPECT_EQ(outside.status, 403) << outside.text;
   EXPECT_EQ(post("/api/programs/notes/plan", {{"scene", "2"}}).status, 422);
