@@ -416,6 +416,12 @@ def test_plan_looks_again_through_a_python_head(task4):
         lmk.plan(program, cut, lmk.SimulatedPr2(torso_height=0.05), look_again=2)
     with pytest.raises(ValueError, match="look_again must be 0 to 8"):
         lmk.plan(program, cut, lmk.SimulatedPr2(torso_height=0.05), look=look, look_again=9)
+    # Looks where checked motions go unseen (issue #60) need the head as well.
+    with pytest.raises(ValueError, match="unseen_looks needs look"):
+        lmk.plan(program, cut, lmk.SimulatedPr2(torso_height=0.05), collisions=True,
+                 unseen_looks=1)
+    with pytest.raises(ValueError, match="unseen_looks must be 0 to 8"):
+        lmk.plan(program, cut, lmk.SimulatedPr2(torso_height=0.05), look=look, unseen_looks=-1)
 
 
 def test_the_stub_names_everything_the_module_has():
