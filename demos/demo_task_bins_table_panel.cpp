@@ -16,17 +16,12 @@ const DemoLandmark& DemoTask::landmark(const std::string& name) const {
 }
 
 std::vector<DemoTask> demo_task_definitions() {
-  return {hanging_tools_task(), chair_task(),         bowls_on_shelf_task(),
-          bins_task(),          crowded_table_task(), control_panel_task()};
+  return {hanging_tools_task(), chair_task(),         bowls_on_shelf_task(), bins_task(),
+          crowded_table_task(), control_panel_task(), obstacles_task()};
 }
 
 // --- Task 4: trash and recycling bins ----------------------------------------------------------
 
-namespace {
-
-constexpr double kBinX = 0.58;
-
-// The trash bin (square mouth) and the recycling bin (round mouth) on the floor.
 void add_bins(DemoWorld& w, std::optional<Eigen::Vector3d> trash, Eigen::Vector3d recycling) {
   // Each (x, y, yaw).
   if (trash) {
@@ -39,11 +34,7 @@ void add_bins(DemoWorld& w, std::optional<Eigen::Vector3d> trash, Eigen::Vector3
         {{"recycling_opening", "opening"}});
 }
 
-}  // namespace
-
-DemoTask bins_task() {
-  DemoTask t = new_task(4, "trash vs recycling", 0.05, {0.6, 0.0, 0.1});
-  add_bins(t.demonstration, Eigen::Vector3d(kBinX, 0.2, 0.0), {kBinX, -0.2, 0.0});
+void add_bin_programs(DemoTask& t) {
   // A square mouth looks the same a quarter turn round; a round one, any turn round.
   t.landmarks = {
       part_landmark("trash_opening", "trash", "opening", Symmetry{Eigen::Vector3d::UnitZ(), 4}),
@@ -63,6 +54,12 @@ DemoTask bins_task() {
                            GripperAction::kOpen};
     t.programs.push_back({program, {landmark}, {over, drop, up}});
   }
+}
+
+DemoTask bins_task() {
+  DemoTask t = new_task(4, "trash vs recycling", 0.05, {0.6, 0.0, 0.1});
+  add_bins(t.demonstration, Eigen::Vector3d(kBinX, 0.2, 0.0), {kBinX, -0.2, 0.0});
+  add_bin_programs(t);
   const auto scenario = [](std::string name, std::string program,
                            std::optional<Eigen::Vector3d> trash, Eigen::Vector3d recycling,
                            std::string missing = "") {

@@ -325,7 +325,7 @@ Subcommand add_pbd(CLI::App& app) {
       "demo-tasks", "The paper's six demonstration tasks, end to end on the simulated PR2");
   demo->add_option("--json", o->json, "Also write the results as JSON to FILE");
   add_timings_flag(demo, o->timings);
-  demo->add_option("--task", o->tasks, "Only these tasks (1 to 6)");
+  demo->add_option("--task", o->tasks, "Only these tasks (1 to 6: the paper's; 7: obstacles)");
   demo->add_option("--min-confidence", o->min_confidence,
                    "Least confidence of a landmark to act on (0 to 1; 0: act on any match)")
       ->check(within(0.0, 1.0))

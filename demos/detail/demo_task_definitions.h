@@ -129,7 +129,19 @@ DemoTask bowls_on_shelf_task();
 DemoTask bins_task();
 DemoTask crowded_table_task();
 DemoTask control_panel_task();
+/// Task 7 (issue #60, not the paper's): the bins with things in the arm's way.
+DemoTask obstacles_task();
+/// Every task: the paper's six, then the obstacles.
 std::vector<DemoTask> demo_task_definitions();
+
+/// The bins of tasks 4 and 7 stand this far ahead of the robot, m.
+inline constexpr double kBinX = 0.58;
+/// The trash bin (square mouth; at (x, y, yaw), none when unset) and the recycling bin (round
+/// mouth) on the floor.
+void add_bins(DemoWorld& w, std::optional<Eigen::Vector3d> trash, Eigen::Vector3d recycling);
+/// The bins' landmarks (their mouths) and programs ("drop in trash", "drop in recycling": hold an
+/// item 20 cm over the mouth, let go, move up), demonstrated in `t.demonstration`.
+void add_bin_programs(DemoTask& t);
 
 // Poses shared by the definitions.
 /// An object standing at (x, y, z) of the base frame with its front (-y in its own frame) turned
