@@ -12,8 +12,8 @@ namespace lmk::detail {
 namespace {
 
 // A box standing on the floor at (x, y), `size` its width, depth and height, turned `yaw`.
-void add_box(DemoWorld& w, const std::string& id, double x, double y,
-             const Eigen::Vector3d& size, double yaw = 0.0) {
+void add_box(DemoWorld& w, const std::string& id, double x, double y, const Eigen::Vector3d& size,
+             double yaw = 0.0) {
   w.add(id, make_clutter_box(size), pose_from_xyz_rpy({x, y, kFloorInBase}, {0, 0, yaw}));
 }
 
@@ -33,11 +33,10 @@ DemoTask obstacles_task() {
   const Eigen::Vector3d left(kBinX, 0.2, 0.0), right(kBinX, -0.2, 0.0);
   const Eigen::Vector3d tall(0.1, 0.1, 0.9);  // a floor lamp's post, a coat stand
 
-  DemoScenario between = scenario("a tall box between the arm and the bin", "drop in recycling",
-                                  left, right);
+  DemoScenario between =
+      scenario("a tall box between the arm and the bin", "drop in recycling", left, right);
   add_box(between.world, "post", 0.45, -0.55, tall);
-  DemoScenario nearer =
-      scenario("a tall box nearer the robot", "drop in recycling", left, right);
+  DemoScenario nearer = scenario("a tall box nearer the robot", "drop in recycling", left, right);
   add_box(nearer.world, "post", 0.36, -0.68, tall);
   DemoScenario beside =
       scenario("a box beside the bin, on the arm's side", "drop in recycling", left, right);
@@ -47,8 +46,7 @@ DemoTask obstacles_task() {
   add_box(two.world, "crate", 0.57, -0.44, {0.12, 0.12, 0.75});
   DemoScenario wide = scenario("a wide carton across the way", "drop in recycling", left, right);
   add_box(wide.world, "carton", 0.46, -0.58, {0.3, 0.08, 0.85}, -0.6);
-  DemoScenario swapped =
-      scenario("a tall box, the bins swapped", "drop in trash", right, left);
+  DemoScenario swapped = scenario("a tall box, the bins swapped", "drop in trash", right, left);
   add_box(swapped.world, "post", 0.45, -0.55, tall);
   DemoScenario under = scenario("a table over the way", "drop in recycling", left, right);
   under.world.add("table", make_table({0.4, 0.4, 0.9}),

@@ -31,12 +31,17 @@ std::string demo_tasks_table(const DemoTasksReport& report) {
     ++paper_total;
     paper_succeeded += r.success;
   }
+  char paper[80] = "";
+  if (paper_total > 0) {
+    std::snprintf(paper, sizeof(paper), " (tasks 1-6: %zu of %zu; the paper: 26 of 30)",
+                  paper_succeeded, paper_total);
+  }
   char total[240];
   std::snprintf(total, sizeof(total),
-                "succeeded %zu of %zu scenarios (tasks 1-6: %zu of %zu; the paper: 26 of 30), %zu "
-                "wrong motion(s), %zu refusal(s), %zu contact(s), in %.1f s\n",
-                report.succeeded(), report.total(), paper_succeeded, paper_total,
-                report.wrong_motions(), report.refusals(), report.contacts(), report.seconds);
+                "succeeded %zu of %zu scenarios%s, %zu wrong motion(s), %zu refusal(s), %zu "
+                "contact(s), in %.1f s\n",
+                report.succeeded(), report.total(), paper, report.wrong_motions(),
+                report.refusals(), report.contacts(), report.seconds);
   return table.plain() + total;
 }
 
