@@ -138,7 +138,6 @@ LookedPlan plan_looking_again(const Program& program,
   std::vector<PointCloud> more;  // the further frames, in order
   PointCloud searched;           // the first frame fused with the landmarks' further frames
   const PointCloud* search_scene = &first;
-  std::vector<DepthFrame> fused{{&first}};
   // Takes the frame `look` asks for and plans again with every frame for the motion check, and
   // with it fused into the search's scene when `for_search`; false when the eyes failed.
   const auto look_and_plan = [&](const Look& look, bool for_search) {
@@ -154,8 +153,7 @@ LookedPlan plan_looking_again(const Program& program,
     std::vector<const PointCloud*> frames;
     for (const PointCloud& f : more) frames.push_back(&f);
     if (for_search) {
-      fused.clear();
-      fused.push_back({&first});
+      std::vector<DepthFrame> fused{{&first}};
       for (const PointCloud* f : frames) fused.push_back({f});
       searched = fuse_frames(fused);
       search_scene = &searched;

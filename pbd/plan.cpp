@@ -231,20 +231,6 @@ std::optional<Refusal> locate_landmarks(const Program& program,
   return std::nullopt;
 }
 
-std::vector<double> group_start(const GroupInfo& group,
-                                const std::map<std::string, double>& positions) {
-  std::vector<double> q;
-  for (const JointInfo& j : group.joints) {
-    const auto it = positions.find(j.name);
-    if (it == positions.end()) {
-      throw Error("plan: the robot's joint state lacks '" + j.name + "' of group '" + group.name +
-                  "'");
-    }
-    q.push_back(it->second);
-  }
-  return q;
-}
-
 // The arms' groups and their joints at the start.
 struct Arms {
   std::map<Arm, GroupInfo> groups;
@@ -462,13 +448,17 @@ std::optional<Refusal> solve_steps(const Program& program, const Plan& plan,
   return std::nullopt;
 }
 
-// Issue #60: where each arm's motion passes through space no camera has seen, and one warning
-// line per such motion: the plan acts on what it saw, and says where it could not look.
+// Issue #60: where each arm's motion passes through space no camera has seen, from where it stood
+// before the step (a trajectory's points begin after it), and one warning line per such motion:
+// the plan acts on what it saw, and says where it could not look.
 void warn_unseen(const MotionChecker& checker, const Arms& arms, Plan& plan) {
+  std::map<Arm, std::vector<double>> current = arms.start;
   for (PlannedStep& step : plan.steps) {
     for (PlannedArm& a : step.arms) {
       const GroupInfo& group = arms.groups.at(a.arm);
-      std::vector<JointValues> path;
+      std::vector<JointValues> path(1);
+      set_joints(group, current.at(a.arm), path.back());
+      current[a.arm] = a.ik.joints;
       for (const JointTrajectory::Point& p : a.trajectory.points) {
         path.emplace_back();
         set_joints(group, p.positions, path.back());
@@ -512,6 +502,20 @@ Arms arms_at(const KinematicsInterface& kinematics, const JointState& start, Pla
 }
 
 }  // namespace
+
+std::vector<double> group_start(const GroupInfo& group,
+                                const std::map<std::string, double>& positions) {
+  std::vector<double> q;
+  for (const JointInfo& j : group.joints) {
+    const auto it = positions.find(j.name);
+    if (it == positions.end()) {
+      throw Error("plan: the robot's joint state lacks '" + j.name + "' of group '" + group.name +
+                  "'");
+    }
+    q.push_back(it->second);
+  }
+  return q;
+}
 
 Plan replan_from(const Program& program, std::vector<LocatedLandmark> located,
                  const KinematicsInterface& kinematics, const JointState& start,

@@ -173,6 +173,11 @@ struct PlanSettings {
 std::vector<std::string> capture_warnings(const Program& program,
                                           const std::map<std::string, Landmark>& landmarks);
 
+/// `group`'s joint values in its order, from `positions` by name (Plan::start, a joint state's):
+/// where the group stands. Throws lmk::Error naming a joint `positions` lacks.
+std::vector<double> group_start(const GroupInfo& group,
+                                const std::map<std::string, double>& positions);
+
 /// The landmarks a program uses, loaded from their .lmk files, by name. Relative file names are
 /// taken relative to `program_dir`. Throws lmk::Error naming the landmark and file that fail.
 std::map<std::string, Landmark> load_program_landmarks(const Program& program,

@@ -18,6 +18,10 @@
 
 namespace lmk {
 
+/// The paddings a person may ask for (`--padding`, the page's `padding`), m: a millimetre, within
+/// the collision model's fit, to 20 cm, beyond which a PR2 reaches nothing on a table.
+inline constexpr double kMinPadding = 0.001, kMaxPadding = 0.2;
+
 struct MotionCheckSettings {
   double padding = 0.02;  ///< m kept from the scene
   /// m kept between the robot's own links: its shapes are fitted within millimetres, and its arms

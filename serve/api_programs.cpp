@@ -2,6 +2,8 @@
 // Program endpoints: the PbD programs of --programs, and their plans on a scene for a simulated
 // PR2 at rest (pbd/plan.h): landmarks located, every step's gripper pose in the base frame, and
 // the refusal exactly as the robot would give it.
+#include <cstdio>
+
 #include "lmk/geometry/error.h"
 #include "lmk/json/pose_json.h"
 #include "lmk/pbd/internal/plan_json.h"
@@ -49,12 +51,8 @@ nlohmann::json targets_json(const Program& program, const Plan& plan) {
 nlohmann::json tool_paths_json(const Plan& plan, const KinematicsInterface& kinematics) {
   std::map<Arm, std::vector<double>> at;  // each arm's joints before the step
   for (const Arm arm : {Arm::kLeft, Arm::kRight}) {
-    const std::optional<GroupInfo> group = kinematics.group(arm_group(arm));
-    if (!group) continue;
-    for (const JointInfo& j : group->joints) {
-      const auto start = plan.start.find(j.name);
-      at[arm].push_back(start == plan.start.end() ? 0.0 : start->second);
-    }
+    if (const std::optional<GroupInfo> group = kinematics.group(arm_group(arm)))
+      at[arm] = group_start(*group, plan.start);
   }
   const auto add_tool = [&](Arm arm, const std::vector<double>& q, nlohmann::json& points) {
     Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
@@ -130,9 +128,12 @@ ApiResponse Api::plan(const std::string& name, const std::string& body_text) {
   const bool collisions = optional_bool(body, "collisions", false, "plan");
   Pr2MotionCheckSettings check;
   check.motion.padding = optional_number(body, "padding", check.motion.padding, "plan");
-  if (!(check.motion.padding >= 0.001 && check.motion.padding <= 0.2))
-    throw bad_request("plan: padding " + std::to_string(check.motion.padding) +
-                      " m: must be 0.001 to 0.2");
+  if (!(check.motion.padding >= kMinPadding && check.motion.padding <= kMaxPadding)) {
+    char why[96];
+    std::snprintf(why, sizeof(why), "plan: padding %g m: must be %g to %g", check.motion.padding,
+                  kMinPadding, kMaxPadding);
+    throw bad_request(why);
+  }
   const Program program = load_program(path.string());
   // A program names its landmark files; they must stay within the directories lmk serve was given.
   for (const ProgramLandmark& l : program.landmarks) {

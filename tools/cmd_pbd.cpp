@@ -229,7 +229,7 @@ void add_collision_options(CLI::App* sub, PbdOptions& o) {
                 "Check every motion against the scene, the space it hides and the robot, plan "
                 "around what it would touch, or refuse (off by default for now: docs/pbd.md)");
   sub->add_option("--padding", o.padding, "Distance kept from the scene and the robot, m")
-      ->check(CLI::Range(0.001, 0.2))
+      ->check(CLI::Range(kMinPadding, kMaxPadding))
       ->capture_default_str();
   sub->add_option("--planning-time", o.planning_time,
                   "Seconds to find a path around an obstacle before refusing")
