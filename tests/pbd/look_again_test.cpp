@@ -73,7 +73,10 @@ class LookAgainTest : public ::testing::Test {
     PlanSettings settings;
     if (unseen_looks >= 0) {
       looking.unseen_looks = unseen_looks;
-      settings.motion_checker = pr2_motion_checker(robot.kinematics());
+      // Bounded by configurations checked, not seconds: the same plan under a sanitizer.
+      Pr2MotionCheckSettings untimed;
+      untimed.motion.planning_time = 1e6;
+      settings.motion_checker = pr2_motion_checker(robot.kinematics(), untimed);
     }
     return plan_looking_again(program(), {{"l", *landmark_}}, camera.first(), robot.kinematics(),
                               state, camera, settings, looking);
