@@ -21,7 +21,7 @@ namespace {
 
 // What the demo tasks judge: 2 adds the ground-truth contacts of issue #60 (an older result, which
 // never checked them, must not count as having none).
-constexpr int kJudgeRevision = 2;
+constexpr int kJudgeRevision = 3;
 
 // Keyed by everything that decides a task's results: the lmk version and search revision (the
 // code), the confidence calibration and cut, the task, and the success criterion. Threads do not
@@ -32,7 +32,7 @@ fs::path cache_file(const DemoTasksSettings& settings, int task) {
   hash.add(kVersion).add_value(kSearchRevision).add_value(kJudgeRevision);
   hash.add_value(settings.min_confidence);
   hash.add_value(settings.look_again).add_value(settings.unseen_looks).add_value(settings.watch);
-  hash.add_value(settings.check_collisions);
+  hash.add_value(settings.check_collisions).add_value(settings.approach);
   const Pr2MotionCheckSettings& m = settings.motion_check;
   hash.add_value(m.motion.padding)
       .add_value(m.motion.self_padding)

@@ -51,6 +51,13 @@ std::size_t DemoTasksReport::contacts() const {
   return n;
 }
 
+std::vector<double> DemoTasksReport::seconds_planning_around() const {
+  std::vector<double> all;
+  for (const DemoScenarioResult& r : scenarios)
+    all.insert(all.end(), r.seconds_planning_around.begin(), r.seconds_planning_around.end());
+  return all;
+}
+
 namespace {
 
 using detail::DemoArmPose;
@@ -308,6 +315,7 @@ std::string judge_targets(const DemoTask& task, const Program& program, const Pl
                           const DemoWorld& world, const DemoTasksSettings& settings,
                           DemoScenarioResult& result, std::string& picked) {
   for (const PlannedStep& step : plan.steps) {
+    if (step.phase != Phase::kTarget) continue;  // an approach or retreat: judged by its target's
     for (const PlannedArm& a : step.arms) {
       if (a.frame == kBaseFrame) continue;
       const LocatedLandmark& located = *plan.landmark(a.frame);
@@ -402,6 +410,7 @@ ScenarioRun plan_and_execute(const DemoTask& task, std::size_t index, const Reco
   PlanSettings plan_settings;
   plan_settings.find.execution.threads = settings.threads;
   plan_settings.min_confidence = settings.min_confidence;
+  plan_settings.approach = settings.approach;
   if (settings.check_collisions)
     plan_settings.motion_checker = pr2_motion_checker(robot.kinematics(), settings.motion_check);
   HeadKinect eyes(robot, state.world, 100 * (100 * task.number + index));
@@ -524,6 +533,9 @@ DemoScenarioResult run_scenario(const DemoTask& task, std::size_t index,
   result.looks = run.looked.looks.size();
   if (run.moved_run) result.replans = run.moved_run->replans;
   result.steps_executed = run.execution.steps_completed;
+  for (const PlannedStep& step : run.looked.plan.steps)
+    for (const PlannedArm& a : step.arms)
+      if (a.planned_around) result.seconds_planning_around.push_back(a.planning_seconds);
   result.refused = !run.looked.plan.valid();
   result.stopped = run.looked.plan.valid() && !run.execution.completed;
   if (!scenario.should_act) {

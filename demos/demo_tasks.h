@@ -44,6 +44,9 @@ struct DemoScenarioResult {
   /// the paper's criterion on the targets.
   std::size_t contacts = 0;
   std::string first_contact;
+  /// Each motion of the plan acted on that goes around an obstacle: its planning time, s (issue
+  /// #60's speed criterion: at most 0.5 s median on the obstacle scenarios).
+  std::vector<double> seconds_planning_around;
 };
 
 struct DemoTasksReport {
@@ -53,6 +56,8 @@ struct DemoTasksReport {
   std::size_t wrong_motions() const;
   std::size_t refusals() const;
   std::size_t contacts() const;  ///< over every scenario
+  /// Every scenario's seconds_planning_around, in order.
+  std::vector<double> seconds_planning_around() const;
   std::size_t total() const { return scenarios.size(); }
 };
 
@@ -74,8 +79,9 @@ struct DemoTasksSettings {
   /// Off by default for now (docs/pbd.md). Whether on or off, the simulated PR2 checks what its
   /// motions touched against each world's ground truth (DemoScenarioResult::contacts).
   bool check_collisions = false;
-  Pr2MotionCheckSettings motion_check;  ///< the check's padding, planning time, unknown space
-  double max_position_error = 0.02;     ///< m
+  Pr2MotionCheckSettings motion_check;        ///< the check's padding, planning time, unknown space
+  double approach = PlanSettings{}.approach;  ///< m along the gripper's axis (PlanSettings)
+  double max_position_error = 0.02;           ///< m
   double max_rotation_error = 10.0 * M_PI / 180.0;  ///< rad
   /// If set, each task's landmarks (.lmk) and programs (.json), and every scene (.pcd) are written
   /// there, so that `lmk pbd plan` can replay them.

@@ -7,6 +7,7 @@
 #include "lmk/demos/demo_tasks.h"
 #include "lmk/demos/detail/demo_tasks_json.h"
 #include "lmk/eval/text_table.h"
+#include "lmk/geometry/statistics.h"
 
 namespace lmk {
 
@@ -42,7 +43,16 @@ std::string demo_tasks_table(const DemoTasksReport& report) {
                 "contact(s), in %.1f s\n",
                 report.succeeded(), report.total(), paper, report.wrong_motions(),
                 report.refusals(), report.contacts(), report.seconds);
-  return table.plain() + total;
+  std::string planning;
+  if (const std::vector<double> around = report.seconds_planning_around(); !around.empty()) {
+    char line[160];
+    std::snprintf(line, sizeof(line),
+                  "planned around an obstacle: %zu motion(s), median %.2f s, 95th percentile "
+                  "%.2f s\n",
+                  around.size(), *median(around), percentile(around, 0.95));
+    planning = line;
+  }
+  return table.plain() + total + planning;
 }
 
 namespace detail {
@@ -64,7 +74,8 @@ nlohmann::json scenario_to_json(const DemoScenarioResult& r) {
           {"looks", r.looks},
           {"replans", r.replans},
           {"contacts", r.contacts},
-          {"first_contact", r.first_contact}};
+          {"first_contact", r.first_contact},
+          {"seconds_planning_around", r.seconds_planning_around}};
 }
 
 DemoScenarioResult scenario_from_json(const nlohmann::json& j) {
@@ -86,6 +97,7 @@ DemoScenarioResult scenario_from_json(const nlohmann::json& j) {
   r.replans = j.value("replans", std::size_t{0});
   r.contacts = j.value("contacts", std::size_t{0});
   r.first_contact = j.value("first_contact", std::string());
+  r.seconds_planning_around = j.value("seconds_planning_around", std::vector<double>{});
   return r;
 }
 

@@ -19,6 +19,13 @@ namespace lmk {
 namespace {
 constexpr int kTargetRetries = 16;  // IK seeds tried for a target that touches something
 constexpr std::uint64_t kTargetSeed = 60;
+
+// "step 3, right arm", "step 3's approach, right arm".
+std::string motion_name(std::size_t step, Phase phase, Arm arm) {
+  return "step " + std::to_string(step) +
+         (phase == Phase::kTarget ? std::string() : std::string("'s ") + phase_name(phase)) + ", " +
+         arm_name(arm) + " arm";
+}
 }  // namespace
 
 const char* refusal_kind(const Refusal& refusal) {
@@ -45,12 +52,11 @@ std::string describe(const Refusal& refusal) {
            (doubtful->doubt.empty() ? "" : ": " + doubtful->doubt);
   }
   if (const auto* blocked = std::get_if<Blocked>(&refusal)) {
-    return "step " + std::to_string(blocked->step) + ", " + arm_name(blocked->arm) +
-           " arm: " + describe(blocked->contact) + "; " + blocked->planner;
+    return motion_name(blocked->step, blocked->phase, blocked->arm) + ": " +
+           describe(blocked->contact) + "; " + blocked->planner;
   }
   const auto& u = std::get<Unreachable>(refusal);
-  return "step " + std::to_string(u.step) + ", " + arm_name(u.arm) +
-         " arm: unreachable: " + u.reason;
+  return motion_name(u.step, u.phase, u.arm) + ": unreachable: " + u.reason;
 }
 
 const LocatedLandmark* Plan::landmark(const std::string& name) const {
@@ -262,6 +268,8 @@ struct ArmMotion {
   std::vector<std::vector<double>> waypoints;
   double clearance = 0.0;
   bool around = false;
+  double planning_seconds = 0.0;  ///< spent on the path around, found or not
+  std::size_t planning_checks = 0;
   std::optional<MotionContact> contact;  ///< what the line would touch, when no path was found
   std::string why;                       ///< the planner's reason then
 };
@@ -278,6 +286,8 @@ ArmMotion move_arm(const MotionChecker& checker, const GroupInfo& group, const J
     return m;
   }
   const MotionPlan around = checker.plan_around(group.name, from, to, intended);
+  m.planning_seconds = around.seconds;
+  m.planning_checks = around.checks;
   if (!around.found) {
     m.contact = line.contact;
     m.why = around.message;
@@ -310,7 +320,8 @@ std::optional<Refusal> move_in_turn(const MotionChecker& checker, const Arms& ar
     const GroupInfo& group = arms.groups.at(a.arm);
     const ArmMotion m = move_arm(checker, group, state, a.ik.joints, a.intended);
     if (m.waypoints.empty()) {
-      return Blocked{planned.index, arm_of(m.contact->link, a.arm), *m.contact, m.why};
+      return Blocked{planned.index, arm_of(m.contact->link, a.arm), planned.phase, *m.contact,
+                     m.why};
     }
     const double seconds =
         std::max(path_duration(group, current.at(a.arm), m.waypoints, settings.speed_fraction),
@@ -318,6 +329,8 @@ std::optional<Refusal> move_in_turn(const MotionChecker& checker, const Arms& ar
     a.trajectory = joint_path(group, current.at(a.arm), m.waypoints, seconds, settings.waypoints);
     a.clearance = m.clearance;
     a.planned_around = m.around;
+    a.planning_seconds = m.planning_seconds;
+    a.planning_checks = m.planning_checks;
     spans.emplace_back(start, start + seconds);
     start += seconds;
     set_joints(group, a.ik.joints, state);
@@ -395,55 +408,79 @@ void avoid_touching_targets(const MotionChecker& checker, const GroupInfo& group
   }
 }
 
-// Steps 3-5 for one choice of instances: targets, IK for every step (seeded with the previous
-// one's joints, so that consecutive solutions stay on one branch), and the motions, checked when
-// there is a checker. Fills `steps`, or returns the first step that cannot be carried out.
+// One motion of the arms (a program step's targets, or its approach or retreat): IK for each arm's
+// goal, seeded with its joints now, so that consecutive solutions stay on one branch; the joint
+// lines, checked when there is a checker. Moves `current` to the goals, or returns why not.
+std::optional<Refusal> solve_motion(const StepMotion& motion, std::size_t s,
+                                    const std::optional<double>& step_duration,
+                                    const KinematicsInterface& kinematics, const Arms& arms,
+                                    const PlanSettings& settings, const MotionChecker* checker,
+                                    std::map<Arm, std::vector<double>>& current,
+                                    std::vector<PlannedStep>& steps) {
+  PlannedStep planned;
+  planned.index = s;
+  planned.phase = motion.phase;
+  double duration = step_duration.value_or(0.0);
+  // Where the arms stand as this motion's goals are chosen: an arm already solved at its goal, so
+  // that the other's is not chosen inside it (both hands on one chair).
+  std::map<Arm, std::vector<double>> at_targets = current;
+  for (const ArmGoal& goal : motion.goals) {
+    PlannedArm a;
+    a.arm = goal.arm;
+    a.frame = goal.frame;
+    a.gripper = goal.gripper;
+    a.T_base_ee = goal.T_base_ee;
+    a.ik = kinematics.inverse(arm_group(goal.arm), a.T_base_ee, current[goal.arm]);
+    if (!a.ik.success) return Unreachable{s, goal.arm, motion.phase, a.ik.message};
+    if (checker) {
+      avoid_touching_targets(*checker, arms.groups.at(goal.arm), kinematics, at_targets, arms, s, a,
+                             settings.intended_contact_radius);
+    }
+    at_targets[goal.arm] = a.ik.joints;
+    duration = std::max(duration, motion_duration(arms.groups.at(goal.arm), current[goal.arm],
+                                                  a.ik.joints, settings.speed_fraction));
+    planned.arms.push_back(std::move(a));
+  }
+  planned.duration = std::max(duration, settings.min_step_duration);
+  for (PlannedArm& a : planned.arms) {
+    a.trajectory = joint_line(arms.groups.at(a.arm), current[a.arm], a.ik.joints, planned.duration,
+                              settings.waypoints);
+  }
+  if (checker && !planned.arms.empty()) {
+    if (std::optional<Refusal> blocked =
+            check_step(*checker, arms, current, kinematics, settings, planned))
+      return blocked;
+  }
+  for (PlannedArm& a : planned.arms) current[a.arm] = a.ik.joints;
+  steps.push_back(std::move(planned));
+  return std::nullopt;
+}
+
+// Steps 3-5 for one choice of instances: every program step's motions (approach.h) from
+// `first_step` on, in order. Fills `steps`, or returns the first motion that cannot be carried out.
+// An approach or retreat that cannot be made is left out, saying why in `skipped`: the motion to
+// the target goes straight, checked as any other, as it did before approaches existed.
 std::optional<Refusal> solve_steps(const Program& program, const Plan& plan,
                                    const KinematicsInterface& kinematics, const Arms& arms,
                                    const PlanSettings& settings, const MotionChecker* checker,
-                                   std::vector<PlannedStep>& steps, std::size_t first_step = 0) {
+                                   std::vector<PlannedStep>& steps,
+                                   std::vector<std::string>& skipped, std::size_t first_step = 0) {
   std::map<Arm, std::vector<double>> current = arms.start;
+  const auto in_base = [&plan](const ArmTarget& target) {
+    return target.relative_to_landmark()
+               ? plan.landmark(target.frame)->T_base_landmark * target.T_frame_ee
+               : target.T_frame_ee;
+  };
   for (std::size_t s = first_step; s < program.steps.size(); ++s) {
-    const ProgramStep& step = program.steps[s];
-    PlannedStep planned;
-    planned.index = s;
-    double duration = step.duration.value_or(0.0);
-    // Where the arms stand as this step's targets are chosen: an arm already solved at its target,
-    // so that the other's target is not chosen inside it (both hands on one chair).
-    std::map<Arm, std::vector<double>> at_targets = current;
-    for (Arm arm : {Arm::kLeft, Arm::kRight}) {
-      const std::optional<ArmTarget>& target = step.arm(arm);
-      if (!target) continue;
-      PlannedArm a;
-      a.arm = arm;
-      a.frame = target->frame;
-      a.gripper = target->gripper;
-      a.T_base_ee = target->relative_to_landmark()
-                        ? plan.landmark(target->frame)->T_base_landmark * target->T_frame_ee
-                        : target->T_frame_ee;
-      a.ik = kinematics.inverse(arm_group(arm), a.T_base_ee, current[arm]);
-      if (!a.ik.success) return Unreachable{s, arm, a.ik.message};
-      if (checker) {
-        avoid_touching_targets(*checker, arms.groups.at(arm), kinematics, at_targets, arms, s, a,
-                               settings.intended_contact_radius);
-      }
-      at_targets[arm] = a.ik.joints;
-      duration = std::max(duration, motion_duration(arms.groups.at(arm), current[arm], a.ik.joints,
-                                                    settings.speed_fraction));
-      planned.arms.push_back(std::move(a));
+    for (const StepMotion& motion : step_motions(program, s, settings.approach, in_base)) {
+      // A step's own duration is the motion to its target's.
+      const std::optional<double> duration =
+          motion.phase == Phase::kTarget ? program.steps[s].duration : std::nullopt;
+      std::optional<Refusal> failure =
+          solve_motion(motion, s, duration, kinematics, arms, settings, checker, current, steps);
+      if (failure && motion.phase == Phase::kTarget) return failure;
+      if (failure) skipped.push_back(describe(*failure) + "; left out");
     }
-    planned.duration = std::max(duration, settings.min_step_duration);
-    for (PlannedArm& a : planned.arms) {
-      a.trajectory = joint_line(arms.groups.at(a.arm), current[a.arm], a.ik.joints,
-                                planned.duration, settings.waypoints);
-    }
-    if (checker && !planned.arms.empty()) {
-      if (std::optional<Refusal> blocked =
-              check_step(*checker, arms, current, kinematics, settings, planned))
-        return blocked;
-    }
-    for (PlannedArm& a : planned.arms) current[a.arm] = a.ik.joints;
-    steps.push_back(std::move(planned));
   }
   return std::nullopt;
 }
@@ -465,8 +502,8 @@ void warn_unseen(const MotionChecker& checker, const Arms& arms, Plan& plan) {
       }
       a.unseen = checker.unseen_along(path);
       if (a.unseen.empty()) continue;
-      plan.warnings.push_back("step " + std::to_string(step.index) + ", " + arm_name(a.arm) +
-                              " arm: passes through space no camera has seen, first near " +
+      plan.warnings.push_back(motion_name(step.index, step.phase, a.arm) +
+                              ": passes through space no camera has seen, first near " +
                               format_point(a.unseen.front()) + " m in base_link (" +
                               std::to_string(a.unseen.size()) + " place" +
                               (a.unseen.size() == 1 ? "" : "s") + " 5 cm apart)");
@@ -480,6 +517,12 @@ void check_settings(const PlanSettings& s) {
   if (!(s.min_step_duration > 0.0)) throw Error("plan: the minimum step duration must be > 0");
   if (s.waypoints < 1) throw Error("plan: a trajectory needs at least one waypoint");
   if (!(s.height_tolerance >= 0.0)) throw Error("plan: the height tolerance must be >= 0");
+  if (!(s.approach >= 0.0 && s.approach <= kMaxApproach)) {
+    char text[64];
+    std::snprintf(text, sizeof(text), "plan: the approach distance must be 0 to %g m",
+                  kMaxApproach);
+    throw Error(text);
+  }
 }
 
 // Both arms' groups and their joints in `start`, also recorded as the plan's start.
@@ -540,11 +583,13 @@ Plan replan_from(const Program& program, std::vector<LocatedLandmark> located,
   // No frame to check against here: the robot's own body only (an empty scene).
   const std::shared_ptr<const MotionChecker> checker =
       settings.motion_checker ? settings.motion_checker({}, start) : nullptr;
+  std::vector<std::string> skipped;
   if (const std::optional<Refusal> failure = solve_steps(
-          program, result, kinematics, arms, settings, checker.get(), steps, first_step)) {
+          program, result, kinematics, arms, settings, checker.get(), steps, skipped, first_step)) {
     result.refusal = *failure;
   } else {
     result.steps = std::move(steps);
+    result.warnings = std::move(skipped);
   }
   return result;
 }
@@ -614,10 +659,12 @@ Plan plan(const Program& program, const std::map<std::string, Landmark>& landmar
   while (true) {
     locate(choice);
     std::vector<PlannedStep> steps;
+    std::vector<std::string> skipped;
     const std::optional<Refusal> failure =
-        solve_steps(program, result, kinematics, arms, settings, checker.get(), steps);
+        solve_steps(program, result, kinematics, arms, settings, checker.get(), steps, skipped);
     if (!failure) {
       result.steps = std::move(steps);
+      result.warnings.insert(result.warnings.end(), skipped.begin(), skipped.end());
       if (checker) warn_unseen(*checker, arms, result);
       return result;
     }

@@ -19,6 +19,7 @@
 
 #include "lmk/landmark/find_landmark.h"
 #include "lmk/landmark/landmark.h"
+#include "lmk/pbd/approach.h"
 #include "lmk/pbd/motion_check.h"
 #include "lmk/pbd/program.h"
 #include "lmk/pbd/robot_interface.h"
@@ -47,6 +48,7 @@ struct LandmarkDoubtful {
 struct Unreachable {
   std::size_t step = 0;
   Arm arm = Arm::kRight;
+  Phase phase = Phase::kTarget;  ///< the step's target, or its approach or retreat
   std::string reason;
 };
 
@@ -55,8 +57,9 @@ struct Unreachable {
 struct Blocked {
   std::size_t step = 0;
   Arm arm = Arm::kRight;
-  MotionContact contact;  ///< what the straight motion would touch first
-  std::string planner;    ///< why no path around it was found
+  Phase phase = Phase::kTarget;  ///< the motion to the step's target, or its approach or retreat
+  MotionContact contact;         ///< what the straight motion would touch first
+  std::string planner;           ///< why no path around it was found
 };
 
 using Refusal = std::variant<LandmarkNotFound, LandmarkDoubtful, Unreachable, Blocked>;
@@ -67,7 +70,7 @@ const char* refusal_kind(const Refusal& refusal);
 /// doubtful: confidence 0.41 below 0.90: a pose 8 cm along the box's x fits within the noise",
 /// "step 3, right arm: unreachable: ...", "step 3, right arm: link r_forearm_link would pass 1.4 cm
 /// into the scene near (0.62, -0.18, 0.81) m in base_link, 40% of the way; no collision-free path
-/// within 2 s".
+/// within 2 s"; "step 3's approach, right arm: ..." for the motion before a grasp.
 std::string describe(const Refusal& refusal);
 
 /// A landmark where it was found in the scene.
@@ -97,6 +100,9 @@ struct PlannedArm {
   double clearance = std::numeric_limits<double>::quiet_NaN();
   /// Whether the straight joint line would have touched, and the motion goes around instead.
   bool planned_around = false;
+  /// The path around: its planning time, s, and the configurations it checked (0 for a line).
+  double planning_seconds = 0.0;
+  std::size_t planning_checks = 0;
   /// What the motion may touch on purpose: scene points near the tool frame at its start and at its
   /// target (the object grasped, the surface placed on), for the gripper's links only.
   IntendedContact intended;
@@ -106,8 +112,11 @@ struct PlannedArm {
   std::vector<Eigen::Vector3d> unseen;
 };
 
+/// One motion of the arms: to a program step's targets, or its approach or retreat (approach.h).
+/// The robot moves, then sets the grippers.
 struct PlannedStep {
-  std::size_t index = 0;
+  std::size_t index = 0;  ///< the program step
+  Phase phase = Phase::kTarget;
   std::vector<PlannedArm> arms;
   double duration = 0.0;  ///< s; both arms move together
 };
@@ -166,6 +175,10 @@ struct PlanSettings {
   /// Scene points within this of the tool frame at a motion's start and target are what the motion
   /// means to touch (PlannedArm::intended), m.
   double intended_contact_radius = 0.08;
+  /// A grasp is approached, and a release backed off, this far along the gripper's axis
+  /// (approach.h), m: a motion of its own (PlannedStep::phase). 0: none; a program's own approach
+  /// counts.
+  double approach = 0.10;
 };
 
 /// The warnings of Plan::warnings: for each landmark of `landmarks` that a step of `program` is

@@ -176,7 +176,9 @@ WatchedExecution execute_watching(const Program& program, const Plan& plan, Robo
   std::size_t k = 0;  // the next step of out.plan
   while (k < out.plan.steps.size()) {
     const PlannedStep step = out.plan.steps[k];
-    const std::string name = "before step " + std::to_string(step.index);
+    const std::string name =
+        "before step " + std::to_string(step.index) +
+        (step.phase == Phase::kTarget ? "" : std::string("'s ") + phase_name(step.phase));
     Watcher::Verdict v = watcher.check(step.index, name);
     if (v == Watcher::Verdict::kStop) return out;
     if (v == Watcher::Verdict::kReplanned) {
@@ -185,7 +187,7 @@ WatchedExecution execute_watching(const Program& program, const Plan& plan, Robo
     }
     if (!send_motions(step, robot, out.report)) return out;
     // A grasp or release where the landmark was: look once more before the fingers move.
-    if (program.steps[step.index].relative_to_landmark()) {
+    if (step.phase == Phase::kTarget && program.steps[step.index].relative_to_landmark()) {
       v = watcher.check(step.index, name + "'s gripper");
       if (v == Watcher::Verdict::kStop) return out;
       if (v == Watcher::Verdict::kReplanned) {

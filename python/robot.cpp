@@ -88,6 +88,12 @@ LookedPlan plan_or_refuse(const std::string& program_file, const PointCloud& sce
   if (const auto collisions = pop_keyword(search, "collisions");
       collisions && py::cast<bool>(*collisions))
     settings.motion_checker = pr2_motion_checker(robot.kinematics());
+  // approach=: m along the gripper's axis before a grasp and after a release (0: none).
+  if (const auto approach = pop_keyword(search, "approach")) {
+    settings.approach = py::cast<double>(*approach);
+    if (!(settings.approach >= 0.0 && settings.approach <= kMaxApproach))
+      throw py::value_error("approach must be 0 to 0.3 m");
+  }
   const std::optional<py::object> look = pop_keyword(search, "look");
   LookAgainSettings looking;
   looking.max_looks = 0;
@@ -228,7 +234,10 @@ void bind_robot(py::module_& m, const py::object& error) {
       "then sees, fused with the frames before (at most look_again times, default 2; the plan's "
       "'looks' lists them). collisions=True checks every motion against the scene, the space it "
       "hides and the robot, plans around what it would touch, or refuses (kind 'collision'), as "
-      "`lmk pbd plan --check-collisions`. Search settings are keywords as for lmk.find.");
+      "`lmk pbd plan --check-collisions`. approach=0.1 reaches a grasp from that far back along "
+      "the gripper's axis and backs off a release as far, m (0: none; each such motion is a step "
+      "of its own, 'phase' 'approach' or 'retreat'). Search settings are keywords as for "
+      "lmk.find.");
   m.def(
       "run",
       [refused](const std::string& program, const PointCloud& scene, SimulatedPr2& robot,

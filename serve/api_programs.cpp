@@ -67,6 +67,7 @@ nlohmann::json tool_paths_json(const Plan& plan, const KinematicsInterface& kine
       for (const JointTrajectory::Point& p : a.trajectory.points)
         add_tool(a.arm, p.positions, points);
       paths.push_back({{"step", step.index},
+                       {"phase", phase_name(step.phase)},
                        {"arm", arm_name(a.arm)},
                        {"planned_around", a.planned_around},
                        {"points", points}});

@@ -81,7 +81,8 @@ void print_plan(const Plan& plan) {
   }
   for (const PlannedStep& s : plan.steps) {
     for (const PlannedArm& a : s.arms) {
-      std::printf("step %-3zu %-5s ", s.index, arm_name(a.arm));
+      std::printf("step %-3zu %-5s %-8s ", s.index, arm_name(a.arm),
+                  s.phase == Phase::kTarget ? "" : phase_name(s.phase));
       print_pose("to ", a.T_base_ee);
       std::printf(", gripper %s, IK %.1e m %.1e rad, %.1f s", gripper_action_name(a.gripper),
                   a.ik.position_error, a.ik.rotation_error, s.duration);
@@ -112,6 +113,7 @@ PlanSettings plan_settings(const PbdOptions& o, const Pr2Kinematics* kinematics,
         pr2_motion_checker(*kinematics, motion_check_settings(o), std::move(body));
   settings.find.execution.threads = o.threads;
   settings.min_confidence = o.min_confidence;
+  settings.approach = o.approach;
   if (!o.policy.empty()) settings.policy = instance_policy_from_name(o.policy);
   if (isatty(STDERR_FILENO)) {
     settings.progress = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
@@ -208,6 +210,7 @@ int run_demo_tasks_command(const PbdOptions& o) {
   settings.watch = !o.no_watch;
   settings.check_collisions = o.check_collisions;
   settings.motion_check = motion_check_settings(o);
+  settings.approach = o.approach;
   settings.save_dir = o.save_dir;
   settings.cache_dir = o.cache_dir;
   const StopOnSigint stop;
@@ -250,6 +253,11 @@ void add_collision_options(CLI::App* sub, PbdOptions& o) {
                   "pass through it; what stays unseen is a warning) or 'occupied' (the arm never "
                   "goes there: from one head view, most motions are refused)")
       ->check(CLI::IsMember({"look", "occupied"}))
+      ->capture_default_str();
+  sub->add_option("--approach", o.approach,
+                  "Reach a grasp from this far back along the gripper's axis, fingers open, and "
+                  "back off a release as far, m; a program's own approach counts (0: none)")
+      ->check(CLI::Range(0.0, kMaxApproach))
       ->capture_default_str();
 }
 

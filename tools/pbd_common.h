@@ -39,6 +39,7 @@ struct PbdOptions {
   /// warning) or "occupied" (never passed through)
   std::string unseen = "look";
   int unseen_looks = 2;  ///< --unseen-looks: demo-tasks and run --ros, where motions go unseen
+  double approach = PlanSettings{}.approach;  ///< --approach, m
 };
 
 /// The planner's settings; with `kinematics` and --check-collisions, every motion checked for the

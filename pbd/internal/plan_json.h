@@ -39,6 +39,8 @@ inline nlohmann::json plan_to_json(const Plan& plan) {
       // Issue #60: the motion's check, where motions are checked.
       j["clearance_m"] = finite_or_null(a.clearance);
       j["planned_around"] = a.planned_around;
+      if (a.planned_around)
+        j["planner"] = {{"seconds", a.planning_seconds}, {"checks", a.planning_checks}};
       nlohmann::json near = nlohmann::json::array();
       for (const Eigen::Vector3d& p : a.intended.near) near.push_back(vector_to_json(p));
       j["intended_contact"] = {{"near", near}, {"radius_m", a.intended.radius}};
@@ -48,7 +50,10 @@ inline nlohmann::json plan_to_json(const Plan& plan) {
       j["unseen"] = unseen;
       arms.push_back(j);
     }
-    steps.push_back({{"step", s.index}, {"duration", s.duration}, {"arms", arms}});
+    steps.push_back({{"step", s.index},
+                     {"phase", phase_name(s.phase)},
+                     {"duration", s.duration},
+                     {"arms", arms}});
   }
   nlohmann::json j = {{"program", plan.program},
                       {"valid", plan.valid()},
@@ -60,6 +65,7 @@ inline nlohmann::json plan_to_json(const Plan& plan) {
     if (const auto* blocked = std::get_if<Blocked>(&*plan.refusal)) {
       const MotionContact& c = blocked->contact;
       j["refusal"]["step"] = blocked->step;
+      j["refusal"]["phase"] = phase_name(blocked->phase);
       j["refusal"]["arm"] = arm_name(blocked->arm);
       j["refusal"]["contact"] = {{"link", c.link},
                                  {"obstacle", c.obstacle},

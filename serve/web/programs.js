@@ -77,7 +77,8 @@ export class ProgramsPanel {
       for (const arm of step.arms) {
         if (arm.clearance_m === null) continue;
         line(
-            `step ${step.step} ${arm.arm} motion: clearance ${(100 * arm.clearance_m).toFixed(1)} cm` +
+            `step ${step.step}${step.phase === 'target' ? '' : ` ${step.phase}`} ${arm.arm} ` +
+            `motion: clearance ${(100 * arm.clearance_m).toFixed(1)} cm` +
             (arm.planned_around ? ', planned around an obstacle' : '') +
             (arm.unseen.length ? `, ${arm.unseen.length} places no camera has seen` : ''));
       }
@@ -86,7 +87,7 @@ export class ProgramsPanel {
     if (plan.refusal) {
       line(`refused (${plan.refusal.kind}): ${plan.refusal.message}`, 'bad');
     } else {
-      line(`plan valid: ${plan.steps.length} steps`, 'good');
+      line(`plan valid: ${plan.steps.length} motions`, 'good');
     }
     // The tool frames' swept paths, and what a refused motion would touch.
     const contact = plan.refusal && plan.refusal.contact;

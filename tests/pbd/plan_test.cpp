@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "lmk/geometry/error.h"
 #include "lmk/geometry/pose.h"
 #include "lmk/pbd/execute.h"
 #include "lmk/pr2/simulated_pr2.h"
@@ -99,6 +100,47 @@ TEST_F(PlanTest, TargetsComposeWithTheFoundLandmarkAndTheRobotGetsThere) {
   GripperState gripper;
   ASSERT_TRUE(r.gripper_state("right", gripper).ok());
   EXPECT_FALSE(gripper.closed);  // opened again by the last step
+}
+
+// Issue #60: a grasp demonstrated without its approach is reached from 10 cm back along the
+// gripper's axis, fingers open, as a motion of its own; the robot passes through it.
+TEST_F(PlanTest, AGraspWithoutItsApproachGainsOneAlongTheGrippersAxis) {
+  Program p = program();
+  p.steps.erase(p.steps.begin());  // from the robot's side straight onto the L
+  p.steps.insert(p.steps.begin(), p.steps.back());
+  p.steps.front().right->gripper = GripperAction::kOpen;
+  SimulatedPr2 r = robot();
+  const PointCloud scene = scene_in_base({{-0.1, -0.15}}, false);
+  const Plan planned = plan_in(scene, p, r);
+  ASSERT_TRUE(planned.valid()) << describe(*planned.refusal);
+  ASSERT_GE(planned.steps.size(), 3u);
+  const PlannedStep& approach = planned.steps[1];
+  const PlannedStep& grasp = planned.steps[2];
+  EXPECT_EQ(approach.index, 1u);
+  EXPECT_EQ(approach.phase, Phase::kApproach);
+  EXPECT_EQ(grasp.index, 1u);
+  EXPECT_EQ(grasp.phase, Phase::kTarget);
+  // 10 cm back along the grasp's x axis: pointing down, about 10 cm above it (the L's found
+  // pose tilts by a fraction of a degree); the same way round, open.
+  const Eigen::Isometry3d& T_pre = approach.arms.at(0).T_base_ee;
+  const Eigen::Isometry3d& T_grasp = grasp.arms.at(0).T_base_ee;
+  EXPECT_LT((T_pre.translation() - T_grasp * Eigen::Vector3d(-0.1, 0, 0)).norm(), 1e-9);
+  EXPECT_LT((T_pre.translation() - T_grasp.translation() - Eigen::Vector3d(0, 0, 0.1)).norm(),
+            1e-3);
+  EXPECT_LT(rotation_angle_between(T_pre.linear(), T_grasp.linear()), 1e-9);
+  EXPECT_EQ(approach.arms.at(0).gripper, GripperAction::kOpen);
+
+  const ExecutionReport report = execute(planned, r);
+  EXPECT_TRUE(report.completed) << report.error;
+  EXPECT_EQ(r.history().size(), planned.steps.size());
+
+  PlanSettings none;
+  none.approach = 0.0;
+  const Plan straight = plan_in(scene, p, r, none);
+  ASSERT_TRUE(straight.valid()) << describe(*straight.refusal);
+  EXPECT_EQ(straight.steps.size(), p.steps.size());
+  none.approach = -0.1;
+  EXPECT_THROW(plan_in(scene, p, r, none), Error);
 }
 
 TEST_F(PlanTest, AMissingLandmarkIsRefusedByNameAndNothingMoves) {

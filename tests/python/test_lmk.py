@@ -331,6 +331,11 @@ def test_plan_and_run_as_lmk_pbd_and_a_refusal_with_its_kind(task4):
                          str(task4 / "demonstration.pcd")))
     assert without_times(planned) == without_times(cli)
     assert planned["valid"] and len(planned["steps"]) == 3
+    # The release is followed by the demonstrated move up: that is its retreat, none is added.
+    assert [step["phase"] for step in planned["steps"]] == ["target"] * 3
+    assert lmk.plan(program, demonstration, robot, approach=0)["steps"] == planned["steps"]
+    with pytest.raises(ValueError, match="approach must be 0 to 0.3 m"):
+        lmk.plan(program, demonstration, robot, approach=0.5)
     report = lmk.run(program, demonstration, robot)
     assert report["completed"] and report["steps_completed"] == 3
     assert robot.time > 0
