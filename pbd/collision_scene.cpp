@@ -27,11 +27,15 @@ struct CollisionScene::Impl {
   // from every frame that has it in view); nothing where some frame measured nothing along its
   // ray. Out of every frame's view: minus how far it lies outside the nearest view when unseen
   // space counts as occupied, else nothing. `unseen` says which.
-  std::optional<double> before_hidden(const Eigen::Vector3d& p, bool* unseen = nullptr) const {
+  // `nearer_than`: only an answer nearer than that is wanted (the robot is not asked otherwise).
+  std::optional<double> before_hidden(
+      const Eigen::Vector3d& p, bool* unseen = nullptr,
+      double nearer_than = std::numeric_limits<double>::infinity()) const {
     bool out_of_view = false;
     const std::optional<double> said = seen_by_frames(p, out_of_view);
-    // The robot's own space is never hidden nor unseen (asked last: it is the dearer question).
-    if (!said || (robot && robot(p))) return std::nullopt;
+    // The robot's own space is never hidden nor unseen (asked last, and only where the answer
+    // counts: it is the dearer question, a planner's check asks it of every surface point).
+    if (!said || !(*said < nearer_than) || (robot && robot(p))) return std::nullopt;
     if (unseen) *unseen = out_of_view;
     return said;
   }
@@ -174,8 +178,9 @@ SceneDistance CollisionScene::distance(const Solid& solid, const Eigen::Isometry
     const Eigen::Vector3d p = T_base_solid * s;
     if (!impl_->settings.reach.contains(p)) continue;
     bool unseen = false;
-    const std::optional<double> d = impl_->before_hidden(p, &unseen);
-    if (d && *d < best.distance && !intended_here(intended, p)) best = {*d, p, true, unseen};
+    if (intended_here(intended, p)) continue;
+    const std::optional<double> d = impl_->before_hidden(p, &unseen, best.distance);
+    if (d) best = {*d, p, true, unseen};
   }
   return best;
 }
