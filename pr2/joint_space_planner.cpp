@@ -24,6 +24,8 @@ namespace og = ompl::geometric;
 namespace {
 
 constexpr double kLimitRounding = 1e-9;  // rad or m
+// The first search's motion-check step, in the caller's steps (plan_joint_path).
+constexpr double kCoarse = 5.0;
 
 // OMPL draws each generator's seed from one process-wide sequence, so a plan would depend on every
 // plan made before it (and on threads' order). Each piece below reseeds its own generator from
@@ -129,6 +131,82 @@ std::string clamp_ends(const std::vector<JointInfo>& joints, std::vector<double>
   return "";
 }
 
+// Checks each motion of `waypoints` (after `start`) at states no farther apart than `step`, the
+// waypoints themselves already checked; counts the checks.
+bool path_free(const std::vector<double>& start, const std::vector<std::vector<double>>& waypoints,
+               const std::function<bool(const std::vector<double>&)>& free, double step,
+               std::size_t& checks) {
+  const std::vector<double>* a = &start;
+  std::vector<double> q(start.size());
+  for (const std::vector<double>& b : waypoints) {
+    double length = 0.0;
+    for (std::size_t i = 0; i < q.size(); ++i) length += ((*a)[i] - b[i]) * ((*a)[i] - b[i]);
+    const int pieces = static_cast<int>(std::ceil(std::sqrt(length) / step));
+    for (int k = 1; k < pieces; ++k) {
+      const double t = static_cast<double>(k) / pieces;
+      for (std::size_t i = 0; i < q.size(); ++i) q[i] = (*a)[i] + t * (b[i] - (*a)[i]);
+      ++checks;
+      if (!free(q)) return false;
+    }
+    a = &b;
+  }
+  return true;
+}
+
+// RRT-Connect from `start` to `goal` with motions checked at states `step` apart, then shortened
+// and smoothed with a share of what the search took (a path found fast is simplified fast), all
+// within `deadline` and the settings' configurations (`checks` counts them). Fills `waypoints`,
+// or returns why not.
+std::string search(const std::vector<JointInfo>& joints, const std::vector<double>& start,
+                   const std::vector<double>& goal,
+                   const std::function<bool(const std::vector<double>&)>& free, double step,
+                   const JointSpacePlannerSettings& settings,
+                   const ob::PlannerTerminationCondition& deadline, std::size_t& checks,
+                   std::vector<std::vector<double>>& waypoints) {
+  const auto space = joint_space(joints, start, goal, settings.seed);
+  og::SimpleSetup setup(space);
+  const std::size_t n = joints.size();
+  std::vector<double> q(n);
+  setup.setStateValidityChecker([&](const ob::State* s) {
+    ++checks;
+    if (!space->satisfiesBounds(s)) return false;
+    const auto* v = s->as<ob::RealVectorStateSpace::StateType>();
+    for (std::size_t i = 0; i < n; ++i) q[i] = (*v)[i];
+    return free(q);
+  });
+  const ob::SpaceInformationPtr si = setup.getSpaceInformation();
+  si->setStateValidityCheckingResolution(std::min(0.05, step / space->getMaximumExtent()));
+  ob::ScopedState<> s0(space), s1(space);
+  for (std::size_t i = 0; i < n; ++i) s0[i] = start[i], s1[i] = goal[i];
+  setup.setStartAndGoalStates(s0, s1);
+  setup.setPlanner(std::make_shared<SeededRRTConnect>(si, local_seed(settings.seed, 1)));
+  setup.setup();
+  const auto spent = [&](std::size_t limit) {
+    return ob::plannerOrTerminationCondition(
+        deadline, ob::PlannerTerminationCondition([&checks, limit] { return checks >= limit; }));
+  };
+  const std::size_t before = checks;
+  const ob::PlannerStatus status = setup.getPlanner()->solve(spent(settings.checks));
+  if (status != ob::PlannerStatus::EXACT_SOLUTION) {
+    char budget[96];
+    if (checks >= settings.checks)
+      std::snprintf(budget, sizeof(budget), "%zu configuration%s checked", settings.checks,
+                    settings.checks == 1 ? "" : "s");
+    else
+      std::snprintf(budget, sizeof(budget), "%.3g s", settings.seconds);
+    return std::string("no collision-free path within ") + budget;
+  }
+  auto* found = setup.getProblemDefinition()->getSolutionPath()->as<og::PathGeometric>();
+  const std::size_t smoothing =
+      std::max(settings.smoothing_floor,
+               static_cast<std::size_t>(settings.smoothing_share * (checks - before)));
+  SeededSimplifier simplifier(si, setup.getProblemDefinition()->getGoal(),
+                              local_seed(settings.seed, 2));
+  simplifier.simplify(*found, spent(std::min(settings.checks, checks + smoothing)));
+  waypoints = waypoints_of(*found, joints);
+  return "";
+}
+
 }  // namespace
 
 JointSpacePath plan_joint_path(const std::vector<JointInfo>& joints,
@@ -152,51 +230,25 @@ JointSpacePath plan_joint_path(const std::vector<JointInfo>& joints,
     }
   }
   quiet_ompl_once();
-  const auto space = joint_space(joints, start_in, goal_in, settings.seed);
-  og::SimpleSetup setup(space);
-  const std::size_t n = joints.size();
-  std::vector<double> q(n);
-  setup.setStateValidityChecker([&](const ob::State* s) {
-    ++checks;
-    if (!space->satisfiesBounds(s)) return false;
-    const auto* v = s->as<ob::RealVectorStateSpace::StateType>();
-    for (std::size_t i = 0; i < n; ++i) q[i] = (*v)[i];
-    return free(q);
-  });
-  const ob::SpaceInformationPtr si = setup.getSpaceInformation();
-  si->setStateValidityCheckingResolution(std::min(0.05, max_step / space->getMaximumExtent()));
-  ob::ScopedState<> s0(space), s1(space);
-  for (std::size_t i = 0; i < n; ++i) s0[i] = start_in[i], s1[i] = goal_in[i];
-  setup.setStartAndGoalStates(s0, s1);
-  setup.setPlanner(std::make_shared<SeededRRTConnect>(si, local_seed(settings.seed, 1)));
-  setup.setup();
   const auto deadline = ob::timedPlannerTerminationCondition(settings.seconds);
-  const auto spent = [&](std::size_t limit) {
-    return ob::plannerOrTerminationCondition(
-        deadline, ob::PlannerTerminationCondition([&checks, limit] { return checks >= limit; }));
-  };
-  const ob::PlannerStatus status = setup.getPlanner()->solve(spent(settings.checks));
-  if (status != ob::PlannerStatus::EXACT_SOLUTION) {
-    path.checks = checks;
-    char budget[96];
-    if (checks >= settings.checks)
-      std::snprintf(budget, sizeof(budget), "%zu configuration%s checked", settings.checks,
-                    settings.checks == 1 ? "" : "s");
-    else
-      std::snprintf(budget, sizeof(budget), "%.3g s", settings.seconds);
-    path.why = std::string("no collision-free path within ") + budget;
-    return path;
+  // First with motions checked at kCoarse times the step, the path found then checked at the
+  // step itself: most of a search's checks are on motions it then drops. A path that fails at
+  // the step is searched for again at the step, within what is left of the budget.
+  for (const double step : {kCoarse * max_step, max_step}) {
+    path.why =
+        search(joints, start_in, goal_in, free, step, settings, deadline, checks, path.waypoints);
+    if (!path.why.empty()) {
+      // Out of budget at the coarse step: the fine search would have no more of it.
+      path.checks = checks;
+      return path;
+    }
+    if (step == max_step || path_free(start_in, path.waypoints, free, max_step, checks)) {
+      path.found = true;
+      path.checks = checks;
+      return path;
+    }
+    path.waypoints.clear();
   }
-  // Shortened and smoothed with a share of what the search took: a path found fast is simplified
-  // fast, and never past the budget.
-  auto* found = setup.getProblemDefinition()->getSolutionPath()->as<og::PathGeometric>();
-  const std::size_t smoothing = std::max(
-      settings.smoothing_floor, static_cast<std::size_t>(settings.smoothing_share * checks));
-  SeededSimplifier simplifier(si, setup.getProblemDefinition()->getGoal(),
-                              local_seed(settings.seed, 2));
-  simplifier.simplify(*found, spent(std::min(settings.checks, checks + smoothing)));
-  path.waypoints = waypoints_of(*found, joints);
-  path.found = true;
   path.checks = checks;
   return path;
 }

@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A path between two joint vectors through free configurations (issue #60): OMPL's RRT-Connect in
-// the joints' box, then shortened and smoothed. Its budget is counted in configurations checked
+// the joints' box, then shortened and smoothed. The search checks its motions at five times the
+// step first, and the path it finds at the step; one that fails there is searched for again at the
+// step. Its budget is counted in configurations checked
 // as well as in seconds, and every random draw comes from the settings' seed: given the same
 // inputs and a budget the clock does not cut short, it returns the same path on any machine, at
 // any load, under a sanitizer.

@@ -72,6 +72,15 @@ RobotBody::RobotBody(std::shared_ptr<const RobotModel> model, const CollisionSha
     BodySolid b{it->second, s.T_link_solid, s.solid, s.solid.surface_points(surface_spacing)};
     solids_.push_back(std::move(b));
   }
+  tree_ = model_->flat_tree();
+  for (const BodySolid& s : solids_)
+    turned_.push_back(s.T_link_solid.linear() == Eigen::Matrix3d::Identity() ? 0 : 1);
+  for (const std::string& link : links_) {
+    std::size_t i = 0;
+    while (i < tree_.size() && tree_[i].link != link) ++i;
+    if (i == tree_.size()) throw Error("robot body: link '" + link + "' is not in the tree");
+    at_node_.push_back(i);
+  }
   const std::size_t n = links_.size();
   bounds_.resize(n);
   for (std::size_t i = 0; i < solids_.size(); ++i) bounds_[solids_[i].link].solids.push_back(i);
@@ -125,11 +134,25 @@ RobotBody::RobotBody(std::shared_ptr<const RobotModel> model, const CollisionSha
 }
 
 std::vector<Eigen::Isometry3d> RobotBody::place(const JointValues& joints) const {
-  const std::map<std::string, Eigen::Isometry3d> poses = model_->link_poses(joints);
+  std::vector<double> values(tree_.size(), 0.0);
+  for (std::size_t i = 0; i < tree_.size(); ++i) {
+    if (tree_[i].motion == FlatLink::Motion::kFixed) continue;
+    const auto value = joints.find(tree_[i].joint);
+    if (value != joints.end()) values[i] = value->second;
+  }
+  const std::vector<Eigen::Isometry3d> poses = flat_poses(tree_, values);
   std::vector<Eigen::Isometry3d> out(solids_.size());
   for (std::size_t l = 0; l < links_.size(); ++l) {
-    const Eigen::Isometry3d& T = poses.at(links_[l]);
-    for (std::size_t i : bounds_[l].solids) out[i] = T * solids_[i].T_link_solid;
+    const Eigen::Isometry3d& T = poses[at_node_[l]];
+    for (std::size_t i : bounds_[l].solids) {
+      const Eigen::Isometry3d& L = solids_[i].T_link_solid;
+      if (turned_[i]) {
+        out[i] = T * L;
+      } else {  // the same product, without multiplying by the identity
+        out[i].linear() = T.linear();
+        out[i].translation() = T.linear() * L.translation() + T.translation();
+      }
+    }
   }
   return out;
 }

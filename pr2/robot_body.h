@@ -61,6 +61,9 @@ class RobotBody {
 
  private:
   std::shared_ptr<const RobotModel> model_;
+  std::vector<FlatLink> tree_;        // the model's tree, for place()
+  std::vector<std::size_t> at_node_;  // per link: its index in tree_
+  std::vector<char> turned_;  // per solid: turned in its link (most only sit off its origin)
   std::vector<std::string> links_;
   std::vector<BodySolid> solids_;
   std::vector<char> allowed_;  // links x links

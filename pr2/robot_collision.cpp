@@ -14,24 +14,6 @@ namespace lmk {
 
 namespace {
 
-// The joint's own motion at `value`: a turn about its axis, or a slide along it.
-Eigen::Isometry3d joint_motion(const urdf::Joint& j, double value) {
-  const Eigen::Vector3d axis(j.axis.x, j.axis.y, j.axis.z);
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  switch (j.type) {
-    case urdf::Joint::REVOLUTE:
-    case urdf::Joint::CONTINUOUS:
-      if (axis.norm() > 0.0) T.rotate(Eigen::AngleAxisd(value, axis.normalized()));
-      break;
-    case urdf::Joint::PRISMATIC:
-      if (axis.norm() > 0.0) T.translate(axis.normalized() * value);
-      break;
-    default:
-      break;  // fixed (and floating or planar, which a robot's tree holds still here)
-  }
-  return T;
-}
-
 // The file a <mesh filename> names: package://NAME/PATH in NAME's folder (settings.package_path),
 // else in settings.package_dir, file://PATH, or a path relative to the URDF's directory.
 std::string mesh_path(const std::string& uri, const CollisionShapeSettings& settings,
@@ -71,25 +53,68 @@ void add_mesh(const urdf::Mesh& m, const std::string& link, const Eigen::Isometr
 
 std::string RobotModel::root_link() const { return impl_->model->getRoot()->name; }
 
+std::vector<FlatLink> RobotModel::flat_tree() const {
+  std::vector<FlatLink> tree;
+  // Depth first: a link is pushed before its children, which find it as the last one pushed.
+  const std::function<void(const urdf::Link&)> walk = [&](const urdf::Link& link) {
+    const int self = static_cast<int>(tree.size() - 1);
+    for (const urdf::JointSharedPtr& j : link.child_joints) {
+      const urdf::LinkConstSharedPtr child = impl_->model->getLink(j->child_link_name);
+      if (!child) continue;
+      FlatLink f;
+      f.link = child->name;
+      f.joint = j->name;
+      f.parent = self;
+      f.T_parent_joint = detail::to_eigen(j->parent_to_joint_origin_transform);
+      const Eigen::Vector3d axis(j->axis.x, j->axis.y, j->axis.z);
+      const bool turns = j->type == urdf::Joint::REVOLUTE || j->type == urdf::Joint::CONTINUOUS;
+      if (axis.norm() > 0.0 && (turns || j->type == urdf::Joint::PRISMATIC)) {
+        f.motion = turns ? FlatLink::Motion::kRevolute : FlatLink::Motion::kPrismatic;
+        f.axis = axis.normalized();
+      }  // else fixed (and floating or planar, which a robot's tree holds still here)
+      tree.push_back(std::move(f));
+      walk(*child);
+    }
+  };
+  FlatLink root;
+  root.link = impl_->model->getRoot()->name;
+  tree.push_back(root);
+  walk(*impl_->model->getRoot());
+  return tree;
+}
+
+std::vector<Eigen::Isometry3d> flat_poses(const std::vector<FlatLink>& tree,
+                                          const std::vector<double>& values) {
+  std::vector<Eigen::Isometry3d> poses(tree.size());
+  for (std::size_t i = 0; i < tree.size(); ++i) {
+    const FlatLink& f = tree[i];
+    if (f.parent < 0) {
+      poses[i] = Eigen::Isometry3d::Identity();
+      continue;
+    }
+    poses[i] = poses[static_cast<std::size_t>(f.parent)] * f.T_parent_joint;
+    if (f.motion == FlatLink::Motion::kRevolute)
+      poses[i].rotate(Eigen::AngleAxisd(values[i], f.axis));
+    else if (f.motion == FlatLink::Motion::kPrismatic)
+      poses[i].translate(f.axis * values[i]);
+  }
+  return poses;
+}
+
 std::map<std::string, Eigen::Isometry3d> RobotModel::link_poses(
     const std::map<std::string, double>& joints) const {
   for (const auto& [name, value] : joints) {
     if (!impl_->model->getJoint(name)) throw Error(impl_->what + ": no joint named '" + name + "'");
   }
+  const std::vector<FlatLink> tree = flat_tree();
+  std::vector<double> values(tree.size(), 0.0);
+  for (std::size_t i = 0; i < tree.size(); ++i) {
+    const auto value = joints.find(tree[i].joint);
+    if (value != joints.end()) values[i] = value->second;
+  }
+  const std::vector<Eigen::Isometry3d> placed = flat_poses(tree, values);
   std::map<std::string, Eigen::Isometry3d> poses;
-  const std::function<void(const urdf::Link&, const Eigen::Isometry3d&)> walk =
-      [&](const urdf::Link& link, const Eigen::Isometry3d& T_root_link) {
-        poses[link.name] = T_root_link;
-        for (const urdf::JointSharedPtr& j : link.child_joints) {
-          const auto value = joints.find(j->name);
-          const Eigen::Isometry3d T = T_root_link *
-                                      detail::to_eigen(j->parent_to_joint_origin_transform) *
-                                      joint_motion(*j, value == joints.end() ? 0.0 : value->second);
-          if (const urdf::LinkConstSharedPtr child = impl_->model->getLink(j->child_link_name))
-            walk(*child, T);
-        }
-      };
-  walk(*impl_->model->getRoot(), Eigen::Isometry3d::Identity());
+  for (std::size_t i = 0; i < tree.size(); ++i) poses[tree[i].link] = placed[i];
   return poses;
 }
 

@@ -18,6 +18,21 @@
 namespace lmk {
 
 /// One joint of a chain, as URDF describes it.
+/// One link of RobotModel::flat_tree(), with the joint that moves it from its parent.
+struct FlatLink {
+  std::string link;
+  std::string joint;  ///< "" for the root
+  int parent = -1;    ///< its index in the flat tree; -1 for the root
+  Eigen::Isometry3d T_parent_joint = Eigen::Isometry3d::Identity();
+  enum class Motion { kFixed, kRevolute, kPrismatic } motion = Motion::kFixed;
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();  ///< unit
+};
+
+/// Each link of `tree` in the root link's frame, `values[i]` the joint value of link i's joint
+/// (ignored for a fixed one); `values` as long as `tree`.
+std::vector<Eigen::Isometry3d> flat_poses(const std::vector<FlatLink>& tree,
+                                          const std::vector<double>& values);
+
 struct ChainJoint {
   std::string name;
   std::string type;  ///< "revolute", "continuous", "prismatic" or "fixed"
@@ -92,6 +107,9 @@ class RobotModel {
 
   /// The root link of the description's tree.
   std::string root_link() const;
+  /// The tree flattened for forward kinematics many times a second (a motion check checks
+  /// thousands of configurations): every link after its parent. flat_poses() places it.
+  std::vector<FlatLink> flat_tree() const;
   /// Every link's pose in the root link's frame with the named joints at the given values (rad,
   /// or m for a prismatic joint) and every other joint at 0. A joint value of a fixed joint is
   /// ignored; a name that is no joint is an error (lmk::Error).

@@ -3,9 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
-#include <set>
-#include <tuple>
+#include <unordered_set>
 
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/random.h"
@@ -27,6 +27,17 @@ constexpr double kEndZone = 0.05;
 // Unseen places along a motion are judged one per cube of this side (m), at states no farther
 // apart than it moves any point: where to look needs no finer answer.
 constexpr double kUnseenCell = 0.05;
+
+// The kUnseenCell cube holding `p`, as one number: 21 bits a coordinate, ±52 km at 5 cm.
+std::uint64_t cell_key(const Eigen::Vector3d& p) {
+  constexpr std::int64_t kOffset = std::int64_t{1} << 20;
+  std::uint64_t key = 0;
+  for (int a = 0; a < 3; ++a) {
+    const auto c = static_cast<std::int64_t>(std::floor(p[a] / kUnseenCell)) + kOffset;
+    key = (key << 21) | (static_cast<std::uint64_t>(c) & ((std::uint64_t{1} << 21) - 1));
+  }
+  return key;
+}
 
 }  // namespace
 
@@ -276,7 +287,7 @@ std::vector<Eigen::Vector3d> RobotMotionChecker::unseen_along(
   const std::vector<char> moving = links_moved_by(names);
   // The cubes already judged: each by the first point of the arm in it (judging every point, a
   // cube the view's edge cuts would be caught too, at twice the time of a plan).
-  std::set<std::tuple<long, long, long>> cells;
+  std::unordered_set<std::uint64_t> cells;
   const auto visit = [&](const JointValues& q) {
     const std::vector<Eigen::Isometry3d> placed = body_->place(q);
     for (std::size_t link = 0; link < moving.size(); ++link) {
@@ -285,10 +296,7 @@ std::vector<Eigen::Vector3d> RobotMotionChecker::unseen_along(
         const Eigen::Isometry3d T_base_solid = T_base_root_ * placed[i];
         for (const Eigen::Vector3d& s : body_->solids()[i].surface) {
           const Eigen::Vector3d p = T_base_solid * s;
-          const Eigen::Vector3d c = (p / kUnseenCell).array().floor();
-          const auto key = std::make_tuple(static_cast<long>(c.x()), static_cast<long>(c.y()),
-                                           static_cast<long>(c.z()));
-          if (cells.insert(key).second && scene_->unseen(p)) out.push_back(p);
+          if (cells.insert(cell_key(p)).second && scene_->unseen(p)) out.push_back(p);
         }
       }
     }

@@ -49,6 +49,33 @@ TEST(JointSpacePlanner, GoesAroundADiscThroughFreeStatesOnly) {
   }
 }
 
+// The first search checks motions at five times the step (fewer checks); what it finds is checked
+// at the step before it is returned. A wall 4 cm thick, which that search's 5 cm checks can step
+// over, is crossed through its gap only (to within the 1 cm step at its corners).
+TEST(JointSpacePlanner, AWallThinnerThanTheFirstSearchsStepIsCrossedOnlyThroughItsGap) {
+  const auto wall = [](const std::vector<double>& q) {
+    return std::abs(q[0]) > 0.02 || (q[1] > 1.5 && q[1] < 1.8);
+  };
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    const std::vector<double> start = {-1.0, 0.0}, goal = {1.0, 0.0};
+    const JointSpacePath path =
+        plan_joint_path(two_joints(), start, goal, wall, 0.01, untimed(seed));
+    ASSERT_TRUE(path.found) << path.why;
+    int crossings = 0;
+    std::vector<double> at = start;
+    for (const std::vector<double>& next : path.waypoints) {
+      if ((at[0] < 0.0) != (next[0] < 0.0)) {
+        ++crossings;
+        const double t = -at[0] / (next[0] - at[0]);
+        const double y = at[1] + t * (next[1] - at[1]);
+        EXPECT_TRUE(y > 1.49 && y < 1.81) << "seed " << seed << ": crossed at " << y;
+      }
+      at = next;
+    }
+    EXPECT_GE(crossings, 1) << "seed " << seed;
+  }
+}
+
 TEST(JointSpacePlanner, TheSameSeedGivesTheSamePathWhateverWasPlannedBefore) {
   const std::vector<double> start = {-1.5, 0.2}, goal = {1.5, -0.2};
   const JointSpacePath first =
