@@ -10,6 +10,8 @@ find_package(CGAL 5 REQUIRED)
 find_package(urdfdom REQUIRED)
 # Planning arm motions around obstacles (lmk::pr2, issue #60): RRT-Connect in joint space.
 find_package(ompl 1.5 REQUIRED)
+# The pairs of links an SRDF says may touch (<disable_collisions>, pr2/srdf.h): a small XML reader.
+find_package(tinyxml2 REQUIRED)
 # RGB-D depth and colour images (libpng-dev).
 find_package(PNG REQUIRED)
 

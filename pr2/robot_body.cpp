@@ -62,7 +62,8 @@ Eigen::Vector3d RobotBody::bounding_sphere(const std::vector<std::size_t>& membe
 }
 
 RobotBody::RobotBody(std::shared_ptr<const RobotModel> model, const CollisionShapeSettings& shapes,
-                     double surface_spacing)
+                     double surface_spacing,
+                     const std::vector<std::pair<std::string, std::string>>& may_touch)
     : model_(std::move(model)) {
   if (!model_) throw Error("robot body: no robot model");
   std::map<std::string, std::size_t> index;
@@ -119,6 +120,15 @@ RobotBody::RobotBody(std::shared_ptr<const RobotModel> model, const CollisionSha
       if (up == parent_of.end()) break;
       ancestor = up->second;
     }
+  }
+  for (const auto& [a, b] : may_touch) {
+    for (const std::string& link : {a, b})
+      if (!model_->has_link(link))
+        throw Error("robot body: '" + link + "', said to touch '" + (link == a ? b : a) +
+                    "' by design, is no link of " + model_->name());
+    const auto i = index.find(a), k = index.find(b);
+    if (i != index.end() && k != index.end())
+      allowed_[i->second * n + k->second] = allowed_[k->second * n + i->second] = 1;
   }
   // Links that touch with every joint at zero touch by design (a shell around a motor).
   const std::vector<Eigen::Isometry3d> zero = place({});

@@ -8,6 +8,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "lmk/pbd/motion_check.h"
@@ -24,10 +25,13 @@ struct BodySolid {
 
 class RobotBody {
  public:
-  /// The body of `model`; surface points about `surface_spacing` m apart. Throws lmk::Error when a
-  /// collision mesh cannot be read.
+  /// The body of `model`; surface points about `surface_spacing` m apart. `may_touch`: further
+  /// pairs of links that touch by design (an SRDF's <disable_collisions>, srdf.h), beside the links
+  /// near each other along the tree; a link without collision shapes needs none. Throws lmk::Error
+  /// when a collision mesh cannot be read, or for a pair naming a link the model lacks.
   explicit RobotBody(std::shared_ptr<const RobotModel> model,
-                     const CollisionShapeSettings& shapes = {}, double surface_spacing = 0.015);
+                     const CollisionShapeSettings& shapes = {}, double surface_spacing = 0.015,
+                     const std::vector<std::pair<std::string, std::string>>& may_touch = {});
 
   /// Links that have solids, by index.
   const std::vector<std::string>& links() const { return links_; }

@@ -18,8 +18,9 @@ tool_packages=(
   # the libraries lmk is built on (docs/developing.md)
   libeigen3-dev libopenvdb-dev libceres-dev libpcl-dev libcgal-dev liburdfdom-dev
   libnanoflann-dev libtbb-dev nlohmann-json3-dev libcli11-dev
-  # planning arm motions around what the camera sees (pr2/robot_motion_checker.h)
-  libompl-dev
+  # planning arm motions around what the camera sees (pr2/robot_motion_checker.h), and the pairs
+  # of links a robot's SRDF says may touch (pr2/srdf.h)
+  libompl-dev libtinyxml2-dev
   # RGB-D depth and colour images (geometry/depth_image.h), the report's PNG pictures
   libpng-dev
   # Debian's PCL config pulls in VTK, whose config needs MPI's C bindings

@@ -20,6 +20,7 @@
 #include "lmk/pbd/watch.h"
 #include "lmk/pr2/pr2_kinematics.h"
 #include "lmk/pr2/pr2_robots.h"
+#include "lmk/pr2/srdf.h"
 #include "lmk/ros/latest_frame.h"
 #include "lmk/ros/ros_eyes.h"
 #include "lmk/ros/ros_robot.h"
@@ -75,9 +76,11 @@ ExecutionReport execute_watched(const Program& program, const Plan& plan,
 }
 
 // The robot's collision model for --check-collisions: its robot_description's <collision> shapes
-// (meshes found through ROS's package paths), or lmk's own PR2 description where none is set.
+// (meshes found through ROS's package paths), with the pairs of links its
+// robot_description_semantic (MoveIt's SRDF) says may touch; or lmk's own PR2 description where
+// no robot_description is set.
 std::shared_ptr<const RobotBody> robot_description_body() {
-  std::string urdf;
+  std::string urdf, srdf;
   if (!ros::param::get("robot_description", urdf) || urdf.empty()) {
     std::printf("collision model: lmk's PR2 description (no robot_description parameter)\n");
     return nullptr;
@@ -86,9 +89,14 @@ std::shared_ptr<const RobotBody> robot_description_body() {
   shapes.package_path = [](const std::string& name) { return ros::package::getPath(name); };
   try {
     auto model = std::make_shared<RobotModel>(RobotModel::from_string(urdf, "robot_description"));
-    auto body = std::make_shared<const RobotBody>(model, shapes);
-    std::printf("collision model: robot_description's %s, %zu collision shapes\n",
-                model->name().c_str(), body->solids().size());
+    std::vector<LinkPair> may_touch;
+    if (ros::param::get("robot_description_semantic", srdf) && !srdf.empty())
+      may_touch = srdf_disabled_collisions(srdf, "robot_description_semantic");
+    auto body = std::make_shared<const RobotBody>(model, shapes, 0.015, may_touch);
+    std::printf(
+        "collision model: robot_description's %s, %zu collision shapes, %zu pairs of "
+        "links that may touch from robot_description_semantic\n",
+        model->name().c_str(), body->solids().size(), may_touch.size());
     return body;
   } catch (const Error& e) {
     throw Error(std::string("pbd run --ros: ") + e.what());

@@ -28,6 +28,8 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <tuple>
+#include <utility>
 
 #include "lmk/demos/demo_tasks.h"
 #include "lmk/geometry/cloud_io.h"
@@ -640,28 +642,44 @@ TEST(PbdRunOnRos, AMotionThatWouldTouchAndCannotGoAroundSendsNoArmGoal) {
 
 TEST(PbdRunOnRos, TheCollisionModelIsReadFromRobotDescription) {
   FakePr2 robot(fake_settings("scenario3.pcd"));
-  struct Description {  // robot_description for this test only, whatever fails
-    explicit Description(const std::string& urdf) { ::ros::param::set("/robot_description", urdf); }
-    ~Description() { ::ros::param::del("/robot_description"); }
+  struct Param {  // a parameter for this test only, whatever fails
+    Param(std::string name, const std::string& value) : name_(std::move(name)) {
+      ::ros::param::set(name_, value);
+    }
+    ~Param() { ::ros::param::del(name_); }
+    std::string name_;
   };
   const ScratchDir dir;
   const std::vector<std::string> run = {"pbd", "run", demo_data().program().string(), "--ros",
                                         "--check-collisions"};
+  std::ifstream in(std::string(LMK_SOURCE_DIR) + "/pr2/data/pr2.urdf");
+  const std::string urdf(std::istreambuf_iterator<char>(in), {});
   {
-    std::ifstream in(std::string(LMK_SOURCE_DIR) + "/pr2/data/pr2.urdf");
-    const Description pr2(std::string(std::istreambuf_iterator<char>(in), {}));
+    // With MoveIt's SRDF beside it: its pairs of links that may touch are taken.
+    const Param pr2("/robot_description", urdf);
+    const Param semantic("/robot_description_semantic", R"(<robot name="pr2">
+      <disable_collisions link1="r_gripper_palm_link" link2="l_gripper_palm_link"/>
+      <disable_collisions link1="r_forearm_link" link2="l_forearm_link"/></robot>)");
     const auto [code, out] = run_lmk(dir, run);
     EXPECT_EQ(code, 0) << out;
     EXPECT_NE(out.find("collision model: robot_description's pr2, "), std::string::npos) << out;
+    EXPECT_NE(out.find("2 pairs of links that may touch from robot_description_semantic"),
+              std::string::npos)
+        << out;
   }
   const int goals = robot.total_goals();
-  {
-    // A description that is no robot: one clear line, and nothing moves.
-    const Description broken("<robot name=\"broken\"></robot>");
+  for (const auto& [name, value, said] :
+       {std::tuple<std::string, std::string, std::string>{
+            "/robot_description", "<robot name=\"broken\"></robot>", "robot_description"},
+        {"/robot_description_semantic", "<robot><disable_collisions link1=\"a\"/></robot>",
+         "robot_description_semantic: a <disable_collisions> element"}}) {
+    // A description that is no robot, an SRDF that is broken: one clear line, nothing moves.
+    const Param description("/robot_description", urdf);
+    const Param broken(name, value);
     const auto [code, out] = run_lmk(dir, run);
     EXPECT_EQ(code, 2) << out;
     EXPECT_NE(out.find("pbd run --ros: "), std::string::npos) << out;
-    EXPECT_NE(out.find("robot_description"), std::string::npos) << out;
+    EXPECT_NE(out.find(said), std::string::npos) << out;
     EXPECT_EQ(robot.total_goals(), goals);
   }
 }
