@@ -121,15 +121,7 @@ RobotBody::RobotBody(std::shared_ptr<const RobotModel> model, const CollisionSha
       ancestor = up->second;
     }
   }
-  for (const auto& [a, b] : may_touch) {
-    for (const std::string& link : {a, b})
-      if (!model_->has_link(link))
-        throw Error("robot body: '" + link + "', said to touch '" + (link == a ? b : a) +
-                    "' by design, is no link of " + model_->name());
-    const auto i = index.find(a), k = index.find(b);
-    if (i != index.end() && k != index.end())
-      allowed_[i->second * n + k->second] = allowed_[k->second * n + i->second] = 1;
-  }
+  allow_pairs(index, may_touch);
   // Links that touch with every joint at zero touch by design (a shell around a motor).
   const std::vector<Eigen::Isometry3d> zero = place({});
   for (std::size_t i = 0; i < solids_.size(); ++i) {
@@ -140,6 +132,20 @@ RobotBody::RobotBody(std::shared_ptr<const RobotModel> model, const CollisionSha
       if (deepest_point(solids_[i], zero[i], solids_[j], zero[j], 0.0))
         allowed_[a * n + b] = allowed_[b * n + a] = 1;
     }
+  }
+}
+
+void RobotBody::allow_pairs(const std::map<std::string, std::size_t>& index,
+                            const std::vector<std::pair<std::string, std::string>>& pairs) {
+  const std::size_t n = links_.size();
+  for (const auto& [a, b] : pairs) {
+    for (const std::string& link : {a, b})
+      if (!model_->has_link(link))
+        throw Error("robot body: '" + link + "', said to touch '" + (link == a ? b : a) +
+                    "' by design, is no link of " + model_->name());
+    const auto i = index.find(a), k = index.find(b);
+    if (i != index.end() && k != index.end())
+      allowed_[i->second * n + k->second] = allowed_[k->second * n + i->second] = 1;
   }
 }
 

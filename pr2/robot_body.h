@@ -5,6 +5,7 @@
 // and the pairs of links that may touch by design: links up to three joints apart, and links that
 // already touch with every joint at zero (a shoulder inside the torso's shell).
 
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -64,6 +65,11 @@ class RobotBody {
   const RobotModel& model() const { return *model_; }
 
  private:
+  /// Lets the named pairs of links touch (`index`: each link's index by name); a link without
+  /// solids needs nothing. Throws lmk::Error for a name that is no link of the model.
+  void allow_pairs(const std::map<std::string, std::size_t>& index,
+                   const std::vector<std::pair<std::string, std::string>>& pairs);
+
   std::shared_ptr<const RobotModel> model_;
   std::vector<FlatLink> tree_;        // the model's tree, for place()
   std::vector<std::size_t> at_node_;  // per link: its index in tree_
