@@ -37,6 +37,11 @@ const char* phase_name(Phase phase) {
   return "target";
 }
 
+std::string step_name(std::size_t step, Phase phase) {
+  return "step " + std::to_string(step) +
+         (phase == Phase::kTarget ? std::string() : std::string("'s ") + phase_name(phase));
+}
+
 Eigen::Isometry3d backed_off(const Eigen::Isometry3d& T_base_ee, double distance) {
   return T_base_ee * Eigen::Translation3d(-distance, 0.0, 0.0);
 }

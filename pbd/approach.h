@@ -29,6 +29,8 @@ enum class Phase {
 };
 /// "target", "approach" or "retreat".
 const char* phase_name(Phase phase);
+/// A planned step for a person: "step 3" (its target), "step 3's approach".
+std::string step_name(std::size_t step, Phase phase);
 
 /// One arm's goal in one motion: where its tool frame goes (base frame) and then its gripper.
 struct ArmGoal {

@@ -22,9 +22,7 @@ constexpr std::uint64_t kTargetSeed = 60;
 
 // "step 3, right arm", "step 3's approach, right arm".
 std::string motion_name(std::size_t step, Phase phase, Arm arm) {
-  return "step " + std::to_string(step) +
-         (phase == Phase::kTarget ? std::string() : std::string("'s ") + phase_name(phase)) + ", " +
-         arm_name(arm) + " arm";
+  return step_name(step, phase) + ", " + arm_name(arm) + " arm";
 }
 }  // namespace
 

@@ -176,9 +176,7 @@ WatchedExecution execute_watching(const Program& program, const Plan& plan, Robo
   std::size_t k = 0;  // the next step of out.plan
   while (k < out.plan.steps.size()) {
     const PlannedStep step = out.plan.steps[k];
-    const std::string name =
-        "before step " + std::to_string(step.index) +
-        (step.phase == Phase::kTarget ? "" : std::string("'s ") + phase_name(step.phase));
+    const std::string name = "before " + step_name(step.index, step.phase);
     Watcher::Verdict v = watcher.check(step.index, name);
     if (v == Watcher::Verdict::kStop) return out;
     if (v == Watcher::Verdict::kReplanned) {

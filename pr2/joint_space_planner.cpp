@@ -233,22 +233,16 @@ JointSpacePath plan_joint_path(const std::vector<JointInfo>& joints,
   const auto deadline = ob::timedPlannerTerminationCondition(settings.seconds);
   // First with motions checked at kCoarse times the step, the path found then checked at the
   // step itself: most of a search's checks are on motions it then drops. A path that fails at
-  // the step is searched for again at the step, within what is left of the budget.
-  for (const double step : {kCoarse * max_step, max_step}) {
-    path.why =
-        search(joints, start_in, goal_in, free, step, settings, deadline, checks, path.waypoints);
-    if (!path.why.empty()) {
-      // Out of budget at the coarse step: the fine search would have no more of it.
-      path.checks = checks;
-      return path;
-    }
-    if (step == max_step || path_free(start_in, path.waypoints, free, max_step, checks)) {
-      path.found = true;
-      path.checks = checks;
-      return path;
-    }
+  // the step is searched for again at the step, within what is left of the budget. A coarse
+  // search out of budget ends it: the fine one would have no more of it.
+  path.why = search(joints, start_in, goal_in, free, kCoarse * max_step, settings, deadline, checks,
+                    path.waypoints);
+  if (path.why.empty() && !path_free(start_in, path.waypoints, free, max_step, checks)) {
     path.waypoints.clear();
+    path.why = search(joints, start_in, goal_in, free, max_step, settings, deadline, checks,
+                      path.waypoints);
   }
+  path.found = path.why.empty();
   path.checks = checks;
   return path;
 }

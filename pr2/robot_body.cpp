@@ -150,13 +150,7 @@ void RobotBody::allow_pairs(const std::map<std::string, std::size_t>& index,
 }
 
 std::vector<Eigen::Isometry3d> RobotBody::place(const JointValues& joints) const {
-  std::vector<double> values(tree_.size(), 0.0);
-  for (std::size_t i = 0; i < tree_.size(); ++i) {
-    if (tree_[i].motion == FlatLink::Motion::kFixed) continue;
-    const auto value = joints.find(tree_[i].joint);
-    if (value != joints.end()) values[i] = value->second;
-  }
-  const std::vector<Eigen::Isometry3d> poses = flat_poses(tree_, values);
+  const std::vector<Eigen::Isometry3d> poses = flat_poses(tree_, flat_values(tree_, joints));
   std::vector<Eigen::Isometry3d> out(solids_.size());
   for (std::size_t l = 0; l < links_.size(); ++l) {
     const Eigen::Isometry3d& T = poses[at_node_[l]];

@@ -101,18 +101,24 @@ std::vector<Eigen::Isometry3d> flat_poses(const std::vector<FlatLink>& tree,
   return poses;
 }
 
+std::vector<double> flat_values(const std::vector<FlatLink>& tree,
+                                const std::map<std::string, double>& joints) {
+  std::vector<double> values(tree.size(), 0.0);
+  for (std::size_t i = 0; i < tree.size(); ++i) {
+    if (tree[i].motion == FlatLink::Motion::kFixed) continue;
+    const auto value = joints.find(tree[i].joint);
+    if (value != joints.end()) values[i] = value->second;
+  }
+  return values;
+}
+
 std::map<std::string, Eigen::Isometry3d> RobotModel::link_poses(
     const std::map<std::string, double>& joints) const {
   for (const auto& [name, value] : joints) {
     if (!impl_->model->getJoint(name)) throw Error(impl_->what + ": no joint named '" + name + "'");
   }
   const std::vector<FlatLink> tree = flat_tree();
-  std::vector<double> values(tree.size(), 0.0);
-  for (std::size_t i = 0; i < tree.size(); ++i) {
-    const auto value = joints.find(tree[i].joint);
-    if (value != joints.end()) values[i] = value->second;
-  }
-  const std::vector<Eigen::Isometry3d> placed = flat_poses(tree, values);
+  const std::vector<Eigen::Isometry3d> placed = flat_poses(tree, flat_values(tree, joints));
   std::map<std::string, Eigen::Isometry3d> poses;
   for (std::size_t i = 0; i < tree.size(); ++i) poses[tree[i].link] = placed[i];
   return poses;

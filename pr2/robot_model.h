@@ -32,6 +32,9 @@ struct FlatLink {
 /// (ignored for a fixed one); `values` as long as `tree`.
 std::vector<Eigen::Isometry3d> flat_poses(const std::vector<FlatLink>& tree,
                                           const std::vector<double>& values);
+/// flat_poses()'s `values` from joint values by name: 0 for a joint `joints` does not name.
+std::vector<double> flat_values(const std::vector<FlatLink>& tree,
+                                const std::map<std::string, double>& joints);
 
 struct ChainJoint {
   std::string name;

@@ -4,6 +4,7 @@
 // robot will not carry out raises lmk.Refused with its kind and the CLI's one-line reason.
 #include <pybind11/stl.h>
 
+#include <cstdio>
 #include <exception>
 #include <filesystem>
 #include <memory>
@@ -91,8 +92,11 @@ LookedPlan plan_or_refuse(const std::string& program_file, const PointCloud& sce
   // approach=: m along the gripper's axis before a grasp and after a release (0: none).
   if (const auto approach = pop_keyword(search, "approach")) {
     settings.approach = py::cast<double>(*approach);
-    if (!(settings.approach >= 0.0 && settings.approach <= kMaxApproach))
-      throw py::value_error("approach must be 0 to 0.3 m");
+    if (!(settings.approach >= 0.0 && settings.approach <= kMaxApproach)) {
+      char text[48];
+      std::snprintf(text, sizeof(text), "approach must be 0 to %g m", kMaxApproach);
+      throw py::value_error(text);
+    }
   }
   const std::optional<py::object> look = pop_keyword(search, "look");
   LookAgainSettings looking;
