@@ -90,7 +90,9 @@ TEST(Srdf, TheRealPr2PackagesSrdfReads) {
     for (const std::string& link : {a, b})
       both =
           both && std::find(body.links().begin(), body.links().end(), link) != body.links().end();
-    if (both) EXPECT_TRUE(body.may_touch(link_index(body, a), link_index(body, b))) << a << b;
+    if (both) {
+      EXPECT_TRUE(body.may_touch(link_index(body, a), link_index(body, b))) << a << b;
+    }
   }
 }
 
