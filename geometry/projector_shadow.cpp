@@ -5,9 +5,9 @@
 
 namespace lmk {
 
-std::vector<Eigen::Vector3f> projector_shadow_ray_ends(const PointCloud& cloud,
-                                                       const ProjectorShadowSettings& s) {
-  std::vector<Eigen::Vector3f> ends;
+std::vector<ShadowRay> projector_shadow_rays(const PointCloud& cloud,
+                                             const ProjectorShadowSettings& s) {
+  std::vector<ShadowRay> ends;
   if (cloud.height <= 1 || cloud.points.size() != std::size_t{cloud.width} * cloud.height ||
       !(s.baseline > 0.0))
     return ends;
@@ -47,10 +47,17 @@ std::vector<Eigen::Vector3f> projector_shadow_ray_ends(const PointCloud& cloud,
         const double lit = s.baseline / right.z() - (b.x() - ray.x());
         const double depth = lit > s.baseline / left.z() ? s.baseline / lit : left.z();
         const Eigen::Vector3d end = Eigen::Vector3d(ray.x(), ray.y(), 1.0) * depth;
-        ends.push_back((cloud.T_cloud_sensor * end).cast<float>());
+        ends.push_back({row + k, (cloud.T_cloud_sensor * end).cast<float>()});
       }
     }
   }
+  return ends;
+}
+
+std::vector<Eigen::Vector3f> projector_shadow_ray_ends(const PointCloud& cloud,
+                                                       const ProjectorShadowSettings& settings) {
+  std::vector<Eigen::Vector3f> ends;
+  for (const ShadowRay& ray : projector_shadow_rays(cloud, settings)) ends.push_back(ray.end);
   return ends;
 }
 

@@ -18,6 +18,7 @@
 // nothing is rarely exactly that wide, and its space is not carved.
 
 #include <Eigen/Core>
+#include <cstddef>
 #include <vector>
 
 #include "lmk/geometry/point_cloud.h"
@@ -30,10 +31,20 @@ struct ProjectorShadowSettings {
   double min_depth_ratio = 1.03;  ///< the far side lies at least this factor deeper
 };
 
-/// For every no-return pixel of an organised cloud that lies in a projector shadow, the point where
-/// its camera ray enters the shadow volume (at most at the far side's depth), in the cloud's
-/// frame: the ray is observed free up to there.
+/// A no-return pixel in a projector shadow.
+struct ShadowRay {
+  std::size_t pixel = 0;  ///< its index in the cloud
+  /// Where its camera ray enters the shadow volume (at most at the far side's depth), in the
+  /// cloud's frame: the ray is observed free up to there.
+  Eigen::Vector3f end = Eigen::Vector3f::Zero();
+};
+
+/// Every no-return pixel of an organised cloud that lies in a projector shadow, row by row.
 /// Empty for an unorganised cloud.
+std::vector<ShadowRay> projector_shadow_rays(const PointCloud& organised,
+                                             const ProjectorShadowSettings& settings = {});
+
+/// The rays' ends alone (ShadowRay::end).
 std::vector<Eigen::Vector3f> projector_shadow_ray_ends(
     const PointCloud& organised, const ProjectorShadowSettings& settings = {});
 

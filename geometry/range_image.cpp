@@ -134,6 +134,7 @@ RangeImage::Look RangeImage::look(const Eigen::Vector3f& point) const {
   const std::optional<std::size_t> pixel = pixel_of(p);
   if (!pixel) return look;
   look.in_view = true;
+  look.pixel = *pixel;
   look.measured = depth_[*pixel];
   return look;
 }

@@ -45,6 +45,7 @@ class RangeImage {
     double depth = 0.0;    ///< the point's own depth along the optical axis, m
     /// The depth the sensor measured at its pixel, m; NaN where it measured nothing.
     double measured = 0.0;
+    std::size_t pixel = 0;  ///< the row-major index of its pixel, when in view
   };
   Look look(const Eigen::Vector3f& point) const;
 

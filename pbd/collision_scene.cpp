@@ -8,16 +8,61 @@
 #include "lmk/geometry/distance_grid.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/filters.h"
+#include "lmk/geometry/image_mask.h"
 #include "lmk/geometry/kdtree.h"
+#include "lmk/geometry/projector_shadow.h"
 #include "lmk/geometry/range_image.h"
 #include "lmk/geometry/voxel_grid.h"
 
 namespace lmk {
 
+namespace {
+
+// The holes of one image where something nearer than the sensor's minimum range may stand: its
+// pixels without a return, in holes at least CollisionSceneSettings::blind_width wide at that
+// range (narrower ones are dropouts between rays that measured beyond), and how far every pixel
+// lies from them.
+class BlindHoles {
+ public:
+  BlindHoles(const PointCloud& frame, const RangeImage& image,
+             const CollisionSceneSettings& settings)
+      : focal_(std::min(image.intrinsics().fx, image.intrinsics().fy)) {
+    if (!(settings.min_range > 0.0)) return;
+    const PinholeIntrinsics& k = image.intrinsics();
+    std::vector<std::uint8_t> none(image.depths().size());
+    for (std::size_t i = 0; i < none.size(); ++i) none[i] = std::isnan(image.depths()[i]);
+    // A projector's shadow is explained: its rays are lit, hence empty, up to the shadow volume
+    // behind a surface the sensor measured (geometry/projector_shadow.h).
+    for (const ShadowRay& ray : projector_shadow_rays(frame)) none[ray.pixel] = 0;
+    const double pixels = settings.blind_width * focal_ / settings.min_range;
+    holes_ = open_mask(none, k.width, k.height, static_cast<int>(std::floor(0.5 * pixels)));
+    if (std::find(holes_.begin(), holes_.end(), 1) == holes_.end()) {
+      holes_.clear();
+      return;
+    }
+    pixels_away_ = distance_to_mask(holes_, k.width, k.height);
+  }
+  bool hole(std::size_t pixel) const { return !holes_.empty() && holes_[pixel]; }
+  // A lower bound of the distance from a point at `depth` on the ray of `pixel` to the rays of the
+  // holes, at that depth, m; +infinity without holes.
+  double beside(std::size_t pixel, double depth) const {
+    if (holes_.empty()) return std::numeric_limits<double>::infinity();
+    return pixels_away_[pixel] * depth / focal_;
+  }
+
+ private:
+  double focal_;
+  std::vector<std::uint8_t> holes_;  // empty: none
+  std::vector<float> pixels_away_;
+};
+
+}  // namespace
+
 struct CollisionScene::Impl {
   PointCloud points;  // thinned, within reach, off the robot, base frame
   std::unique_ptr<KdTree> tree;
   std::vector<RangeImage> images;      // of the organised frames, for the hidden and unseen space
+  std::vector<BlindHoles> blind;       // per image
   std::unique_ptr<DistanceGrid> grid;  // the points and the hidden space, over the reach
   CollisionSceneSettings settings;
   std::function<bool(const Eigen::Vector3d&)> robot;  // where the robot stands; may be empty
@@ -44,22 +89,40 @@ struct CollisionScene::Impl {
     if (!settings.unknown_is_occupied && !settings.unseen_is_occupied) return std::nullopt;
     double best = -std::numeric_limits<double>::infinity(), outside = best;
     bool in_any_view = false;
-    for (const RangeImage& image : images) {
+    const bool in_column = settings.own_column.contains(p);
+    for (std::size_t i = 0; i < images.size(); ++i) {
+      const RangeImage& image = images[i];
       const RangeImage::Look look = image.look(p.cast<float>());
       if (!look.in_view) {
         if (settings.unseen_is_occupied) outside = std::max(outside, -outside_view(image, p));
         continue;
       }
       in_any_view = true;
-      if (!std::isfinite(look.measured)) return std::nullopt;
-      best = std::max(best, look.measured + settings.hidden_margin - look.depth);
+      // Over the robot's base, only its own body stands too near the head to be measured.
+      best = std::max(best, frame_says(look, in_column ? nullptr : &blind[i]));
     }
-    if (in_any_view)
-      return settings.unknown_is_occupied ? std::optional<double>(best) : std::nullopt;
-    if (images.empty() || !settings.unseen_is_occupied || settings.own_column.contains(p))
-      return std::nullopt;
+    if (in_any_view) {
+      if (!settings.unknown_is_occupied || best == std::numeric_limits<double>::infinity())
+        return std::nullopt;
+      return best;
+    }
+    if (images.empty() || !settings.unseen_is_occupied || in_column) return std::nullopt;
     out_of_view = true;
     return outside;
+  }
+  // What one frame says of a point in its view (`look`): how far it lies in front of the space the
+  // frame hid, m (negative: that deep in it); +infinity where the frame saw along the ray and
+  // beyond, up to its range, without a return (nothing stood there).
+  // `holes`: the frame's (BlindHoles), or none.
+  double frame_says(const RangeImage::Look& look, const BlindHoles* holes) const {
+    const bool near = holes && look.depth < settings.min_range;
+    if (near && holes->hole(look.pixel)) return look.depth - settings.min_range;
+    double says = std::isfinite(look.measured) ? look.measured + settings.hidden_margin - look.depth
+                                               : std::numeric_limits<double>::infinity();
+    // Beside a hole, what stands too near to be measured is as near as the hole's edge: nothing
+    // measured marks that edge, so the distance to it is the padding's only guard.
+    if (near) says = std::min(says, holes->beside(look.pixel, look.depth));
+    return says;
   }
   // How far `p`, out of `image`'s view, lies outside it, m: its distance across the image's edge
   // at its depth, or behind the sensor; at least a millimetre.
@@ -124,6 +187,10 @@ CollisionScene::CollisionScene(const std::vector<const PointCloud*>& frames,
   if (!(settings.voxel > 0.0)) throw Error("collision scene: the voxel must be positive");
   if (!(settings.hidden_margin >= 0.0))
     throw Error("collision scene: the hidden margin must not be negative");
+  if (!(settings.min_range >= 0.0))
+    throw Error("collision scene: the sensor's minimum range must not be negative");
+  if (!(settings.blind_width >= 0.0))
+    throw Error("collision scene: the blind width must not be negative");
   if (!(settings.grid_voxel > 0.0)) throw Error("collision scene: the grid voxel must be positive");
   impl_->settings = settings;
   impl_->robot = std::move(robot);
@@ -132,8 +199,10 @@ CollisionScene::CollisionScene(const std::vector<const PointCloud*>& frames,
     const PointCloud within = crop(*frame, settings.reach);
     seen.insert(seen.end(), within.points.begin(), within.points.end());
     if (!frame->is_organized()) continue;
-    if (std::optional<RangeImage> image = RangeImage::from_cloud(*frame))
+    if (std::optional<RangeImage> image = RangeImage::from_cloud(*frame)) {
+      impl_->blind.emplace_back(*frame, *image, settings);
       impl_->images.push_back(std::move(*image));
+    }
   }
   impl_->points = voxel_downsample(PointCloud(std::move(seen)), settings.voxel);
   if (impl_->robot) {

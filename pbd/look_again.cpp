@@ -150,10 +150,11 @@ LookedPlan plan_looking_again(const Program& program,
       return false;
     }
     more.push_back(std::move(frame));
-    std::vector<const PointCloud*> frames;
+    // The motion check knows the frames as the sensor took them, the search their fusion.
+    std::vector<const PointCloud*> frames{&first};
     for (const PointCloud& f : more) frames.push_back(&f);
     if (for_search) {
-      std::vector<DepthFrame> fused{{&first}};
+      std::vector<DepthFrame> fused;
       for (const PointCloud* f : frames) fused.push_back({f});
       searched = fuse_frames(fused);
       search_scene = &searched;

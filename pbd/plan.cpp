@@ -622,7 +622,7 @@ std::vector<std::string> capture_warnings(const Program& program,
 
 Plan plan(const Program& program, const std::map<std::string, Landmark>& landmarks,
           const PointCloud& scene, const KinematicsInterface& kinematics, const JointState& start,
-          const PlanSettings& settings, const std::vector<const PointCloud*>& more_frames) {
+          const PlanSettings& settings, const std::vector<const PointCloud*>& motion_frames) {
   validate_program(program);
   check_settings(settings);
   Plan result;
@@ -649,8 +649,8 @@ Plan plan(const Program& program, const std::map<std::string, Landmark>& landmar
   };
   if (settings.progress && settings.motion_checker)
     settings.progress("checking every motion against the scene and the robot");
-  std::vector<const PointCloud*> frames{&scene};
-  frames.insert(frames.end(), more_frames.begin(), more_frames.end());
+  const std::vector<const PointCloud*> frames =
+      motion_frames.empty() ? std::vector<const PointCloud*>{&scene} : motion_frames;
   const std::shared_ptr<const MotionChecker> checker =
       settings.motion_checker ? settings.motion_checker(frames, start) : nullptr;
   std::optional<Refusal> first_failure;

@@ -201,13 +201,15 @@ std::map<std::string, Landmark> load_program_landmarks(const Program& program,
 /// declares, by name. Only landmarks some step uses are searched for. Never throws for a refusal:
 /// the plan carries it. Throws lmk::Error for bad input (a declared landmark missing from
 /// `landmarks`, an arm group the kinematics lacks, a start state missing a joint).
-/// `more_frames`: further frames the head took (base frame, organised), for the motion check only:
-/// what any of them saw is known to it. A motion that passes through space no frame had in view
-/// says where (PlannedArm::unseen) and the plan warns.
+/// `motion_frames`: the frames the motion check knows (base frame, organised), when not `scene`
+/// alone: every frame the head took, what any of them saw is known to it. Give the sensor's own
+/// frames when `scene` is their fusion: a fusion's image lacks what no frame's surface explains,
+/// where the sensor's says what it could not measure. A motion that passes through space no
+/// frame had in view says where (PlannedArm::unseen) and the plan warns.
 Plan plan(const Program& program, const std::map<std::string, Landmark>& landmarks,
           const PointCloud& scene, const KinematicsInterface& kinematics, const JointState& start,
           const PlanSettings& settings = {},
-          const std::vector<const PointCloud*>& more_frames = {});
+          const std::vector<const PointCloud*>& motion_frames = {});
 
 /// Plans `program` again from step `first_step` on, with its landmarks where `located` says and
 /// nothing searched: what a watching execution (watch.h) does when a landmark moved. Targets are

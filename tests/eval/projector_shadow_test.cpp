@@ -30,6 +30,14 @@ TEST(ProjectorShadow, RaysEndInFreeSpaceBesideTheShadowingObject) {
   const std::vector<Eigen::Vector3f> ends = projector_shadow_ray_ends(cloud);
   // Every shadowed pixel beside the box (its rows), and nothing else.
   EXPECT_EQ(ends.size(), no_return);
+  // Each ray is its pixel's: no return there, and the end on that pixel's line of sight.
+  for (const ShadowRay& ray : projector_shadow_rays(cloud)) {
+    ASSERT_FALSE(is_finite(cloud.points[ray.pixel]));
+    const double u = static_cast<double>(ray.pixel % cloud.width);
+    const double v = static_cast<double>(ray.pixel / cloud.width);
+    EXPECT_NEAR(ray.end.x() / ray.end.z(), (u - sensor.cx) / sensor.fx, 1.0 / sensor.fx);
+    EXPECT_NEAR(ray.end.y() / ray.end.z(), (v - sensor.cy) / sensor.fy, 1.0 / sensor.fy);
+  }
   ASSERT_GT(ends.size(), 100u);
   for (const Eigen::Vector3f& end : ends) {
     EXPECT_LT(end.x(), -0.1 * end.z() / 0.9 + 1e-3);  // left of the box as the camera sees it
