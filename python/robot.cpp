@@ -84,10 +84,10 @@ LookedPlan plan_or_refuse(const std::string& program_file, const PointCloud& sce
     if (!(cut >= 0.0 && cut <= 1.0)) throw py::value_error("min_confidence must be in [0, 1]");
     settings.min_confidence = cut;
   }
-  // collisions=True: every motion checked against the scene and the robot (issue #60), as
-  // `lmk pbd plan --check-collisions` does.
+  // collisions=True (the default): every motion checked against the scene and the robot (issue
+  // #60), as `lmk pbd plan` does; collisions=False as its --no-check-collisions.
   if (const auto collisions = pop_keyword(search, "collisions");
-      collisions && py::cast<bool>(*collisions))
+      !collisions || py::cast<bool>(*collisions))
     settings.motion_checker = pr2_motion_checker(robot.kinematics());
   // approach=: m along the gripper's axis before a grasp and after a release (0: none).
   if (const auto approach = pop_keyword(search, "approach")) {
@@ -236,9 +236,10 @@ void bind_robot(py::module_& m, const py::object& error) {
       "look=callable(target) -> lmk.Cloud is a head that can look again: when a landmark is "
       "missing or doubtful it is pointed at the 3-vector target (base frame) and returns what it "
       "then sees, fused with the frames before (at most look_again times, default 2; the plan's "
-      "'looks' lists them). collisions=True checks every motion against the scene, the space it "
-      "hides and the robot, plans around what it would touch, or refuses (kind 'collision'), as "
-      "`lmk pbd plan --check-collisions`. approach=0.1 reaches a grasp from that far back along "
+      "'looks' lists them). collisions=True (the default) checks every motion against the scene, "
+      "the space it hides and the robot, plans around what it would touch, or refuses (kind "
+      "'collision'), as `lmk pbd plan` does; collisions=False moves along straight joint lines "
+      "unchecked (--no-check-collisions). approach=0.1 reaches a grasp from that far back along "
       "the gripper's axis and backs off a release as far, m (0: none; each such motion is a step "
       "of its own, 'phase' 'approach' or 'retreat'). Search settings are keywords as for "
       "lmk.find.");

@@ -126,7 +126,7 @@ ApiResponse Api::plan(const std::string& name, const std::string& body_text) {
   const double torso = optional_number(body, "torso", settings_.torso, "plan");
   // Issue #60: every motion checked against the scene and the robot, as lmk pbd plan
   // --check-collisions does; the padding as its --padding.
-  const bool collisions = optional_bool(body, "collisions", false, "plan");
+  const bool collisions = optional_bool(body, "collisions", true, "plan");
   Pr2MotionCheckSettings check;
   check.motion.padding = optional_number(body, "padding", check.motion.padding, "plan");
   if (!(check.motion.padding >= kMinPadding && check.motion.padding <= kMaxPadding)) {

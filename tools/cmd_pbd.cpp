@@ -228,9 +228,10 @@ int run_demo_tasks_command(const PbdOptions& o) {
 
 // Issue #60: every arm motion checked against the scene and the robot before anything moves.
 void add_collision_options(CLI::App* sub, PbdOptions& o) {
-  sub->add_flag("--check-collisions", o.check_collisions,
+  sub->add_flag("--check-collisions,!--no-check-collisions", o.check_collisions,
                 "Check every motion against the scene, the space it hides and the robot, plan "
-                "around what it would touch, or refuse (off by default for now: docs/pbd.md)");
+                "around what it would touch, or refuse (on by default; --no-check-collisions "
+                "moves along straight joint lines unchecked, as before issue #60)");
   sub->add_option("--padding", o.padding, "Distance kept from the scene and the robot, m")
       ->check(CLI::Range(kMinPadding, kMaxPadding))
       ->capture_default_str();

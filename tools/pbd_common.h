@@ -29,8 +29,9 @@ struct PbdOptions {
   std::vector<int> tasks;
   std::string cloud_topic = "/head_mount_kinect/depth_registered/points";
   double frame_timeout = 10.0;  ///< s
-  /// Issue #60: every motion checked against the scene and the robot (--check-collisions)
-  bool check_collisions = false;
+  /// Issue #60: every motion checked against the scene and the robot (--check-collisions, the
+  /// default; --no-check-collisions turns it off)
+  bool check_collisions = true;
   double padding = 0.02;                                                ///< --padding, m
   double planning_time = 2.0;                                           ///< --planning-time, s
   std::size_t planning_checks = MotionCheckSettings{}.planning_checks;  ///< --planning-checks

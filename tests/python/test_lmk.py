@@ -364,7 +364,11 @@ def test_plan_with_collisions_checks_every_motion_as_lmk_pbd_does(task4):
     unseen = [arm for arm in arms if arm["unseen"]]
     warned = [w for w in planned["warnings"] if "passes through space no camera has seen" in w]
     assert len(warned) == len(unseen)
-    unchecked = lmk.plan(program, lmk.read_cloud(scene), lmk.SimulatedPr2(torso_height=0.05))
+    # Checked by default, as the CLI; collisions=False as its --no-check-collisions.
+    default = lmk.plan(program, lmk.read_cloud(scene), lmk.SimulatedPr2(torso_height=0.05))
+    assert without_times(default) == without_times(planned)
+    unchecked = lmk.plan(program, lmk.read_cloud(scene), lmk.SimulatedPr2(torso_height=0.05),
+                         collisions=False)
     for arm in (arm for step in unchecked["steps"] for arm in step["arms"]):
         assert arm["clearance_m"] is None and not arm["intended_contact"]["near"]
 
@@ -386,11 +390,11 @@ def cut_by_the_image_edge(cloud, centre, margin=0.15):
 def test_plan_looks_again_through_a_python_head(task4):
     program = str(task4 / "drop_in_trash.json")
     demonstration = lmk.read_cloud(str(task4 / "demonstration.pcd"))
-    planned = lmk.plan(program, demonstration, lmk.SimulatedPr2(torso_height=0.05))
+    planned = lmk.plan(program, demonstration, lmk.SimulatedPr2(torso_height=0.05), collisions=False)
     trash = next(l for l in planned["landmarks"] if l["name"] == "trash_opening")
     cut = cut_by_the_image_edge(demonstration, np.array(trash["position"]))
     with pytest.raises(lmk.Refused, match="trash_opening' not found"):
-        lmk.plan(program, cut, lmk.SimulatedPr2(torso_height=0.05))
+        lmk.plan(program, cut, lmk.SimulatedPr2(torso_height=0.05), collisions=False)
 
     # The head turns and sees the whole scene: the new frame is fused with the cut one.
     targets = []
@@ -399,7 +403,7 @@ def test_plan_looks_again_through_a_python_head(task4):
         targets.append(target)
         return demonstration
 
-    looked = lmk.plan(program, cut, lmk.SimulatedPr2(torso_height=0.05), look=look)
+    looked = lmk.plan(program, cut, lmk.SimulatedPr2(torso_height=0.05), collisions=False, look=look)
     assert looked["valid"] and len(targets) == 1 and targets[0].shape == (3,)
     assert len(looked["looks"]) == 1 and "missing 'trash_opening'" in looked["looks"][0]["why"]
     np.testing.assert_allclose(looked["looks"][0]["target"], targets[0])
@@ -407,20 +411,20 @@ def test_plan_looks_again_through_a_python_head(task4):
     # A head that never sees it: refused after look_again looks, naming them.
     targets.clear()
     with pytest.raises(lmk.Refused, match="after 1 more look") as refused:
-        lmk.plan(program, cut, lmk.SimulatedPr2(torso_height=0.05), look=lambda t: cut,
+        lmk.plan(program, cut, lmk.SimulatedPr2(torso_height=0.05), collisions=False, look=lambda t: cut,
                  look_again=1)
     assert refused.value.kind == "landmark-not-found"
     # What the head raises is raised, not turned into a refusal; bad arguments are ValueErrors.
     def broken(target):
         raise KeyError("the head's driver is gone")
     with pytest.raises(KeyError, match="driver is gone"):
-        lmk.plan(program, cut, lmk.SimulatedPr2(torso_height=0.05), look=broken)
+        lmk.plan(program, cut, lmk.SimulatedPr2(torso_height=0.05), collisions=False, look=broken)
     with pytest.raises(TypeError, match="must return an lmk.Cloud"):
-        lmk.plan(program, cut, lmk.SimulatedPr2(torso_height=0.05), look=lambda t: None)
+        lmk.plan(program, cut, lmk.SimulatedPr2(torso_height=0.05), collisions=False, look=lambda t: None)
     with pytest.raises(ValueError, match="look_again needs look"):
-        lmk.plan(program, cut, lmk.SimulatedPr2(torso_height=0.05), look_again=2)
+        lmk.plan(program, cut, lmk.SimulatedPr2(torso_height=0.05), collisions=False, look_again=2)
     with pytest.raises(ValueError, match="look_again must be 0 to 8"):
-        lmk.plan(program, cut, lmk.SimulatedPr2(torso_height=0.05), look=look, look_again=9)
+        lmk.plan(program, cut, lmk.SimulatedPr2(torso_height=0.05), collisions=False, look=look, look_again=9)
     # Looks where checked motions go unseen (issue #60) need the head as well.
     with pytest.raises(ValueError, match="unseen_looks needs look"):
         lmk.plan(program, cut, lmk.SimulatedPr2(torso_height=0.05), collisions=True,

@@ -432,9 +432,14 @@ TEST_F(ServeTest, ProgramsArePlannedAsOnTheRobotAndTheirFilesStayInTheirDirector
   ASSERT_EQ(checked["paths"].size(), 1u);
   EXPECT_EQ(checked["paths"][0]["arm"], "right");
   EXPECT_GE(checked["paths"][0]["points"].size(), 2u);
-  const nlohmann::json unchecked = run("/api/programs/ahead/plan", {{"scene", "2"}});
+  const nlohmann::json unchecked =
+      run("/api/programs/ahead/plan", {{"scene", "2"}, {"collisions", false}});
   for (const auto& step : unchecked["plan"]["steps"])
     for (const auto& arm : step["arms"]) EXPECT_TRUE(arm["clearance_m"].is_null());
+  // Checked unless the request says otherwise, as lmk pbd plan.
+  const nlohmann::json by_default = run("/api/programs/ahead/plan", {{"scene", "2"}});
+  for (const auto& step : by_default["plan"]["steps"])
+    for (const auto& arm : step["arms"]) EXPECT_FALSE(arm["clearance_m"].is_null());
   EXPECT_EQ(post("/api/programs/ahead/plan", {{"scene", "2"}, {"padding", 0.5}}).status, 400);
 
   const Reply outside = post("/api/programs/escape/plan", {{"scene", "2"}});
