@@ -30,7 +30,7 @@ struct MotionCheckSettings {
   double planning_time = 2.0;  ///< s allowed to plan around an obstacle
   /// Configurations a plan around an obstacle may check, search and smoothing together: the
   /// budget that does not depend on the machine. The default is over twice what 95% of
-  /// bench_motion's plans check, about 1.2 s on a 2-core machine.
+  /// `lmk bench --motion`'s plans check, about 1.2 s on a 2-core machine.
   std::size_t planning_checks = 20000;
   bool self_collisions = true;  ///< check the arm against the robot's own body
   /// The planner's random seed: the same inputs, the same path, unless the time ran out first.

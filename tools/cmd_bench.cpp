@@ -34,6 +34,7 @@
 #include "lmk/landmark/find_landmark.h"
 #include "lmk/landmark/landmark_file.h"
 #include "lmk/occupancy/tsdf_volume.h"
+#include "tools/bench_motion.h"
 #include "tools/cli_common.h"
 
 namespace lmk::cli {
@@ -47,6 +48,8 @@ struct BenchOptions {
   std::size_t reference_seeds = 20;
   int threads = 2;
   int frames = 1;  ///< > 1: also fuse this many frames of the scene, and search the fused frame
+  bool motion = false;  ///< time checked arm motions instead (tools/bench_motion.h)
+  MotionBenchOptions motions;
 };
 
 struct Workload {
@@ -239,6 +242,13 @@ nlohmann::json bench_json(const Workload& w, const BenchOptions& o, const Landma
 }
 
 int run_bench(const BenchOptions& o) {
+  if (o.motion) {
+    if (!o.scene.empty() || o.frames != 1)
+      throw Error("bench --motion: SCENE, LANDMARK and --frames do not apply");
+    MotionBenchOptions motions = o.motions;
+    motions.json = o.json;
+    return run_motion_bench(motions);
+  }
   check_bench_options(o);
   const Workload w = load_workload(o);
   std::printf("workload           %s\n", w.description.c_str());
@@ -288,6 +298,24 @@ Subcommand add_bench(CLI::App& app) {
       ->check(worker_threads())
       ->capture_default_str();
   sub->add_option("--json", o->json, "Also write the figures as JSON to FILE");
+  CLI::Option* motion = sub->add_flag(
+      "--motion", o->motion,
+      "Instead, time checking the PR2 right arm's straight joint lines and planning around a box "
+      "where they touch it (issue #60)");
+  sub->add_option("--scenes", o->motions.scenes, "With --motion: random scenes to time")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str()
+      ->needs(motion);
+  sub->add_option("--planning-time", o->motions.check.planning_time,
+                  "With --motion: seconds a plan around the box may take")
+      ->check(CLI::Range(0.01, 60.0))
+      ->capture_default_str()
+      ->needs(motion);
+  sub->add_option("--planning-checks", o->motions.check.planning_checks,
+                  "With --motion: configurations a plan around the box may check")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{100000000}))
+      ->capture_default_str()
+      ->needs(motion);
   return {sub, [o] { return run_bench(*o); }};
 }
 

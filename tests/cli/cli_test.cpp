@@ -1055,6 +1055,22 @@ TEST_F(Cli, EvaluationErrorsAreOneLine) {
   expect_bad_input("ablate --vary colour=red", "unknown setting 'colour'");
   expect_bad_input("ablate --vary metric=paper,paper", "given twice");
   expect_bad_input("bench --repeats 0", "--repeats");
+  expect_bad_input("bench --scenes 3", "--scenes requires --motion");
+  expect_bad_input("bench --motion --scenes 0", "--scenes");
+  expect_bad_input("bench --motion --frames 2", "do not apply");
+}
+
+// lmk bench --motion (issue #60): every scene's line checked, the plans around the box counted,
+// and the figures in the JSON.
+TEST_F(Cli, BenchMotionTimesLinesAndPlans) {
+  const CommandResult r = lmk("bench --motion --scenes 3 --json " + path("motion.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("check a line"), std::string::npos) << r.out;
+  const auto j = nlohmann::json::parse(slurp(dir_.file("motion.json")));
+  EXPECT_EQ(j["scenes"].get<int>(), 3);
+  EXPECT_GT(j["line"]["median_ms"].get<double>(), 0.0);
+  EXPECT_LE(j["plan"]["found"].get<int>(), j["plan"]["lines_touching"].get<int>());
+  EXPECT_LE(j["plan"]["median_checks"].get<double>(), j["planning_checks"].get<double>());
 }
 
 // The acceptance run: the built-in 'paper' preset with the fast method completes and prints the
