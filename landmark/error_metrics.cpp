@@ -211,11 +211,27 @@ const std::vector<ErrorMetric>& error_metrics() {
 void register_error_metric(ErrorMetric metric) {
   const std::string what = "register_error_metric('" + metric.name + "'): ";
   if (metric.name.empty()) throw Error("register_error_metric: the metric has no name");
-  if (!metric.evaluate) throw Error(what + "no evaluate function");
-  if (!(metric.default_threshold > 0.0) || !std::isfinite(metric.default_threshold)) {
-    throw Error(what + "the default threshold must be positive and finite");
+  // A plugin's words reach the terminal (lmk metrics) and the reports: printable text only.
+  if (!is_printable_text(metric.name) || metric.name.size() > kMaxMetricName)
+    throw Error("register_error_metric('" + printable(metric.name) +
+                "'): the name must be printable text of at most " + std::to_string(kMaxMetricName) +
+                " bytes");
+  const ErrorDisplay& d = metric.display;
+  for (const std::string& words : {metric.description, d.label, d.column, d.json_unit}) {
+    if (!is_printable_text(words))
+      throw Error(what + "the description and the display's units must be printable text");
   }
-  if (!(metric.prune_ratio > 0.0)) throw Error(what + "the prune ratio must be positive");
+  if (!(d.scale > 0.0 && std::isfinite(d.scale)) || d.decimals < 0 || d.decimals > 9)
+    throw Error(what + "the display's scale must be positive and finite, its decimals 0 to 9");
+  if (!metric.evaluate) throw Error(what + "no evaluate function");
+  static_assert(kMaxMetricThreshold == 1e6 && kMaxPruneRatio == 1e3, "the messages below say so");
+  if (!(metric.default_threshold > 0.0 && metric.default_threshold <= kMaxMetricThreshold)) {
+    throw Error(what + "the default threshold must be positive and at most 1e6");
+  }
+  if (!(metric.prune_ratio >= 1.0 && metric.prune_ratio <= kMaxPruneRatio)) {
+    throw Error(what + "the prune ratio must be 1 to 1000 (a coarse score below the threshold " +
+                "cannot drop a match)");
+  }
   std::vector<ErrorMetric>& metrics = registry();
   for (const ErrorMetric& m : metrics) {
     if (m.name == metric.name) throw Error(what + "the name is taken");

@@ -159,10 +159,19 @@ std::string format_error(double value, const std::string& name);
 /// "visibility", "projective", "sensor"), then those registered, in their order. The first call
 /// loads the metric plugins that $LMK_METRIC_PLUGINS names (load_metric_plugins()).
 const std::vector<ErrorMetric>& error_metrics();
+/// What register_error_metric() takes of a metric: a name this long at most, bytes; a default
+/// threshold this large at most (in the metric's unit: a million metres, or sigmas, is no error a
+/// search can use); a prune ratio this large at most.
+inline constexpr std::size_t kMaxMetricName = 64;
+inline constexpr double kMaxMetricThreshold = 1e6;
+inline constexpr double kMaxPruneRatio = 1e3;
+
 /// Adds `metric` to the registry, so that every search, evaluation, ablation, the CLI, Python and
 /// the server know it by its name. Register before searching: the registry is not guarded against
-/// searches running at the same time. lmk::Error when the name is empty or taken, the evaluation
-/// is missing or the default threshold is not positive.
+/// searches running at the same time. lmk::Error when the name is empty, taken or not printable
+/// text, the description or the display's words are not printable, the evaluation is missing,
+/// the default threshold is not in (0, kMaxMetricThreshold], the prune ratio not in
+/// [1, kMaxPruneRatio], or the display's scale is not positive and finite.
 void register_error_metric(ErrorMetric metric);
 /// The environment variable naming metric plugins: shared libraries, separated by ':', each
 /// exporting `extern "C" void lmk_register_error_metrics()`, which calls register_error_metric().

@@ -41,10 +41,11 @@ int run_info(const InfoOptions& options) {
     return kOk;
   }
   std::string fields;
-  for (const std::string& f : file.fields) fields += (fields.empty() ? "" : " ") + f;
+  for (const std::string& f : file.fields) fields += (fields.empty() ? "" : " ") + printable(f);
   const Eigen::Vector3f lo = bounds.min(), hi = bounds.max();
   const Eigen::Vector3d o = cloud.sensor_origin();
-  std::printf("file           %s\n", options.file.c_str());
+  // The name is the user's, the fields the file's: escaped, or they could drive the terminal.
+  std::printf("file           %s\n", printable(options.file, kMaxPrintedPath).c_str());
   std::printf("format         %s (%s)\n", to_string(file.format), to_string(file.encoding));
   std::printf("points         %zu (%zu finite)\n", cloud.size(), cloud.count_finite());
   if (cloud.is_organized()) {

@@ -87,7 +87,8 @@ nlohmann::json to_json(std::size_t frame, const std::string& file, const Tracked
 
 void print_line(std::size_t frame, const std::string& file, const TrackedLandmark& t,
                 const ErrorMetric& metric) {
-  std::printf("frame %zu %s: '%s' %s", frame, file.c_str(), t.name.c_str(), to_string(t.state));
+  std::printf("frame %zu %s: '%s' %s", frame, printable(file, kMaxPrintedPath).c_str(),
+              printable(t.name).c_str(), to_string(t.state));
   if (t.match) {
     const Eigen::Vector3d c = t.match->box.center();
     std::printf(" at %.4f %.4f %.4f, error %s", c.x(), c.y(), c.z(),

@@ -106,6 +106,25 @@ TEST_F(Cli, BadFiles) {
   expect_bad_input("convert " + path("missing.pcd") + " " + path("out.ply"), "no such file");
 }
 
+// A file name is the user's: lmk info shows its control and bidirectional characters escaped,
+// never sent to the terminal (issue #61, finding 8).
+TEST_F(Cli, InfoEscapesTheFileName) {
+  const std::string name =
+      "a\x1b]0;title\x07\xe2\x80\xae"
+      "dcp.xyz";
+  {
+    std::ofstream out(dir_.file(name));
+    out << "0 0 1\n1 0 1\n0 1 1\n";
+  }
+  const CommandResult info = lmk("info " + path(name));
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_EQ(info.out.find('\x1b'), std::string::npos);
+  EXPECT_EQ(info.out.find('\x07'), std::string::npos);
+  EXPECT_EQ(info.out.find("\xe2\x80\xae"), std::string::npos);
+  EXPECT_NE(info.out.find("a\\x1b]0;title\\x07\\xe2\\x80\\xaedcp.xyz"), std::string::npos)
+      << info.out;
+}
+
 TEST_F(Cli, GenInfoConvert) {
   ASSERT_EQ(lmk("gen " + path("scene.pcd") + " --seed 4").exit_code, 0);
   const CommandResult info = lmk("info " + path("scene.pcd") + " --json");

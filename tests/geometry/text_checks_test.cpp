@@ -35,6 +35,23 @@ TEST(TextChecks, PrintableShowsEveryByteOfANameWithANul) {
   EXPECT_EQ(printable("\xed\xa0\x80"), "\\xed\\xa0\\x80");
 }
 
+TEST(TextChecks, BidirectionalControlsAreShownNotSent) {
+  // U+202E would show "milk\u202Edcp.exe" as "milkexe.pcd" (issue #61, finding 8); every
+  // bidirectional mark, embedding, override and isolate is escaped, and other letters stay.
+  EXPECT_EQ(printable("milk\xe2\x80\xae"
+                      "dcp.exe"),
+            "milk\\xe2\\x80\\xaedcp.exe");
+  for (const char* control :
+       {"\xd8\x9c", "\xe2\x80\x8e", "\xe2\x80\x8f", "\xe2\x80\xaa", "\xe2\x80\xab", "\xe2\x80\xac",
+        "\xe2\x80\xad", "\xe2\x81\xa6", "\xe2\x81\xa7", "\xe2\x81\xa8", "\xe2\x81\xa9"}) {
+    EXPECT_EQ(printable(control).find('\\'), 0u) << printable(control);
+    EXPECT_FALSE(is_printable_text(std::string("a") + control));
+  }
+  // Neighbours that are no controls: an en dash (U+2013), a bullet (U+2022), an Arabic letter.
+  for (const std::string text : {"\xe2\x80\x93", "\xe2\x80\xa2", "\xd8\xa8"})
+    EXPECT_EQ(printable(text), text);
+}
+
 TEST(TextChecks, ControlCharactersOfEveryKindAreShownNotSent) {
   // C0, DEL, and C1 in UTF-8 (U+009B reads as ESC [ on some terminals); other UTF-8 stays.
   EXPECT_EQ(printable("a\x1b[2J\x7f\xc2\x9b"

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <utility>
 
@@ -128,6 +129,37 @@ TEST(MetricPlugin, RegistrationRefusesWhatASearchCouldNotUse) {
             std::string::npos);
   m.name.clear();
   EXPECT_NE(test::error_of([&] { register_error_metric(m); }).find("no name"), std::string::npos);
+}
+
+// A plugin's numbers are checked as the settings are, and its words reach a terminal escaped or
+// not at all (issue #61, finding 8).
+TEST(MetricPlugin, RegistrationRefusesNumbersOutOfRangeAndUnprintableWords) {
+  const ErrorMetric nearest = find_error_metric("nearest");
+  const auto refused = [](ErrorMetric m, const std::string& why) {
+    EXPECT_NE(test::error_of([&] { register_error_metric(m); }).find(why), std::string::npos)
+        << why;
+  };
+  ErrorMetric m = nearest;
+  m.name = "nearest_huge";
+  m.default_threshold = 1e300;
+  refused(m, "at most 1e6");
+  m = nearest;
+  m.name = "nearest_inf_prune";
+  m.prune_ratio = std::numeric_limits<double>::infinity();
+  refused(m, "prune ratio must be 1 to 1000");
+  m.prune_ratio = 0.5;
+  refused(m, "prune ratio must be 1 to 1000");
+  m = nearest;
+  m.name = "nearest\x1b[2J";
+  refused(m, "printable text");
+  m = nearest;
+  m.name = "nearest_bidi";
+  m.description = "a metric \xe2\x80\xae";
+  refused(m, "printable text");
+  m = nearest;
+  m.name = "nearest_scale";
+  m.display.scale = std::numeric_limits<double>::quiet_NaN();
+  refused(m, "scale must be positive");
 }
 
 // The real binary, with the plugin named in its environment (or, `with_plugin` false, unset).
