@@ -8,6 +8,22 @@
 #include "lmk/geometry/normals.h"
 
 namespace lmk {
+namespace {
+
+// A depth camera measures a few metres: a sensor origin farther than this from the landmark's box
+// (a forged 1e300, issue #61) would put every ray's free space out of reach, and the landmark would
+// find nothing without saying why. Relative to the box, so that a map's large coordinates pass.
+constexpr double kMaxSensorDistance = 100.0;  // m
+
+void check_sensor_distance(const Eigen::Vector3d& origin, const Box& box, const std::string& what) {
+  const double distance = (origin - box.center()).norm();
+  if (!(distance <= kMaxSensorDistance)) {
+    throw Error(what + ": a sensor origin lies " + std::to_string(distance) +
+                " m from the landmark's box; a depth camera sees within 100 m");
+  }
+}
+
+}  // namespace
 
 void Landmark::validate(const std::string& what) const {
   if (format_version != kLandmarkFormatVersion) {
@@ -25,6 +41,7 @@ void Landmark::validate(const std::string& what) const {
   check_capture_settings(settings, what);
   check_capture_box(box, settings, what);
   if (!sensor_origin.allFinite()) throw Error(what + ": sensor origin is not finite");
+  check_sensor_distance(sensor_origin, box, what);
   if (!up.allFinite() || std::abs(up.norm() - 1.0) > 1e-6) {
     throw Error(what + ": the up axis must be a finite unit vector");
   }
@@ -48,6 +65,7 @@ void Landmark::validate_views(const std::string& what) const {
   }
   for (const Eigen::Vector3d& o : view_origins) {
     if (!o.allFinite()) throw Error(what + ": a view's sensor origin is not finite");
+    check_sensor_distance(o, box, what);
   }
   if (view_origins.front() != sensor_origin) {
     throw Error(what + ": the first view's sensor origin differs from the landmark's");

@@ -33,6 +33,12 @@ TEST(Capture, KeepsTheBoxPointsDownsampledWithTheSensor) {
   EXPECT_EQ(voxels.size(), l.points.size());
   EXPECT_LT(l.points.size(), crop(scene, kBox).size());
   EXPECT_NO_THROW(l.validate("test"));
+  // A sensor origin no depth camera could have had (a forged 1e300, issue #61) is refused.
+  Landmark far = l;
+  far.sensor_origin = Eigen::Vector3d(1e300, 0, 0);
+  EXPECT_THROW(far.validate("test"), Error);
+  far.sensor_origin = l.box.center() + Eigen::Vector3d(0, 0, 150);
+  EXPECT_THROW(far.validate("test"), Error);
 }
 
 void expect_capture_error(const PointCloud& scene, const Box& box, const std::string& problem,
