@@ -35,25 +35,25 @@ class BlindHoles {
     // behind a surface the sensor measured (geometry/projector_shadow.h).
     for (const ShadowRay& ray : projector_shadow_rays(frame)) none[ray.pixel] = 0;
     const double pixels = settings.blind_width * focal_ / settings.min_range;
-    holes_ = open_mask(none, k.width, k.height, static_cast<int>(std::floor(0.5 * pixels)));
-    if (std::find(holes_.begin(), holes_.end(), 1) == holes_.end()) {
-      holes_.clear();
-      return;
-    }
-    pixels_away_ = distance_to_mask(holes_, k.width, k.height);
+    const std::vector<std::uint8_t> holes =
+        open_mask(none, k.width, k.height, static_cast<int>(std::floor(0.5 * pixels)));
+    if (std::find(holes.begin(), holes.end(), 1) != holes.end())
+      pixels_away_ = distance_to_mask(holes, k.width, k.height);
   }
-  bool hole(std::size_t pixel) const { return !holes_.empty() && holes_[pixel]; }
+  // A hole's own pixels are those no distance away from one.
+  bool hole(std::size_t pixel) const {
+    return !pixels_away_.empty() && pixels_away_[pixel] == 0.0f;
+  }
   // A lower bound of the distance from a point at `depth` on the ray of `pixel` to the rays of the
   // holes, at that depth, m; +infinity without holes.
   double beside(std::size_t pixel, double depth) const {
-    if (holes_.empty()) return std::numeric_limits<double>::infinity();
+    if (pixels_away_.empty()) return std::numeric_limits<double>::infinity();
     return pixels_away_[pixel] * depth / focal_;
   }
 
  private:
   double focal_;
-  std::vector<std::uint8_t> holes_;  // empty: none
-  std::vector<float> pixels_away_;
+  std::vector<float> pixels_away_;  // per pixel, to the nearest hole; empty: no hole
 };
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <numeric>
 #include <vector>
 
 #include "lmk/geometry/atomic_file.h"
@@ -49,7 +50,13 @@ PointCloud box_at(const Eigen::Vector3d& centre) {
 struct Figures {
   std::vector<double> line_ms, plan_seconds, plan_checks;
   int found = 0, kept = 0;
-  double all_checks = 0.0, all_seconds = 0.0;
+
+  // Configurations the plans checked a second, over all of them.
+  double checks_per_second() const {
+    const double seconds = std::accumulate(plan_seconds.begin(), plan_seconds.end(), 0.0);
+    return seconds > 0.0 ? std::accumulate(plan_checks.begin(), plan_checks.end(), 0.0) / seconds
+                         : 0.0;
+  }
 };
 
 // One scene from `rng`, measured into `f`; false when the scene is no test (an end in the box, or
@@ -73,14 +80,11 @@ bool measure_scene(SplitMix64& rng, const Pr2Kinematics& kinematics,
   const MotionPlan plan = check.plan_around("right_arm", from, to);
   f.plan_seconds.push_back(clock.seconds());
   f.plan_checks.push_back(static_cast<double>(plan.checks));
-  f.all_checks += static_cast<double>(plan.checks);
-  f.all_seconds += f.plan_seconds.back();
   f.found += plan.found;
   return true;
 }
 
 nlohmann::json figures_json(const Figures& f, const MotionBenchOptions& o) {
-  const double rate = f.all_seconds > 0.0 ? f.all_checks / f.all_seconds : 0.0;
   return {{"scenes", f.kept},
           {"planning_time", o.check.planning_time},
           {"planning_checks", o.check.planning_checks},
@@ -93,7 +97,7 @@ nlohmann::json figures_json(const Figures& f, const MotionBenchOptions& o) {
             {"p95_seconds", percentile(f.plan_seconds, 0.95)},
             {"median_checks", percentile(f.plan_checks, 0.5)},
             {"p95_checks", percentile(f.plan_checks, 0.95)},
-            {"checks_per_second", rate}}}};
+            {"checks_per_second", f.checks_per_second()}}}};
 }
 
 }  // namespace
@@ -124,7 +128,7 @@ int run_motion_bench(const MotionBenchOptions& o) {
       percentile(f.plan_seconds, 0.95));
   std::printf("              configurations checked: median %.0f, 95%% %.0f, %.0f a second\n",
               percentile(f.plan_checks, 0.5), percentile(f.plan_checks, 0.95),
-              f.all_seconds > 0.0 ? f.all_checks / f.all_seconds : 0.0);
+              f.checks_per_second());
   if (!o.json.empty()) write_text_atomically(o.json, figures_json(f, o).dump(2) + "\n");
   return kOk;
 }
