@@ -11,6 +11,7 @@
 #include "lmk/geometry/detail/formats.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/input_file.h"
+#include "lmk/geometry/point_records.h"
 
 namespace lmk {
 
@@ -71,7 +72,29 @@ void too_many_points(const std::string& path, const std::string& count, std::siz
 
 }  // namespace detail
 
-std::optional<std::size_t> declared_points(const std::string& path) {
+namespace {
+
+// The bytes per point a PCD reader decodes, from the FIELDS, SIZE and COUNT lines; 0 when they
+// disagree (the reader refuses such a file before decoding it).
+std::size_t pcd_decoded_point_bytes(const std::vector<std::string>& names,
+                                    const std::vector<long long>& sizes,
+                                    const std::vector<long long>& counts, bool compressed) {
+  if (sizes.size() != names.size() || (!counts.empty() && counts.size() != names.size())) return 0;
+  std::size_t bytes = 0;
+  for (std::size_t f = 0; f < names.size(); ++f) {
+    const std::size_t count = counts.empty() ? 1 : static_cast<std::size_t>(counts[f]);
+    if (!compressed) {
+      bytes += static_cast<std::size_t>(sizes[f]) * std::min(count, kMaxPcdPointBytes);
+    } else if (is_read_field(names[f])) {
+      bytes += static_cast<std::size_t>(sizes[f]);  // one value each
+    }
+  }
+  return bytes;
+}
+
+}  // namespace
+
+std::optional<DeclaredCloud> declared_cloud(const std::string& path) {
   const CloudFormat format = format_from_path(path);
   if (format == CloudFormat::kXyz) return std::nullopt;
   std::ifstream in(path, std::ios::binary);
@@ -79,26 +102,45 @@ std::optional<std::size_t> declared_points(const std::string& path) {
   in.read(head.data(), static_cast<std::streamsize>(head.size()));
   head.resize(static_cast<std::size_t>(in.gcount()));
   std::istringstream lines(head);
-  long long width = -1, height = -1;
+  long long width = -1, height = -1, points = -1;
+  std::vector<std::string> names;
+  std::vector<long long> sizes, counts;
+  bool compressed = false;
+  const auto count = [](const std::string& w) { return detail::header_count(w).value_or(-1); };
   for (std::string line; std::getline(lines, line);) {
     std::istringstream words(line);
     std::string key, a, b;
     words >> key >> a >> b;
-    const auto count = [](const std::string& w) { return detail::header_count(w).value_or(-1); };
-    if (format == CloudFormat::kPcd) {
-      if (key == "POINTS" && count(a) >= 0) return static_cast<std::size_t>(count(a));
-      if (key == "WIDTH") width = count(a);
-      if (key == "HEIGHT") height = count(a);
-      if (key == "DATA") break;
-    } else {
+    if (format == CloudFormat::kPly) {
       if (key == "element" && a == "vertex" && count(b) >= 0) {
-        return static_cast<std::size_t>(count(b));
+        return DeclaredCloud{static_cast<std::size_t>(count(b)), 0};
       }
       if (key == "end_header") break;
+      continue;
+    }
+    std::vector<std::string> values;
+    for (const std::string& w : {a, b}) {
+      if (!w.empty()) values.push_back(w);
+    }
+    for (std::string w; words >> w;) values.push_back(w);
+    if (key == "POINTS") points = values.empty() ? -1 : count(values[0]);
+    if (key == "WIDTH") width = values.empty() ? -1 : count(values[0]);
+    if (key == "HEIGHT") height = values.empty() ? -1 : count(values[0]);
+    if (key == "FIELDS" || key == "COLUMNS") names = values;
+    if (key == "SIZE" || key == "COUNT") {
+      std::vector<long long>& numbers = key == "SIZE" ? sizes : counts;
+      for (const std::string& v : values) numbers.push_back(std::max(count(v), 0LL));
+    }
+    if (key == "DATA") {
+      compressed = a == "binary_compressed";
+      break;
     }
   }
-  if (width >= 0 && height >= 0) return static_cast<std::size_t>(width * height);
-  return std::nullopt;
+  if (format == CloudFormat::kPly) return std::nullopt;
+  if (points < 0 && width >= 0 && height >= 0) points = width * height;
+  if (points < 0) return std::nullopt;
+  return DeclaredCloud{static_cast<std::size_t>(points),
+                       pcd_decoded_point_bytes(names, sizes, counts, compressed)};
 }
 
 CloudFile read_cloud_file(const std::string& path, std::size_t max_points) {

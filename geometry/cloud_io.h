@@ -52,10 +52,17 @@ CloudFile read_cloud_file(const std::string& path, std::size_t max_points = kMax
 /// Reads any supported file and returns the cloud alone.
 PointCloud read_cloud(const std::string& path, std::size_t max_points = kMaxCloudPoints);
 
-/// The points a PCD or PLY file's header declares, read from its first 64 KB without decoding
-/// anything; nothing for XYZ, which has no header, or when the header does not say. What a
-/// caller that budgets memory (lmk serve) prices a file at before reading it.
-std::optional<std::size_t> declared_points(const std::string& path);
+/// What a PCD or PLY file's header declares, read from its first 64 KB without decoding anything:
+/// what a caller that budgets memory (lmk serve) prices a file at before reading it.
+struct DeclaredCloud {
+  std::size_t points = 0;
+  /// The bytes a point takes in the reader's working copy, beside the cloud it returns: PCD's
+  /// declared fields whole for an ASCII or binary body (PCL decodes them all), only the fields lmk
+  /// reads for a compressed one; 0 where the header does not say (PLY).
+  std::size_t decoded_point_bytes = 0;
+};
+/// Nothing for XYZ, which has no header, or when the header gives no point count.
+std::optional<DeclaredCloud> declared_cloud(const std::string& path);
 
 struct WriteOptions {
   /// PCD: kBinaryCompressed (default), kBinary or kAscii. PLY: kBinary (default) or kAscii;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <iterator>
 #include <limits>
 #include <optional>
 
@@ -123,6 +124,12 @@ Color unpack_point_color(std::uint32_t packed, bool has_alpha) {
 std::uint32_t pack_point_color(const Color& c) {
   return (std::uint32_t{c.a} << 24) | (std::uint32_t{c.r} << 16) | (std::uint32_t{c.g} << 8) |
          std::uint32_t{c.b};
+}
+
+bool is_read_field(const std::string& name) {
+  static const char* const kRead[] = {"x",        "y",    "z",   "normal_x", "normal_y",
+                                      "normal_z", "rgba", "rgb", "label"};
+  return std::find(std::begin(kRead), std::end(kRead), name) != std::end(kRead);
 }
 
 void require_xyz_fields(const std::vector<RecordField>& fields, const std::string& where) {

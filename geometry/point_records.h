@@ -52,6 +52,10 @@ struct PointRecords {
 /// there are.
 PointCloud decode_point_records(const PointRecords& records, const std::string& where);
 
+/// Whether decode_point_records reads a field of this name: a reader that must not hold a whole
+/// file (PCD's compressed body) keeps these and drops the rest.
+bool is_read_field(const std::string& name);
+
 /// Throws lmk::Error naming `where` and the fields there are, unless x, y and z are among them.
 void require_xyz_fields(const std::vector<RecordField>& fields, const std::string& where);
 

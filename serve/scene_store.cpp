@@ -39,9 +39,10 @@ std::size_t resident_bytes(const PointCloud& c) {
 
 }  // namespace
 
-std::size_t upload_price(std::size_t file_bytes, std::size_t points) {
+std::size_t upload_price(std::size_t file_bytes, std::size_t points,
+                         std::size_t decoded_point_bytes) {
   constexpr std::size_t kParseBytesPerPoint = 80;
-  return 2 * file_bytes + points * kParseBytesPerPoint;
+  return 2 * file_bytes + points * (kParseBytesPerPoint + decoded_point_bytes);
 }
 
 UploadFile::UploadFile(std::string name, std::filesystem::path path)
@@ -146,20 +147,22 @@ Scene SceneStore::add_upload(UploadFile& file) {
   };
   // Priced before it is read: the file's bytes (read whole) and the points it may hold.
   std::size_t points = std::min(size / kLeastXyzPointBytes, limits_.max_points);
+  std::size_t decoded_point_bytes = 0;
   try {
-    if (const std::optional<std::size_t> declared = declared_points(path)) {
-      if (*declared > limits_.max_points) {
-        throw ApiError(413, "upload: " + name + " declares " + std::to_string(*declared) +
+    if (const std::optional<DeclaredCloud> declared = declared_cloud(path)) {
+      if (declared->points > limits_.max_points) {
+        throw ApiError(413, "upload: " + name + " declares " + std::to_string(declared->points) +
                                 " points; at most " + std::to_string(limits_.max_points) +
                                 " per upload");
       }
-      points = *declared;
+      points = declared->points;
+      decoded_point_bytes = declared->decoded_point_bytes;
     }
   } catch (const Error& e) {
     throw bad_request(in_their_words(e));
   }
   MemoryBudget::Reservation memory =
-      budget_.reserve(upload_price(size, points), "uploads", "upload " + name);
+      budget_.reserve(upload_price(size, points, decoded_point_bytes), "uploads", "upload " + name);
   PointCloud cloud;
   try {
     cloud = read_cloud(path, limits_.max_points);

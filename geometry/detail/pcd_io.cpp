@@ -16,8 +16,10 @@
 
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/detail/formats.h"
+#include "lmk/geometry/detail/pcd_compressed.h"
 #include "lmk/geometry/detail/pcl_conversion.h"
 #include "lmk/geometry/error.h"
+#include "lmk/geometry/point_records.h"
 #include "lmk/geometry/settings_schema.h"
 
 namespace lmk::detail {
@@ -43,9 +45,11 @@ std::size_t body_offset(const std::string& bytes) {
 // kMaxCloudPoints; -1 for a value the header does not give.
 struct Declarations {
   std::size_t fields = 0;
+  std::vector<std::string> names;
   std::vector<long long> sizes, counts;
   std::vector<std::string> types;
   long long width = -1, height = -1, points = -1;
+  std::vector<double> viewpoint;  // tx ty tz qw qx qy qz, when given
   std::string data;
 };
 
@@ -103,7 +107,10 @@ Declarations read_declarations(const std::string& path, const std::string& heade
     if (key[0] == '#') continue;
     std::vector<std::string> values;
     while (words >> word) values.push_back(word);
-    if (key == "FIELDS" || key == "COLUMNS") d.fields = values.size();
+    if (key == "FIELDS" || key == "COLUMNS") {
+      d.fields = values.size();
+      d.names = values;
+    }
     if (key == "TYPE") d.types = values;
     if (key == "DATA") {
       d.data = values.empty() ? "" : values[0];
@@ -112,7 +119,10 @@ Declarations read_declarations(const std::string& path, const std::string& heade
                     "' is not DATA ascii, binary or binary_compressed");
       }
     }
-    if (key == "VIEWPOINT") check_viewpoint(path, line, values);
+    if (key == "VIEWPOINT") {
+      check_viewpoint(path, line, values);
+      for (const std::string& v : values) d.viewpoint.push_back(*read_finite_number(v));
+    }
     if (key != "SIZE" && key != "COUNT" && key != "WIDTH" && key != "HEIGHT" && key != "POINTS") {
       continue;
     }
@@ -189,8 +199,40 @@ void check_declared_body(const std::string& path, Declarations d, std::size_t av
 
 namespace {
 
-// What a PCD file's header says: the fields (in `blob`, its data still empty), the sensor pose,
-// the format's version and encoding, and where the body starts.
+// What a PCD file's header declares, checked against the body's size and `max_points`, and where
+// the body starts.
+struct CheckedHeader {
+  Declarations says;
+  std::size_t offset = 0;
+};
+
+CheckedHeader check_pcd_header(const std::string& path, const std::string& bytes,
+                               std::size_t max_points) {
+  CheckedHeader h;
+  h.offset = body_offset(bytes);
+  if (h.offset == std::string::npos) {
+    throw Error(path + ": not a valid PCD file (its header has no DATA line)");
+  }
+  h.says = read_declarations(path, bytes.substr(0, h.offset));
+  const Declarations& d = h.says;
+  const long long points = d.points >= 0                   ? d.points
+                           : d.width >= 0 && d.height >= 0 ? d.width * d.height
+                                                           : -1;
+  if (points > static_cast<long long>(max_points)) {
+    too_many_points(path, std::to_string(points), max_points);
+  }
+  check_declared_body(path, d, bytes.size() - h.offset);
+  return h;
+}
+
+[[noreturn]] void inconsistent_points(const std::string& path, const Declarations& d) {
+  throw Error(path + ": inconsistent header: WIDTH x HEIGHT = " + std::to_string(d.width) + " x " +
+              std::to_string(d.height) + " but POINTS " + std::to_string(d.points));
+}
+
+// What PCL's header parser makes of the header: the fields (in `blob`, its data allocated for the
+// declared points, which check_pcd_header has bounded by the body's size), the sensor pose, the
+// format's version and encoding.
 struct PcdHeader {
   pcl::PCLPointCloud2 blob;
   Eigen::Vector4f origin = Eigen::Vector4f::Zero();
@@ -199,42 +241,27 @@ struct PcdHeader {
   std::size_t offset = 0;
 };
 
-// The header of `bytes`, checked against the body's size and `max_points` before PCL reads it.
 PcdHeader read_pcd_header(pcl::PCDReader& reader, const std::string& path, const std::string& bytes,
-                          std::size_t max_points) {
+                          const CheckedHeader& checked) {
   PcdHeader h;
+  h.offset = checked.offset;
   unsigned int pcl_data_idx = 0;  // unused: lmk finds the body itself, for its size checks
-  h.offset = body_offset(bytes);
-  if (h.offset == std::string::npos) {
-    throw Error(path + ": not a valid PCD file (its header has no DATA line)");
-  }
   // PCL's header parser reads on after the DATA line while lines look like header lines: a fuzzed
   // ASCII body beginning "COLUMNS..." and "POINTS 8277990003" made it allocate a terabyte. It is
   // given the header alone.
-  const std::string header_text = bytes.substr(0, h.offset);
-  std::istringstream header(header_text);
-  const Declarations header_says = read_declarations(path, header_text);
-  const long long points = header_says.points >= 0 ? header_says.points
-                           : header_says.width >= 0 && header_says.height >= 0
-                               ? header_says.width * header_says.height
-                               : -1;
-  if (points > static_cast<long long>(max_points)) {
-    too_many_points(path, std::to_string(points), max_points);
-  }
-  check_declared_body(path, header_says, bytes.size() - h.offset);
+  std::istringstream header(bytes.substr(0, h.offset));
   if (reader.readHeader(header, h.blob, h.origin, h.orientation, h.version, h.data_type,
                         pcl_data_idx) < 0) {
-    const Declarations& c = header_says;
+    const Declarations& c = checked.says;
     if (c.width >= 0 && c.height >= 0 && c.points >= 0 && c.width * c.height != c.points) {
-      throw Error(path + ": inconsistent header: WIDTH x HEIGHT = " + std::to_string(c.width) +
-                  " x " + std::to_string(c.height) + " but POINTS " + std::to_string(c.points));
+      inconsistent_points(path, c);
     }
     throw Error(path + ": not a valid PCD file (its header could not be parsed)");
   }
   return h;
 }
 
-// The body decoded into h.blob, each encoding's size checked first; the encoding it had.
+// An ASCII or binary body decoded into h.blob by PCL, its size checked first; the encoding it had.
 Encoding read_pcd_body(pcl::PCDReader& reader, const std::string& path, const std::string& bytes,
                        PcdHeader& h) {
   const std::size_t declared = static_cast<std::size_t>(h.blob.width) * h.blob.height;
@@ -253,39 +280,67 @@ Encoding read_pcd_body(pcl::PCDReader& reader, const std::string& path, const st
     std::istringstream body(bytes);
     body.seekg(static_cast<std::streamoff>(h.offset));
     status = reader.readBodyASCII(body, h.blob, h.version);
-  } else if (h.data_type == 1) {
+  } else {
     encoding = Encoding::kBinary;
     if (step == 0) throw Error(path + ": header declares fields of zero size");
     // Only a shortfall is an error: PCL's writer pads binary files to a page boundary, so
     // trailing bytes are normal.
     if (available < declared * step) count_mismatch(path, declared, available / step);
     status = reader.readBodyBinary(data, h.blob, h.version, false, static_cast<unsigned>(h.offset));
-  } else {
-    encoding = Encoding::kBinaryCompressed;
-    // The compressed block starts with its compressed and uncompressed sizes (uint32 each).
-    std::uint32_t sizes[2] = {0, 0};
-    if (available < sizeof(sizes)) count_mismatch(path, declared, 0);
-    std::memcpy(sizes, data + h.offset, sizeof(sizes));
-    if (available - sizeof(sizes) < sizes[0]) {
-      throw Error(path + ": truncated: the compressed block declares " + std::to_string(sizes[0]) +
-                  " bytes but the file holds " + std::to_string(available - sizeof(sizes)));
-    }
-    if (step == 0 || sizes[1] != declared * step) {
-      count_mismatch(path, declared, step == 0 ? 0 : sizes[1] / step);
-    }
-    status = declared == 0 ? 0
-                           : reader.readBodyBinary(data, h.blob, h.version, true,
-                                                   static_cast<unsigned>(h.offset));
   }
   if (status < 0) throw Error(path + ": corrupt PCD data (PCL could not decode the body)");
   return encoding;
 }
 
+// A compressed body is read without PCL's header parser, which allocates every declared byte of
+// every point: the declarations give the layout, and only the fields lmk reads are kept.
+CloudFile read_compressed_pcd(const std::string& path, const std::string& bytes,
+                              const CheckedHeader& checked) {
+  const Declarations& d = checked.says;
+  if (d.types.size() != d.fields) {
+    throw Error(path + ": header lists " + std::to_string(d.fields) + " fields but " +
+                std::to_string(d.types.size()) + " types");
+  }
+  std::vector<PcdField> fields;
+  std::vector<RecordField> named;
+  for (std::size_t f = 0; f < d.fields; ++f) {
+    const long long count = d.counts.empty() ? 1 : d.counts[f];
+    fields.push_back({d.names[f], static_cast<std::size_t>(d.sizes[f]),
+                      static_cast<std::size_t>(count), d.types[f][0]});
+    named.push_back({d.names[f], 0, 0});
+  }
+  require_xyz_fields(named, path);  // before decoding anything
+  // PCL's rules: WIDTH (or else POINTS) points a row, HEIGHT (or else 1) rows, and POINTS, when
+  // given, their product.
+  const long long width = d.width >= 0 ? d.width : d.points;
+  const long long height = d.height >= 0 ? d.height : 1;
+  if (width < 0) throw Error(path + ": not a valid PCD file (its header gives no WIDTH or POINTS)");
+  if (d.points >= 0 && width * height != d.points) inconsistent_points(path, d);
+  CloudFile file;
+  file.encoding = Encoding::kBinaryCompressed;
+  for (const std::string& name : d.names) {
+    if (name != "_") file.fields.push_back(name);
+  }
+  const auto* body = reinterpret_cast<const unsigned char*>(bytes.data()) + checked.offset;
+  const pcl::PCLPointCloud2 blob =
+      read_compressed_body(path, body, bytes.size() - checked.offset, fields,
+                           static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height));
+  file.cloud = from_pcl(blob, path);
+  if (d.viewpoint.size() == 7) {
+    const std::vector<double>& v = d.viewpoint;
+    sensor_from_pcl(Eigen::Vector4d(v[0], v[1], v[2], 0.0).cast<float>(),
+                    Eigen::Quaterniond(v[3], v[4], v[5], v[6]).cast<float>(), file.cloud);
+  }
+  return file;
+}
+
 }  // namespace
 
 CloudFile read_pcd(const std::string& path, const std::string& bytes, std::size_t max_points) {
+  const CheckedHeader checked = check_pcd_header(path, bytes, max_points);
+  if (checked.says.data == "binary_compressed") return read_compressed_pcd(path, bytes, checked);
   pcl::PCDReader reader;
-  PcdHeader h = read_pcd_header(reader, path, bytes, max_points);
+  PcdHeader h = read_pcd_header(reader, path, bytes, checked);
   CloudFile file;
   file.fields = field_names(h.blob);
   require_xyz(h.blob, path);  // before decoding anything

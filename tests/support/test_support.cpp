@@ -5,9 +5,13 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
+#include <cstdint>
 #include <cstdlib>
 #include <fstream>
+#include <sstream>
+#include <stdexcept>
 
 #include "lmk/geometry/random.h"
 
@@ -80,6 +84,54 @@ bool reset_peak_memory() {
   clear << "5";
   clear.close();
   return static_cast<bool>(clear);
+}
+
+std::size_t write_zero_compressed_pcd(const std::string& path, std::size_t points,
+                                      const std::vector<std::string>& fields,
+                                      std::size_t pad_count) {
+  std::string names, sizes, types, counts;
+  for (const std::string& f : fields) {
+    names += " " + f;
+    sizes += " 4";
+    types += " F";
+    counts += " 1";
+  }
+  const std::uint64_t expanded = points * 4 * (fields.size() + pad_count);
+  if (expanded >= (std::uint64_t{1} << 32)) throw std::invalid_argument("over PCD's 4 GB block");
+  std::string block;
+  std::uint64_t written = 0;
+  if (expanded > 0) {
+    block += std::string("\0\0", 2);  // a literal run of one zero byte
+    written = 1;
+  }
+  while (written < expanded) {
+    const std::uint64_t n = std::min<std::uint64_t>(264, expanded - written);
+    if (n < 3) {  // too short for a back reference: a literal run
+      block += static_cast<char>(n - 1);
+      block += std::string(n, '\0');
+    } else if (n - 2 < 7) {
+      block += static_cast<char>((n - 2) << 5);
+      block += '\0';  // distance 1
+    } else {
+      block += static_cast<char>(7 << 5);
+      block += static_cast<char>(n - 2 - 7);
+      block += '\0';
+    }
+    written += n;
+  }
+  std::ostringstream header;
+  header << "# .PCD v0.7\nVERSION 0.7\nFIELDS" << names << (pad_count > 0 ? " pad" : "") << "\nSIZE"
+         << sizes << (pad_count > 0 ? " 4" : "") << "\nTYPE" << types << (pad_count > 0 ? " F" : "")
+         << "\nCOUNT" << counts << (pad_count > 0 ? " " + std::to_string(pad_count) : "")
+         << "\nWIDTH " << points << "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " << points
+         << "\nDATA binary_compressed\n";
+  const std::uint32_t sizes_field[2] = {static_cast<std::uint32_t>(block.size()),
+                                        static_cast<std::uint32_t>(expanded)};
+  std::string bytes = header.str();
+  bytes.append(reinterpret_cast<const char*>(sizes_field), sizeof(sizes_field));
+  bytes += block;
+  write_text(path, bytes);
+  return bytes.size();
 }
 
 }  // namespace lmk::test

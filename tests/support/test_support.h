@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/point_cloud.h"
@@ -62,6 +63,14 @@ double process_status_bytes(const std::string& field, const std::string& pid = "
 /// Resets this process's peak resident memory (VmHWM) to what is resident now; false where the
 /// kernel or a sandbox refuses (/proc/self/clear_refs). Measures the peak of one piece of work.
 bool reset_peak_memory();
+
+/// Writes a binary_compressed PCD of `points` points whose fields are `fields` (F4 each, COUNT 1)
+/// and then one field "pad" of `pad_count` F4 values, every byte zero: an LZF block of maximal
+/// back references, each 3 bytes expanding to 264, as the compression bomb of issue #61 was made.
+/// Returns the file's size.
+std::size_t write_zero_compressed_pcd(const std::string& path, std::size_t points,
+                                      const std::vector<std::string>& fields,
+                                      std::size_t pad_count);
 
 /// Skips the calling test, with a message, when the real data is absent.
 #define LMK_REQUIRE_SHARED_DATA(var)                                              \
