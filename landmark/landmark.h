@@ -23,9 +23,9 @@ namespace lmk {
 /// Version of the landmark model and of its .lmk file; bumped whenever either changes.
 /// Version 2 added the up axis and the distance and empty-space grids; version 3 the views of a
 /// landmark captured from several (Landmark::view_origins); version 4 what the capture check found
-/// (Landmark::findings, issue #59). A landmark of one view without findings is still written as
-/// version 2, byte for byte as before.
-inline constexpr int kLandmarkFormatVersion = 4;
+/// (Landmark::findings, issue #59). Versions 1 to 4 were OpenVDB files; version 5 is lmk's own
+/// container, which stores what the grids are built from and rebuilds them on load (issue #61).
+inline constexpr int kLandmarkFormatVersion = 5;
 
 /// The most views one landmark fuses (Landmark::point_views holds one bit per view).
 inline constexpr std::size_t kMaxLandmarkViews = 16;

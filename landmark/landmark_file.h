@@ -1,24 +1,16 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
-// One self-contained file per landmark, NAME.lmk: an OpenVDB file.
+// One self-contained file per landmark, NAME.lmk.
 //
-// Layout (format version 2):
-// - grid "points": a PointDataGrid of the landmark points in the capture frame, with the voxel
-//   size of the capture leaf. OpenVDB stores positions relative to voxel centres, which cannot
-//   reproduce float coordinates bit for bit, so each point also carries its exact coordinates in
-//   the float attribute "capture_position", from which lmk reads them back losslessly.
-// - metadata on that grid: lmk_format_version, lmk_name, lmk_box_pose (4x4), lmk_box_size,
-//   lmk_sensor_origin, lmk_leaf_size, lmk_min_points, lmk_max_box_side.
-// - after the OpenVDB data, a 24-byte lmk trailer: "LMKTRAIL", the data length and its FNV-1a hash.
-//   OpenVDB ignores it; lmk checks it before OpenVDB reads anything, since OpenVDB reads some
-//   damaged files without error and aborts on others.
-//   Version 2 adds lmk_up, lmk_distance_band and lmk_empty_space_margin, and the int attribute
-//   "capture_index": each point's index in the landmark, which OpenVDB's voxel order loses and
-//   the closest-point grid below refers to.
-// - grids "distance" (FloatGrid) and "closest" (Int32Grid): the landmark's distance field, whose
-//   closest-point indices refer to the points in file order; "empty" (BoolGrid): the voxels of the
-//   box observed free at capture. Version 1 files have none of these: loading upgrades them by
-//   recomputing the grids from the points (rays to the landmark's own points only).
+// Format 5 (landmark/detail/landmark_record.h, docs/file-formats.md) is lmk's own container: a
+// JSON header with the landmark's fields (the same as an export's landmark.json), then the points,
+// their views and colours, and the voxels of the box observed free at capture, then a trailer
+// with an FNV-1a hash. It stores what the grids are built from: loading rebuilds the distance
+// field and the normals from the points, so that a file that loads means what it says.
+//
+// Formats 1 to 4 were OpenVDB files (landmark/detail/vdb_landmark_file.h). They still load: a
+// child process decodes their grids, since behind a valid checksum a forged grid can abort inside
+// libopenvdb (issue #61). `lmk landmark upgrade` rewrites them in format 5.
 //
 // Writes are atomic. Loading validates the version and every field; a corrupt, truncated or
 // foreign file is an lmk::Error naming the file and the problem.
@@ -39,13 +31,14 @@ void export_landmark(const Landmark& landmark, const std::string& out_dir);
 /// The inverse of export_landmark: reads DIR/points.pcd and DIR/landmark.json and validates them.
 Landmark import_landmark(const std::string& dir);
 
-/// Names of the grids stored in a .lmk file ("points", "distance", "closest", "empty"), without
-/// loading them.
-std::vector<std::string> landmark_file_grids(const std::string& path);
-
-/// The format version a .lmk file was written in (2: one view, as lmk wrote before landmarks of
-/// several views existed; 3: several views), after the same checks as load_landmark().
+/// The format version a .lmk file was written in (1 to 4: OpenVDB files; 5: lmk's container),
+/// after the same checks as load_landmark().
 int landmark_file_version(const std::string& path);
+
+/// Rewrites a landmark file of format 1 to 4 in format 5, atomically, and returns the version it
+/// had; a file of format 5 is left as it is. Loading does not need it: it saves the child process
+/// an old file is read in.
+int upgrade_landmark_file(const std::string& path);
 
 /// A box from a JSON file {"position":[x,y,z], "quaternion":[w,x,y,z], "size":[sx,sy,sz]}, the
 /// same form as the "box" object of landmark.json. Throws lmk::Error naming the file and field.

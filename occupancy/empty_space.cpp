@@ -201,6 +201,34 @@ bool EmptySpaceGrid::Sampler::is_empty(const Eigen::Vector3f& p) const {
 
 const EmptySpaceGrid::Grid& EmptySpaceGrid::grid() const { return *grid_; }
 
+std::vector<Eigen::Vector3i> EmptySpaceGrid::voxels() const {
+  std::vector<Eigen::Vector3i> out;
+  out.reserve(size());
+  for (auto it = grid_->grid->cbeginValueOn(); it; ++it) {
+    const vdb::Coord c = it.getCoord();
+    out.emplace_back(c.x(), c.y(), c.z());
+  }
+  std::sort(out.begin(), out.end(), [](const Eigen::Vector3i& a, const Eigen::Vector3i& b) {
+    return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+  });
+  return out;
+}
+
+EmptySpaceGrid EmptySpaceGrid::from_voxels(double voxel_size,
+                                           const std::vector<Eigen::Vector3i>& voxels) {
+  if (!(voxel_size > 0.0) || !std::isfinite(voxel_size)) {
+    throw Error("empty space: the voxel side " + std::to_string(voxel_size) +
+                " is not positive and finite");
+  }
+  detail::initialize_openvdb();
+  const vdb::BoolGrid::Ptr grid = vdb::BoolGrid::create(false);
+  grid->setTransform(vdb::math::Transform::createLinearTransform(voxel_size));
+  grid->setName("empty");
+  auto access = grid->getAccessor();
+  for (const Eigen::Vector3i& v : voxels) access.setValueOn(vdb::Coord(v.x(), v.y(), v.z()), true);
+  return from_grid(Grid{grid, {}});
+}
+
 EmptySpaceGrid EmptySpaceGrid::from_grid(Grid grid) {
   if (!grid.grid) throw Error("empty space: missing grid");
   // The centres, in OpenVDB's iteration order: deterministic for a given set of voxels.

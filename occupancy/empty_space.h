@@ -78,7 +78,14 @@ class EmptySpaceGrid {
   };
   Sampler sampler() const { return Sampler(*this); }
 
-  struct Grid;  ///< the OpenVDB grid, for storage (occupancy/internal/grids.h)
+  /// The empty voxels' integer coordinates (a voxel's centre is its coordinate times
+  /// voxel_size()), in ascending (x, y, z) order: what a landmark file stores.
+  std::vector<Eigen::Vector3i> voxels() const;
+  /// The grid of exactly these voxels, of side `voxel_size`. Throws lmk::Error for a voxel side
+  /// that is not positive and finite.
+  static EmptySpaceGrid from_voxels(double voxel_size, const std::vector<Eigen::Vector3i>& voxels);
+
+  struct Grid;  ///< the OpenVDB grid (occupancy/internal/grids.h)
   const Grid& grid() const;
   static EmptySpaceGrid from_grid(Grid grid);
 

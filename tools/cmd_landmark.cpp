@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// lmk landmark show FILE | export FILE OUTDIR | import DIR OUT.lmk
+// lmk landmark show FILE | export FILE OUTDIR | import DIR OUT.lmk | upgrade FILE...
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "lmk/geometry/chroma.h"
 #include "lmk/geometry/pose.h"
@@ -16,6 +18,7 @@ namespace {
 
 struct LandmarkOptions {
   std::string file, dir, output;
+  std::vector<std::string> files;
 };
 
 // What the capture check found (landmark/capture_findings.h), as the file keeps it.
@@ -46,9 +49,7 @@ int run_show(const LandmarkOptions& o) {
   const Landmark l = load_landmark(o.file);
   const Eigen::Vector3d c = l.box.center();
   const Eigen::Vector3d rpy = rpy_degrees(l.box.pose.linear());
-  std::string grids;
-  for (const std::string& g : landmark_file_grids(o.file)) grids += (grids.empty() ? "" : " ") + g;
-  std::printf("name           %s\n", l.name.c_str());
+  std::printf("name           %s\n", printable(l.name, kMaxPrintedPath).c_str());
   std::printf("format         lmk %d\n", landmark_file_version(o.file));
   std::printf("points         %zu\n", l.points.size());
   std::printf("box centre     %.4f %.4f %.4f m\n", c.x(), c.y(), c.z());
@@ -70,9 +71,31 @@ int run_show(const LandmarkOptions& o) {
     std::printf("colour         no\n");
   }
   std::printf("leaf           %.4f m\n", l.settings.leaf_size);
-  std::printf("grids          %s\n", grids.c_str());
+  std::printf("empty space    %zu voxels observed free (the distance field is rebuilt on load)\n",
+              l.empty_space.size());
   print_findings(l.findings);
   return kOk;
+}
+
+// Rewrites each file of format 1 to 4 in format 5; a file that cannot be read is named and left as
+// it is, and the others go on.
+int run_upgrade(const LandmarkOptions& o) {
+  int status = kOk;
+  for (const std::string& file : o.files) {
+    try {
+      const int version = upgrade_landmark_file(file);
+      if (version == kLandmarkFormatVersion) {
+        std::printf("%s: already format %d\n", printable(file, kMaxPrintedPath).c_str(), version);
+      } else {
+        std::printf("%s: format %d -> %d\n", printable(file, kMaxPrintedPath).c_str(), version,
+                    kLandmarkFormatVersion);
+      }
+    } catch (const Error& e) {
+      std::fprintf(stderr, "lmk: error: %s\n", printable(e.what(), 1000).c_str());
+      status = kBadInput;
+    }
+  }
+  return status;
 }
 
 }  // namespace
@@ -81,7 +104,8 @@ Subcommand add_landmark(CLI::App& app) {
   auto o = std::make_shared<LandmarkOptions>();
   CLI::App* sub = app.add_subcommand("landmark", "Inspect, export and import landmark files");
   sub->require_subcommand(1);
-  CLI::App* show = sub->add_subcommand("show", "Name, box, number of points and grids of a .lmk");
+  CLI::App* show =
+      sub->add_subcommand("show", "Name, box, points, views, colour and findings of a .lmk");
   show->add_option("file", o->file, "Landmark file (.lmk)")->required();
   CLI::App* exp = sub->add_subcommand("export", "Write OUTDIR/points.pcd and OUTDIR/landmark.json");
   exp->add_option("file", o->file, "Landmark file (.lmk)")->required();
@@ -92,8 +116,12 @@ Subcommand add_landmark(CLI::App& app) {
   imp->add_option("output", o->output, "Landmark file to write (.lmk)")
       ->required()
       ->check(output_extension(".lmk", "a landmark file"));
-  return {sub, [o, show, exp, imp] {
+  CLI::App* upgrade = sub->add_subcommand(
+      "upgrade", "Rewrite .lmk files of formats 1 to 4 (OpenVDB) in format 5, in place");
+  upgrade->add_option("files", o->files, "Landmark files (.lmk)")->required();
+  return {sub, [o, show, exp, imp, upgrade] {
             if (show->parsed()) return run_show(*o);
+            if (upgrade->parsed()) return run_upgrade(*o);
             if (exp->parsed()) {
               export_landmark(load_landmark(o->file), o->dir);
               std::printf("wrote %s/points.pcd and %s/landmark.json\n", o->dir.c_str(),

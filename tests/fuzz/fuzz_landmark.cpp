@@ -1,18 +1,29 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Fuzz target for the landmark reader (load_landmark), on files as a user would hand them over:
-// the lmk trailer's checksum must catch damage before OpenVDB parses anything, so an input either
-// loads as a valid landmark or is refused with lmk::Error.
+// Fuzz target for the landmark reader (load_landmark), on files as a forger would hand them over
+// (issue #61, finding 2): an input without a valid trailer is resealed with one, so that every
+// input reaches the parsers behind the checksum, format 5's and, through the child process,
+// OpenVDB's for formats 1 to 4. An input either loads as a valid landmark or is refused with
+// lmk::Error; a crash of the child that decodes an OpenVDB file is such a refusal.
 
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
+#include <string>
 
 #include "lmk/geometry/error.h"
+#include "lmk/landmark/detail/landmark_container.h"
 #include "lmk/landmark/landmark_file.h"
 #include "tests/fuzz/fuzz_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  const std::string path = lmk::fuzz::write_input("input.lmk", data, size);
+  std::string bytes(reinterpret_cast<const char*>(data), size);
+  try {
+    lmk::detail::check_landmark_trailer("input.lmk", bytes);
+  } catch (const lmk::Error&) {
+    bytes += lmk::detail::landmark_trailer(bytes);  // resealed, as a forger would
+  }
+  const std::string path = lmk::fuzz::write_input(
+      "input.lmk", reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
   try {
     const lmk::Landmark landmark = lmk::load_landmark(path);
     landmark.validate("fuzz");  // a loaded landmark is whole: throws lmk::Error otherwise

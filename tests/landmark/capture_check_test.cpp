@@ -13,6 +13,7 @@
 #include "lmk/eval/mesh.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/pose.h"
+#include "lmk/landmark/detail/vdb_landmark_file.h"
 #include "lmk/landmark/internal/capture_findings_json.h"
 #include "lmk/landmark/landmark_file.h"
 #include "tests/landmark/l_shape_scene.h"
@@ -103,10 +104,10 @@ TEST(CaptureCheck, FindingsTravelInTheFileAndAnOldFileGainsThem) {
   const PointCloud scene = render_scene({kCopies[0], kCopies[1]}, false);
   Landmark landmark = capture(scene, box_at(kCopies[0]), "L");
 
-  // Without findings the file is written as before them (version 2): an "old" file. Loading it
-  // measures what needs no capture scene.
+  // A file written before the findings existed (version 2). Loading it measures what needs no
+  // capture scene.
   const std::string old_file = (dir.path() / "old.lmk").string();
-  save_landmark(old_file, landmark);
+  detail::write_vdb_landmark(old_file, landmark);
   EXPECT_EQ(landmark_file_version(old_file), 2);
   const Landmark upgraded = load_landmark(old_file);
   const CaptureFindings expected = check_capture(landmark, nullptr).findings;
@@ -115,7 +116,7 @@ TEST(CaptureCheck, FindingsTravelInTheFileAndAnOldFileGainsThem) {
   EXPECT_EQ(upgraded.findings.slide, expected.slide);
   EXPECT_EQ(upgraded.findings.symmetry_axes.size(), expected.symmetry_axes.size());
 
-  // With them, version 4, read back as written.
+  // With them, read back as written.
   landmark.findings = check_capture(landmark, &scene).findings;
   const std::string file = (dir.path() / "new.lmk").string();
   save_landmark(file, landmark);

@@ -146,15 +146,14 @@ TEST(ColourTerm, ASceneWithoutColourGivesTheShapeOnlyAnswers) {
   }
 }
 
-TEST(ColourTerm, TheLandmarkFileKeepsItsColourAsVersion3) {
+TEST(ColourTerm, TheLandmarkFileKeepsItsColour) {
   const test::ScratchDir dir;
   const std::string coloured = dir.file("red.lmk"), plain = dir.file("plain.lmk");
   save_landmark(coloured, red_l().landmark);
   Landmark uncoloured = red_l().landmark;
   uncoloured.points.colors.clear();
   save_landmark(plain, uncoloured);
-  EXPECT_EQ(landmark_file_version(coloured), 3);
-  EXPECT_EQ(landmark_file_version(plain), 2);  // as before colour existed
+  EXPECT_EQ(landmark_file_version(coloured), kLandmarkFormatVersion);
   const Landmark back = load_landmark(coloured);
   EXPECT_EQ(back.points.colors, red_l().landmark.points.colors);
   EXPECT_EQ(back.points.points, red_l().landmark.points.points);

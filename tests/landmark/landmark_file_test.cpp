@@ -3,8 +3,6 @@
 
 #include <gtest/gtest.h>
 #include <openvdb/openvdb.h>
-#include <openvdb/points/PointCount.h>
-#include <openvdb/points/PointDataGrid.h>
 
 #include <cstring>
 #include <filesystem>
@@ -15,6 +13,8 @@
 #include "lmk/geometry/pose.h"
 #include "lmk/landmark/capture_views.h"
 #include "lmk/landmark/detail/landmark_container.h"
+#include "lmk/landmark/detail/landmark_record.h"
+#include "lmk/landmark/detail/vdb_landmark_file.h"
 #include "tests/support/test_support.h"
 
 namespace lmk {
@@ -74,9 +74,17 @@ TEST(LandmarkFile, RoundTripIsLossless) {
   test::ScratchDir dir;
   const Landmark original = sample_landmark();
   save_landmark(dir.file("a.lmk"), original);
-  expect_same(original, load_landmark(dir.file("a.lmk")));
-  EXPECT_EQ(landmark_file_grids(dir.file("a.lmk")),
-            (std::vector<std::string>{"closest", "distance", "empty", "points"}));
+  const Landmark loaded = load_landmark(dir.file("a.lmk"));
+  expect_same(original, loaded);
+  EXPECT_EQ(landmark_file_version(dir.file("a.lmk")), kLandmarkFormatVersion);
+  // Format 5 keeps the capture order and the empty space voxel for voxel, and rebuilds the
+  // distance field from the points as the capture built it.
+  EXPECT_EQ(loaded.points.points, original.points.points);
+  EXPECT_EQ(loaded.empty_space.voxels(), original.empty_space.voxels());
+  const auto rebuilt = loaded.distance.sampler(), built = original.distance.sampler();
+  for (const Eigen::Vector3f& c : original.empty_space.centres()) {
+    EXPECT_EQ(rebuilt.distance(c), built.distance(c));
+  }
   EXPECT_EQ(std::distance(fs::directory_iterator(dir.path()), {}), 1);  // no temporary left
 }
 
@@ -125,7 +133,8 @@ TEST(LandmarkFile, BadFilesGiveClearErrors) {
   // A point cloud renamed .lmk: a file of another format.
   write_cloud(dir.file("cloud.lmk.pcd"), test::random_cloud(10, 1));
   fs::rename(dir.file("cloud.lmk.pcd"), dir.file("cloud.lmk"));
-  EXPECT_NE(load_error(dir.file("cloud.lmk")).find("not an OpenVDB file"), std::string::npos);
+  EXPECT_NE(load_error(dir.file("cloud.lmk")).find("neither format 5 nor an OpenVDB file"),
+            std::string::npos);
   // Truncated: every prefix of a real file is refused, never a crash.
   save_landmark(dir.file("a.lmk"), sample_landmark());
   const std::string bytes = test::read_bytes(dir.file("a.lmk"));
@@ -148,15 +157,93 @@ TEST(LandmarkFile, ForeignOpenVdbFileIsRefused) {
             std::string::npos);
 }
 
-TEST(LandmarkFile, IsStillAPlainOpenVdbFile) {
+// Every file lmk wrote before format 5 still loads, with what it held (its grids are decoded in a
+// child process), and `lmk landmark upgrade` rewrites it in format 5 without changing it.
+TEST(LandmarkFile, OldFormatsLoadAndUpgradeUnchanged) {
+  test::ScratchDir dir;
+  Landmark with_findings = sample_landmark();
+  with_findings.findings.present = true;
+  with_findings.findings.look_alikes = 3;
+  with_findings.findings.look_alike_checked = true;
+  const std::vector<std::pair<Landmark, int>> cases = {
+      {sample_landmark(), 2}, {sample_two_view_landmark(), 3}, {with_findings, 4}};
+  for (const auto& [original, version] : cases) {
+    const std::string file = dir.file("v" + std::to_string(version) + ".lmk");
+    detail::write_vdb_landmark(file, original);
+    EXPECT_EQ(landmark_file_version(file), version);
+    for (int pass = 0; pass < 2; ++pass) {  // as written, then upgraded
+      const Landmark loaded = load_landmark(file);
+      expect_same(original, loaded);
+      EXPECT_EQ(loaded.points.points, original.points.points);
+      EXPECT_EQ(loaded.point_views, original.point_views);
+      EXPECT_EQ(loaded.empty_space.voxels(), original.empty_space.voxels());
+      EXPECT_EQ(loaded.findings.look_alikes, original.findings.look_alikes);
+      EXPECT_EQ(upgrade_landmark_file(file), pass == 0 ? version : kLandmarkFormatVersion);
+    }
+    EXPECT_EQ(landmark_file_version(file), kLandmarkFormatVersion);
+  }
+}
+
+// Issue #61, finding 2: behind a valid checksum, a format-5 file is parsed by lmk whole. What does
+// not fit its own counts, or would mean what no capture saw, is refused in one line; what loads is
+// what the file says, its distance field rebuilt from its points.
+TEST(LandmarkFile, AForgedFormat5FileIsRefusedOrMeansWhatItSays) {
   test::ScratchDir dir;
   save_landmark(dir.file("a.lmk"), sample_landmark());
-  openvdb::initialize();
-  openvdb::io::File file(dir.file("a.lmk"));
-  file.open();
-  const auto grid = openvdb::gridPtrCast<openvdb::points::PointDataGrid>(file.readGrid("points"));
-  ASSERT_TRUE(grid);
-  EXPECT_EQ(openvdb::points::pointCount(grid->tree()), sample_landmark().points.size());
+  std::string data = test::read_bytes(dir.file("a.lmk"));
+  data.resize(data.size() - detail::kLandmarkTrailerSize);
+  detail::LandmarkRecord record = detail::parse_record("a.lmk", data);
+  const auto error_of = [&](const detail::LandmarkRecord& r, const std::string& tail = "") {
+    const std::string bytes = detail::record_bytes(r) + tail;
+    test::write_text(dir.file("forged.lmk"), bytes + detail::landmark_trailer(bytes));
+    return load_error(dir.file("forged.lmk"));
+  };
+  EXPECT_NE(error_of(record, "extra").find("do not fill its"), std::string::npos);
+  detail::LandmarkRecord far = record;
+  far.empty_voxels.back() = Eigen::Vector3i(1000, 1000, 1000);
+  EXPECT_NE(error_of(far).find("an empty-space voxel lies outside the box"), std::string::npos);
+  detail::LandmarkRecord on_surface = record;
+  on_surface.empty_voxels = {(record.points[0] / 0.01f).array().round().cast<int>().matrix()};
+  EXPECT_NE(error_of(on_surface).find("an empty-space voxel lies on the landmark's surface"),
+            std::string::npos);
+  detail::LandmarkRecord unordered = record;
+  std::swap(unordered.empty_voxels.front(), unordered.empty_voxels.back());
+  EXPECT_NE(error_of(unordered).find("not in ascending order"), std::string::npos);
+  detail::LandmarkRecord nan = record;
+  nan.points[3].x() = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_NE(error_of(nan).find("a point is not finite"), std::string::npos);
+  detail::LandmarkRecord views = record;
+  views.views.assign(views.points.size(), 2u);  // a second view the header does not have
+  EXPECT_NE(error_of(views).find("point views without the views"), std::string::npos);
+  detail::LandmarkRecord leaf = record;
+  leaf.header["capture"]["leaf_size"] = 1e-9;
+  EXPECT_NE(error_of(leaf).find("leaf_size"), std::string::npos);
+  // The header's length and JSON.
+  std::string bad_json = data;
+  bad_json[16] = '[';
+  test::write_text(dir.file("json.lmk"), bad_json + detail::landmark_trailer(bad_json));
+  EXPECT_NE(load_error(dir.file("json.lmk")).find("its header is not JSON"), std::string::npos);
+  std::string long_header = data;
+  const std::uint32_t huge = 0xfffffff0u;
+  std::memcpy(&long_header[12], &huge, sizeof(huge));
+  test::write_text(dir.file("long.lmk"), long_header + detail::landmark_trailer(long_header));
+  EXPECT_NE(load_error(dir.file("long.lmk")).find("a header of 4294967280 bytes"),
+            std::string::npos);
+  // Moved points with their free space moved off them load as such: the distance field follows the
+  // points. Moved alone, their old free space touches them: refused above.
+  detail::LandmarkRecord moved = record;
+  for (Eigen::Vector3f& p : moved.points) p.z() += 0.001f;
+  EXPECT_NE(error_of(moved).find("lies on the landmark's surface"), std::string::npos);
+  moved.empty_voxels.clear();
+  const std::string bytes = detail::record_bytes(moved);
+  test::write_text(dir.file("moved.lmk"), bytes + detail::landmark_trailer(bytes));
+  const Landmark loaded = load_landmark(dir.file("moved.lmk"));
+  EXPECT_EQ(loaded.points.points, moved.points);
+  const DistanceField expected(moved.points,
+                               {loaded.settings.leaf_size, loaded.settings.distance_band});
+  for (const Eigen::Vector3f& p : moved.points) {
+    EXPECT_EQ(loaded.distance.sampler().distance(p), expected.sampler().distance(p));
+  }
 }
 
 TEST(LandmarkFile, FlippedByteIsCaught) {
@@ -172,7 +259,7 @@ TEST(LandmarkFile, FlippedByteIsCaught) {
 // a metadata string declared 4 GB long made OpenVDB allocate 18 GB and take a minute.
 TEST(LandmarkFile, DeclaredLengthsAreCheckedBeforeOpenVdbReadsThem) {
   test::ScratchDir dir;
-  save_landmark(dir.file("a.lmk"), sample_landmark());
+  detail::write_vdb_landmark(dir.file("a.lmk"), sample_landmark());
   std::string data = test::read_bytes(dir.file("a.lmk"));
   data.resize(data.size() - detail::kLandmarkTrailerSize);
   // The name's metadata entry: "lmk_name", its type "string" (a 32-bit length first), then the
@@ -252,7 +339,7 @@ namespace {
 TEST(LandmarkFile, ViewsAreReadBackAndCheckedBehindAValidChecksum) {
   test::ScratchDir dir;
   const Landmark original = sample_two_view_landmark();
-  save_landmark(dir.file("a.lmk"), original);
+  detail::write_vdb_landmark(dir.file("a.lmk"), original);  // format 3: views in OpenVDB metadata
   const Landmark loaded = load_landmark(dir.file("a.lmk"));
   EXPECT_EQ(loaded.view_origins, original.view_origins);
   EXPECT_EQ(loaded.point_views, original.point_views);

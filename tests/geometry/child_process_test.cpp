@@ -1,0 +1,53 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// run_in_child: a crash in the work costs the child, not the caller (issue #61, finding 2: a forged
+// landmark grid aborted inside libopenvdb and took the server down).
+#include "lmk/geometry/child_process.h"
+
+#include <gtest/gtest.h>
+
+#include <csignal>
+#include <cstdlib>
+#include <string>
+
+#include "lmk/geometry/error.h"
+
+namespace lmk {
+namespace {
+
+std::string error_of(const std::function<std::string()>& work) {
+  try {
+    run_in_child(work, "x.lmk: corrupt landmark file");
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(ChildProcess, TheAnswerComesBackWhole) {
+  const std::string big(3'000'000, 'z');  // larger than a pipe holds at once
+  const std::string with_nul = big + std::string("\n\0end", 5);
+  EXPECT_EQ(run_in_child([&] { return with_nul; }, "x"), with_nul);
+  EXPECT_EQ(run_in_child([] { return std::string(); }, "x"), "");
+}
+
+TEST(ChildProcess, ACrashCostsTheChildNotTheCaller) {
+  EXPECT_EQ(error_of([]() -> std::string { std::abort(); }),
+            "x.lmk: corrupt landmark file: the process reading it crashed (signal 6, Aborted)");
+  EXPECT_NE(error_of([]() -> std::string {
+              std::raise(SIGKILL);  // as the kernel's OOM killer would
+              return "";
+            }).find("crashed (signal 9"),
+            std::string::npos);
+  EXPECT_EQ(error_of([]() -> std::string { std::_Exit(3); }),
+            "x.lmk: corrupt landmark file: the process reading it ended without an answer");
+}
+
+TEST(ChildProcess, ErrorsKeepTheirMessage) {
+  EXPECT_EQ(error_of([]() -> std::string { throw Error("x.lmk: the points are not finite"); }),
+            "x.lmk: the points are not finite");
+  EXPECT_EQ(error_of([]() -> std::string { throw std::bad_alloc(); }),
+            "x.lmk: corrupt landmark file: std::bad_alloc");
+}
+
+}  // namespace
+}  // namespace lmk
