@@ -67,6 +67,10 @@ TrackSequence parse_sequence(const detail::JsonReader& r, const json& j, const s
   s.landmark = r.text(j, where, "landmark");
   const json& frames = r.field(j, where, "frames");
   if (!frames.is_array()) r.fail(where, "'frames' must be an array of scene names");
+  if (frames.size() > kMaxTrackFrames) {
+    r.fail(where, "'frames' lists " + std::to_string(frames.size()) + " frames; at most " +
+                      std::to_string(kMaxTrackFrames));
+  }
   for (std::size_t f = 0; f < frames.size(); ++f) {
     if (!frames[f].is_string()) r.fail(detail::at(where, "frames", f), "must be a scene name");
     s.frames.push_back(frames[f].get<std::string>());
@@ -97,6 +101,10 @@ std::vector<TrackSequence> load_track_sequences(const std::string& dir, const Da
   r.require_version(j, kSequencesFormatVersion, "sequences");
   const json& list = r.field(j, "", "sequences");
   if (!list.is_array()) r.fail("sequences", "must be an array");
+  if (list.size() > kMaxTrackSequences) {
+    r.fail("sequences", "lists " + std::to_string(list.size()) + " sequences; at most " +
+                            std::to_string(kMaxTrackSequences));
+  }
   std::vector<TrackSequence> sequences;
   for (std::size_t i = 0; i < list.size(); ++i)
     sequences.push_back(parse_sequence(r, list[i], detail::at("", "sequences", i)));

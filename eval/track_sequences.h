@@ -16,6 +16,10 @@
 namespace lmk {
 
 inline constexpr int kSequencesFormatVersion = 1;
+/// The most sequences one sequences.json lists, and the most frames one sequence tracks: each
+/// frame is a search, and counts without bounds were an audit's finding (issue #61, finding 9).
+inline constexpr std::size_t kMaxTrackSequences = 1000;
+inline constexpr std::size_t kMaxTrackFrames = 10000;
 
 /// The landmark taken away while the camera looks: lifted out of view, or put down elsewhere.
 struct Carry {

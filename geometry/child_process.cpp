@@ -2,12 +2,15 @@
 #include "lmk/geometry/child_process.h"
 
 #include <fcntl.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <csignal>
 #include <cstring>
+#include <fstream>
+#include <string>
 
 #include "lmk/geometry/error.h"
 
@@ -29,7 +32,39 @@ bool write_all(int fd, const char* data, std::size_t n) {
   return true;
 }
 
-[[noreturn]] void be_the_child(int fd, const std::function<std::string()>& work) {
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kSanitized = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(memory_sanitizer)
+constexpr bool kSanitized = true;
+#else
+constexpr bool kSanitized = false;
+#endif
+#else
+constexpr bool kSanitized = false;
+#endif
+
+// Limits the data this process maps to what it holds now (VmData, which counts what the parent
+// held) plus `extra` bytes.
+void limit_data(std::size_t extra) {
+  std::ifstream status("/proc/self/status");
+  std::size_t held_kb = 0;
+  for (std::string key; status >> key;) {
+    if (key == "VmData:") {
+      status >> held_kb;
+      break;
+    }
+    status.ignore(1 << 16, '\n');
+  }
+  if (held_kb == 0) return;
+  const rlim_t limit = static_cast<rlim_t>(held_kb) * 1024 + extra;
+  const rlimit data{limit, limit};
+  ::setrlimit(RLIMIT_DATA, &data);
+}
+
+[[noreturn]] void be_the_child(int fd, const std::function<std::string()>& work,
+                               std::size_t extra_memory) {
+  if (!kSanitized) limit_data(extra_memory);
   char kind = kAnswer;
   std::string out;
   try {
@@ -61,7 +96,10 @@ std::string read_all(int fd) {
 
 }  // namespace
 
-std::string run_in_child(const std::function<std::string()>& work, const std::string& what) {
+bool child_memory_is_limited() { return !kSanitized; }
+
+std::string run_in_child(const std::function<std::string()>& work, const std::string& what,
+                         std::size_t extra_memory) {
   int fds[2];
   if (::pipe2(fds, O_CLOEXEC) != 0) {
     throw Error(what + ": cannot open a pipe to a child process (" + std::strerror(errno) + ")");
@@ -75,7 +113,7 @@ std::string run_in_child(const std::function<std::string()>& work, const std::st
   }
   if (pid == 0) {
     ::close(fds[0]);
-    be_the_child(fds[1], work);
+    be_the_child(fds[1], work, extra_memory);
   }
   ::close(fds[1]);
   std::string reply = read_all(fds[0]);

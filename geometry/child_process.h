@@ -5,6 +5,7 @@
 // OpenVDB files, this way: behind a valid checksum a forged grid aborted inside libopenvdb, and
 // one such file in `lmk serve --landmarks DIR` killed the server (issue #61, finding 2).
 
+#include <cstddef>
 #include <functional>
 #include <string>
 
@@ -14,6 +15,14 @@ namespace lmk {
 /// same message is thrown here; any other exception, a crash (a signal) or an exit without an
 /// answer is an lmk::Error starting with `what`. The child shares nothing back but its answer: it
 /// ends with _exit(), without running exit handlers or flushing the parent's buffers.
-std::string run_in_child(const std::function<std::string()>& work, const std::string& what);
+///
+/// The child may map at most `extra_memory` bytes of data beyond what it inherited (RLIMIT_DATA):
+/// past it, an allocation fails there, not in the machine. Sanitizer builds, whose shadow memory
+/// such a limit would starve, leave it unset.
+std::string run_in_child(const std::function<std::string()>& work, const std::string& what,
+                         std::size_t extra_memory = std::size_t{512} << 20);
+
+/// Whether run_in_child() limits the child's memory: false in sanitizer builds.
+bool child_memory_is_limited();
 
 }  // namespace lmk

@@ -143,6 +143,22 @@ std::optional<DeclaredCloud> declared_cloud(const std::string& path) {
                        pcd_decoded_point_bytes(names, sizes, counts, compressed)};
 }
 
+std::size_t cloud_read_price(std::size_t file_bytes, std::size_t points,
+                             std::size_t decoded_point_bytes) {
+  constexpr std::size_t kParseBytesPerPoint = 80;
+  return 2 * file_bytes + points * (kParseBytesPerPoint + decoded_point_bytes);
+}
+
+std::size_t cloud_read_price(const std::string& path) {
+  std::error_code error;
+  const std::size_t size = fs::file_size(path, error);
+  if (error) return 0;                            // the reader names what is wrong
+  constexpr std::size_t kLeastXyzPointBytes = 6;  // "0 0 0\n"
+  const std::optional<DeclaredCloud> declared = declared_cloud(path);
+  return declared ? cloud_read_price(size, declared->points, declared->decoded_point_bytes)
+                  : cloud_read_price(size, size / kLeastXyzPointBytes, 0);
+}
+
 CloudFile read_cloud_file(const std::string& path, std::size_t max_points) {
   check_input_file(path, kCloudInput);
   const CloudFormat format = format_from_path(path);

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <unordered_set>
 
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/range_image.h"
@@ -161,6 +162,10 @@ class MeasurementTable {
 // The voxels every frame measured a surface in, dilated by kShell voxels: the voxels the volume
 // keeps. Free space far from every surface is not stored.
 constexpr int kShell = 2;
+// A leaf node's bytes in the volume: the distance's and the weight's 8^3 floats with their masks,
+// and the marked topology's mask leaf per thread.
+constexpr std::size_t kBytesPerLeaf = 2 * (512 * sizeof(float) + 2 * 64 + 32) + 2 * 96;
+
 vdb::FloatGrid::Ptr allocate(const std::vector<DepthFrame>& frames, const FusionSettings& s) {
   // Blocks of rows of every frame, marked in parallel into a topology per thread, then merged:
   // the union of sets, whatever the threads.
@@ -407,10 +412,57 @@ TsdfVolume::~TsdfVolume() = default;
 TsdfVolume::TsdfVolume(TsdfVolume&&) noexcept = default;
 TsdfVolume& TsdfVolume::operator=(TsdfVolume&&) noexcept = default;
 
+std::size_t fusion_bytes(const std::vector<DepthFrame>& frames, const FusionSettings& settings,
+                         std::size_t limit) {
+  settings.validate();
+  // The leaves the measured voxels and their shell (kShell voxels about each) fall in: a voxel's
+  // shell spans at most two leaves along each axis.
+  std::unordered_set<std::uint64_t> leaves;
+  const double inverse_voxel = 1.0 / settings.voxel_size;
+  const auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) {
+    const auto bits = [](std::int64_t v) { return static_cast<std::uint64_t>(v) & 0x1fffffu; };
+    return bits(x) | bits(y) << 21 | bits(z) << 42;
+  };
+  const auto leaf = [](std::int64_t v) { return v >= 0 ? v / 8 : -((-v + 7) / 8); };
+  std::uint64_t last = ~std::uint64_t{0};
+  for (const DepthFrame& f : frames) {
+    if (f.cloud == nullptr) continue;
+    const Eigen::Isometry3f T = f.T_common_cloud.cast<float>();
+    for (const Eigen::Vector3f& p : f.cloud->points) {
+      if (!is_finite(p)) continue;
+      const vdb::Coord c = detail::nearest_voxel((T * p).cast<double>(), inverse_voxel);
+      // Neighbouring pixels mostly fall in the leaf of the one before: counted once.
+      const std::uint64_t own = key(leaf(c.x()), leaf(c.y()), leaf(c.z()));
+      const bool inside = leaf(c.x() - kShell) == leaf(c.x() + kShell) &&
+                          leaf(c.y() - kShell) == leaf(c.y() + kShell) &&
+                          leaf(c.z() - kShell) == leaf(c.z() + kShell);
+      if (inside && own == last) continue;
+      if (inside) last = own;
+      for (std::int64_t x = leaf(c.x() - kShell); x <= leaf(c.x() + kShell); ++x) {
+        for (std::int64_t y = leaf(c.y() - kShell); y <= leaf(c.y() + kShell); ++y) {
+          for (std::int64_t z = leaf(c.z() - kShell); z <= leaf(c.z() + kShell); ++z) {
+            leaves.insert(key(x, y, z));
+          }
+        }
+      }
+      if (leaves.size() * kBytesPerLeaf > limit) return leaves.size() * kBytesPerLeaf;
+    }
+  }
+  return leaves.size() * kBytesPerLeaf;
+}
+
 TsdfVolume TsdfVolume::fuse(const std::vector<DepthFrame>& frames, const FusionSettings& settings) {
   settings.validate();
   detail::initialize_openvdb();
   const std::vector<PreparedFrame> prepared = prepare(frames);
+  if (settings.max_bytes != std::numeric_limits<std::size_t>::max()) {
+    const std::size_t bytes = fusion_bytes(frames, settings, settings.max_bytes);
+    if (bytes > settings.max_bytes) {
+      throw Error("fuse: the volume would take over " + std::to_string(bytes / 1000000) +
+                  " MB, more than the " + std::to_string(settings.max_bytes / 1000000) +
+                  " MB allowed; fuse fewer frames or crop them");
+    }
+  }
   auto grid = std::make_unique<Grid>();
   grid->voxel = settings.voxel_size;
   grid->first_intrinsics = prepared.front().image.intrinsics();

@@ -12,6 +12,7 @@
 // Thread safety: const after construction; fuse() runs its loops on the calling arena's threads.
 
 #include <Eigen/Geometry>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -45,15 +46,27 @@ struct FusionSettings {
   /// The rendered view may grow past the reference frame's image to hold what the other frames saw,
   /// up to this factor in width and in height.
   double max_canvas_growth = 2.0;
+  /// The most bytes the volume may take (fusion_bytes()); more is refused before anything is
+  /// allocated. `lmk find` gives what the machine has available.
+  std::size_t max_bytes = std::numeric_limits<std::size_t>::max();
 
   /// Throws lmk::Error naming the bad value.
   void validate() const;
 };
 
+/// What fusing `frames` will take at its peak, bytes: the volume's leaf nodes (8^3 voxels, a
+/// distance and a weight each, and the topology marked per thread), counted from the voxels the
+/// frames measured and the shell about them, without allocating any. Counting stops once the
+/// estimate passes `limit`, so that a frame of scattered points costs no more to refuse than a
+/// small one (issue #61, finding 3). About 16 bytes per distinct leaf while it counts.
+std::size_t fusion_bytes(const std::vector<DepthFrame>& frames, const FusionSettings& settings,
+                         std::size_t limit = std::numeric_limits<std::size_t>::max());
+
 class TsdfVolume {
  public:
   /// Fuses `frames` (1 to kMaxFusedFrames; each organised, with a pinhole image from its sensor
-  /// pose). Throws lmk::Error naming the frame for one that is not, or for too many.
+  /// pose). Throws lmk::Error naming the frame for one that is not, for too many, or when
+  /// fusion_bytes() passes settings.max_bytes.
   static TsdfVolume fuse(const std::vector<DepthFrame>& frames, const FusionSettings& settings);
 
   ~TsdfVolume();

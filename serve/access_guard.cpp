@@ -149,6 +149,16 @@ AccessVerdict AccessGuard::check(const RequestView& r) const {
               "' is not this server's own page (http://" + printable(r.host) + ")";
     return v;
   }
+  // The API never takes the token from the address: query strings end up in logs, in the
+  // browser's history and in Referer headers (issue #61, finding 7). Only the page's one-time
+  // ?token= is read, and turned into the cookie.
+  if (!token_.empty() && r.has_query_token && r.path.rfind("/api/", 0) == 0) {
+    v.status = 401;
+    v.error =
+        "the API takes its token in the header 'Authorization: token TOKEN' or the page's "
+        "cookie, never in the address (?token= only opens the page)";
+    return v;
+  }
   if (!token_.empty() && needs_token(r.path)) {
     bool from_query = false;
     if (!token_matches(r, &from_query)) {
@@ -162,6 +172,8 @@ AccessVerdict AccessGuard::check(const RequestView& r) const {
     }
     v.token_from_query = from_query;
   }
+  bool ignored = false;
+  v.authenticated = token_.empty() || token_matches(r, &ignored);
   if (changes_state(r.method) && r.has_body && takes_json(r) &&
       media_type(r.content_type) != "application/json") {
     v.status = 415;

@@ -34,6 +34,9 @@ struct AccessVerdict {
   std::string error;
   /// The request carried the right token in its query: the page should keep it in the cookie.
   bool token_from_query = false;
+  /// The request showed the token (or the server asks none): its connection is a client's, and
+  /// no flood of connections that have not shown it may cut it off (ConnectionTable).
+  bool authenticated = false;
 
   bool allowed() const { return status == 0; }
 };

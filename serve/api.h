@@ -35,6 +35,9 @@ class Api {
   Api(ServeSettings settings, const std::filesystem::path& scratch_dir);
 
   const ServeSettings& settings() const { return settings_; }
+  /// What the server's work may take: the HTTP layer reserves a JSON body's parse in it before the
+  /// body is read.
+  MemoryBudget& budget() { return budget_; }
 
   // GET /api/info
   ApiResponse info() const;

@@ -22,7 +22,7 @@ namespace {
 std::vector<Scene> capture_scenes(const SceneStore& scenes, const nlohmann::json& body,
                                   const std::string& what) {
   std::vector<Scene> out{scenes.get(required_string(body, "scene", what))};
-  for (const std::string& id : optional_names(body, "views", {}, what))
+  for (const std::string& id : optional_names(body, "views", {}, what, kMaxLandmarkViews))
     out.push_back(scenes.get(id));
   if (out.size() > kMaxLandmarkViews) {
     throw bad_request(what + ": views: a landmark takes at most " +

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // POST /api/find: landmarks searched in a scene on the worker pool, the scene indexed once for
 // all of them (landmark/scene_index.h), with per-seed progress.
+#include <algorithm>
+
 #include "lmk/geometry/error.h"
 #include "lmk/json/pose_json.h"
 #include "lmk/landmark/find_landmark.h"
@@ -15,8 +17,10 @@ namespace lmk::serve {
 ApiResponse Api::find(const std::string& body_text) {
   const nlohmann::json body = parse_body(body_text, "find");
   const Scene scene = scenes_.get(required_string(body, "scene", "find"));
+  // No more names than the library holds landmarks: each names a different one.
+  const std::vector<std::string> all = library_.names();
   const std::vector<std::string> names =
-      optional_names(body, "landmarks", library_.names(), "find");
+      optional_names(body, "landmarks", all, "find", std::max<std::size_t>(all.size(), 1));
   if (names.empty()) {
     throw bad_request("find: no landmark to search: capture one or name them in 'landmarks'");
   }

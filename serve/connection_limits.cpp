@@ -17,27 +17,48 @@ ConnectionTable::Clock::rep ticks_after(double seconds) {
 
 ConnectionTable::ConnectionTable(ConnectionLimits limits) : limits_(limits) {}
 
-std::shared_ptr<ConnectionTable::Connection> ConnectionTable::open(const std::string& address) {
+std::shared_ptr<ConnectionTable::Connection> ConnectionTable::open(const std::string& address,
+                                                                   bool sending) {
   auto connection = std::make_shared<Connection>();
   connection->address = address;
+  connection->idle = !sending;
   connection->deadline = ticks_after(limits_.header_seconds);
   const std::lock_guard<std::mutex> lock(mutex_);
   connection->order = next_order_++;
-  std::size_t waiting = 0;
-  Connection* oldest = nullptr;
-  const auto [begin, end] = by_address_.equal_range(address);
-  for (auto it = begin; it != end; ++it) {
-    Connection& c = *it->second;
-    if (!c.waiting_for_headers || c.cut_off) continue;
-    ++waiting;
-    if (oldest == nullptr || c.order < oldest->order) oldest = &c;
+  // The first to cut among the waiting connections that have not shown the token, of this
+  // address and of anyone: the oldest idle one, else the oldest. With how many wait of each.
+  std::size_t mine = 0, everyone = 0;
+  Connection *my_first = nullptr, *first = nullptr;
+  const auto before = [](const Connection* a, const Connection* b) {
+    return b == nullptr || (a->idle != b->idle ? a->idle : a->order < b->order);
+  };
+  for (const auto& [from, c] : by_address_) {
+    if (!c->waiting_for_headers || c->authenticated || c->cut_off) continue;
+    ++everyone;
+    if (before(c.get(), first)) first = c.get();
+    if (from != address) continue;
+    ++mine;
+    if (before(c.get(), my_first)) my_first = c.get();
   }
-  if (oldest != nullptr && waiting >= limits_.slow_per_client) {
-    oldest->cut_off = true;
+  const auto cut = [this](Connection* c) {
+    if (c == nullptr || c->cut_off) return;
+    c->cut_off = true;
     ++cut_off_;
-  }
+  };
+  if (mine >= limits_.slow_per_client) cut(my_first);
+  if (everyone >= limits_.unauthenticated_total) cut(first);
   by_address_.emplace(address, connection);
   return connection;
+}
+
+void ConnectionTable::bytes_arrived(Connection& connection) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  connection.idle = false;
+}
+
+void ConnectionTable::authenticated(Connection& connection) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  connection.authenticated = true;
 }
 
 void ConnectionTable::close(const std::shared_ptr<Connection>& connection) {
@@ -53,9 +74,10 @@ void ConnectionTable::close(const std::shared_ptr<Connection>& connection) {
   }
 }
 
-void ConnectionTable::awaiting_request(Connection& connection) {
+void ConnectionTable::awaiting_request(Connection& connection, bool sending) {
   const std::lock_guard<std::mutex> lock(mutex_);
   connection.waiting_for_headers = true;
+  connection.idle = !sending;
   connection.deadline = ticks_after(limits_.header_seconds);
 }
 

@@ -8,6 +8,13 @@
 // `slow_per_client` connections waiting for their headers at once: a further one cuts off its
 // oldest, so that a flood of slow connections from one client leaves the other threads to the
 // page, the API and the other clients.
+//
+// A connection that has shown the token is a client's (issue #61, finding 6): the limits on
+// waiting connections count only those that have not, and never cut off one that has, even while
+// it waits for its next request. 200-300 idle connections from the same address cut off the
+// keep-alive connections of the client that had the token. And all addresses together keep at
+// most `unauthenticated_total` such connections waiting, so that the other threads stay free for
+// requests that show the token.
 #include <atomic>
 #include <chrono>
 #include <cstddef>
@@ -25,8 +32,12 @@ struct ConnectionLimits {
   /// The least average rate of a body after the headers' grace, bytes/s (1 MiB/s: a 256 MiB
   /// upload may take 4 minutes).
   double body_bytes_per_second = 1024.0 * 1024.0;
-  /// Connections of one address that may wait for their headers at once (a browser opens 6).
+  /// Connections of one address that may wait for their headers at once without having shown
+  /// the token (a browser opens 6).
   std::size_t slow_per_client = 16;
+  /// Connections of all addresses that may wait for their headers at once without having shown
+  /// the token: half the server's 64 HTTP threads.
+  std::size_t unauthenticated_total = 32;
 };
 
 class ConnectionTable {
@@ -38,6 +49,8 @@ class ConnectionTable {
     std::string address;  ///< the client's numeric address
     std::uint64_t order = 0;
     bool waiting_for_headers = true;  ///< guarded by the table's lock
+    bool authenticated = false;       ///< a request on it showed the token; guarded likewise
+    bool idle = true;  ///< no byte of its next request has arrived yet; guarded likewise
     std::atomic<Clock::rep> deadline{0};
     std::atomic<bool> cut_off{false};
 
@@ -50,13 +63,21 @@ class ConnectionTable {
 
   explicit ConnectionTable(ConnectionLimits limits = {});
 
-  /// A connection from `address`, waiting for its first request; cuts off the address's oldest
-  /// connection waiting for headers when it has slow_per_client of them already.
-  std::shared_ptr<Connection> open(const std::string& address);
+  /// A connection from `address`, waiting for its first request. Cuts off the oldest connection
+  /// waiting for headers without having shown the token, an idle one (no byte sent) before one
+  /// that is sending: the address's when it has slow_per_client of them already, anyone's when
+  /// there are unauthenticated_total. A client that connects and sends its request at once is
+  /// therefore never cut off by a flood of idle connections, even before it shows the token.
+  /// `sending`: bytes of its request have arrived already.
+  std::shared_ptr<Connection> open(const std::string& address, bool sending = false);
+  /// The first bytes of the connection's next request have arrived.
+  void bytes_arrived(Connection& connection);
+  /// A request on the connection showed the token: no limit on waiting connections cuts it off.
+  void authenticated(Connection& connection);
   void close(const std::shared_ptr<Connection>& connection);
   /// The server waits for the connection's next request: its headers are due within
-  /// header_seconds.
-  void awaiting_request(Connection& connection);
+  /// header_seconds. `sending`: bytes of it have arrived already.
+  void awaiting_request(Connection& connection, bool sending);
   /// Its headers arrived, announcing `body_bytes` to come (0: none): the body is due at the
   /// least rate after the grace.
   void headers_read(Connection& connection, std::size_t body_bytes);

@@ -135,6 +135,11 @@ std::string reason_for(int status, const ServeSettings& s) {
   }
 }
 
+// The reservation of the JSON body the current request's thread is reading and parsing: held from
+// the headers until the handler has answered (or, when no handler ran, until the logger, which
+// runs for every reply, lets it go).
+thread_local MemoryBudget::Reservation json_body_memory;
+
 // The body length a request declares (Content-Length); 0 when it declares none.
 unsigned long long declared_length(const httplib::Request& req) {
   return std::strtoull(req.get_header_value("Content-Length").c_str(), nullptr, 10);
@@ -184,6 +189,7 @@ struct HttpServer::Impl {
   void page_routes();
   void reply_and_log_settings();
   void guard_requests();
+  void reserve_json_body(const httplib::Request& req);
   ApiResponse upload(const httplib::Request& req, const httplib::ContentReader& read,
                      std::string name);
   void api_route(const char* method, const std::string& pattern,
@@ -201,7 +207,12 @@ struct HttpServer::Impl {
 void HttpServer::Impl::api_route(const char* method, const std::string& pattern,
                                  std::function<ApiResponse(const httplib::Request&)> handle) {
   auto handler = [handle](const httplib::Request& req, httplib::Response& res) {
-    guarded(res, [&] { send(res, handle(req)); });
+    guarded(res, [&] {
+      ApiResponse reply = handle(req);
+      json_body_memory.release();  // parsed and answered: before the client can see the reply
+      send(res, reply);
+    });
+    json_body_memory.release();
   };
   if (std::string(method) == "GET") {
     server.Get(pattern, handler);
@@ -210,6 +221,26 @@ void HttpServer::Impl::api_route(const char* method, const std::string& pattern,
   } else {
     server.Post(pattern, handler);
   }
+}
+
+// A JSON body is bounded by --max-json and reserved in the memory budget before httplib reads it
+// (issue #61, finding 4: four concurrent 250 MB bodies peaked at 3.26 GB with the budget showing
+// nothing in use). ApiError 411, 413 or 503.
+void HttpServer::Impl::reserve_json_body(const httplib::Request& req) {
+  json_body_memory.release();
+  const bool upload = req.method == "POST" && req.path == "/api/scenes";
+  if (req.method == "GET" || upload || req.path.rfind("/api/", 0) != 0) return;
+  if (req.has_header("Transfer-Encoding")) {
+    throw ApiError(411, "a JSON body must declare its Content-Length");
+  }
+  const std::size_t most = api.settings().max_json_bytes;
+  const unsigned long long length = declared_length(req);
+  if (length > most) {
+    throw ApiError(413, "the JSON body is " + std::to_string(length) + " bytes; at most " +
+                            std::to_string(most) + " (lmk serve --max-json)");
+  }
+  json_body_memory = api.budget().reserve(json_body_price(static_cast<std::size_t>(length)),
+                                          "requests", "a JSON body");
 }
 
 // Every request passes the access guard before it is routed, and before its body is read.
@@ -224,8 +255,19 @@ void HttpServer::Impl::guard_requests() {
                             declared_length(req), api.settings().max_upload_bytes)));
     }
     const AccessVerdict verdict = guard.check(view_of(req));
+    if (verdict.authenticated) {
+      if (ConnectionTable::Connection* c = ConnectionTable::current())
+        connections.authenticated(*c);
+    }
     if (!verdict.allowed()) {
       send(res, {verdict.status, {{"error", verdict.error}}});
+      return httplib::Server::HandlerResponse::Handled;
+    }
+    try {
+      reserve_json_body(req);
+    } catch (const ApiError&) {
+      const std::exception_ptr refusal = std::current_exception();
+      guarded(res, [&refusal] { std::rethrow_exception(refusal); });
       return httplib::Server::HandlerResponse::Handled;
     }
     if (const auto part = not_utf8_part(req)) {
@@ -389,8 +431,9 @@ void HttpServer::Impl::reply_and_log_settings() {
         send(res, {500, {{"error", "internal error"}}});
       });
   server.set_payload_max_length(settings.max_upload_bytes);
-  if (log != nullptr) {
-    server.set_logger([this](const httplib::Request& req, const httplib::Response& res) {
+  server.set_logger([this](const httplib::Request& req, const httplib::Response& res) {
+    json_body_memory.release();  // the reply is written: the body and its parse are gone
+    if (log != nullptr) {
       if (req.path.rfind("/api/", 0) != 0 && res.status < 400) return;       // the page's own files
       if (req.path.rfind("/api/jobs/", 0) == 0 && res.status < 400) return;  // polling
       // The path is the client's, URL-decoded: escaped, or it could clear the operator's
@@ -400,8 +443,8 @@ void HttpServer::Impl::reply_and_log_settings() {
       if (res.status >= 400) line += " " + printable(res.body, 2 * kEchoedBytes);
       std::lock_guard<std::mutex> lock(log_mutex);
       *log << line << std::endl;
-    });
-  }
+    }
+  });
   // Enough threads that the page stays answered while requests wait for searches, and while one
   // client's slow connections hold the most that ConnectionLimits lets them (16 by default).
   server.new_task_queue = [] { return new httplib::ThreadPool(kHttpThreads); };

@@ -16,6 +16,11 @@ namespace lmk::serve {
 /// without --memory-budget.
 std::size_t default_memory_budget();
 
+/// What reading and parsing a JSON request body of `bytes` holds: the text, and its parse, which
+/// grows it about 20-fold (a number of two characters becomes a 16-byte value in a vector).
+/// Reserved from the request's headers until its handler has answered.
+inline std::size_t json_body_price(std::size_t bytes) { return 21 * bytes; }
+
 class MemoryBudget {
  public:
   explicit MemoryBudget(std::size_t bytes);

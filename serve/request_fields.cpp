@@ -72,11 +72,15 @@ Box required_box(const nlohmann::json& body, const std::string& key, const std::
 
 std::vector<std::string> optional_names(const nlohmann::json& body, const std::string& key,
                                         const std::vector<std::string>& all,
-                                        const std::string& what) {
+                                        const std::string& what, std::size_t most) {
   if (!body.contains(key)) return all;
   const nlohmann::json& v = body[key];
   const std::string expected = what + ": " + key + ": must be an array of names";
   if (!v.is_array()) throw bad_request(expected);
+  if (v.size() > most) {
+    throw bad_request(what + ": " + key + ": " + std::to_string(v.size()) + " names; at most " +
+                      std::to_string(most));
+  }
   std::vector<std::string> names;
   for (const auto& n : v) {
     if (!n.is_string()) throw bad_request(expected);

@@ -25,10 +25,11 @@ Eigen::Vector3d required_point(const nlohmann::json& body, const std::string& ke
                                const std::string& what);
 /// A box {position, quaternion [w,x,y,z], size}: a unit quaternion and positive finite sides.
 Box required_box(const nlohmann::json& body, const std::string& key, const std::string& what);
-/// A list of names, or every name in `all` when the key is absent.
+/// A list of names, or every name in `all` when the key is absent; more than `most` names is
+/// refused before any is read (100,000 landmark names were read whole: issue #61, finding 9).
 std::vector<std::string> optional_names(const nlohmann::json& body, const std::string& key,
                                         const std::vector<std::string>& all,
-                                        const std::string& what);
+                                        const std::string& what, std::size_t most);
 
 /// A list of poses {position, quaternion [w,x,y,z]}; empty when the key is absent.
 std::vector<Eigen::Isometry3d> optional_poses(const nlohmann::json& body, const std::string& key,

@@ -41,8 +41,7 @@ std::size_t resident_bytes(const PointCloud& c) {
 
 std::size_t upload_price(std::size_t file_bytes, std::size_t points,
                          std::size_t decoded_point_bytes) {
-  constexpr std::size_t kParseBytesPerPoint = 80;
-  return 2 * file_bytes + points * (kParseBytesPerPoint + decoded_point_bytes);
+  return cloud_read_price(file_bytes, points, decoded_point_bytes);
 }
 
 UploadFile::UploadFile(std::string name, std::filesystem::path path)

@@ -27,13 +27,7 @@ struct Scene {
   std::shared_ptr<const PointCloud> cloud;
 };
 
-/// What parsing an upload of `file_bytes` that may hold `points` points takes at its peak: its
-/// bytes twice (read whole, and copied once more by PCL's ASCII reader: an ASCII PCD of a million
-/// points took 107 MB for a 36 MB file); per point, the cloud (22 bytes measured for a binary PCD)
-/// or an XYZ file's rows growing their vector (53), rounded up to 80; and the reader's working copy
-/// of each point as the header declares it (`decoded_point_bytes`, DeclaredCloud): a compressed PCD
-/// that declares 4,012 bytes a point is priced at the 12 it keeps, an ASCII one at all 4,012.
-/// UploadPrice.* measures it.
+/// What parsing an upload takes at its peak: cloud_read_price() (geometry/cloud_io.h).
 std::size_t upload_price(std::size_t file_bytes, std::size_t points,
                          std::size_t decoded_point_bytes = 0);
 

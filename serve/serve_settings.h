@@ -33,6 +33,7 @@ struct ServeSettings {
   int port = 8080;                               ///< 0: any free port
   std::string three_dir;                         ///< three.js; empty: Debian's libjs-three
   std::size_t max_upload_bytes = 256u << 20;     ///< larger uploads get 413
+  std::size_t max_json_bytes = 8u << 20;         ///< larger JSON request bodies get 413
   std::size_t max_uploads = 16;                  ///< uploaded scenes kept; the oldest goes first
   std::size_t max_upload_points = 5'000'000;     ///< points of one upload; more get 413
   std::size_t max_uploaded_points = 20'000'000;  ///< points of all uploads kept; oldest go first

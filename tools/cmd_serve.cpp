@@ -25,6 +25,7 @@ struct ServeOptions {
   serve::ServeSettings settings;
   UpOptions up;
   double max_upload_mib = 256.0;
+  double max_json_mib = 8.0;
   double memory_budget_gb = 0.0;  // 0: half the machine's memory
   bool quiet = false;
 };
@@ -38,6 +39,7 @@ int run_serve(ServeOptions& o) {
   s.base_frame = o.up.base_frame;
   s.up = o.up.vector();
   s.max_upload_bytes = static_cast<std::size_t>(o.max_upload_mib * 1024.0 * 1024.0);
+  s.max_json_bytes = static_cast<std::size_t>(o.max_json_mib * 1024.0 * 1024.0);
   s.memory_budget = o.memory_budget_gb > 0.0 ? static_cast<std::size_t>(o.memory_budget_gb * 1e9)
                                              : serve::default_memory_budget();
   if (s.token.empty() && !s.no_token) {
@@ -138,6 +140,11 @@ Subcommand add_serve(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--max-upload", o->max_upload_mib, "Largest uploaded cloud, MiB")
       ->check(within(0.001, 4096.0))
+      ->capture_default_str();
+  sub->add_option("--max-json", o->max_json_mib,
+                  "Largest JSON request body, MiB; its parse is reserved in the memory budget "
+                  "before it is read")
+      ->check(within(0.001, 256.0))
       ->capture_default_str();
   sub->add_option("--memory-budget", o->memory_budget_gb,
                   "Memory the uploads, scenes and jobs may take at once, GB: each is priced before "

@@ -977,6 +977,11 @@ TEST_F(Cli, SeveralFramesOfOneSceneAreFusedBeforeTheSearch) {
   expect_bad_input("find " + path("tab.pcd") + " " + path("flat.xyz") + " " + cup,
                    "frame 2: an unorganised cloud");
   expect_bad_input("find " + cup, "At least 2 required");
+  // Issue #61, finding 3: the frames are counted before any is read (31 names of files that do not
+  // exist are refused for their number, not for the first missing file).
+  std::string many;
+  for (int i = 0; i < 31; ++i) many += path("absent" + std::to_string(i) + ".pcd") + " ";
+  expect_bad_input("find " + many + cup, "31 frames: lmk fuses at most 30 frames of one scene");
 }
 
 TEST_F(Cli, JsonOutputIsByteIdenticalAcrossThreadsRunsAndTheCache) {

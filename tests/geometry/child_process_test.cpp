@@ -8,6 +8,7 @@
 #include <csignal>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 #include "lmk/geometry/error.h"
 
@@ -40,6 +41,16 @@ TEST(ChildProcess, ACrashCostsTheChildNotTheCaller) {
             std::string::npos);
   EXPECT_EQ(error_of([]() -> std::string { std::_Exit(3); }),
             "x.lmk: corrupt landmark file: the process reading it ended without an answer");
+}
+
+// An allocation past the child's allowance fails in the child, and its answer says so.
+TEST(ChildProcess, TheChildAllocatesWithinItsAllowance) {
+  if (!child_memory_is_limited()) GTEST_SKIP() << "sanitizer builds leave the limit unset";
+  const std::string error = error_of([]() -> std::string {
+    std::vector<char> big(std::size_t{2} << 30, 'x');  // 2 GiB, four times the 512 MiB allowed
+    return std::string(1, big.back());
+  });
+  EXPECT_EQ(error, "x.lmk: corrupt landmark file: std::bad_alloc");
 }
 
 TEST(ChildProcess, ErrorsKeepTheirMessage) {

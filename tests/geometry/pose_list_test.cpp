@@ -6,9 +6,12 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "lmk/geometry/error.h"
+#include "tests/support/test_support.h"
 
 namespace lmk {
 namespace {
@@ -42,6 +45,10 @@ TEST(PoseList, BadLinesAreRefusedWithTheirNumber) {
       error_of("0 0 0 0 0 0 1\n1 2 3\n"),
       "poses.txt:2: expected 7 numbers (x y z qx qy qz qw) or 8 (a timestamp first), found 3");
   EXPECT_EQ(error_of("0 0 x 0 0 0 1\n"), "poses.txt:1: 'x' is not a number");
+  // Issue #61, finding 11: a NUL (or an escape) in a field is shown, not sent: the message is
+  // whole as a C string.
+  const std::string nul = error_of(std::string("0 0 1\0x 0 0 0 1\n", 16));
+  EXPECT_EQ(std::string(nul.c_str()), "poses.txt:1: '1\\x00x' is not a number");
   EXPECT_NE(error_of("0 0 0 0 0 0 2\n").find("poses.txt:1.quaternion: is not a unit quaternion"),
             std::string::npos)
       << error_of("0 0 0 0 0 0 2\n");
@@ -49,6 +56,21 @@ TEST(PoseList, BadLinesAreRefusedWithTheirNumber) {
   EXPECT_NE(error_of("1e308 0 0 0 0 0 1\n").find("at most 10000 m"), std::string::npos);
   EXPECT_EQ(error_of(""), "");
   EXPECT_TRUE(parse_pose_list("# nothing\n\n", "poses.txt").empty());
+}
+
+// Issue #61, finding 5: a pose list is a pose a frame; one over 1 MiB is refused by its size
+// before it is read (a 266 MB list took 4.7 GB as it was parsed). A sparse file: nothing is read.
+TEST(PoseList, AFileOverAMebibyteIsRefusedUnread) {
+  const test::ScratchDir dir;
+  const std::string path = dir.file("poses.txt");
+  std::ofstream(path).close();
+  std::filesystem::resize_file(path, std::uintmax_t{266} << 20);
+  try {
+    read_pose_list(path);
+    ADD_FAILURE() << "read";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("for a pose list"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

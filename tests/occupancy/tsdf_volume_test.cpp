@@ -16,6 +16,7 @@
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/kdtree.h"
 #include "lmk/geometry/pose.h"
+#include "lmk/geometry/random.h"
 
 namespace lmk {
 namespace {
@@ -209,6 +210,37 @@ TEST(TsdfVolume, OneFrameIsReturnedAsItIsAndBadFramesAreRefused) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("frame 2"), std::string::npos) << e.what();
   }
+}
+
+// Issue #61, finding 3: the volume is priced from the frames' points before anything is
+// allocated, as a search is, and a volume over settings.max_bytes is refused in one line.
+TEST(TsdfVolume, TheVolumeIsPricedBeforeItIsAllocated) {
+  const PointCloud a = render(table_with_box(), camera_at(0), true, 3);
+  const PointCloud b = render(table_with_box(), camera_at(30), true, 4);
+  const std::size_t price = fusion_bytes({{&a}, {&b}}, {});
+  FusionSettings fits;
+  fits.max_bytes = price;
+  const TsdfVolume volume = TsdfVolume::fuse({{&a}, {&b}}, fits);
+  // Every observed voxel holds a distance and a weight within the leaves priced.
+  EXPECT_LE(volume.observed_voxels() * 2 * sizeof(float), price);
+  FusionSettings short_of_it;
+  short_of_it.max_bytes = price - 1;
+  try {
+    TsdfVolume::fuse({{&a}, {&b}}, short_of_it);
+    ADD_FAILURE() << "a volume over its limit was fused";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("the volume would take over"), std::string::npos);
+  }
+  // The same pixels scattered through a 100 m cube: counting stops at the limit.
+  PointCloud scattered = a;
+  SplitMix64 rng(61);
+  for (Eigen::Vector3f& p : scattered.points) {
+    p = Eigen::Vector3f(static_cast<float>(100 * rng.uniform01()),
+                        static_cast<float>(100 * rng.uniform01()),
+                        static_cast<float>(100 * rng.uniform01()));
+  }
+  const std::size_t limit = 4 * price;
+  EXPECT_GT(fusion_bytes({{&scattered}, {&b}}, {}, limit), limit);
 }
 
 }  // namespace

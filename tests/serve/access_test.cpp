@@ -63,7 +63,7 @@ TEST(AccessGuard, OnlyLoopbackTheBoundAddressAndAllowedNamesReachIt) {
   EXPECT_EQ(bound.check(request("GET", "/api/info", "192.168.1.21:8080")).status, 403);
 }
 
-TEST(AccessGuard, TheTokenComesFromTheHeaderTheCookieOrTheQuery) {
+TEST(AccessGuard, TheTokenComesFromTheHeaderTheCookieOrThePagesAddress) {
   AccessGuard guard("secret-token", "127.0.0.1", {});
   guard.set_port(8080);
   EXPECT_EQ(guard.cookie_name(), "lmk_token_8080");
@@ -83,11 +83,21 @@ TEST(AccessGuard, TheTokenComesFromTheHeaderTheCookieOrTheQuery) {
   r.cookie = "lmk_token_9090=secret-token";  // another server's cookie
   EXPECT_EQ(guard.check(r).status, 401);
   r.cookie.clear();
+  // The page's address carries the token once; the API never takes it from the address (issue
+  // #61, finding 7), even right.
+  RequestView page = request("GET", "/");
+  page.authorization.clear();
+  page.has_query_token = true;
+  page.query_token = "secret-token";
+  EXPECT_TRUE(guard.check(page).allowed());
+  EXPECT_TRUE(guard.check(page).token_from_query);
+  page.query_token = "secret";
+  EXPECT_EQ(guard.check(page).status, 401);
   r.has_query_token = true;
   r.query_token = "secret-token";
-  EXPECT_TRUE(guard.check(r).allowed());
-  EXPECT_TRUE(guard.check(r).token_from_query);
-  r.query_token = "secret";
+  EXPECT_EQ(guard.check(r).status, 401);
+  EXPECT_NE(guard.check(r).error.find("never in the address"), std::string::npos);
+  r.authorization = "token secret-token";  // the header does not make the address right
   EXPECT_EQ(guard.check(r).status, 401);
   // The page's code and three.js carry no secret: they need no token.
   RequestView asset = request("GET", "/app/app.js");

@@ -135,14 +135,15 @@ TEST_F(ServeMemoryTest, ASearchIsAdmittedOnlyWhenItsPriceFitsWhatIsLeft) {
   EXPECT_EQ(memory["refused"], 1);
   EXPECT_EQ(memory["in_use"], idle);
 
-  // Exactly enough: it runs, and its reservation is given back when it ends.
-  restart(idle + price);
+  // Exactly enough, with the request's body and its parse: it runs, and its reservations are
+  // given back when it ends.
+  restart(idle + price + serve::json_body_price(find.dump().size()));
   const Reply done = reply_of(client->Post("/api/find", find.dump(), "application/json"));
   EXPECT_EQ(done.status, 200) << done.text;
   EXPECT_EQ(idle_in_use(), idle);
 
   // More than the whole budget: no wait would help, 413 and no Retry-After.
-  restart(price - 1);
+  restart(price - 1 + serve::json_body_price(find.dump().size()));
   const httplib::Result never = client->Post("/api/find", find.dump(), "application/json");
   ASSERT_TRUE(never);
   EXPECT_EQ(never->status, 413) << never->body;
@@ -182,6 +183,38 @@ TEST_F(ServeMemoryTest, UploadsArePricedBeforeTheyAreReadAndCappedWhileParsed) {
   ASSERT_TRUE(busy);
   EXPECT_EQ(busy->status, 503) << busy->body;
   EXPECT_EQ(busy->get_header_value("Retry-After"), std::to_string(serve::kRetryAfterSeconds));
+  EXPECT_EQ(get("/api/health").status, 200);
+}
+
+// Issue #61, finding 4: a JSON body is bounded (--max-json) and its parse reserved in the budget
+// before it is read; the reservation goes when the request is answered.
+TEST_F(ServeMemoryTest, JsonBodiesAreBoundedAndReservedBeforeTheyAreRead) {
+  serve::ServeSettings settings;
+  settings.max_json_bytes = 1000;
+  start(settings);
+  const std::size_t idle = idle_in_use();
+  const std::string too_long = "{\"box\": [" + std::string(2000, ' ') + "]}";
+  Reply r = reply_of(client->Post("/api/guess", too_long, "application/json"));
+  EXPECT_EQ(r.status, 413) << r.text;
+  EXPECT_NE(r.text.find("the JSON body is 2012 bytes; at most 1000"), std::string::npos) << r.text;
+  // A body without a declared length could not be priced.
+  r = reply_of(client->Post(
+      "/api/guess",
+      [](std::size_t, httplib::DataSink& sink) {
+        sink.write("{}", 2);
+        sink.done();
+        return true;
+      },
+      "application/json"));
+  EXPECT_EQ(r.status, 411) << r.text;
+  // Within the bound: answered (a bad request here), and nothing left reserved.
+  r = reply_of(client->Post("/api/guess", "{\"scene\": \"none\"}", "application/json"));
+  EXPECT_TRUE(r.status >= 400 && r.status < 500 && r.status != 413) << r.text;
+  EXPECT_EQ(idle_in_use(), idle);
+  // A budget too small for the parse: 503 before the body is read, and the server goes on.
+  restart(idle + serve::json_body_price(10));
+  r = reply_of(client->Post("/api/guess", "{\"scene\": \"none\"}", "application/json"));
+  EXPECT_EQ(r.status, 503) << r.text;
   EXPECT_EQ(get("/api/health").status, 200);
 }
 

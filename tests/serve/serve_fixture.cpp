@@ -3,9 +3,11 @@
 
 #include <arpa/inet.h>
 #include <netinet/in.h>
+#include <poll.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <filesystem>
 
@@ -162,6 +164,14 @@ std::string RawConnection::read_to_end() {
   char buffer[4096];
   for (ssize_t n; (n = ::recv(sock_, buffer, sizeof buffer, 0)) > 0;) out.append(buffer, n);
   return out;
+}
+
+bool RawConnection::closed_by_server() const {
+  pollfd p{sock_, POLLIN, 0};
+  if (::poll(&p, 1, 0) <= 0) return false;
+  char byte = 0;
+  const ssize_t n = ::recv(sock_, &byte, 1, MSG_PEEK | MSG_DONTWAIT);
+  return n == 0 || (n < 0 && errno != EAGAIN && errno != EWOULDBLOCK);
 }
 
 nlohmann::json box_json(const Box& box) { return detail::setting_to_json(box); }

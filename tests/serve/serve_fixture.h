@@ -85,6 +85,8 @@ class RawConnection {
   bool send(const std::string& bytes);
   /// Everything the server sends until it closes the connection.
   std::string read_to_end();
+  /// Whether the server has closed or reset the connection (looked at without waiting).
+  bool closed_by_server() const;
 
  private:
   int sock_;
