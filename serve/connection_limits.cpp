@@ -2,9 +2,14 @@
 #include "lmk/serve/connection_limits.h"
 
 #include <algorithm>
+#include <map>
+#include <vector>
 
 namespace lmk::serve {
 namespace {
+
+// How often the limits on waiting connections are enforced, at most.
+constexpr auto kEnforceEvery = std::chrono::milliseconds(50);
 
 ConnectionTable::Clock::rep ticks_after(double seconds) {
   const auto after =
@@ -17,43 +22,51 @@ ConnectionTable::Clock::rep ticks_after(double seconds) {
 
 ConnectionTable::ConnectionTable(ConnectionLimits limits) : limits_(limits) {}
 
-std::shared_ptr<ConnectionTable::Connection> ConnectionTable::open(const std::string& address,
-                                                                   bool sending) {
+std::shared_ptr<ConnectionTable::Connection> ConnectionTable::open(const std::string& address) {
   auto connection = std::make_shared<Connection>();
   connection->address = address;
-  connection->idle = !sending;
+  connection->waiting_since = Clock::now();
   connection->deadline = ticks_after(limits_.header_seconds);
   const std::lock_guard<std::mutex> lock(mutex_);
   connection->order = next_order_++;
-  // The first to cut among the waiting connections that have not shown the token, of this
-  // address and of anyone: the oldest idle one, else the oldest. With how many wait of each.
-  std::size_t mine = 0, everyone = 0;
-  Connection *my_first = nullptr, *first = nullptr;
-  const auto before = [](const Connection* a, const Connection* b) {
-    return b == nullptr || (a->idle != b->idle ? a->idle : a->order < b->order);
-  };
-  for (const auto& [from, c] : by_address_) {
-    if (!c->waiting_for_headers || c->authenticated || c->cut_off) continue;
-    ++everyone;
-    if (before(c.get(), first)) first = c.get();
-    if (from != address) continue;
-    ++mine;
-    if (before(c.get(), my_first)) my_first = c.get();
-  }
-  const auto cut = [this](Connection* c) {
-    if (c == nullptr || c->cut_off) return;
-    c->cut_off = true;
-    ++cut_off_;
-  };
-  if (mine >= limits_.slow_per_client) cut(my_first);
-  if (everyone >= limits_.unauthenticated_total) cut(first);
   by_address_.emplace(address, connection);
+  enforce_locked();
   return connection;
 }
 
-void ConnectionTable::bytes_arrived(Connection& connection) {
+void ConnectionTable::enforce() {
+  // At most every 50 ms, whoever calls: every waiting thread looks in once a slice.
+  const Clock::rep now = Clock::now().time_since_epoch().count();
+  const Clock::rep every = std::chrono::duration_cast<Clock::duration>(kEnforceEvery).count();
+  Clock::rep last = last_enforced_.load();
+  if (now - last < every || !last_enforced_.compare_exchange_strong(last, now)) return;
   const std::lock_guard<std::mutex> lock(mutex_);
-  connection.idle = false;
+  enforce_locked();
+}
+
+void ConnectionTable::enforce_locked() {
+  const Clock::time_point now = Clock::now();
+  const auto young = std::chrono::duration_cast<Clock::duration>(
+      std::chrono::duration<double>(limits_.young_seconds));
+  std::vector<Connection*> waiting;
+  std::map<std::string, std::size_t> per_address;
+  for (const auto& [from, c] : by_address_) {
+    if (!c->waiting_for_headers || c->authenticated || c->cut_off) continue;
+    waiting.push_back(c.get());
+    ++per_address[from];
+  }
+  std::sort(waiting.begin(), waiting.end(),
+            [](const Connection* a, const Connection* b) { return a->order < b->order; });
+  std::size_t total = waiting.size();
+  for (Connection* c : waiting) {
+    std::size_t& mine = per_address[c->address];
+    if (mine <= limits_.slow_per_client && total <= limits_.unauthenticated_total) continue;
+    if (now - c->waiting_since < young) continue;  // too young to judge
+    c->cut_off = true;
+    ++cut_off_;
+    --mine;
+    --total;
+  }
 }
 
 void ConnectionTable::authenticated(Connection& connection) {
@@ -74,10 +87,10 @@ void ConnectionTable::close(const std::shared_ptr<Connection>& connection) {
   }
 }
 
-void ConnectionTable::awaiting_request(Connection& connection, bool sending) {
+void ConnectionTable::awaiting_request(Connection& connection) {
   const std::lock_guard<std::mutex> lock(mutex_);
   connection.waiting_for_headers = true;
-  connection.idle = !sending;
+  connection.waiting_since = Clock::now();
   connection.deadline = ticks_after(limits_.header_seconds);
 }
 

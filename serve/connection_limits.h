@@ -12,9 +12,12 @@
 // A connection that has shown the token is a client's (issue #61, finding 6): the limits on
 // waiting connections count only those that have not, and never cut off one that has, even while
 // it waits for its next request. 200-300 idle connections from the same address cut off the
-// keep-alive connections of the client that had the token. And all addresses together keep at
-// most `unauthenticated_total` such connections waiting, so that the other threads stay free for
-// requests that show the token.
+// keep-alive connections of the client that had the token. All addresses together keep at most
+// `unauthenticated_total` such connections waiting, so that the other threads stay free for
+// requests that show the token. And a connection is judged only once it has waited
+// `young_seconds`: a client sends its headers at once, but the thread that took its connection
+// may not run at once on a busy machine, and a flood of idle connections cut off such clients
+// while they were the oldest waiting.
 #include <atomic>
 #include <chrono>
 #include <cstddef>
@@ -38,6 +41,8 @@ struct ConnectionLimits {
   /// Connections of all addresses that may wait for their headers at once without having shown
   /// the token: half the server's 64 HTTP threads.
   std::size_t unauthenticated_total = 32;
+  /// s a connection waits for its headers before the limits above may cut it off.
+  double young_seconds = 0.25;
 };
 
 class ConnectionTable {
@@ -50,7 +55,7 @@ class ConnectionTable {
     std::uint64_t order = 0;
     bool waiting_for_headers = true;  ///< guarded by the table's lock
     bool authenticated = false;       ///< a request on it showed the token; guarded likewise
-    bool idle = true;  ///< no byte of its next request has arrived yet; guarded likewise
+    Clock::time_point waiting_since;  ///< when it began to wait for headers; guarded likewise
     std::atomic<Clock::rep> deadline{0};
     std::atomic<bool> cut_off{false};
 
@@ -63,21 +68,19 @@ class ConnectionTable {
 
   explicit ConnectionTable(ConnectionLimits limits = {});
 
-  /// A connection from `address`, waiting for its first request. Cuts off the oldest connection
-  /// waiting for headers without having shown the token, an idle one (no byte sent) before one
-  /// that is sending: the address's when it has slow_per_client of them already, anyone's when
-  /// there are unauthenticated_total. A client that connects and sends its request at once is
-  /// therefore never cut off by a flood of idle connections, even before it shows the token.
-  /// `sending`: bytes of its request have arrived already.
-  std::shared_ptr<Connection> open(const std::string& address, bool sending = false);
-  /// The first bytes of the connection's next request have arrived.
-  void bytes_arrived(Connection& connection);
+  /// A connection from `address`, waiting for its first request (then enforce()).
+  std::shared_ptr<Connection> open(const std::string& address);
   /// A request on the connection showed the token: no limit on waiting connections cuts it off.
   void authenticated(Connection& connection);
+  /// Cuts off, oldest first, the connections waiting for their headers without having shown the
+  /// token beyond slow_per_client of one address or unauthenticated_total in all, among those
+  /// that have waited young_seconds. Called as connections open, and by the threads that wait
+  /// for them (at most every 50 ms), so that a flood is cut as its connections come of age.
+  void enforce();
   void close(const std::shared_ptr<Connection>& connection);
   /// The server waits for the connection's next request: its headers are due within
-  /// header_seconds. `sending`: bytes of it have arrived already.
-  void awaiting_request(Connection& connection, bool sending);
+  /// header_seconds.
+  void awaiting_request(Connection& connection);
   /// Its headers arrived, announcing `body_bytes` to come (0: none): the body is due at the
   /// least rate after the grace.
   void headers_read(Connection& connection, std::size_t body_bytes);
@@ -96,6 +99,8 @@ class ConnectionTable {
   std::uint64_t next_order_ = 0;
   std::multimap<std::string, std::shared_ptr<Connection>> by_address_;
   std::atomic<std::size_t> cut_off_{0};
+  std::atomic<Clock::rep> last_enforced_{0};
+  void enforce_locked();
 };
 
 }  // namespace lmk::serve

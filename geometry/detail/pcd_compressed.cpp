@@ -99,7 +99,22 @@ pcl::PCLPointCloud2 read_compressed_body(const std::string& path, const unsigned
                 std::to_string(points) + " points but the data holds " + std::to_string(held));
   }
   if (points == 0) return blob;
-
+  // What the block expands to in the fields kept, against its own size. LZF can repeat 264 bytes
+  // from 3, and a cloud of zeros is a valid cloud: 6 MB declaring 50 million x, y, z points held
+  // 1.2 GB. Real clouds expand 1.5- to 3.4-fold into these fields (the 54 compressed PCDs of
+  // ../shared/data), a frame of mostly no returns more. A file whose kept points pass 256 MiB
+  // (16 million points of x, y, z and colour) may expand at most 16-fold: any file under 25 MB
+  // is read within 1 GB (issue #61, finding 1).
+  constexpr std::size_t kMostKeptExpansion = 16;
+  constexpr std::size_t kKeptBytesAlwaysRead = std::size_t{256} << 20;
+  const std::size_t kept_bytes = points * blob.point_step;
+  if (kept_bytes > std::max(kKeptBytesAlwaysRead, kMostKeptExpansion * sizes[0])) {
+    throw Error(path + ": its compressed block of " + std::to_string(sizes[0]) +
+                " bytes would expand to " + std::to_string(kept_bytes) + " bytes of points, over " +
+                std::to_string(kMostKeptExpansion) +
+                " times its size (real clouds expand 1.5 to 3.4 times); save it as binary PCD to "
+                "read it");
+  }
   blob.data.resize(points * blob.point_step);
   const std::string problem =
       decode_lzf_stream(body + sizeof(sizes), sizes[0], sizes[1],

@@ -16,8 +16,6 @@ using Clock = ConnectionTable::Clock;
 
 // How often a waiting read looks at its connection's deadline and the server's state.
 constexpr auto kSlice = std::chrono::milliseconds(100);
-// How long a new connection's first bytes may take to count it as sending, ms.
-constexpr int kFirstBytesGraceMs = 50;
 
 // The numeric address and port of one end of `sock`, as httplib reports them to handlers.
 void endpoint(int sock, bool peer, std::string& address, int& port) {
@@ -40,9 +38,10 @@ void endpoint(int sock, bool peer, std::string& address, int& port) {
 // at the connection's deadline, when it is cut off, or after `timeout` without a byte.
 class DeadlineStream : public httplib::Stream {
  public:
-  DeadlineStream(int sock, const ConnectionTable::Connection& connection,
+  DeadlineStream(int sock, ConnectionTable& table, const ConnectionTable::Connection& connection,
                  std::chrono::microseconds read_timeout, std::chrono::microseconds write_timeout)
       : sock_(sock),
+        table_(table),
         connection_(connection),
         read_timeout_(read_timeout),
         write_timeout_(write_timeout) {}
@@ -76,10 +75,12 @@ class DeadlineStream : public httplib::Stream {
   }
   socket_t socket() const override { return sock_; }
 
-  /// Waits up to `timeout` for `events`; a wait to read also ends at the connection's deadline.
+  /// Waits up to `timeout` for `events`; a wait to read also ends at the connection's deadline,
+  /// and enforces the limits on waiting connections as they come of age.
   bool wait(short events, std::chrono::microseconds timeout, bool reading) const {
     const Clock::time_point give_up = Clock::now() + timeout;
     while (true) {
+      if (reading) table_.enforce();
       if (reading && connection_.expired()) return false;
       const Clock::time_point now = Clock::now();
       if (now >= give_up) return false;
@@ -95,6 +96,7 @@ class DeadlineStream : public httplib::Stream {
 
  private:
   int sock_;
+  ConnectionTable& table_;
   const ConnectionTable::Connection& connection_;
   std::chrono::microseconds read_timeout_, write_timeout_;
 };
@@ -109,23 +111,15 @@ bool GuardedServer::process_and_close_socket(socket_t sock) {
   std::string address;
   int port = 0;
   endpoint(sock, true, address, port);
-  // A client's request is usually here before a thread takes its connection, or follows within
-  // moments: it is then sending, and no flood of idle connections cuts it off while it waits for
-  // the processor (issue #61, finding 6). An idle one holds this thread for the grace only, and
-  // is then counted against the limits on idle connections.
-  pollfd ready{sock, POLLIN, 0};
-  const bool sending = ::poll(&ready, 1, kFirstBytesGraceMs) > 0;
-  const std::shared_ptr<ConnectionTable::Connection> connection = table_.open(address, sending);
-  DeadlineStream stream(sock, *connection, microseconds(read_timeout_sec_, read_timeout_usec_),
+  const std::shared_ptr<ConnectionTable::Connection> connection = table_.open(address);
+  DeadlineStream stream(sock, table_, *connection,
+                        microseconds(read_timeout_sec_, read_timeout_usec_),
                         microseconds(write_timeout_sec_, write_timeout_usec_));
   bool ok = false;
   // As httplib's own loop: up to keep_alive_max_count_ requests, each awaited for at most the
   // keep-alive timeout, while the server runs.
   for (std::size_t left = keep_alive_max_count_; left > 0 && svr_sock_ != INVALID_SOCKET; --left) {
-    // The first request's bytes were looked for as the connection opened; a later one's now.
-    pollfd next{sock, POLLIN, 0};
-    const bool arriving = left == keep_alive_max_count_ ? sending : ::poll(&next, 1, 0) > 0;
-    table_.awaiting_request(*connection, arriving);
+    table_.awaiting_request(*connection);
     bool arrived = false;
     const Clock::time_point idle_until =
         Clock::now() + std::chrono::seconds(keep_alive_timeout_sec_);
@@ -135,7 +129,6 @@ bool GuardedServer::process_and_close_socket(socket_t sock) {
           stream.wait(POLLIN, std::chrono::duration_cast<std::chrono::microseconds>(kSlice), true);
     }
     if (!arrived) break;
-    table_.bytes_arrived(*connection);
     bool closed = false;
     ConnectionTable::current() = connection.get();
     ok = process_request(stream, left == 1, closed, nullptr);

@@ -153,5 +153,24 @@ TEST(CompressedPcd, CorruptBlocksAreRefusedInOneLine) {
             std::string::npos);
 }
 
+// Zeros are a valid cloud, and LZF repeats 264 bytes from 3: a compressed block whose kept points
+// pass 256 MiB may expand at most 16-fold, so that no file under 25 MB takes a gigabyte to read.
+TEST(CompressedPcd, ABlockThatWouldExpandPast16FoldIsRefused) {
+  ScratchDir dir;
+  const std::string path = dir.file("zeros.pcd");
+  const std::size_t file_bytes = write_zero_compressed_pcd(path, 30'000'000, {"x", "y", "z"}, 0);
+  ASSERT_LT(file_bytes, 5'000'000u);  // 360 MB of points in under 5 MB
+  try {
+    read_cloud(path);
+    ADD_FAILURE() << "a 74-fold expansion was read";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("over 16 times its size"), std::string::npos) << e.what();
+  }
+  // A frame of mostly no returns expands far more than 16-fold, and is small: always read.
+  const std::string blind = dir.file("blind.pcd");
+  write_zero_compressed_pcd(blind, 640 * 480, {"x", "y", "z"}, 0);
+  EXPECT_EQ(read_cloud(blind).size(), 640u * 480u);
+}
+
 }  // namespace
 }  // namespace lmk::test
