@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <nlohmann/json.hpp>
 
 #include "lmk/eval/track_evaluation.h"
 #include "lmk/eval/track_sequences.h"
@@ -134,6 +136,27 @@ TEST_F(MovingBottle, SequencesThatNameWhatTheDatasetDoesNotHoldAreRefused) {
   bad.name = "other";
   bad.carry = Carry{5, 5};
   EXPECT_THROW(save_track_sequences(dir(), *dataset_, {bad}), Error);
+  // Issue #61, finding 9: the sequences and their frames are counted before they are read.
+  const std::string file = (std::filesystem::path(dir()) / "sequences.json").string();
+  nlohmann::json j = nlohmann::json::parse(test::read_bytes(file));
+  const nlohmann::json one = j["sequences"][0];
+  j["sequences"] = nlohmann::json::array();
+  for (std::size_t i = 0; i <= kMaxTrackSequences; ++i) j["sequences"].push_back(one);
+  test::write_text(file, j.dump());
+  const auto error_of = [&] {
+    try {
+      load_track_sequences(dir(), *dataset_);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("loaded");
+  };
+  EXPECT_NE(error_of().find("lists 1001 sequences; at most 1000"), std::string::npos);
+  j["sequences"] = nlohmann::json::array({one});
+  j["sequences"][0]["frames"] = std::vector<std::string>(kMaxTrackFrames + 1, "x");
+  test::write_text(file, j.dump());
+  EXPECT_NE(error_of().find("lists 10001 frames; at most 10000"), std::string::npos);
+  save_track_sequences(dir(), *dataset_, sequences);  // as it was, for the tests after
   MovingOptions options;
   options.frames = 5;
   EXPECT_THROW(generate_moving_dataset(dir(), options), Error);

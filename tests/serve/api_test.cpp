@@ -233,6 +233,13 @@ TEST_F(ServeTest, FindGivesWhatTheLibraryFindsWithTheRejectedCandidatesAndProgre
   const Reply unknown =
       post("/api/find", {{"scene", "1"}, {"settings", {{"fast", {{"max_tilted", 3}}}}}});
   EXPECT_EQ(unknown.status, 400);
+  // Issue #61, finding 9: no more names than the library holds landmarks, counted before any is
+  // read (100,000 names were read whole).
+  const Reply many = post(
+      "/api/find", {{"scene", "1"}, {"landmarks", std::vector<std::string>(100000, "carton")}});
+  EXPECT_EQ(many.status, 400);
+  EXPECT_NE(many.text.find("find: landmarks: 100000 names; at most"), std::string::npos)
+      << many.text;
   EXPECT_NE(
       unknown.body["error"].get<std::string>().find("settings.fast: unknown setting 'max_tilted'"),
       std::string::npos)
