@@ -33,12 +33,25 @@ unit_label="^($(IFS='|'; echo "${unit_modules[*]}")|fuzz)\$"
 threaded='ThreadCount|DoNotDependOnThreads|Concurrent|Parallel|ServeTest|JobPool|AccessGuard'
 threaded_modules=(test_geometry test_eval test_occupancy test_landmark test_serve)
 
+# The ten slowest tests of the last CTest run in build directory $1, from CTest's own record of
+# each test's time (a running average over the runs in that directory: in a fresh clone, this
+# run's). Where the suite's time goes, on every run (issue #62).
+slowest_tests() {
+  local costs="$1/Testing/Temporary/CTestCostData.txt"
+  [ -f "$costs" ] || return 0
+  echo "test.sh: the ten slowest tests (s):"
+  awk 'NF == 3 && $3 ~ /^[0-9.]+$/ { printf "%8.1f  %s\n", $3, $1 }' "$costs" | sort -rn | head -10
+}
+
 run_suite() {
   bash scripts/install-deps.sh
   bash scripts/check-format.sh
   # CI's build treats warnings as errors (LMK_WERROR; the flags are set once, cmake/LmkTargets.cmake).
   bash scripts/build.sh -DLMK_WERROR=ON
-  ctest --test-dir "${LMK_BUILD_DIR:-build}" -j2 --output-on-failure --timeout 900
+  local build=${LMK_BUILD_DIR:-build} status=0
+  ctest --test-dir "$build" -j2 --output-on-failure --timeout 900 || status=$?
+  slowest_tests "$build"
+  return "$status"
 }
 
 run_sanitized() {  # all | unit
@@ -61,8 +74,12 @@ run_sanitized() {  # all | unit
   fi
   # Leaks are reported by the fuzz targets; the suite's processes are short and the libraries'
   # singletons (OpenVDB, TBB, PCL) would drown them.
+  local status=0
   ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
-    ctest --test-dir "$build" -j2 --output-on-failure --timeout 1800 "${selection[@]}"
+    ctest --test-dir "$build" -j2 --output-on-failure --timeout 1800 "${selection[@]}" ||
+    status=$?
+  slowest_tests "$build"
+  return "$status"
 }
 
 run_tsan() {
