@@ -55,8 +55,9 @@ struct ErrorTerms {
   double colour_difference = std::numeric_limits<double>::quiet_NaN();
   std::size_t colour_points = 0;
   double colour_penalty = 0.0;
-  /// range_scale x (sum of both terms) / (count of both terms) + colour_penalty, m. When no term
-  /// was counted there is no evidence of a match, and the error is +infinity: defined, never NaN.
+  /// range_scale x (sum of both terms) / (count of both terms) + colour_penalty, in the metric's
+  /// own unit (m for the paper's distances). When no term was counted there is no evidence of a
+  /// match, and the error is +infinity: defined, never NaN.
   double error = 0.0;
 
   void finish();  ///< computes `error` from the sums and counts

@@ -24,7 +24,7 @@ struct SearchInput {
   LandmarkView landmark_view;
   const Indices& seeds;  ///< indices into `scene`
   const ErrorMetric& metric;
-  double threshold;              ///< the error threshold the search applies, m
+  double threshold;  ///< the error threshold the search applies, in the metric's own unit
   const FindSettings& settings;  ///< resolved (FindSettings::resolved())
 };
 
