@@ -152,8 +152,7 @@ std::size_t cloud_read_price(std::size_t file_bytes, std::size_t points,
 std::size_t cloud_read_price(const std::string& path) {
   std::error_code error;
   const std::size_t size = fs::file_size(path, error);
-  if (error) return 0;                            // the reader names what is wrong
-  constexpr std::size_t kLeastXyzPointBytes = 6;  // "0 0 0\n"
+  if (error) return 0;  // the reader names what is wrong
   const std::optional<DeclaredCloud> declared = declared_cloud(path);
   return declared ? cloud_read_price(size, declared->points, declared->decoded_point_bytes)
                   : cloud_read_price(size, size / kLeastXyzPointBytes, 0);

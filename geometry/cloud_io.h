@@ -72,8 +72,10 @@ std::optional<DeclaredCloud> declared_cloud(const std::string& path);
 /// a point is priced at the 12 it keeps, an ASCII one at all 4,012. UploadPrice.* measures it.
 std::size_t cloud_read_price(std::size_t file_bytes, std::size_t points,
                              std::size_t decoded_point_bytes);
+/// The fewest bytes a point of an XYZ file takes ("0 0 0\n"): what bounds its points unread.
+inline constexpr std::size_t kLeastXyzPointBytes = 6;
 /// The same for the file at `path`, from its size and header (declared_cloud()); an XYZ file is
-/// priced at its size over 6 bytes a point, its shortest row.
+/// priced at its size over kLeastXyzPointBytes a point, its shortest row.
 std::size_t cloud_read_price(const std::string& path);
 
 struct WriteOptions {

@@ -171,9 +171,8 @@ detail::LandmarkRecord read_old_format(const std::string& path) {
   return detail::parse_record(path, bytes);
 }
 
-// The record in the file at `path`, of any format lmk has written.
-detail::LandmarkRecord read_record(const std::string& path) {
-  const std::string bytes = read_input_file(path, kLandmarkInput);
+// The record in the file at `path`, whose `bytes` these are, of any format lmk has written.
+detail::LandmarkRecord read_record(const std::string& path, const std::string& bytes) {
   if (detail::has_vdb_magic(bytes)) return read_old_format(path);
   if (!detail::has_record_magic(bytes)) {
     throw Error(path + ": not an lmk landmark file (neither format 5 nor an OpenVDB file)");
@@ -221,7 +220,7 @@ int landmark_file_version(const std::string& path) {
                      path + ": corrupt landmark file");
     return std::stoi(version);
   }
-  read_record(path);  // checked as load_landmark() checks it
+  read_record(path, bytes);  // checked as load_landmark() checks it
   return kLandmarkFormatVersion;
 }
 
@@ -237,12 +236,21 @@ void save_landmark(const std::string& path, const Landmark& landmark) {
   });
 }
 
-Landmark load_landmark(const std::string& path) { return landmark_of(read_record(path), path); }
+Landmark load_landmark(const std::string& path) {
+  return landmark_of(read_record(path, read_input_file(path, kLandmarkInput)), path);
+}
 
 int upgrade_landmark_file(const std::string& path) {
-  const int version = landmark_file_version(path);
-  if (version < kLandmarkFormatVersion) save_landmark(path, load_landmark(path));
-  return version;
+  const std::string bytes = read_input_file(path, kLandmarkInput);
+  if (!detail::has_vdb_magic(bytes)) {
+    read_record(path, bytes);  // checked as load_landmark() checks it
+    return kLandmarkFormatVersion;
+  }
+  // An old file's grids decoded once, in one child: the record it hands back keeps the version
+  // the file was written in.
+  const detail::LandmarkRecord record = read_old_format(path);
+  save_landmark(path, landmark_of(record, path));
+  return record.header.at("format_version").get<int>();
 }
 
 void export_landmark(const Landmark& landmark, const std::string& out_dir) {

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <optional>
 #include <unordered_set>
 
 #include "lmk/geometry/error.h"
@@ -415,34 +416,33 @@ TsdfVolume& TsdfVolume::operator=(TsdfVolume&&) noexcept = default;
 std::size_t fusion_bytes(const std::vector<DepthFrame>& frames, const FusionSettings& settings,
                          std::size_t limit) {
   settings.validate();
-  // The leaves the measured voxels and their shell (kShell voxels about each) fall in: a voxel's
-  // shell spans at most two leaves along each axis.
-  std::unordered_set<std::uint64_t> leaves;
-  const double inverse_voxel = 1.0 / settings.voxel_size;
-  const auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) {
-    const auto bits = [](std::int64_t v) { return static_cast<std::uint64_t>(v) & 0x1fffffu; };
-    return bits(x) | bits(y) << 21 | bits(z) << 42;
+  // The leaves the measured voxels and their shells (kShell voxels about each: at most two leaves
+  // an axis) fall in, told apart by whole coordinates, so that no frame can fold leaves together.
+  struct LeafHash {
+    std::size_t operator()(const vdb::Coord& c) const { return c.hash<24>(); }
   };
-  const auto leaf = [](std::int64_t v) { return v >= 0 ? v / 8 : -((-v + 7) / 8); };
-  std::uint64_t last = ~std::uint64_t{0};
+  std::unordered_set<vdb::Coord, LeafHash> leaves;
+  const double inverse_voxel = 1.0 / settings.voxel_size;
+  const auto leaf = [](std::int64_t v) {
+    return static_cast<vdb::Int32>(v >= 0 ? v / 8 : -((-v + 7) / 8));
+  };
+  std::optional<vdb::Coord> last;
   for (const DepthFrame& f : frames) {
     if (f.cloud == nullptr) continue;
     const Eigen::Isometry3f T = f.T_common_cloud.cast<float>();
     for (const Eigen::Vector3f& p : f.cloud->points) {
       if (!is_finite(p)) continue;
       const vdb::Coord c = detail::nearest_voxel((T * p).cast<double>(), inverse_voxel);
+      const auto shell_leaf = [&c, &leaf](std::int64_t side) {
+        return vdb::Coord(leaf(c.x() + side), leaf(c.y() + side), leaf(c.z() + side));
+      };
+      const vdb::Coord low = shell_leaf(-kShell), high = shell_leaf(kShell);
       // Neighbouring pixels mostly fall in the leaf of the one before: counted once.
-      const std::uint64_t own = key(leaf(c.x()), leaf(c.y()), leaf(c.z()));
-      const bool inside = leaf(c.x() - kShell) == leaf(c.x() + kShell) &&
-                          leaf(c.y() - kShell) == leaf(c.y() + kShell) &&
-                          leaf(c.z() - kShell) == leaf(c.z() + kShell);
-      if (inside && own == last) continue;
-      if (inside) last = own;
-      for (std::int64_t x = leaf(c.x() - kShell); x <= leaf(c.x() + kShell); ++x) {
-        for (std::int64_t y = leaf(c.y() - kShell); y <= leaf(c.y() + kShell); ++y) {
-          for (std::int64_t z = leaf(c.z() - kShell); z <= leaf(c.z() + kShell); ++z) {
-            leaves.insert(key(x, y, z));
-          }
+      if (low == high && low == last) continue;
+      if (low == high) last = low;
+      for (vdb::Int32 x = low.x(); x <= high.x(); ++x) {
+        for (vdb::Int32 y = low.y(); y <= high.y(); ++y) {
+          for (vdb::Int32 z = low.z(); z <= high.z(); ++z) leaves.insert(vdb::Coord(x, y, z));
         }
       }
       if (leaves.size() * kBytesPerLeaf > limit) return leaves.size() * kBytesPerLeaf;

@@ -159,9 +159,10 @@ AccessVerdict AccessGuard::check(const RequestView& r) const {
         "cookie, never in the address (?token= only opens the page)";
     return v;
   }
+  bool from_query = false;
+  v.authenticated = token_.empty() || token_matches(r, &from_query);
   if (!token_.empty() && needs_token(r.path)) {
-    bool from_query = false;
-    if (!token_matches(r, &from_query)) {
+    if (!v.authenticated) {
       v.status = 401;
       const bool sent = !r.authorization.empty() || r.has_query_token ||
                         !cookie_value(r.cookie, cookie_name()).empty();
@@ -172,8 +173,6 @@ AccessVerdict AccessGuard::check(const RequestView& r) const {
     }
     v.token_from_query = from_query;
   }
-  bool ignored = false;
-  v.authenticated = token_.empty() || token_matches(r, &ignored);
   if (changes_state(r.method) && r.has_body && takes_json(r) &&
       media_type(r.content_type) != "application/json") {
     v.status = 415;

@@ -207,12 +207,8 @@ struct HttpServer::Impl {
 void HttpServer::Impl::api_route(const char* method, const std::string& pattern,
                                  std::function<ApiResponse(const httplib::Request&)> handle) {
   auto handler = [handle](const httplib::Request& req, httplib::Response& res) {
-    guarded(res, [&] {
-      ApiResponse reply = handle(req);
-      json_body_memory.release();  // parsed and answered: before the client can see the reply
-      send(res, reply);
-    });
-    json_body_memory.release();
+    guarded(res, [&] { send(res, handle(req)); });
+    json_body_memory.release();  // parsed and answered, before httplib writes the reply
   };
   if (std::string(method) == "GET") {
     server.Get(pattern, handler);

@@ -28,9 +28,6 @@ void check_upload_name(const std::string& name) {
   }
 }
 
-// The fewest bytes a point of an XYZ file takes ("0 0 0\n"): what bounds its points unread.
-constexpr std::size_t kLeastXyzPointBytes = 6;
-
 std::size_t resident_bytes(const PointCloud& c) {
   return c.points.capacity() * sizeof(Eigen::Vector3f) +
          c.normals.capacity() * sizeof(Eigen::Vector3f) + c.colors.capacity() * sizeof(Color) +
@@ -38,11 +35,6 @@ std::size_t resident_bytes(const PointCloud& c) {
 }
 
 }  // namespace
-
-std::size_t upload_price(std::size_t file_bytes, std::size_t points,
-                         std::size_t decoded_point_bytes) {
-  return cloud_read_price(file_bytes, points, decoded_point_bytes);
-}
 
 UploadFile::UploadFile(std::string name, std::filesystem::path path)
     : name_(std::move(name)), path_(std::move(path)), file_(std::fopen(path_.c_str(), "wb")) {
@@ -160,8 +152,8 @@ Scene SceneStore::add_upload(UploadFile& file) {
   } catch (const Error& e) {
     throw bad_request(in_their_words(e));
   }
-  MemoryBudget::Reservation memory =
-      budget_.reserve(upload_price(size, points, decoded_point_bytes), "uploads", "upload " + name);
+  MemoryBudget::Reservation memory = budget_.reserve(
+      cloud_read_price(size, points, decoded_point_bytes), "uploads", "upload " + name);
   PointCloud cloud;
   try {
     cloud = read_cloud(path, limits_.max_points);

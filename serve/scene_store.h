@@ -27,10 +27,6 @@ struct Scene {
   std::shared_ptr<const PointCloud> cloud;
 };
 
-/// What parsing an upload takes at its peak: cloud_read_price() (geometry/cloud_io.h).
-std::size_t upload_price(std::size_t file_bytes, std::size_t points,
-                         std::size_t decoded_point_bytes = 0);
-
 /// A file of the scratch directory that an upload's bytes are written to as they arrive, so that
 /// no upload is ever whole in memory before it is parsed; removed with this object.
 class UploadFile {

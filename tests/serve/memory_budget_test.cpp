@@ -56,9 +56,7 @@ TEST(MemoryBudget, ReservationsHoldTheirBytesUntilTheyGo) {
 // of reading it; returns the price, or nothing where the peak cannot be measured.
 std::optional<double> expect_priced_at_least_its_peak(const std::string& path, std::size_t points) {
   const std::size_t size = std::filesystem::file_size(path);
-  const std::optional<DeclaredCloud> declared = declared_cloud(path);
-  const double price = static_cast<double>(serve::upload_price(
-      size, declared ? declared->points : size / 6, declared ? declared->decoded_point_bytes : 0));
+  const double price = static_cast<double>(cloud_read_price(path));  // as an upload is priced
   if (!reset_peak_memory()) return std::nullopt;
   const double before = process_status_bytes("VmRSS");
   EXPECT_EQ(read_cloud(path).size(), points);
