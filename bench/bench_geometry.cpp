@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Voxel downsampling and k-d tree build/query on a 640x480 frame: lmk against PCL's VoxelGrid and
-// KdTreeFLANN, on the same rendered tabletop frame (eval/tabletop_scene.h), in the same run.
+// KdTreeFLANN, on the same rendered tabletop frame (sim/tabletop_scene.h), in the same run.
 //
 //   build/bench/bench_geometry                       # all
 //   build/bench/bench_geometry --benchmark_filter=Voxel
@@ -10,11 +10,11 @@
 #include <pcl/kdtree/kdtree_flann.h>
 #include <pcl/point_types.h>
 
-#include "lmk/eval/depth_sensor.h"
-#include "lmk/eval/tabletop_scene.h"
 #include "lmk/geometry/filters.h"
 #include "lmk/geometry/kdtree.h"
 #include "lmk/geometry/voxel_grid.h"
+#include "lmk/sim/depth_sensor.h"
+#include "lmk/sim/tabletop_scene.h"
 
 namespace {
 

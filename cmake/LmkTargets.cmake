@@ -6,7 +6,7 @@
 # geometry/ or eval/ folders never collide with lmk's. In the source tree, include/lmk/ holds one
 # committed link per module folder (include/lmk/geometry -> ../../geometry), so that the includes
 # resolve with -Iinclude alone: in editors and code tools without a build, as in the build.
-# Headers in detail/ are their module's own (docs/developing.md) and are not installed.
+# Headers in detail/ and internal/ are lmk's own (docs/developing.md) and are not installed.
 set(LMK_INCLUDE_DIR "${PROJECT_SOURCE_DIR}/include")
 set(LMK_GENERATED_INCLUDE_DIR "${PROJECT_BINARY_DIR}/generated")
 
@@ -46,6 +46,14 @@ function(lmk_add_library name)
     LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
     ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
     RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-  file(GLOB headers "${CMAKE_CURRENT_SOURCE_DIR}/*.h")
-  install(FILES ${headers} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/lmk/${name})
+  # The module's headers and those of its subfolders (search/metrics/), but for detail/ and
+  # internal/, which are lmk's own.
+  file(GLOB_RECURSE headers RELATIVE "${CMAKE_CURRENT_SOURCE_DIR}" "${CMAKE_CURRENT_SOURCE_DIR}/*.h")
+  foreach(header IN LISTS headers)
+    if(header MATCHES "(^|/)(detail|internal)/")
+      continue()
+    endif()
+    get_filename_component(folder "${header}" DIRECTORY)
+    install(FILES "${header}" DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/lmk/${name}/${folder})
+  endforeach()
 endfunction()

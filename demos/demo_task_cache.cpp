@@ -10,8 +10,8 @@
 #include "lmk/geometry/hash.h"
 #include "lmk/geometry/input_file.h"
 #include "lmk/geometry/version.h"
-#include "lmk/landmark/confidence_calibration.h"
-#include "lmk/landmark/find_landmark.h"
+#include "lmk/search/confidence/confidence_calibration.h"
+#include "lmk/search/find_landmark.h"
 
 namespace lmk {
 

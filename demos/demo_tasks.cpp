@@ -15,7 +15,6 @@
 #include "lmk/geometry/pose.h"
 #include "lmk/geometry/stopwatch.h"
 #include "lmk/geometry/voxel_grid.h"
-#include "lmk/landmark/capture_check.h"
 #include "lmk/landmark/landmark_file.h"
 #include "lmk/pbd/execute.h"
 #include "lmk/pbd/joint_motion.h"
@@ -26,37 +25,9 @@
 #include "lmk/pr2/pr2_motion_check.h"
 #include "lmk/pr2/pr2_robots.h"
 #include "lmk/pr2/simulated_pr2.h"
+#include "lmk/search/capture_check.h"
 
 namespace lmk {
-
-std::size_t DemoTasksReport::succeeded() const {
-  return static_cast<std::size_t>(std::count_if(
-      scenarios.begin(), scenarios.end(), [](const DemoScenarioResult& r) { return r.success; }));
-}
-
-std::size_t DemoTasksReport::wrong_motions() const {
-  return static_cast<std::size_t>(
-      std::count_if(scenarios.begin(), scenarios.end(),
-                    [](const DemoScenarioResult& r) { return r.wrong_motion; }));
-}
-
-std::size_t DemoTasksReport::refusals() const {
-  return static_cast<std::size_t>(std::count_if(
-      scenarios.begin(), scenarios.end(), [](const DemoScenarioResult& r) { return r.refused; }));
-}
-
-std::size_t DemoTasksReport::contacts() const {
-  std::size_t n = 0;
-  for (const DemoScenarioResult& r : scenarios) n += r.contacts;
-  return n;
-}
-
-std::vector<double> DemoTasksReport::seconds_planning_around() const {
-  std::vector<double> all;
-  for (const DemoScenarioResult& r : scenarios)
-    all.insert(all.end(), r.seconds_planning_around.begin(), r.seconds_planning_around.end());
-  return all;
-}
 
 namespace {
 

@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "lmk/landmark/find_landmark.h"
 #include "lmk/pr2/pr2_motion_check.h"
+#include "lmk/search/find_landmark.h"
 
 namespace lmk {
 

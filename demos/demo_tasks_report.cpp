@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The demo tasks' table, as the paper prints its Tables IV-IX, and their JSON.
+// The demo tasks' report: its totals, its table as the paper prints its Tables IV-IX, and its
+// JSON.
 
+#include <algorithm>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
@@ -10,6 +12,35 @@
 #include "lmk/geometry/statistics.h"
 
 namespace lmk {
+
+std::size_t DemoTasksReport::succeeded() const {
+  return static_cast<std::size_t>(std::count_if(
+      scenarios.begin(), scenarios.end(), [](const DemoScenarioResult& r) { return r.success; }));
+}
+
+std::size_t DemoTasksReport::wrong_motions() const {
+  return static_cast<std::size_t>(
+      std::count_if(scenarios.begin(), scenarios.end(),
+                    [](const DemoScenarioResult& r) { return r.wrong_motion; }));
+}
+
+std::size_t DemoTasksReport::refusals() const {
+  return static_cast<std::size_t>(std::count_if(
+      scenarios.begin(), scenarios.end(), [](const DemoScenarioResult& r) { return r.refused; }));
+}
+
+std::size_t DemoTasksReport::contacts() const {
+  std::size_t n = 0;
+  for (const DemoScenarioResult& r : scenarios) n += r.contacts;
+  return n;
+}
+
+std::vector<double> DemoTasksReport::seconds_planning_around() const {
+  std::vector<double> all;
+  for (const DemoScenarioResult& r : scenarios)
+    all.insert(all.end(), r.seconds_planning_around.begin(), r.seconds_planning_around.end());
+  return all;
+}
 
 std::string demo_tasks_table(const DemoTasksReport& report) {
   TextTable table;

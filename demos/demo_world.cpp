@@ -6,8 +6,8 @@
 #include <cmath>
 #include <limits>
 
-#include "lmk/eval/depth_sensor.h"
 #include "lmk/geometry/error.h"
+#include "lmk/sim/depth_sensor.h"
 
 namespace lmk {
 

@@ -9,8 +9,8 @@
 #include <utility>
 #include <vector>
 
-#include "lmk/eval/objects.h"
 #include "lmk/geometry/point_cloud.h"
+#include "lmk/sim/objects.h"
 
 namespace lmk {
 

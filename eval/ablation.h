@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "lmk/eval/evaluation.h"
+#include "lmk/eval/evaluation_rows.h"
 #include "lmk/eval/text_table.h"
 
 namespace lmk {

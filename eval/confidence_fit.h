@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
-// Fitting the confidence calibration (landmark/confidence_calibration.h) on labelled searches
-// (issue #59): every match an evaluation found below its threshold in an in-context pair is a
-// sample, its features as the search computed them and whether the protocol counts it right. A
+// Fitting the confidence calibration (search/confidence/confidence_calibration.h) on labelled
+// searches (issue #59): every match an evaluation found below its threshold in an in-context pair
+// is a sample, its features as the search computed them and whether the protocol counts it right. A
 // logistic model with a small ridge (a feature the data cannot fix stays near 0) is fitted by
 // Newton's method. `lmk calibrate-confidence` runs it; a team refits for its own robot with it.
 
@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "lmk/eval/evaluation.h"
-#include "lmk/landmark/confidence_calibration.h"
+#include "lmk/search/confidence/confidence_calibration.h"
 
 namespace lmk {
 

@@ -8,6 +8,7 @@
 #include "lmk/eval/evaluation_table.h"
 #include "lmk/eval/failure_pictures.h"
 #include "lmk/eval/internal/evaluation_json.h"
+#include "lmk/eval/internal/explanation_json.h"
 #include "lmk/eval/svg_plot.h"
 #include "lmk/geometry/atomic_file.h"
 #include "lmk/geometry/error.h"

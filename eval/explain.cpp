@@ -11,6 +11,7 @@
 #include <map>
 #include <memory>
 
+#include "lmk/eval/evaluation_rows.h"
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/statistics.h"

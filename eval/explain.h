@@ -26,10 +26,10 @@
 #include <string>
 #include <vector>
 
-#include "lmk/eval/dataset.h"
+#include "lmk/datasets/dataset.h"
 #include "lmk/eval/evaluation.h"
 #include "lmk/eval/text_table.h"
-#include "lmk/landmark/find_landmark.h"
+#include "lmk/search/find_landmark.h"
 
 namespace lmk {
 

@@ -7,13 +7,13 @@
 #include <filesystem>
 #include <map>
 
-#include "lmk/eval/dataset.h"
+#include "lmk/datasets/dataset.h"
 #include "lmk/eval/detail/base64.h"
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/depth_image.h"
 #include "lmk/geometry/range_image.h"
 #include "lmk/landmark/landmark_file.h"
-#include "lmk/landmark/match_confidence.h"
+#include "lmk/search/confidence/match_confidence.h"
 
 namespace lmk {
 

@@ -4,8 +4,8 @@
 #include "lmk/geometry/error.h"
 #include "lmk/json/box_json.h"
 #include "lmk/json/pose_json.h"
-#include "lmk/landmark/internal/confidence_json.h"
-#include "lmk/landmark/internal/terms_json.h"
+#include "lmk/search/internal/confidence_json.h"
+#include "lmk/search/internal/terms_json.h"
 
 namespace lmk::detail {
 

@@ -15,8 +15,8 @@
 #include "lmk/geometry/statistics.h"
 #include "lmk/geometry/stopwatch.h"
 #include "lmk/json/pose_json.h"
-#include "lmk/landmark/internal/confidence_json.h"
 #include "lmk/landmark/landmark_file.h"
+#include "lmk/search/internal/confidence_json.h"
 
 namespace lmk {
 namespace {

@@ -2,7 +2,7 @@
 #pragma once
 // Tracking evaluated against a dataset's sequences (issue #48; lmk eval-track, docs/evaluation.md
 // "Tracking"): each sequence's landmark followed through its frames by the Tracker
-// (landmark/tracker.h) and every frame's state and pose compared with the ground truth.
+// (search/tracker.h) and every frame's state and pose compared with the ground truth.
 
 #include <cstddef>
 #include <functional>
@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "lmk/eval/track_sequences.h"
-#include "lmk/landmark/tracker.h"
+#include "lmk/datasets/track_sequences.h"
+#include "lmk/search/tracker.h"
 
 namespace lmk {
 

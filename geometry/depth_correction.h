@@ -4,9 +4,10 @@
 // far, more so the farther and the nearer the image's edge: on the kitchen sequence of
 // ../shared/data/real a landmark cut from one frame fitted another 3 degrees askew until the frames
 // were corrected (docs/evaluation.md, "Calibrating the Kinect's depth"). The model is
-// z' = z + D z^2 with D constant over each cell of a grid over the image; eval/depth_calibration.h
-// fits it from a sequence with camera poses, landmark/depth_correction_file.h stores it, and a
-// capture or a search applies it to each raw frame before anything else reads it.
+// z' = z + D z^2 with D constant over each cell of a grid over the image;
+// datasets/depth_calibration.h fits it from a sequence with camera poses,
+// landmark/depth_correction_file.h stores it, and a capture or a search applies it to each raw
+// frame before anything else reads it.
 
 #include <cstddef>
 #include <string>

@@ -3,7 +3,7 @@
 // Planar patches of an organised depth frame: square tiles of pixels whose points a plane explains,
 // with the spread of the points about it. A depth camera's noise shows in that spread and nowhere
 // else so cleanly: `lmk sensor-check` compares it between real and simulated frames
-// (eval/sensor_validation.h), and a match's confidence measures the noise of its own frame with it
+// (sim/sensor_validation.h), and a match's confidence measures the noise of its own frame with it
 // (frame_noise.h, issue #59).
 
 #include <Eigen/Core>

@@ -17,11 +17,11 @@
 #include "lmk/json/box_json.h"
 #include "lmk/json/pose_json.h"
 #include "lmk/json/settings_json.h"
-#include "lmk/landmark/capture_check.h"
 #include "lmk/landmark/detail/landmark_container.h"
 #include "lmk/landmark/detail/landmark_record.h"
 #include "lmk/landmark/detail/vdb_landmark_file.h"
 #include "lmk/landmark/internal/capture_findings_json.h"
+#include "lmk/landmark/shape_check.h"
 
 namespace lmk {
 
@@ -157,7 +157,7 @@ Landmark landmark_of(const detail::LandmarkRecord& r, const std::string& path) {
   } else {
     prepare_landmark(l);
   }
-  if (!l.findings.present) l.findings = check_capture(l, nullptr).findings;
+  if (!l.findings.present) l.findings = check_shape(l, nullptr).findings;
   return l;
 }
 
@@ -297,7 +297,7 @@ Landmark import_landmark(const std::string& dir) {
   landmark.validate(dir);
   prepare_landmark(landmark);  // the capture scene is not exported: rays to its own points only
   // An export from before format 4 gains what can be measured without the capture scene.
-  if (!landmark.findings.present) landmark.findings = check_capture(landmark, nullptr).findings;
+  if (!landmark.findings.present) landmark.findings = check_shape(landmark, nullptr).findings;
   return landmark;
 }
 

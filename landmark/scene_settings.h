@@ -27,7 +27,7 @@ constexpr double kMaxSensorRange = 20.0;
 /// scene's sensor could not have seen them (SceneSettings::unseen_points): none (`counted`, the
 /// default), those that fall outside the scene's image (`outside-image`), and also those that fall
 /// on a pixel where the sensor measured nothing (`no-return`). Either way a pose must still show
-/// half the landmark (kMinShownShare, landmark/detail/grid_metrics.h).
+/// half the landmark (kMinShownShare, search/metrics/grid_metrics.h).
 enum class UnseenPoints { counted, outside_image, no_return };
 const std::vector<std::string>& setting_names(UnseenPoints);
 

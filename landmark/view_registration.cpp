@@ -31,12 +31,12 @@ ViewRegistration register_view(const PointCloud& first, const PointCloud& view,
   if (view.count_finite() == 0 || first.count_finite() == 0) {
     throw Error(what + ": a frame without a finite point");
   }
-  const RegistrationResult coarse =
+  const IcpResult coarse =
       register_frames(reduce_for_registration(view, settings.coarse),
                       reduce_for_registration(first, settings.coarse), guess, settings.coarse);
   const PointCloud source = reduce_for_registration(view, settings.fine);
-  const RegistrationResult r = register_frames(
-      source, reduce_for_registration(first, settings.fine), coarse.T_target_source, settings.fine);
+  const IcpResult r = register_frames(source, reduce_for_registration(first, settings.fine),
+                                      coarse.T_target_source, settings.fine);
   ViewRegistration out;
   out.T_first_view = r.T_target_source;
   out.iterations = r.iterations;

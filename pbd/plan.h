@@ -17,12 +17,12 @@
 #include <variant>
 #include <vector>
 
-#include "lmk/landmark/find_landmark.h"
 #include "lmk/landmark/landmark.h"
 #include "lmk/pbd/approach.h"
 #include "lmk/pbd/motion_check.h"
 #include "lmk/pbd/program.h"
 #include "lmk/pbd/robot_interface.h"
+#include "lmk/search/find_landmark.h"
 
 namespace lmk {
 

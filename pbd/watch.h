@@ -11,7 +11,7 @@
 // - one lost (the tracker cannot follow it): the program stops;
 // - either way it never moves on towards the pose the landmark left.
 // What says where the landmarks are is a LandmarkWatch: on a robot, TrackingWatch, the tracker
-// (landmark/tracker.h) over the frames of its camera, in the base frame.
+// (search/tracker.h) over the frames of its camera, in the base frame.
 
 #include <Eigen/Geometry>
 #include <functional>
@@ -20,9 +20,9 @@
 #include <string>
 #include <vector>
 
-#include "lmk/landmark/tracker.h"
 #include "lmk/pbd/execute.h"
 #include "lmk/pbd/plan.h"
+#include "lmk/search/tracker.h"
 
 namespace lmk {
 

@@ -12,7 +12,7 @@
 #include <string>
 
 #include "lmk/geometry/box.h"
-#include "lmk/landmark/find_settings.h"
+#include "lmk/search/find_settings.h"
 
 namespace lmk::python {
 

@@ -9,8 +9,10 @@
 #include <atomic>
 
 #include "bindings.h"
+#include "lmk/datasets/benchmark_dataset.h"
 #include "lmk/eval/ablation.h"
-#include "lmk/eval/benchmark_dataset.h"
+#include "lmk/eval/evaluation_rows.h"
+#include "lmk/eval/internal/ablation_json.h"
 #include "lmk/eval/internal/evaluation_json.h"
 
 namespace lmk::python {

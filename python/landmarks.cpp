@@ -7,11 +7,11 @@
 #include <memory>
 
 #include "bindings.h"
-#include "lmk/landmark/capture_check.h"
 #include "lmk/landmark/internal/capture_findings_json.h"
-#include "lmk/landmark/internal/find_result_json.h"
 #include "lmk/landmark/landmark_file.h"
 #include "lmk/landmark/slide_check.h"
+#include "lmk/search/capture_check.h"
+#include "lmk/search/internal/find_result_json.h"
 
 namespace lmk::python {
 namespace {
@@ -25,7 +25,7 @@ py::array_t<float> points_array(const std::vector<Eigen::Vector3f>& points) {
   return out;
 }
 
-// The check `lmk capture` runs in the capture scene (landmark/capture_check.h), as a dict: whether
+// The check `lmk capture` runs in the capture scene (search/capture_check.h), as a dict: whether
 // the landmark is distinctive, found itself, the other places it matches, how it can slide within
 // the noise, and the findings stored with it. With `look_alikes` false only what needs no search.
 py::object verdict(const PointCloud& scene, Landmark& landmark, bool look_alikes) {

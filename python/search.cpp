@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // lmk.find: a search with its settings as keywords, named, converted and checked by the settings'
-// own descriptions (landmark/find_settings.h) as `lmk find`'s flags are; the GIL released while it
+// own descriptions (search/find_settings.h) as `lmk find`'s flags are; the GIL released while it
 // runs (docs/python.md, "Search").
 #include <pybind11/functional.h>
 #include <pybind11/stl.h>
@@ -10,11 +10,11 @@
 
 #include "bindings.h"
 #include "lmk/geometry/error.h"
-#include "lmk/landmark/confidence_calibration.h"
-#include "lmk/landmark/error_metrics.h"
-#include "lmk/landmark/find_landmark.h"
-#include "lmk/landmark/internal/error_metric_json.h"
-#include "lmk/landmark/internal/find_result_json.h"
+#include "lmk/search/confidence/confidence_calibration.h"
+#include "lmk/search/find_landmark.h"
+#include "lmk/search/internal/error_metric_json.h"
+#include "lmk/search/internal/find_result_json.h"
+#include "lmk/search/metrics/error_metrics.h"
 
 namespace lmk::python {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// lmk.Tracker: landmarks followed through frames (landmark/tracker.h, issue #48), with the search's
+// lmk.Tracker: landmarks followed through frames (search/tracker.h, issue #48), with the search's
 // settings as keywords as lmk.find takes them; the GIL released while a frame is tracked.
 #include <pybind11/stl.h>
 
@@ -9,23 +9,19 @@
 #include "bindings.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/settings_schema.h"
-#include "lmk/landmark/tracker.h"
+#include "lmk/search/internal/track_json.h"
+#include "lmk/search/tracker.h"
 
 namespace lmk::python {
 namespace {
 
+// `lmk track --json`'s line (search/internal/track_json.h), with the pose (the capture frame in
+// the frame) and the box as arrays too, as lmk.find gives a match's.
 py::dict tracked_to_python(const TrackedLandmark& t) {
-  py::dict d;
-  d["name"] = t.name;
-  d["state"] = to_string(t.state);
-  d["seconds"] = t.seconds;
+  py::dict d = json_to_python(detail::tracked_landmark_to_json(t));
   if (t.match) {
     d["pose"] = pose_to_array(t.match->T_scene_capture);
     d["box"] = box_to_dict(t.match->box);
-    d["error"] = t.match->error;
-    d["confidence"] = t.match->confidence.probability;  // NaN where no calibration applies
-  } else {
-    d["lost_because"] = t.lost_because;
   }
   return d;
 }
@@ -83,9 +79,11 @@ void bind_tracking(py::module_& m) {
             return out;
           },
           py::arg("frame"),
-          "The landmarks in the next frame, in the order given: each a dict with 'name', 'state' "
-          "('found', 'tracking', 'lost', 'found again'), 'seconds', and 'pose' (4x4), 'box', "
-          "'error' and 'confidence' when found, or 'lost_because'.");
+          "The landmarks in the next frame, in the order given: each a dict as `lmk track --json` "
+          "writes its line, with 'landmark', 'state' ('found', 'tracking', 'lost', 'found "
+          "again'), 'seconds', and when found the box's 'position' and 'quaternion', 'error' and "
+          "'confidence' (None where no calibration applies), with 'pose' (4x4) and 'box' as "
+          "lmk.find's matches have them; or 'lost_because'.");
 }
 
 }  // namespace lmk::python

@@ -11,9 +11,9 @@ PointCloud reduce_for_registration(const PointCloud& frame,
   return downsample_with_normals(frame, settings.leaf, frame.sensor_origin());
 }
 
-RegistrationResult register_frames(const PointCloud& source, const PointCloud& target,
-                                   const Eigen::Isometry3d& T_target_source,
-                                   const FrameRegistrationSettings& settings) {
+IcpResult register_frames(const PointCloud& source, const PointCloud& target,
+                          const Eigen::Isometry3d& T_target_source,
+                          const FrameRegistrationSettings& settings) {
   const KdTree tree(target);
   const KdTreeTarget icp_target(target, tree);
   IcpSettings icp_settings;

@@ -24,10 +24,10 @@ PointCloud reduce_for_registration(const PointCloud& frame,
 
 /// Point-to-plane ICP of `source`'s reduced points against `target`'s (both from
 /// reduce_for_registration()), from T_target_source, with settings.correspondences and
-/// settings.termination. RegistrationResult::inliers over source.size() is the share of the source
+/// settings.termination. IcpResult::inliers over source.size() is the share of the source
 /// the target explains (the overlap); final_error the mean residual of those.
-RegistrationResult register_frames(const PointCloud& source, const PointCloud& target,
-                                   const Eigen::Isometry3d& T_target_source,
-                                   const FrameRegistrationSettings& settings = {});
+IcpResult register_frames(const PointCloud& source, const PointCloud& target,
+                          const Eigen::Isometry3d& T_target_source,
+                          const FrameRegistrationSettings& settings = {});
 
 }  // namespace lmk

@@ -81,10 +81,10 @@ struct NormalEquations : PointToPlaneSystem {
 
 }  // namespace
 
-RegistrationResult icp(const std::vector<Eigen::Vector3f>& source, const IcpTarget& target,
-                       const Eigen::Isometry3d& T_target_source, const IcpSettings& settings) {
+IcpResult icp(const std::vector<Eigen::Vector3f>& source, const IcpTarget& target,
+              const Eigen::Isometry3d& T_target_source, const IcpSettings& settings) {
   check(settings, target);
-  RegistrationResult result;
+  IcpResult result;
   result.T_target_source = T_target_source;
   const double max_d2 =
       settings.correspondences.max_distance * settings.correspondences.max_distance;

@@ -100,7 +100,7 @@ class DistanceFieldTarget : public IcpTarget {
 /// Aligns `source` (points, and for point-to-plane nothing more: the target's normals are used)
 /// to `target`, starting from `T_target_source`. Throws lmk::Error for bad settings, or for
 /// point-to-plane against a target without normals.
-RegistrationResult icp(const std::vector<Eigen::Vector3f>& source, const IcpTarget& target,
-                       const Eigen::Isometry3d& T_target_source, const IcpSettings& settings = {});
+IcpResult icp(const std::vector<Eigen::Vector3f>& source, const IcpTarget& target,
+              const Eigen::Isometry3d& T_target_source, const IcpSettings& settings = {});
 
 }  // namespace lmk

@@ -142,11 +142,10 @@ ceres::LossFunction* make_loss(const RobustLoss& loss) {
 
 }  // namespace
 
-RegistrationResult refine_pose(const std::vector<Eigen::Vector3f>& source,
-                               const DistanceField& target_field,
-                               const Eigen::Isometry3d& T_target_source,
-                               const RefineSettings& settings,
-                               const std::vector<Eigen::Vector3f>& empty_space) {
+RefineResult refine_pose(const std::vector<Eigen::Vector3f>& source,
+                         const DistanceField& target_field,
+                         const Eigen::Isometry3d& T_target_source, const RefineSettings& settings,
+                         const std::vector<Eigen::Vector3f>& empty_space) {
   if (settings.max_iterations < 1) throw Error("refine: at least one iteration is needed");
   if (!(settings.loss.scale > 0.0 && std::isfinite(settings.loss.scale))) {
     throw Error("refine: the robust loss scale must be positive and finite");
@@ -154,7 +153,7 @@ RegistrationResult refine_pose(const std::vector<Eigen::Vector3f>& source,
   if (!(settings.empty_space_weight >= 0.0) || !(settings.empty_space_margin > 0.0)) {
     throw Error("refine: the empty-space weight must be >= 0 and its margin positive");
   }
-  RegistrationResult result;
+  RefineResult result;
   result.T_target_source = T_target_source;
 
   std::vector<Eigen::Vector3d> moved;

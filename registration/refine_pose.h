@@ -27,10 +27,10 @@ struct RefineSettings {
 /// Refines `T_target_source` so that `source` lies on the surface of `target_field`. The
 /// result never has a higher cost than the start: if Ceres fails to improve, the start is
 /// returned. Thread-safe: runs may share one field. Throws lmk::Error for bad settings.
-RegistrationResult refine_pose(const std::vector<Eigen::Vector3f>& source,
-                               const DistanceField& target_field,
-                               const Eigen::Isometry3d& T_target_source,
-                               const RefineSettings& settings = {},
-                               const std::vector<Eigen::Vector3f>& empty_space = {});
+RefineResult refine_pose(const std::vector<Eigen::Vector3f>& source,
+                         const DistanceField& target_field,
+                         const Eigen::Isometry3d& T_target_source,
+                         const RefineSettings& settings = {},
+                         const std::vector<Eigen::Vector3f>& empty_space = {});
 
 }  // namespace lmk

@@ -16,8 +16,8 @@
 #include <vector>
 
 #include "lmk/geometry/box.h"
-#include "lmk/landmark/error_metrics.h"
-#include "lmk/landmark/find_landmark.h"
+#include "lmk/search/find_landmark.h"
+#include "lmk/search/metrics/error_metrics.h"
 
 namespace lmk::ros1 {
 

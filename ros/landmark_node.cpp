@@ -9,17 +9,17 @@
 
 #include "lmk/geometry/error.h"
 #include "lmk/landmark/box_guess.h"
-#include "lmk/landmark/capture_check.h"
 #include "lmk/landmark/capture_views.h"
-#include "lmk/landmark/confidence_calibration.h"
 #include "lmk/landmark/depth_correction_file.h"
-#include "lmk/landmark/find_landmark.h"
-#include "lmk/landmark/internal/find_settings_json.h"
-#include "lmk/landmark/scene_index.h"
 #include "lmk/landmark/slide_check.h"
 #include "lmk/occupancy/tsdf_volume.h"
 #include "lmk/ros/geometry_conversion.h"
 #include "lmk/ros/tf_lookup.h"
+#include "lmk/search/capture_check.h"
+#include "lmk/search/confidence/confidence_calibration.h"
+#include "lmk/search/find_landmark.h"
+#include "lmk/search/internal/find_settings_json.h"
+#include "lmk/search/scene_index.h"
 
 namespace lmk::ros1 {
 namespace {
@@ -249,7 +249,7 @@ void LandmarkNode::capture_box(const std::string& name, const Box& box, bool for
   Landmark landmark = capture_views(views, box, name, settings_.capture);
   response.views = static_cast<std::uint32_t>(landmark.view_count());
 
-  // The capture check (landmark/capture_check.h), whose findings the file keeps.
+  // The capture check (search/capture_check.h), whose findings the file keeps.
   FindSettings check_settings = settings_.find;
   check_settings.scene.up = landmark.up;
   const CaptureCheck check = check_capture(landmark, &frame->scene, check_settings);

@@ -19,12 +19,12 @@
 #include <string>
 
 #include "lmk/geometry/error.h"
-#include "lmk/landmark/find_settings.h"
 #include "lmk/landmark/landmark.h"
-#include "lmk/landmark/landmark_library.h"
 #include "lmk/ros/box_capture_markers.h"
 #include "lmk/ros/landmark_tracking.h"
 #include "lmk/ros/latest_frame.h"
+#include "lmk/search/find_settings.h"
+#include "lmk/search/landmark_library.h"
 
 namespace lmk::ros1 {
 
@@ -48,9 +48,8 @@ struct LandmarkNodeSettings {
   /// From the private parameters ~cloud_topic, ~base_frame, ~sensor_frame,
   /// ~landmark_directory (default $ROS_HOME/lmk/landmarks), ~frame_timeout, ~frames, ~interactive,
   /// ~capture_name, ~depth_correction (a file) and ~find_settings (FindSettings as JSON, one object
-  /// per stage, e.g.
-  /// {"selection": {"threshold": 0.006}}; json/find_settings_json.h). Throws lmk::Error for a bad
-  /// one.
+  /// per stage, e.g. {"selection": {"threshold": 0.006}}; search/internal/find_settings_json.h).
+  /// Throws lmk::Error for a bad one.
   static LandmarkNodeSettings from_parameters(const ::ros::NodeHandle& private_nh);
 };
 

@@ -24,7 +24,7 @@ lmk_msgs::TrackedLandmark to_ros(const TrackedLandmark& t) {
   m.state = to_string(t.state);
   m.error = t.match ? t.match->error : kNaN;
   m.confidence = t.match ? t.match->confidence.probability : kNaN;
-  m.lost_because = t.lost_because;
+  m.lost_because = to_string(t.lost_because);
   m.seconds = t.seconds;
   if (t.match) {
     m.box_pose = lmk::ros1::to_ros(t.match->box.pose);

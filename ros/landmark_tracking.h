@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // lmk_node's ~track (issue #48; docs/ros.md, "Tracking"): landmarks of the node's directory
-// followed through every camera frame by the tracker (landmark/tracker.h), each frame moved into
+// followed through every camera frame by the tracker (search/tracker.h), each frame moved into
 // the base frame by TF as the searches' frames are. Per frame it publishes ~tracked (a stamped
 // pose, confidence and state per landmark), a TF frame lmk/NAME per landmark in view, and RViz
 // markers on ~tracked_markers. Tracking has its own callback queue and thread: following frames
@@ -21,8 +21,8 @@
 #include <vector>
 
 #include "lmk/geometry/depth_correction.h"
-#include "lmk/landmark/landmark_library.h"
-#include "lmk/landmark/tracker.h"
+#include "lmk/search/landmark_library.h"
+#include "lmk/search/tracker.h"
 
 namespace lmk::ros1 {
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: BSD-3-Clause
-# Regenerates lmk's shipped confidence calibration, landmark/data/confidence_calibration.json, from
+# Regenerates lmk's shipped confidence calibration, search/confidence/data/confidence_calibration.json, from
 # its data (docs/evaluation.md, "A confidence that transfers"): fitted on the presets paper and
 # viewpoints and on the real desk sequence (the sequence tuned on), reported on the occlusion
 # preset and the real kitchen sequence (never fitted on).
@@ -22,4 +22,4 @@ fi
 "$lmk" calibrate-confidence paper viewpoints "$work/desk" --check occlusion "$work/redkitchen" \
   --features local_margin elsewhere_margin coverage \
   --note "the presets paper and viewpoints (generator defaults) and the real desk sequence (lmk gen --from-rgbd desk --registered-colour); checked on the real kitchen sequence and the occlusion preset, not fitted on" \
-  -o landmark/data/confidence_calibration.json
+  -o search/confidence/data/confidence_calibration.json

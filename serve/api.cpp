@@ -7,9 +7,9 @@
 
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/version.h"
-#include "lmk/landmark/confidence_calibration.h"
 #include "lmk/landmark/depth_correction_file.h"
-#include "lmk/landmark/error_metrics.h"
+#include "lmk/search/confidence/confidence_calibration.h"
+#include "lmk/search/metrics/error_metrics.h"
 #include "lmk/serve/api_error.h"
 #include "lmk/serve/request_fields.h"
 

@@ -9,8 +9,8 @@
 #include <optional>
 #include <string>
 
-#include "lmk/landmark/find_settings.h"
-#include "lmk/landmark/landmark_library.h"
+#include "lmk/search/find_settings.h"
+#include "lmk/search/landmark_library.h"
 #include "lmk/serve/cloud_download.h"
 #include "lmk/serve/job_pool.h"
 #include "lmk/serve/memory_budget.h"

@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // POST /api/find: landmarks searched in a scene on the worker pool, the scene indexed once for
-// all of them (landmark/scene_index.h), with per-seed progress.
+// all of them (search/scene_index.h), with per-seed progress.
 #include <algorithm>
 
 #include "lmk/geometry/error.h"
 #include "lmk/json/pose_json.h"
-#include "lmk/landmark/find_landmark.h"
-#include "lmk/landmark/internal/find_result_json.h"
-#include "lmk/landmark/internal/find_settings_json.h"
+#include "lmk/search/find_landmark.h"
+#include "lmk/search/internal/find_result_json.h"
+#include "lmk/search/internal/find_settings_json.h"
 #include "lmk/serve/api.h"
 #include "lmk/serve/api_error.h"
 #include "lmk/serve/request_fields.h"

@@ -7,7 +7,7 @@
 #include <fstream>
 #include <map>
 
-#include "lmk/landmark/scene_footprint.h"
+#include "lmk/search/scene_footprint.h"
 #include "lmk/serve/api_error.h"
 
 namespace lmk::serve {

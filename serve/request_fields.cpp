@@ -4,8 +4,8 @@
 #include "lmk/geometry/error.h"
 #include "lmk/json/pose_json.h"
 #include "lmk/json/settings_json.h"
-#include "lmk/landmark/internal/find_settings_json.h"
-#include "lmk/landmark/landmark_library.h"
+#include "lmk/search/internal/find_settings_json.h"
+#include "lmk/search/landmark_library.h"
 #include "lmk/serve/api_error.h"
 
 namespace lmk::serve {

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "lmk/geometry/box.h"
-#include "lmk/landmark/find_settings.h"
+#include "lmk/search/find_settings.h"
 
 namespace lmk::serve {
 

@@ -8,9 +8,9 @@
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/plain_name.h"
-#include "lmk/landmark/find_settings.h"
-#include "lmk/landmark/internal/find_settings_json.h"
-#include "lmk/landmark/scene_footprint.h"
+#include "lmk/search/find_settings.h"
+#include "lmk/search/internal/find_settings_json.h"
+#include "lmk/search/scene_footprint.h"
 #include "lmk/serve/api_error.h"
 
 namespace lmk::serve {

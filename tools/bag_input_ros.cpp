@@ -5,7 +5,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "lmk/eval/dataset.h"
+#include "lmk/datasets/dataset.h"
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/error.h"
 #include "lmk/landmark/landmark_file.h"

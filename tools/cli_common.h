@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "lmk/geometry/pinhole_intrinsics.h"
-#include "lmk/landmark/find_landmark.h"
+#include "lmk/search/find_landmark.h"
 
 namespace lmk {
 struct TrackSettings;

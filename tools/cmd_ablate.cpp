@@ -10,11 +10,11 @@
 
 #include "lmk/eval/ablation.h"
 #include "lmk/eval/evaluation_table.h"
-#include "lmk/eval/internal/evaluation_json.h"
+#include "lmk/eval/internal/ablation_json.h"
 #include "lmk/geometry/atomic_file.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/version.h"
-#include "lmk/landmark/internal/find_settings_json.h"
+#include "lmk/search/internal/find_settings_json.h"
 #include "tools/cli_common.h"
 #include "tools/eval_common.h"
 #include "tools/interrupt.h"

@@ -22,18 +22,18 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
-#include "lmk/eval/depth_sensor.h"
-#include "lmk/eval/real_data.h"
-#include "lmk/eval/tabletop_scene.h"
+#include "lmk/datasets/real_data.h"
 #include "lmk/geometry/atomic_file.h"
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/statistics.h"
 #include "lmk/geometry/stopwatch.h"
 #include "lmk/geometry/worker_threads.h"
-#include "lmk/landmark/find_landmark.h"
 #include "lmk/landmark/landmark_file.h"
 #include "lmk/occupancy/tsdf_volume.h"
+#include "lmk/search/find_landmark.h"
+#include "lmk/sim/depth_sensor.h"
+#include "lmk/sim/tabletop_scene.h"
 #include "tools/bench_motion.h"
 #include "tools/cli_common.h"
 

@@ -1,16 +1,16 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // lmk calibrate-confidence DATASET... -o FILE [--check DATASET...] [--features NAME...]
 //                          [--ridge R] [--note TEXT] [search options] [--cache DIR | --no-cache]
-// Fits the confidence calibration (landmark/confidence_calibration.h) on the in-context pairs of
-// labelled datasets (eval/confidence_fit.h), reports how it does on them and on --check datasets
-// it is not fitted on, and writes the file `--calibration` (or `--confidence-calibration`) reads.
-// Each DATASET is a directory, or a preset's name generated once into the cache.
+// Fits the confidence calibration (search/confidence/confidence_calibration.h) on the in-context
+// pairs of labelled datasets (eval/confidence_fit.h), reports how it does on them and on --check
+// datasets it is not fitted on, and writes the file `--calibration` (or `--confidence-calibration`)
+// reads. Each DATASET is a directory, or a preset's name generated once into the cache.
 
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 
-#include "lmk/eval/benchmark_dataset.h"
+#include "lmk/datasets/benchmark_dataset.h"
 #include "lmk/eval/confidence_fit.h"
 #include "lmk/eval/risk_coverage.h"
 #include "lmk/eval/text_table.h"

@@ -9,8 +9,8 @@
 #include <memory>
 #include <numeric>
 
-#include "lmk/eval/depth_calibration.h"
-#include "lmk/eval/rgbd_sequence.h"
+#include "lmk/datasets/depth_calibration.h"
+#include "lmk/datasets/rgbd_sequence.h"
 #include "lmk/geometry/error.h"
 #include "lmk/landmark/depth_correction_file.h"
 #include "tools/cli_common.h"

@@ -12,11 +12,11 @@
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/pose.h"
-#include "lmk/landmark/capture_check.h"
 #include "lmk/landmark/capture_views.h"
 #include "lmk/landmark/depth_correction_file.h"
 #include "lmk/landmark/landmark_file.h"
 #include "lmk/landmark/slide_check.h"
+#include "lmk/search/capture_check.h"
 #include "tools/cli_common.h"
 
 namespace lmk::cli {
@@ -51,7 +51,7 @@ Box box_from_options(const CaptureOptions& o) {
              {o.size[0], o.size[1], o.size[2]});
 }
 
-// The look-alike check's verdict (landmark/distinctiveness.h): warns on stderr, naming the places,
+// The look-alike check's verdict (search/distinctiveness.h): warns on stderr, naming the places,
 // when the landmark also matches somewhere else in its own scene, or when the search misses the
 // captured instance itself.
 void report_look_alikes(const DistinctivenessReport& report, const Landmark& landmark) {
@@ -94,7 +94,7 @@ void report_slides(const SlideReport& slides, const Landmark& landmark) {
   for (const std::string& line : lines) std::fprintf(stderr, "  %s\n", line.c_str());
 }
 
-// The capture check (landmark/capture_check.h) in the first view's scene: its findings go into the
+// The capture check (search/capture_check.h) in the first view's scene: its findings go into the
 // file. --no-check skips the look-alike search, not what needs none (the noise, the slides).
 CaptureCheck check_in_capture_scene(const PointCloud& scene, const Landmark& landmark,
                                     bool look_alikes) {

@@ -7,12 +7,15 @@
 #include <cstdio>
 #include <memory>
 
-#include "lmk/eval/benchmark_dataset.h"
+#include "lmk/datasets/benchmark_dataset.h"
 #include "lmk/eval/evaluation.h"
 #include "lmk/eval/evaluation_report.h"
+#include "lmk/eval/evaluation_rows.h"
 #include "lmk/eval/evaluation_table.h"
 #include "lmk/eval/explain.h"
 #include "lmk/eval/internal/evaluation_json.h"
+#include "lmk/eval/internal/explanation_json.h"
+#include "lmk/eval/internal/risk_coverage_json.h"
 #include "lmk/eval/risk_coverage.h"
 #include "lmk/geometry/atomic_file.h"
 #include "lmk/geometry/error.h"

@@ -7,8 +7,8 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "lmk/landmark/error_metrics.h"
-#include "lmk/landmark/internal/error_metric_json.h"
+#include "lmk/search/internal/error_metric_json.h"
+#include "lmk/search/metrics/error_metrics.h"
 #include "tools/cli_common.h"
 
 namespace lmk::cli {

@@ -1,17 +1,17 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // lmk sensor-check [--data DIR] [--json FILE]: the simulated Kinect against the real Kinect frames
 // of the shared data, per depth range: the residual spread of planes and the spacing of the depth
-// levels (eval/sensor_validation.h, docs/datasets.md).
+// levels (sim/sensor_validation.h, docs/datasets.md).
 
 #include <cmath>
 #include <cstdio>
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "lmk/eval/scene_types.h"
-#include "lmk/eval/sensor_validation.h"
 #include "lmk/geometry/atomic_file.h"
 #include "lmk/geometry/error.h"
+#include "lmk/sim/scene_types.h"
+#include "lmk/sim/sensor_validation.h"
 #include "tools/cli_common.h"
 #include "tools/progress.h"
 

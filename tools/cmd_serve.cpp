@@ -11,7 +11,7 @@
 
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/error.h"
-#include "lmk/landmark/scene_footprint.h"
+#include "lmk/search/scene_footprint.h"
 #include "lmk/serve/access_guard.h"
 #include "lmk/serve/http_server.h"
 #include "lmk/serve/memory_budget.h"

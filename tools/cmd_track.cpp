@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // lmk track FRAMES... LANDMARK.lmk [LANDMARK.lmk...]: landmarks followed through a stream of frames
-// (landmark/tracker.h), frame by frame as they are read, with a line per frame and landmark, JSON
+// (search/tracker.h), frame by frame as they are read, with a line per frame and landmark, JSON
 // lines with --json, and a summary at the end.
 #include <algorithm>
 #include <cmath>
@@ -17,10 +17,10 @@
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/settings_schema.h"
 #include "lmk/geometry/statistics.h"
-#include "lmk/json/pose_json.h"
 #include "lmk/landmark/depth_correction_file.h"
 #include "lmk/landmark/landmark_file.h"
-#include "lmk/landmark/tracker.h"
+#include "lmk/search/internal/track_json.h"
+#include "lmk/search/tracker.h"
 #include "tools/bag_input.h"
 #include "tools/cli_common.h"
 
@@ -68,20 +68,9 @@ std::vector<std::string> frame_files(const std::vector<std::string>& inputs) {
 }
 
 nlohmann::json to_json(std::size_t frame, const std::string& file, const TrackedLandmark& t) {
-  nlohmann::json j = {{"frame", frame},
-                      {"file", file},
-                      {"landmark", t.name},
-                      {"state", to_string(t.state)},
-                      {"seconds", t.seconds}};
-  if (t.match) {
-    j.update(detail::pose_to_json(t.match->box.pose));
-    j["error"] = t.match->error;
-    j["confidence"] = std::isnan(t.match->confidence.probability)
-                          ? nlohmann::json(nullptr)
-                          : nlohmann::json(t.match->confidence.probability);
-  } else {
-    j["lost_because"] = t.lost_because;
-  }
+  nlohmann::json j = detail::tracked_landmark_to_json(t);
+  j["frame"] = frame;
+  j["file"] = file;
   return j;
 }
 
@@ -94,7 +83,7 @@ void print_line(std::size_t frame, const std::string& file, const TrackedLandmar
     std::printf(" at %.4f %.4f %.4f, error %s", c.x(), c.y(), c.z(),
                 format_error(t.match->error, metric).c_str());
   } else {
-    std::printf(" (%s)", t.lost_because.c_str());
+    std::printf(" (%s)", to_string(t.lost_because).c_str());
   }
   std::printf(", %.1f ms\n", 1e3 * t.seconds);
 }
@@ -202,33 +191,6 @@ int run_track(TrackOptions& o) {
 }
 
 }  // namespace
-
-void add_track_options(CLI::App* sub, TrackSettings& settings) {
-  add_search_options(sub, settings.find, true);
-  sub->add_option("--follow-margin", settings.follow_margin,
-                  "m around the predicted box the frame is searched in while following")
-      ->check(within(0.0, 1.0))
-      ->capture_default_str();
-  sub->add_option("--search-margin", settings.search_margin,
-                  "m around where a lost landmark was last seen, searched before the whole frame")
-      ->check(within(0.0, 10.0))
-      ->capture_default_str();
-  sub->add_option("--follow-threshold-factor", settings.follow_threshold_factor,
-                  "While following, a match is kept up to this many times the error threshold")
-      ->check(within(1.0, 10.0))
-      ->capture_default_str();
-  sub->add_option_function<std::string>(
-         "--camera-motion",
-         [&settings](const std::string& name) {
-           settings.camera_motion = *setting_value_named<CameraMotion>(name);
-         },
-         "none (the frames share a fixed frame: a robot's base frame, generated scenes) or "
-         "estimated (frames each in their own camera's frame: each registered onto the one "
-         "before, about 18 ms a frame)")
-      ->check(CLI::IsMember(setting_names(CameraMotion{})).description(""))
-      ->type_name("none|estimated")
-      ->default_str(setting_name(settings.camera_motion));
-}
 
 Subcommand add_track(CLI::App& app) {
   auto o = std::make_shared<TrackOptions>();

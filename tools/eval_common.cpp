@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "lmk/eval/benchmark_dataset.h"
+#include "lmk/datasets/benchmark_dataset.h"
 #include "lmk/geometry/error.h"
 #include "tools/cli_common.h"
 #include "tools/interrupt.h"

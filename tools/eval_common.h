@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-#include "lmk/eval/benchmark_dataset.h"
+#include "lmk/datasets/benchmark_dataset.h"
 #include "lmk/eval/evaluation.h"
 #include "tools/cli_common.h"
 

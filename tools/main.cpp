@@ -8,25 +8,26 @@
 #include <cstdio>
 #include <exception>
 
-#include "lmk/eval/dependencies.h"
+#include "lmk/datasets/dependencies.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/version.h"
 #include "lmk/landmark/dependencies.h"
-#include "lmk/landmark/error_metrics.h"
 #include "lmk/occupancy/dependencies.h"
 #include "lmk/pbd/dependencies.h"
 #include "lmk/pr2/dependencies.h"
 #include "lmk/registration/dependencies.h"
+#include "lmk/search/metrics/error_metrics.h"
+#include "lmk/sim/dependencies.h"
 #include "tools/cli_common.h"
 
 namespace {
 
 std::string version_text() {
   std::string text = std::string("lmk ") + lmk::kVersion + "\n";
-  for (const auto& list :
-       {lmk::geometry_dependencies(), lmk::occupancy_dependencies(),
-        lmk::registration_dependencies(), lmk::landmark_dependencies(), lmk::eval_dependencies(),
-        lmk::pbd_dependencies(), lmk::pr2_dependencies()}) {
+  for (const auto& list : {lmk::geometry_dependencies(), lmk::occupancy_dependencies(),
+                           lmk::registration_dependencies(), lmk::landmark_dependencies(),
+                           lmk::datasets_dependencies(), lmk::sim_dependencies(),
+                           lmk::pbd_dependencies(), lmk::pr2_dependencies()}) {
     for (const auto& d : list) {
       if (text.find("  " + d.name + " ") == std::string::npos) {
         text += "  " + d.name + " " + d.version + "\n";

@@ -9,7 +9,8 @@
 #include <type_traits>
 
 #include "lmk/geometry/error.h"
-#include "lmk/landmark/confidence_calibration.h"
+#include "lmk/search/confidence/confidence_calibration.h"
+#include "lmk/search/tracker.h"
 #include "tools/cli_common.h"
 
 namespace lmk::cli {
@@ -100,6 +101,13 @@ void add_capture_options(CLI::App* sub, CaptureSettings& settings) {
     // The up axis and the base frame are add_up_options's, which `lmk find` shares.
     if (info.name == "up" || info.name == "base_frame") return;
     add_flag_for(sub, "Capture", "capture: ", info, value);
+  });
+}
+
+void add_track_options(CLI::App* sub, TrackSettings& settings) {
+  add_search_options(sub, settings.find, true);
+  TrackSettings::describe(settings, [&](const SettingInfo& info, auto& value) {
+    add_flag_for(sub, "Tracking", "track: ", info, value);
   });
 }
 

@@ -2,8 +2,9 @@
 #pragma once
 // The JSON form of one pair's result: the evaluation cache's file and the report's per-scene
 // entries. The evaluation's core (evaluation.cpp, the pair cache) needs only this, not the
-// reports above it (explain.h, ablation.h: internal/evaluation_json.h). internal/: shared within
-// lmk, not installed: lmk's public headers never expose nlohmann-json.
+// reports above it and their JSON (internal/evaluation_json.h, explanation_json.h,
+// ablation_json.h). internal/: shared within lmk, not installed: lmk's public headers never
+// expose nlohmann-json.
 
 #include <nlohmann/json.hpp>
 #include <string>

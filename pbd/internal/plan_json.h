@@ -8,8 +8,8 @@
 #include <nlohmann/json.hpp>
 
 #include "lmk/json/pose_json.h"
-#include "lmk/landmark/internal/confidence_json.h"
 #include "lmk/pbd/plan.h"
+#include "lmk/search/internal/confidence_json.h"
 
 namespace lmk::detail {
 

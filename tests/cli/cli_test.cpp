@@ -431,13 +431,15 @@ TEST_F(CliLandmark, TrackFollowsALandmarkThroughFramesAndRefusesBadInput) {
   expect_bad_input("track " + path("c.lmk") + " " + path("c.lmk"), "track: give the frames");
   std::filesystem::create_directories(dir_.file("empty"));
   expect_bad_input("track " + path("empty") + " " + path("c.lmk"), "holds no cloud file");
+  // The tracker's settings are described once (TrackSettings::describe()): their flags refuse as
+  // the search's do.
   expect_bad_input("track " + path("scene.pcd") + " " + path("c.lmk") + " --follow-margin 5",
-                   "--follow-margin");
+                   "track: follow_margin (--follow-margin): 5 must be");
   expect_bad_input(
       "track " + path("scene.pcd") + " " + path("c.lmk") + " --follow-threshold-factor 0.5",
-      "--follow-threshold-factor");
+      "track: follow_threshold_factor (--follow-threshold-factor): 0.5 must be");
   expect_bad_input("track " + path("scene.pcd") + " " + path("c.lmk") + " --camera-motion sideways",
-                   "--camera-motion: sideways not in {none,estimated}");
+                   "--camera-motion: 'sideways' must be one of none, estimated");
 }
 
 TEST_F(CliLandmark, EvalTrackScoresTheMovingPresetsSequencesAndRefusesBadInput) {

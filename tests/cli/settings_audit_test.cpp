@@ -20,8 +20,8 @@
 #include <type_traits>
 #include <vector>
 
-#include "lmk/landmark/find_settings.h"
 #include "lmk/landmark/landmark.h"
+#include "lmk/search/find_settings.h"
 #include "tests/support/test_support.h"
 
 namespace lmk {

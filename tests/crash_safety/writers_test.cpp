@@ -9,8 +9,8 @@
 
 #include <stdexcept>
 
+#include "lmk/datasets/dataset.h"
 #include "lmk/demos/detail/demo_task_cache.h"
-#include "lmk/eval/dataset.h"
 #include "lmk/eval/detail/pair_cache.h"
 #include "lmk/eval/evaluation_report.h"
 #include "lmk/eval/internal/evaluation_json.h"

@@ -2,7 +2,7 @@
 // The benchmark datasets: deterministic for a preset and seed, ground truth on the scene surface,
 // landmarks captured as a user would, and clear errors for bad requests.
 
-#include "lmk/eval/benchmark_dataset.h"
+#include "lmk/datasets/benchmark_dataset.h"
 
 #include <gtest/gtest.h>
 
@@ -10,8 +10,8 @@
 
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/error.h"
-#include "lmk/landmark/find_landmark.h"
 #include "lmk/landmark/landmark_file.h"
+#include "lmk/search/find_landmark.h"
 #include "tests/support/test_support.h"
 
 namespace lmk {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "lmk/eval/dataset.h"
+#include "lmk/datasets/dataset.h"
 
 #include <gtest/gtest.h>
 #include <sys/stat.h>

@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The depth calibration finds a depth error planted in rendered frames whose poses are known, and
 // its correction puts the frames back together.
-#include "lmk/eval/depth_calibration.h"
+#include "lmk/datasets/depth_calibration.h"
 
 #include <gtest/gtest.h>
 
-#include "lmk/eval/depth_sensor.h"
-#include "lmk/eval/tabletop_scene.h"
 #include "lmk/geometry/error.h"
+#include "lmk/sim/depth_sensor.h"
+#include "lmk/sim/tabletop_scene.h"
 
 namespace lmk {
 namespace {

@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "lmk/eval/depth_sensor.h"
+#include "lmk/sim/depth_sensor.h"
 
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
 
-#include "lmk/eval/tabletop_scene.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/pose.h"
+#include "lmk/sim/tabletop_scene.h"
 
 namespace lmk {
 namespace {

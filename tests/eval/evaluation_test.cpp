@@ -14,9 +14,10 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "lmk/datasets/benchmark_dataset.h"
 #include "lmk/eval/ablation.h"
-#include "lmk/eval/benchmark_dataset.h"
 #include "lmk/eval/evaluation_report.h"
+#include "lmk/eval/evaluation_rows.h"
 #include "lmk/eval/evaluation_table.h"
 #include "lmk/eval/internal/evaluation_json.h"
 #include "lmk/geometry/error.h"

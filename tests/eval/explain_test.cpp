@@ -12,13 +12,14 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
-#include "lmk/eval/benchmark_dataset.h"
-#include "lmk/eval/internal/evaluation_json.h"
+#include "lmk/datasets/benchmark_dataset.h"
+#include "lmk/eval/evaluation_rows.h"
+#include "lmk/eval/internal/explanation_json.h"
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/pose.h"
-#include "lmk/landmark/find_landmark.h"
 #include "lmk/landmark/landmark_file.h"
-#include "lmk/landmark/scene_index.h"
+#include "lmk/search/find_landmark.h"
+#include "lmk/search/scene_index.h"
 #include "tests/eval/simple_scenes_fixture.h"
 
 namespace lmk {

@@ -8,11 +8,11 @@
 
 #include <cmath>
 
-#include "lmk/eval/depth_sensor.h"
-#include "lmk/eval/mesh.h"
-#include "lmk/eval/sensor_models.h"
 #include "lmk/geometry/depth_noise.h"
 #include "lmk/geometry/pose.h"
+#include "lmk/sim/depth_sensor.h"
+#include "lmk/sim/mesh.h"
+#include "lmk/sim/sensor_models.h"
 
 namespace lmk {
 namespace {

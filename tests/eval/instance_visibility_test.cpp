@@ -3,12 +3,12 @@
 // benchmarks: a captured landmark is seen whole where it was captured, not at all behind a wall,
 // about half behind half a wall; viewpoints keep to their ranges and look at their target.
 
-#include "lmk/eval/instance_visibility.h"
+#include "lmk/sim/instance_visibility.h"
 
 #include <gtest/gtest.h>
 
-#include "lmk/eval/mesh.h"
 #include "lmk/geometry/pose.h"
+#include "lmk/sim/mesh.h"
 
 namespace lmk {
 namespace {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "lmk/eval/mesh.h"
+#include "lmk/sim/mesh.h"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // The real-data dataset from mOSD's labelled frames: landmarks around the labelled objects, and
 // ground truth that puts each landmark back on its object in the moved copies.
 
-#include "lmk/eval/mosd_dataset.h"
+#include "lmk/datasets/mosd_dataset.h"
 
 #include <gtest/gtest.h>
 

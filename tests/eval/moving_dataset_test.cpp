@@ -2,7 +2,7 @@
 // The moving preset's sequences (issue #48): an object pushed 0.5-3 cm a frame, carried once 20-40
 // cm away, the ground truth of every frame; and the tracker scored on them, as lmk eval-track does.
 
-#include "lmk/eval/moving_dataset.h"
+#include "lmk/datasets/moving_dataset.h"
 
 #include <gtest/gtest.h>
 
@@ -10,8 +10,8 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "lmk/datasets/track_sequences.h"
 #include "lmk/eval/track_evaluation.h"
-#include "lmk/eval/track_sequences.h"
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/error.h"
 #include "tests/support/test_support.h"
@@ -34,26 +34,30 @@ std::vector<std::optional<Eigen::Vector3d>> centres(const Dataset& d, const Trac
   return out;
 }
 
-// Generated once for the tests below: two detergent-bottle sequences of 24 frames, the first with a
-// still camera and the second panning.
+// Generated once for the tests below, and under CTest once for the run (test::shared_run_data):
+// two detergent-bottle sequences of 24 frames, the first with a still camera and the second
+// panning. The tests only read it.
 class MovingBottle : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = new test::ScratchDir;
-    MovingOptions options;
-    options.landmarks = {"tide_bottle"};
-    options.frames = 24;
-    dataset_ = new Dataset(generate_moving_dataset(dir_->path().string(), options));
+    dir_ = new std::filesystem::path(
+        test::shared_run_data("moving-bottle", [](const std::filesystem::path& dir) {
+          MovingOptions options;
+          options.landmarks = {"tide_bottle"};
+          options.frames = 24;
+          generate_moving_dataset(dir.string(), options);
+        }));
+    dataset_ = new Dataset(load_dataset(dir_->string()));
   }
   static void TearDownTestSuite() {
     delete dataset_;
     delete dir_;
   }
-  static std::string dir() { return dir_->path().string(); }
-  static test::ScratchDir* dir_;
+  static std::string dir() { return dir_->string(); }
+  static std::filesystem::path* dir_;
   static Dataset* dataset_;
 };
-test::ScratchDir* MovingBottle::dir_ = nullptr;
+std::filesystem::path* MovingBottle::dir_ = nullptr;
 Dataset* MovingBottle::dataset_ = nullptr;
 
 TEST_F(MovingBottle, PushesTheObjectAFewCentimetresAFrameAndCarriesItOnce) {
@@ -88,7 +92,7 @@ TEST_F(MovingBottle, PushesTheObjectAFewCentimetresAFrameAndCarriesItOnce) {
                             .angle();
   EXPECT_NEAR(turned * 180.0 / M_PI, 23 * 0.15, 0.01);
   // Each frame is the organised frame of a Kinect.
-  const PointCloud frame = read_cloud((dir_->path() / dataset_->scenes[0].file).string());
+  const PointCloud frame = read_cloud((*dir_ / dataset_->scenes[0].file).string());
   EXPECT_EQ(frame.width, 640u);
   EXPECT_EQ(frame.height, 480u);
 }
@@ -118,11 +122,15 @@ TEST_F(MovingBottle, TheTrackerNoticesTheCarryAndFindsTheBottleAgainWhereItWasPu
 }
 
 TEST_F(MovingBottle, SequencesThatNameWhatTheDatasetDoesNotHoldAreRefused) {
-  std::vector<TrackSequence> sequences = load_track_sequences(dir(), *dataset_);
+  // This test rewrites the sequences: on a copy of its own, apart from the other tests'.
+  const test::ScratchDir own;
+  std::filesystem::copy(dir(), own.path(), std::filesystem::copy_options::recursive);
+  const std::string copy = own.path().string();
+  std::vector<TrackSequence> sequences = load_track_sequences(copy, *dataset_);
   // A real sequence's pose check (lmk gen --from-rgbd) is written and read back.
   sequences[1].pose_check = PoseCheck{0.011, 0.009};
-  save_track_sequences(dir(), *dataset_, sequences);
-  const std::vector<TrackSequence> back = load_track_sequences(dir(), *dataset_);
+  save_track_sequences(copy, *dataset_, sequences);
+  const std::vector<TrackSequence> back = load_track_sequences(copy, *dataset_);
   ASSERT_TRUE(back[1].pose_check);
   EXPECT_DOUBLE_EQ(back[1].pose_check->translation, 0.011);
   EXPECT_DOUBLE_EQ(back[1].pose_check->rotation, 0.009);
@@ -131,13 +139,13 @@ TEST_F(MovingBottle, SequencesThatNameWhatTheDatasetDoesNotHoldAreRefused) {
   TrackSequence bad = sequences[0];
   bad.name = "other";
   bad.frames.push_back("no-such-scene");
-  EXPECT_THROW(save_track_sequences(dir(), *dataset_, {bad}), Error);
+  EXPECT_THROW(save_track_sequences(copy, *dataset_, {bad}), Error);
   bad = sequences[0];
   bad.name = "other";
   bad.carry = Carry{5, 5};
-  EXPECT_THROW(save_track_sequences(dir(), *dataset_, {bad}), Error);
+  EXPECT_THROW(save_track_sequences(copy, *dataset_, {bad}), Error);
   // Issue #61, finding 9: the sequences and their frames are counted before they are read.
-  const std::string file = (std::filesystem::path(dir()) / "sequences.json").string();
+  const std::string file = (own.path() / "sequences.json").string();
   nlohmann::json j = nlohmann::json::parse(test::read_bytes(file));
   const nlohmann::json one = j["sequences"][0];
   j["sequences"] = nlohmann::json::array();
@@ -145,7 +153,7 @@ TEST_F(MovingBottle, SequencesThatNameWhatTheDatasetDoesNotHoldAreRefused) {
   test::write_text(file, j.dump());
   const auto error_of = [&] {
     try {
-      load_track_sequences(dir(), *dataset_);
+      load_track_sequences(copy, *dataset_);
     } catch (const Error& e) {
       return std::string(e.what());
     }
@@ -156,13 +164,12 @@ TEST_F(MovingBottle, SequencesThatNameWhatTheDatasetDoesNotHoldAreRefused) {
   j["sequences"][0]["frames"] = std::vector<std::string>(kMaxTrackFrames + 1, "x");
   test::write_text(file, j.dump());
   EXPECT_NE(error_of().find("lists 10001 frames; at most 10000"), std::string::npos);
-  save_track_sequences(dir(), *dataset_, sequences);  // as it was, for the tests after
   MovingOptions options;
   options.frames = 5;
-  EXPECT_THROW(generate_moving_dataset(dir(), options), Error);
+  EXPECT_THROW(generate_moving_dataset(copy, options), Error);
   options.frames = 20;
   options.landmarks = {"chair_corner"};
-  EXPECT_THROW(generate_moving_dataset(dir(), options), Error);
+  EXPECT_THROW(generate_moving_dataset(copy, options), Error);
 }
 
 }  // namespace

@@ -2,15 +2,15 @@
 // The procedural object library: sound meshes, landmark parts that hold visible geometry, and the
 // variants (open drawer, lowered chair, full or empty rack) that the scene types rely on.
 
-#include "lmk/eval/objects.h"
+#include "lmk/sim/objects.h"
 
 #include <gtest/gtest.h>
 
 #include <functional>
 
-#include "lmk/eval/depth_sensor.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/pose.h"
+#include "lmk/sim/depth_sensor.h"
 
 namespace lmk {
 namespace {

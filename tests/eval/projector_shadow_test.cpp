@@ -7,12 +7,12 @@
 
 #include <gtest/gtest.h>
 
-#include "lmk/eval/benchmark_dataset.h"
-#include "lmk/eval/depth_sensor.h"
-#include "lmk/eval/mesh.h"
-#include "lmk/eval/scene_types.h"
+#include "lmk/datasets/benchmark_dataset.h"
 #include "lmk/geometry/pose.h"
 #include "lmk/landmark/landmark.h"
+#include "lmk/sim/depth_sensor.h"
+#include "lmk/sim/mesh.h"
+#include "lmk/sim/scene_types.h"
 
 namespace lmk {
 namespace {

@@ -3,7 +3,7 @@
 // its poses and units checked against what was written, and a clear error for each bad file; then
 // the real sequences of ../shared/data/real when present.
 
-#include "lmk/eval/rgbd_sequence.h"
+#include "lmk/datasets/rgbd_sequence.h"
 
 #include <gtest/gtest.h>
 
@@ -11,8 +11,9 @@
 #include <cmath>
 #include <filesystem>
 
+#include "lmk/datasets/rgbd_dataset.h"
 #include "lmk/eval/evaluation.h"
-#include "lmk/eval/rgbd_dataset.h"
+#include "lmk/eval/evaluation_rows.h"
 #include "lmk/geometry/pose.h"
 #include "lmk/landmark/landmark_file.h"
 #include "tests/support/test_support.h"

@@ -2,7 +2,7 @@
 // The paper's 17 scene types: each builds, is deterministic, holds its in-context landmarks where
 // the ground truth says, and the hard variant really rotates what the paper could not handle.
 
-#include "lmk/eval/scene_types.h"
+#include "lmk/sim/scene_types.h"
 
 #include <gtest/gtest.h>
 

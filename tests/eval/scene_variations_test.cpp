@@ -2,12 +2,12 @@
 // The viewpoint and occlusion benchmarks' scenes: deterministic in their seed, within their
 // ranges, and hiding what they are asked to hide (and no more).
 
-#include "lmk/eval/scene_variations.h"
+#include "lmk/sim/scene_variations.h"
 
 #include <gtest/gtest.h>
 
-#include "lmk/eval/benchmark_dataset.h"
-#include "lmk/eval/depth_sensor.h"
+#include "lmk/datasets/benchmark_dataset.h"
+#include "lmk/sim/depth_sensor.h"
 
 namespace lmk {
 namespace {

@@ -3,15 +3,15 @@
 // clouds, re-measured by the sensor model from the same pixels, agree on the residual spread and
 // on the spacing of the depth levels within 30% at every range the data covers.
 
-#include "lmk/eval/sensor_validation.h"
+#include "lmk/sim/sensor_validation.h"
 
 #include <gtest/gtest.h>
 
-#include "lmk/eval/depth_sensor.h"
-#include "lmk/eval/mesh.h"
-#include "lmk/eval/scene_types.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/pose.h"
+#include "lmk/sim/depth_sensor.h"
+#include "lmk/sim/mesh.h"
+#include "lmk/sim/scene_types.h"
 #include "tests/support/test_support.h"
 
 namespace lmk {

@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "lmk/eval/benchmark_dataset.h"
+#include "lmk/datasets/benchmark_dataset.h"
 #include "lmk/eval/evaluation.h"
 #include "tests/support/test_support.h"
 

@@ -2,14 +2,14 @@
 // The rule that draws landmark boxes on real frames: boxes go where a user would draw them, on the
 // objects of a table top and never on bare table or floor, spread apart, inside the image.
 
-#include "lmk/eval/user_like_boxes.h"
+#include "lmk/datasets/user_like_boxes.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 
-#include "lmk/eval/depth_sensor.h"
-#include "lmk/eval/tabletop_scene.h"
+#include "lmk/sim/depth_sensor.h"
+#include "lmk/sim/tabletop_scene.h"
 
 namespace lmk {
 namespace {

@@ -7,7 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "lmk/eval/dataset.h"
+#include "lmk/datasets/dataset.h"
 #include "lmk/geometry/error.h"
 #include "tests/fuzz/fuzz_file.h"
 

@@ -8,10 +8,10 @@
 
 #include <map>
 
-#include "lmk/eval/depth_sensor.h"
-#include "lmk/eval/tabletop_scene.h"
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/geometry/kdtree.h"
+#include "lmk/sim/depth_sensor.h"
+#include "lmk/sim/tabletop_scene.h"
 #include "tests/support/test_support.h"
 
 namespace lmk {

@@ -3,19 +3,19 @@
 // each other's look-alike, a cylinder is symmetric about its axis, and what the check found is
 // kept in the .lmk file, gained on load by a file written before it, and refused when forged.
 
-#include "lmk/landmark/capture_check.h"
+#include "lmk/search/capture_check.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
 
-#include "lmk/eval/mesh.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/pose.h"
 #include "lmk/landmark/detail/vdb_landmark_file.h"
 #include "lmk/landmark/internal/capture_findings_json.h"
 #include "lmk/landmark/landmark_file.h"
+#include "lmk/sim/mesh.h"
 #include "tests/landmark/l_shape_scene.h"
 #include "tests/support/test_support.h"
 

@@ -8,15 +8,15 @@
 
 #include <cmath>
 
-#include "lmk/eval/depth_sensor.h"
-#include "lmk/eval/mesh.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/kdtree.h"
 #include "lmk/geometry/pose.h"
-#include "lmk/landmark/detail/grid_metrics.h"
-#include "lmk/landmark/detail/view_determinacy.h"
-#include "lmk/landmark/find_landmark.h"
 #include "lmk/landmark/landmark_file.h"
+#include "lmk/search/confidence/view_determinacy.h"
+#include "lmk/search/find_landmark.h"
+#include "lmk/search/metrics/grid_metrics.h"
+#include "lmk/sim/depth_sensor.h"
+#include "lmk/sim/mesh.h"
 #include "tests/landmark/l_shape_scene.h"
 #include "tests/support/test_support.h"
 

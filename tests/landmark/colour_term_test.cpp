@@ -3,15 +3,15 @@
 // colour term turns down a look-alike of the wrong colour; a landmark keeps its colour in its file;
 // a search without colour gives the answers it gave before colour existed.
 
-#include "lmk/landmark/detail/colour_term.h"
+#include "lmk/search/metrics/colour_term.h"
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
 
 #include "lmk/geometry/chroma.h"
-#include "lmk/landmark/find_landmark.h"
 #include "lmk/landmark/landmark_file.h"
+#include "lmk/search/find_landmark.h"
 #include "tests/landmark/l_shape_scene.h"
 #include "tests/support/test_support.h"
 

@@ -2,7 +2,7 @@
 // The confidence calibration file (confidence_calibration.h): read, refused when malformed, and
 // applied as the logistic model it states.
 
-#include "lmk/landmark/confidence_calibration.h"
+#include "lmk/search/confidence/confidence_calibration.h"
 
 #include <gtest/gtest.h>
 

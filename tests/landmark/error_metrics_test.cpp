@@ -2,7 +2,7 @@
 // The paper's CandidateError (Algorithm 2) and the authors' variant on configurations whose errors
 // can be worked out by hand.
 
-#include "lmk/landmark/error_metrics.h"
+#include "lmk/search/metrics/error_metrics.h"
 
 #include <gtest/gtest.h>
 
@@ -10,9 +10,9 @@
 
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/pose.h"
-#include "lmk/landmark/detail/grid_metrics.h"
 #include "lmk/landmark/landmark.h"
-#include "lmk/landmark/scene_index.h"
+#include "lmk/search/metrics/grid_metrics.h"
+#include "lmk/search/scene_index.h"
 #include "tests/landmark/l_shape_scene.h"
 #include "tests/support/test_support.h"
 

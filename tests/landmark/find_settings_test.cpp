@@ -2,7 +2,7 @@
 // FindSettings: every field of every stage reaches the JSON, the text form of its flag and the
 // validation, through the one description each stage gives of its fields.
 
-#include "lmk/landmark/find_settings.h"
+#include "lmk/search/find_settings.h"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <set>
 #include <type_traits>
 
-#include "lmk/landmark/internal/find_settings_json.h"
+#include "lmk/search/internal/find_settings_json.h"
 #include "tests/support/find_settings_variants.h"
 
 namespace lmk {

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "tests/landmark/l_shape_scene.h"
 
-#include "lmk/eval/depth_sensor.h"
 #include "lmk/geometry/pose.h"
+#include "lmk/sim/depth_sensor.h"
 
 namespace lmk::test_scenes {
 

@@ -7,9 +7,9 @@
 #include <Eigen/Geometry>
 #include <vector>
 
-#include "lmk/eval/mesh.h"
 #include "lmk/geometry/box.h"
 #include "lmk/geometry/point_cloud.h"
+#include "lmk/sim/mesh.h"
 
 namespace lmk::test_scenes {
 

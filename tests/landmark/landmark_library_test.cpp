@@ -2,7 +2,7 @@
 // LandmarkLibrary: names confined to the directory, landmarks and their search indexes kept until
 // their file changes.
 
-#include "lmk/landmark/landmark_library.h"
+#include "lmk/search/landmark_library.h"
 
 #include <gtest/gtest.h>
 
@@ -53,7 +53,8 @@ TEST(LandmarkLibrary, KeepsEachIndexUntilTheFileOrTheSearchChanges) {
   EXPECT_NE(after, first);
   EXPECT_EQ(after->landmark().box.size, library.load("block")->box.size);
   EXPECT_NE(after->landmark().box.size, first->landmark().box.size);
-  EXPECT_GT(first->coarse().size(), 0u);
+  EXPECT_GT(first->landmark().points.size(), 0u);
+  EXPECT_TRUE(first->suits(s));
 }
 
 TEST(LandmarkLibrary, IndexRefusesBadNamesAndMissingLandmarks) {

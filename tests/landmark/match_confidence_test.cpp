@@ -5,7 +5,7 @@
 // of a table is the same patch wherever it lies on it, and a patch whose free space a post hides
 // from the sensor is not confirmed free.
 
-#include "lmk/landmark/match_confidence.h"
+#include "lmk/search/confidence/match_confidence.h"
 
 #include <gtest/gtest.h>
 
@@ -14,13 +14,13 @@
 #include <sstream>
 #include <string>
 
-#include "lmk/eval/mesh.h"
 #include "lmk/geometry/pose.h"
-#include "lmk/landmark/confidence_calibration.h"
-#include "lmk/landmark/detail/sensor_metric.h"
-#include "lmk/landmark/find_landmark.h"
-#include "lmk/landmark/landmark_index.h"
-#include "lmk/landmark/scene_index.h"
+#include "lmk/search/confidence/confidence_calibration.h"
+#include "lmk/search/find_landmark.h"
+#include "lmk/search/landmark_index.h"
+#include "lmk/search/metrics/sensor_metric.h"
+#include "lmk/search/scene_index.h"
+#include "lmk/sim/mesh.h"
 #include "tests/landmark/l_shape_scene.h"
 
 namespace lmk {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "lmk/landmark/non_max_suppression.h"
+#include "lmk/search/non_max_suppression.h"
 
 #include <gtest/gtest.h>
 

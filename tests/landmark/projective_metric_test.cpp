@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "lmk/landmark/error_metrics.h"
+#include "lmk/search/metrics/error_metrics.h"
 #include "tiny_organised_scene.h"
 
 namespace lmk {

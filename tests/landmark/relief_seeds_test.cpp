@@ -1,15 +1,15 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Where the fast search seeds: near relief, and not on a bare floor whose normals only the sensor's
 // noise scatters (detail/relief_seeds.h).
-#include "lmk/landmark/detail/relief_seeds.h"
+#include "lmk/search/fast/relief_seeds.h"
 
 #include <gtest/gtest.h>
 
-#include "lmk/eval/depth_sensor.h"
-#include "lmk/eval/mesh.h"
 #include "lmk/geometry/pose.h"
-#include "lmk/landmark/detail/point_pair_voting.h"
-#include "lmk/landmark/scene_index.h"
+#include "lmk/search/fast/point_pair_voting.h"
+#include "lmk/search/scene_index.h"
+#include "lmk/sim/depth_sensor.h"
+#include "lmk/sim/mesh.h"
 
 namespace lmk {
 namespace {

@@ -4,7 +4,7 @@
 // grows with their points in different ways (surfaces, points scattered near and far, an
 // organised frame). The peak is measured as the growth of this process's high-water mark, reset
 // before each scene (/proc/self/clear_refs; each test case runs in its own process).
-#include "lmk/landmark/scene_footprint.h"
+#include "lmk/search/scene_footprint.h"
 
 #include <gtest/gtest.h>
 
@@ -18,10 +18,10 @@
 #include <string>
 
 #include "lmk/geometry/cloud_io.h"
-#include "lmk/landmark/find_landmark.h"
 #include "lmk/landmark/landmark_file.h"
-#include "lmk/landmark/landmark_index.h"
-#include "lmk/landmark/scene_index.h"
+#include "lmk/search/find_landmark.h"
+#include "lmk/search/landmark_index.h"
+#include "lmk/search/scene_index.h"
 #include "tests/landmark/l_shape_scene.h"
 #include "tests/support/test_support.h"
 

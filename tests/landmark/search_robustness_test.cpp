@@ -12,9 +12,9 @@
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/filters.h"
 #include "lmk/geometry/pose.h"
-#include "lmk/landmark/distinctiveness.h"
-#include "lmk/landmark/find_landmark.h"
 #include "lmk/landmark/landmark_file.h"
+#include "lmk/search/distinctiveness.h"
+#include "lmk/search/find_landmark.h"
 #include "tests/landmark/l_shape_scene.h"
 #include "tests/support/test_support.h"
 

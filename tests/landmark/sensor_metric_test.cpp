@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-#include "lmk/landmark/error_metrics.h"
+#include "lmk/search/metrics/error_metrics.h"
 #include "tiny_organised_scene.h"
 
 namespace lmk {

@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "lmk/landmark/box_guess.h"
-#include "lmk/landmark/find_settings.h"
 #include "lmk/landmark/landmark.h"
+#include "lmk/search/find_settings.h"
 
 namespace lmk {
 namespace {

@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "lmk/landmark/scene_index.h"
+#include "lmk/search/scene_index.h"
 
 namespace lmk {
 namespace {

@@ -8,9 +8,9 @@
 #include <functional>
 #include <string>
 
-#include "lmk/landmark/error_metrics.h"
 #include "lmk/landmark/landmark.h"
 #include "lmk/landmark/scene_settings.h"
+#include "lmk/search/metrics/error_metrics.h"
 
 namespace lmk {
 

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The tracker (issue #48) on a rendered sequence: an L-shape pushed 1 cm per frame is followed
 // frame by frame, taken away it is lost, put back elsewhere it is found again.
-#include "lmk/landmark/tracker.h"
+#include "lmk/search/tracker.h"
 
 #include <gtest/gtest.h>
 
@@ -21,7 +21,7 @@ TEST(Tracker, FollowsAPushedLandmarkLosesItWhenTakenAndFindsItAgain) {
   Tracker tracker({landmark});
   const auto expect_at = [](const TrackedLandmark& t, const Eigen::Vector2d& xy, int frame) {
     ASSERT_TRUE(t.match) << "frame " << frame << ": " << to_string(t.state) << ", "
-                         << t.lost_because;
+                         << to_string(t.lost_because);
     EXPECT_LT((t.match->box.center() - box_at(xy).center()).norm(), 0.005) << "frame " << frame;
   };
 
@@ -31,7 +31,8 @@ TEST(Tracker, FollowsAPushedLandmarkLosesItWhenTakenAndFindsItAgain) {
     const std::vector<TrackedLandmark> now = tracker.update(render_scene({xy}, true));
     ASSERT_EQ(now.size(), 1u);
     EXPECT_EQ(now[0].state, k == 0 ? TrackState::found : TrackState::tracking)
-        << "frame " << k << ": " << to_string(now[0].state) << " " << now[0].lost_because;
+        << "frame " << k << ": " << to_string(now[0].state) << " "
+        << to_string(now[0].lost_because);
     expect_at(now[0], xy, k);
     (k == 0 ? searched_seconds : followed_seconds) += now[0].seconds;
   }
@@ -42,7 +43,8 @@ TEST(Tracker, FollowsAPushedLandmarkLosesItWhenTakenAndFindsItAgain) {
   const std::vector<TrackedLandmark> gone = tracker.update(render_scene({}, true));
   EXPECT_EQ(gone[0].state, TrackState::lost);
   EXPECT_FALSE(gone[0].match);
-  EXPECT_FALSE(gone[0].lost_because.empty());
+  EXPECT_NE(gone[0].lost_because.reason, LostReason::none);
+  EXPECT_FALSE(to_string(gone[0].lost_because).empty());
 
   // Put back 20 cm away: found again there, then followed.
   const Eigen::Vector2d back = start + Eigen::Vector2d(0.2, 0.0);

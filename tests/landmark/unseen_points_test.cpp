@@ -7,8 +7,8 @@
 
 #include <cmath>
 
-#include "lmk/landmark/detail/grid_metrics.h"
-#include "lmk/landmark/scene_index.h"
+#include "lmk/search/metrics/grid_metrics.h"
+#include "lmk/search/scene_index.h"
 #include "tiny_organised_scene.h"
 
 namespace lmk {

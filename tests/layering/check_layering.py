@@ -5,14 +5,14 @@
 Each module folder is one layer, and a module includes only its own headers and those of the
 layers below it:
 
-    geometry < json < occupancy < registration < landmark < pbd < pr2 < eval < demos
-             < ros, serve < tools, python
+    geometry < json < occupancy < registration < landmark < search < pbd < pr2 < sim < datasets
+             < eval < demos < ros, serve < tools, python
 
 Modules of one layer (ros and serve; tools and python) do not include each other. A module's
-detail/ headers are its own: no other module includes them (tests and benchmarks, which look
+detail/ headers (in its folder or any subfolder of it) are its own: no other module includes them (tests and benchmarks, which look
 inside on purpose, may). What a module shares with the layers above lies in its folder or in its
-internal/ folder (shared within lmk, not installed). An installed header (MODULE/*.h of an
-installed module) includes no internal/ or detail/ header, which a consumer of the installed lmk
+internal/ folder (shared within lmk, not installed). An installed header (any header of an
+installed module outside detail/ and internal/, search/metrics/error_metrics.h too) includes no internal/ or detail/ header, which a consumer of the installed lmk
 would not find. The evaluation's core (searching and scoring pairs, EVAL_CORE) includes none of
 the reports built on it (ABOVE_EVAL_CORE).
 
@@ -30,21 +30,25 @@ import os
 import re
 import sys
 
-LAYERS = [["geometry"], ["json"], ["occupancy"], ["registration"], ["landmark"], ["pbd"],
-          ["pr2"], ["eval"], ["demos"], ["ros", "serve"], ["tools", "python"]]
+LAYERS = [["geometry"], ["json"], ["occupancy"], ["registration"], ["landmark"], ["search"],
+          ["pbd"], ["pr2"], ["sim"], ["datasets"], ["eval"], ["demos"], ["ros", "serve"],
+          ["tools", "python"]]
 LEVEL = {module: level for level, layer in enumerate(LAYERS) for module in layer}
 # Folders above every layer, allowed any include and any module's detail/.
 ABOVE_ALL = ["tests", "bench"]
 # Modules whose top-level headers are not installed: json/ (header-only, internal) and serve/
 # (the lmk tool's own); tools/ and python/ install no headers.
 NOT_INSTALLED = ["json", "serve", "tools", "python"]
-# The evaluation's core: the pairs searched and scored, cached, and the dataset they come from.
-# The reports built on it (the explanation, the ablation, their JSON) lie above it.
+# The evaluation's core: the pairs searched and scored, and cached (the datasets they come from
+# lie a layer below). The reports built on it (the explanation, the ablation, their JSON) lie
+# above it.
 EVAL_CORE = ["eval/evaluation.h", "eval/evaluation.cpp", "eval/evaluation_protocol.h",
-             "eval/evaluation_protocol.cpp", "eval/dataset.h", "eval/dataset.cpp",
-             "eval/dataset_fingerprint.cpp", "eval/internal/pair_result_json.h",
+             "eval/evaluation_protocol.cpp", "eval/internal/pair_result_json.h",
              "eval/pair_result_json.cpp", "eval/detail/pair_cache.h", "eval/detail/pair_cache.cpp"]
-ABOVE_EVAL_CORE = ["explain.h", "ablation.h", "internal/evaluation_json.h"]
+PRIVATE_FOLDERS = ("internal", "detail")
+ABOVE_EVAL_CORE = ["explain.h", "ablation.h", "internal/evaluation_json.h", "internal/rows_json.h",
+                   "internal/explanation_json.h", "internal/ablation_json.h",
+                   "internal/risk_coverage_json.h"]
 SOURCE_SUFFIXES = (".h", ".cpp", ".in")
 INCLUDE = re.compile(r'^\s*#\s*include\s*"([^"]+)"', re.MULTILINE)
 LMK_INCLUDE = re.compile(r"^lmk/([a-z0-9_]+)/(.*)$")
@@ -85,9 +89,10 @@ def violations(files):
             found.append(f"{path}: includes '{rest}' by a relative path out of its folder; "
                          f"include it as \"lmk/MODULE/...\"")
             continue
+        folders = path.split(os.sep)[1:-1]
         installed_header = (module not in NOT_INSTALLED + ABOVE_ALL and path.endswith(".h")
-                            and path.count(os.sep) == 1)
-        if installed_header and rest.split("/")[0] in ("internal", "detail"):
+                            and not any(f in PRIVATE_FOLDERS for f in folders))
+        if installed_header and any(f in PRIVATE_FOLDERS for f in rest.split("/")[:-1]):
             found.append(f"{path}: an installed header includes lmk/{included}/{rest}, which is not "
                          f"installed; include it from a source file")
         if path.replace(os.sep, "/") in EVAL_CORE and included == "eval" and rest in ABOVE_EVAL_CORE:
@@ -98,7 +103,7 @@ def violations(files):
         if included not in LEVEL:
             found.append(f"{path}: includes lmk/{included}/{rest}, which is no module of lmk")
             continue
-        if rest.startswith("detail/"):
+        if "detail" in rest.split("/")[:-1]:
             found.append(f"{path}: includes lmk/{included}/{rest}: a module's detail/ is its own; "
                          f"share it from {included}/ or {included}/internal/")
         if LEVEL[included] > LEVEL[module]:
@@ -182,7 +187,10 @@ def self_test(files):
         "ros/planted_same_layer.cpp": '#include "lmk/serve/http_server.h"\n',
         "tools/planted_relative.cpp": '#include "../eval/evaluation.h"\n',
         "json/planted_upward.h": '#include "lmk/pbd/plan.h"\n',
-        "landmark/planted_public.h": '#include "lmk/landmark/internal/terms_json.h"\n',
+        "landmark/planted_public.h": '#include "lmk/landmark/internal/capture_findings_json.h"\n',
+        "search/metrics/planted_public.h": '#include "lmk/search/internal/terms_json.h"\n',
+        "search/planted_upward.cpp": '#include "lmk/sim/mesh.h"\n',
+        "eval/planted_nested_detail.cpp": '#include "lmk/search/fast/detail/voting.h"\n',
         "eval/evaluation.cpp": '#include "lmk/eval/explain.h"\n',
         "eval/detail/pair_cache.cpp": '#include "lmk/eval/internal/evaluation_json.h"\n',
     }
@@ -195,8 +203,11 @@ def self_test(files):
         # Allowed includes stay allowed: tests may look inside any module.
     allowed = {"tests/planted_white_box.cpp": '#include "lmk/geometry/detail/pcd_io.h"\n',
                "landmark/planted_below.cpp": '#include "lmk/occupancy/distance_field.h"\n',
-               "landmark/planted_source.cpp": '#include "lmk/landmark/internal/terms_json.h"\n',
-               "landmark/internal/planted.h": '#include "lmk/landmark/detail/search_method.h"\n'}
+               "landmark/planted_source.cpp":
+                   '#include "lmk/landmark/internal/capture_findings_json.h"\n',
+               "landmark/internal/planted.h": '#include "lmk/landmark/detail/landmark_record.h"\n',
+               "search/fast/planted.cpp": '#include "lmk/search/detail/reference_search.h"\n',
+               "sim/planted_below.cpp": '#include "lmk/search/find_landmark.h"\n'}
     for path, text in allowed.items():
         if set(violations({**files, path: text})) - before:
             failures.append(f"self-test: the allowed {path} ({text.strip()}) was reported")

@@ -14,8 +14,8 @@
 
 #include "lmk/geometry/error.h"
 #include "lmk/landmark/capture_views.h"
-#include "lmk/landmark/error_metrics.h"
-#include "lmk/landmark/find_landmark.h"
+#include "lmk/search/find_landmark.h"
+#include "lmk/search/metrics/error_metrics.h"
 #include "lmk/serve/api.h"
 #include "tests/landmark/l_shape_scene.h"
 #include "tests/support/test_support.h"

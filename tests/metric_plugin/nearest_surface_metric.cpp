@@ -7,8 +7,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "lmk/landmark/error_metrics.h"
-#include "lmk/landmark/scene_index.h"
+#include "lmk/search/metrics/error_metrics.h"
+#include "lmk/search/scene_index.h"
 
 namespace {
 

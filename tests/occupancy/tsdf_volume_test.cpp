@@ -11,12 +11,12 @@
 #include <cmath>
 #include <string>
 
-#include "lmk/eval/depth_sensor.h"
-#include "lmk/eval/mesh.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/kdtree.h"
 #include "lmk/geometry/pose.h"
 #include "lmk/geometry/random.h"
+#include "lmk/sim/depth_sensor.h"
+#include "lmk/sim/mesh.h"
 
 namespace lmk {
 namespace {

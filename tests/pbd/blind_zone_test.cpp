@@ -8,12 +8,12 @@
 
 #include <limits>
 
-#include "lmk/eval/depth_sensor.h"
-#include "lmk/eval/mesh.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/pose.h"
 #include "lmk/geometry/solid.h"
 #include "lmk/pbd/collision_scene.h"
+#include "lmk/sim/depth_sensor.h"
+#include "lmk/sim/mesh.h"
 
 namespace lmk {
 namespace {

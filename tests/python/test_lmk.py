@@ -481,11 +481,16 @@ def test_tracker_follows_the_cup_as_lmk_track_does(tabletop, tmp_path):
         assert got["pose"].shape == (4, 4)
         np.testing.assert_allclose(got["box"]["pose"][:3, 3], line["position"], atol=1e-9)
         assert got["error"] == pytest.approx(line["error"], abs=1e-12)
+        # One writer: the fields of the line `lmk track --json` writes, but the frame's number and
+        # file (and its seconds, which the CLI writes only with --timings); and lmk.find's pose
+        # and box besides.
+        assert set(got) - {"pose", "box", "seconds"} == set(line) - {"frame", "file", "seconds"}
+        assert got["landmark"] == line["landmark"]
     with pytest.raises(ValueError, match="max_tilt"):
         lmk.Tracker([cup], max_tilt=500)
     with pytest.raises(ValueError, match="margin"):
         lmk.Tracker([cup], follow_margin=5.0)
-    with pytest.raises(ValueError, match="threshold factor"):
+    with pytest.raises(ValueError, match="follow_threshold_factor"):
         lmk.Tracker([cup], follow_threshold_factor=0.5)
     with pytest.raises(ValueError, match="camera_motion"):
         lmk.Tracker([cup], camera_motion="sideways")

@@ -21,8 +21,7 @@ std::vector<Eigen::Vector3f> moved(const PointCloud& target, const Eigen::Isomet
   return out;
 }
 
-void expect_recovered(const RegistrationResult& r, const Eigen::Isometry3d& truth,
-                      double tolerance) {
+void expect_recovered(const IcpResult& r, const Eigen::Isometry3d& truth, double tolerance) {
   EXPECT_LT((r.T_target_source.translation() - truth.translation()).norm(), tolerance);
   EXPECT_LT(rotation_angle_between(r.T_target_source.linear(), truth.linear()), 10 * tolerance);
   EXPECT_LT(r.final_error, 1e-3);
@@ -41,10 +40,9 @@ TEST_P(IcpModes, RecoversAKnownMotionForwardAndInverse) {
   // Point-to-point has the smaller basin of convergence on planar faces: it starts at half the
   // motion.
   const Eigen::Isometry3d T = test::small_motion(s.mode == IcpMode::point_to_point ? 0.5 : 1.0);
-  const RegistrationResult forward = icp(moved(target, T), kd, Eigen::Isometry3d::Identity(), s);
+  const IcpResult forward = icp(moved(target, T), kd, Eigen::Isometry3d::Identity(), s);
   expect_recovered(forward, T.inverse(), 1e-3);
-  const RegistrationResult inverse =
-      icp(moved(target, T.inverse()), kd, Eigen::Isometry3d::Identity(), s);
+  const IcpResult inverse = icp(moved(target, T.inverse()), kd, Eigen::Isometry3d::Identity(), s);
   expect_recovered(inverse, T, 1e-3);
   EXPECT_TRUE(forward.converged);
 }
@@ -59,7 +57,7 @@ TEST(Icp, DistanceFieldTargetRecoversAKnownMotion) {
   IcpSettings s;
   s.termination.max_iterations = 60;
   const Eigen::Isometry3d T = test::small_motion();
-  const RegistrationResult r = icp(moved(target, T), grid, Eigen::Isometry3d::Identity(), s);
+  const IcpResult r = icp(moved(target, T), grid, Eigen::Isometry3d::Identity(), s);
   EXPECT_LT((r.T_target_source.translation() - T.inverse().translation()).norm(), 2e-3);
   EXPECT_LT(rotation_angle_between(r.T_target_source.linear(), T.inverse().linear()), 0.02);
 }
@@ -114,8 +112,8 @@ TEST(Icp, SkippingTheMeasuringPassChangesNothingButTheMeasurement) {
     measured.termination.max_iterations = cap;
     IcpSettings unmeasured = measured;
     unmeasured.measure_final = false;
-    const RegistrationResult a = icp(source, grid, Eigen::Isometry3d::Identity(), measured);
-    const RegistrationResult b = icp(source, grid, Eigen::Isometry3d::Identity(), unmeasured);
+    const IcpResult a = icp(source, grid, Eigen::Isometry3d::Identity(), measured);
+    const IcpResult b = icp(source, grid, Eigen::Isometry3d::Identity(), unmeasured);
     EXPECT_TRUE(a.T_target_source.isApprox(b.T_target_source, 0.0)) << "cap " << cap;
     EXPECT_EQ(a.iterations, b.iterations);
     EXPECT_EQ(a.converged, b.converged);
@@ -141,7 +139,7 @@ TEST(Icp, ARobustKernelResistsThirtyPercentOutliers) {
   IcpSettings robust;
   robust.termination.max_iterations = 80;
   robust.correspondences.loss = {RobustKernel::tukey, 0.01};
-  const RegistrationResult r = icp(source, kd, Eigen::Isometry3d::Identity(), robust);
+  const IcpResult r = icp(source, kd, Eigen::Isometry3d::Identity(), robust);
   EXPECT_LT((r.T_target_source.translation() - T.inverse().translation()).norm(), 2e-3);
   EXPECT_LT(rotation_angle_between(r.T_target_source.linear(), T.inverse().linear()), 0.01);
 }

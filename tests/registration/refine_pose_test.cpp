@@ -28,7 +28,7 @@ TEST(RefinePose, ImprovesASmallErrorAndNeverMakesTheCostWorse) {
       RefineSettings s;
       s.loss = {kernel, 0.01};
       s.max_iterations = 30;
-      const RegistrationResult r = refine_pose(target.points, field, start, s);
+      const RefineResult r = refine_pose(target.points, field, start, s);
       EXPECT_LE(r.final_cost, r.initial_cost);
       if (kernel == RobustKernel::huber) {
         EXPECT_LT(r.T_target_source.translation().norm(), start.translation().norm());
@@ -51,7 +51,7 @@ TEST(RefinePose, UndoesARotationAboutAnyAxis) {
     start.linear() = Eigen::AngleAxisd(angle, axis).toRotationMatrix();
     RefineSettings s;
     s.max_iterations = 30;
-    const RegistrationResult r = refine_pose(target.points, field, start, s);
+    const RefineResult r = refine_pose(target.points, field, start, s);
     EXPECT_LT(rotation_angle_between(r.T_target_source.linear(), Eigen::Matrix3d::Identity()),
               0.25 * angle)
         << "trial " << trial;
@@ -65,8 +65,8 @@ TEST(RefinePose, EmptySpacePushesAwayFromOccupiedSpace) {
   RefineSettings with;
   with.empty_space_weight = 1.0;
   const std::vector<Eigen::Vector3f> probes(target.points.begin(), target.points.begin() + 50);
-  const RegistrationResult a = refine_pose(target.points, field, Eigen::Isometry3d::Identity(), {});
-  const RegistrationResult b =
+  const RefineResult a = refine_pose(target.points, field, Eigen::Isometry3d::Identity(), {});
+  const RefineResult b =
       refine_pose(target.points, field, Eigen::Isometry3d::Identity(), with, probes);
   EXPECT_GT(b.initial_cost, a.initial_cost);
   EXPECT_LE(b.final_cost, b.initial_cost);

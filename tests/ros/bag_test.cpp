@@ -13,13 +13,13 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "lmk/eval/dataset.h"
-#include "lmk/eval/depth_sensor.h"
-#include "lmk/eval/tabletop_scene.h"
+#include "lmk/datasets/dataset.h"
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/landmark/landmark_file.h"
 #include "lmk/ros/cloud_conversion.h"
 #include "lmk/ros/latest_frame.h"
+#include "lmk/sim/depth_sensor.h"
+#include "lmk/sim/tabletop_scene.h"
 #include "tests/ros/support/ros_harness.h"
 #include "tests/support/test_support.h"
 

@@ -6,11 +6,11 @@
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/landmark/box_guess.h"
 #include "lmk/landmark/capture_views.h"
-#include "lmk/landmark/internal/find_result_json.h"
 #include "lmk/landmark/landmark_file.h"
 #include "lmk/pbd/internal/plan_json.h"
 #include "lmk/pbd/plan.h"
 #include "lmk/pr2/simulated_pr2.h"
+#include "lmk/search/internal/find_result_json.h"
 #include "tests/serve/serve_fixture.h"
 
 namespace lmk::test {

@@ -8,7 +8,7 @@
 #include <fstream>
 
 #include "lmk/geometry/cloud_io.h"
-#include "lmk/landmark/scene_footprint.h"
+#include "lmk/search/scene_footprint.h"
 #include "lmk/serve/api_error.h"
 #include "lmk/serve/scene_store.h"
 #include "tests/serve/serve_fixture.h"

@@ -11,10 +11,10 @@
 #include <chrono>
 #include <filesystem>
 
-#include "lmk/eval/depth_sensor.h"
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/json/settings_json.h"
 #include "lmk/pbd/program.h"
+#include "lmk/sim/depth_sensor.h"
 
 namespace lmk::test {
 

@@ -11,9 +11,9 @@
 #include <string>
 #include <thread>
 
-#include "lmk/eval/tabletop_scene.h"
-#include "lmk/landmark/find_settings.h"
+#include "lmk/search/find_settings.h"
 #include "lmk/serve/http_server.h"
+#include "lmk/sim/tabletop_scene.h"
 #include "tests/support/test_support.h"
 
 // After Eigen: glibc's <resolv.h>, which httplib includes, defines `_res`, a name Eigen uses.

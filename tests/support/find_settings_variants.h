@@ -6,7 +6,7 @@
 #include <string>
 #include <type_traits>
 
-#include "lmk/landmark/find_settings.h"
+#include "lmk/search/find_settings.h"
 #include "tests/support/setting_perturbations.h"
 
 namespace lmk::test {

@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "tests/support/test_support.h"
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/file.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -10,6 +12,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <fstream>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 
@@ -61,6 +64,44 @@ CommandResult run_shell(const std::string& command, const ScratchDir& dir) {
   const std::string out = dir.file("stdout"), err = dir.file("stderr");
   const int status = std::system((command + " >'" + out + "' 2>'" + err + "'").c_str());
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_bytes(out), read_bytes(err)};
+}
+
+fs::path shared_run_data(const std::string& name,
+                         const std::function<void(const fs::path&)>& make) {
+  const char* root = std::getenv("LMK_TEST_RUN_DIR");
+  if (!root || !*root) {
+    static std::vector<std::unique_ptr<ScratchDir>> scratch;  // kept for the process's lifetime
+    scratch.push_back(std::make_unique<ScratchDir>());
+    const fs::path dir = scratch.back()->path() / name;
+    fs::create_directories(dir);
+    make(dir);
+    return dir;
+  }
+  fs::create_directories(root);
+  const fs::path dir = fs::path(root) / name;
+  const std::string lock = (fs::path(root) / (name + ".lock")).string();
+  const int fd = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd < 0) throw std::runtime_error("shared_run_data: cannot open " + lock);
+  // Waits for the test making the data to finish (an event, not a time), or makes it.
+  if (::flock(fd, LOCK_EX) != 0) {
+    ::close(fd);
+    throw std::runtime_error("shared_run_data: cannot lock " + lock);
+  }
+  try {
+    if (!fs::exists(dir)) {
+      // Made aside and renamed: a test killed while making it leaves no half-made data behind.
+      const fs::path partial = fs::path(root) / (name + ".partial");
+      fs::remove_all(partial);
+      fs::create_directories(partial);
+      make(partial);
+      fs::rename(partial, dir);
+    }
+  } catch (...) {
+    ::close(fd);  // releases the lock
+    throw;
+  }
+  ::close(fd);
+  return dir;
 }
 
 std::optional<fs::path> shared_data_dir() {

@@ -3,6 +3,7 @@
 // Helpers for lmk's tests: seeded random clouds, scratch directories and the optional real data.
 
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -53,6 +54,14 @@ struct CommandResult {
 };
 /// Runs `command` through the shell, its stdout and stderr captured in files of `dir`.
 CommandResult run_shell(const std::string& command, const ScratchDir& dir);
+
+/// Data that several tests generate alike (a dataset, the demo tasks' results), made once and then
+/// only read: under CTest once per run, in $LMK_TEST_RUN_DIR/NAME, which the fixture test_run_dir
+/// empties as the run starts (tests/CMakeLists.txt), the first test to need it making it while the
+/// others wait on a lock for it to be done; outside CTest, once per process, in a scratch
+/// directory. `make` writes the data into the (empty) directory it is given. Returns the directory.
+std::filesystem::path shared_run_data(
+    const std::string& name, const std::function<void(const std::filesystem::path&)>& make);
 
 /// The real data directory (../shared/data, or $LMK_SHARED_DATA), or nothing when absent.
 std::optional<std::filesystem::path> shared_data_dir();

@@ -1,0 +1,306 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "lmk/search/fast/point_pair_voting.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "lmk/geometry/error.h"
+
+namespace lmk::detail {
+namespace {
+
+constexpr float kPi = 3.14159265358979f;
+constexpr float kAngleStep = kPi / 15.0f;  // 12 degrees, as Drost et al.
+constexpr int kAngleBins = 15;
+constexpr int kAlphaBins = 30;
+constexpr float kAlphaBinsPerRad = kAlphaBins / (2.0f * kPi);
+constexpr std::uint32_t kScanBlock = 64;  // accumulator bins per block of the best-pose scan
+constexpr float kCoplanarTolerance = static_cast<float>(kCoplanarAngle);
+
+// acos to about 7e-5 rad (Abramowitz & Stegun 4.4.45): the voting loop calls it three times per
+// scene pair, and the bins are 12 degrees wide.
+float fast_acos(float x) {
+  x = std::clamp(x, -1.0f, 1.0f);
+  const float a = std::abs(x);
+  const float r =
+      std::sqrt(1.0f - a) * (1.5707288f + a * (-0.2121144f + a * (0.0742610f + a * -0.0187293f)));
+  return x >= 0.0f ? r : kPi - r;
+}
+
+// atan2 to about 1e-4 rad (a minimax polynomial of atan on [0, 1] and octant symmetry).
+float fast_atan2(float y, float x) {
+  const float ax = std::abs(x), ay = std::abs(y);
+  const float big = std::max(ax, ay);
+  if (big == 0.0f) return 0.0f;
+  const float t = std::min(ax, ay) / big, t2 = t * t;
+  float r =
+      t *
+      (0.99997726f +
+       t2 * (-0.33262347f +
+             t2 * (0.19354346f + t2 * (-0.11643287f + t2 * (0.05265332f + t2 * -0.01172120f)))));
+  if (ay > ax) r = 0.5f * kPi - r;
+  if (x < 0.0f) r = kPi - r;
+  return y < 0.0f ? -r : r;
+}
+
+// The rotation taking `n` onto +x, and the angle of a point about +x once so rotated.
+Eigen::Matrix3f rotation_to_x(const Eigen::Vector3f& n) {
+  return Eigen::Quaternionf::FromTwoVectors(n, Eigen::Vector3f::UnitX()).toRotationMatrix();
+}
+float angle_about_x(const Eigen::Matrix3f& R, const Eigen::Vector3f& d) {
+  const Eigen::Vector3f v = R * d;
+  return fast_atan2(v.z(), v.y());
+}
+
+// Rx(alpha) at the centre of each alpha bin, computed once: the poses of every seed use them.
+const std::array<Eigen::Matrix3f, kAlphaBins>& alpha_rotations() {
+  static const std::array<Eigen::Matrix3f, kAlphaBins> rotations = [] {
+    std::array<Eigen::Matrix3f, kAlphaBins> out;
+    for (int b = 0; b < kAlphaBins; ++b) {
+      const float alpha = (static_cast<float>(b) + 0.5f) / kAlphaBinsPerRad;
+      out[b] = Eigen::AngleAxisf(alpha, Eigen::Vector3f::UnitX()).toRotationMatrix();
+    }
+    return out;
+  }();
+  return rotations;
+}
+
+// The coplanarity test in cosines, so that the voting loop can skip a coplanar pair before any
+// arc cosine: both normals within the tolerance of each other and of perpendicular to d.
+const float kCoplanarCos = std::cos(kCoplanarTolerance);
+const float kCoplanarSin = std::sin(kCoplanarTolerance);
+
+struct Feature {
+  float distance, a1, a2, a3;
+  bool coplanar;
+};
+
+// The cosines of F's three angles; false for coincident points.
+inline bool cosines(const Eigen::Vector3f& p1, const Eigen::Vector3f& n1, const Eigen::Vector3f& p2,
+                    const Eigen::Vector3f& n2, Feature& f, float c[3]) {
+  const Eigen::Vector3f d = p2 - p1;
+  f.distance = d.norm();
+  if (!(f.distance > 1e-6f)) return false;
+  const Eigen::Vector3f u = d / f.distance;
+  c[0] = n1.dot(u);
+  c[1] = n2.dot(u);
+  c[2] = n1.dot(n2);
+  f.coplanar =
+      c[2] > kCoplanarCos && std::abs(c[0]) < kCoplanarSin && std::abs(c[1]) < kCoplanarSin;
+  return true;
+}
+
+inline void angles(const float c[3], Feature& f) {
+  f.a1 = fast_acos(c[0]);
+  f.a2 = fast_acos(c[1]);
+  f.a3 = fast_acos(c[2]);
+}
+
+bool feature(const Eigen::Vector3f& p1, const Eigen::Vector3f& n1, const Eigen::Vector3f& p2,
+             const Eigen::Vector3f& n2, Feature& f) {
+  float c[3];
+  if (!cosines(p1, n1, p2, n2, f, c)) return false;
+  angles(c, f);
+  return true;
+}
+
+}  // namespace
+
+PointPairModel::PointPairModel(const PointCloud& model, double distance_step, double diameter)
+    : distance_step_(distance_step), diameter_(diameter) {
+  if (!model.has_normals()) throw Error("point pair model: the model needs normals");
+  if (!(distance_step > 0.0) || !(diameter > distance_step) || diameter / distance_step > 1000) {
+    throw Error("point pair model: the diameter must exceed a positive distance step");
+  }
+  distance_bins_ = static_cast<int>(std::ceil(diameter / distance_step)) + 2;
+  std::vector<Eigen::Vector3f> normals;
+  for (std::size_t i = 0; i < model.size(); ++i) {
+    if (!model.points[i].allFinite() || !model.normals[i].allFinite()) continue;
+    points_.push_back(model.points[i]);
+    normals.push_back(model.normals[i]);
+    to_x_axis_.push_back(rotation_to_x(model.normals[i]));
+  }
+
+  // Every ordered pair within the diameter. A first pass counts the coplanar ones: a landmark with
+  // relief keeps its non-coplanar pairs only, if they are a fifth or more.
+  const auto for_each_pair = [&](auto&& visit) {
+    for (std::size_t i = 0; i < points_.size(); ++i) {
+      for (std::size_t j = 0; j < points_.size(); ++j) {
+        Feature f;
+        if (i == j || !feature(points_[i], normals[i], points_[j], normals[j], f)) continue;
+        if (f.distance <= diameter) visit(i, j, f);
+      }
+    }
+  };
+  std::size_t total = 0, coplanar = 0;
+  for_each_pair([&](std::size_t, std::size_t, const Feature& f) {
+    ++total;
+    coplanar += f.coplanar ? 1 : 0;
+  });
+  skip_coplanar_ = total > 0 && (total - coplanar) * 5 >= total;
+
+  struct Keyed {
+    std::uint32_t key;
+    Entry entry;
+  };
+  std::vector<Keyed> keyed;
+  keyed.reserve(4 * total);  // about 1.5^4 bins per pair with the edge spreading below
+  const float step = static_cast<float>(distance_step);
+  for_each_pair([&](std::size_t i, std::size_t j, const Feature& f) {
+    if (skip_coplanar_ && f.coplanar) return;
+    const Entry entry{static_cast<std::uint32_t>(i * kAlphaBins),
+                      angle_about_x(to_x_axis_[i], points_[j] - points_[i]) * kAlphaBinsPerRad};
+    // Hash into the bin of each quantity and, near a bin edge, into its neighbour too.
+    const float c[4] = {f.distance / step, f.a1 / kAngleStep, f.a2 / kAngleStep, f.a3 / kAngleStep};
+    int lo[4], hi[4];
+    for (int k = 0; k < 4; ++k) {
+      const int b = static_cast<int>(std::floor(c[k]));
+      const float frac = c[k] - static_cast<float>(b);
+      lo[k] = frac < 0.25f ? b - 1 : b;
+      hi[k] = frac > 0.75f ? b + 1 : b;
+    }
+    for (int b0 = lo[0]; b0 <= hi[0]; ++b0)
+      for (int b1 = lo[1]; b1 <= hi[1]; ++b1)
+        for (int b2 = lo[2]; b2 <= hi[2]; ++b2)
+          for (int b3 = lo[3]; b3 <= hi[3]; ++b3) {
+            if (b0 < 0 || b0 >= distance_bins_ || b1 < 0 || b2 < 0 || b3 < 0 || b1 >= kAngleBins ||
+                b2 >= kAngleBins || b3 >= kAngleBins) {
+              continue;
+            }
+            keyed.push_back({key(b0, b1, b2, b3), entry});
+          }
+  });
+  // Counting sort into a dense table: the key space is small (distance bins x 15^3).
+  offsets_.assign(
+      static_cast<std::size_t>(distance_bins_) * kAngleBins * kAngleBins * kAngleBins + 1, 0);
+  for (const Keyed& k : keyed) ++offsets_[k.key + 1];
+  for (std::size_t k = 1; k < offsets_.size(); ++k) offsets_[k] += offsets_[k - 1];
+  entries_.resize(keyed.size());
+  std::vector<std::uint32_t> fill(offsets_.begin(), offsets_.end() - 1);
+  for (const Keyed& k : keyed) entries_[fill[k.key]++] = k.entry;
+}
+
+std::uint32_t PointPairModel::key(int distance_bin, int a1, int a2, int a3) const {
+  return ((static_cast<std::uint32_t>(distance_bin) * kAngleBins + static_cast<std::uint32_t>(a1)) *
+              kAngleBins +
+          static_cast<std::uint32_t>(a2)) *
+             kAngleBins +
+         static_cast<std::uint32_t>(a3);
+}
+
+void PointPairModel::accumulate_votes(const PointCloud& scene,
+                                      const std::vector<Neighbor>& neighbours, Index reference,
+                                      const Eigen::Matrix3f& Rs,
+                                      std::vector<std::uint32_t>& votes) const {
+  const Eigen::Vector3f& sr = scene.points[reference];
+  const Eigen::Vector3f& nr = scene.normals[reference];
+  const float step = static_cast<float>(distance_step_);
+  for (const Neighbor& nb : neighbours) {
+    if (nb.index == reference) continue;
+    const Eigen::Vector3f& si = scene.points[nb.index];
+    const Eigen::Vector3f& ni = scene.normals[nb.index];
+    if (!ni.allFinite()) continue;
+    // The cheap rejections first: most neighbours of a seed on a plane are coplanar with it.
+    Feature f;
+    float c[3];
+    if (!cosines(sr, nr, si, ni, f, c)) continue;
+    if (skip_coplanar_ && f.coplanar) continue;
+    const int db = static_cast<int>(f.distance / step);
+    if (db >= distance_bins_) continue;
+    angles(c, f);
+    const int a1 = std::min(static_cast<int>(f.a1 / kAngleStep), kAngleBins - 1);
+    const int a2 = std::min(static_cast<int>(f.a2 / kAngleStep), kAngleBins - 1);
+    const int a3 = std::min(static_cast<int>(f.a3 / kAngleStep), kAngleBins - 1);
+    const std::uint32_t k = key(db, a1, a2, a3);
+    const std::uint32_t begin = offsets_[k], end = offsets_[k + 1];
+    if (begin == end) continue;
+    const float alpha_s = angle_about_x(Rs, si - sr) * kAlphaBinsPerRad;
+    for (std::uint32_t e = begin; e < end; ++e) {
+      const Entry& entry = entries_[e];
+      // Rotating the model pair by alpha = alpha_s - alpha_m about x aligns it with the scene's.
+      // Wrapped into [0, bins) by adding 0 or a full turn: the same sum as a conditional add,
+      // without the branch, which mispredicted on every other entry.
+      float alpha = alpha_s - entry.alpha_in_bins;
+      alpha += static_cast<float>(alpha < 0.0f) * static_cast<float>(kAlphaBins);
+      ++votes[entry.first_vote + std::min(static_cast<int>(alpha), kAlphaBins - 1)];
+    }
+  }
+}
+
+namespace {
+
+// The best `max_poses` bins of `votes` that `admissible` admits, as (votes, bin), strongest first;
+// ties go to the lower index, so the result is deterministic. The scan goes a block of bins at a
+// time: once the list is full, a block whose strongest bin does not beat the list's weakest holds
+// no candidate (the blocks' maxima are one vectorised pass; most blocks are skipped). The
+// admissibility is tested only for bins strong enough to enter the list, a handful per seed.
+template <class Admissible>
+std::vector<std::pair<std::uint32_t, std::uint32_t>> best_bins(
+    const std::vector<std::uint32_t>& votes, int max_poses, const Admissible& admissible) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> best;
+  best.reserve(static_cast<std::size_t>(max_poses) + 1);
+  const auto consider = [&](std::uint32_t k) {
+    if (votes[k] == 0) return;
+    if (static_cast<int>(best.size()) < max_poses || votes[k] > best.back().first) {
+      if (!admissible(k)) return;
+      best.emplace_back(votes[k], k);
+      std::stable_sort(best.begin(), best.end(),
+                       [](const auto& a, const auto& b) { return a.first > b.first; });
+      if (static_cast<int>(best.size()) > max_poses) best.pop_back();
+    }
+  };
+  const auto bins = static_cast<std::uint32_t>(votes.size());
+  for (std::uint32_t block = 0; block < bins; block += kScanBlock) {
+    const std::uint32_t end = std::min(block + kScanBlock, bins);
+    std::uint32_t strongest = 0;
+    for (std::uint32_t k = block; k < end; ++k) strongest = std::max(strongest, votes[k]);
+    if (strongest == 0) continue;
+    if (static_cast<int>(best.size()) >= max_poses && strongest <= best.back().first) continue;
+    for (std::uint32_t k = block; k < end; ++k) consider(k);
+  }
+  return best;
+}
+
+}  // namespace
+
+void PointPairModel::vote(const PointCloud& scene, const RadiusGrid& grid, Index reference,
+                          int max_poses, double min_fraction, std::vector<PoseVote>& out,
+                          const TiltLimit* tilt) const {
+  out.clear();
+  const Eigen::Vector3f& sr = scene.points[reference];
+  const Eigen::Vector3f& nr = scene.normals[reference];
+  if (!sr.allFinite() || !nr.allFinite() || points_.empty()) return;
+  const Eigen::Matrix3f Rs = rotation_to_x(nr);
+
+  // Per-thread scratch: a search votes for a thousand seeds, and fresh buffers for each would cost
+  // more in allocation than the voting itself.
+  // Votes are counts: integers add without a floating-point latency in the loop's chain.
+  thread_local std::vector<Neighbor> neighbours;
+  thread_local std::vector<std::uint32_t> votes;
+  grid.radius_unsorted(sr, static_cast<float>(diameter_), neighbours);
+  votes.assign(points_.size() * kAlphaBins, 0);
+  accumulate_votes(scene, neighbours, reference, Rs, votes);
+
+  // x_scene = Ts^-1 Rx(alpha) Tm x_model, with Tm x = Rm (x - m), Ts x = Rs (x - s_r).
+  const auto rotation = [&](std::uint32_t k) -> Eigen::Matrix3f {
+    return Rs.transpose() * alpha_rotations()[k % kAlphaBins] * to_x_axis_[k / kAlphaBins];
+  };
+  const std::vector<std::pair<std::uint32_t, std::uint32_t>> best = best_bins(
+      votes, max_poses, [&](std::uint32_t k) { return !tilt || tilt->admits(rotation(k)); });
+  if (best.empty()) return;
+  const float floor_votes =
+      static_cast<float>(min_fraction) * static_cast<float>(best.front().first);
+  for (const auto& [count, k] : best) {
+    const auto v = static_cast<float>(count);
+    if (v < floor_votes) break;
+    const Eigen::Matrix3f R = rotation(k);
+    PoseVote pv;
+    pv.T_scene_model.linear() = R.cast<double>();
+    pv.T_scene_model.translation() = (sr - R * points_[k / kAlphaBins]).cast<double>();
+    pv.votes = v;
+    out.push_back(pv);
+  }
+}
+
+}  // namespace lmk::detail
