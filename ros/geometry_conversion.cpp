@@ -48,13 +48,17 @@ lmk_msgs::ErrorTerms to_ros(const ErrorTerms& t) {
   out.landmark_to_scene_sum = t.landmark_to_scene_sum;
   out.landmark_to_scene_count = t.landmark_to_scene_count;
   out.scene_points_in_box = t.scene_points_in_box;
-  out.coverage = t.coverage;
-  out.empty_space_probes = t.empty_space_probes;
-  out.empty_space_violations = t.empty_space_violations;
-  out.empty_space_violation_mean = t.empty_space_violation_mean;
-  out.unseen_points = t.unseen_points;
-  out.seen_through_points = t.seen_through_points;
-  out.empty_space_observed = t.empty_space_observed;
+  // The message has every term: those the metric did not measure as they always were (NaN
+  // coverage and observed share, zero counts).
+  const SupportTerms support = t.support.value_or(SupportTerms{});
+  const EmptySpaceTerms empty = t.empty_space.value_or(EmptySpaceTerms{});
+  out.coverage = t.coverage();
+  out.empty_space_probes = empty.probes;
+  out.empty_space_violations = empty.violations;
+  out.empty_space_violation_mean = empty.violation_mean;
+  out.unseen_points = support.unseen_points;
+  out.seen_through_points = support.seen_through_points;
+  out.empty_space_observed = empty.observed;
   out.range_scale = t.range_scale;
   return out;
 }

@@ -46,8 +46,9 @@ void select(std::vector<Match> candidates, const SelectionSettings& s, bool supp
     Match& m = candidates[i];
     if (!(m.error < stats.threshold)) {
       // Over only by the colour term: the shape matched, the colour did not.
-      const bool shape_fits = m.error - m.terms.colour_penalty < stats.threshold;
-      if (m.terms.colour_penalty > 0.0 && shape_fits) {
+      const double colour_penalty = m.terms.colour ? m.terms.colour->penalty : 0.0;
+      const bool shape_fits = m.error - colour_penalty < stats.threshold;
+      if (colour_penalty > 0.0 && shape_fits) {
         reject(m, RejectionReason::colour_differs);
       } else {
         reject(m, RejectionReason::error_above_threshold);

@@ -2,15 +2,13 @@
 #pragma once
 // The depth cameras the generator renders with (issue #59): a confidence calibrated on one sensor's
 // scenes says nothing of another's, so the benchmark renders the same worlds with three kinds of
-// camera, each from the ranges it works at.
-//
-// | name        | kind                          | image, focal     | range     | axial noise
-// sigma(z)        |
-// |-------------|-------------------------------|------------------|-----------|-----------------------------|
-// | `kinect`    | structured light (Kinect v1)  | 640x480, 525 px  | 0.5-4 m   | 0.0013 z^2, 1/8 px
-// levels    | | `realsense` | active stereo (D415/D435-like) | 640x480, 615 px | 0.2-3 m   | 0.0035
-// z^2, 1/32 px levels   | | `tof`       | time of flight (Kinect v2-like) | 512x424, 365 px |
-// 0.5-4.5 m | 0.001 + 0.0005 z^2, no levels |
+// camera, each from the ranges it works at:
+// - `kinect`: structured light (Kinect v1), 640x480 at 525 px, 0.5-4 m, axial noise
+//   sigma(z) = 0.0013 z^2, disparity levels of 1/8 px;
+// - `realsense`: active stereo (D415/D435-like), 640x480 at 615 px, 0.2-3 m, sigma(z) =
+//   0.0035 z^2, levels of 1/32 px;
+// - `tof`: time of flight (Kinect v2-like), 512x424 at 365 px, 0.5-4.5 m, sigma(z) = 0.001 +
+//   0.0005 z^2, no levels.
 //
 // The Kinect's is DepthSensorSettings' default, fitted to 51 real frames (`lmk sensor-check`). The
 // RealSense's noise is the one measured in the real desk sequence of ../shared/data/real (the

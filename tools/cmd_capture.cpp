@@ -74,7 +74,7 @@ void report_look_alikes(const DistinctivenessReport& report, const Landmark& lan
   for (const Match& m : report.other_instances) {
     const Eigen::Vector3d c = m.box.center();
     std::fprintf(stderr, "  at %.3f %.3f %.3f m (error %s, coverage %.2f)\n", c.x(), c.y(), c.z(),
-                 format_error(m.error, report.search.stats.metric).c_str(), m.terms.coverage);
+                 format_error(m.error, report.search.stats.metric).c_str(), m.terms.coverage());
   }
   std::fprintf(stderr,
                "  a robot could take those for the landmark: draw the box with more context or "

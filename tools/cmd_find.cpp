@@ -59,7 +59,8 @@ void print_table(const FindResult& r, const std::string& name) {
       setting_name(s.method).c_str(), s.metric.c_str(), format_error(s.threshold, s.metric).c_str(),
       s.seeds, s.scene_points_used, s.seconds_total, why.c_str());
   if (r.matches.empty()) return;
-  const bool grid_terms = !std::isnan(r.matches.front().terms.coverage);
+  // The metrics that measure support and test empty space show those; the paper's, its counts.
+  const bool grid_terms = r.matches.front().terms.support.has_value();
   const ErrorDisplay& shown = find_error_metric(s.metric).display;
   std::printf("%4s %9s %9s %9s %8s %8s %8s %9s %10s", "rank", "x", "y", "z", "roll", "pitch", "yaw",
               ("error_" + shown.column).c_str(), "confidence");
@@ -76,9 +77,10 @@ void print_table(const FindResult& r, const std::string& name) {
                 rpy.x(), rpy.y(), rpy.z(), shown.scale * m.error,
                 format_confidence(m.confidence.probability).c_str());
     if (grid_terms) {
-      const std::string viol = std::to_string(m.terms.empty_space_violations) + "/" +
-                               std::to_string(m.terms.empty_space_probes);
-      std::printf(" %8.3f %11s\n", m.terms.coverage, viol.c_str());
+      const EmptySpaceTerms empty = m.terms.empty_space.value_or(EmptySpaceTerms{});
+      const std::string viol =
+          std::to_string(empty.violations) + "/" + std::to_string(empty.probes);
+      std::printf(" %8.3f %11s\n", m.terms.coverage(), viol.c_str());
     } else {
       std::printf(" %7zu %7zu %6zu\n", m.terms.scene_to_landmark_count,
                   m.terms.landmark_to_scene_count, m.terms.scene_points_in_box);

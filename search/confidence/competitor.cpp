@@ -242,9 +242,10 @@ std::vector<Match> probe_freest_motion(const ConfidenceInput& in, const Match& m
 }
 
 double empty_space_intrusion(const ErrorTerms& t, const SelectionSettings& s) {
-  const double allowed = s.max_empty_space_violation * static_cast<double>(t.empty_space_probes);
+  if (!t.empty_space) return 0.0;
+  const double allowed = s.max_empty_space_violation * static_cast<double>(t.empty_space->probes);
   if (!(allowed > 0.0)) return 0.0;
-  return std::min(1.0, static_cast<double>(t.empty_space_violations) / allowed);
+  return std::min(1.0, static_cast<double>(t.empty_space->violations) / allowed);
 }
 
 bool plausible_alternative(const Match& candidate, const SelectionSettings& s) {
@@ -259,7 +260,7 @@ MatchConfidence assess_match(const ConfidenceInput& in, const Match& match,
   describe_landmark(in, match, points, c);
   const double noise = measure_noise(in, match, c);
   measure_support(in, match, points, noise, c);
-  c.coverage = match.terms.coverage;
+  c.coverage = match.terms.coverage();
   c.intrusion = empty_space_intrusion(match.terms, in.selection);
   if (in.flat_normal && in.empty_distances) {
     c.free_space_seen =

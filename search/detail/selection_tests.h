@@ -14,15 +14,15 @@ namespace lmk::detail {
 /// Fewer of the landmark's points supported than selection.min_coverage (only for metrics that
 /// measure coverage).
 inline bool coverage_too_low(const ErrorTerms& t, const SelectionSettings& s) {
-  return !std::isnan(t.coverage) && t.coverage < s.min_coverage;
+  return t.support && t.support->coverage < s.min_coverage;
 }
 
 /// More of the landmark's observed-empty voxels occupied than selection.max_empty_space_violation
 /// allows (only for metrics that test empty space).
 inline bool empty_space_occupied(const ErrorTerms& t, const SelectionSettings& s) {
-  return t.empty_space_probes > 0 &&
-         static_cast<double>(t.empty_space_violations) >
-             s.max_empty_space_violation * static_cast<double>(t.empty_space_probes);
+  return t.empty_space && t.empty_space->probes > 0 &&
+         static_cast<double>(t.empty_space->violations) >
+             s.max_empty_space_violation * static_cast<double>(t.empty_space->probes);
 }
 
 }  // namespace lmk::detail

@@ -13,29 +13,32 @@
 
 namespace lmk::detail {
 
-/// Every term; coverage is null for the metrics that do not measure it.
+/// Every term, in one schema whatever the metric: the terms a metric does not measure are written
+/// as they always were, coverage and empty_space_observed null and the counts 0; the colour terms
+/// only where colour was compared.
 inline nlohmann::json terms_to_json(const ErrorTerms& t) {
-  nlohmann::json j = {
-      {"scene_to_landmark_sum", t.scene_to_landmark_sum},
-      {"scene_to_landmark_count", t.scene_to_landmark_count},
-      {"landmark_to_scene_sum", t.landmark_to_scene_sum},
-      {"landmark_to_scene_count", t.landmark_to_scene_count},
-      {"scene_points_in_box", t.scene_points_in_box},
-      {"coverage", std::isnan(t.coverage) ? nlohmann::json(nullptr) : nlohmann::json(t.coverage)},
-      {"empty_space_probes", t.empty_space_probes},
-      {"empty_space_violations", t.empty_space_violations},
-      {"empty_space_violation_mean", t.empty_space_violation_mean},
-      {"unseen_points", t.unseen_points},
-      {"seen_through_points", t.seen_through_points},
-      {"empty_space_observed", std::isnan(t.empty_space_observed)
-                                   ? nlohmann::json(nullptr)
-                                   : nlohmann::json(t.empty_space_observed)},
-      {"range_scale", t.range_scale}};
-  // Only where colour was compared: a search without colour writes what it wrote before.
-  if (t.colour_points > 0) {
-    j["colour_difference"] = t.colour_difference;
-    j["colour_points"] = t.colour_points;
-    j["colour_penalty"] = t.colour_penalty;
+  const SupportTerms support = t.support.value_or(SupportTerms{});
+  const EmptySpaceTerms empty = t.empty_space.value_or(EmptySpaceTerms{});
+  const auto optional_number = [](double v) {
+    return std::isnan(v) ? nlohmann::json(nullptr) : nlohmann::json(v);
+  };
+  nlohmann::json j = {{"scene_to_landmark_sum", t.scene_to_landmark_sum},
+                      {"scene_to_landmark_count", t.scene_to_landmark_count},
+                      {"landmark_to_scene_sum", t.landmark_to_scene_sum},
+                      {"landmark_to_scene_count", t.landmark_to_scene_count},
+                      {"scene_points_in_box", t.scene_points_in_box},
+                      {"coverage", optional_number(t.coverage())},
+                      {"empty_space_probes", empty.probes},
+                      {"empty_space_violations", empty.violations},
+                      {"empty_space_violation_mean", empty.violation_mean},
+                      {"unseen_points", support.unseen_points},
+                      {"seen_through_points", support.seen_through_points},
+                      {"empty_space_observed", optional_number(empty.observed)},
+                      {"range_scale", t.range_scale}};
+  if (t.colour) {
+    j["colour_difference"] = t.colour->difference;
+    j["colour_points"] = t.colour->points;
+    j["colour_penalty"] = t.colour->penalty;
   }
   return j;
 }
@@ -58,16 +61,25 @@ inline ErrorTerms terms_from_json(const nlohmann::json& j, const std::string& wh
   t.landmark_to_scene_sum = number("landmark_to_scene_sum");
   t.landmark_to_scene_count = count("landmark_to_scene_count");
   t.scene_points_in_box = count("scene_points_in_box");
+  // A metric measured support where it wrote a coverage, and tested empty space where it probed
+  // (or observed) any.
   const nlohmann::json& coverage = json_field(j, "coverage", where);
-  t.coverage = coverage.is_null() ? std::numeric_limits<double>::quiet_NaN() : number("coverage");
-  t.empty_space_probes = count("empty_space_probes");
-  t.empty_space_violations = count("empty_space_violations");
-  t.empty_space_violation_mean = number("empty_space_violation_mean");
-  // Written since the sensor metric; earlier files have neither.
-  if (j.contains("unseen_points")) t.unseen_points = count("unseen_points");
-  if (j.contains("seen_through_points")) t.seen_through_points = count("seen_through_points");
+  if (!coverage.is_null()) {
+    SupportTerms& support = t.support.emplace();
+    support.coverage = number("coverage");
+    // Written since the sensor metric; earlier files have neither.
+    if (j.contains("unseen_points")) support.unseen_points = count("unseen_points");
+    if (j.contains("seen_through_points"))
+      support.seen_through_points = count("seen_through_points");
+  }
+  EmptySpaceTerms empty;
+  empty.probes = count("empty_space_probes");
+  empty.violations = count("empty_space_violations");
+  empty.violation_mean = number("empty_space_violation_mean");
   if (j.contains("empty_space_observed") && !j["empty_space_observed"].is_null())
-    t.empty_space_observed = number("empty_space_observed");
+    empty.observed = number("empty_space_observed");
+  if (empty.probes > 0 || empty.violations > 0 || !std::isnan(empty.observed))
+    t.empty_space = empty;
   // Written since threshold_range; earlier files were never scaled.
   if (j.contains("range_scale")) {
     t.range_scale = number("range_scale");
@@ -75,10 +87,11 @@ inline ErrorTerms terms_from_json(const nlohmann::json& j, const std::string& wh
       throw Error(where + ".range_scale: must be in (0, 1]");
   }
   if (j.contains("colour_points")) {  // written since the colour term, where it was measured
-    t.colour_difference = number("colour_difference");
-    t.colour_points = count("colour_points");
-    t.colour_penalty = number("colour_penalty");
-    if (!(t.colour_penalty >= 0.0)) throw Error(where + ".colour_penalty: must be non-negative");
+    ColourTerms& colour = t.colour.emplace();
+    colour.difference = number("colour_difference");
+    colour.points = count("colour_points");
+    colour.penalty = number("colour_penalty");
+    if (!(colour.penalty >= 0.0)) throw Error(where + ".colour_penalty: must be non-negative");
   }
   t.finish();
   return t;

@@ -76,9 +76,8 @@ bool colour_is_measured(const ColourComparison& c) {
 void add_colour_term(const ColourComparison& c, double weight, double tolerance, double threshold,
                      ErrorTerms& terms) {
   if (!colour_is_measured(c)) return;
-  terms.colour_difference = c.difference;
-  terms.colour_points = c.pairs;
-  terms.colour_penalty = weight * threshold * std::max(0.0, c.difference - tolerance);
+  terms.colour = ColourTerms{c.difference, c.pairs,
+                             weight * threshold * std::max(0.0, c.difference - tolerance)};
   terms.finish();
 }
 

@@ -38,10 +38,9 @@ ColourComparison compare_colours(const SceneView& scene, const LandmarkView& lan
 /// speak for the whole landmark.
 bool colour_is_measured(const ColourComparison& c);
 
-/// Adds the colour term to `terms` (ErrorTerms::colour_difference, colour_points, colour_penalty)
-/// when `c` is measured: `weight` x `threshold` x max(0, difference - tolerance), in the metric's
-/// unit, so that a weight of 1 charges a whole threshold for a chroma difference of 1 beyond the
-/// tolerance.
+/// Adds the colour term to `terms` (ErrorTerms::colour) when `c` is measured: `weight` x
+/// `threshold` x max(0, difference - tolerance), in the metric's unit, so that a weight of 1
+/// charges a whole threshold for a chroma difference of 1 beyond the tolerance.
 void add_colour_term(const ColourComparison& c, double weight, double tolerance, double threshold,
                      ErrorTerms& terms);
 

@@ -87,7 +87,7 @@ void ErrorTerms::finish() {
   error = count == 0 ? std::numeric_limits<double>::infinity()
                      : range_scale * (scene_to_landmark_sum + landmark_to_scene_sum) /
                                static_cast<double>(count) +
-                           colour_penalty;
+                           (colour ? colour->penalty : 0.0);
 }
 
 Indices scene_points_in_box(const SceneView& scene, const Box& box) {

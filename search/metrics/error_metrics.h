@@ -10,6 +10,7 @@
 
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,7 +21,44 @@
 
 namespace lmk {
 
+/// The support terms of the metrics that measure support (the visibility metrics and the sensor
+/// metric): how much of the landmark the scene's surface supports, and what of it the scene's
+/// sensor could not see.
+struct SupportTerms {
+  /// The fraction of landmark points with a scene surface within the support distance.
+  double coverage = 0.0;
+  /// Landmark points the scene's sensor could not see (behind a nearer surface, turned away,
+  /// outside the view, no return), which count neither way.
+  std::size_t unseen_points = 0;
+  /// Sensor metric: landmark points the scene's sensor saw through, to a surface clearly behind.
+  std::size_t seen_through_points = 0;
+};
+
+/// The landmark's observed-empty space in the scene, for the metrics that test it (the visibility
+/// metrics and the sensor metric).
+struct EmptySpaceTerms {
+  std::size_t probes = 0;      ///< observed-empty voxels of the landmark tested
+  std::size_t violations = 0;  ///< of those, voxels the scene occupies
+  /// Mean distance of the violating voxels to the landmark surface, m (0 without violations).
+  double violation_mean = 0.0;
+  /// Sensor metric: the share of the landmark's observed-empty voxels the scene's sensor observed
+  /// too, beyond the noise of the landmark's surface (NaN for the other metrics).
+  double observed = std::numeric_limits<double>::quiet_NaN();
+};
+
+/// The colour term (search/metrics/colour_term.h; SelectionSettings::colour_weight), where it was
+/// measured: where the landmark and the scene both have colour.
+struct ColourTerms {
+  /// The mean chroma distance between landmark points and the scene points supporting them, over
+  /// `points` pairs.
+  double difference = 0.0;
+  std::size_t points = 0;
+  double penalty = 0.0;  ///< what it added to the error, in the metric's unit
+};
+
 /// A metric's result with the terms it was made of, so a user can see why a candidate matched.
+/// Every metric fills the distance sums; a term only some metrics measure is present only where
+/// one did.
 struct ErrorTerms {
   double scene_to_landmark_sum =
       0.0;  ///< sum of scene-point -> nearest-landmark-point distances, m
@@ -28,39 +66,26 @@ struct ErrorTerms {
   double landmark_to_scene_sum =
       0.0;  ///< sum of landmark-point -> nearest-scene-point distances, m
   std::size_t landmark_to_scene_count = 0;
-  std::size_t scene_points_in_box = 0;  ///< scene points inside the candidate box
-  /// Grid metrics: the fraction of landmark points with a scene surface within the support
-  /// distance (NaN for the paper's metrics, which do not measure it).
-  double coverage = std::numeric_limits<double>::quiet_NaN();
-  std::size_t empty_space_probes = 0;      ///< observed-empty voxels of the landmark tested
-  std::size_t empty_space_violations = 0;  ///< of those, voxels the scene occupies
-  /// Mean distance of the violating voxels to the landmark surface, m (0 without violations).
-  double empty_space_violation_mean = 0.0;
-  /// Sensor metric: landmark points the scene's sensor could not see (behind a nearer surface,
-  /// turned away, outside the view, no return), which count neither way.
-  std::size_t unseen_points = 0;
-  /// Sensor metric: landmark points the scene's sensor saw through, to a surface clearly behind.
-  std::size_t seen_through_points = 0;
-  /// Sensor metric: the share of the landmark's observed-empty voxels the scene's sensor observed
-  /// too, beyond the noise of the landmark's surface (NaN for the other metrics).
-  double empty_space_observed = std::numeric_limits<double>::quiet_NaN();
+  std::size_t scene_points_in_box = 0;         ///< scene points inside the candidate box
+  std::optional<SupportTerms> support;         ///< the visibility metrics' and the sensor metric's
+  std::optional<EmptySpaceTerms> empty_space;  ///< likewise
+  std::optional<ColourTerms> colour;           ///< where colour was compared
   /// Visibility metrics: the factor (at most 1) the mean was scaled by because the candidate lies
   /// beyond SceneSettings::threshold_range (when set), where the depth noise raises a true match's
   /// error (match_error_scale()); 1 for the other metrics and nearer candidates.
   double range_scale = 1.0;
-  /// The colour term (search/metrics/colour_term.h; SelectionSettings::colour_weight), measured
-  /// only where the landmark and the scene both have colour: the mean chroma distance between
-  /// landmark points and the scene points supporting them (NaN when not measured), over
-  /// `colour_points` pairs, and what it added to the error, in the metric's unit.
-  double colour_difference = std::numeric_limits<double>::quiet_NaN();
-  std::size_t colour_points = 0;
-  double colour_penalty = 0.0;
-  /// range_scale x (sum of both terms) / (count of both terms) + colour_penalty, in the metric's
-  /// own unit (m for the paper's distances). When no term was counted there is no evidence of a
-  /// match, and the error is +infinity: defined, never NaN.
+  /// range_scale x (sum of both terms) / (count of both terms) + the colour penalty, in the
+  /// metric's own unit (m for the paper's distances). When no term was counted there is no evidence
+  /// of a match, and the error is +infinity: defined, never NaN.
   double error = 0.0;
 
   void finish();  ///< computes `error` from the sums and counts
+
+  /// The coverage where the metric measured it, NaN otherwise: what tables and the confidence's
+  /// features read.
+  double coverage() const {
+    return support ? support->coverage : std::numeric_limits<double>::quiet_NaN();
+  }
 };
 
 class SceneIndex;

@@ -232,6 +232,8 @@ namespace {
 ErrorTerms visibility_terms(const SceneView& scene, const LandmarkView& landmark,
                             const Eigen::Isometry3d& T_scene_capture, bool projective) {
   ErrorTerms terms;
+  SupportTerms& seen = terms.support.emplace();
+  EmptySpaceTerms& empty = terms.empty_space.emplace();
   const Eigen::Isometry3f T = T_scene_capture.cast<float>();
   const DistanceField::Sampler scene_field(scene.index.field());
   const Box free_zone =
@@ -251,14 +253,14 @@ ErrorTerms visibility_terms(const SceneView& scene, const LandmarkView& landmark
                   : std::vector<char>();
   for (std::size_t j = 0; j < landmark.points.size(); ++j) {
     if (facing_only && !shows[j]) {
-      ++terms.unseen_points;
+      ++seen.unseen_points;
       continue;
     }
     ++facing;
     const Eigen::Vector3f q = T * landmark.points.points[j];
     if ((projective && hidden_behind(scene.index, q, free_zone)) ||
         unseen_by_sensor(scene.index, q, unseen)) {
-      ++terms.unseen_points;
+      ++seen.unseen_points;
       continue;
     }
     const float d = landmark_point_distance(scene.index, scene_field, T, landmark.points, j);
@@ -271,7 +273,7 @@ ErrorTerms visibility_terms(const SceneView& scene, const LandmarkView& landmark
   const std::size_t shortfall = shown_shortfall(terms.landmark_to_scene_count, facing);
   terms.landmark_to_scene_sum += scene.index.field().band() * static_cast<double>(shortfall);
   terms.landmark_to_scene_count += shortfall;
-  terms.coverage =
+  seen.coverage =
       terms.landmark_to_scene_count == 0
           ? 0.0
           : static_cast<double>(supported) / static_cast<double>(terms.landmark_to_scene_count);
@@ -279,16 +281,15 @@ ErrorTerms visibility_terms(const SceneView& scene, const LandmarkView& landmark
   // Empty space, from the scene's side: its occupied voxels that land in the landmark's
   // observed-empty voxels.
   const DistanceField::Sampler landmark_field(landmark.landmark.distance);
-  terms.empty_space_probes = landmark.landmark.empty_space.size();
+  empty.probes = landmark.landmark.empty_space.size();
   for_each_occupied_empty_voxel(scene.index, landmark, T_scene_capture,
                                 [&](const Eigen::Vector3f& e, const Eigen::Vector3f&) {
-                                  ++terms.empty_space_violations;
+                                  ++empty.violations;
                                   terms.scene_to_landmark_sum += landmark_field.distance(e);
                                   ++terms.scene_to_landmark_count;
                                 });
-  if (terms.empty_space_violations > 0) {
-    terms.empty_space_violation_mean =
-        terms.scene_to_landmark_sum / static_cast<double>(terms.empty_space_violations);
+  if (empty.violations > 0) {
+    empty.violation_mean = terms.scene_to_landmark_sum / static_cast<double>(empty.violations);
   }
   // Far from the sensor, the noise raises every term of a true match: judge the candidate as if
   // it stood at the range the threshold was set for.

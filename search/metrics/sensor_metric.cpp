@@ -52,21 +52,20 @@ EmptyVoxel look_at_empty_voxel(const RangeImage& image, const DepthNoise& noise,
 void projective_empty_space(const RangeImage& image, const DepthNoise& noise,
                             const Landmark& landmark, const std::vector<Eigen::Vector3f>& centres,
                             const std::vector<float>& distances, const Eigen::Isometry3f& T,
-                            ErrorTerms& terms) {
+                            EmptySpaceTerms& terms) {
   const Eigen::Vector3f capture_sensor = landmark.sensor_origin.cast<float>();
   double violation_distance = 0.0;
   for (std::size_t i = 0; i < centres.size(); ++i) {
     const EmptyVoxel seen =
         look_at_empty_voxel(image, noise, capture_sensor, centres[i], distances[i], T);
-    if (seen == EmptyVoxel::seen_empty) ++terms.empty_space_probes;
+    if (seen == EmptyVoxel::seen_empty) ++terms.probes;
     if (seen != EmptyVoxel::occupied) continue;
-    ++terms.empty_space_probes;
-    ++terms.empty_space_violations;
+    ++terms.probes;
+    ++terms.violations;
     violation_distance += distances[i];
   }
-  if (terms.empty_space_violations > 0) {
-    terms.empty_space_violation_mean =
-        violation_distance / static_cast<double>(terms.empty_space_violations);
+  if (terms.violations > 0) {
+    terms.violation_mean = violation_distance / static_cast<double>(terms.violations);
   }
 }
 
@@ -74,12 +73,12 @@ void projective_empty_space(const RangeImage& image, const DepthNoise& noise,
 // observed-empty space, beyond the noise of its surface (probes: every empty voxel).
 void occupied_empty_space(const SceneIndex& index, const DepthNoise& noise,
                           const LandmarkView& landmark, const Eigen::Isometry3d& T_scene_capture,
-                          ErrorTerms& terms) {
+                          EmptySpaceTerms& terms) {
   const DistanceField::Sampler landmark_field(landmark.landmark.distance);
   const float band = static_cast<float>(landmark.landmark.distance.band());
   const Eigen::Vector3f capture_sensor = landmark.landmark.sensor_origin.cast<float>();
   const Eigen::Vector3f sensor = index.T_scene_sensor().translation().cast<float>();
-  terms.empty_space_probes = landmark.landmark.empty_space.size();
+  terms.probes = landmark.landmark.empty_space.size();
   double violation_distance = 0.0;
   for_each_occupied_empty_voxel(index, landmark, T_scene_capture,
                                 [&](const Eigen::Vector3f& e, const Eigen::Vector3f& occupied) {
@@ -87,12 +86,11 @@ void occupied_empty_space(const SceneIndex& index, const DepthNoise& noise,
                                       (e - capture_sensor).norm(), (occupied - sensor).norm());
                                   const float d = landmark_field.distance(e);
                                   if (d < std::min<double>(kNoiseBand * sigma, 0.99 * band)) return;
-                                  ++terms.empty_space_violations;
+                                  ++terms.violations;
                                   violation_distance += d;
                                 });
-  if (terms.empty_space_violations > 0) {
-    terms.empty_space_violation_mean =
-        violation_distance / static_cast<double>(terms.empty_space_violations);
+  if (terms.violations > 0) {
+    terms.violation_mean = violation_distance / static_cast<double>(terms.violations);
   }
 }
 
@@ -137,14 +135,12 @@ double empty_space_penalty(const SceneIndex& index, const Landmark& landmark,
                            const std::vector<float>& distances,
                            const Eigen::Isometry3f& T_scene_capture) {
   if (!index.range_image() || centres.empty()) return 0.0;
-  ErrorTerms terms;
+  EmptySpaceTerms terms;
   projective_empty_space(*index.range_image(), index.settings().depth_noise(), landmark, centres,
                          distances, T_scene_capture, terms);
-  const double observed =
-      static_cast<double>(terms.empty_space_probes) / static_cast<double>(centres.size());
+  const double observed = static_cast<double>(terms.probes) / static_cast<double>(centres.size());
   if (observed < kMinEmptyObserved) return kCap;
-  return kCap * static_cast<double>(terms.empty_space_violations) /
-         static_cast<double>(terms.empty_space_probes);
+  return kCap * static_cast<double>(terms.violations) / static_cast<double>(terms.probes);
 }
 
 SensorFit sensor_fit(const SceneIndex& index, const PointCloud& points,
@@ -204,9 +200,8 @@ ErrorTerms sensor_metric(const SceneView& scene, const LandmarkView& landmark,
       std::max(0.0, kMinVisibleShare * static_cast<double>(landmark.points.size()) - fit.visible)));
   terms.landmark_to_scene_sum = fit.cost_sum + kCap * static_cast<double>(shortfall);
   terms.landmark_to_scene_count = fit.visible + shortfall;
-  terms.unseen_points = fit.unseen;
-  terms.seen_through_points = fit.seen_through;
-  terms.coverage = fit.coverage();
+  terms.support = SupportTerms{fit.coverage(), fit.unseen, fit.seen_through};
+  EmptySpaceTerms& empty = terms.empty_space.emplace();
 
   if (image) {
     const std::vector<float> computed =
@@ -215,15 +210,14 @@ ErrorTerms sensor_metric(const SceneView& scene, const LandmarkView& landmark,
             : std::vector<float>();
     projective_empty_space(
         *image, noise, landmark.landmark, landmark.landmark.empty_space.centres(),
-        landmark.empty_distances ? *landmark.empty_distances : computed, T, terms);
+        landmark.empty_distances ? *landmark.empty_distances : computed, T, empty);
   } else {
-    occupied_empty_space(index, noise, landmark, T_scene_capture, terms);
+    occupied_empty_space(index, noise, landmark, T_scene_capture, empty);
   }
   const std::size_t empty_voxels = landmark.landmark.empty_space.size();
   if (image && empty_voxels > 0) {
-    terms.empty_space_observed =
-        static_cast<double>(terms.empty_space_probes) / static_cast<double>(empty_voxels);
-    if (terms.empty_space_observed < kMinEmptyObserved) {
+    empty.observed = static_cast<double>(empty.probes) / static_cast<double>(empty_voxels);
+    if (empty.observed < kMinEmptyObserved) {
       // Every point at the cap: the error says "no evidence", the terms say why.
       terms.landmark_to_scene_sum = kCap * static_cast<double>(terms.landmark_to_scene_count);
     }

@@ -227,7 +227,7 @@ TEST_F(CaptureViews, AFusedLandmarkIsFoundFromAThirdViewAndShowsOnlyItsFacingSid
   // At its true place in the front view, the points only the side view saw are turned away.
   const FindResult self = find_landmark(*front_, both, FindSettings());
   ASSERT_FALSE(self.matches.empty());
-  EXPECT_GT(self.matches.front().terms.unseen_points, 0u);
+  EXPECT_GT(self.matches.front().terms.support->unseen_points, 0u);
 }
 
 }  // namespace

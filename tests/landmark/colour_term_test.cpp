@@ -102,23 +102,25 @@ TEST(ColourTerm, ACaptureKeepsTheColourOfItsPoints) {
 TEST(ColourTerm, TurnsDownTheLookAlikeOfTheWrongColour) {
   const FindResult shape_only = find_landmark(red_l().scene, red_l().landmark, with_colour(0.0));
   EXPECT_EQ(copies_found(shape_only), (std::vector<int>{0, 1, 2}));
-  for (const Match& m : shape_only.matches) EXPECT_EQ(m.terms.colour_points, 0u);
+  for (const Match& m : shape_only.matches) EXPECT_FALSE(m.terms.colour);
 
   FindSettings s = with_colour(1.0);
   s.execution.keep_suppressed = true;
   const FindResult coloured = find_landmark(red_l().scene, red_l().landmark, s);
   EXPECT_EQ(copies_found(coloured), (std::vector<int>{0, 2}));
   for (const Match& m : coloured.matches) {
-    EXPECT_GT(m.terms.colour_points, 100u);
-    EXPECT_LT(m.terms.colour_difference, 0.05);
-    EXPECT_EQ(m.terms.colour_penalty, 0.0);
+    ASSERT_TRUE(m.terms.colour);
+    EXPECT_GT(m.terms.colour->points, 100u);
+    EXPECT_LT(m.terms.colour->difference, 0.05);
+    EXPECT_EQ(m.terms.colour->penalty, 0.0);
   }
   EXPECT_EQ(coloured.stats.rejected[RejectionReason::colour_differs], 1u);
   const auto blue = std::find_if(coloured.rejected.begin(), coloured.rejected.end(),
                                  [](const Rejection& r) { return copy_of(r.candidate) == 1; });
   ASSERT_NE(blue, coloured.rejected.end());
   EXPECT_EQ(blue->reason, RejectionReason::colour_differs);
-  EXPECT_GT(blue->candidate.terms.colour_difference, 0.5);
+  ASSERT_TRUE(blue->candidate.terms.colour);
+  EXPECT_GT(blue->candidate.terms.colour->difference, 0.5);
   EXPECT_NE(describe_rejections(coloured.stats).find("1 colour differs"), std::string::npos);
 }
 
@@ -128,7 +130,8 @@ TEST(ColourTerm, IgnoresAUniformChangeOfBrightness) {
   const FindResult dim = find_landmark(painted_scene(0.5), red_l().landmark, s);
   ASSERT_EQ(copies_found(dim), copies_found(bright));
   for (std::size_t i = 0; i < dim.matches.size(); ++i) {
-    EXPECT_NEAR(dim.matches[i].terms.colour_difference, bright.matches[i].terms.colour_difference,
+    ASSERT_TRUE(dim.matches[i].terms.colour && bright.matches[i].terms.colour);
+    EXPECT_NEAR(dim.matches[i].terms.colour->difference, bright.matches[i].terms.colour->difference,
                 0.01);
     EXPECT_NEAR(dim.matches[i].error, bright.matches[i].error, 1e-4);
   }

@@ -348,8 +348,8 @@ TEST(RealData, MilkCartonInTheGrabberFrames) {
     for (const Match& m : r.matches) {
       const Eigen::Vector3d c = m.box.center();
       std::printf("  at %.3f %.3f %.3f, error %.2f mm, coverage %.2f, empty %zu/%zu\n", c.x(),
-                  c.y(), c.z(), 1000 * m.error, m.terms.coverage, m.terms.empty_space_violations,
-                  m.terms.empty_space_probes);
+                  c.y(), c.z(), 1000 * m.error, m.terms.coverage(), m.terms.empty_space->violations,
+                  m.terms.empty_space->probes);
     }
   }
 }

@@ -17,10 +17,10 @@ constexpr double kBand = 0.02;  // the scene field's band: two coarse leaves of 
 TEST(ProjectiveMetric, ThePatchWhereItWasSeenFitsWithFullCoverage) {
   const ErrorTerms t =
       evaluate_tiny("projective", tiny_landmark(), tiny_wall([](int, int) { return 1.0; }));
-  EXPECT_EQ(t.unseen_points, 0u);
+  EXPECT_EQ(t.support->unseen_points, 0u);
   EXPECT_EQ(t.landmark_to_scene_count, 9u);
   EXPECT_LT(t.error, 1e-3);
-  EXPECT_DOUBLE_EQ(t.coverage, 1.0);
+  EXPECT_DOUBLE_EQ(t.coverage(), 1.0);
 }
 
 // Column u = 18 is behind a plate 0.7 m away (30 cm in front: beyond the noise, and more than
@@ -32,14 +32,14 @@ TEST(ProjectiveMetric, APointBehindANearerSurfaceIsHidden) {
   const PointCloud scene =
       tiny_wall([](int u, int v) { return in_tiny_landmark(u, v) && u == 18 ? 0.7 : 1.0; });
   const ErrorTerms projective = evaluate_tiny("projective", landmark, scene);
-  EXPECT_EQ(projective.unseen_points, 3u);
+  EXPECT_EQ(projective.support->unseen_points, 3u);
   EXPECT_EQ(projective.landmark_to_scene_count, 6u);
   EXPECT_LT(projective.error, 1e-3);
-  EXPECT_DOUBLE_EQ(projective.coverage, 1.0);
+  EXPECT_DOUBLE_EQ(projective.coverage(), 1.0);
   const ErrorTerms visibility = evaluate_tiny("visibility", landmark, scene);
   EXPECT_EQ(visibility.landmark_to_scene_count, 9u);
   EXPECT_GT(visibility.error, 0.004);
-  EXPECT_NEAR(visibility.coverage, 6.0 / 9.0, 1e-12);
+  EXPECT_NEAR(visibility.coverage(), 6.0 / 9.0, 1e-12);
 }
 
 // Through column u = 18 the sensor sees a surface 1.3 m away, behind the points: they are not
@@ -50,9 +50,9 @@ TEST(ProjectiveMetric, APointTheSensorSeesThroughCountsAgainstTheMatch) {
       tiny_wall([](int u, int v) { return in_tiny_landmark(u, v) && u == 18 ? 1.3 : 1.0; });
   const ErrorTerms projective = evaluate_tiny("projective", landmark, scene);
   const ErrorTerms visibility = evaluate_tiny("visibility", landmark, scene);
-  EXPECT_EQ(projective.unseen_points, 0u);
+  EXPECT_EQ(projective.support->unseen_points, 0u);
   EXPECT_EQ(projective.landmark_to_scene_count, 9u);
-  EXPECT_NEAR(projective.coverage, 6.0 / 9.0, 1e-12);
+  EXPECT_NEAR(projective.coverage(), 6.0 / 9.0, 1e-12);
   EXPECT_GT(projective.error, 0.004);
   EXPECT_DOUBLE_EQ(projective.error, visibility.error);
 }
@@ -66,10 +66,10 @@ TEST(ProjectiveMetric, ASurfaceInsideTheBoxHidesNothing) {
   const PointCloud scene = tiny_wall(
       [](int u, int v) { return u >= 17 && u <= 21 && v >= 12 && v <= 16 ? 0.965 : 1.0; });
   const ErrorTerms t = evaluate_tiny("projective", landmark, scene);
-  EXPECT_EQ(t.unseen_points, 0u);
+  EXPECT_EQ(t.support->unseen_points, 0u);
   EXPECT_EQ(t.landmark_to_scene_count, 9u);
-  EXPECT_GT(t.empty_space_violations, 0u);
-  EXPECT_DOUBLE_EQ(t.coverage, 0.0);
+  EXPECT_GT(t.empty_space->violations, 0u);
+  EXPECT_DOUBLE_EQ(t.coverage(), 0.0);
   EXPECT_DOUBLE_EQ(t.error, evaluate_tiny("visibility", landmark, scene).error);
 }
 
@@ -79,10 +79,10 @@ TEST(ProjectiveMetric, APoseHiddenEverywhereIsNoMatch) {
   const PointCloud scene =
       tiny_wall([](int u, int v) { return in_tiny_landmark(u, v) ? 0.7 : 1.0; });
   const ErrorTerms t = evaluate_tiny("projective", tiny_landmark(), scene);
-  EXPECT_EQ(t.unseen_points, 9u);
+  EXPECT_EQ(t.support->unseen_points, 9u);
   EXPECT_EQ(t.landmark_to_scene_count, 5u);
   EXPECT_NEAR(t.error, kBand, 1e-9);
-  EXPECT_DOUBLE_EQ(t.coverage, 0.0);
+  EXPECT_DOUBLE_EQ(t.coverage(), 0.0);
 }
 
 // Rows 13 and 14 hidden behind a plate 0.7 m away: three points shown where 4.5 are needed, so
@@ -91,10 +91,10 @@ TEST(ProjectiveMetric, APoseMustShowHalfOfItsPoints) {
   const PointCloud scene =
       tiny_wall([](int u, int v) { return in_tiny_landmark(u, v) && v <= 14 ? 0.7 : 1.0; });
   const ErrorTerms t = evaluate_tiny("projective", tiny_landmark(), scene);
-  EXPECT_EQ(t.unseen_points, 6u);
+  EXPECT_EQ(t.support->unseen_points, 6u);
   EXPECT_EQ(t.landmark_to_scene_count, 5u);
   EXPECT_NEAR(t.error, 2.0 * kBand / 5.0, 1e-3);
-  EXPECT_NEAR(t.coverage, 3.0 / 5.0, 1e-12);
+  EXPECT_NEAR(t.coverage(), 3.0 / 5.0, 1e-12);
 }
 
 }  // namespace

@@ -23,11 +23,11 @@ struct Fixture {
 // The terms a case must give: unknown and seen-through points, the points counted, the error.
 void expect_terms(const ErrorTerms& t, std::size_t unseen, std::size_t seen_through,
                   std::size_t counted, double error, double coverage) {
-  EXPECT_EQ(t.unseen_points, unseen);
-  EXPECT_EQ(t.seen_through_points, seen_through);
+  EXPECT_EQ(t.support->unseen_points, unseen);
+  EXPECT_EQ(t.support->seen_through_points, seen_through);
   EXPECT_EQ(t.landmark_to_scene_count, counted);
   EXPECT_NEAR(t.error, error, 1e-6);
-  EXPECT_NEAR(t.coverage, coverage, 1e-12);
+  EXPECT_NEAR(t.coverage(), coverage, 1e-12);
 }
 
 TEST(SensorMetric, ThePatchWhereItWasSeenHasNoErrorAndFullCoverage) {
@@ -65,13 +65,13 @@ TEST(SensorMetric, EmptySpaceIsConfirmedWhereSeenThroughAndViolatedWhereASurface
   const Fixture f;
   ASSERT_GT(f.landmark.empty_space.size(), 0u);
   const ErrorTerms free = f.evaluate(tiny_wall([](int, int) { return 1.0; }));
-  EXPECT_GT(free.empty_space_probes, 0u);
-  EXPECT_EQ(free.empty_space_violations, 0u);
-  EXPECT_GT(free.empty_space_observed, 0.0);
+  EXPECT_GT(free.empty_space->probes, 0u);
+  EXPECT_EQ(free.empty_space->violations, 0u);
+  EXPECT_GT(free.empty_space->observed, 0.0);
   const ErrorTerms blocked = f.evaluate(tiny_wall(
       [](int u, int v) { return u >= 17 && u <= 21 && v >= 12 && v <= 16 ? 0.965 : 1.0; }));
-  EXPECT_EQ(blocked.unseen_points, 9u);
-  EXPECT_GT(blocked.empty_space_violations, 0u);
+  EXPECT_EQ(blocked.support->unseen_points, 9u);
+  EXPECT_GT(blocked.empty_space->violations, 0u);
 }
 
 }  // namespace

@@ -33,15 +33,15 @@ TEST(UnseenPoints, APointOnAPixelWithoutAReturnCountsOnlyWhenAsked) {
   for (const char* metric : {"visibility", "projective"}) {
     SCOPED_TRACE(metric);
     const ErrorTerms counted = evaluate_tiny(metric, landmark, scene);
-    EXPECT_EQ(counted.unseen_points, 0u);
+    EXPECT_EQ(counted.support->unseen_points, 0u);
     EXPECT_EQ(counted.landmark_to_scene_count, 9u);
     EXPECT_GT(counted.error, 0.004);
     const ErrorTerms no_return =
         evaluate_tiny(metric, landmark, scene, unseen(UnseenPoints::no_return));
-    EXPECT_EQ(no_return.unseen_points, 3u);
+    EXPECT_EQ(no_return.support->unseen_points, 3u);
     EXPECT_EQ(no_return.landmark_to_scene_count, 6u);
     EXPECT_LT(no_return.error, 1e-3);
-    EXPECT_DOUBLE_EQ(no_return.coverage, 1.0);
+    EXPECT_DOUBLE_EQ(no_return.coverage(), 1.0);
     EXPECT_DOUBLE_EQ(
         evaluate_tiny(metric, landmark, scene, unseen(UnseenPoints::outside_image)).error,
         counted.error);
@@ -59,7 +59,7 @@ TEST(UnseenPoints, APointBeyondTheImagesEdgeCountsOnlyWhenAsked) {
   EXPECT_GT(counted.error, 0.004);
   for (UnseenPoints which : {UnseenPoints::outside_image, UnseenPoints::no_return}) {
     const ErrorTerms t = evaluate_tiny("visibility", landmark, scene, unseen(which));
-    EXPECT_EQ(t.unseen_points, 3u);
+    EXPECT_EQ(t.support->unseen_points, 3u);
     EXPECT_EQ(t.landmark_to_scene_count, 6u);
     EXPECT_LT(t.error, 1e-3);
   }
@@ -70,7 +70,7 @@ TEST(UnseenPoints, APointBeyondTheImagesEdgeCountsOnlyWhenAsked) {
 TEST(UnseenPoints, APoseMustStillShowHalfOfItsPoints) {
   const ErrorTerms t = evaluate_tiny("visibility", tiny_landmark(), tiny_wall(kWall, 19),
                                      unseen(UnseenPoints::outside_image));
-  EXPECT_EQ(t.unseen_points, 6u);
+  EXPECT_EQ(t.support->unseen_points, 6u);
   EXPECT_EQ(t.landmark_to_scene_count, 5u);
   EXPECT_NEAR(t.error, 2.0 * kBand / 5.0, 1e-3);
 }
