@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "lmk/search/metrics/error_metrics.h"
-#include "tiny_organised_scene.h"
+#include "tests/landmark/tiny_organised_scene.h"
 
 namespace lmk {
 namespace {

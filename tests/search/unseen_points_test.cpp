@@ -9,7 +9,7 @@
 
 #include "lmk/search/metrics/grid_metrics.h"
 #include "lmk/search/scene_index.h"
-#include "tiny_organised_scene.h"
+#include "tests/landmark/tiny_organised_scene.h"
 
 namespace lmk {
 namespace {

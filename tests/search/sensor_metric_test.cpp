@@ -8,7 +8,7 @@
 #include <cmath>
 
 #include "lmk/search/metrics/error_metrics.h"
-#include "tiny_organised_scene.h"
+#include "tests/landmark/tiny_organised_scene.h"
 
 namespace lmk {
 namespace {
