@@ -147,6 +147,14 @@ struct Prepared {
     result.matches = std::move(kept);
   }
 
+  // What the method gets for `seeds` (indices into its seed cloud; none to align at a pose).
+  detail::SearchInput input(const SceneIndex& index, const LandmarkIndex& prepared,
+                            const Indices& seeds) const {
+    return {
+        index,  method.seed_cloud(index),      landmark, prepared, SceneView{index}, view, seeds,
+        metric, *settings.selection.threshold, settings};
+  }
+
   const FindSettings settings;  ///< resolved: what follows reads plain fields
   const detail::SearchMethodSteps& method;
   const ErrorMetric metric;  ///< with the colour term when the search weighs colour
@@ -184,17 +192,7 @@ Match align_at(const SceneIndex& index, const LandmarkIndex& prepared, const Pre
                const Eigen::Isometry3d& T_scene_capture) {
   if (!T_scene_capture.matrix().allFinite()) throw Error("score pose: the pose is not finite");
   const Indices no_seeds;
-  const detail::SearchInput input{index,
-                                  p.method.seed_cloud(index),
-                                  p.landmark,
-                                  prepared,
-                                  SceneView{index},
-                                  p.view,
-                                  no_seeds,
-                                  p.metric,
-                                  *p.settings.selection.threshold,
-                                  p.settings};
-  return p.method.align_at(input, T_scene_capture);
+  return p.method.align_at(p.input(index, prepared, no_seeds), T_scene_capture);
 }
 
 // Steps 3 to 6 in an indexed scene, for inputs already checked.
@@ -218,9 +216,7 @@ FindResult search(const SceneIndex& index, const LandmarkIndex& prepared,
 
   // Step 4.
   stage.restart();
-  const detail::SearchInput input{index,  points, p.landmark, prepared,        SceneView{index},
-                                  p.view, seeds,  p.metric,   stats.threshold, settings};
-  detail::CandidateSet candidates = method.candidates(input, stats);
+  detail::CandidateSet candidates = method.candidates(p.input(index, prepared, seeds), stats);
   for (const Match& m : candidates.kept)
     stats.icp_iterations += static_cast<std::size_t>(m.icp_iterations);
   stats.seconds_search = stage.seconds();

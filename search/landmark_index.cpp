@@ -1,14 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "lmk/search/landmark_index.h"
 
-#include <algorithm>
 #include <mutex>
-#include <sstream>
 
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/stopwatch.h"
-#include "lmk/geometry/voxel_grid.h"
-#include "lmk/geometry/voxel_normals.h"
 #include "lmk/search/metrics/error_metrics.h"
 #include "lmk/search/search_method.h"
 
@@ -50,9 +46,7 @@ void LandmarkIndex::build(const FindSettings& settings) {
   method_ = settings.method;
   tree_ = std::make_unique<KdTree>(landmark.points);
   lazy_ = std::make_unique<Lazy>();
-  const detail::SearchMethodSteps& method = detail::search_method_steps(method_);
-  prepared_for_ = method.prepared_for(settings);
-  method_landmark_ = method.prepare(landmark, settings);
+  method_landmark_ = detail::search_method_steps(method_).prepare(landmark, settings);
   seconds_ = stopwatch.seconds();
 }
 
@@ -60,7 +54,7 @@ bool LandmarkIndex::suits(const FindSettings& settings, std::string* why) const 
   const bool same = settings.method == method_ && method_landmark_->suits(settings);
   if (!same && why) {
     *why = "the index of landmark '" + landmark_->name + "' was built for method " +
-           setting_name(method_) + prepared_for_ + "; the search asks for method " +
+           setting_name(method_) + method_landmark_->built_for() + "; the search asks for method " +
            setting_name(settings.method) +
            detail::search_method_steps(settings.method).prepared_for(settings);
   }

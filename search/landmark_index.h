@@ -71,7 +71,6 @@ class LandmarkIndex {
   struct Lazy;
   std::unique_ptr<Lazy> lazy_;  ///< what is built on first use (behind a pointer: movable)
   SearchMethod method_ = SearchMethod::fast;
-  std::string prepared_for_;  ///< the method's settings it was built with, for messages
   std::unique_ptr<const detail::MethodLandmark> method_landmark_;
   double seconds_ = 0.0;
 };

@@ -51,6 +51,8 @@ class MethodLandmark {
   /// Whether a search with `settings` (of this method) can use it: the settings it was built from
   /// are the same.
   virtual bool suits(const FindSettings& settings) const = 0;
+  /// Those settings, for messages, as SearchMethodSteps::prepared_for() names them.
+  virtual std::string built_for() const = 0;
 };
 
 class SearchMethodSteps {

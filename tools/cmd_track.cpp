@@ -3,7 +3,6 @@
 // (search/tracker.h), frame by frame as they are read, with a line per frame and landmark, JSON
 // lines with --json, and a summary at the end.
 #include <algorithm>
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>

@@ -92,6 +92,7 @@ std::vector<Match> reference_candidates(const SearchInput& in) {
 class NoLandmarkWork final : public MethodLandmark {
  public:
   bool suits(const FindSettings&) const override { return true; }
+  std::string built_for() const override { return ""; }
 };
 
 class ReferenceSearch final : public SearchMethodSteps {

@@ -36,10 +36,9 @@ bool FastLandmark::suits(const FindSettings& settings) const {
          settings.fast.vote_leaf_fraction == vote_leaf_fraction_;
 }
 
-std::string FastLandmark::prepared_for(const FindSettings& settings) {
+std::string FastLandmark::described(double coarse_leaf, double vote_leaf_fraction) {
   std::ostringstream text;
-  text << ", coarse leaf " << settings.scene.coarse_leaf << " m and vote leaf fraction "
-       << settings.fast.vote_leaf_fraction;
+  text << ", coarse leaf " << coarse_leaf << " m and vote leaf fraction " << vote_leaf_fraction;
   return text.str();
 }
 

@@ -22,6 +22,7 @@ class FastLandmark final : public MethodLandmark {
 
   /// The same coarse leaf and vote leaf fraction.
   bool suits(const FindSettings& settings) const override;
+  std::string built_for() const override { return described(coarse_leaf_, vote_leaf_fraction_); }
 
   /// The landmark voxel-downsampled at the scene's coarse leaf.
   const PointCloud& coarse() const { return coarse_; }
@@ -32,7 +33,7 @@ class FastLandmark final : public MethodLandmark {
   const PointPairModel& point_pairs() const { return *pairs_; }
 
   /// ", coarse leaf 0.01 m and vote leaf fraction 0.05": what the model depends on, for messages.
-  static std::string prepared_for(const FindSettings& settings);
+  static std::string described(double coarse_leaf, double vote_leaf_fraction);
 
  private:
   double coarse_leaf_, vote_leaf_fraction_;

@@ -94,6 +94,7 @@ struct Stages {
         s(input.settings),
         landmark(input.landmark),
         index(input.index),
+        model(fast_landmark(input.prepared)),
         coarse(input.index.coarse()),
         leaf(input.index.settings().coarse_leaf) {
     tilt.model_up = landmark.up.cast<float>();
@@ -108,6 +109,7 @@ struct Stages {
   const FindSettings& s;
   const Landmark& landmark;
   const SceneIndex& index;
+  const FastLandmark& model;  ///< the landmark's coarse points and point pair model
   const PointCloud& coarse;
   const double leaf;
   TiltLimit tilt;
@@ -118,14 +120,14 @@ struct Stages {
 // for poses within the tilt limit.
 std::vector<Candidate> vote(const Stages& st) {
   const SearchInput& in = st.in;
-  const double vote_leaf = fast_landmark(in.prepared).vote_leaf();
+  const double vote_leaf = st.model.vote_leaf();
   // The scene reaches the voting resolution as the landmark's model did (LandmarkIndex), and is
   // bucketed for the seeds' neighbourhoods: one radius, the diameter, for every seed.
   const bool own_vote_cloud = vote_leaf > st.leaf * 1.01;
   const PointCloud vote_scene =
       own_vote_cloud ? voxel_downsample(st.coarse, vote_leaf) : PointCloud();
   const PointCloud& voters = own_vote_cloud ? vote_scene : st.coarse;
-  const RadiusGrid voter_grid(voters, 0.5 * fast_landmark(in.prepared).diameter());
+  const RadiusGrid voter_grid(voters, 0.5 * st.model.diameter());
   // Each seed votes at the voting point nearest to it: the centroid of its own voting voxel, no
   // farther than that voxel's diagonal, is a candidate.
   const auto reach = static_cast<float>(1.01 * std::sqrt(3.0) * vote_leaf);
@@ -134,7 +136,7 @@ std::vector<Candidate> vote(const Stages& st) {
     const auto n = voter_grid.nearest_within(st.coarse.points[in.seeds[k]], reach);
     references[k] = n ? n->index : 0;
   }
-  const PointPairModel& pairs = fast_landmark(in.prepared).point_pairs();
+  const PointPairModel& pairs = st.model.point_pairs();
   const auto& progress = st.s.execution.progress;
   std::vector<std::vector<PoseVote>> votes(in.seeds.size());
   std::atomic<std::size_t> done{0};
@@ -173,7 +175,7 @@ CoarseAlignment coarse_align(const Stages& st, const std::vector<Candidate>& clu
   // A few hundred points fix a coarse pose as well as all of them, and score it as well: the
   // candidates are many, and the score only ranks them for the fine stage, which scores the
   // finalists with every point.
-  const PointCloud& model = fast_landmark(in.prepared).coarse();
+  const PointCloud& model = st.model.coarse();
   const PointCloud coarse_model = model.select(thin_indices(model.size(), 400));
   // The metric's own cheap score, in its unit (none: every candidate ranks as voted).
   CoarseScore quick;
@@ -340,9 +342,9 @@ CandidateSet fast_candidates(const SearchInput& in, SearchStats& stats) {
   std::vector<Candidate> poses = vote(st);
   stats.fast.poses = poses.size();
   // Step 2.
-  const std::vector<Candidate> clusters = cluster(
-      std::move(poses), std::max(2.0 * st.leaf, 0.1 * fast_landmark(in.prepared).diameter()), 0.35,
-      st.s.fast.max_candidates);
+  const std::vector<Candidate> clusters =
+      cluster(std::move(poses), std::max(2.0 * st.leaf, 0.1 * st.model.diameter()), 0.35,
+              st.s.fast.max_candidates);
   stats.fast.clusters = clusters.size();
   stats.fast.seconds_vote = stage.seconds();
 
@@ -371,7 +373,7 @@ class FastSearch final : public SearchMethodSteps {
     return std::make_unique<FastLandmark>(landmark, settings);
   }
   std::string prepared_for(const FindSettings& settings) const override {
-    return FastLandmark::prepared_for(settings);
+    return FastLandmark::described(settings.scene.coarse_leaf, settings.fast.vote_leaf_fraction);
   }
 
   const PointCloud& seed_cloud(const SceneIndex& index) const override { return index.coarse(); }
@@ -381,8 +383,9 @@ class FastSearch final : public SearchMethodSteps {
   Indices seeds(const SceneIndex& index, const LandmarkIndex& landmark,
                 const FindSettings& settings) const override {
     const PointCloud& points = seed_cloud(index);
+    const FastLandmark& model = fast_landmark(landmark);
     ReliefTest relief;
-    relief.cell = 0.5 * fast_landmark(landmark).diameter();
+    relief.cell = 0.5 * model.diameter();
     relief.angle = kCoplanarAngle;
     relief.T_cloud_sensor = index.T_scene_sensor();
     relief.noise = index.settings().depth_noise();
@@ -391,9 +394,8 @@ class FastSearch final : public SearchMethodSteps {
     // leaves as the landmark has coarse points) spans seeds_per_instance times; coarser while the
     // seeds would exceed the cap.
     const double leaf = index.settings().coarse_leaf;
-    double spacing = leaf * std::sqrt(std::max(
-                                1.0, static_cast<double>(fast_landmark(landmark).coarse().size()) /
-                                         settings.fast.seeds_per_instance));
+    double spacing = leaf * std::sqrt(std::max(1.0, static_cast<double>(model.coarse().size()) /
+                                                        settings.fast.seeds_per_instance));
     const std::size_t cap = *settings.sampling.max_seeds;
     Indices seeds = spread_seeds(points, candidates, spacing, settings.sampling.seed);
     while (seeds.size() > cap) {

@@ -19,21 +19,18 @@ namespace lmk::detail {
 inline nlohmann::json terms_to_json(const ErrorTerms& t) {
   const SupportTerms support = t.support.value_or(SupportTerms{});
   const EmptySpaceTerms empty = t.empty_space.value_or(EmptySpaceTerms{});
-  const auto optional_number = [](double v) {
-    return std::isnan(v) ? nlohmann::json(nullptr) : nlohmann::json(v);
-  };
   nlohmann::json j = {{"scene_to_landmark_sum", t.scene_to_landmark_sum},
                       {"scene_to_landmark_count", t.scene_to_landmark_count},
                       {"landmark_to_scene_sum", t.landmark_to_scene_sum},
                       {"landmark_to_scene_count", t.landmark_to_scene_count},
                       {"scene_points_in_box", t.scene_points_in_box},
-                      {"coverage", optional_number(t.coverage())},
+                      {"coverage", finite_or_null(t.coverage())},
                       {"empty_space_probes", empty.probes},
                       {"empty_space_violations", empty.violations},
                       {"empty_space_violation_mean", empty.violation_mean},
                       {"unseen_points", support.unseen_points},
                       {"seen_through_points", support.seen_through_points},
-                      {"empty_space_observed", optional_number(empty.observed)},
+                      {"empty_space_observed", finite_or_null(empty.observed)},
                       {"range_scale", t.range_scale}};
   if (t.colour) {
     j["colour_difference"] = t.colour->difference;

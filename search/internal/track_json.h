@@ -7,7 +7,6 @@
 //    "position": [x, y, z], "quaternion": [w, x, y, z], "error": e, "confidence": p or null}
 //   {"landmark": "cup", "state": "lost", "seconds": 0.02, "lost_because": "coverage too low"}
 
-#include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "lmk/json/pose_json.h"
@@ -20,10 +19,7 @@ inline nlohmann::json tracked_landmark_to_json(const TrackedLandmark& t) {
   if (t.match) {
     j.update(pose_to_json(t.match->box.pose));
     j["error"] = t.match->error;
-    // null, not NaN, where no calibration applies: JSON has no NaN.
-    j["confidence"] = std::isnan(t.match->confidence.probability)
-                          ? nlohmann::json(nullptr)
-                          : nlohmann::json(t.match->confidence.probability);
+    j["confidence"] = finite_or_null(t.match->confidence.probability);  // none: uncalibrated
   } else {
     j["lost_because"] = to_string(t.lost_because);
   }
