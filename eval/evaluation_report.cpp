@@ -7,8 +7,10 @@
 
 #include "lmk/eval/evaluation_table.h"
 #include "lmk/eval/failure_pictures.h"
-#include "lmk/eval/internal/evaluation_json.h"
+#include "lmk/eval/internal/evaluation_document_json.h"
 #include "lmk/eval/internal/explanation_json.h"
+#include "lmk/eval/internal/rows_json.h"
+#include "lmk/eval/risk_coverage.h"
 #include "lmk/eval/svg_plot.h"
 #include "lmk/geometry/atomic_file.h"
 #include "lmk/geometry/error.h"
@@ -117,6 +119,12 @@ constexpr const char* kHiddenNote =
     "Recall by the fraction of each ground-truth instance that the scene's sensor does not see, in "
     "20% bins; false matches hide nothing and count in no row; assumptions 1 and 2.";
 
+constexpr const char* kConfidenceNote =
+    "What the confidence is worth (docs/evaluation.md, \"Confidence\"): as the cut falls, the "
+    "share of in-context pairs whose best match is answered against the precision of those "
+    "answers, at the reported cuts and at the lowest cuts that keep a precision of 0.95 and 0.98; "
+    "then by range and by landmark size at the evaluation's cut.";
+
 // The report's tables, each computed once for the JSON, the Markdown and the HTML.
 struct ReportTables {
   std::vector<EvaluationRow> rows, by_range;
@@ -150,24 +158,6 @@ TextTable case_table(const std::vector<ExplainedCase>& cases, const std::string&
   return t;
 }
 
-std::string explain_markdown(const Evaluation& e, const ReportTables& t) {
-  if (!t.explained) return "";
-  const std::string& metric = e.settings.find.selection.metric;
-  return "\n## Why\n\n" + std::string(kExplainNote) + "\n\n" +
-         cause_table(cause_rows(*t.explained), metric).markdown() + "\n" +
-         cause_table(cause_rows(*t.explained, 0.5), metric).markdown() + "\n" +
-         case_table(*t.explained, metric).markdown();
-}
-
-std::string explain_html(const Evaluation& e, const ReportTables& t) {
-  if (!t.explained) return "";
-  const std::string& metric = e.settings.find.selection.metric;
-  return "<h2>Why</h2>\n<p>" + escape_html(kExplainNote) + "</p>\n" +
-         html_table(cause_table(cause_rows(*t.explained), metric)) + "<h3>By range</h3>\n" +
-         html_table(cause_table(cause_rows(*t.explained, 0.5), metric)) + "<h3>Every case</h3>\n" +
-         html_table(case_table(*t.explained, metric));
-}
-
 // What the failure pictures hold beyond the limit, in words.
 std::string failures_summary(const FailurePictures& f) {
   return std::to_string(f.pairs_with_failures) +
@@ -177,58 +167,101 @@ std::string failures_summary(const FailurePictures& f) {
          ".";
 }
 
-std::string failures_markdown(const ReportTables& t) {
-  if (!t.failures) return "";
-  std::string s = "\n## Failures\n\n" + failures_summary(*t.failures) + "\n\n";
-  for (const FailurePicture& f : t.failures->pictures) s += "- " + f.caption + "\n";
+// One section of the report, shown alike in Markdown and HTML: its paragraphs, its tables (each
+// under a subtitle, or none), then what one format alone shows (the plots, the pictures). A new
+// report adds a section here and reaches both files.
+struct ReportSection {
+  using Tables = std::vector<std::pair<std::string, TextTable>>;  ///< subtitle ("": none), table
+  ReportSection(std::string title, std::vector<std::string> paragraphs, Tables tables = {},
+                std::string html_extra = "")
+      : title(std::move(title)),
+        paragraphs(std::move(paragraphs)),
+        tables(std::move(tables)),
+        html_extra(std::move(html_extra)) {}
+
+  std::string title;
+  std::vector<std::string> paragraphs;
+  Tables tables;
+  std::string html_extra, markdown_extra;
+};
+
+ReportSection failures_section(const FailurePictures& f) {
+  ReportSection s("Failures", {failures_summary(f)});
+  for (const FailurePicture& p : f.pictures) s.markdown_extra += "- " + p.caption + "\n";
+  s.html_extra =
+      "<p>Depth images (near bright, far dark, no return black) with the true boxes in green "
+      "(dashed: ignored, hardly seen), correct matches in blue and false matches in red.</p>\n";
+  for (const FailurePicture& p : f.pictures)
+    s.html_extra += "<figure>\n" + p.svg + "\n<figcaption>" + escape_html(p.caption) +
+                    "</figcaption>\n</figure>\n";
   return s;
 }
 
-std::string failures_html(const ReportTables& t) {
-  if (!t.failures) return "";
-  std::string s = "<h2>Failures</h2>\n<p>" + escape_html(failures_summary(*t.failures)) +
-                  " Depth images (near bright, far dark, no return black) with the true boxes "
-                  "in green (dashed: ignored, hardly seen), correct matches in blue and false "
-                  "matches in red.</p>\n";
-  for (const FailurePicture& f : t.failures->pictures)
-    s += "<figure>\n" + f.svg + "\n<figcaption>" + escape_html(f.caption) +
-         "</figcaption>\n</figure>\n";
+std::vector<ReportSection> report_sections(const Evaluation& e, const ReportTables& t) {
+  std::vector<ReportSection> sections;
+  sections.push_back(
+      {"Precision and recall", {kAssumptionsNote}, {{"", evaluation_table(t.rows)}}});
+  sections.push_back({"By range", {kRangeNote}, {{"", evaluation_table(t.by_range)}}});
+  if (!t.by_hidden.empty())
+    sections.push_back(
+        {"By hidden fraction", {kHiddenNote}, {{"", evaluation_table(t.by_hidden)}}});
+  sections.push_back({"Confidence",
+                      {kConfidenceNote, confidence_summary(e)},
+                      {{"", risk_coverage_table(e, true)}}});
+  sections.push_back(
+      {"Plots",
+       {},
+       {},
+       "<figure>\n" + threshold_plot(e) + "</figure>\n<figure>\n" + times_plot(e) + "</figure>\n"});
+  if (t.explained) {
+    const std::string& metric = e.settings.find.selection.metric;
+    sections.push_back({"Why",
+                        {kExplainNote},
+                        {{"", cause_table(cause_rows(*t.explained), metric)},
+                         {"By range", cause_table(cause_rows(*t.explained, 0.5), metric)},
+                         {"Every case", case_table(*t.explained, metric)}}});
+  }
+  if (t.failures) sections.push_back(failures_section(*t.failures));
+  sections.push_back({"Pairs", {}, {{"", pair_table(e)}}});
+  return sections;
+}
+
+std::string markdown(const Evaluation& e, const std::vector<ReportSection>& sections) {
+  std::string s = "# lmk evaluation: " + e.dataset + "\n\n" + evaluation_header(e) + ".\n\nlmk " +
+                  kVersion + ", dataset fingerprint " + e.fingerprint + ", run " +
+                  format_optional(e.seconds, 1) + " s.\n";
+  for (const ReportSection& section : sections) {
+    if (section.paragraphs.empty() && section.tables.empty() && section.markdown_extra.empty())
+      continue;  // the plots: HTML only
+    s += "\n## " + section.title + "\n";
+    for (const std::string& p : section.paragraphs) s += "\n" + p + (p.back() == '\n' ? "" : "\n");
+    for (const auto& [subtitle, table] : section.tables)
+      s += (subtitle.empty() ? "\n" : "\n### " + subtitle + "\n\n") + table.markdown();
+    if (!section.markdown_extra.empty()) s += "\n" + section.markdown_extra;
+  }
   return s;
 }
 
-std::string markdown(const Evaluation& e, const ReportTables& t) {
-  return "# lmk evaluation: " + e.dataset + "\n\n" + evaluation_header(e) + ".\n\nlmk " + kVersion +
-         ", dataset fingerprint " + e.fingerprint + ", run " + format_optional(e.seconds, 1) +
-         " s.\n\n## Precision and recall\n\n" + kAssumptionsNote + "\n\n" +
-         evaluation_table(t.rows).markdown() + "\n## By range\n\n" + kRangeNote + "\n\n" +
-         evaluation_table(t.by_range).markdown() +
-         (t.by_hidden.empty() ? std::string()
-                              : "\n## By hidden fraction\n\n" + std::string(kHiddenNote) + "\n\n" +
-                                    evaluation_table(t.by_hidden).markdown()) +
-         explain_markdown(e, t) + failures_markdown(t) + "\n## Pairs\n\n" +
-         pair_table(e).markdown();
-}
-
-std::string html(const Evaluation& e, const ReportTables& t) {
-  return "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>lmk "
-         "evaluation: " +
-         escape_html(e.dataset) +
-         "</title>\n<style>\nbody{font-family:sans-serif;margin:2em;max-width:70em}\n"
-         "table{border-collapse:collapse;margin:1em 0}\n"
-         "th,td{border:1px solid #ccc;padding:2px 8px}\n.num{text-align:right}\n"
-         "th{background:#f0f0f0}\n</style>\n</head>\n<body>\n<h1>lmk evaluation: " +
-         escape_html(e.dataset) + "</h1>\n<p>" + escape_html(evaluation_header(e)) +
-         ".</p>\n<p>lmk " + kVersion + ", dataset fingerprint <code>" + e.fingerprint +
-         "</code>, run " + format_optional(e.seconds, 1) +
-         " s.</p>\n<h2>Precision and recall</h2>\n<p>" + escape_html(kAssumptionsNote) + "</p>\n" +
-         html_table(evaluation_table(t.rows)) + "<h2>By range</h2>\n<p>" + escape_html(kRangeNote) +
-         "</p>\n" + html_table(evaluation_table(t.by_range)) +
-         (t.by_hidden.empty() ? std::string()
-                              : "<h2>By hidden fraction</h2>\n<p>" + escape_html(kHiddenNote) +
-                                    "</p>\n" + html_table(evaluation_table(t.by_hidden))) +
-         "<h2>Plots</h2>\n<figure>\n" + threshold_plot(e) + "</figure>\n<figure>\n" +
-         times_plot(e) + "</figure>\n" + explain_html(e, t) + failures_html(t) +
-         "<h2>Pairs</h2>\n" + html_table(pair_table(e)) + "</body>\n</html>\n";
+std::string html(const Evaluation& e, const std::vector<ReportSection>& sections) {
+  std::string s =
+      "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>lmk "
+      "evaluation: " +
+      escape_html(e.dataset) +
+      "</title>\n<style>\nbody{font-family:sans-serif;margin:2em;max-width:70em}\n"
+      "table{border-collapse:collapse;margin:1em 0}\n"
+      "th,td{border:1px solid #ccc;padding:2px 8px}\n.num{text-align:right}\n"
+      "th{background:#f0f0f0}\n</style>\n</head>\n<body>\n<h1>lmk evaluation: " +
+      escape_html(e.dataset) + "</h1>\n<p>" + escape_html(evaluation_header(e)) + ".</p>\n<p>lmk " +
+      kVersion + ", dataset fingerprint <code>" + e.fingerprint + "</code>, run " +
+      format_optional(e.seconds, 1) + " s.</p>\n";
+  for (const ReportSection& section : sections) {
+    s += "<h2>" + escape_html(section.title) + "</h2>\n";
+    for (const std::string& p : section.paragraphs) s += "<p>" + escape_html(p) + "</p>\n";
+    for (const auto& [subtitle, table] : section.tables)
+      s += (subtitle.empty() ? "" : "<h3>" + escape_html(subtitle) + "</h3>\n") + html_table(table);
+    s += section.html_extra;
+  }
+  return s + "</body>\n</html>\n";
 }
 
 }  // namespace
@@ -260,7 +293,7 @@ void write_evaluation_report(const std::string& dir, const Evaluation& e,
   if (records_hidden_fractions(e)) tables.by_hidden = evaluation_rows_by_hidden(e);
   if (!dataset_dir.empty()) tables.failures = failure_pictures(e, dataset_dir);
   tables.explained = explained;
-  json j = detail::evaluation_to_json(e, tables.rows);
+  json j = detail::evaluation_document_to_json(e, tables.rows);
   if (explained) j["explain"] = detail::explanation_to_json(*explained);
   json curves = json::array();
   for (const std::string& setting : evaluation_settings(e)) {
@@ -290,8 +323,9 @@ void write_evaluation_report(const std::string& dir, const Evaluation& e,
                      {"unpictured", tables.failures->unpictured}};
   }
   write_text_atomically(fs::path(dir) / "report.json", j.dump(2) + "\n");
-  write_text_atomically(fs::path(dir) / "report.md", markdown(e, tables));
-  write_text_atomically(fs::path(dir) / "report.html", html(e, tables));
+  const std::vector<ReportSection> sections = report_sections(e, tables);
+  write_text_atomically(fs::path(dir) / "report.md", markdown(e, sections));
+  write_text_atomically(fs::path(dir) / "report.html", html(e, sections));
 }
 
 }  // namespace lmk

@@ -13,7 +13,7 @@
 #include "lmk/eval/ablation.h"
 #include "lmk/eval/evaluation_rows.h"
 #include "lmk/eval/internal/ablation_json.h"
-#include "lmk/eval/internal/evaluation_json.h"
+#include "lmk/eval/internal/evaluation_document_json.h"
 
 namespace lmk::python {
 namespace {
@@ -93,7 +93,7 @@ void bind_evaluation(py::module_& m) {
           const py::gil_scoped_release release;
           run.load();
           const Evaluation evaluation = evaluate(run.dir, run.data, run.settings);
-          result = detail::evaluation_to_json(evaluation, evaluation_rows(evaluation));
+          result = detail::evaluation_document_to_json(evaluation, evaluation_rows(evaluation));
         }
         return json_to_python(result);
       },

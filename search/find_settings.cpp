@@ -20,7 +20,10 @@ const std::vector<std::string>& setting_names(Orientations) {
 
 bool settings_group_affects(SearchMethod method, const std::string& group) {
   if (group == "execution") return false;
-  if (group == "reference" || group == "fast") return group == setting_name(method);
+  // A method's own group is named as the method (FindSettings::fast, ::reference).
+  const std::vector<std::string>& methods = search_methods();
+  if (std::find(methods.begin(), methods.end(), group) != methods.end())
+    return group == setting_name(method);
   return true;
 }
 

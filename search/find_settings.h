@@ -263,8 +263,7 @@ struct FindSettings {
 
   template <class Self, class Visit>
   static void describe(Self& s, Visit&& visit) {
-    visit(SettingInfo("method", "Search method: fast or reference").names_of<SearchMethod>(),
-          s.method);
+    visit(SettingInfo("method", "Search method").names_of<SearchMethod>(), s.method);
   }
 
   /// These settings as the search applies them: every default that depends on the method or on
@@ -286,7 +285,8 @@ void for_each_settings_group(Find& s, F&& f) {
 }
 
 /// Whether the stage named `group` can change what `method` finds: scene, sampling and selection
-/// always; reference and fast only for their own method; execution never.
+/// always; a method's own group (named as the method: fast, reference) only for that method;
+/// execution never.
 bool settings_group_affects(SearchMethod method, const std::string& group);
 
 /// Throws lmk::Error naming the stage, the field and its flag for the first setting out of its

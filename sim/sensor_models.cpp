@@ -55,16 +55,26 @@ SensorModel time_of_flight() {
   return m;
 }
 
+// Every model, in the order sensor_model_names() gives: a new camera is one function and one
+// entry here.
+const std::vector<SensorModel>& sensor_models() {
+  static const std::vector<SensorModel> models = {kinect(), realsense(), time_of_flight()};
+  return models;
+}
+
 }  // namespace
 
 const std::vector<std::string>& sensor_model_names() {
-  static const std::vector<std::string> names = {"kinect", "realsense", "tof"};
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out;
+    for (const SensorModel& m : sensor_models()) out.push_back(m.name);
+    return out;
+  }();
   return names;
 }
 
 const SensorModel& sensor_model(const std::string& name) {
-  static const std::vector<SensorModel> models = {kinect(), realsense(), time_of_flight()};
-  for (const SensorModel& m : models) {
+  for (const SensorModel& m : sensor_models()) {
     if (m.name == name) return m;
   }
   std::string known;

@@ -13,9 +13,9 @@
 #include "lmk/eval/evaluation_rows.h"
 #include "lmk/eval/evaluation_table.h"
 #include "lmk/eval/explain.h"
-#include "lmk/eval/internal/evaluation_json.h"
+#include "lmk/eval/internal/evaluation_document_json.h"
 #include "lmk/eval/internal/explanation_json.h"
-#include "lmk/eval/internal/risk_coverage_json.h"
+#include "lmk/eval/internal/rows_json.h"
 #include "lmk/eval/risk_coverage.h"
 #include "lmk/geometry/atomic_file.h"
 #include "lmk/geometry/error.h"
@@ -104,7 +104,7 @@ int run_eval(EvalOptions& o) {
   std::printf("%s\n\n%s%s", evaluation_header(evaluation).c_str(),
               evaluation_table(rows, o.timings).plain().c_str(),
               capture_symmetry_note(evaluation).c_str());
-  nlohmann::json json = detail::evaluation_to_json(evaluation, rows);
+  nlohmann::json json = detail::evaluation_document_to_json(evaluation, rows);
   // A split of the table, printed under its caption and kept in the JSON under `key`.
   const auto split = [&](const std::vector<EvaluationRow>& by, const char* caption,
                          const char* key) {
@@ -127,7 +127,6 @@ int run_eval(EvalOptions& o) {
   }
   std::printf("\n%s\n%s", risk_coverage_table(evaluation, o.by == "range").plain().c_str(),
               confidence_summary(evaluation).c_str());
-  json["confidence"] = detail::confidence_evaluation_to_json(evaluation);
   std::vector<ExplainedCase> explained;
   if (o.explain) {
     explained = explain(data, evaluation, o.by);

@@ -4,6 +4,8 @@
 // field's kebab-case name, its help line and limits are the description's, and its value is read
 // and checked by the same code as `lmk ablate --vary` and the JSON.
 
+#include <algorithm>
+#include <cctype>
 #include <memory>
 #include <optional>
 #include <type_traits>
@@ -16,13 +18,17 @@
 namespace lmk::cli {
 namespace {
 
-const char* group_title(const std::string& group) {
+std::string group_title(const std::string& group) {
   if (group == "scene") return "Scene (steps 1-2)";
   if (group == "sampling") return "Seeds (step 3)";
-  if (group == "reference") return "Reference method";
-  if (group == "fast") return "Fast method";
   if (group == "selection") return "Selection (steps 5-6)";
   if (group == "execution") return "Execution";
+  const std::vector<std::string>& methods = search_methods();
+  if (std::find(methods.begin(), methods.end(), group) != methods.end()) {
+    // A method's own group, named as the method: "Fast method".
+    return static_cast<char>(std::toupper(static_cast<unsigned char>(group[0]))) + group.substr(1) +
+           " method";
+  }
   return "Search";
 }
 

@@ -58,13 +58,22 @@ void expect_key_follows_every_setting(SearchMethod method) {
   EXPECT_NE(evaluation_cache_key(base, "other dataset"), key);
 }
 
-TEST(EvaluationCacheKey, FollowsEverySettingOfTheFastMethod) {
-  expect_key_follows_every_setting(SearchMethod::fast);
+class EachMethodsCacheKey : public ::testing::TestWithParam<SearchMethod> {};
+
+TEST_P(EachMethodsCacheKey, FollowsEverySettingOfTheMethodAndNoOtherMethods) {
+  expect_key_follows_every_setting(GetParam());
 }
 
-TEST(EvaluationCacheKey, FollowsEverySettingOfTheReferenceMethod) {
-  expect_key_follows_every_setting(SearchMethod::reference);
+// Every method named in setting_names(SearchMethod), so that a new one is checked too.
+std::vector<SearchMethod> every_method() {
+  std::vector<SearchMethod> methods;
+  for (std::size_t i = 0; i < search_methods().size(); ++i)
+    methods.push_back(static_cast<SearchMethod>(i));
+  return methods;
 }
+
+INSTANTIATE_TEST_SUITE_P(Methods, EachMethodsCacheKey, ::testing::ValuesIn(every_method()),
+                         [](const auto& info) { return setting_name(info.param); });
 
 TEST(EvaluationCacheKey, SpellingOutADefaultKeepsTheKey) {
   FindSettings implicit, spelled;

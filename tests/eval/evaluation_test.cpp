@@ -20,6 +20,7 @@
 #include "lmk/eval/evaluation_rows.h"
 #include "lmk/eval/evaluation_table.h"
 #include "lmk/eval/internal/evaluation_json.h"
+#include "lmk/eval/internal/risk_coverage_json.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/pose.h"
 #include "tests/eval/simple_scenes_fixture.h"
@@ -344,7 +345,15 @@ TEST(EvaluationReport, WritesJsonMarkdownAndSelfContainedHtml) {
   EXPECT_NE(read(out / "report.md").find("| setting |"), std::string::npos);
   EXPECT_NE(read(out / "report.md").find("## By range"), std::string::npos);
   EXPECT_NE(read(out / "report.html").find("<h2>By range</h2>"), std::string::npos);
+  // Every section of the report is in both files, and the JSON has what lmk eval --json has.
+  const std::string markdown = read(out / "report.md");
   const std::string html = read(out / "report.html");
+  for (const std::string section : {"Precision and recall", "By range", "Confidence", "Pairs"}) {
+    EXPECT_NE(markdown.find("## " + section + "\n"), std::string::npos) << section;
+    EXPECT_NE(html.find("<h2>" + section + "</h2>"), std::string::npos) << section;
+  }
+  EXPECT_NE(markdown.find("| at a cut |"), std::string::npos);  // the risk-coverage table
+  EXPECT_EQ(j.at("confidence"), detail::confidence_evaluation_to_json(hand_made()));
   EXPECT_EQ(html.rfind("<!DOCTYPE html>", 0), 0u);
   EXPECT_EQ(occurrences(html, "<svg"), 2u);  // the threshold curves and the times
   for (const std::string tag : {"table", "svg", "figure", "tr", "td", "th", "body", "html"}) {

@@ -137,6 +137,22 @@ TEST(FindSettings, JsonRefusesUnknownAndMistypedFields) {
   EXPECT_EQ(s.fast.max_candidates, 12u);
 }
 
+// A method's own settings are named as the method and change its results alone, so that a new
+// method's group never enters another's cache key (walking docs/developing.md's checklist with a
+// third method found the rule written for two).
+TEST(FindSettings, AMethodsOwnGroupAffectsThatMethodAlone) {
+  for (std::size_t m = 0; m < search_methods().size(); ++m) {
+    for (const std::string& group : search_methods()) {
+      EXPECT_EQ(settings_group_affects(static_cast<SearchMethod>(m), group),
+                group == search_methods()[m])
+          << search_methods()[m] << " and the group " << group;
+    }
+    for (const char* shared : {"scene", "sampling", "selection"})
+      EXPECT_TRUE(settings_group_affects(static_cast<SearchMethod>(m), shared)) << shared;
+    EXPECT_FALSE(settings_group_affects(static_cast<SearchMethod>(m), "execution"));
+  }
+}
+
 // Issue #34, finding 2: {"threads": 2000000000} crashed the server inside oneTBB, and a field band
 // of 1e308 m held it at 4.8 GB. Every count and length now has an upper bound in its description,
 // which the CLI, the JSON of the page and the ROS node all read.

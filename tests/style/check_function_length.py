@@ -1,28 +1,43 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: BSD-3-Clause
-"""No product function longer than the limit (docs/developing.md, "Style"): a long function is
-split into named stages that return small results. Function extents come from Universal Ctags
+"""No product function longer than the limit, and no source file longer than its own
+(docs/developing.md, "Style"): a long function is split into named stages that return small
+results, a long file into files of one subject each. Function extents come from Universal Ctags
 (its `end` field), over the library folders, tools/ and python/; tests, benchmarks and generated
-files are not product code.
+files are not product code. The file limit holds for tests and benchmarks too.
 
-  check_function_length.py [--root DIR] [--limit 80] [--list N]
+  check_function_length.py [--root DIR] [--limit 80] [--file-limit 600] [--list N]
 
-Exits 1 naming each function over the limit; --list N prints the N longest either way. Exits 77
-(CTest's skip) when Universal Ctags is not installed."""
+Exits 1 naming each function and file over its limit; --list N prints the N longest functions
+either way. Exits 77 (CTest's skip) when Universal Ctags is not installed."""
 
 import argparse
 import os
+import re
 import shutil
 import subprocess
 import sys
 
-PRODUCT_DIRS = ["geometry", "occupancy", "registration", "landmark", "pbd", "pr2", "eval", "demos",
-                "json", "ros", "serve", "tools", "python"]
+# tools/ (the CLI) and python/ are product code beside the libraries.
+APPLICATION_DIRS = ["tools", "python"]
+
+
+def product_dirs(root):
+    """Every library folder (its CMakeLists.txt makes a target lmk::NAME), then tools/ and
+    python/: read from the tree, so a new module is checked without being listed here."""
+    libraries = []
+    for name in sorted(os.listdir(root)):
+        cmake = os.path.join(root, name, "CMakeLists.txt")
+        if os.path.isfile(cmake) and re.search(r"lmk_add_library\(\s*" + name + r"\b|"
+                                               r"add_library\(lmk_" + name + r"\b",
+                                               open(cmake, encoding="utf-8").read()):
+            libraries.append(name)
+    return libraries + [d for d in APPLICATION_DIRS if os.path.isdir(os.path.join(root, d))]
 
 
 def function_lengths(root):
     """(lines, file, name, first line) of every function and method ctags finds, longest first."""
-    dirs = [d for d in PRODUCT_DIRS if os.path.isdir(os.path.join(root, d))]
+    dirs = product_dirs(root)
     out = subprocess.run(
         ["ctags", "-R", "--languages=C++", "--kinds-C++=f", "--fields=+ne", "-x",
          "--_xformat=%{line} %{end} %{input} %{name}"] + dirs,
@@ -38,10 +53,29 @@ def function_lengths(root):
     return found
 
 
+# Source files, by their endings; folders of test and benchmark code beside the product's.
+SOURCE_ENDINGS = (".cpp", ".h", ".py")
+TEST_DIRS = ["tests", "bench"]
+
+
+def file_lengths(root):
+    """(lines, file) of every source file in the product's, tests' and benchmarks' folders."""
+    found = []
+    for top in product_dirs(root) + [d for d in TEST_DIRS if os.path.isdir(os.path.join(root, d))]:
+        for folder, _, files in os.walk(os.path.join(root, top)):
+            for name in files:
+                if name.endswith(SOURCE_ENDINGS):
+                    path = os.path.join(folder, name)
+                    with open(path, encoding="utf-8", errors="replace") as f:
+                        found.append((sum(1 for _ in f), os.path.relpath(path, root)))
+    return sorted(found, reverse=True)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--root", default=os.path.join(os.path.dirname(__file__), "..", ".."))
     parser.add_argument("--limit", type=int, default=80)
+    parser.add_argument("--file-limit", type=int, default=600)
     parser.add_argument("--list", type=int, default=0, help="print the N longest functions")
     args = parser.parse_args()
     if shutil.which("ctags") is None or "Universal Ctags" not in subprocess.run(
@@ -57,7 +91,15 @@ def main():
               f"(at most {args.limit}): split it into named stages", file=sys.stderr)
     if not over:
         print(f"check_function_length: {len(found)} functions, none over {args.limit} lines")
-    return 1 if over else 0
+    files = file_lengths(os.path.abspath(args.root))
+    long_files = [f for f in files if f[0] > args.file_limit]
+    for lines, path in long_files:
+        print(f"check_function_length: {path} has {lines} lines (at most {args.file_limit}): "
+              f"split it into files of one subject each", file=sys.stderr)
+    if not long_files:
+        print(f"check_function_length: {len(files)} source files, none over {args.file_limit} "
+              f"lines")
+    return 1 if over or long_files else 0
 
 
 if __name__ == "__main__":
