@@ -234,7 +234,8 @@ std::string markdown(const Evaluation& e, const std::vector<ReportSection>& sect
     if (section.paragraphs.empty() && section.tables.empty() && section.markdown_extra.empty())
       continue;  // the plots: HTML only
     s += "\n## " + section.title + "\n";
-    for (const std::string& p : section.paragraphs) s += "\n" + p + (p.back() == '\n' ? "" : "\n");
+    for (const std::string& p : section.paragraphs)
+      s += "\n" + p + (!p.empty() && p.back() == '\n' ? "" : "\n");
     for (const auto& [subtitle, table] : section.tables)
       s += (subtitle.empty() ? "\n" : "\n### " + subtitle + "\n\n") + table.markdown();
     if (!section.markdown_extra.empty()) s += "\n" + section.markdown_extra;

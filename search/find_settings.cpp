@@ -2,6 +2,7 @@
 #include "lmk/search/find_settings.h"
 
 #include <algorithm>
+#include <optional>
 
 #include "lmk/geometry/error.h"
 #include "lmk/search/search_method.h"
@@ -21,9 +22,8 @@ const std::vector<std::string>& setting_names(Orientations) {
 bool settings_group_affects(SearchMethod method, const std::string& group) {
   if (group == "execution") return false;
   // A method's own group is named as the method (FindSettings::fast, ::reference).
-  const std::vector<std::string>& methods = search_methods();
-  if (std::find(methods.begin(), methods.end(), group) != methods.end())
-    return group == setting_name(method);
+  if (const std::optional<SearchMethod> own = setting_value_named<SearchMethod>(group))
+    return *own == method;
   return true;
 }
 

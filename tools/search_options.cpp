@@ -4,7 +4,6 @@
 // field's kebab-case name, its help line and limits are the description's, and its value is read
 // and checked by the same code as `lmk ablate --vary` and the JSON.
 
-#include <algorithm>
 #include <cctype>
 #include <memory>
 #include <optional>
@@ -23,8 +22,7 @@ std::string group_title(const std::string& group) {
   if (group == "sampling") return "Seeds (step 3)";
   if (group == "selection") return "Selection (steps 5-6)";
   if (group == "execution") return "Execution";
-  const std::vector<std::string>& methods = search_methods();
-  if (std::find(methods.begin(), methods.end(), group) != methods.end()) {
+  if (setting_value_named<SearchMethod>(group)) {
     // A method's own group, named as the method: "Fast method".
     return static_cast<char>(std::toupper(static_cast<unsigned char>(group[0]))) + group.substr(1) +
            " method";

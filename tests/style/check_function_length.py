@@ -28,16 +28,18 @@ def product_dirs(root):
     libraries = []
     for name in sorted(os.listdir(root)):
         cmake = os.path.join(root, name, "CMakeLists.txt")
-        if os.path.isfile(cmake) and re.search(r"lmk_add_library\(\s*" + name + r"\b|"
-                                               r"add_library\(lmk_" + name + r"\b",
-                                               open(cmake, encoding="utf-8").read()):
-            libraries.append(name)
+        if not os.path.isfile(cmake):
+            continue
+        with open(cmake, encoding="utf-8") as f:
+            if re.search(r"lmk_add_library\(\s*" + name + r"\b|add_library\(lmk_" + name + r"\b",
+                         f.read()):
+                libraries.append(name)
     return libraries + [d for d in APPLICATION_DIRS if os.path.isdir(os.path.join(root, d))]
 
 
-def function_lengths(root):
-    """(lines, file, name, first line) of every function and method ctags finds, longest first."""
-    dirs = product_dirs(root)
+def function_lengths(root, dirs):
+    """(lines, file, name, first line) of every function and method ctags finds in `dirs`,
+    longest first."""
     out = subprocess.run(
         ["ctags", "-R", "--languages=C++", "--kinds-C++=f", "--fields=+ne", "-x",
          "--_xformat=%{line} %{end} %{input} %{name}"] + dirs,
@@ -58,10 +60,10 @@ SOURCE_ENDINGS = (".cpp", ".h", ".py")
 TEST_DIRS = ["tests", "bench"]
 
 
-def file_lengths(root):
-    """(lines, file) of every source file in the product's, tests' and benchmarks' folders."""
+def file_lengths(root, dirs):
+    """(lines, file) of every source file in `dirs`, longest first."""
     found = []
-    for top in product_dirs(root) + [d for d in TEST_DIRS if os.path.isdir(os.path.join(root, d))]:
+    for top in dirs:
         for folder, _, files in os.walk(os.path.join(root, top)):
             for name in files:
                 if name.endswith(SOURCE_ENDINGS):
@@ -82,7 +84,9 @@ def main():
             ["ctags", "--version"], capture_output=True, text=True).stdout:
         print("check_function_length: Universal Ctags is not installed (scripts/install-deps.sh)")
         return 77
-    found = function_lengths(os.path.abspath(args.root))
+    root = os.path.abspath(args.root)
+    product = product_dirs(root)
+    found = function_lengths(root, product)
     for lines, path, name, first in found[:args.list]:
         print(f"{lines:4d}  {path}:{first}  {name}")
     over = [f for f in found if f[0] > args.limit]
@@ -91,7 +95,8 @@ def main():
               f"(at most {args.limit}): split it into named stages", file=sys.stderr)
     if not over:
         print(f"check_function_length: {len(found)} functions, none over {args.limit} lines")
-    files = file_lengths(os.path.abspath(args.root))
+    tests = [d for d in TEST_DIRS if os.path.isdir(os.path.join(root, d))]
+    files = file_lengths(root, product + tests)
     long_files = [f for f in files if f[0] > args.file_limit]
     for lines, path in long_files:
         print(f"check_function_length: {path} has {lines} lines (at most {args.file_limit}): "
