@@ -47,7 +47,7 @@ stop_daemons() {
   done
   if [ "$status" != 0 ]; then
     echo "--- logs of the failed run ($T) ---"
-    tail -n 20 "$T"/log/*.log "$T"/job*/logs/* 2> /dev/null || true
+    tail -n 20 "$T"/log/* "$T"/job*/logs/* 2> /dev/null || true
   else
     rm -rf "$T"
   fi
@@ -60,33 +60,42 @@ fail() {
   exit 1
 }
 
-# Two free TCP ports for slurmctld and slurmd.
-free_port() {
-  local port
-  for port in $(seq "$1" "$(($1 + 200))"); do
-    if ! (exec 3<> "/dev/tcp/127.0.0.1/$port") 2> /dev/null; then
-      echo "$port"
-      return
-    fi
-  done
-  fail "no free port from $1"
+# Two free TCP ports for slurmctld and slurmd, below the kernel's ephemeral range: a port in that
+# range can become the local end of any other test's outgoing connection between this check and the
+# daemon's bind (one CI run lost its 20 minutes so: slurmctld could not bind and every sinfo waited
+# for it). Free means a bind succeeds, which is what the daemons will do.
+free_ports() {
+  python3 - "$(cut -f1 /proc/sys/net/ipv4/ip_local_port_range)" << 'PY'
+import random, socket, sys
+ephemeral_low = int(sys.argv[1])
+start = random.randrange(10000, max(10001, ephemeral_low - 2000))
+found = []
+for port in range(start, ephemeral_low):
+    with socket.socket() as probe:
+        try:
+            probe.bind(("", port))
+        except OSError:
+            continue
+    found.append(port)
+    if len(found) == 2:
+        break
+print(*found)
+PY
 }
-base=$((20000 + $$ % 20000))
-ctld_port=$(free_port "$base")
-slurmd_port=$(free_port $((ctld_port + 1)))
-
 host=$(hostname -s)
 mkdir -p "$T/munge" "$T/state" "$T/spool" "$T/log"
 chmod 700 "$T/munge"
 head -c 1024 /dev/urandom > "$T/munge/munge.key"
 chmod 400 "$T/munge/munge.key"
-cat > "$T/slurm.conf" << EOF
+# The slurm.conf of a cluster whose daemons listen on the two ports given.
+write_conf() {
+  cat > "$T/slurm.conf" << EOF
 ClusterName=lmktest
 SlurmctldHost=$host(127.0.0.1)
 SlurmUser=root
 SlurmdUser=root
-SlurmctldPort=$ctld_port
-SlurmdPort=$slurmd_port
+SlurmctldPort=$1
+SlurmdPort=$2
 AuthType=auth/munge
 AuthInfo=socket=$T/munge/munge.sock
 CredType=cred/munge
@@ -110,29 +119,57 @@ JobAcctGatherType=jobacct_gather/none
 NodeName=$host NodeAddr=127.0.0.1 CPUs=$(nproc) State=UNKNOWN
 PartitionName=lmk Nodes=$host Default=YES MaxTime=INFINITE State=UP
 EOF
+}
 export SLURM_CONF="$T/slurm.conf"
+# The whole test's own limit, under ctest's 1200 s, so that a stuck cluster fails here with its
+# logs rather than being killed silently. A passing run takes about a minute.
+give_up_at=$((SECONDS + 1000))
 
 munged --foreground --force --socket="$T/munge/munge.sock" --key-file="$T/munge/munge.key" \
   --pid-file="$T/munge/munged.pid" --log-file="$T/log/munged.log" --seed-file="$T/munge/seed" &
 pids+=($!)
 for _ in $(seq 50); do [ -S "$T/munge/munge.sock" ] && break; sleep 0.2; done
 [ -S "$T/munge/munge.sock" ] || fail "munged did not start"
-slurmctld -D -f "$SLURM_CONF" > "$T/log/slurmctld.out" 2>&1 &
-pids+=($!)
-slurmd -D -f "$SLURM_CONF" > "$T/log/slurmd.out" 2>&1 &
-pids+=($!)
-for _ in $(seq 150); do
-  [ "$(sinfo -h -o %T 2> /dev/null)" = idle ] && break
-  sleep 0.2
+
+# Starts slurmctld and slurmd on two free ports and waits until the node is idle, for at most a
+# minute; returns 1 as soon as either daemon has exited, e.g. because a port was taken after all.
+start_cluster() {
+  read -r ctld_port slurmd_port <<< "$(free_ports)"
+  [ -n "$slurmd_port" ] || fail "no two free ports below the ephemeral range"
+  write_conf "$ctld_port" "$slurmd_port"
+  slurmctld -D -f "$SLURM_CONF" > "$T/log/slurmctld.out" 2>&1 &
+  local ctld_pid=$!
+  slurmd -D -f "$SLURM_CONF" > "$T/log/slurmd.out" 2>&1 &
+  local slurmd_pid=$!
+  pids+=("$ctld_pid" "$slurmd_pid")
+  local deadline=$((SECONDS + 60))
+  while [ "$SECONDS" -lt "$deadline" ]; do
+    kill -0 "$ctld_pid" 2> /dev/null && kill -0 "$slurmd_pid" 2> /dev/null || break
+    [ "$(timeout 15 sinfo -h -o %T 2> /dev/null)" = idle ] && return 0
+    sleep 0.2
+  done
+  echo "the cluster on ports $ctld_port and $slurmd_port did not come up:"
+  tail -n 5 "$T"/log/slurmctld.out "$T"/log/slurmd.out "$T"/log/slurm*.log 2> /dev/null || true
+  kill "$ctld_pid" "$slurmd_pid" 2> /dev/null || true
+  wait "$ctld_pid" "$slurmd_pid" 2> /dev/null || true
+  pids=("${pids[@]:0:${#pids[@]}-2}")
+  return 1
+}
+started=false
+for attempt in 1 2 3; do
+  if start_cluster; then
+    started=true
+    break
+  fi
+  echo "attempt $attempt of 3 failed; trying two other ports"
 done
-[ "$(sinfo -h -o %T 2> /dev/null)" = idle ] || fail "the node did not come up: $(sinfo 2>&1)"
+$started || fail "the node did not come up in 3 attempts"
 echo "slurm: one node '$host', controller on port $ctld_port, in $T"
 
 # Waits until every job named is no longer pending or running; prints each one's state.
 wait_jobs() {
-  local deadline=$((SECONDS + 900))
-  while [ -n "$(squeue -h -j "$(echo "$@" | tr ' ' ,)" -t PENDING,RUNNING,CONFIGURING 2> /dev/null)" ]; do
-    [ "$SECONDS" -lt "$deadline" ] || fail "jobs $* still queued after 15 minutes"
+  while [ -n "$(timeout 30 squeue -h -j "$(echo "$@" | tr ' ' ,)" -t PENDING,RUNNING,CONFIGURING 2> /dev/null)" ]; do
+    [ "$SECONDS" -lt "$give_up_at" ] || fail "jobs $* still queued after $SECONDS s of the test"
     # A job whose dependency can never be satisfied stays pending for ever: that is its end.
     if squeue -h -j "$(echo "$@" | tr ' ' ,)" -o %r | grep -q DependencyNeverSatisfied; then break; fi
     sleep 1
