@@ -168,10 +168,12 @@ echo "slurm: one node '$host', controller on port $ctld_port, in $T"
 
 # Waits until every job named is no longer pending or running; prints each one's state.
 wait_jobs() {
-  while [ -n "$(timeout 30 squeue -h -j "$(echo "$@" | tr ' ' ,)" -t PENDING,RUNNING,CONFIGURING 2> /dev/null)" ]; do
+  local jobs
+  jobs=$(echo "$@" | tr ' ' ,)
+  while [ -n "$(timeout 30 squeue -h -j "$jobs" -t PENDING,RUNNING,CONFIGURING 2> /dev/null)" ]; do
     [ "$SECONDS" -lt "$give_up_at" ] || fail "jobs $* still queued after $SECONDS s of the test"
     # A job whose dependency can never be satisfied stays pending for ever: that is its end.
-    if squeue -h -j "$(echo "$@" | tr ' ' ,)" -o %r | grep -q DependencyNeverSatisfied; then break; fi
+    if timeout 30 squeue -h -j "$jobs" -o %r | grep -q DependencyNeverSatisfied; then break; fi
     sleep 1
   done
 }
