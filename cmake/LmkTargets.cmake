@@ -14,8 +14,19 @@ option(LMK_WERROR "Treat compiler warnings as errors (CI builds with it on)" OFF
 
 # The warnings every lmk target is compiled with: set here once, for libraries, tools, tests,
 # benchmarks, the ROS node and the Python module alike.
+# In a unity build GCC sees each source as included by its batch, so it takes a source's pimpl
+# (`struct X::Impl` with members of types from the source's anonymous namespace) for a header's
+# class and warns of a one-definition risk that only headers carry: a false alarm there.
 function(lmk_warnings target)
-  target_compile_options(${target} PRIVATE -Wall -Wextra $<$<BOOL:${LMK_WERROR}>:-Werror>)
+  target_compile_options(${target} PRIVATE -Wall -Wextra $<$<BOOL:${LMK_WERROR}>:-Werror>
+    $<$<AND:$<CXX_COMPILER_ID:GNU>,$<BOOL:$<TARGET_PROPERTY:UNITY_BUILD>>>:-Wno-subobject-linkage>)
+endfunction()
+
+# cpp-httplib includes <resolv.h>, whose `_res` macro (glibc's resolver state) rewrites Eigen's
+# parameters of that name. In a unity batch a source that includes httplib may come before one that
+# includes Eigen's headers first, so the targets that use httplib undo the macro between sources.
+function(lmk_unity_after_httplib target)
+  set_property(TARGET ${target} PROPERTY UNITY_BUILD_CODE_BEFORE_INCLUDE "#undef _res")
 endfunction()
 
 function(lmk_add_library name)

@@ -51,7 +51,7 @@ Eigen::Vector3d required_point(const nlohmann::json& body, const std::string& ke
   if (!body.contains(key))
     throw bad_request(what + ": missing field '" + printable(key, kEchoedBytes) + "'");
   try {
-    return detail::numbers_from_json(body[key], 3, what + ": " + key);
+    return lmk::detail::numbers_from_json(body[key], 3, what + ": " + key);
   } catch (const Error& e) {
     throw bad_request(e.what());
   }
@@ -62,7 +62,7 @@ Box required_box(const nlohmann::json& body, const std::string& key, const std::
     throw bad_request(what + ": missing field '" + printable(key, kEchoedBytes) + "'");
   Box box;
   try {
-    detail::setting_from_json(body[key], what + ": " + key, box);
+    lmk::detail::setting_from_json(body[key], what + ": " + key, box);
   } catch (const Error& e) {
     throw bad_request(e.what());
   }
@@ -98,7 +98,7 @@ std::vector<Eigen::Isometry3d> optional_poses(const nlohmann::json& body, const 
   try {
     for (std::size_t i = 0; i < v.size(); ++i) {
       poses.push_back(
-          detail::pose_from_json(v[i], what + ": " + key + "[" + std::to_string(i) + "]"));
+          lmk::detail::pose_from_json(v[i], what + ": " + key + "[" + std::to_string(i) + "]"));
     }
   } catch (const Error& e) {
     throw bad_request(e.what());
@@ -128,7 +128,7 @@ void apply_find_settings(const nlohmann::json& body, const std::string& what,
                       "{\"threshold\": 0.004}}");
   }
   try {
-    detail::find_settings_from_json(s, what + ": settings", settings);
+    lmk::detail::find_settings_from_json(s, what + ": settings", settings);
     validate(settings);
   } catch (const Error& e) {
     throw bad_request(e.what());

@@ -192,7 +192,7 @@ Scene SceneStore::add_upload(UploadFile& file) {
 std::size_t SceneStore::search_footprint(const Scene& scene, const SceneSettings& settings) {
   FindSettings find;
   find.scene = settings;
-  const std::string key = scene.id + "|" + detail::find_settings_to_json(find)["scene"].dump();
+  const std::string key = scene.id + "|" + lmk::detail::find_settings_to_json(find)["scene"].dump();
   {
     std::lock_guard<std::mutex> lock(mutex_);
     const auto known = footprints_.find(key);

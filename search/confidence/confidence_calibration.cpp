@@ -23,7 +23,6 @@ constexpr double kRangeCap = 5.0;
 constexpr double kLogFreedomBound = 3.0;
 // A landmark's size is weighed as log10 of its box's diagonal over 10 cm, within +-1 (1 cm to 1 m).
 constexpr double kSizeUnit = 0.1;
-constexpr double kPi = 3.14159265358979323846;
 
 double capped(double v, double lo, double hi) {
   if (std::isnan(v)) return hi;
@@ -105,7 +104,7 @@ std::vector<double> confidence_features(const MatchConfidence& c) {
       look_alike,
       capture.present && capture.warned() ? 1.0 : 0.0,
       range_change(c.range, c.capture_range),
-      std::isnan(c.view_change) ? 0.0 : capped(c.view_change, 0.0, kPi),
+      std::isnan(c.view_change) ? 0.0 : capped(c.view_change, 0.0, M_PI),
       log_margin(c.local_margin * to_measured),
       log_margin(c.elsewhere_margin * to_measured),
       capped(c.fit * to_measured, 0.0, kFitCap)};

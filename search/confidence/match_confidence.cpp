@@ -9,8 +9,6 @@
 namespace lmk {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 // A rival within this many error sigmas of the match is as good as it within the noise; within
 // kCloseSigmas it is close enough to be the doubt a person should hear first.
 constexpr double kWithinNoiseSigmas = 3.0;
@@ -43,7 +41,7 @@ std::string describe_competitor(const MatchConfidence& c, const Box& box) {
     case Competitor::Kind::turn: {
       const Eigen::AngleAxisd turn(box.pose.linear().transpose() * rival.box.pose.linear());
       const Eigen::Vector3d axis = box.pose.linear() * turn.axis();
-      return format("a pose turned %.0f degrees about ", rival.angle * 180.0 / kPi) +
+      return format("a pose turned %.0f degrees about ", rival.angle * 180.0 / M_PI) +
              describe_axis(axis, box) + " " + how_close(margin);
     }
     case Competitor::Kind::look_alike:

@@ -30,7 +30,8 @@ TEST(NonMaxSuppression, LiteralRuleAndDeterministicTies) {
   EXPECT_THROW(non_max_suppression({{0, 0, 0}}, {}, 0.03), Error);
 }
 
-Box box_at(double x, double y, double yaw = 0.0) {
+// A 20 x 10 x 10 cm box centred at (x, y, 0), turned `yaw` about z.
+Box flat_box_at(double x, double y, double yaw = 0.0) {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   pose.translation() = Eigen::Vector3d(x, y, 0.0);
   pose.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
@@ -40,18 +41,19 @@ Box box_at(double x, double y, double yaw = 0.0) {
 TEST(ExclusiveBoxes, AMatchInsideABetterMatchsBoxIsTheSameObject) {
   // Best first: 1 lies in 0's box (5 cm off along its long side, beyond the 3 cm non-max radius);
   // 2 stands beside 0, touching but outside; 3 lies in 2's box.
-  const std::vector<Box> boxes = {box_at(0, 0), box_at(0.05, 0), box_at(0, 0.11),
-                                  box_at(0.02, 0.12)};
+  const std::vector<Box> boxes = {flat_box_at(0, 0), flat_box_at(0.05, 0), flat_box_at(0, 0.11),
+                                  flat_box_at(0.02, 0.12)};
   EXPECT_EQ(exclusive_boxes(boxes), (std::vector<std::size_t>{0, 2}));
 }
 
 TEST(ExclusiveBoxes, OnlyKeptMatchesSuppressAndTheBoxesAreOriented) {
   // 1 lies in 0's box and goes; 2 lies in 1's box but not in 0's, and stays.
-  EXPECT_EQ(exclusive_boxes({box_at(0, 0), box_at(0.09, 0), box_at(0.18, 0)}),
+  EXPECT_EQ(exclusive_boxes({flat_box_at(0, 0), flat_box_at(0.09, 0), flat_box_at(0.18, 0)}),
             (std::vector<std::size_t>{0, 2}));
   // 8 cm along y is outside a box 10 cm deep, inside the same box turned a quarter turn.
-  EXPECT_EQ(exclusive_boxes({box_at(0, 0), box_at(0, 0.08)}), (std::vector<std::size_t>{0, 1}));
-  EXPECT_EQ(exclusive_boxes({box_at(0, 0, M_PI / 2), box_at(0, 0.08)}),
+  EXPECT_EQ(exclusive_boxes({flat_box_at(0, 0), flat_box_at(0, 0.08)}),
+            (std::vector<std::size_t>{0, 1}));
+  EXPECT_EQ(exclusive_boxes({flat_box_at(0, 0, M_PI / 2), flat_box_at(0, 0.08)}),
             (std::vector<std::size_t>{0}));
   EXPECT_TRUE(exclusive_boxes({}).empty());
 }

@@ -13,7 +13,7 @@
 namespace lmk {
 namespace {
 
-struct Fixture {
+struct TinyWallFixture {
   Landmark landmark = tiny_landmark();
   ErrorTerms evaluate(const PointCloud& scene) const {
     return evaluate_tiny("sensor", landmark, scene);
@@ -31,14 +31,15 @@ void expect_terms(const ErrorTerms& t, std::size_t unseen, std::size_t seen_thro
 }
 
 TEST(SensorMetric, ThePatchWhereItWasSeenHasNoErrorAndFullCoverage) {
-  expect_terms(Fixture().evaluate(tiny_wall([](int, int) { return 1.0; })), 0, 0, 9, 0.0, 1.0);
+  expect_terms(TinyWallFixture().evaluate(tiny_wall([](int, int) { return 1.0; })), 0, 0, 9, 0.0,
+               1.0);
 }
 
 // Column u = 18 is behind a surface 0.7 m away: its three points are unknown, and the other six
 // alone decide, perfectly.
 TEST(SensorMetric, APointBehindANearerSurfaceIsUnknown) {
   const auto depth = [](int u, int v) { return in_tiny_landmark(u, v) && u == 18 ? 0.7 : 1.0; };
-  expect_terms(Fixture().evaluate(tiny_wall(depth)), 3, 0, 6, 0.0, 1.0);
+  expect_terms(TinyWallFixture().evaluate(tiny_wall(depth)), 3, 0, 6, 0.0, 1.0);
 }
 
 // Through column u = 18 the sensor sees a surface 1.3 m away, 30 cm (over 30 sigma) behind the
@@ -46,7 +47,7 @@ TEST(SensorMetric, APointBehindANearerSurfaceIsUnknown) {
 // the coverage 6 / 9.
 TEST(SensorMetric, APointTheSensorSeesThroughCountsAgainstTheMatch) {
   const auto depth = [](int u, int v) { return in_tiny_landmark(u, v) && u == 18 ? 1.3 : 1.0; };
-  expect_terms(Fixture().evaluate(tiny_wall(depth)), 0, 3, 9, 1.0, 6.0 / 9.0);
+  expect_terms(TinyWallFixture().evaluate(tiny_wall(depth)), 0, 3, 9, 1.0, 6.0 / 9.0);
 }
 
 // Where the sensor measured nothing there is no evidence either way.
@@ -54,7 +55,7 @@ TEST(SensorMetric, APointWithoutAReturnIsUnknown) {
   const auto depth = [](int u, int v) {
     return in_tiny_landmark(u, v) && v == 15 ? std::nan("") : 1.0;
   };
-  expect_terms(Fixture().evaluate(tiny_wall(depth)), 3, 0, 6, 0.0, 1.0);
+  expect_terms(TinyWallFixture().evaluate(tiny_wall(depth)), 3, 0, 6, 0.0, 1.0);
 }
 
 // Empty space, seen the same way. The patch was captured with the space in front of it free: with
@@ -62,7 +63,7 @@ TEST(SensorMetric, APointWithoutAReturnIsUnknown) {
 // front of the patch, across its pixels, stands in it: the voxels at the plate's depth are
 // violated, and the patch behind it is unknown.
 TEST(SensorMetric, EmptySpaceIsConfirmedWhereSeenThroughAndViolatedWhereASurfaceStands) {
-  const Fixture f;
+  const TinyWallFixture f;
   ASSERT_GT(f.landmark.empty_space.size(), 0u);
   const ErrorTerms free = f.evaluate(tiny_wall([](int, int) { return 1.0; }));
   EXPECT_GT(free.empty_space->probes, 0u);

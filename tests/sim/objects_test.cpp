@@ -11,6 +11,7 @@
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/pose.h"
 #include "lmk/sim/depth_sensor.h"
+#include "tests/support/test_support.h"
 
 namespace lmk {
 namespace {
@@ -44,12 +45,6 @@ PointCloud render_from_front(const ObjectModel& object) {
   return render_depth(object.mesh, camera_look_at(eye, target, Eigen::Vector3d::UnitZ()), settings);
 }
 
-std::size_t points_in(const PointCloud& cloud, const Box& box) {
-  std::size_t n = 0;
-  for (const auto& p : cloud.points) n += is_finite(p) && box.contains(p) ? 1 : 0;
-  return n;
-}
-
 TEST(Objects, MeshesAreSoundAndTheirBoundsHoldThem) {
   for (const ObjectModel& object : every_object()) {
     SCOPED_TRACE(object.kind);
@@ -73,7 +68,7 @@ TEST(Objects, EveryLandmarkPartHoldsVisibleGeometryAndFreeSpace) {
     const PointCloud cloud = render_from_front(object);
     for (const ObjectPart& part : object.parts) {
       // Enough points to capture the part from a robot's viewpoint...
-      EXPECT_GE(points_in(cloud, part.box), 100u) << part.name;
+      EXPECT_GE(test::points_in(cloud, part.box), 100u) << part.name;
       // ... and free space in front of it, towards the robot: the empty-space constraint needs
       // observed-empty voxels, so no geometry within 1 cm of the box's front face.
       const double front = part.box.center().y() - 0.5 * part.box.size.y();

@@ -10,15 +10,10 @@
 
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/pose.h"
+#include "tests/support/test_support.h"
 
 namespace lmk {
 namespace {
-
-std::size_t points_in(const PointCloud& cloud, const Box& box) {
-  std::size_t n = 0;
-  for (const auto& p : cloud.points) n += is_finite(p) && box.contains(p) ? 1 : 0;
-  return n;
-}
 
 TEST(SceneTypes, TheSeventeenScenesOfThePaperInTheirSettings) {
   ASSERT_EQ(scene_types().size(), 17u);
@@ -57,7 +52,7 @@ TEST(SceneTypes, GroundTruthBoxesHoldWhatTheSensorSees) {
     for (const std::string& name : scene.in_context) {
       if (!scene.instances.count(name)) continue;  // e.g. mounts in a full rack: all hidden
       for (const Box& box : scene.instances.at(name)) {
-        EXPECT_GE(points_in(cloud, box), 30u)
+        EXPECT_GE(test::points_in(cloud, box), 30u)
             << type << ": " << name << " at " << box.center().transpose();
       }
     }
