@@ -20,7 +20,7 @@ find_package(nanoflann REQUIRED)
 
 # Debian's PCL config pulls in VTK, whose config needs MPI's C bindings (mpi-default-dev).
 find_package(MPI COMPONENTS C REQUIRED)
-find_package(PCL 1.12 REQUIRED COMPONENTS common io registration kdtree search segmentation sample_consensus)
+find_package(PCL 1.12 REQUIRED COMPONENTS common io registration kdtree search sample_consensus)
 
 # Debian ships FindOpenVDB.cmake under the multiarch library directory, not on CMake's path.
 if(CMAKE_LIBRARY_ARCHITECTURE)

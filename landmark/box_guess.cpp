@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "lmk/landmark/box_guess.h"
 
-#include <pcl/ModelCoefficients.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
-#include <pcl/segmentation/sac_segmentation.h>
+#include <pcl/sample_consensus/ransac.h>
+#include <pcl/sample_consensus/sac_model_plane.h>
 
 #include <algorithm>
 #include <array>
@@ -20,7 +20,11 @@ namespace lmk {
 namespace {
 
 /// RANSAC's largest plane among `points` (PCL, fixed seed: the same cloud gives the same plane),
-/// as n.x + d = 0 with its inliers; nothing when it has fewer than `min_points`.
+/// as n.x + d = 0 with its inliers; nothing when it has fewer than `min_points`. The steps of PCL's
+/// SACSegmentation for a plane (RANSAC, then the coefficients refitted to the inliers and the
+/// inliers taken again), called on the sample-consensus classes themselves: SACSegmentation's
+/// library brings PCL's features, filters and machine learning into every process that loads lmk,
+/// about 100,000 symbol bindings at each start (docs/developing.md, "CI's time").
 std::optional<std::pair<Eigen::Vector4d, Indices>> largest_plane(const PointCloud& scene,
                                                                  const Indices& points,
                                                                  double distance,
@@ -30,21 +34,24 @@ std::optional<std::pair<Eigen::Vector4d, Indices>> largest_plane(const PointClou
     const Eigen::Vector3f& p = scene.points[i];
     cloud->push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
   }
-  pcl::SACSegmentation<pcl::PointXYZ> ransac(false);  // false: a fixed seed
-  ransac.setModelType(pcl::SACMODEL_PLANE);
-  ransac.setMethodType(pcl::SAC_RANSAC);
-  ransac.setDistanceThreshold(distance);
+  if (cloud->empty()) return std::nullopt;
+  const auto model = std::make_shared<pcl::SampleConsensusModelPlane<pcl::PointXYZ>>(
+      cloud, /*random=*/false);  // false: a fixed seed
+  pcl::RandomSampleConsensus<pcl::PointXYZ> ransac(model, distance);
   ransac.setMaxIterations(500);
-  ransac.setInputCloud(cloud);
-  pcl::PointIndices inliers;
-  pcl::ModelCoefficients coefficients;
-  ransac.segment(inliers, coefficients);
-  if (inliers.indices.size() < min_points || coefficients.values.size() != 4) return std::nullopt;
-  Eigen::Vector4d plane(coefficients.values[0], coefficients.values[1], coefficients.values[2],
-                        coefficients.values[3]);
+  if (!ransac.computeModel()) return std::nullopt;
+  pcl::Indices inliers;
+  ransac.getInliers(inliers);
+  Eigen::VectorXf found;
+  ransac.getModelCoefficients(found);
+  Eigen::VectorXf refined;
+  model->optimizeModelCoefficients(inliers, found, refined);
+  model->selectWithinDistance(refined, distance, inliers);
+  if (inliers.size() < min_points || refined.size() != 4) return std::nullopt;
+  Eigen::Vector4d plane = refined.cast<double>();
   plane /= plane.head<3>().norm();
   Indices members;
-  for (int k : inliers.indices) members.push_back(points[static_cast<std::size_t>(k)]);
+  for (int k : inliers) members.push_back(points[static_cast<std::size_t>(k)]);
   return std::make_pair(plane, members);
 }
 
