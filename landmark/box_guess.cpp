@@ -47,7 +47,7 @@ std::optional<std::pair<Eigen::Vector4d, Indices>> largest_plane(const PointClou
   Eigen::VectorXf refined;
   model->optimizeModelCoefficients(inliers, found, refined);
   model->selectWithinDistance(refined, distance, inliers);
-  if (inliers.size() < min_points || refined.size() != 4) return std::nullopt;
+  if (inliers.size() < min_points) return std::nullopt;
   Eigen::Vector4d plane = refined.cast<double>();
   plane /= plane.head<3>().norm();
   Indices members;

@@ -9,9 +9,9 @@
 #include <functional>
 
 #include "lmk/geometry/error.h"
+#include "lmk/geometry/filters.h"
 #include "lmk/geometry/pose.h"
 #include "lmk/sim/depth_sensor.h"
-#include "tests/support/test_support.h"
 
 namespace lmk {
 namespace {
@@ -68,7 +68,7 @@ TEST(Objects, EveryLandmarkPartHoldsVisibleGeometryAndFreeSpace) {
     const PointCloud cloud = render_from_front(object);
     for (const ObjectPart& part : object.parts) {
       // Enough points to capture the part from a robot's viewpoint...
-      EXPECT_GE(test::points_in(cloud, part.box), 100u) << part.name;
+      EXPECT_GE(indices_in_box(cloud, part.box).size(), 100u) << part.name;
       // ... and free space in front of it, towards the robot: the empty-space constraint needs
       // observed-empty voxels, so no geometry within 1 cm of the box's front face.
       const double front = part.box.center().y() - 0.5 * part.box.size.y();

@@ -35,12 +35,6 @@ PointCloud random_cloud(std::size_t n, std::uint64_t seed, float half) {
   return cloud;
 }
 
-std::size_t points_in(const PointCloud& cloud, const Box& box) {
-  std::size_t n = 0;
-  for (const auto& p : cloud.points) n += is_finite(p) && box.contains(p) ? 1 : 0;
-  return n;
-}
-
 ScratchDir::ScratchDir() {
   static std::atomic<int> counter{0};
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();

@@ -8,7 +8,6 @@
 #include <string>
 #include <vector>
 
-#include "lmk/geometry/box.h"
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/point_cloud.h"
 
@@ -16,9 +15,6 @@ namespace lmk::test {
 
 /// `n` points uniform in the cube [-half, half]^3, from a fixed seed.
 PointCloud random_cloud(std::size_t n, std::uint64_t seed, float half = 1.0f);
-
-/// How many of the cloud's finite points lie in the box.
-std::size_t points_in(const PointCloud& cloud, const Box& box);
 
 /// A fresh, empty directory for one test, removed when the object is destroyed.
 class ScratchDir {
