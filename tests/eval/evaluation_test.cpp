@@ -80,9 +80,9 @@ TEST_F(EvaluationTest, TheCapturesSymmetryCountsWhereTheDatasetGivesNone) {
   Dataset without_symmetry = *dataset_;
   for (DatasetLandmark& l : without_symmetry.landmarks) l.symmetry = Symmetry();
   EvaluationSettings settings;
-  const Evaluation with_rule = evaluate(dir_->path().string(), without_symmetry, settings);
+  const Evaluation with_rule = evaluate(dir_->string(), without_symmetry, settings);
   settings.capture_symmetry = false;
-  const Evaluation without_rule = evaluate(dir_->path().string(), without_symmetry, settings);
+  const Evaluation without_rule = evaluate(dir_->string(), without_symmetry, settings);
   bool ball_counted = false;
   for (std::size_t i = 0; i < with_rule.pairs.size(); ++i) {
     const PairResult &p = with_rule.pairs[i], &q = without_rule.pairs[i];
@@ -413,7 +413,7 @@ TEST_F(EvaluationTest, ReportPicturesEachFailureAndRendersInHeadlessChromium) {
   e.pairs[1].found.resize(1);
   e.pairs[1].found[0].box.pose.translation().x() += 0.3;
   test::ScratchDir out;
-  write_evaluation_report(out.file("report"), e, dir_->path().string());
+  write_evaluation_report(out.file("report"), e, dir_->string());
   const nlohmann::json j = nlohmann::json::parse(read(out.path() / "report/report.json"));
   const nlohmann::json& failures = j.at("failures");
   EXPECT_EQ(failures.at("pairs_with_failures"), 2);
@@ -466,7 +466,7 @@ TEST_F(EvaluationTest, AblationRunsTheGridAndResumes) {
   base.in_context_only = true;
   const std::vector<AblationAxis> axes = {parse_ablation_axis("metric=vdb,visibility"),
                                           parse_ablation_axis("threshold=0.004,0.005")};
-  const auto first = run_ablation(dir_->path().string(), *dataset_, base, axes);
+  const auto first = run_ablation(dir_->string(), *dataset_, base, axes);
   ASSERT_EQ(first.size(), 4u);
   EXPECT_EQ(first[1].label(), "metric=vdb threshold=0.005");
   // Thresholds at or below the metric's default share one search, so half the variants, and all of
@@ -476,7 +476,7 @@ TEST_F(EvaluationTest, AblationRunsTheGridAndResumes) {
     for (const PairResult& p : v.evaluation.pairs) cached += p.from_cache ? 1 : 0;
   }
   EXPECT_EQ(cached, 6u);
-  const auto second = run_ablation(dir_->path().string(), *dataset_, base, axes);
+  const auto second = run_ablation(dir_->string(), *dataset_, base, axes);
   for (std::size_t i = 0; i < first.size(); ++i) {
     for (const PairResult& p : second[i].evaluation.pairs) EXPECT_TRUE(p.from_cache);
     expect_same_results(first[i].evaluation, second[i].evaluation);

@@ -33,8 +33,8 @@ class Explain : public test::SimpleScenes {
   // against the table: one case per missed instance and per false match, each with a known cause.
   static std::vector<ExplainedCase> explain(const Dataset& dataset,
                                             const EvaluationSettings& settings = {}) {
-    const Evaluation e = evaluate(dir_->path().string(), dataset, settings);
-    const std::vector<ExplainedCase> cases = explain_evaluation(dir_->path().string(), dataset, e);
+    const Evaluation e = evaluate(dir_->string(), dataset, settings);
+    const std::vector<ExplainedCase> cases = explain_evaluation(dir_->string(), dataset, e);
     const std::vector<EvaluationRow> rows = evaluation_rows(e);
     const EvaluationRow& all = rows[rows.size() - 3];  // "all", assumption 1
     std::size_t missed = 0, false_matches = 0;
@@ -102,7 +102,7 @@ TEST_F(Explain, ATinyThresholdLeavesTheTruthOverIt) {
 // the bowl's true candidate fails the empty-space test.
 TEST_F(Explain, SomethingInTheEmptySpaceFailsTheTruthOnIt) {
   const test::ScratchDir copy;
-  fs::copy(dir_->path(), copy.path(), fs::copy_options::recursive);
+  fs::copy(*dir_, copy.path(), fs::copy_options::recursive);
   Dataset d = *dataset_;
   DatasetScene* scene = nullptr;
   for (DatasetScene& s : d.scenes) {
@@ -152,9 +152,8 @@ TEST_F(Explain, ATrueTurnThatSuppressionRemovedIsSuppressed) {
   // The pair's search as the evaluation runs it, keeping the candidates suppression removed.
   FindSettings find = pair_search(EvaluationSettings().find.resolved(), *scene);
   find.execution.keep_suppressed = true;
-  const SceneIndex index(read_cloud((dir_->path() / scene->file).string()), find.scene);
-  const FindResult found =
-      find_landmark(index, load_landmark((dir_->path() / bowl->file).string()), find);
+  const SceneIndex index(read_cloud((*dir_ / scene->file).string()), find.scene);
+  const FindResult found = find_landmark(index, load_landmark((*dir_ / bowl->file).string()), find);
   ASSERT_FALSE(found.matches.empty());
   const Eigen::Isometry3d& winner = found.matches.front().box.pose;
   const Rejection* turned = nullptr;
@@ -210,8 +209,8 @@ TEST_F(Explain, FalseMatchesAreOffThePoseOrLookAlikes) {
 TEST_F(Explain, TablesAndJsonCountEachCause) {
   EvaluationSettings s;
   s.find.selection.threshold = 0.0002;
-  const Evaluation e = evaluate(dir_->path().string(), *dataset_, s);
-  const auto cases = explain_evaluation(dir_->path().string(), *dataset_, e);
+  const Evaluation e = evaluate(dir_->string(), *dataset_, s);
+  const auto cases = explain_evaluation(dir_->string(), *dataset_, e);
   const std::vector<CauseRow> rows = cause_rows(cases);
   ASSERT_EQ(rows.back().group, "all");
   EXPECT_EQ(rows.back().missed[2], cases.size());  // "over threshold"

@@ -204,7 +204,8 @@ def test_progress_hears_every_seed(tabletop):
 def test_the_gil_is_released_two_searches_in_two_threads_overlap(tabletop):
     """Two Python threads each searching on one core finish sooner together than one after the
     other, as a ratio in this run: with the GIL held through a search they could not overlap
-    (ratio 1). ctest runs this file alone (RUN_SERIAL), so that both cores are free."""
+    (ratio 1). ctest runs this test alone (python_module_threads, RUN_SERIAL), so that both cores
+    are free."""
     import threading
     import time
     scene, cup = lmk.read_cloud(tabletop), lmk.load_landmark(CUP)

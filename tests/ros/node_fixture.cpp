@@ -12,6 +12,7 @@
 #include "lmk/demos/demo_tasks.h"
 #include "lmk/geometry/cloud_io.h"
 #include "lmk/ros/cloud_conversion.h"
+#include "tests/support/test_support.h"
 
 namespace lmk::test {
 namespace {
@@ -26,16 +27,15 @@ PointCloud DemoData::scene(const std::string& file) const {
 }
 
 const DemoData& demo_data() {
-  static const DemoData* data = [] {
-    auto* d = new DemoData;
-    DemoTasksSettings settings;
-    settings.tasks = {3};
-    settings.save_dir = d->dir.path().string();
-    run_demo_tasks(settings);
-    d->task = d->dir.path() / "task3";
-    return d;
-  }();
-  return *data;
+  static const DemoData data{shared_run_data("demo-task3",
+                                             [](const std::filesystem::path& dir) {
+                                               DemoTasksSettings settings;
+                                               settings.tasks = {3};
+                                               settings.save_dir = dir.string();
+                                               run_demo_tasks(settings);
+                                             }) /
+                             "task3"};
+  return data;
 }
 
 FakePr2Settings fake_settings(const std::string& scene_file) {

@@ -23,14 +23,14 @@ namespace lmk::test {
 
 /// Task 3 of the demo tasks ("bowls on a shelf"): its scenes, its landmark and its program.
 struct DemoData {
-  ScratchDir dir;
   std::filesystem::path task;
   PointCloud scene(const std::string& file) const;
   std::filesystem::path landmark() const { return task / "bowl_rim.lmk"; }
   std::filesystem::path program() const { return task / "pick_bowl.json"; }
 };
 
-/// Written once per test process.
+/// Written once per CTest run (test::shared_run_data): each test is a process of its own, and the
+/// tests only read it.
 const DemoData& demo_data();
 
 /// The fake PR2 on task 3's frame `scene_file`, its torso as the task's.
