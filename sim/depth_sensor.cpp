@@ -43,10 +43,48 @@ SplitMix64 pixel_stream(std::uint64_t seed, std::size_t pixel, std::uint64_t str
   return SplitMix64(seed ^ stream ^ (0x9e3779b97f4a7c15ULL * (pixel + 1)));
 }
 
+// Whether a ray certainly misses a triangle: a cheap test (Moller & Trumbore 1997) that lets the
+// tree's search skip the triangle instead of constructing CGAL's intersection with it, a quarter
+// of the time a frame takes. Only clear misses are skipped: by a margin far above the rounding of
+// either computation, and never for a ray (nearly) in the triangle's plane or a sliver triangle,
+// so the first intersection found, and every rendered frame, stays exactly CGAL's.
+class CertainMiss {
+ public:
+  CertainMiss(const Eigen::Vector3d& from, const Eigen::Vector3d& towards)
+      : origin_(from), direction_(towards - from) {}
+
+  bool operator()(const detail::TriangleIterator& triangle) const {
+    const auto vertex = [&](int i) {
+      const Kernel::Point_3& corner = triangle->vertex(i);
+      return Eigen::Vector3d(corner.x(), corner.y(), corner.z());
+    };
+    const Eigen::Vector3d a = vertex(0), e1 = vertex(1) - a, e2 = vertex(2) - a;
+    const Eigen::Vector3d p = direction_.cross(e2);
+    const double det = e1.dot(p);
+    // Near-parallel ray or sliver triangle: the barycentric coordinates below are ill-conditioned.
+    if (!(std::abs(det) > kParallel * e1.norm() * e2.norm() * direction_.norm())) return false;
+    const Eigen::Vector3d s = origin_ - a;
+    const double u = s.dot(p) / det;
+    if (u < -kMargin || u > 1.0 + kMargin) return true;
+    const Eigen::Vector3d q = s.cross(e1);
+    const double v = direction_.dot(q) / det;
+    if (v < -kMargin || u + v > 1.0 + kMargin) return true;
+    return e2.dot(q) / det < -kMargin;  // behind the ray's source
+  }
+
+ private:
+  // det / (|e1| |e2| |d|): the sine of the triangle's angle at its first vertex times that of the
+  // ray's angle to the triangle's plane. Above 1e-4 the coordinates' rounding stays below 1e-9.
+  static constexpr double kParallel = 1e-4;
+  static constexpr double kMargin = 1e-6;  // in barycentric units, and in ray lengths behind it
+  Eigen::Vector3d origin_, direction_;
+};
+
 // The first surface along the ray from `from` through `towards`, if any.
 std::optional<std::pair<Eigen::Vector3d, const detail::Triangle*>> first_hit(
     const detail::AabbTree& tree, const Eigen::Vector3d& from, const Eigen::Vector3d& towards) {
-  const auto hit = tree.first_intersection(Kernel::Ray_3(to_cgal(from), to_cgal(towards)));
+  const auto hit = tree.first_intersection(Kernel::Ray_3(to_cgal(from), to_cgal(towards)),
+                                           CertainMiss(from, towards));
   if (!hit) return std::nullopt;
   const Kernel::Point_3* point = boost::get<Kernel::Point_3>(&hit->first);
   if (point == nullptr) return std::nullopt;  // the ray runs inside a triangle's plane: grazing
