@@ -51,7 +51,7 @@ SplitMix64 pixel_stream(std::uint64_t seed, std::size_t pixel, std::uint64_t str
 class CertainMiss {
  public:
   CertainMiss(const Eigen::Vector3d& from, const Eigen::Vector3d& towards)
-      : origin_(from), direction_(towards - from) {}
+      : origin_(from), direction_(towards - from), direction_norm2_(direction_.squaredNorm()) {}
 
   bool operator()(const detail::TriangleIterator& triangle) const {
     const auto vertex = [&](int i) {
@@ -62,7 +62,11 @@ class CertainMiss {
     const Eigen::Vector3d p = direction_.cross(e2);
     const double det = e1.dot(p);
     // Near-parallel ray or sliver triangle: the barycentric coordinates below are ill-conditioned.
-    if (!(std::abs(det) > kParallel * e1.norm() * e2.norm() * direction_.norm())) return false;
+    // Compared squared: no square root per triangle on this, the renderer's hottest path.
+    if (!(det * det >
+          kParallel * kParallel * e1.squaredNorm() * e2.squaredNorm() * direction_norm2_)) {
+      return false;
+    }
     const Eigen::Vector3d s = origin_ - a;
     const double u = s.dot(p) / det;
     if (u < -kMargin || u > 1.0 + kMargin) return true;
@@ -78,6 +82,7 @@ class CertainMiss {
   static constexpr double kParallel = 1e-4;
   static constexpr double kMargin = 1e-6;  // in barycentric units, and in ray lengths behind it
   Eigen::Vector3d origin_, direction_;
+  double direction_norm2_;  // the same for every triangle the ray is tested against
 };
 
 // The first surface along the ray from `from` through `towards`, if any.
