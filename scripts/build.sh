@@ -9,6 +9,10 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${LMK_BUILD_DIR:-build}
+# Ninja compiles any target's files while others link, keeping both cores busy where make's
+# target-by-target order left one idle (docs/developing.md, "CI's time"). CMake reads this only for a
+# new build directory: one configured with make stays so.
+export CMAKE_GENERATOR=${CMAKE_GENERATOR:-Ninja}
 if [ "${1:-}" = --tool ]; then
   shift
   bash scripts/install-deps.sh --tool

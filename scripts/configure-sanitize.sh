@@ -6,6 +6,7 @@
 # Usage: configure-sanitize.sh BUILD_DIR [CMAKE_ARGS...]
 set -euo pipefail
 cd "$(dirname "$0")/.."
+export CMAKE_GENERATOR=${CMAKE_GENERATOR:-Ninja}  # as scripts/build.sh
 # No Python module: an instrumented module loads only into a python3 started with the sanitizer's
 # runtime preloaded; the Release suite tests it.
 cmake -S . -B "${1:?build directory}" -DCMAKE_BUILD_TYPE=RelWithDebInfo \

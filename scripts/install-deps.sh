@@ -13,8 +13,8 @@ esac
 
 # The lmk tool: its libraries and `lmk serve`.
 tool_packages=(
-  # toolchain
-  build-essential cmake pkg-config git
+  # toolchain; Ninja keeps both cores compiling while targets link (scripts/build.sh)
+  build-essential cmake ninja-build pkg-config git
   # the libraries lmk is built on (docs/developing.md)
   libeigen3-dev libopenvdb-dev libceres-dev libpcl-dev libcgal-dev liburdfdom-dev
   libnanoflann-dev libtbb-dev nlohmann-json3-dev libcli11-dev

@@ -93,7 +93,8 @@ run_tsan() {
   tbb="$(realpath -m "$build")/tbb-tsan"  # absolute: it goes into LD_LIBRARY_PATH
   bash scripts/build-tbb-tsan.sh "$tbb"
   export LD_LIBRARY_PATH="$tbb/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
-  cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang-14 \
+  CMAKE_GENERATOR=${CMAKE_GENERATOR:-Ninja} \
+    cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang-14 \
     -DCMAKE_CXX_COMPILER=clang++-14 -DLMK_TSAN=ON -DLMK_BUILD_BENCH=OFF -DLMK_BUILD_PYTHON=OFF \
     >/dev/null
   # The options apply to the build too: it runs each test executable to list its tests.

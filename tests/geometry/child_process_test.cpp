@@ -15,7 +15,7 @@
 namespace lmk {
 namespace {
 
-std::string error_of(const std::function<std::string()>& work) {
+std::string error_in_child(const std::function<std::string()>& work) {
   try {
     run_in_child(work, "x.lmk: corrupt landmark file");
   } catch (const Error& e) {
@@ -32,21 +32,21 @@ TEST(ChildProcess, TheAnswerComesBackWhole) {
 }
 
 TEST(ChildProcess, ACrashCostsTheChildNotTheCaller) {
-  EXPECT_EQ(error_of([]() -> std::string { std::abort(); }),
+  EXPECT_EQ(error_in_child([]() -> std::string { std::abort(); }),
             "x.lmk: corrupt landmark file: the process reading it crashed (signal 6, Aborted)");
-  EXPECT_NE(error_of([]() -> std::string {
+  EXPECT_NE(error_in_child([]() -> std::string {
               std::raise(SIGKILL);  // as the kernel's OOM killer would
               return "";
             }).find("crashed (signal 9"),
             std::string::npos);
-  EXPECT_EQ(error_of([]() -> std::string { std::_Exit(3); }),
+  EXPECT_EQ(error_in_child([]() -> std::string { std::_Exit(3); }),
             "x.lmk: corrupt landmark file: the process reading it ended without an answer");
 }
 
 // An allocation past the child's allowance fails in the child, and its answer says so.
 TEST(ChildProcess, TheChildAllocatesWithinItsAllowance) {
   if (!child_memory_is_limited()) GTEST_SKIP() << "sanitizer builds leave the limit unset";
-  const std::string error = error_of([]() -> std::string {
+  const std::string error = error_in_child([]() -> std::string {
     std::vector<char> big(std::size_t{2} << 30, 'x');  // 2 GiB, four times the 512 MiB allowed
     return std::string(1, big.back());
   });
@@ -54,9 +54,10 @@ TEST(ChildProcess, TheChildAllocatesWithinItsAllowance) {
 }
 
 TEST(ChildProcess, ErrorsKeepTheirMessage) {
-  EXPECT_EQ(error_of([]() -> std::string { throw Error("x.lmk: the points are not finite"); }),
-            "x.lmk: the points are not finite");
-  EXPECT_EQ(error_of([]() -> std::string { throw std::bad_alloc(); }),
+  EXPECT_EQ(
+      error_in_child([]() -> std::string { throw Error("x.lmk: the points are not finite"); }),
+      "x.lmk: the points are not finite");
+  EXPECT_EQ(error_in_child([]() -> std::string { throw std::bad_alloc(); }),
             "x.lmk: corrupt landmark file: std::bad_alloc");
 }
 

@@ -16,7 +16,7 @@
 namespace lmk {
 namespace {
 
-std::string error_of(const std::string& text) {
+std::string pose_list_error(const std::string& text) {
   try {
     parse_pose_list(text, "poses.txt");
   } catch (const Error& e) {
@@ -42,19 +42,20 @@ TEST(PoseList, ReadsTumOrderWithOrWithoutATimestamp) {
 
 TEST(PoseList, BadLinesAreRefusedWithTheirNumber) {
   EXPECT_EQ(
-      error_of("0 0 0 0 0 0 1\n1 2 3\n"),
+      pose_list_error("0 0 0 0 0 0 1\n1 2 3\n"),
       "poses.txt:2: expected 7 numbers (x y z qx qy qz qw) or 8 (a timestamp first), found 3");
-  EXPECT_EQ(error_of("0 0 x 0 0 0 1\n"), "poses.txt:1: 'x' is not a number");
+  EXPECT_EQ(pose_list_error("0 0 x 0 0 0 1\n"), "poses.txt:1: 'x' is not a number");
   // Issue #61, finding 11: a NUL (or an escape) in a field is shown, not sent: the message is
   // whole as a C string.
-  const std::string nul = error_of(std::string("0 0 1\0x 0 0 0 1\n", 16));
+  const std::string nul = pose_list_error(std::string("0 0 1\0x 0 0 0 1\n", 16));
   EXPECT_EQ(std::string(nul.c_str()), "poses.txt:1: '1\\x00x' is not a number");
-  EXPECT_NE(error_of("0 0 0 0 0 0 2\n").find("poses.txt:1.quaternion: is not a unit quaternion"),
-            std::string::npos)
-      << error_of("0 0 0 0 0 0 2\n");
-  EXPECT_NE(error_of("0 0 nan 0 0 0 1\n").find("poses.txt:1"), std::string::npos);
-  EXPECT_NE(error_of("1e308 0 0 0 0 0 1\n").find("at most 10000 m"), std::string::npos);
-  EXPECT_EQ(error_of(""), "");
+  EXPECT_NE(
+      pose_list_error("0 0 0 0 0 0 2\n").find("poses.txt:1.quaternion: is not a unit quaternion"),
+      std::string::npos)
+      << pose_list_error("0 0 0 0 0 0 2\n");
+  EXPECT_NE(pose_list_error("0 0 nan 0 0 0 1\n").find("poses.txt:1"), std::string::npos);
+  EXPECT_NE(pose_list_error("1e308 0 0 0 0 0 1\n").find("at most 10000 m"), std::string::npos);
+  EXPECT_EQ(pose_list_error(""), "");
   EXPECT_TRUE(parse_pose_list("# nothing\n\n", "poses.txt").empty());
 }
 

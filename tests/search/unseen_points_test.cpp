@@ -20,7 +20,7 @@ SceneSettings unseen(UnseenPoints which) {
   return s;
 }
 
-constexpr double kBand = 0.02;  // the scene field's band: two coarse leaves of 1 cm
+constexpr double kFieldBand = 0.02;  // the scene field's band: two coarse leaves of 1 cm
 const auto kWall = [](int, int) { return 1.0; };
 
 // Column u = 18 of the patch has no return: counted, its three points cost the distance to the
@@ -72,7 +72,7 @@ TEST(UnseenPoints, APoseMustStillShowHalfOfItsPoints) {
                                      unseen(UnseenPoints::outside_image));
   EXPECT_EQ(t.support->unseen_points, 6u);
   EXPECT_EQ(t.landmark_to_scene_count, 5u);
-  EXPECT_NEAR(t.error, 2.0 * kBand / 5.0, 1e-3);
+  EXPECT_NEAR(t.error, 2.0 * kFieldBand / 5.0, 1e-3);
 }
 
 // An unorganised scene has no image to fall outside of, nor pixels: every point counts.
