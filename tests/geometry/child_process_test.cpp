@@ -7,21 +7,19 @@
 
 #include <csignal>
 #include <cstdlib>
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "lmk/geometry/error.h"
+#include "tests/support/test_support.h"
 
 namespace lmk {
 namespace {
 
+// The error that running `work` in a child gives, or "" when it gives none.
 std::string error_in_child(const std::function<std::string()>& work) {
-  try {
-    run_in_child(work, "x.lmk: corrupt landmark file");
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
+  return test::error_of([&] { run_in_child(work, "x.lmk: corrupt landmark file"); });
 }
 
 TEST(ChildProcess, TheAnswerComesBackWhole) {

@@ -17,12 +17,7 @@ namespace lmk {
 namespace {
 
 std::string pose_list_error(const std::string& text) {
-  try {
-    parse_pose_list(text, "poses.txt");
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
+  return test::error_of([&] { parse_pose_list(text, "poses.txt"); });
 }
 
 TEST(PoseList, ReadsTumOrderWithOrWithoutATimestamp) {
