@@ -110,6 +110,12 @@ void splat_points(const std::vector<Eigen::Vector3f>& points, const std::vector<
   // are looked up once, not once per row (the lookups dominated the build time).
   const int span = 2 * reach / static_cast<int>(FloatLeaf::DIM) + 2;
   std::vector<LeafBlock*> near(static_cast<std::size_t>(span * span * span));
+  // What a column z of the point's box contributes to each of its rows, worked out once per point
+  // rather than once per row: the squared offset, the leaf among the row's, the voxel's place in
+  // the leaf along z.
+  const auto columns = static_cast<std::size_t>(2 * reach + 1);
+  std::vector<double> column_ez2(columns);
+  std::vector<int> column_leaf(columns), column_offset(columns);
   // A point splats up to (2 reach + 1)^3 voxels: checked more often than a plain point loop.
   for (std::size_t m = 0; m < members.size(); ++m) {
     if (stop && m % (kItemsPerStopCheck / 16) == 0) stop();
@@ -128,6 +134,13 @@ void splat_points(const std::vector<Eigen::Vector3f>& points, const std::vector<
         }
       }
     }
+    const int column_count = last.z() - first.z() + 1;
+    for (int k = 0; k < column_count; ++k) {
+      const int z = first.z() + k;
+      column_ez2[k] = (z - p.z()) * (z - p.z());
+      column_leaf[k] = (z >> kLeafLog2) - leaf0.z();
+      column_offset[k] = z & kLeafMask;
+    }
     for (int x = first.x(); x <= last.x(); ++x) {
       const double ex2 = (x - p.x()) * (x - p.x());
       for (int y = first.y(); y <= last.y(); ++y) {
@@ -138,17 +151,17 @@ void splat_points(const std::vector<Eigen::Vector3f>& points, const std::vector<
             &near[(((x >> kLeafLog2) - leaf0.x()) * span + (y >> kLeafLog2) - leaf0.y()) * span];
         const int row_offset =
             ((x & kLeafMask) << (2 * kLeafLog2)) | ((y & kLeafMask) << kLeafLog2);
-        // The whole row, with the voxels beyond the band masked out rather than skipped: a fixed
-        // trip count and a branch-free update, where the data-dependent branches of a row clipped
-        // to the band mispredicted on every row.
-        for (int z = first.z(); z <= last.z(); ++z) {
-          LeafBlock& b = *row[(z >> kLeafLog2) - leaf0.z()];
-          const int offset = row_offset | (z & kLeafMask);
-          const double ez2 = (z - p.z()) * (z - p.z());
-          const auto d2 = static_cast<float>((ex2 + ey2 + ez2) * voxel * voxel);
-          const std::uint64_t candidate =
-              ez2 <= rest ? LeafBlock::key(d2, index) : ~std::uint64_t{0};
-          b.nearest[offset] = std::min(b.nearest[offset], candidate);
+        // The row's columns within the band, if any: ez2 falls, then rises along the row
+        // (rounding keeps the order of |z - p.z|), so they are one run, found from its two ends.
+        // (Masking the update instead cost a full row for the band's few voxels near its rim.)
+        int k0 = 0, k1 = column_count - 1;
+        while (k0 <= k1 && column_ez2[k0] > rest) ++k0;
+        while (k1 >= k0 && column_ez2[k1] > rest) --k1;
+        for (int k = k0; k <= k1; ++k) {
+          LeafBlock& b = *row[column_leaf[k]];
+          const int offset = row_offset | column_offset[k];
+          const auto d2 = static_cast<float>((ex2 + ey2 + column_ez2[k]) * voxel * voxel);
+          b.nearest[offset] = std::min(b.nearest[offset], LeafBlock::key(d2, index));
         }
       }
     }
@@ -253,16 +266,16 @@ DistanceField::DistanceField(const std::vector<Eigen::Vector3f>& points,
   });
 
   const auto transform = vdb::math::Transform::createLinearTransform(voxel);
-  // The leaves' inactive voxels hold sqrt(band^2); the background, and the inactive tiles above
-  // the leaves, start at band^2 and become band below (a tile left at band^2 would read as a
-  // surface 0.4 mm away).
-  grids->distance = vdb::FloatGrid::create(static_cast<float>(band * band));
+  // The leaves' inactive voxels hold sqrt(band^2), what the square-root pass made of it; the
+  // background is the band, and so are the inactive tiles above the leaves, which take the
+  // background as the leaves go in (a tile at band^2 would read as a surface 0.4 mm away). Set
+  // before the leaves rather than after: resetting it afterwards visits every leaf's voxels.
+  grids->distance = vdb::FloatGrid::create(static_cast<float>(band));
   grids->closest = vdb::Int32Grid::create(-1);
   for (SlabLeaves& part : parts) {  // the slabs' leaves are disjoint
     for (auto& leaf : part.distance) grids->distance->tree().addLeaf(leaf.release());
     for (auto& leaf : part.closest) grids->closest->tree().addLeaf(leaf.release());
   }
-  grids->distance->tree().root().setBackground(static_cast<float>(band), /*updateChildNodes=*/true);
   grids->distance->setTransform(transform);
   grids->closest->setTransform(transform->copy());
   grids->distance->setName("distance");

@@ -1,0 +1,120 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The scene index's parts (search/scene_index.h), each timed alone on one frame, on one thread and
+// on two: where a search's preprocessing goes (issue #63). The whole index is timed too, so that
+// the parts can be read against it in the same run.
+//
+//   build/bench/bench_scene_index                          # a rendered tabletop frame
+//   LMK_BENCH_FRAME=../shared/data/pcl/milk_cartoon_all_small_clorox.pcd build/bench/bench_scene_index
+//   build/bench/bench_scene_index --benchmark_filter=DistanceField --benchmark_repetitions=5
+
+#include <benchmark/benchmark.h>
+#include <tbb/global_control.h>
+
+#include <cstdlib>
+#include <optional>
+
+#include "lmk/geometry/cloud_io.h"
+#include "lmk/geometry/filters.h"
+#include "lmk/geometry/frame_preparation.h"
+#include "lmk/geometry/range_image.h"
+#include "lmk/geometry/voxel_normals.h"
+#include "lmk/occupancy/distance_field.h"
+#include "lmk/occupancy/occupancy_grid.h"
+#include "lmk/search/scene_index.h"
+#include "lmk/sim/depth_sensor.h"
+#include "lmk/sim/tabletop_scene.h"
+
+namespace {
+
+// The frame as the scene index reads it: LMK_BENCH_FRAME's cloud, or a rendered tabletop frame
+// (640 x 480, organised), prepared as SceneIndex prepares it (veil points, depth smoothing).
+const lmk::PointCloud& frame() {
+  static const lmk::PointCloud prepared = [] {
+    const char* path = std::getenv("LMK_BENCH_FRAME");
+    lmk::PointCloud raw;
+    if (path && *path) {
+      raw = lmk::read_cloud(path);
+    } else {
+      const lmk::SyntheticScene scene = lmk::make_tabletop_scene(1);
+      raw = lmk::render_depth(scene.mesh, scene.T_world_sensor);
+    }
+    const lmk::SceneSettings settings = lmk::SceneSettings().resolved();
+    std::optional<lmk::PointCloud> ready = lmk::prepared_frame(
+        raw, settings.veil_angle, settings.depth_smoothing, settings.depth_noise());
+    return ready ? std::move(*ready) : raw;
+  }();
+  return prepared;
+}
+
+const lmk::SceneSettings& settings() {
+  static const lmk::SceneSettings resolved = lmk::SceneSettings().resolved();
+  return resolved;
+}
+
+const lmk::VoxelMoments& moments() {
+  static const lmk::VoxelMoments built(frame(), settings().coarse_leaf);
+  return built;
+}
+
+// Each benchmark's argument is the thread count TBB may use.
+tbb::global_control threads_of(const benchmark::State& state) {
+  return tbb::global_control(tbb::global_control::max_allowed_parallelism,
+                             static_cast<std::size_t>(state.range(0)));
+}
+
+void BM_SceneIndex(benchmark::State& state) {
+  const auto threads = threads_of(state);
+  for (auto _ : state) benchmark::DoNotOptimize(lmk::SceneIndex(frame(), settings()));
+}
+
+void BM_RangeImage(benchmark::State& state) {
+  const auto threads = threads_of(state);
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(
+        lmk::RangeImage::from_cloud(frame(), {}, lmk::kMaxIntrinsicsFitRms, nullptr));
+  }
+}
+
+void BM_FinitePoints(benchmark::State& state) {
+  const auto threads = threads_of(state);
+  for (auto _ : state) benchmark::DoNotOptimize(lmk::remove_non_finite(frame()));
+}
+
+void BM_Occupancy(benchmark::State& state) {
+  const auto threads = threads_of(state);
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(lmk::OccupancyGrid(frame().points, settings().leaf_size));
+  }
+}
+
+void BM_VoxelMoments(benchmark::State& state) {
+  const auto threads = threads_of(state);
+  for (auto _ : state) {
+    const lmk::VoxelMoments built(frame(), settings().coarse_leaf);
+    benchmark::DoNotOptimize(built.centroids());
+  }
+}
+
+void BM_Normals(benchmark::State& state) {
+  const auto threads = threads_of(state);
+  for (auto _ : state) benchmark::DoNotOptimize(moments().normals(frame().sensor_origin()));
+}
+
+void BM_DistanceField(benchmark::State& state) {
+  const auto threads = threads_of(state);
+  const std::vector<Eigen::Vector3f> centroids = moments().centroids();
+  const lmk::DistanceFieldSettings field{settings().coarse_leaf, *settings().field_band};
+  for (auto _ : state) benchmark::DoNotOptimize(lmk::DistanceField(centroids, field));
+}
+
+}  // namespace
+
+BENCHMARK(BM_SceneIndex)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_RangeImage)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_FinitePoints)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Occupancy)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_VoxelMoments)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Normals)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DistanceField)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+
+BENCHMARK_MAIN();
