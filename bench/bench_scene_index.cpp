@@ -4,8 +4,9 @@
 // the parts can be read against it in the same run.
 //
 //   build/bench/bench_scene_index                          # a rendered tabletop frame
-//   LMK_BENCH_FRAME=../shared/data/pcl/milk_cartoon_all_small_clorox.pcd build/bench/bench_scene_index
-//   build/bench/bench_scene_index --benchmark_filter=DistanceField --benchmark_repetitions=5
+//   LMK_BENCH_FRAME=../shared/data/pcl/milk_cartoon_all_small_clorox.pcd
+//   build/bench/bench_scene_index build/bench/bench_scene_index --benchmark_filter=DistanceField
+//   --benchmark_repetitions=5
 
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>

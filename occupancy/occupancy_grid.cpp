@@ -3,6 +3,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <optional>
 
 #include "lmk/geometry/error.h"
 #include "lmk/occupancy/detail/vdb_support.h"
@@ -28,11 +29,17 @@ OccupancyGrid::OccupancyGrid(const std::vector<Eigen::Vector3f>& points, double 
   g->grid->setTransform(openvdb::math::Transform::createLinearTransform(voxel_size));
   auto access = g->grid->getAccessor();
   const double inverse_voxel = 1.0 / voxel_size;
+  // Neighbouring pixels of a frame often fall in one voxel: a voxel just set is not set again (the
+  // accessor's call was a tenth of a scene index's build).
+  std::optional<openvdb::Coord> last;
   for (std::size_t i = 0; i < points.size(); ++i) {
     check_every(stop, i);
     const Eigen::Vector3f& p = points[i];
-    if (p.allFinite())
-      access.setValueOn(detail::nearest_voxel(p.cast<double>(), inverse_voxel), true);
+    if (!p.allFinite()) continue;
+    const openvdb::Coord voxel = detail::nearest_voxel(p.cast<double>(), inverse_voxel);
+    if (last == voxel) continue;
+    access.setValueOn(voxel, true);
+    last = voxel;
   }
   grid_ = std::move(g);
 }
