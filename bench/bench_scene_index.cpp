@@ -3,10 +3,9 @@
 // on two: where a search's preprocessing goes (issue #63). The whole index is timed too, so that
 // the parts can be read against it in the same run.
 //
-//   build/bench/bench_scene_index                          # a rendered tabletop frame
-//   LMK_BENCH_FRAME=../shared/data/pcl/milk_cartoon_all_small_clorox.pcd
-//   build/bench/bench_scene_index build/bench/bench_scene_index --benchmark_filter=DistanceField
-//   --benchmark_repetitions=5
+//   build/bench/bench_scene_index                      # a rendered tabletop frame
+//   LMK_BENCH_FRAME=F.pcd build/bench/bench_scene_index  # your frame (issue #63: the milk frame)
+//   build/bench/bench_scene_index --benchmark_filter=DistanceField --benchmark_repetitions=5
 
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
