@@ -113,9 +113,9 @@ void splat_points(const std::vector<Eigen::Vector3f>& points, const std::vector<
   // What a column z of the point's box contributes to each of its rows, worked out once per point
   // rather than once per row: the squared offset, the leaf among the row's, the voxel's place in
   // the leaf along z.
-  const auto columns = static_cast<std::size_t>(2 * reach + 1);
-  std::vector<double> column_ez2(columns);
-  std::vector<int> column_leaf(columns), column_offset(columns);
+  const int columns = 2 * reach + 1;  // z is not clipped to the slab: every point has them all
+  std::vector<double> column_ez2(static_cast<std::size_t>(columns));
+  std::vector<int> column_leaf(column_ez2.size()), column_offset(column_ez2.size());
   // A point splats up to (2 reach + 1)^3 voxels: checked more often than a plain point loop.
   for (std::size_t m = 0; m < members.size(); ++m) {
     if (stop && m % (kItemsPerStopCheck / 16) == 0) stop();
@@ -134,8 +134,7 @@ void splat_points(const std::vector<Eigen::Vector3f>& points, const std::vector<
         }
       }
     }
-    const int column_count = last.z() - first.z() + 1;
-    for (int k = 0; k < column_count; ++k) {
+    for (int k = 0; k < columns; ++k) {
       const int z = first.z() + k;
       column_ez2[k] = (z - p.z()) * (z - p.z());
       column_leaf[k] = (z >> kLeafLog2) - leaf0.z();
@@ -154,7 +153,7 @@ void splat_points(const std::vector<Eigen::Vector3f>& points, const std::vector<
         // The row's columns within the band, if any: ez2 falls, then rises along the row
         // (rounding keeps the order of |z - p.z|), so they are one run, found from its two ends.
         // (Masking the update instead cost a full row for the band's few voxels near its rim.)
-        int k0 = 0, k1 = column_count - 1;
+        int k0 = 0, k1 = columns - 1;
         while (k0 <= k1 && column_ez2[k0] > rest) ++k0;
         while (k1 >= k0 && column_ez2[k1] > rest) --k1;
         for (int k = k0; k <= k1; ++k) {

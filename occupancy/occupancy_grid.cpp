@@ -30,7 +30,7 @@ OccupancyGrid::OccupancyGrid(const std::vector<Eigen::Vector3f>& points, double 
   auto access = g->grid->getAccessor();
   const double inverse_voxel = 1.0 / voxel_size;
   // Neighbouring pixels of a frame often fall in one voxel: a voxel just set is not set again (the
-  // accessor's call was a tenth of a scene index's build).
+  // accessor's call was a third of the grid's build).
   std::optional<openvdb::Coord> last;
   for (std::size_t i = 0; i < points.size(); ++i) {
     check_every(stop, i);
