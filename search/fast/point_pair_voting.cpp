@@ -6,43 +6,12 @@
 #include <cmath>
 
 #include "lmk/geometry/error.h"
+#include "lmk/search/fast/voting_kernels.h"
 
 namespace lmk::detail {
 namespace {
 
-constexpr float kPi = 3.14159265358979f;
-constexpr float kAngleStep = kPi / 15.0f;  // 12 degrees, as Drost et al.
-constexpr int kAngleBins = 15;
-constexpr int kAlphaBins = 30;
-constexpr float kAlphaBinsPerRad = kAlphaBins / (2.0f * kPi);
 constexpr std::uint32_t kScanBlock = 64;  // accumulator bins per block of the best-pose scan
-constexpr float kCoplanarTolerance = static_cast<float>(kCoplanarAngle);
-
-// acos to about 7e-5 rad (Abramowitz & Stegun 4.4.45): the voting loop calls it three times per
-// scene pair, and the bins are 12 degrees wide.
-float fast_acos(float x) {
-  x = std::clamp(x, -1.0f, 1.0f);
-  const float a = std::abs(x);
-  const float r =
-      std::sqrt(1.0f - a) * (1.5707288f + a * (-0.2121144f + a * (0.0742610f + a * -0.0187293f)));
-  return x >= 0.0f ? r : kPi - r;
-}
-
-// atan2 to about 1e-4 rad (a minimax polynomial of atan on [0, 1] and octant symmetry).
-float fast_atan2(float y, float x) {
-  const float ax = std::abs(x), ay = std::abs(y);
-  const float big = std::max(ax, ay);
-  if (big == 0.0f) return 0.0f;
-  const float t = std::min(ax, ay) / big, t2 = t * t;
-  float r =
-      t *
-      (0.99997726f +
-       t2 * (-0.33262347f +
-             t2 * (0.19354346f + t2 * (-0.11643287f + t2 * (0.05265332f + t2 * -0.01172120f)))));
-  if (ay > ax) r = 0.5f * kPi - r;
-  if (x < 0.0f) r = kPi - r;
-  return y < 0.0f ? -r : r;
-}
 
 // The rotation taking `n` onto +x, and the angle of a point about +x once so rotated.
 Eigen::Matrix3f rotation_to_x(const Eigen::Vector3f& n) {
@@ -66,43 +35,50 @@ const std::array<Eigen::Matrix3f, kAlphaBins>& alpha_rotations() {
   return rotations;
 }
 
-// The coplanarity test in cosines, so that the voting loop can skip a coplanar pair before any
-// arc cosine: both normals within the tolerance of each other and of perpendicular to d.
-const float kCoplanarCos = std::cos(kCoplanarTolerance);
-const float kCoplanarSin = std::sin(kCoplanarTolerance);
-
 struct Feature {
   float distance, a1, a2, a3;
   bool coplanar;
 };
 
-// The cosines of F's three angles; false for coincident points.
-inline bool cosines(const Eigen::Vector3f& p1, const Eigen::Vector3f& n1, const Eigen::Vector3f& p2,
-                    const Eigen::Vector3f& n2, Feature& f, float c[3]) {
+// F(p1, p2) of a model pair; false for coincident points. The scene's pairs are keyed by
+// pair_feature_keys (voting_kernels.h), which must do the same arithmetic in the same order.
+bool feature(const Eigen::Vector3f& p1, const Eigen::Vector3f& n1, const Eigen::Vector3f& p2,
+             const Eigen::Vector3f& n2, Feature& f) {
   const Eigen::Vector3f d = p2 - p1;
   f.distance = d.norm();
   if (!(f.distance > 1e-6f)) return false;
   const Eigen::Vector3f u = d / f.distance;
-  c[0] = n1.dot(u);
-  c[1] = n2.dot(u);
-  c[2] = n1.dot(n2);
+  const float c[3] = {n1.dot(u), n2.dot(u), n1.dot(n2)};
   f.coplanar =
       c[2] > kCoplanarCos && std::abs(c[0]) < kCoplanarSin && std::abs(c[1]) < kCoplanarSin;
-  return true;
-}
-
-inline void angles(const float c[3], Feature& f) {
   f.a1 = fast_acos(c[0]);
   f.a2 = fast_acos(c[1]);
   f.a3 = fast_acos(c[2]);
+  return true;
 }
 
-bool feature(const Eigen::Vector3f& p1, const Eigen::Vector3f& n1, const Eigen::Vector3f& p2,
-             const Eigen::Vector3f& n2, Feature& f) {
-  float c[3];
-  if (!cosines(p1, n1, p2, n2, f, c)) return false;
-  angles(c, f);
-  return true;
+// The keys a model pair is hashed into, its feature's four quantities given in bins: the bin of
+// each quantity and, near a bin edge, its neighbour too, so that noise in the scene's normals does
+// not lose the vote. Bins outside the key space are left out.
+template <class Visit>
+void for_each_spread_key(const float bins[4], int distance_bins, Visit&& visit) {
+  int lo[4], hi[4];
+  for (int k = 0; k < 4; ++k) {
+    const int b = static_cast<int>(std::floor(bins[k]));
+    const float frac = bins[k] - static_cast<float>(b);
+    lo[k] = frac < 0.25f ? b - 1 : b;
+    hi[k] = frac > 0.75f ? b + 1 : b;
+  }
+  const auto in_range = [](int b, int count) { return b >= 0 && b < count; };
+  for (int b0 = lo[0]; b0 <= hi[0]; ++b0)
+    for (int b1 = lo[1]; b1 <= hi[1]; ++b1)
+      for (int b2 = lo[2]; b2 <= hi[2]; ++b2)
+        for (int b3 = lo[3]; b3 <= hi[3]; ++b3) {
+          if (in_range(b0, distance_bins) && in_range(b1, kAngleBins) && in_range(b2, kAngleBins) &&
+              in_range(b3, kAngleBins)) {
+            visit(b0, b1, b2, b3);
+          }
+        }
 }
 
 }  // namespace
@@ -141,44 +117,38 @@ PointPairModel::PointPairModel(const PointCloud& model, double distance_step, do
   skip_coplanar_ = total > 0 && (total - coplanar) * 5 >= total;
 
   struct Keyed {
-    std::uint32_t key;
-    Entry entry;
+    std::uint32_t key, first_vote;
+    float alpha_in_bins;
   };
   std::vector<Keyed> keyed;
   keyed.reserve(4 * total);  // about 1.5^4 bins per pair with the edge spreading below
   const float step = static_cast<float>(distance_step);
   for_each_pair([&](std::size_t i, std::size_t j, const Feature& f) {
     if (skip_coplanar_ && f.coplanar) return;
-    const Entry entry{static_cast<std::uint32_t>(i * kAlphaBins),
-                      angle_about_x(to_x_axis_[i], points_[j] - points_[i]) * kAlphaBinsPerRad};
-    // Hash into the bin of each quantity and, near a bin edge, into its neighbour too.
-    const float c[4] = {f.distance / step, f.a1 / kAngleStep, f.a2 / kAngleStep, f.a3 / kAngleStep};
-    int lo[4], hi[4];
-    for (int k = 0; k < 4; ++k) {
-      const int b = static_cast<int>(std::floor(c[k]));
-      const float frac = c[k] - static_cast<float>(b);
-      lo[k] = frac < 0.25f ? b - 1 : b;
-      hi[k] = frac > 0.75f ? b + 1 : b;
-    }
-    for (int b0 = lo[0]; b0 <= hi[0]; ++b0)
-      for (int b1 = lo[1]; b1 <= hi[1]; ++b1)
-        for (int b2 = lo[2]; b2 <= hi[2]; ++b2)
-          for (int b3 = lo[3]; b3 <= hi[3]; ++b3) {
-            if (b0 < 0 || b0 >= distance_bins_ || b1 < 0 || b2 < 0 || b3 < 0 || b1 >= kAngleBins ||
-                b2 >= kAngleBins || b3 >= kAngleBins) {
-              continue;
-            }
-            keyed.push_back({key(b0, b1, b2, b3), entry});
-          }
+    const auto first_vote = static_cast<std::uint32_t>(i * kAlphaBins);
+    const float alpha_in_bins =
+        angle_about_x(to_x_axis_[i], points_[j] - points_[i]) * kAlphaBinsPerRad;
+    const float bins[4] = {f.distance / step, f.a1 / kAngleStep, f.a2 / kAngleStep,
+                           f.a3 / kAngleStep};
+    for_each_spread_key(bins, distance_bins_, [&](int b0, int b1, int b2, int b3) {
+      keyed.push_back({key(b0, b1, b2, b3), first_vote, alpha_in_bins});
+    });
   });
   // Counting sort into a dense table: the key space is small (distance bins x 15^3).
   offsets_.assign(
       static_cast<std::size_t>(distance_bins_) * kAngleBins * kAngleBins * kAngleBins + 1, 0);
   for (const Keyed& k : keyed) ++offsets_[k.key + 1];
   for (std::size_t k = 1; k < offsets_.size(); ++k) offsets_[k] += offsets_[k - 1];
-  entries_.resize(keyed.size());
+  first_votes_.resize(keyed.size());
+  alphas_in_bins_.resize(keyed.size());
   std::vector<std::uint32_t> fill(offsets_.begin(), offsets_.end() - 1);
-  for (const Keyed& k : keyed) entries_[fill[k.key]++] = k.entry;
+  for (const Keyed& k : keyed) {
+    const std::uint32_t e = fill[k.key]++;
+    first_votes_[e] = k.first_vote;
+    alphas_in_bins_[e] = k.alpha_in_bins;
+  }
+  // One key past the key space, with no entries: the voting's key for a pair that casts no vote.
+  offsets_.push_back(offsets_.back());
 }
 
 std::uint32_t PointPairModel::key(int distance_bin, int a1, int a2, int a3) const {
@@ -195,35 +165,33 @@ void PointPairModel::accumulate_votes(const PointCloud& scene,
                                       std::vector<std::uint32_t>& votes) const {
   const Eigen::Vector3f& sr = scene.points[reference];
   const Eigen::Vector3f& nr = scene.normals[reference];
-  const float step = static_cast<float>(distance_step_);
-  for (const Neighbor& nb : neighbours) {
-    if (nb.index == reference) continue;
-    const Eigen::Vector3f& si = scene.points[nb.index];
-    const Eigen::Vector3f& ni = scene.normals[nb.index];
-    if (!ni.allFinite()) continue;
-    // The cheap rejections first: most neighbours of a seed on a plane are coplanar with it.
-    Feature f;
-    float c[3];
-    if (!cosines(sr, nr, si, ni, f, c)) continue;
-    if (skip_coplanar_ && f.coplanar) continue;
-    const int db = static_cast<int>(f.distance / step);
-    if (db >= distance_bins_) continue;
-    angles(c, f);
-    const int a1 = std::min(static_cast<int>(f.a1 / kAngleStep), kAngleBins - 1);
-    const int a2 = std::min(static_cast<int>(f.a2 / kAngleStep), kAngleBins - 1);
-    const int a3 = std::min(static_cast<int>(f.a3 / kAngleStep), kAngleBins - 1);
-    const std::uint32_t k = key(db, a1, a2, a3);
-    const std::uint32_t begin = offsets_[k], end = offsets_[k + 1];
-    if (begin == end) continue;
-    const float alpha_s = angle_about_x(Rs, si - sr) * kAlphaBinsPerRad;
-    for (std::uint32_t e = begin; e < end; ++e) {
-      const Entry& entry = entries_[e];
-      // Rotating the model pair by alpha = alpha_s - alpha_m about x aligns it with the scene's.
-      // Wrapped into [0, bins) by adding 0 or a full turn: the same sum as a conditional add,
-      // without the branch, which mispredicted on every other entry.
-      float alpha = alpha_s - entry.alpha_in_bins;
-      alpha += static_cast<float>(alpha < 0.0f) * static_cast<float>(kAlphaBins);
-      ++votes[entry.first_vote + std::min(static_cast<int>(alpha), kAlphaBins - 1)];
+  const PairQuantisation q{static_cast<float>(distance_step_), distance_bins_, skip_coplanar_,
+                           static_cast<std::uint32_t>(offsets_.size() - 2)};
+  constexpr std::uint32_t kBinsAtOnce = 256;
+  std::uint32_t bins[kBinsAtOnce];
+  NeighbourBlock block;
+  for (std::size_t next = 0; next < neighbours.size();) {
+    // A block of neighbours, then their features and keys in one vectorised pass.
+    block.size = 0;
+    for (; next < neighbours.size() && block.size < NeighbourBlock::kCapacity; ++next) {
+      const Index i = neighbours[next].index;
+      const Eigen::Vector3f& ni = scene.normals[i];
+      if (i == reference || !ni.allFinite()) continue;
+      const Eigen::Vector3f d = scene.points[i] - sr;
+      const int b = block.size++;
+      block.dx[b] = d.x(), block.dy[b] = d.y(), block.dz[b] = d.z();
+      block.nx[b] = ni.x(), block.ny[b] = ni.y(), block.nz[b] = ni.z();
+    }
+    pair_feature_keys(q, nr, Rs, block);
+    // Each pair votes for the (model point, alpha) bin of every model pair under its key.
+    for (int b = 0; b < block.size; ++b) {
+      const std::uint32_t k = block.key[b];
+      const std::uint32_t end = offsets_[k + 1];
+      for (std::uint32_t begin = offsets_[k]; begin < end; begin += kBinsAtOnce) {
+        const std::uint32_t n = std::min(end - begin, kBinsAtOnce);
+        vote_bins(block.alpha[b], &first_votes_[begin], &alphas_in_bins_[begin], n, bins);
+        for (std::uint32_t e = 0; e < n; ++e) ++votes[bins[e]];
+      }
     }
   }
 }

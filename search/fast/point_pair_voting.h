@@ -62,18 +62,11 @@ class PointPairModel {
             double min_fraction, std::vector<PoseVote>& out, const TiltLimit* tilt = nullptr) const;
 
   std::size_t size() const { return points_.size(); }
-  std::size_t pairs() const { return entries_.size(); }
+  std::size_t pairs() const { return first_votes_.size(); }
   double diameter() const { return diameter_; }
   bool skips_coplanar() const { return skip_coplanar_; }
 
  private:
-  /// A model pair as the voting loop reads it: where its reference point's votes start in the
-  /// accumulator (model point x alpha bins), and its angle about x in alpha bins, so that a vote
-  /// costs a subtraction and no multiplication.
-  struct Entry {
-    std::uint32_t first_vote;
-    float alpha_in_bins;
-  };
   std::uint32_t key(int distance_bin, int a1, int a2, int a3) const;
   /// Every neighbour pair of the reference point sr (normal nr, Rs taking it to +x) votes for its
   /// matching model pairs' (model point, alpha) bins in `votes`.
@@ -86,8 +79,13 @@ class PointPairModel {
   double distance_step_, diameter_;
   bool skip_coplanar_ = false;
   int distance_bins_ = 0;
-  std::vector<std::uint32_t> offsets_;  ///< entries of key k: [offsets_[k], offsets_[k + 1])
-  std::vector<Entry> entries_;
+  /// Entries of key k: [offsets_[k], offsets_[k + 1]); the key one past the key space has none.
+  std::vector<std::uint32_t> offsets_;
+  /// The model pairs, by key, as the voting reads them (voting_kernels.h: vote_bins): where the
+  /// pair's reference point's votes start in the accumulator (model point x alpha bins), and the
+  /// pair's angle about x in alpha bins, so that a vote costs a subtraction and no multiplication.
+  std::vector<std::uint32_t> first_votes_;
+  std::vector<float> alphas_in_bins_;
 };
 
 }  // namespace lmk::detail
