@@ -1,13 +1,22 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "lmk/search/fast/voting_kernels.h"
 
+// On x86-64 each kernel is also compiled for AVX2, eight lanes instead of SSE2's four, and the
+// loader picks the build the processor runs (GCC's and Clang's function multiversioning). Without
+// FMA in the list no multiply-add is fused, so both builds give the same values.
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define LMK_VOTING_KERNEL __attribute__((target_clones("avx2", "default")))
+#else
+#define LMK_VOTING_KERNEL
+#endif
+
 namespace lmk::detail {
 
 // The same arithmetic in the same order as the model's features (point_pair_voting.cpp), where
 // Eigen sums a 3-vector's products as x + (y + z), so that a scene pair and the model pair it
 // matches fall into the same key, bit for bit.
-void pair_feature_keys(const PairQuantisation& q, const Eigen::Vector3f& nr,
-                       const Eigen::Matrix3f& Rs, NeighbourBlock& block) {
+LMK_VOTING_KERNEL void pair_feature_keys(const PairQuantisation& q, const Eigen::Vector3f& nr,
+                                         const Eigen::Matrix3f& Rs, NeighbourBlock& block) {
   const float step = q.distance_step;
   const auto bins = static_cast<float>(q.distance_bins);
   const bool skip_coplanar = q.skip_coplanar;
@@ -27,15 +36,13 @@ void pair_feature_keys(const PairQuantisation& q, const Eigen::Vector3f& nr,
     const bool coplanar =
         (c3 > kCoplanarCos) & (std::abs(c1) < kCoplanarSin) & (std::abs(c2) < kCoplanarSin);
     const float distance_in_bins = distance / step;
-    const bool votes =
-        (distance > 1e-6f) & !(skip_coplanar & coplanar) & (distance_in_bins < bins);
+    const bool votes = (distance > 1e-6f) & !(skip_coplanar & coplanar) & (distance_in_bins < bins);
     // A lane that casts no vote goes on with zeros, so that no NaN reaches a conversion to int.
     const auto bin = [&](float c) {
       return static_cast<std::uint32_t>(
           std::min(static_cast<int>(fast_acos(votes ? c : 0.0f) / kAngleStep), kAngleBins - 1));
     };
-    const auto db =
-        static_cast<std::uint32_t>(static_cast<int>(votes ? distance_in_bins : 0.0f));
+    const auto db = static_cast<std::uint32_t>(static_cast<int>(votes ? distance_in_bins : 0.0f));
     const std::uint32_t key =
         ((db * kAngleBins + bin(c1)) * kAngleBins + bin(c2)) * kAngleBins + bin(c3);
     block.key[i] = votes ? key : no_vote;
@@ -49,8 +56,8 @@ void pair_feature_keys(const PairQuantisation& q, const Eigen::Vector3f& nr,
 // Rotating the model pair by alpha = alpha_s - alpha_m about x aligns it with the scene's.
 // Wrapped into [0, bins) by adding 0 or a full turn: the same sum as a conditional add, without
 // a branch.
-void vote_bins(float alpha_s, const std::uint32_t* first_vote, const float* alpha_m,
-               std::uint32_t n, std::uint32_t* bins) {
+LMK_VOTING_KERNEL void vote_bins(float alpha_s, const std::uint32_t* first_vote,
+                                 const float* alpha_m, std::uint32_t n, std::uint32_t* bins) {
   for (std::uint32_t e = 0; e < n; ++e) {
     float alpha = alpha_s - alpha_m[e];
     alpha += static_cast<float>(alpha < 0.0f) * static_cast<float>(kAlphaBins);

@@ -174,7 +174,8 @@ TEST(PointPairVoting, AModelsBestVotedPoseLaysItOntoItsMovedSelf) {
     double sum = 0.0;
     for (const Eigen::Vector3f& p : model.points) {
       float nearest = std::numeric_limits<float>::infinity();
-      for (const Eigen::Vector3f& s : scene.points) nearest = std::min(nearest, (best * p - s).norm());
+      for (const Eigen::Vector3f& s : scene.points)
+        nearest = std::min(nearest, (best * p - s).norm());
       sum += nearest;
     }
     EXPECT_LT(sum / model.size(), 0.006) << "reference " << reference;
