@@ -19,7 +19,7 @@ LMK_VOTING_KERNEL void pair_feature_keys(const PairQuantisation& q, const Eigen:
                                          const Eigen::Matrix3f& Rs, NeighbourBlock& block) {
   const float step = q.distance_step;
   const auto bins = static_cast<float>(q.distance_bins);
-  const bool skip_coplanar = q.skip_coplanar;
+  const int skip_coplanar = q.skip_coplanar ? 1 : 0;
   const std::uint32_t no_vote = q.no_vote_key;
   const float nrx = nr.x(), nry = nr.y(), nrz = nr.z();
   const float r10 = Rs(1, 0), r11 = Rs(1, 1), r12 = Rs(1, 2);
@@ -32,11 +32,14 @@ LMK_VOTING_KERNEL void pair_feature_keys(const PairQuantisation& q, const Eigen:
     const float c1 = nrx * ux + (nry * uy + nrz * uz);
     const float c2 = nx * ux + (ny * uy + nz * uz);
     const float c3 = nrx * nx + (nry * ny + nrz * nz);
-    // Bitwise ands, not &&: a short circuit is a branch, and a branch keeps the loop scalar.
-    const bool coplanar =
-        (c3 > kCoplanarCos) & (std::abs(c1) < kCoplanarSin) & (std::abs(c2) < kCoplanarSin);
+    // Bitwise ands of ints, not && of bools: a short circuit is a branch, and a branch keeps the
+    // loop scalar.
+    const int coplanar = static_cast<int>(c3 > kCoplanarCos) &
+                         static_cast<int>(std::abs(c1) < kCoplanarSin) &
+                         static_cast<int>(std::abs(c2) < kCoplanarSin);
     const float distance_in_bins = distance / step;
-    const bool votes = (distance > 1e-6f) & !(skip_coplanar & coplanar) & (distance_in_bins < bins);
+    const bool votes = (static_cast<int>(distance > 1e-6f) & ((skip_coplanar & coplanar) ^ 1) &
+                        static_cast<int>(distance_in_bins < bins)) != 0;
     // A lane that casts no vote goes on with zeros, so that no NaN reaches a conversion to int.
     const auto bin = [&](float c) {
       return static_cast<std::uint32_t>(
