@@ -30,11 +30,13 @@ trap 'rm -rf "$work"' EXIT
 for round in $(seq 1 "$rounds"); do
   for side in other this; do
     if [ $side = other ]; then tool=$other; else tool=$this; fi
-    "$tool" bench --repeats 30 --reference-seeds 1 --json "$work/bench_$side.json" >/dev/null
+    # Their own progress and summaries stay in a log, shown if a run fails.
+    "$tool" bench --repeats 30 --reference-seeds 1 --json "$work/bench_$side.json" \
+      >"$work/log" 2>&1 || { cat "$work/log" >&2; exit 1; }
     if [ $# -eq 4 ]; then
       if [ $side = other ]; then dataset=$3; else dataset=$4; fi
       "$tool" eval --dataset "$dataset" --no-cache --threads 1 --timings \
-        --json "$work/paper_$side.json" >/dev/null
+        --json "$work/paper_$side.json" >"$work/log" 2>&1 || { cat "$work/log" >&2; exit 1; }
     fi
   done
   python3 - "$work" "$round" <<'EOF'
