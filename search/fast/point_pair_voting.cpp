@@ -76,7 +76,8 @@ void for_each_spread_key(const float bins[4], int distance_bins, Visit&& visit) 
         for (int b3 = lo[3]; b3 <= hi[3]; ++b3) {
           if (in_range(b0, distance_bins) && in_range(b1, kAngleBins) && in_range(b2, kAngleBins) &&
               in_range(b3, kAngleBins)) {
-            visit(b0, b1, b2, b3);
+            visit(pair_key(static_cast<std::uint32_t>(b0), static_cast<std::uint32_t>(b1),
+                           static_cast<std::uint32_t>(b2), static_cast<std::uint32_t>(b3)));
           }
         }
 }
@@ -130,8 +131,8 @@ PointPairModel::PointPairModel(const PointCloud& model, double distance_step, do
         angle_about_x(to_x_axis_[i], points_[j] - points_[i]) * kAlphaBinsPerRad;
     const float bins[4] = {f.distance / step, f.a1 / kAngleStep, f.a2 / kAngleStep,
                            f.a3 / kAngleStep};
-    for_each_spread_key(bins, distance_bins_, [&](int b0, int b1, int b2, int b3) {
-      keyed.push_back({key(b0, b1, b2, b3), first_vote, alpha_in_bins});
+    for_each_spread_key(bins, distance_bins_, [&](std::uint32_t key) {
+      keyed.push_back({key, first_vote, alpha_in_bins});
     });
   });
   // Counting sort into a dense table: the key space is small (distance bins x 15^3).
@@ -149,14 +150,6 @@ PointPairModel::PointPairModel(const PointCloud& model, double distance_step, do
   }
   // One key past the key space, with no entries: the voting's key for a pair that casts no vote.
   offsets_.push_back(offsets_.back());
-}
-
-std::uint32_t PointPairModel::key(int distance_bin, int a1, int a2, int a3) const {
-  return ((static_cast<std::uint32_t>(distance_bin) * kAngleBins + static_cast<std::uint32_t>(a1)) *
-              kAngleBins +
-          static_cast<std::uint32_t>(a2)) *
-             kAngleBins +
-         static_cast<std::uint32_t>(a3);
 }
 
 void PointPairModel::accumulate_votes(const PointCloud& scene,

@@ -67,7 +67,6 @@ class PointPairModel {
   bool skips_coplanar() const { return skip_coplanar_; }
 
  private:
-  std::uint32_t key(int distance_bin, int a1, int a2, int a3) const;
   /// Every neighbour pair of the reference point sr (normal nr, Rs taking it to +x) votes for its
   /// matching model pairs' (model point, alpha) bins in `votes`.
   void accumulate_votes(const PointCloud& scene, const std::vector<Neighbor>& neighbours,

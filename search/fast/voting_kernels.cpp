@@ -46,8 +46,7 @@ LMK_VOTING_KERNEL void pair_feature_keys(const PairQuantisation& q, const Eigen:
           std::min(static_cast<int>(fast_acos(votes ? c : 0.0f) / kAngleStep), kAngleBins - 1));
     };
     const auto db = static_cast<std::uint32_t>(static_cast<int>(votes ? distance_in_bins : 0.0f));
-    const std::uint32_t key =
-        ((db * kAngleBins + bin(c1)) * kAngleBins + bin(c2)) * kAngleBins + bin(c3);
+    const std::uint32_t key = pair_key(db, bin(c1), bin(c2), bin(c3));
     block.key[i] = votes ? key : no_vote;
     // (Rs d).z and .y, Eigen's order again.
     const float vy = r10 * dx + (r11 * dy + r12 * dz);

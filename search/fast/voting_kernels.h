@@ -57,6 +57,12 @@ inline float fast_atan2(float y, float x) {
   return y < 0.0f ? -r : r;
 }
 
+/// The key of a feature's four bins, the model's table and the scene's lookups alike.
+inline std::uint32_t pair_key(std::uint32_t distance_bin, std::uint32_t a1, std::uint32_t a2,
+                              std::uint32_t a3) {
+  return ((distance_bin * kAngleBins + a1) * kAngleBins + a2) * kAngleBins + a3;
+}
+
 /// A block of a reference point's neighbours as a structure of arrays: the segment d from the
 /// reference point to each, and each one's normal; `pair_feature_keys` fills `key` and `alpha`.
 struct NeighbourBlock {
@@ -79,8 +85,7 @@ struct PairQuantisation {
 /// For each neighbour in `block` of the reference point (normal `nr`; `Rs` takes it onto +x):
 /// the key of the feature F(reference, neighbour), or `q.no_vote_key` for a pair that casts no
 /// vote (coincident points, a coplanar pair the model left out, a pair longer than the model);
-/// and the angle of d about +x once rotated by Rs, in alpha bins. A key is ((distance bin x 15 +
-/// angle 1 bin) x 15 + angle 2 bin) x 15 + angle 3 bin.
+/// and the angle of d about +x once rotated by Rs, in alpha bins. The key is `pair_key`'s.
 void pair_feature_keys(const PairQuantisation& q, const Eigen::Vector3f& nr,
                        const Eigen::Matrix3f& Rs, NeighbourBlock& block);
 
