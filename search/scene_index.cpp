@@ -69,14 +69,15 @@ SceneIndex::SceneIndex(const PointCloud& scene, const SceneSettings& settings, S
 
   // A real frame's veil points go and its depth is smoothed first (geometry/frame_preparation.h),
   // as at capture: nothing else may see the raw frame.
-  const std::optional<PointCloud> prepared =
+  std::optional<PointCloud> prepared =
       prepared_frame(scene, settings.veil_angle, settings.depth_smoothing, settings.depth_noise());
   const PointCloud& frame = prepared ? *prepared : scene;
   if (stop_) stop_();
 
   // The grids skip non-finite points themselves, so without a work volume they are built from the
-  // frame as it is, and its finite points are copied (for the fine level, built on first use)
-  // beside them rather than before them.
+  // frame as it is. So does the fine level's downsample (built on first use, and only for the
+  // metrics that read every point): it keeps the prepared frame as it is, or a copy of the finite
+  // points of a frame that was not prepared, made beside the grids rather than before them.
   const bool whole_frame = !settings.work_volume;
   if (whole_frame) {
     if (std::none_of(frame.points.begin(), frame.points.end(),
@@ -97,7 +98,14 @@ SceneIndex::SceneIndex(const PointCloud& scene, const SceneSettings& settings, S
       [&] {
         range_image_ = reuse.image ? *reuse.image : image_of_prepared(frame, reuse.intrinsics);
         if (stop_) stop_();
-        if (whole_frame) cropped_ = remove_non_finite(frame);
+        if (whole_frame && prepared) {
+          input_points_ = static_cast<std::size_t>(
+              std::count_if(frame.points.begin(), frame.points.end(),
+                            [](const Eigen::Vector3f& p) { return is_finite(p); }));
+        } else {
+          if (whole_frame) cropped_ = remove_non_finite(frame);
+          input_points_ = cropped_.size();
+        }
         occupancy_ = OccupancyGrid(source.points, settings.leaf_size, stop_);
       },
       [&] {
@@ -116,7 +124,7 @@ SceneIndex::SceneIndex(const PointCloud& scene, const SceneSettings& settings, S
             },
             [&] { field_ = DistanceField(coarse_.points, field_settings, stop_); });
       });
-  input_points_ = cropped_.size();
+  if (whole_frame && prepared) cropped_ = std::move(*prepared);  // nothing reads `frame` after this
   seconds_ = stopwatch.seconds();
 }
 

@@ -89,6 +89,8 @@ class SceneIndex {
   Eigen::Vector3d up_;
   Eigen::Isometry3d T_scene_sensor_;
   std::size_t input_points_ = 0;
+  /// The points the fine level is built from: the work volume's crop, the prepared frame (its
+  /// non-finite points too) or a frame's finite points.
   PointCloud cropped_;
   PointCloud coarse_;
   DistanceField field_;

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <numeric>
 #include <unordered_map>
@@ -17,6 +19,7 @@
 #include "lmk/geometry/voxel_grid.h"
 #include "lmk/registration/icp.h"
 #include "lmk/registration/refine_pose.h"
+#include "lmk/search/fast/coarse_fit.h"
 #include "lmk/search/fast/fast_landmark.h"
 #include "lmk/search/fast/point_pair_voting.h"
 #include "lmk/search/fast/relief_seeds.h"
@@ -155,6 +158,13 @@ std::vector<Candidate> vote(const Stages& st) {
   return poses;
 }
 
+// The cheap score beyond which a coarsely aligned candidate goes no further (infinite for a metric
+// without a cheap score: every candidate ranks as voted).
+double prune_bound(const Stages& st) {
+  return st.in.metric.coarse_score ? st.s.fast.prune_scale * st.in.metric.prune_bound()
+                                   : std::numeric_limits<double>::infinity();
+}
+
 // Step 3, first half: every cluster aligned coarsely and scored cheaply, in parallel.
 struct CoarseAlignment {
   std::vector<Eigen::Isometry3d> aligned;  ///< per cluster
@@ -184,6 +194,17 @@ CoarseAlignment coarse_align(const Stages& st, const std::vector<Candidate>& clu
         {st.index, st.landmark, model, coarse_model,
          in.metric.needs_empty_distances ? &in.prepared.empty_distances() : nullptr, st.leaf});
   }
+  // Most clusters of a cluttered frame are votes for a wrong place, and take all their ICP steps to
+  // a score the prune drops: a few steps and a cheaper score tell most of them (coarse_fit.h).
+  // (The scores keep pointers to their points.)
+  const PointCloud test_model = model.select(thin_indices(model.size(), kStopTestPoints));
+  CoarseScore test;
+  if (quick) {
+    test = in.metric.coarse_score(
+        {st.index, st.landmark, model, test_model,
+         in.metric.needs_empty_distances ? &in.prepared.empty_distances() : nullptr, st.leaf});
+  }
+  const double hopeless_above = kHopelessMargin * prune_bound(st);
   CoarseAlignment out;
   out.aligned.resize(clusters.size());
   out.iterations.assign(clusters.size(), 0);
@@ -191,10 +212,11 @@ CoarseAlignment coarse_align(const Stages& st, const std::vector<Candidate>& clu
   tbb::parallel_for(std::size_t{0}, clusters.size(), [&](std::size_t c) {
     if (st.s.execution.stop) st.s.execution.stop();  // each item: a few ms at most
     const DistanceFieldTarget target(st.index.field(), &st.coarse.normals);
-    const IcpResult r = icp(coarse_model.points, target, clusters[c].T_scene_capture, icp_settings);
-    out.aligned[c] = r.T_target_source;
-    out.iterations[c] = r.iterations;
-    out.quick[c] = quick ? quick(out.aligned[c].cast<float>()) : 0.0;
+    const CoarseFit fit = coarse_fit(coarse_model.points, target, clusters[c].T_scene_capture,
+                                     icp_settings, quick, test, hopeless_above);
+    out.aligned[c] = fit.pose;
+    out.iterations[c] = fit.iterations;
+    out.quick[c] = fit.score;
   });
   return out;
 }
@@ -202,9 +224,7 @@ CoarseAlignment coarse_align(const Stages& st, const std::vector<Candidate>& clu
 // Step 3, second half: only candidates whose coarse fit could still pass go on, best first, at
 // most max_refined, one per pose; returned in cluster rank, a deterministic order.
 std::vector<std::size_t> prune(const Stages& st, const CoarseAlignment& coarse) {
-  const double prune_at = st.in.metric.coarse_score
-                              ? st.s.fast.prune_scale * st.in.metric.prune_bound()
-                              : std::numeric_limits<double>::infinity();
+  const double prune_at = prune_bound(st);
   const std::vector<double>& quick = coarse.quick;
   const std::vector<Eigen::Isometry3d>& aligned = coarse.aligned;
   std::vector<std::size_t> order(quick.size());
@@ -226,6 +246,21 @@ std::vector<std::size_t> prune(const Stages& st, const CoarseAlignment& coarse) 
     }
   }
   std::sort(survivors.begin(), survivors.end());
+  if (std::getenv("LMK_DEBUG_COARSE")) {
+    int hist[10] = {0};
+    std::size_t under = 0, under11 = 0;
+    for (std::size_t c = 0; c < quick.size(); ++c) {
+      hist[std::min(coarse.iterations[c], 9)]++;
+      if (quick[c] <= prune_at) ++under;
+      if (quick[c] <= 1.1 * prune_at) ++under11;
+    }
+    std::fprintf(
+        stderr,
+        "COARSE clusters %zu under_prune %zu under11 %zu survivors %zu prune_at %.4f iters:",
+        quick.size(), under, under11, survivors.size(), prune_at);
+    for (int i = 0; i < 10; ++i) std::fprintf(stderr, " %d", hist[i]);
+    std::fprintf(stderr, "\n");
+  }
   return survivors;
 }
 

@@ -141,7 +141,7 @@ struct CoarseView {
 };
 
 /// A cheap estimate of a metric's error for a coarsely aligned candidate, in the metric's unit.
-/// Called from several threads at once.
+/// Called from several threads at once. It may refer to its view's clouds: they must outlive it.
 using CoarseScore = std::function<double(const Eigen::Isometry3f& T_scene_capture)>;
 /// Builds a metric's coarse score for one search.
 using CoarseScoreFactory = std::function<CoarseScore(const CoarseView& view)>;
