@@ -22,9 +22,9 @@ inline constexpr std::size_t kStopTestPoints = 50;
 
 struct CoarseFit {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  int iterations = 0;   ///< ICP steps taken
-  double score = 0.0;   ///< `score` at `pose` (0 without one); `test`'s where it stopped early
-  bool stopped = false; ///< by the stop test
+  int iterations = 0;    ///< ICP steps taken
+  double score = 0.0;    ///< `score` at `pose` (0 without one); `test`'s where it stopped early
+  bool stopped = false;  ///< by the stop test
 };
 
 /// ICP of `points` from `start` under `settings`, then `score` at the result. With a score and
