@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // One cluster's coarse alignment (step 3 of the fast search, docs/landmarks.md): ICP from the
-// voted pose, scored by the metric's cheap score, stopped early when it cannot make the prune.
-// Internal.
+// voted pose, scored by the metric's cheap score, stopped early when it cannot make the prune
+// (measured in docs/cluster.md, "The coarse stage's hopeless clusters"). Internal.
 
 #include <Eigen/Geometry>
 #include <vector>

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The field's trilinear sampling against the voxel values read one by one through OpenVDB, where
-// a query's cell crosses leaf-node boundaries (its corners then lie in up to eight leaves) and where
-// a stored grid holds a tile instead of leaves.
+// a query's cell crosses leaf-node boundaries (its corners then lie in up to eight leaves) and
+// where a stored grid holds a tile instead of leaves.
 
 #include <gtest/gtest.h>
 
