@@ -25,12 +25,13 @@ RadiusGrid::~RadiusGrid() = default;
 RadiusGrid::RadiusGrid(RadiusGrid&&) noexcept = default;
 RadiusGrid& RadiusGrid::operator=(RadiusGrid&&) noexcept = default;
 
-// Calls visit(slot, squared distance) for every point strictly closer than `radius`. The cells
-// scanned are those between the cells of query -/+ radius on each axis: a point within the ball
-// lies between those bounds, and flooring the scaled coordinate is monotonic, so its cell is among
-// them.
-template <class Visit>
-void RadiusGrid::for_each_within(const Eigen::Vector3f& query, float radius, Visit&& visit) const {
+// Calls visit(begin, end) with the slots of every cell that may hold a point strictly closer than
+// `radius`. The cells scanned are those between the cells of query -/+ radius on each axis: a point
+// within the ball lies between those bounds, and flooring the scaled coordinate is monotonic, so
+// its cell is among them.
+template <class VisitCell>
+void RadiusGrid::for_each_cell_within(const Eigen::Vector3f& query, float radius,
+                                      VisitCell&& visit) const {
   if (points_.empty() || !(radius > 0.0f) || !query.allFinite()) return;
   const float r2 = radius * radius;  // as KdTree squares it
   detail::VoxelCoord lo, hi;
@@ -59,36 +60,51 @@ void RadiusGrid::for_each_within(const Eigen::Vector3f& query, float radius, Vis
           continue;
         }
         const std::uint32_t id = cells_->find(detail::pack_voxel({x, y, z}));
-        if (id == detail::VoxelTable::kAbsent) continue;
-        for (std::size_t slot = begin_[id]; slot < begin_[id + 1]; ++slot) {
-          const Eigen::Vector3f& p = points_[slot];
-          float d2 = 0.0f;
-          for (int a = 0; a < 3; ++a) {
-            const float diff = query[a] - p[a];
-            d2 += diff * diff;
-          }
-          if (d2 < r2) visit(slot, d2);
-        }
+        if (id != detail::VoxelTable::kAbsent) visit(begin_[id], begin_[id + 1]);
       }
     }
   }
 }
 
+float RadiusGrid::squared_distance(const Eigen::Vector3f& query, std::size_t slot) const {
+  const Eigen::Vector3f& p = points_[slot];
+  float d2 = 0.0f;
+  for (int a = 0; a < 3; ++a) {
+    const float diff = query[a] - p[a];
+    d2 += diff * diff;
+  }
+  return d2;
+}
+
 void RadiusGrid::radius_unsorted(const Eigen::Vector3f& query, float radius,
                                  std::vector<Neighbor>& out) const {
   out.clear();
-  for_each_within(query, radius, [&](std::size_t slot, float d2) {
-    out.push_back({indices_[slot], d2});
+  const float r2 = radius * radius;
+  // Every point of a cell is written and only those within the ball advance the end: a boundary
+  // cell's points fall on both sides about evenly, and a branch on each mispredicted half of them.
+  for_each_cell_within(query, radius, [&](std::size_t begin, std::size_t end) {
+    std::size_t kept = out.size();
+    out.resize(kept + (end - begin));
+    for (std::size_t slot = begin; slot < end; ++slot) {
+      const float d2 = squared_distance(query, slot);
+      out[kept] = {indices_[slot], d2};
+      kept += d2 < r2 ? 1 : 0;
+    }
+    out.resize(kept);
   });
 }
 
 std::optional<Neighbor> RadiusGrid::nearest_within(const Eigen::Vector3f& query,
                                                    float radius) const {
   std::optional<Neighbor> best;
-  for_each_within(query, radius, [&](std::size_t slot, float d2) {
-    if (!best || d2 < best->squared_distance ||
-        (d2 == best->squared_distance && indices_[slot] < best->index)) {
-      best = Neighbor{indices_[slot], d2};
+  const float r2 = radius * radius;
+  for_each_cell_within(query, radius, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t slot = begin; slot < end; ++slot) {
+      const float d2 = squared_distance(query, slot);
+      if (d2 < r2 && (!best || d2 < best->squared_distance ||
+                      (d2 == best->squared_distance && indices_[slot] < best->index))) {
+        best = Neighbor{indices_[slot], d2};
+      }
     }
   });
   return best;

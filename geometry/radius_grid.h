@@ -46,8 +46,9 @@ class RadiusGrid {
   std::optional<Neighbor> nearest_within(const Eigen::Vector3f& query, float radius) const;
 
  private:
-  template <class Visit>
-  void for_each_within(const Eigen::Vector3f& query, float radius, Visit&& visit) const;
+  template <class VisitCell>
+  void for_each_cell_within(const Eigen::Vector3f& query, float radius, VisitCell&& visit) const;
+  float squared_distance(const Eigen::Vector3f& query, std::size_t slot) const;
 
   double inv_cell_;
   std::unique_ptr<detail::VoxelTable> cells_;  ///< cell key -> cell id

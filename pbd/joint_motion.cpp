@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 namespace lmk {
 
@@ -71,23 +72,35 @@ JointTrajectory joint_path(const GroupInfo& group, const std::vector<double>& fr
   const double full_speed = path_duration(group, from, waypoints, 1.0);
   const int per_line = std::max(
       1, (points + static_cast<int>(waypoints.size()) - 1) / static_cast<int>(waypoints.size()));
+  // Each line's seconds: its share at full speed, but at least a hundredth of an equal share, so
+  // that a line that takes (almost) no time still has increasing times; then all scaled to sum to
+  // `duration`, so that the path ends when its caller holds the arm. (A millisecond floor added
+  // after the fact once ran a path past the hold at its end: the demo's task 3, issue #63.)
+  const double lines = static_cast<double>(waypoints.size());
+  std::vector<double> seconds;
+  const std::vector<double>* at = &from;
+  for (const std::vector<double>& next : waypoints) {
+    const double share =
+        full_speed > 0.0 ? motion_duration(group, *at, next, 1.0) / full_speed : 1.0 / lines;
+    seconds.push_back(std::max(share, 0.01 / lines));
+    at = &next;
+  }
+  const double total = std::accumulate(seconds.begin(), seconds.end(), 0.0);
+  for (double& s : seconds) s *= duration / total;
   JointTrajectory t;
   for (const JointInfo& j : group.joints) t.joint_names.push_back(j.name);
   double start = 0.0;
-  const std::vector<double>* at = &from;
-  for (const std::vector<double>& next : waypoints) {
-    // Lines that take no time at full speed still get an equal share, so times keep increasing.
-    const double share = full_speed > 0.0 ? motion_duration(group, *at, next, 1.0) / full_speed
-                                          : 1.0 / static_cast<double>(waypoints.size());
-    const double seconds = std::max(share * duration, 1e-3);
-    JointTrajectory line = joint_line(group, *at, next, seconds, per_line);
+  at = &from;
+  for (std::size_t k = 0; k < waypoints.size(); ++k) {
+    JointTrajectory line = joint_line(group, *at, waypoints[k], seconds[k], per_line);
     for (JointTrajectory::Point& p : line.points) {
       p.time_from_start += start;
       t.points.push_back(std::move(p));
     }
-    start += seconds;
-    at = &next;
+    start += seconds[k];
+    at = &waypoints[k];
   }
+  t.points.back().time_from_start = duration;  // not a rounding of the sum either side of it
   return t;
 }
 
