@@ -98,14 +98,12 @@ SceneIndex::SceneIndex(const PointCloud& scene, const SceneSettings& settings, S
       [&] {
         range_image_ = reuse.image ? *reuse.image : image_of_prepared(frame, reuse.intrinsics);
         if (stop_) stop_();
-        if (whole_frame && prepared) {
-          input_points_ = static_cast<std::size_t>(
-              std::count_if(frame.points.begin(), frame.points.end(),
-                            [](const Eigen::Vector3f& p) { return is_finite(p); }));
-        } else {
-          if (whole_frame) cropped_ = remove_non_finite(frame);
-          input_points_ = cropped_.size();
-        }
+        if (whole_frame && !prepared) cropped_ = remove_non_finite(frame);
+        input_points_ = whole_frame && prepared
+                            ? static_cast<std::size_t>(std::count_if(
+                                  frame.points.begin(), frame.points.end(),
+                                  [](const Eigen::Vector3f& p) { return is_finite(p); }))
+                            : cropped_.size();
         occupancy_ = OccupancyGrid(source.points, settings.leaf_size, stop_);
       },
       [&] {

@@ -6,8 +6,6 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <limits>
 #include <numeric>
 #include <unordered_map>
@@ -187,23 +185,19 @@ CoarseAlignment coarse_align(const Stages& st, const std::vector<Candidate>& clu
   // finalists with every point.
   const PointCloud& model = st.model.coarse();
   const PointCloud coarse_model = model.select(thin_indices(model.size(), 400));
-  // The metric's own cheap score, in its unit (none: every candidate ranks as voted).
-  CoarseScore quick;
-  if (in.metric.coarse_score) {
-    quick = in.metric.coarse_score(
-        {st.index, st.landmark, model, coarse_model,
+  // The metric's own cheap score over `points`, in its unit (none: every candidate ranks as
+  // voted). The score keeps a pointer to `points`.
+  const auto cheap_score = [&](const PointCloud& points) -> CoarseScore {
+    if (!in.metric.coarse_score) return {};
+    return in.metric.coarse_score(
+        {st.index, st.landmark, model, points,
          in.metric.needs_empty_distances ? &in.prepared.empty_distances() : nullptr, st.leaf});
-  }
+  };
+  const CoarseScore quick = cheap_score(coarse_model);
   // Most clusters of a cluttered frame are votes for a wrong place, and take all their ICP steps to
   // a score the prune drops: a few steps and a cheaper score tell most of them (coarse_fit.h).
-  // (The scores keep pointers to their points.)
   const PointCloud test_model = model.select(thin_indices(model.size(), kStopTestPoints));
-  CoarseScore test;
-  if (quick) {
-    test = in.metric.coarse_score(
-        {st.index, st.landmark, model, test_model,
-         in.metric.needs_empty_distances ? &in.prepared.empty_distances() : nullptr, st.leaf});
-  }
+  const CoarseScore test = cheap_score(test_model);
   const double hopeless_above = kHopelessMargin * prune_bound(st);
   CoarseAlignment out;
   out.aligned.resize(clusters.size());
@@ -246,21 +240,6 @@ std::vector<std::size_t> prune(const Stages& st, const CoarseAlignment& coarse) 
     }
   }
   std::sort(survivors.begin(), survivors.end());
-  if (std::getenv("LMK_DEBUG_COARSE")) {
-    int hist[10] = {0};
-    std::size_t under = 0, under11 = 0;
-    for (std::size_t c = 0; c < quick.size(); ++c) {
-      hist[std::min(coarse.iterations[c], 9)]++;
-      if (quick[c] <= prune_at) ++under;
-      if (quick[c] <= 1.1 * prune_at) ++under11;
-    }
-    std::fprintf(
-        stderr,
-        "COARSE clusters %zu under_prune %zu under11 %zu survivors %zu prune_at %.4f iters:",
-        quick.size(), under, under11, survivors.size(), prune_at);
-    for (int i = 0; i < 10; ++i) std::fprintf(stderr, " %d", hist[i]);
-    std::fprintf(stderr, "\n");
-  }
   return survivors;
 }
 
