@@ -5,6 +5,7 @@
 // budget plus 200 MB, /api/health answers within a second all along, nothing gets a 5xx but 503,
 // and every 503 says when to try again. And Ctrl-C stops it within 2 s with many jobs queued.
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -39,8 +40,13 @@ class ServeProcess {
     std::vector<char*> c_argv;
     for (std::string& a : argv) c_argv.push_back(a.data());
     c_argv.push_back(nullptr);
+    const pid_t test = ::getpid();
     pid_ = ::fork();
     if (pid_ == 0) {  // only async-signal-safe calls until exec
+      // The server dies with the test: a test that crashes or is killed by CTest's timeout would
+      // otherwise leave it running, holding CTest's output pipe open until CTest's own timeout.
+      ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+      if (::getppid() != test) ::_exit(127);  // the test died before the line above
       ::dup2(out[1], STDOUT_FILENO);
       ::close(out[0]);
       ::execv(c_argv[0], c_argv.data());
@@ -244,11 +250,12 @@ TEST(ServeBudget, UnderUploadsAndSearchesOf5MillionPointsTheServerKeepsItsBudget
     const std::string problem = f.get();
     if (!problem.empty()) failures.push_back(problem);
   }
-  const nlohmann::json memory =
-      nlohmann::json::parse(server.client()->Get("/api/info")->body)["memory"];
+  const httplib::Result info = server.client()->Get("/api/info");
   done = true;
   sender.join();
   watcher.join();
+  ASSERT_TRUE(info && info->status == 200) << "/api/info did not answer after the load";
+  const nlohmann::json memory = nlohmann::json::parse(info->body)["memory"];
   const double peak = server.peak_bytes();
 
   for (const std::string& f : failures) ADD_FAILURE() << f;
