@@ -6,6 +6,7 @@
 #include <string>
 
 #include "lmk/geometry/internal/voxel_table.h"
+#include "lmk/geometry/internal/voxel_tiles.h"
 #include "lmk/geometry/principal_axes.h"
 
 namespace lmk {
@@ -58,9 +59,8 @@ Eigen::Vector3d mean_of(const Moments& v) {
 }  // namespace
 
 struct VoxelMoments::Impl {
-  Impl(double leaf_size, std::size_t expected_voxels) : leaf(leaf_size), table(expected_voxels) {}
+  explicit Impl(double leaf_size) : leaf(leaf_size) {}
   double leaf;
-  detail::VoxelTable table;
   std::vector<Moments> voxels;
 };
 
@@ -80,23 +80,35 @@ VoxelMoments::VoxelMoments(const PointCloud& cloud, double leaf_size, const Stop
   });
 
   // One serial pass: ids in order of first appearance, so the result is deterministic.
-  auto impl = std::make_shared<Impl>(leaf_size, n / 8);
+  auto impl = std::make_shared<Impl>(leaf_size);
+  detail::VoxelTable table(n / 8);
   std::vector<Moments>& voxels = impl->voxels;
-  voxels.reserve(n / 4 + 16);                 // untouched capacity costs no memory
-  std::uint64_t last_key = detail::kNoVoxel;  // neighbouring pixels often share a voxel
-  std::uint32_t id = 0;
+  voxels.reserve(n / 4 + 16);  // untouched capacity costs no memory
+  // Neighbouring pixels often share a voxel: a run of them adds to a copy of its voxel held in
+  // registers, stored back when the run ends, rather than to the voxel's record in memory one point
+  // at a time. The same additions in the same order: the same sums.
+  std::uint64_t run_key = detail::kNoVoxel;
+  std::uint32_t run_id = 0;
+  Moments run;
+  Eigen::Vector3d corner = Eigen::Vector3d::Zero();
   for (std::size_t i = 0; i < n; ++i) {
     check_every(stop, i);
     if (keys[i] == detail::kNoVoxel) continue;
-    if (keys[i] != last_key) id = impl->table.insert(keys[i]), last_key = keys[i];
-    if (id == voxels.size()) {
-      voxels.emplace_back();
-      voxels.back().coord = detail::voxel_coord(cloud.points[i], inv_leaf);
+    if (keys[i] != run_key) {
+      if (run_key != detail::kNoVoxel) voxels[run_id] = run;
+      run_key = keys[i];
+      run_id = table.insert(run_key);
+      if (run_id == voxels.size()) {
+        voxels.emplace_back();
+        voxels.back().coord = detail::voxel_coord(cloud.points[i], inv_leaf);
+      }
+      run = voxels[run_id];
+      corner = corner_of(run.coord, leaf_size);
     }
-    Moments& v = voxels[id];
-    const Eigen::Vector3d q = cloud.points[i].cast<double>() - corner_of(v.coord, leaf_size);
-    v.add(q.x(), q.y(), q.z());
+    const Eigen::Vector3d q = cloud.points[i].cast<double>() - corner;
+    run.add(q.x(), q.y(), q.z());
   }
+  if (run_key != detail::kNoVoxel) voxels[run_id] = run;
   impl_ = std::move(impl);
 }
 
@@ -115,6 +127,10 @@ std::vector<Eigen::Vector3f> VoxelMoments::normals(const Eigen::Vector3d& viewpo
                                                    const StopCheck& stop) const {
   const double leaf = impl_->leaf;
   const std::vector<Moments>& voxels = impl_->voxels;
+  // The blocks are pooled from a copy of the voxels in tile order, where neighbours sit together.
+  const detail::VoxelTiles tiles(voxels.size(), [&](std::size_t id) { return voxels[id].coord; });
+  std::vector<Moments> by_tile(voxels.size());
+  for (std::size_t k = 0; k < by_tile.size(); ++k) by_tile[k] = voxels[tiles.order()[k]];
   std::vector<Eigen::Vector3f> out(size(), Eigen::Vector3f::Constant(std::nanf("")));
   tbb::parallel_for(std::size_t{0}, size(), [&](std::size_t id) {
     check_every(stop, id);
@@ -133,8 +149,8 @@ std::vector<Eigen::Vector3f> VoxelMoments::normals(const Eigen::Vector3d& viewpo
         c[a] += offset;
         d[a] = offset * leaf;
       }
-      const std::uint32_t other = impl_->table.find(detail::pack_voxel(c));
-      if (other != detail::VoxelTable::kAbsent) block.pool(voxels[other], d);
+      const std::uint32_t other = tiles.find(c);
+      if (other != detail::VoxelTiles::kAbsent) block.pool(by_tile[other], d);
     }
     if (block.count < 3.0) return;
     const PrincipalAxes pca = principal_axes_from_moments(
