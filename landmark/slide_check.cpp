@@ -58,7 +58,7 @@ std::vector<Slide> motion_extents(const PointCloud& points, double noise) {
     J << normal, p.cross(normal) / L;
     system.add(J, 0.0, 1.0);
   }
-  const Eigen::Matrix<double, 6, 6> H = system.JtJ() / static_cast<double>(n);
+  const Eigen::Matrix<double, 6, 6> H = system.JtJ / static_cast<double>(n);
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eigen(H);
   // Ascending eigenvalues: the freest direction first.
   for (int k = 0; k < 6; ++k) {

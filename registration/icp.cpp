@@ -143,9 +143,9 @@ IcpResult icp(const std::vector<Eigen::Vector3f>& source, const IcpTarget& targe
     if (last_step_taken || eq.count < 6) break;
 
     // Levenberg-style damping keeps planar or linear targets (rank-deficient) from diverging.
-    Eigen::Matrix<double, 6, 6> A = eq.JtJ();
+    Eigen::Matrix<double, 6, 6> A = eq.JtJ;
     A.diagonal().array() += 1e-9 + 1e-6 * A.diagonal().array();
-    const Eigen::Matrix<double, 6, 1> delta = A.ldlt().solve(-eq.Jtr());
+    const Eigen::Matrix<double, 6, 1> delta = A.ldlt().solve(-eq.Jtr);
     if (!delta.allFinite()) break;
     const Eigen::Vector3d omega = delta.head<3>(), t = delta.tail<3>();
     Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
