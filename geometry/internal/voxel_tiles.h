@@ -25,9 +25,13 @@ class VoxelTiles {
   template <class CoordOf>
   VoxelTiles(std::size_t count, CoordOf coord_of) : table_(count / 8 + 16) {
     std::vector<std::uint32_t> tile_of(count);
+    std::uint64_t last_key = kNoVoxel;  // voxels in order of first appearance: often the same tile
+    std::uint32_t last_tile = 0;
     for (std::size_t v = 0; v < count; ++v) {
       const VoxelCoord c = coord_of(v);
-      tile_of[v] = table_.insert(tile_key(c));
+      const std::uint64_t key = tile_key(c);
+      if (key != last_key) last_tile = table_.insert(key), last_key = key;
+      tile_of[v] = last_tile;
       if (tile_of[v] == tiles_.size()) tiles_.emplace_back();
       tiles_[tile_of[v]].mask |= bit_of(c);
     }
