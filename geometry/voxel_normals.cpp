@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include <string>
+#include <type_traits>
 
 #include "lmk/geometry/internal/voxel_table.h"
 #include "lmk/geometry/internal/voxel_tiles.h"
@@ -28,14 +29,22 @@ struct Moments {
   }
 
   // Adds `w`, whose corner lies `d` from this voxel's: for q' = q + d, sum' = sum + n d and
-  // outer' = outer + sum d^T + d sum^T + n d d^T.
+  // outer' = outer + sum d^T + d sum^T + n d d^T. Bit a of kMoved says whether d[a] is not zero:
+  // the terms of a zero d[a] are exact zeros and left out, the rest summed in the same order (the
+  // same sums: a block starts at +0, which a signed zero cannot change).
+  template <int kMoved>
   void pool(const Moments& w, const double d[3]) {
     static constexpr int kRow[6] = {0, 0, 0, 1, 1, 2}, kCol[6] = {0, 1, 2, 1, 2, 2};
+    const auto moved = [](int a) { return ((kMoved >> a) & 1) != 0; };
     for (int k = 0; k < 6; ++k) {
       const int a = kRow[k], b = kCol[k];
-      outer[k] += w.outer[k] + w.sum[a] * d[b] + d[a] * w.sum[b] + w.count * d[a] * d[b];
+      double term = w.outer[k];
+      if (moved(b)) term += w.sum[a] * d[b];
+      if (moved(a)) term += d[a] * w.sum[b];
+      if (moved(a) && moved(b)) term += w.count * d[a] * d[b];
+      outer[k] += term;
     }
-    for (int a = 0; a < 3; ++a) sum[a] += w.sum[a] + w.count * d[a];
+    for (int a = 0; a < 3; ++a) sum[a] += moved(a) ? w.sum[a] + w.count * d[a] : w.sum[a];
     count += w.count;
   }
 
@@ -140,18 +149,30 @@ std::vector<Eigen::Vector3f> VoxelMoments::normals(const Eigen::Vector3d& viewpo
     // with moments moved to this voxel's corner.
     std::array<int, 3> step;
     for (int a = 0; a < 3; ++a) step[a] = local[a] < 0.5 * leaf ? -1 : 1;
+    // The voxel itself first, then its neighbours in the order of the bits of their offsets. One
+    // hint serves the block's lookups: its voxels mostly share a tile.
     Moments block;
-    for (int corner_bits = 0; corner_bits < 8; ++corner_bits) {
+    block.pool<0>(v, nullptr);
+    detail::VoxelTiles::Hint hint;
+    const auto add_neighbour = [&](auto moved) {
+      constexpr int kMoved = decltype(moved)::value;
       detail::VoxelCoord c = v.coord;
-      double d[3];
+      double d[3] = {0.0, 0.0, 0.0};
       for (int a = 0; a < 3; ++a) {
-        const int offset = ((corner_bits >> a) & 1) ? step[a] : 0;
-        c[a] += offset;
-        d[a] = offset * leaf;
+        if (((kMoved >> a) & 1) == 0) continue;
+        c[a] += step[a];
+        d[a] = step[a] * leaf;
       }
-      const std::uint32_t other = tiles.find(c);
-      if (other != detail::VoxelTiles::kAbsent) block.pool(by_tile[other], d);
-    }
+      const std::uint32_t other = tiles.find(c, hint);
+      if (other != detail::VoxelTiles::kAbsent) block.pool<kMoved>(by_tile[other], d);
+    };
+    add_neighbour(std::integral_constant<int, 1>{});
+    add_neighbour(std::integral_constant<int, 2>{});
+    add_neighbour(std::integral_constant<int, 3>{});
+    add_neighbour(std::integral_constant<int, 4>{});
+    add_neighbour(std::integral_constant<int, 5>{});
+    add_neighbour(std::integral_constant<int, 6>{});
+    add_neighbour(std::integral_constant<int, 7>{});
     if (block.count < 3.0) return;
     const PrincipalAxes pca = principal_axes_from_moments(
         block.count, Eigen::Vector3d(block.sum[0], block.sum[1], block.sum[2]),

@@ -49,12 +49,24 @@ class VoxelTiles {
   /// The voxel at each place in tile order: records copied in this order are what find() indexes.
   const std::vector<std::uint32_t>& order() const { return order_; }
 
+  /// The last tile a run of lookups found: neighbouring voxels mostly share one.
+  struct Hint {
+    std::uint64_t key = kNoVoxel;
+    std::uint32_t tile = kAbsent;
+  };
+
   /// The place in tile order of the voxel at `c`, or kAbsent.
   std::uint32_t find(const VoxelCoord& c) const {
-    const std::uint32_t t = table_.find(tile_key(c));
-    if (t == kAbsent) return kAbsent;
+    Hint hint;
+    return find(c, hint);
+  }
+  /// The same, the tile looked up only when `hint` holds another.
+  std::uint32_t find(const VoxelCoord& c, Hint& hint) const {
+    const std::uint64_t key = tile_key(c);
+    if (key != hint.key) hint.key = key, hint.tile = table_.find(key);
+    if (hint.tile == kAbsent) return kAbsent;
     const std::uint64_t bit = bit_of(c);
-    return (tiles_[t].mask & bit) != 0 ? place(tiles_[t], bit) : kAbsent;
+    return (tiles_[hint.tile].mask & bit) != 0 ? place(tiles_[hint.tile], bit) : kAbsent;
   }
 
  private:
