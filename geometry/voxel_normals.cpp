@@ -4,10 +4,8 @@
 #include <tbb/parallel_for.h>
 
 #include <string>
-#include <type_traits>
 
 #include "lmk/geometry/internal/voxel_table.h"
-#include "lmk/geometry/internal/voxel_tiles.h"
 #include "lmk/geometry/principal_axes.h"
 
 namespace lmk {
@@ -29,22 +27,14 @@ struct Moments {
   }
 
   // Adds `w`, whose corner lies `d` from this voxel's: for q' = q + d, sum' = sum + n d and
-  // outer' = outer + sum d^T + d sum^T + n d d^T. Bit a of kMoved says whether d[a] is not zero:
-  // the terms of a zero d[a] are exact zeros and left out, the rest summed in the same order (the
-  // same sums: a block starts at +0, which a signed zero cannot change).
-  template <int kMoved>
+  // outer' = outer + sum d^T + d sum^T + n d d^T.
   void pool(const Moments& w, const double d[3]) {
     static constexpr int kRow[6] = {0, 0, 0, 1, 1, 2}, kCol[6] = {0, 1, 2, 1, 2, 2};
-    const auto moved = [](int a) { return ((kMoved >> a) & 1) != 0; };
     for (int k = 0; k < 6; ++k) {
       const int a = kRow[k], b = kCol[k];
-      double term = w.outer[k];
-      if (moved(b)) term += w.sum[a] * d[b];
-      if (moved(a)) term += d[a] * w.sum[b];
-      if (moved(a) && moved(b)) term += w.count * d[a] * d[b];
-      outer[k] += term;
+      outer[k] += w.outer[k] + w.sum[a] * d[b] + d[a] * w.sum[b] + w.count * d[a] * d[b];
     }
-    for (int a = 0; a < 3; ++a) sum[a] += moved(a) ? w.sum[a] + w.count * d[a] : w.sum[a];
+    for (int a = 0; a < 3; ++a) sum[a] += w.sum[a] + w.count * d[a];
     count += w.count;
   }
 
@@ -68,8 +58,9 @@ Eigen::Vector3d mean_of(const Moments& v) {
 }  // namespace
 
 struct VoxelMoments::Impl {
-  explicit Impl(double leaf_size) : leaf(leaf_size) {}
+  Impl(double leaf_size, std::size_t expected_voxels) : leaf(leaf_size), table(expected_voxels) {}
   double leaf;
+  detail::VoxelTable table;
   std::vector<Moments> voxels;
 };
 
@@ -89,35 +80,23 @@ VoxelMoments::VoxelMoments(const PointCloud& cloud, double leaf_size, const Stop
   });
 
   // One serial pass: ids in order of first appearance, so the result is deterministic.
-  auto impl = std::make_shared<Impl>(leaf_size);
-  detail::VoxelTable table(n / 8);
+  auto impl = std::make_shared<Impl>(leaf_size, n / 8);
   std::vector<Moments>& voxels = impl->voxels;
-  voxels.reserve(n / 4 + 16);  // untouched capacity costs no memory
-  // Neighbouring pixels often share a voxel: a run of them adds to a copy of its voxel held in
-  // registers, stored back when the run ends, rather than to the voxel's record in memory one point
-  // at a time. The same additions in the same order: the same sums.
-  std::uint64_t run_key = detail::kNoVoxel;
-  std::uint32_t run_id = 0;
-  Moments run;
-  Eigen::Vector3d corner = Eigen::Vector3d::Zero();
+  voxels.reserve(n / 4 + 16);                 // untouched capacity costs no memory
+  std::uint64_t last_key = detail::kNoVoxel;  // neighbouring pixels often share a voxel
+  std::uint32_t id = 0;
   for (std::size_t i = 0; i < n; ++i) {
     check_every(stop, i);
     if (keys[i] == detail::kNoVoxel) continue;
-    if (keys[i] != run_key) {
-      if (run_key != detail::kNoVoxel) voxels[run_id] = run;
-      run_key = keys[i];
-      run_id = table.insert(run_key);
-      if (run_id == voxels.size()) {
-        voxels.emplace_back();
-        voxels.back().coord = detail::voxel_coord(cloud.points[i], inv_leaf);
-      }
-      run = voxels[run_id];
-      corner = corner_of(run.coord, leaf_size);
+    if (keys[i] != last_key) id = impl->table.insert(keys[i]), last_key = keys[i];
+    if (id == voxels.size()) {
+      voxels.emplace_back();
+      voxels.back().coord = detail::voxel_coord(cloud.points[i], inv_leaf);
     }
-    const Eigen::Vector3d q = cloud.points[i].cast<double>() - corner;
-    run.add(q.x(), q.y(), q.z());
+    Moments& v = voxels[id];
+    const Eigen::Vector3d q = cloud.points[i].cast<double>() - corner_of(v.coord, leaf_size);
+    v.add(q.x(), q.y(), q.z());
   }
-  if (run_key != detail::kNoVoxel) voxels[run_id] = run;
   impl_ = std::move(impl);
 }
 
@@ -136,10 +115,6 @@ std::vector<Eigen::Vector3f> VoxelMoments::normals(const Eigen::Vector3d& viewpo
                                                    const StopCheck& stop) const {
   const double leaf = impl_->leaf;
   const std::vector<Moments>& voxels = impl_->voxels;
-  // The blocks are pooled from a copy of the voxels in tile order, where neighbours sit together.
-  const detail::VoxelTiles tiles(voxels.size(), [&](std::size_t id) { return voxels[id].coord; });
-  std::vector<Moments> by_tile(voxels.size());
-  for (std::size_t k = 0; k < by_tile.size(); ++k) by_tile[k] = voxels[tiles.order()[k]];
   std::vector<Eigen::Vector3f> out(size(), Eigen::Vector3f::Constant(std::nanf("")));
   tbb::parallel_for(std::size_t{0}, size(), [&](std::size_t id) {
     check_every(stop, id);
@@ -149,30 +124,18 @@ std::vector<Eigen::Vector3f> VoxelMoments::normals(const Eigen::Vector3d& viewpo
     // with moments moved to this voxel's corner.
     std::array<int, 3> step;
     for (int a = 0; a < 3; ++a) step[a] = local[a] < 0.5 * leaf ? -1 : 1;
-    // The voxel itself first, then its neighbours in the order of the bits of their offsets. One
-    // hint serves the block's lookups: its voxels mostly share a tile.
     Moments block;
-    block.pool<0>(v, nullptr);
-    detail::VoxelTiles::Hint hint;
-    const auto add_neighbour = [&](auto moved) {
-      constexpr int kMoved = decltype(moved)::value;
+    for (int corner_bits = 0; corner_bits < 8; ++corner_bits) {
       detail::VoxelCoord c = v.coord;
-      double d[3] = {0.0, 0.0, 0.0};
+      double d[3];
       for (int a = 0; a < 3; ++a) {
-        if (((kMoved >> a) & 1) == 0) continue;
-        c[a] += step[a];
-        d[a] = step[a] * leaf;
+        const int offset = ((corner_bits >> a) & 1) ? step[a] : 0;
+        c[a] += offset;
+        d[a] = offset * leaf;
       }
-      const std::uint32_t other = tiles.find(c, hint);
-      if (other != detail::VoxelTiles::kAbsent) block.pool<kMoved>(by_tile[other], d);
-    };
-    add_neighbour(std::integral_constant<int, 1>{});
-    add_neighbour(std::integral_constant<int, 2>{});
-    add_neighbour(std::integral_constant<int, 3>{});
-    add_neighbour(std::integral_constant<int, 4>{});
-    add_neighbour(std::integral_constant<int, 5>{});
-    add_neighbour(std::integral_constant<int, 6>{});
-    add_neighbour(std::integral_constant<int, 7>{});
+      const std::uint32_t other = impl_->table.find(detail::pack_voxel(c));
+      if (other != detail::VoxelTable::kAbsent) block.pool(voxels[other], d);
+    }
     if (block.count < 3.0) return;
     const PrincipalAxes pca = principal_axes_from_moments(
         block.count, Eigen::Vector3d(block.sum[0], block.sum[1], block.sum[2]),
