@@ -22,8 +22,10 @@ constexpr int kColourSamples = 5;
 
 // std::lround, inline: it is a libm call on the baseline x86-64 instruction set, and the colour
 // term takes two per pixel looked at, 25 per landmark point. Halves go away from zero, as there;
-// x - trunc(x) is exact.
-long round_half_away(double x) {
+// x - trunc(x) is exact. A coordinate far off any image (a point projected from near the sensor's
+// plane) is -1, off the image too, rather than an integer conversion out of range.
+long pixel_index(double x) {
+  if (!(std::abs(x) < 1e9)) return -1;
   const auto truncated = static_cast<long>(x);
   const double rest = x - static_cast<double>(truncated);
   return truncated + (rest >= 0.5 ? 1 : 0) - (rest <= -0.5 ? 1 : 0);
@@ -40,8 +42,8 @@ double closest_hue(const RangeImage& image, const Eigen::Vector3f& mine,
   float best = std::numeric_limits<float>::infinity();
   for (int dv = -kColourSamples / 2; dv <= kColourSamples / 2; ++dv) {
     for (int du = -kColourSamples / 2; du <= kColourSamples / 2; ++du) {
-      const long u = round_half_away(pixel.x() + du * step);
-      const long v = round_half_away(pixel.y() + dv * step);
+      const long u = pixel_index(pixel.x() + du * step);
+      const long v = pixel_index(pixel.y() + dv * step);
       if (u < 0 || v < 0 || u >= k.width || v >= k.height) continue;
       const std::size_t i = static_cast<std::size_t>(v) * static_cast<std::size_t>(k.width) +
                             static_cast<std::size_t>(u);
