@@ -2,14 +2,10 @@
 #include "lmk/occupancy/occupancy_grid.h"
 
 #include <Eigen/Geometry>
-#include <algorithm>
 #include <cmath>
-#include <memory>
 #include <optional>
 
 #include "lmk/geometry/error.h"
-#include "lmk/geometry/internal/voxel_key.h"
-#include "lmk/geometry/internal/voxel_table.h"
 #include "lmk/occupancy/detail/vdb_support.h"
 
 namespace lmk {
@@ -31,44 +27,20 @@ OccupancyGrid::OccupancyGrid(const std::vector<Eigen::Vector3f>& points, double 
   g->voxel = voxel_size;
   g->grid = openvdb::BoolGrid::create(false);
   g->grid->setTransform(openvdb::math::Transform::createLinearTransform(voxel_size));
-  // The leaves are filled as plain nodes found through a hash of their origins, then handed to the
-  // tree: the accessor's setValueOn walked the tree for every voxel of a new leaf (a third of the
-  // grid's build). Points too far out for the hash's key go through the accessor; their leaves
-  // cannot share an origin with the others.
-  using Leaf = openvdb::BoolTree::LeafNodeType;
-  constexpr int kLeafLog2 = static_cast<int>(Leaf::LOG2DIM);
-  detail::VoxelTable leaf_ids(points.size() / 64 + 16);
-  std::vector<std::unique_ptr<Leaf>> leaves;
   auto access = g->grid->getAccessor();
   const double inverse_voxel = 1.0 / voxel_size;
-  // Neighbouring pixels of a frame often fall in one voxel, and in one leaf.
+  // Neighbouring pixels of a frame often fall in one voxel: a voxel just set is not set again (the
+  // accessor's call was a third of the grid's build).
   std::optional<openvdb::Coord> last;
-  Leaf* leaf = nullptr;
   for (std::size_t i = 0; i < points.size(); ++i) {
     check_every(stop, i);
     const Eigen::Vector3f& p = points[i];
     if (!p.allFinite()) continue;
     const openvdb::Coord voxel = detail::nearest_voxel(p.cast<double>(), inverse_voxel);
     if (last == voxel) continue;
+    access.setValueOn(voxel, true);
     last = voxel;
-    const openvdb::Coord origin = voxel & ~static_cast<int>(Leaf::DIM - 1);
-    if (leaf == nullptr || leaf->origin() != origin) {
-      const detail::VoxelCoord key{origin.x() >> kLeafLog2, origin.y() >> kLeafLog2,
-                                   origin.z() >> kLeafLog2};
-      if (std::any_of(key.begin(), key.end(), [](std::int64_t k) {
-            return k < -detail::kVoxelKeyOffset || k >= detail::kVoxelKeyOffset;
-          })) {
-        access.setValueOn(voxel, true);
-        leaf = nullptr;
-        continue;
-      }
-      const std::uint32_t id = leaf_ids.insert(detail::pack_voxel(key));
-      if (id == leaves.size()) leaves.push_back(std::make_unique<Leaf>(origin, false));
-      leaf = leaves[id].get();
-    }
-    leaf->setValueOn(voxel, true);
   }
-  for (std::unique_ptr<Leaf>& l : leaves) g->grid->tree().addLeaf(l.release());
   grid_ = std::move(g);
 }
 

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // OccupancyGrid: exactly the voxels nearest to the points are occupied, on both sides of the
-// origin, across leaf boundaries, and for points too far out for the leaves' hash.
+// origin, across leaf boundaries, and for a point far from the others.
 
 #include "lmk/occupancy/occupancy_grid.h"
 
@@ -32,7 +32,7 @@ TEST(OccupancyGrid, TheVoxelsNearestToThePointsAndNoOthers) {
   // Runs of one voxel and of one leaf, as neighbouring pixels give them.
   for (int i = 0; i < 200; ++i) points.push_back(points[i] + Eigen::Vector3f(0.001f, 0, 0));
   points.emplace_back(std::nanf(""), 0.0f, 0.0f);
-  points.emplace_back(2.0e6f, -1.5e6f, 3.0f);  // beyond the hash's 2^20 leaves along an axis
+  points.emplace_back(2.0e6f, -1.5e6f, 3.0f);  // far from the rest: a leaf of its own
   const OccupancyGrid grid(points, voxel);
 
   std::set<Voxel> expected;
