@@ -1,8 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "lmk/search/find_landmark.h"
 
+#include <tbb/parallel_invoke.h>
+
 #include <cmath>
 #include <functional>
+#include <memory>
 
 #include "lmk/geometry/error.h"
 #include "lmk/geometry/stopwatch.h"
@@ -147,12 +150,14 @@ struct Prepared {
     result.matches = std::move(kept);
   }
 
-  // What the method gets for `seeds` (indices into its seed cloud; none to align at a pose).
+  // What the method gets for `seeds` (indices into its seed cloud; none to align at a pose) and
+  // its own scene work (none: it makes what it needs).
   detail::SearchInput input(const SceneIndex& index, const LandmarkIndex& prepared,
-                            const Indices& seeds) const {
+                            const Indices& seeds,
+                            const detail::MethodScene* method_scene = nullptr) const {
     return {
-        index,  method.seed_cloud(index),      landmark, prepared, SceneView{index}, view, seeds,
-        metric, *settings.selection.threshold, settings};
+        index,  method.seed_cloud(index),      landmark, prepared,    SceneView{index}, view, seeds,
+        metric, *settings.selection.threshold, settings, method_scene};
   }
 
   const FindSettings settings;  ///< resolved: what follows reads plain fields
@@ -207,16 +212,22 @@ FindResult search(const SceneIndex& index, const LandmarkIndex& prepared,
   result.stats = p.initial_stats(index);
   SearchStats& stats = result.stats;
 
-  // Seeds: the points the method starts from (step 3).
+  // Seeds: the points the method starts from (step 3), chosen beside the method's own work on the
+  // scene: both read the index alone, and each is mostly serial (about a millisecond apiece on a
+  // Kinect frame).
   const PointCloud& points = method.seed_cloud(index);
   stats.scene_points_used = points.size();
-  const Indices seeds = method.seeds(index, prepared, settings);
+  Indices seeds;
+  std::unique_ptr<const detail::MethodScene> method_scene;
+  tbb::parallel_invoke([&] { seeds = method.seeds(index, prepared, settings); },
+                       [&] { method_scene = method.prepare_scene(index, prepared); });
   stats.seeds = seeds.size();
   stats.seconds_preprocess = stage.seconds();
 
   // Step 4.
   stage.restart();
-  detail::CandidateSet candidates = method.candidates(p.input(index, prepared, seeds), stats);
+  detail::CandidateSet candidates =
+      method.candidates(p.input(index, prepared, seeds, method_scene.get()), stats);
   for (const Match& m : candidates.kept)
     stats.icp_iterations += static_cast<std::size_t>(m.icp_iterations);
   stats.seconds_search = stage.seconds();

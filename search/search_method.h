@@ -21,6 +21,13 @@
 
 namespace lmk::detail {
 
+/// What a method derives from the scene for one landmark besides the seeds (the fast method's
+/// voting cloud), built while the seeds are chosen; the reference method needs nothing.
+class MethodScene {
+ public:
+  virtual ~MethodScene() = default;
+};
+
 /// What every search method gets: the preprocessed scene, the landmark, both indexed, the seeds.
 struct SearchInput {
   const SceneIndex& index;
@@ -33,6 +40,8 @@ struct SearchInput {
   const ErrorMetric& metric;
   double threshold;  ///< the error threshold the search applies, in the metric's own unit
   const FindSettings& settings;  ///< resolved (FindSettings::resolved())
+  /// The method's prepare_scene() for this search; null: candidates() makes what it needs.
+  const MethodScene* method_scene;
 };
 
 /// A method's candidates: those it keeps for selection, and those its own non-max suppression
@@ -76,6 +85,15 @@ class SearchMethodSteps {
   /// Step 3: the seeds, indices into seed_cloud(index), for resolved `settings`.
   virtual Indices seeds(const SceneIndex& index, const LandmarkIndex& landmark,
                         const FindSettings& settings) const = 0;
+
+  /// Step 3's companion: the method's work on the scene for this landmark that the seeds do not
+  /// need (the fast method's voting cloud and its grid). The search builds it beside the seeds,
+  /// so that the serial steps of each fill the other's idle thread. Null when there is none.
+  virtual std::unique_ptr<const MethodScene> prepare_scene(const SceneIndex& index,
+                                                           const LandmarkIndex& landmark) const {
+    (void)index, (void)landmark;
+    return nullptr;
+  }
 
   /// Step 4: candidate matches in a deterministic order, whatever the thread count. The method's
   /// own counts and timings go to `stats`.

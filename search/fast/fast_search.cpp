@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <optional>
 #include <unordered_map>
 
 #include "lmk/geometry/internal/voxel_key.h"
@@ -117,18 +118,38 @@ struct Stages {
   const TiltLimit* limit = nullptr;
 };
 
+// Step 1's scene: the coarse points at the voting resolution, as the landmark's model reached it
+// (LandmarkIndex), bucketed for the seeds' neighbourhoods (one radius, the diameter, for every
+// seed). Built beside the seeds (SearchMethodSteps::prepare_scene).
+class VotingScene final : public MethodScene {
+ public:
+  VotingScene(const PointCloud& coarse, double coarse_leaf, const FastLandmark& model)
+      : downsampled_(model.vote_leaf() > coarse_leaf * 1.01
+                         ? std::optional<PointCloud>(voxel_downsample(coarse, model.vote_leaf()))
+                         : std::nullopt),
+        voters_(downsampled_ ? *downsampled_ : coarse),
+        grid_(voters_, 0.5 * model.diameter()) {}
+
+  const PointCloud& voters() const { return voters_; }
+  const RadiusGrid& grid() const { return grid_; }
+
+ private:
+  std::optional<PointCloud> downsampled_;  ///< none: the coarse points are already at the leaf
+  const PointCloud& voters_;
+  RadiusGrid grid_;
+};
+
 // Step 1: poses from every seed, in parallel, each into its own slot. Upright searches vote only
 // for poses within the tilt limit.
 std::vector<Candidate> vote(const Stages& st) {
   const SearchInput& in = st.in;
   const double vote_leaf = st.model.vote_leaf();
-  // The scene reaches the voting resolution as the landmark's model did (LandmarkIndex), and is
-  // bucketed for the seeds' neighbourhoods: one radius, the diameter, for every seed.
-  const bool own_vote_cloud = vote_leaf > st.leaf * 1.01;
-  const PointCloud vote_scene =
-      own_vote_cloud ? voxel_downsample(st.coarse, vote_leaf) : PointCloud();
-  const PointCloud& voters = own_vote_cloud ? vote_scene : st.coarse;
-  const RadiusGrid voter_grid(voters, 0.5 * st.model.diameter());
+  std::optional<VotingScene> own;
+  const auto* given = dynamic_cast<const VotingScene*>(in.method_scene);
+  if (!given) own.emplace(st.coarse, st.leaf, st.model);
+  const VotingScene& scene = given ? *given : *own;
+  const PointCloud& voters = scene.voters();
+  const RadiusGrid& voter_grid = scene.grid();
   // Each seed votes at the voting point nearest to it: the centroid of its own voting voxel, no
   // farther than that voxel's diagonal, is a candidate.
   const auto reach = static_cast<float>(1.01 * std::sqrt(3.0) * vote_leaf);
@@ -391,6 +412,12 @@ class FastSearch final : public SearchMethodSteps {
   }
 
   const PointCloud& seed_cloud(const SceneIndex& index) const override { return index.coarse(); }
+
+  std::unique_ptr<const MethodScene> prepare_scene(const SceneIndex& index,
+                                                   const LandmarkIndex& landmark) const override {
+    return std::make_unique<VotingScene>(index.coarse(), index.settings().coarse_leaf,
+                                         fast_landmark(landmark));
+  }
 
   // Step 3: seeds near relief only (relief_seeds.h), in cells of half the landmark's size, and as
   // many as put seeds_per_instance on each instance-sized stretch of them.
