@@ -4,6 +4,7 @@
 #include <ceres/ceres.h>
 #include <ceres/rotation.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 
@@ -57,21 +58,26 @@ class PoseCache {
 };
 
 // The field distance at one moved point: its value and, when asked, its gradient with respect to
-// (w, t) as Ceres' 1x6 row.
+// (w, t) as Ceres' 1x6 row. Ceres evaluates each accepted step twice, its cost first and then its
+// Jacobians at the same parameters, so the field's value and gradient (what costs: eight lookups)
+// are kept for the last parameters and the second evaluation reads them.
 class MovedPoint {
  public:
   MovedPoint(const DistanceField::Sampler& field, PoseCache& cache, const Eigen::Vector3d& x0,
              const Eigen::Vector3d& pivot)
       : field_(field), cache_(cache), centred_(x0 - pivot), pivot_(pivot) {}
 
-  double distance(const double* pose, double* jacobian) const {
-    cache_.update(pose);
-    const Eigen::Vector3d p =
-        cache_.R() * centred_ + pivot_ + Eigen::Vector3d(pose[3], pose[4], pose[5]);
-    Eigen::Vector3f gradient;
-    const float d = field_.distance(p.cast<float>(), jacobian ? &gradient : nullptr);
+  double distance(const double* pose, double* jacobian) {
+    if (!std::equal(pose, pose + 6, pose_)) {
+      cache_.update(pose);
+      const Eigen::Vector3d p =
+          cache_.R() * centred_ + pivot_ + Eigen::Vector3d(pose[3], pose[4], pose[5]);
+      distance_ = field_.distance(p.cast<float>(), &gradient_);
+      std::copy(pose, pose + 6, pose_);
+    }
     if (jacobian) {
-      const Eigen::Vector3d g = gradient.cast<double>();
+      cache_.update(pose);
+      const Eigen::Vector3d g = gradient_.cast<double>();
       // dD/dw = g^T (-R [c]x Jr) = (c x R^T g)^T Jr; dD/dt = g^T.
       const Eigen::RowVector3d dw =
           centred_.cross(cache_.R().transpose() * g).transpose() * cache_.Jr();
@@ -80,13 +86,16 @@ class MovedPoint {
         jacobian[3 + k] = g[k];
       }
     }
-    return d;
+    return distance_;
   }
 
  private:
   const DistanceField::Sampler& field_;
   PoseCache& cache_;
   Eigen::Vector3d centred_, pivot_;
+  double pose_[6] = {NAN, NAN, NAN, NAN, NAN, NAN};  // never equal: nothing kept yet
+  float distance_ = 0.0f;
+  Eigen::Vector3f gradient_ = Eigen::Vector3f::Zero();
 };
 
 // A source point should lie on the target surface: the residual is the field's distance there.
@@ -100,7 +109,7 @@ class SurfaceResidual : public ceres::SizedCostFunction<1, 6> {
   }
 
  private:
-  MovedPoint point_;
+  mutable MovedPoint point_;  // its kept distance: Ceres evaluates on one thread here
 };
 
 // Space the landmark saw empty must stay `margin` clear of the target surface:
@@ -122,7 +131,7 @@ class EmptySpaceResidual : public ceres::SizedCostFunction<1, 6> {
   }
 
  private:
-  MovedPoint point_;
+  mutable MovedPoint point_;  // as SurfaceResidual's
   double weight_, margin_;
 };
 
