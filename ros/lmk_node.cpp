@@ -3,9 +3,11 @@
 #include <ros/ros.h>
 
 #include "lmk/geometry/error.h"
+#include "lmk/geometry/memory_reuse.h"
 #include "lmk/ros/landmark_node.h"
 
 int main(int argc, char** argv) {
+  lmk::keep_freed_memory_for_reuse();  // a search per frame: its buffers kept for the next
   ros::init(argc, argv, "lmk_node");
   ros::NodeHandle nh;
   ros::NodeHandle private_nh("~");
