@@ -37,16 +37,24 @@ double closest_hue(const RangeImage& image, const Eigen::Vector3f& mine,
                    const Eigen::Vector2d& pixel, double depth, double support) {
   const PinholeIntrinsics& k = image.intrinsics();
   const double step = std::max(1.0, support * k.fx / depth / (kColourSamples / 2));
+  // The grid's columns and rows, each rounded once (not once per pixel), those off the image
+  // left out.
+  long columns[kColourSamples], rows[kColourSamples];
+  int n_columns = 0, n_rows = 0;
+  for (int d = -kColourSamples / 2; d <= kColourSamples / 2; ++d) {
+    const long u = pixel_index(pixel.x() + d * step);
+    const long v = pixel_index(pixel.y() + d * step);
+    if (u >= 0 && u < k.width) columns[n_columns++] = u;
+    if (v >= 0 && v < k.height) rows[n_rows++] = v;
+  }
   // chroma_distance's square root taken once, of the least squared distance: the root is monotonic,
   // so the root of the least is the least root.
   float best = std::numeric_limits<float>::infinity();
-  for (int dv = -kColourSamples / 2; dv <= kColourSamples / 2; ++dv) {
-    for (int du = -kColourSamples / 2; du <= kColourSamples / 2; ++du) {
-      const long u = pixel_index(pixel.x() + du * step);
-      const long v = pixel_index(pixel.y() + dv * step);
-      if (u < 0 || v < 0 || u >= k.width || v >= k.height) continue;
-      const std::size_t i = static_cast<std::size_t>(v) * static_cast<std::size_t>(k.width) +
-                            static_cast<std::size_t>(u);
+  for (int r = 0; r < n_rows; ++r) {
+    const std::size_t row_start =
+        static_cast<std::size_t>(rows[r]) * static_cast<std::size_t>(k.width);
+    for (int c = 0; c < n_columns; ++c) {
+      const std::size_t i = row_start + static_cast<std::size_t>(columns[c]);
       const float measured = image.depths()[i];
       if (!(std::abs(measured - depth) <= support)) continue;  // NaN: nothing measured
       if (const auto theirs = chroma_of(image.colours()[i])) {
