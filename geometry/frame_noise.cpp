@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "lmk/geometry/frame_noise.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -28,16 +30,29 @@ class TileCache {
 
   // The planar patch of tile (column, row), or nothing when the tile is no plane.
   const std::optional<PlanePatch>& patch(int column, int row) {
-    const auto t = static_cast<std::size_t>(row * columns_ + column);
-    if (state_[t] == kUnfitted) {
-      patch_[t] = plane_patch_at(point_at(), image_.intrinsics().width, column * settings_.tile,
-                                 row * settings_.tile, settings_);
-      state_[t] = kFitted;
-    }
-    return patch_[t];
+    fit(column, row);
+    return patch_[static_cast<std::size_t>(row * columns_ + column)];
+  }
+
+  // Fits every tile of [c0, c1) x [r0, r1) (clamped to the image) not fitted yet, in parallel:
+  // a window grown to find its patches holds hundreds of tiles, each fitted on its own.
+  void fit_all(int c0, int c1, int r0, int r1) {
+    c0 = std::max(c0, 0), r0 = std::max(r0, 0);
+    c1 = std::min(c1, columns_), r1 = std::min(r1, rows_);
+    if (c0 >= c1 || r0 >= r1) return;
+    const int width = c1 - c0;
+    tbb::parallel_for(0, width * (r1 - r0), [&](int k) { fit(c0 + k % width, r0 + k / width); });
   }
 
  private:
+  void fit(int column, int row) {
+    const auto t = static_cast<std::size_t>(row * columns_ + column);
+    if (state_[t] == kFitted) return;
+    patch_[t] = plane_patch_at(point_at(), image_.intrinsics().width, column * settings_.tile,
+                               row * settings_.tile, settings_);
+    state_[t] = kFitted;
+  }
+
   static constexpr char kUnfitted = 0, kFitted = 1;
 
   // A pixel's point in the sensor frame, back-projected through the image's intrinsics.
@@ -96,12 +111,13 @@ MeasuredNoise measure_noise_near(const RangeImage& image, const Eigen::Vector2d&
   std::vector<double> spreads;
   for (double window = std::max(min_window, tile);; window *= 2.0) {
     // The tiles whose pixels the window touches; those of a smaller window are fitted once.
+    const int c0 = static_cast<int>(std::floor((pixel.x() - window) / tile));
+    const int c1 = static_cast<int>(std::floor((pixel.x() + window) / tile)) + 1;
+    const int r0 = static_cast<int>(std::floor((pixel.y() - window) / tile));
+    const int r1 = static_cast<int>(std::floor((pixel.y() + window) / tile)) + 1;
+    tiles.fit_all(c0, c1, r0, r1);
     spreads.clear();
-    collect(tiles, image.intrinsics(), tile,
-            static_cast<int>(std::floor((pixel.x() - window) / tile)),
-            static_cast<int>(std::floor((pixel.x() + window) / tile)) + 1,
-            static_cast<int>(std::floor((pixel.y() - window) / tile)),
-            static_cast<int>(std::floor((pixel.y() + window) / tile)) + 1, depth, spreads);
+    collect(tiles, image.intrinsics(), tile, c0, c1, r0, r1, depth, spreads);
     out.window = window;
     if (spreads.size() >= kMinNoisePatches || window >= largest) break;
   }
