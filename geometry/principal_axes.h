@@ -34,6 +34,14 @@ inline void set_axes(const Eigen::Matrix3d& covariance, bool direct, PrincipalAx
 }
 }  // namespace detail
 
+/// The covariance (not normalised by the count) of a point set given by its moments about some
+/// reference point: the count, the sum of the points and the sum of their outer products.
+inline Eigen::Matrix3d covariance_from_moments(double count, const Eigen::Vector3d& sum,
+                                               const Eigen::Matrix3d& outer) {
+  const Eigen::Vector3d mean = sum / count;
+  return outer - count * mean * mean.transpose();
+}
+
 /// The principal axes of a point set given by its moments about some reference point: the count,
 /// the sum of the points and the sum of their outer products, all relative to that reference (the
 /// mean is then relative to it too). Moments add up, so sets can be pooled without their points.
@@ -43,8 +51,7 @@ inline PrincipalAxes principal_axes_from_moments(double count, const Eigen::Vect
   PrincipalAxes out;
   if (!(count > 0.0)) return out;
   out.mean = sum / count;
-  const Eigen::Matrix3d covariance = outer - count * out.mean * out.mean.transpose();
-  detail::set_axes(covariance, /*direct=*/true, out);
+  detail::set_axes(covariance_from_moments(count, sum, outer), /*direct=*/true, out);
   return out;
 }
 

@@ -7,6 +7,7 @@
 
 #include "lmk/geometry/internal/voxel_table.h"
 #include "lmk/geometry/least_axis.h"
+#include "lmk/geometry/principal_axes.h"
 
 namespace lmk {
 namespace {
@@ -137,13 +138,13 @@ std::vector<Eigen::Vector3f> VoxelMoments::normals(const Eigen::Vector3d& viewpo
       if (other != detail::VoxelTable::kAbsent) block.pool(voxels[other], d);
     }
     if (block.count < 3.0) return;
-    const Eigen::Vector3d mean =
-        Eigen::Vector3d(block.sum[0], block.sum[1], block.sum[2]) / block.count;
-    const LeastAxis pca = least_axis(block.outer_matrix() - block.count * mean * mean.transpose());
+    const LeastAxis least = least_axis(covariance_from_moments(
+        block.count, Eigen::Vector3d(block.sum[0], block.sum[1], block.sum[2]),
+        block.outer_matrix()));
     // Two near-zero spreads mean the points lie on a line; "near zero" allows for the closed-form
     // solver's error.
-    if (pca.spread[1] <= 1e-6 * pca.spread[2]) return;
-    Eigen::Vector3d normal = pca.axis;
+    if (least.spread[1] <= 1e-6 * least.spread[2]) return;
+    Eigen::Vector3d normal = least.axis;
     if (normal.dot(viewpoint - (corner_of(v.coord, leaf) + local)) < 0.0) normal = -normal;
     out[id] = normal.cast<float>();
   });

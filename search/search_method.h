@@ -89,9 +89,8 @@ class SearchMethodSteps {
   /// Step 3's companion: the method's work on the scene for this landmark that the seeds do not
   /// need (the fast method's voting cloud and its grid). The search builds it beside the seeds,
   /// so that the serial steps of each fill the other's idle thread. Null when there is none.
-  virtual std::unique_ptr<const MethodScene> prepare_scene(const SceneIndex& index,
-                                                           const LandmarkIndex& landmark) const {
-    (void)index, (void)landmark;
+  virtual std::unique_ptr<const MethodScene> prepare_scene(
+      const SceneIndex& /*index*/, const LandmarkIndex& /*landmark*/) const {
     return nullptr;
   }
 
