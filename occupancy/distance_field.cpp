@@ -279,6 +279,9 @@ DistanceField::DistanceField(const std::vector<Eigen::Vector3f>& points,
   grids->closest->setTransform(transform->copy());
   grids->distance->setName("distance");
   grids->closest->setName("closest");
+  // Leaves only, as added above: no tile to look for.
+  grids->distance_leaves = detail::LeafTable<vdb::FloatTree>(grids->distance->tree(), true);
+  grids->closest_leaves = detail::LeafTable<vdb::Int32Tree>(grids->closest->tree(), true);
   grids_ = std::move(grids);
 }
 
@@ -294,6 +297,9 @@ const DistanceField::Grids& DistanceField::grids() const { return *grids_; }
 DistanceField DistanceField::from_grids(std::vector<Eigen::Vector3f> points, Grids grids) {
   if (!grids.distance || !grids.closest) throw Error("distance field: missing grid");
   grids.points = std::move(points);
+  // Stored grids may hold tiles: the tables check, and stay unused where they find one.
+  grids.distance_leaves = detail::LeafTable<vdb::FloatTree>(grids.distance->tree(), false);
+  grids.closest_leaves = detail::LeafTable<vdb::Int32Tree>(grids.closest->tree(), false);
   DistanceField field;
   field.grids_ = std::make_shared<Grids>(std::move(grids));
   return field;
@@ -314,6 +320,14 @@ struct DistanceField::Sampler::Impl {
   vdb::Int32Grid::ConstUnsafeAccessor closest;
   double inverse_voxel;
   float band;
+
+  // The closest point's index at `voxel`: from the leaf table where the grid has one (the fields
+  // DistanceField builds), else through the accessor.
+  int closest_at(const vdb::Coord& voxel) {
+    if (!grids->closest_leaves.usable()) return closest.getValue(voxel);
+    const IndexLeaf* leaf = grids->closest_leaves.leaf(voxel);
+    return leaf ? leaf->getValue(IndexLeaf::coordToOffset(voxel)) : -1;
+  }
 };
 
 DistanceField::Sampler::Sampler(const DistanceField& field)
@@ -337,21 +351,27 @@ float DistanceField::Sampler::distance(const Eigen::Vector3f& p, Eigen::Vector3f
   double v[2][2][2];
   bool any = false;
   // Two times in three the 8 corners lie in one leaf node: read them from its buffer directly
-  // instead of through the accessor eight times.
+  // instead of looking each up.
   const vdb::Coord c1 = c0.offsetBy(1, 1, 1);
-  const FloatLeaf* leaf = (c0 & ~(FloatLeaf::DIM - 1)) == (c1 & ~(FloatLeaf::DIM - 1))
-                              ? impl_->distance.probeConstLeaf(c0)
-                              : nullptr;
+  const bool one_leaf = (c0 & ~(FloatLeaf::DIM - 1)) == (c1 & ~(FloatLeaf::DIM - 1));
+  const detail::LeafTable<vdb::FloatTree>& table = impl_->grids->distance_leaves;
+  const FloatLeaf* leaf = nullptr;
+  if (one_leaf) {
+    leaf = table.usable() ? table.leaf(c0) : impl_->distance.probeConstLeaf(c0);
+    // Without tiles, a cell outside every leaf is background at all its corners.
+    if (!leaf && table.usable()) return impl_->band;
+  }
   for (int i = 0; i < 2; ++i)
     for (int j = 0; j < 2; ++j)
       for (int k = 0; k < 2; ++k) {
         const vdb::Coord ijk = c0.offsetBy(i, j, k);
+        const FloatLeaf* corner_leaf = one_leaf || !table.usable() ? leaf : table.leaf(ijk);
         float value = impl_->band;
-        if (leaf) {
+        if (corner_leaf) {
           const vdb::Index offset = FloatLeaf::coordToOffset(ijk);
-          value = leaf->getValue(offset);
-          any |= leaf->isValueOn(offset);
-        } else {
+          value = corner_leaf->getValue(offset);
+          any |= corner_leaf->isValueOn(offset);
+        } else if (!table.usable()) {
           any |= impl_->distance.probeValue(ijk, value);
         }
         v[i][j][k] = value;
@@ -381,18 +401,18 @@ float DistanceField::Sampler::distance(const Eigen::Vector3f& p, Eigen::Vector3f
 
 int DistanceField::Sampler::closest(const Eigen::Vector3f& p) const {
   if (!p.allFinite()) return -1;
-  return impl_->closest.getValue(detail::nearest_voxel(p.cast<double>(), impl_->inverse_voxel));
+  return impl_->closest_at(detail::nearest_voxel(p.cast<double>(), impl_->inverse_voxel));
 }
 
 void DistanceField::Sampler::closest(const std::vector<Eigen::Vector3f>& points,
                                      std::vector<int>& indices) const {
   indices.resize(points.size());
-  auto& access = impl_->closest;
-  const double inverse_voxel = impl_->inverse_voxel;
+  Impl& impl = *impl_;
+  const double inverse_voxel = impl.inverse_voxel;
   for (std::size_t k = 0; k < points.size(); ++k) {
     indices[k] =
         points[k].allFinite()
-            ? access.getValue(detail::nearest_voxel(points[k].cast<double>(), inverse_voxel))
+            ? impl.closest_at(detail::nearest_voxel(points[k].cast<double>(), inverse_voxel))
             : -1;
   }
 }

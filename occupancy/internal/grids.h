@@ -5,6 +5,7 @@
 
 #include <openvdb/openvdb.h>
 
+#include "lmk/occupancy/detail/leaf_table.h"
 #include "lmk/occupancy/distance_field.h"
 
 namespace lmk {
@@ -14,6 +15,10 @@ struct DistanceField::Grids {
   openvdb::Int32Grid::Ptr closest;   ///< index of the nearest point, background = -1
   std::vector<Eigen::Vector3f> points;
   double band = 0.0;
+  /// The two grids' leaves by arithmetic, for the samplers' lookups: derived from the grids by
+  /// DistanceField (its constructor and from_grids), never stored.
+  detail::LeafTable<openvdb::FloatTree> distance_leaves;
+  detail::LeafTable<openvdb::Int32Tree> closest_leaves;
 };
 
 }  // namespace lmk
