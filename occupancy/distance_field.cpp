@@ -325,8 +325,8 @@ struct DistanceField::Sampler::Impl {
   // DistanceField builds), else through the accessor.
   int closest_at(const vdb::Coord& voxel) {
     if (!grids->closest_leaves.usable()) return closest.getValue(voxel);
-    const IndexLeaf* leaf = grids->closest_leaves.leaf(voxel);
-    return leaf ? leaf->getValue(IndexLeaf::coordToOffset(voxel)) : -1;
+    const auto found = grids->closest_leaves.find(voxel);
+    return found.values ? found.values[IndexLeaf::coordToOffset(voxel)] : -1;
   }
 };
 
@@ -354,23 +354,27 @@ float DistanceField::Sampler::distance(const Eigen::Vector3f& p, Eigen::Vector3f
   // instead of looking each up.
   const vdb::Coord c1 = c0.offsetBy(1, 1, 1);
   const bool one_leaf = (c0 & ~(FloatLeaf::DIM - 1)) == (c1 & ~(FloatLeaf::DIM - 1));
-  const detail::LeafTable<vdb::FloatTree>& table = impl_->grids->distance_leaves;
-  const FloatLeaf* leaf = nullptr;
+  using Table = detail::LeafTable<vdb::FloatTree>;
+  const Table& table = impl_->grids->distance_leaves;
+  Table::Entry leaf;
   if (one_leaf) {
-    leaf = table.usable() ? table.leaf(c0) : impl_->distance.probeConstLeaf(c0);
-    // Without tiles, a cell outside every leaf is background at all its corners.
-    if (!leaf && table.usable()) return impl_->band;
+    if (table.usable()) {
+      leaf = table.find(c0);
+      if (!leaf.leaf) return impl_->band;  // no tiles: a cell outside every leaf is background
+    } else if ((leaf.leaf = impl_->distance.probeConstLeaf(c0))) {
+      leaf.values = leaf.leaf->buffer().data();
+    }
   }
   for (int i = 0; i < 2; ++i)
     for (int j = 0; j < 2; ++j)
       for (int k = 0; k < 2; ++k) {
         const vdb::Coord ijk = c0.offsetBy(i, j, k);
-        const FloatLeaf* corner_leaf = one_leaf || !table.usable() ? leaf : table.leaf(ijk);
+        const Table::Entry corner = one_leaf || !table.usable() ? leaf : table.find(ijk);
         float value = impl_->band;
-        if (corner_leaf) {
+        if (corner.leaf) {
           const vdb::Index offset = FloatLeaf::coordToOffset(ijk);
-          value = corner_leaf->getValue(offset);
-          any |= corner_leaf->isValueOn(offset);
+          value = corner.values[offset];
+          any |= corner.leaf->isValueOn(offset);
         } else if (!table.usable()) {
           any |= impl_->distance.probeValue(ijk, value);
         }

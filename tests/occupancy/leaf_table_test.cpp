@@ -35,7 +35,11 @@ TEST(LeafTable, FindsTheTreesOwnLeafForEveryVoxelAroundIt) {
       for (int z = -40; z < 40; ++z) {
         const openvdb::Coord c(x, y, z);
         const auto* expected = tree.probeConstLeaf(c);
-        ASSERT_EQ(table.leaf(c), expected) << c;
+        const Table::Entry found = table.find(c);
+        ASSERT_EQ(found.leaf, expected) << c;
+        if (expected) {
+          ASSERT_EQ(found.values[Table::Leaf::coordToOffset(c)], expected->getValue(c)) << c;
+        }
         with_leaf += expected != nullptr;
       }
     }
@@ -47,8 +51,8 @@ TEST(LeafTable, AnEmptyTreeIsBackgroundEverywhere) {
   const openvdb::Int32Tree tree(-1);
   const Table table(tree, false);
   ASSERT_TRUE(table.usable());
-  EXPECT_EQ(table.leaf(openvdb::Coord(0, 0, 0)), nullptr);
-  EXPECT_EQ(table.leaf(openvdb::Coord(-5, 7, 1000)), nullptr);
+  EXPECT_EQ(table.find(openvdb::Coord(0, 0, 0)).leaf, nullptr);
+  EXPECT_EQ(table.find(openvdb::Coord(-5, 7, 1000)).values, nullptr);
 }
 
 TEST(LeafTable, IsUnusableWhereATreeHoldsATile) {
