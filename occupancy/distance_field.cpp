@@ -110,6 +110,9 @@ void splat_points(const std::vector<Eigen::Vector3f>& points, const std::vector<
   // are looked up once, not once per row (the lookups dominated the build time).
   const int span = 2 * reach / static_cast<int>(FloatLeaf::DIM) + 2;
   std::vector<LeafBlock*> near(static_cast<std::size_t>(span * span * span));
+  // The leaves of the last point's box: the next point's box, a voxel or two away, usually lies in
+  // the same ones, and then keeps them without looking them up again.
+  Eigen::Vector3i near_leaf0(0, 0, 0), near_leaves(0, 0, 0);
   // What a column z of the point's box contributes to each of its rows, worked out once per point
   // rather than once per row: the squared offset, the leaf among the row's, the voxel's place in
   // the leaf along z.
@@ -127,12 +130,16 @@ void splat_points(const std::vector<Eigen::Vector3f>& points, const std::vector<
     const Eigen::Vector3i leaf0 = first.unaryExpr([](int v) { return v >> kLeafLog2; });
     const Eigen::Vector3i leaves =
         last.unaryExpr([](int v) { return v >> kLeafLog2; }) - leaf0 + Eigen::Vector3i::Ones();
-    for (int i = 0; i < leaves.x(); ++i) {
-      for (int j = 0; j < leaves.y(); ++j) {
-        for (int k = 0; k < leaves.z(); ++k) {
-          near[(i * span + j) * span + k] = blocks.at(leaf0.x() + i, leaf0.y() + j, leaf0.z() + k);
+    if (leaf0 != near_leaf0 || leaves != near_leaves) {
+      for (int i = 0; i < leaves.x(); ++i) {
+        for (int j = 0; j < leaves.y(); ++j) {
+          for (int k = 0; k < leaves.z(); ++k) {
+            near[(i * span + j) * span + k] =
+                blocks.at(leaf0.x() + i, leaf0.y() + j, leaf0.z() + k);
+          }
         }
       }
+      near_leaf0 = leaf0, near_leaves = leaves;
     }
     for (int k = 0; k < columns; ++k) {
       const int z = first.z() + k;
