@@ -124,7 +124,10 @@ void splat_points(const std::vector<Eigen::Vector3f>& points, const std::vector<
     if (stop && m % (kItemsPerStopCheck / 16) == 0) stop();
     const int index = members[m];
     const Eigen::Vector3d p = points[index].cast<double>() / voxel;  // in voxel units
-    const Eigen::Vector3i c = p.array().round().cast<int>();
+    // The voxel nearest the point, halves rounded up (std::round's away from zero was a libm call
+    // per axis): either rounding's box holds every voxel within the band of a point at a half.
+    const Eigen::Vector3i c(detail::round_to_int(p.x()), detail::round_to_int(p.y()),
+                            detail::round_to_int(p.z()));
     const Eigen::Vector3i first(std::max(c.x() - reach, x0), c.y() - reach, c.z() - reach);
     const Eigen::Vector3i last(std::min(c.x() + reach, x1 - 1), c.y() + reach, c.z() + reach);
     const Eigen::Vector3i leaf0 = first.unaryExpr([](int v) { return v >> kLeafLog2; });
@@ -233,8 +236,8 @@ DistanceField::DistanceField(const std::vector<Eigen::Vector3f>& points,
 
   // Bucket the points by the x slabs their band reaches.
   const int reach = static_cast<int>(std::ceil(band / voxel));
-  const auto slab_of = [&](int x) {
-    return static_cast<int>(std::floor(static_cast<double>(x) / kSlabVoxels));
+  const auto slab_of = [&](int x) {  // floor(x / kSlabVoxels) in integers, negatives included
+    return x >= 0 ? x / kSlabVoxels : -((-x + kSlabVoxels - 1) / kSlabVoxels);
   };
   const double limit = (kMaxVoxelCoordinate - reach) * voxel;
   int first = 0, last = -1;

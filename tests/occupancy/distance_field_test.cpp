@@ -107,6 +107,34 @@ TEST(DistanceField, ABandWiderThanALeafNodeHoldsExactlyTheVoxelsWithinIt) {
               0.001 * within);
 }
 
+TEST(DistanceField, PointsHalfwayBetweenVoxelCentresReachTheirWholeBand) {
+  // A point at a half voxel, on either side of zero, splats from a box about its rounded voxel:
+  // whichever way it rounds, every voxel within the band must be reached, on every axis.
+  const double voxel = 0.25, band = 0.5;  // powers of two: the halves are exact in float
+  const std::vector<Eigen::Vector3f> points = {{-0.625f, 0.125f, -1.125f},
+                                               {1.375f, -0.875f, 0.625f}};
+  const DistanceField field(points, {voxel, band});
+  const auto sampler = field.sampler();
+  std::size_t within = 0;
+  for (int x = -8; x <= 8; ++x) {
+    for (int y = -8; y <= 8; ++y) {
+      for (int z = -8; z <= 8; ++z) {
+        const Eigen::Vector3f q = Eigen::Vector3f(x, y, z) * static_cast<float>(voxel);
+        const float d0 = (points[0] - q).norm(), d1 = (points[1] - q).norm();
+        const int index = sampler.closest(q);
+        if (std::min(d0, d1) > band) {
+          ASSERT_EQ(index, -1) << q.transpose();
+          continue;
+        }
+        ++within;
+        ASSERT_EQ(index, d1 < d0 ? 1 : 0) << q.transpose();
+      }
+    }
+  }
+  EXPECT_EQ(static_cast<std::size_t>(field.active_voxels()), within);
+  EXPECT_GT(within, 40u);
+}
+
 TEST(DistanceField, PointsBeyondWhatVoxelsCanIndexAreRefused) {
   // 1 mm voxels index about 8 km along an axis; a wild point farther out is refused, not wrapped.
   const std::vector<Eigen::Vector3f> far = {{0.0f, 0.0f, 0.0f}, {0.0f, 2.0e4f, 0.0f}};
