@@ -121,7 +121,7 @@ IcpResult icp(const std::vector<Eigen::Vector3f>& source, const IcpTarget& targe
         const double r = nd.dot(qd - pd);
         Eigen::Matrix<double, 6, 1> J;
         J << qd.cross(nd), nd;
-        eq.add(J, r, settings.correspondences.loss.weight(r));
+        eq.add_lower(J, r, settings.correspondences.loss.weight(r));
         eq.abs_residual_sum += std::abs(r);
       } else {
         const Eigen::Vector3d r = qd - pd;
@@ -131,7 +131,7 @@ IcpResult icp(const std::vector<Eigen::Vector3f>& source, const IcpTarget& targe
           Eigen::Matrix<double, 6, 1> J = Eigen::Matrix<double, 6, 1>::Zero();
           J.head<3>() = qd.cross(Eigen::Vector3d::Unit(axis));
           J(3 + axis) = 1.0;
-          eq.add(J, r[axis], w);
+          eq.add_lower(J, r[axis], w);
         }
         eq.abs_residual_sum += r.norm();
       }
@@ -143,6 +143,7 @@ IcpResult icp(const std::vector<Eigen::Vector3f>& source, const IcpTarget& targe
     if (last_step_taken || eq.count < 6) break;
 
     // Levenberg-style damping keeps planar or linear targets (rank-deficient) from diverging.
+    // The sums filled the lower triangle (add_lower), all that the lower LDLT reads.
     Eigen::Matrix<double, 6, 6> A = eq.JtJ;
     A.diagonal().array() += 1e-9 + 1e-6 * A.diagonal().array();
     const Eigen::Matrix<double, 6, 1> delta = A.ldlt().solve(-eq.Jtr);
