@@ -49,16 +49,30 @@ class VoxelTable {
 
  private:
   // The slot holding `key`, or the empty slot where it would go. The table is never more than
-  // half full, so the probe ends. Fibonacci hashing: the top bits of key x 2^64/phi, which depend
-  // on every bit of the key. (Middle bits depend on the key's low bits only, which leave out the
-  // x coordinate of a packed voxel: all voxels of a row along x shared one slot, and the probes
-  // ran long.)
+  // half full, so the probe ends.
+  //
+  // Neighbours hash near each other: a voxel's cell of 4 x 4 x 4 voxels picks a run of 64 slots,
+  // and its place in the cell the slot within the run. The normals look up each voxel's block of
+  // neighbours, and the filters a frame's points in scan order; scattered over the table, each
+  // lookup missed the cache (the scene index, one thread: 3-4% faster this way). The run is chosen
+  // by Fibonacci hashing: the top bits of cell x 2^64/phi, which depend on every bit of the cell.
+  // (Middle bits depend on the key's low bits only, which leave out the x coordinate of a packed
+  // voxel: all voxels of a row along x shared one slot, and the probes ran long.)
   std::size_t find_slot(std::uint64_t key) const {
     const std::size_t mask = keys_.size() - 1;
-    std::size_t slot = static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> shift_);
+    constexpr std::uint64_t kLow = 3;  // two bits of each coordinate: the place in the cell
+    constexpr std::uint64_t kCell =
+        ~((kLow << (2 * kVoxelKeyBits)) | (kLow << kVoxelKeyBits) | kLow);
+    const std::uint64_t within = (key & kLow) | ((key >> kVoxelKeyBits) & kLow) << 2 |
+                                 ((key >> (2 * kVoxelKeyBits)) & kLow) << 4;
+    std::size_t slot = static_cast<std::size_t>(
+        (((key & kCell) * 0x9E3779B97F4A7C15ull) >> (shift_ + kCellSlotsLog2)) << kCellSlotsLog2 |
+        within);
     while (keys_[slot] != key && keys_[slot] != kNoVoxel) slot = (slot + 1) & mask;
     return slot;
   }
+
+  static constexpr int kCellSlotsLog2 = 6;  // 64 slots a cell: 4 x 4 x 4 voxels
 
   // 64 - log2(capacity): the shift that leaves a slot index.
   static int shift_for(std::size_t capacity) {
