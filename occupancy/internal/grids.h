@@ -5,8 +5,8 @@
 
 #include <openvdb/openvdb.h>
 
-#include "lmk/occupancy/detail/leaf_table.h"
 #include "lmk/occupancy/distance_field.h"
+#include "lmk/occupancy/internal/leaf_table.h"
 
 namespace lmk {
 

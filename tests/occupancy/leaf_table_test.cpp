@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The leaf table (occupancy/detail/leaf_table.h) against OpenVDB's own lookups: the same leaf for
+// The leaf table (occupancy/internal/leaf_table.h) against OpenVDB's own lookups: the same leaf for
 // every voxel, negative coordinates and voxels beyond the leaves included; no table where a tree
 // holds tiles or spans too many leaves. And the field's closest-point lookups, which read through
 // it, against the tree read voxel by voxel.
 
-#include "lmk/occupancy/detail/leaf_table.h"
+#include "lmk/occupancy/internal/leaf_table.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
-// LeafTable: the leaf nodes of an OpenVDB tree found by arithmetic. Internal.
+// LeafTable: the leaf nodes of an OpenVDB tree found by arithmetic (internal/: shared within lmk
+// through the distance field's grids, not installed).
 //
 // The fast search reads the scene's distance field some 600,000 times a search, most of them the
 // closest-point lookups of ICP's correspondences. An accessor answers each by comparing the voxel
