@@ -18,6 +18,19 @@ float brute_force_distance(const std::vector<Eigen::Vector3f>& points, const Eig
   return best;
 }
 
+// The voxel centres of the cube reaching `half` voxels either side of the origin on each axis.
+std::vector<Eigen::Vector3f> voxel_centres(int half, double voxel) {
+  std::vector<Eigen::Vector3f> out;
+  for (int x = -half; x <= half; ++x) {
+    for (int y = -half; y <= half; ++y) {
+      for (int z = -half; z <= half; ++z) {
+        out.push_back(Eigen::Vector3f(x, y, z) * static_cast<float>(voxel));
+      }
+    }
+  }
+  return out;
+}
+
 TEST(DistanceField, AgreesWithBruteForceWithinHalfAVoxelInsideTheBand) {
   const PointCloud cloud = test::random_cloud(400, 7, 0.5f);  // in a 1 m cube about the origin
   const DistanceFieldSettings settings{0.02, 0.08};
@@ -85,22 +98,17 @@ TEST(DistanceField, ABandWiderThanALeafNodeHoldsExactlyTheVoxelsWithinIt) {
   const DistanceField field(cloud.points, {voxel, band});
   const auto sampler = field.sampler();
   std::size_t within = 0;
-  for (int x = -35; x <= 35; ++x) {
-    for (int y = -35; y <= 35; ++y) {
-      for (int z = -35; z <= 35; ++z) {
-        const Eigen::Vector3f q = Eigen::Vector3f(x, y, z) * static_cast<float>(voxel);
-        const float truth = brute_force_distance(cloud.points, q);
-        const int index = sampler.closest(q);
-        if (truth > band + 1e-5) {
-          ASSERT_EQ(index, -1) << q.transpose();
-          continue;
-        }
-        if (truth > band - 1e-5) continue;  // at the band's edge itself, either way
-        ++within;
-        ASSERT_GE(index, 0) << q.transpose() << " is " << truth << " m from its nearest point";
-        EXPECT_NEAR((cloud.points[static_cast<std::size_t>(index)] - q).norm(), truth, 1e-5);
-      }
+  for (const Eigen::Vector3f& q : voxel_centres(35, voxel)) {
+    const float truth = brute_force_distance(cloud.points, q);
+    const int index = sampler.closest(q);
+    if (truth > band + 1e-5) {
+      ASSERT_EQ(index, -1) << q.transpose();
+      continue;
     }
+    if (truth > band - 1e-5) continue;  // at the band's edge itself, either way
+    ++within;
+    ASSERT_GE(index, 0) << q.transpose() << " is " << truth << " m from its nearest point";
+    EXPECT_NEAR((cloud.points[static_cast<std::size_t>(index)] - q).norm(), truth, 1e-5);
   }
   EXPECT_GT(within, 10000u);
   EXPECT_NEAR(static_cast<double>(field.active_voxels()), static_cast<double>(within),
@@ -116,20 +124,15 @@ TEST(DistanceField, PointsHalfwayBetweenVoxelCentresReachTheirWholeBand) {
   const DistanceField field(points, {voxel, band});
   const auto sampler = field.sampler();
   std::size_t within = 0;
-  for (int x = -8; x <= 8; ++x) {
-    for (int y = -8; y <= 8; ++y) {
-      for (int z = -8; z <= 8; ++z) {
-        const Eigen::Vector3f q = Eigen::Vector3f(x, y, z) * static_cast<float>(voxel);
-        const float d0 = (points[0] - q).norm(), d1 = (points[1] - q).norm();
-        const int index = sampler.closest(q);
-        if (std::min(d0, d1) > band) {
-          ASSERT_EQ(index, -1) << q.transpose();
-          continue;
-        }
-        ++within;
-        ASSERT_EQ(index, d1 < d0 ? 1 : 0) << q.transpose();
-      }
+  for (const Eigen::Vector3f& q : voxel_centres(8, voxel)) {
+    const float d0 = (points[0] - q).norm(), d1 = (points[1] - q).norm();
+    const int index = sampler.closest(q);
+    if (std::min(d0, d1) > band) {
+      ASSERT_EQ(index, -1) << q.transpose();
+      continue;
     }
+    ++within;
+    ASSERT_EQ(index, d1 < d0 ? 1 : 0) << q.transpose();
   }
   EXPECT_EQ(static_cast<std::size_t>(field.active_voxels()), within);
   EXPECT_GT(within, 40u);
